@@ -1,0 +1,1 @@
+"""UFL weak forms of tribofx (pure functions; no solving)."""

@@ -1,0 +1,1 @@
+"""gmsh model builders returning DOLFINx meshes and tags."""
