@@ -1,0 +1,169 @@
+"""Frictional contact with a rigid countersurface by the augmented Lagrangian method (chapter §2).
+
+Kinematics (eqs. 2–3): the slave point x = X + u is projected onto the master
+(rigid) surface; the projection x̄, the unit outer normal n of the master surface
+and the signed normal gap g_N = (x − x̄)·n are returned as UFL expressions of x by
+the countersurface functions below (analytic plane, cylinder, sphere, or a meshed
+surface through the data of the C++ closest-point kernel).
+
+Enforcement (eqs. 4–5, 8–9) follows Alart and Curnier: the nominal contact
+tractions are unknown multipliers λ_N (scalar) and λ_T (vector) on the reference
+slave surface Γ_c, with the augmented quantities
+
+    λ̂_N = λ_N + ρ_N g_N,          T_N = min(λ̂_N, 0),
+    λ̂_T = (I − n⊗n) λ_T + ρ_T s,  T_T = proj_{‖·‖ ≤ μ|T_N|}(λ̂_T),
+
+where s is the slip increment (Lagrangian) or the slip velocity times a
+pseudo-time scale (Eulerian steady sliding, eq. 26–27); the virtual work of the
+friction traction is done on the variation δx̄ of the projection point (T_Tα δξ̄^α
+of eq. 8).  The residual reads
+
+    G_c = ∫_Γc (T_N δg_N + T_T·δx̄) dS
+        − ∫_Γc (1/ρ_N)(λ_N − T_N) δλ_N dS − ∫_Γc (1/ρ_T)(λ_T − T_T)·δλ_T dS,
+
+a nonsmooth but semismooth function of the unknowns; ``ufl.derivative`` of the
+``conditional`` branches gives the exact generalised Jacobian.  Units: mm, MPa.
+"""
+
+from dataclasses import dataclass
+
+import ufl
+
+__all__ = [
+    "ContactGeometry",
+    "augmented_lagrangian_contact",
+    "contact_tractions",
+    "cylinder_countersurface",
+    "eulerian_slip",
+    "lagrangian_slip",
+    "meshed_countersurface",
+    "plane_countersurface",
+    "sphere_countersurface",
+]
+
+
+@dataclass(frozen=True)
+class ContactGeometry:
+    """UFL expressions of the closest-point projection of the slave point x (eq. 2).
+
+    Attributes:
+        gap: signed normal gap g_N = (x − x̄)·n (mm), positive when separated.
+        normal: unit outer normal n of the master surface at x̄.
+        projection: projection point x̄ on the master surface (mm).
+    """
+
+    gap: ufl.core.expr.Expr
+    normal: ufl.core.expr.Expr
+    projection: ufl.core.expr.Expr
+
+
+def plane_countersurface(x, point, normal):
+    """Rigid plane through ``point`` with unit outer normal ``normal`` (pointing to the body)."""
+    g = ufl.dot(x - point, normal)
+    return ContactGeometry(gap=g, normal=normal, projection=x - g * normal)
+
+
+def _radial(x, center, axis):
+    d = x - center
+    if axis is not None:
+        d = d - ufl.dot(d, axis) * axis
+    return d
+
+
+def cylinder_countersurface(x, center, radius, axis=None):
+    """Rigid cylinder (disc in 2D) of ``radius`` about ``center``; body outside it.
+
+    In 3D ``axis`` is the unit axis of the cylinder; in 2D pass ``axis=None``.
+    """
+    d = _radial(x, center, axis)
+    r = ufl.sqrt(ufl.dot(d, d))
+    n = d / r
+    return ContactGeometry(gap=r - radius, normal=n, projection=x - (r - radius) * n)
+
+
+def sphere_countersurface(x, center, radius):
+    """Rigid sphere of ``radius`` about ``center``; body outside it."""
+    return cylinder_countersurface(x, center, radius, axis=None)
+
+
+def meshed_countersurface(x, x0, gap0, normal0, dnormal_dx, xbar0, dxbar_dx):
+    """Countersurface given as a mesh, through closest-point data at the expansion point x0.
+
+    The C++ kernel returns, at the current slave positions x0, the gap g₀, the
+    normal n₀, its derivative ∂n/∂x (= ∂²g/∂x²), the projection x̄₀ and ∂x̄/∂x.
+    They enter as second-order Taylor expansions in d = x − x0,
+
+        g(x) = g₀ + n₀·d + ½ d·(∂n/∂x) d,   n(x) = n₀ + (∂n/∂x) d,   x̄(x) = x̄₀ + (∂x̄/∂x) d,
+
+    so that value, first and second derivative of g_N at x = x0 are exact and the
+    Newton tangent is consistent (the data are refreshed at every iterate).
+    """
+    d = x - x0
+    g = gap0 + ufl.dot(normal0, d) + 0.5 * ufl.dot(d, dnormal_dx * d)
+    return ContactGeometry(gap=g, normal=normal0 + dnormal_dx * d, projection=xbar0 + dxbar_dx * d)
+
+
+def lagrangian_slip(geometry, xbar_old):
+    """Slip increment s = x̄(x) − x̄_old of the projection point over a load step (mm)."""
+    return geometry.projection - xbar_old
+
+
+def eulerian_slip(u, geometry, V, V_master, dtau):
+    """Steady sliding slip v_T Δτ with v = F V (eq. 26) and v_T its tangential part (eq. 27).
+
+    ``V`` is the background velocity of the slave body in its reference frame,
+    ``V_master`` the velocity of the rigid master surface (mm/s) and ``dtau`` a
+    pseudo-time scale (s) that turns the velocity into a slip for the
+    augmented Lagrangian.
+    """
+    n = geometry.normal
+    F = ufl.Identity(len(u)) + ufl.grad(u)
+    vrel = F * V - V_master
+    return (vrel - ufl.dot(vrel, n) * n) * dtau
+
+
+def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None, mu=None):
+    """Nominal tractions (T_N, T_T) of the Alart–Curnier law as UFL expressions.
+
+    T_N ≤ 0 is the nominal normal traction (eq. 9); T_T the frictional traction,
+    inside the Coulomb cone ‖T_T‖ ≤ μ|T_N| (eq. 5).  Without friction T_T is None.
+    """
+    lhat_n = lam_n + rho_n * geometry.gap
+    t_n = ufl.conditional(ufl.lt(lhat_n, 0), lhat_n, 0)
+    if lam_t is None:
+        return t_n, None
+    n = geometry.normal
+    lhat_t = lam_t - ufl.dot(lam_t, n) * n + rho_t * slip
+    radius = -mu * t_n
+    norm = ufl.sqrt(ufl.dot(lhat_t, lhat_t) + 1e-24)
+    t_t = ufl.conditional(ufl.lt(norm, radius), lhat_t, radius / norm * lhat_t)
+    return t_n, t_t
+
+
+def augmented_lagrangian_contact(
+    u, v, geometry, lam_n, mu_n, rho_n, ds, lam_t=None, mu_t=None, rho_t=None, slip=None, mu=None
+):
+    """Contact residual blocks (eq. 8 with the Alart–Curnier constraint equations).
+
+    Args:
+        u, v: displacement and its test function (bulk space).
+        geometry: :class:`ContactGeometry` of the countersurface at x = X + u.
+        lam_n, mu_n: normal multiplier (nominal traction, MPa) and its test function.
+        rho_n: normal augmentation parameter (MPa/mm).
+        ds: measure over the reference slave surface Γ_c.
+        lam_t, mu_t, rho_t, slip, mu: tangential multiplier, its test function,
+            augmentation (MPa per unit of ``slip``), slip expression and friction
+            coefficient; omit all for frictionless contact.
+
+    Returns:
+        (R_u, R_n, R_t): contributions to the momentum residual and the normal and
+        tangential constraint residuals (R_t is None without friction).
+    """
+    t_n, t_t = contact_tractions(geometry, lam_n, rho_n, lam_t, rho_t, slip, mu)
+    R_u = t_n * ufl.derivative(geometry.gap, u, v) * ds
+    R_n = -(1 / rho_n) * (lam_n - t_n) * mu_n * ds
+    R_t = None
+    if lam_t is not None:
+        R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * ds
+        R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * ds
+    return R_u, R_n, R_t

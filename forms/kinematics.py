@@ -1,0 +1,93 @@
+"""Finite-deformation kinematics for 3D, plane-strain and axisymmetric bodies (chapter §2, §4.3).
+
+Every body is described by a 3×3 deformation gradient so that one strain-energy
+function serves all three kinematic kinds:
+
+* ``"3d"``: F = I + Grad u.
+* ``"plane_strain"``: the in-plane 2×2 block of I + Grad u, embedded with F₃₃ = 1.
+* ``"axisymmetric"``: coordinates (R, Z) = (X₀, X₁); the in-plane block plus the hoop
+  stretch F₃₃ = r/R = 1 + u_R/R, and the volume measure 2πR dR dZ.
+
+Lengths in mm.
+"""
+
+import ufl
+
+__all__ = [
+    "KINDS",
+    "area_ratio",
+    "deformation_gradient",
+    "eulerian_velocity",
+    "grad3",
+    "nanson_normal",
+    "reference_volume_factor",
+    "spatial_position",
+]
+
+KINDS = ("3d", "plane_strain", "axisymmetric")
+
+
+def _check(kind):
+    if kind not in KINDS:
+        raise ValueError(f"unknown kinematic kind {kind!r}; expected one of {KINDS}")
+
+
+def grad3(v, kind):
+    """Reference gradient of a displacement-like field ``v`` as a 3×3 tensor.
+
+    For plane strain the third row/column vanish; for axisymmetry the (3,3)
+    entry is the hoop term v_R / R.
+    """
+    _check(kind)
+    g = ufl.grad(v)
+    if kind == "3d":
+        return g
+    X = ufl.SpatialCoordinate(v.ufl_function_space().mesh)
+    hoop = v[0] / X[0] if kind == "axisymmetric" else 0
+    return ufl.as_tensor(
+        [[g[0, 0], g[0, 1], 0], [g[1, 0], g[1, 1], 0], [0, 0, hoop]]
+    )
+
+
+def deformation_gradient(u, kind):
+    """Deformation gradient F = I + Grad u (3×3 for every ``kind``) — chapter eq. (1)."""
+    return ufl.Identity(3) + grad3(u, kind)
+
+
+def reference_volume_factor(mesh, kind):
+    """Factor multiplying dX in volume and surface integrals: 2πR for axisymmetry, else 1."""
+    _check(kind)
+    if kind == "axisymmetric":
+        return 2 * ufl.pi * ufl.SpatialCoordinate(mesh)[0]
+    return 1
+
+
+def _embed_normal(N, kind):
+    if kind == "3d":
+        return N
+    return ufl.as_vector([N[0], N[1], 0])
+
+
+def nanson_normal(F, N, kind):
+    """Nanson's formula: n da = J F^{-T} N dA; returns the (unnormalised) vector J F^{-T} N."""
+    return ufl.det(F) * ufl.inv(F).T * _embed_normal(N, kind)
+
+
+def area_ratio(F, N, kind):
+    """Area ratio j = da/dA = J |F^{-T} N| of a boundary with reference normal N (eq. 9)."""
+    a = nanson_normal(F, N, kind)
+    return ufl.sqrt(ufl.dot(a, a))
+
+
+def spatial_position(u):
+    """Current position x = X + u (eq. 1)."""
+    return ufl.SpatialCoordinate(u.ufl_function_space().mesh) + u
+
+
+def eulerian_velocity(u, V):
+    """Spatial velocity of the steady background motion, v = F V (eq. 26), gdim components.
+
+    ``V`` is the constant reference-frame velocity (mm/s) of the Eulerian motion.
+    """
+    F = ufl.Identity(len(u)) + ufl.grad(u)
+    return F * V
