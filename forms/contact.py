@@ -141,7 +141,8 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
 
 
 def augmented_lagrangian_contact(
-    u, v, geometry, lam_n, mu_n, rho_n, ds, lam_t=None, mu_t=None, rho_t=None, slip=None, mu=None
+    u, v, geometry, lam_n, mu_n, rho_n, ds, lam_t=None, mu_t=None, rho_t=None, slip=None, mu=None,
+    weight=1,
 ):
     """Contact residual blocks (eq. 8 with the Alart–Curnier constraint equations).
 
@@ -154,16 +155,17 @@ def augmented_lagrangian_contact(
         lam_t, mu_t, rho_t, slip, mu: tangential multiplier, its test function,
             augmentation (MPa per unit of ``slip``), slip expression and friction
             coefficient; omit all for frictionless contact.
+        weight: reference measure factor (2πR for axisymmetric bodies, else 1).
 
     Returns:
         (R_u, R_n, R_t): contributions to the momentum residual and the normal and
         tangential constraint residuals (R_t is None without friction).
     """
     t_n, t_t = contact_tractions(geometry, lam_n, rho_n, lam_t, rho_t, slip, mu)
-    R_u = t_n * ufl.derivative(geometry.gap, u, v) * ds
-    R_n = -(1 / rho_n) * (lam_n - t_n) * mu_n * ds
+    R_u = t_n * ufl.derivative(geometry.gap, u, v) * weight * ds
+    R_n = -(1 / rho_n) * (lam_n - t_n) * mu_n * weight * ds
     R_t = None
     if lam_t is not None:
-        R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * ds
-        R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * ds
+        R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * weight * ds
+        R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * weight * ds
     return R_u, R_n, R_t

@@ -13,6 +13,7 @@ from .kinematics import deformation_gradient, grad3, reference_volume_factor
 
 __all__ = [
     "MATERIALS",
+    "external_virtual_work",
     "first_piola",
     "internal_virtual_work",
     "lame_parameters",
@@ -87,3 +88,9 @@ def internal_virtual_work(u, v, kind, material, params, dx):
     P = first_piola(F, material, params)
     w = reference_volume_factor(u.ufl_function_space().mesh, kind)
     return ufl.inner(P, grad3(v, kind)) * w * dx
+
+
+def external_virtual_work(traction, v, kind, ds):
+    """Virtual work ∫ T*·δφ dS of a prescribed nominal traction T* (MPa), eq. (7)."""
+    w = reference_volume_factor(v.ufl_function_space().mesh, kind)
+    return ufl.dot(traction, v) * w * ds

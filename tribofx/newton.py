@@ -57,6 +57,8 @@ class BlockNewton:
         quadrature_degree: default quadrature degree passed to FFCx.
     """
 
+    _count = 0
+
     def __init__(
         self,
         F,
@@ -67,7 +69,7 @@ class BlockNewton:
         rtol=1e-10,
         atol=1e-10,
         max_it=30,
-        petsc_prefix="tribofx_newton_",
+        petsc_prefix=None,
     ):
         self.single = not isinstance(u, (list, tuple))
         self.u = [u] if self.single else list(u)
@@ -87,6 +89,8 @@ class BlockNewton:
         self.x = fem_petsc.create_vector(spaces, kind="mpi")
         self.dx = self.x.duplicate()
         self._blocks = self.b.getAttr("_blocks")
+        BlockNewton._count += 1
+        petsc_prefix = petsc_prefix or f"tribofx_newton{BlockNewton._count}_"
         self.ksp = PETSc.KSP().create(self.A.comm)
         self.ksp.setOptionsPrefix(petsc_prefix)
         self.ksp.setOperators(self.A)

@@ -1,0 +1,121 @@
+"""gmsh models of the Hertz problem: an elastic cylinder (2D) or sphere (3D) on a plane.
+
+Both are symmetry-reduced and refined towards the initial contact point, which
+lies at the origin; the rigid plane is y = 0 (2D) or z = 0 (3D).
+
+* 2D (plane strain): quarter disc x ≥ 0 of the cylinder of radius R centred at
+  (0, R), cut at its centre plane y = R.
+* 3D: quarter of the hemisphere x, y ≥ 0 of the sphere of radius R centred at
+  (0, 0, R), cut at its equator plane z = R.
+
+Facet tags: 1 potential contact surface, 2 loaded flat face, 3 symmetry x = 0,
+4 symmetry y = 0 (3D only).  Lengths in mm.
+"""
+
+import gmsh
+from mpi4py import MPI
+
+from dolfinx.io import gmsh as gmshio
+
+__all__ = ["CONTACT", "LOADED", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
+
+CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y = 1, 2, 3, 4
+
+
+def _size_field(h_fine, h_coarse, r_fine, R, point_tag):
+    f = gmsh.model.mesh.field
+    d = f.add("Distance")
+    f.setNumbers(d, "PointsList", [point_tag])
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", d)
+    f.setNumber(t, "SizeMin", h_fine)
+    f.setNumber(t, "SizeMax", h_coarse)
+    f.setNumber(t, "DistMin", r_fine)
+    f.setNumber(t, "DistMax", r_fine + 0.6 * R)
+    f.setAsBackgroundMesh(t)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+
+
+def _build_2d(R, h_fine, h_coarse, r_fine):
+    occ = gmsh.model.occ
+    disc = occ.addDisk(0, R, 0, R, R)
+    box = occ.addRectangle(0, 0, 0, R, R)
+    occ.intersect([(2, disc)], [(2, box)])
+    occ.synchronize()
+    contact, loaded, sym = [], [], []
+    for dim, tag in gmsh.model.getEntities(1):
+        x, y, _ = occ.getCenterOfMass(dim, tag)
+        if abs(x) < 1e-8 * R:
+            sym.append(tag)
+        elif abs(y - R) < 1e-8 * R:
+            loaded.append(tag)
+        else:
+            contact.append(tag)
+    surf = [t for _, t in gmsh.model.getEntities(2)]
+    gmsh.model.addPhysicalGroup(2, surf, 1)
+    gmsh.model.addPhysicalGroup(1, contact, CONTACT)
+    gmsh.model.addPhysicalGroup(1, loaded, LOADED)
+    gmsh.model.addPhysicalGroup(1, sym, SYMMETRY_X)
+    p0 = [t for _, t in gmsh.model.getEntities(0)
+          if sum(abs(c) for c in gmsh.model.getValue(0, t, [])) < 1e-8 * R]
+    if not p0:
+        p0 = [occ.addPoint(0, 0, 0)]
+        occ.synchronize()
+    _size_field(h_fine, h_coarse, r_fine, R, p0[0])
+    gmsh.model.mesh.generate(2)
+
+
+def _build_3d(R, h_fine, h_coarse, r_fine):
+    occ = gmsh.model.occ
+    ball = occ.addSphere(0, 0, R, R)
+    box = occ.addBox(0, 0, 0, R, R, R)
+    occ.intersect([(3, ball)], [(3, box)])
+    occ.synchronize()
+    tags = {CONTACT: [], LOADED: [], SYMMETRY_X: [], SYMMETRY_Y: []}
+    for dim, tag in gmsh.model.getEntities(2):
+        x, y, z = occ.getCenterOfMass(dim, tag)
+        if abs(x) < 1e-8 * R:
+            tags[SYMMETRY_X].append(tag)
+        elif abs(y) < 1e-8 * R:
+            tags[SYMMETRY_Y].append(tag)
+        elif abs(z - R) < 1e-8 * R:
+            tags[LOADED].append(tag)
+        else:
+            tags[CONTACT].append(tag)
+    vol = [t for _, t in gmsh.model.getEntities(3)]
+    gmsh.model.addPhysicalGroup(3, vol, 1)
+    for k, v in tags.items():
+        gmsh.model.addPhysicalGroup(2, v, k)
+    p0 = [t for _, t in gmsh.model.getEntities(0)
+          if sum(abs(c) for c in gmsh.model.getValue(0, t, [])) < 1e-8 * R]
+    _size_field(h_fine, h_coarse, r_fine, R, p0[0])
+    gmsh.model.mesh.generate(3)
+
+
+def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+    """Build the symmetry-reduced Hertz body and return ``(mesh, facet_tags)``.
+
+    Args:
+        dim: 2 (plane-strain cylinder) or 3 (sphere).
+        R: radius (mm).
+        h_fine: element size within ``r_fine`` of the initial contact point (mm).
+        h_coarse: element size far from it (mm).
+        r_fine: radius of the refined zone (mm); choose it above the contact size.
+        comm: MPI communicator; the model is built on rank 0 and distributed.
+    """
+    if dim not in (2, 3):
+        raise ValueError(f"dim must be 2 or 3, got {dim}")
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add(f"hertz{dim}d")
+    if comm.rank == 0:
+        (_build_2d if dim == 2 else _build_3d)(R, h_fine, h_coarse, r_fine)
+    data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=dim)
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    return data.mesh, data.facet_tags

@@ -1,0 +1,57 @@
+"""gmsh-built rigid countersurfaces given as surface meshes (for the closest-point kernel).
+
+Returns plain arrays ``(nodes, facets, cell_type)`` in the kernel's packing:
+``nodes`` (nv, gdim) float64, ``facets`` (nf, k) int32 in basix node ordering,
+facet normals oriented towards the deformable body.  Lengths in mm.
+"""
+
+import gmsh
+import numpy as np
+
+__all__ = ["plane_surface_mesh"]
+
+
+def plane_surface_mesh(gdim, extent, size, height=0.0):
+    """Mesh of the rigid plane {x_gdim = height} with normal +e_gdim.
+
+    Args:
+        gdim: 2 (a segment along x on y = height) or 3 (a square on z = height).
+        extent: (lo, hi) of the covered coordinate range in x (and y in 3D), mm.
+        size: target element size (mm).
+        height: position of the plane (mm).
+    """
+    lo, hi = extent
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("plane")
+    occ = gmsh.model.occ
+    if gdim == 2:
+        p0, p1 = occ.addPoint(lo, height, 0, size), occ.addPoint(hi, height, 0, size)
+        occ.addLine(p0, p1)
+    else:
+        occ.addRectangle(lo, lo, height, hi - lo, hi - lo)
+    occ.synchronize()
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", size)
+    gmsh.model.mesh.generate(gdim - 1)
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    nodes = coords.reshape(-1, 3)[:, :gdim]
+    index = {int(t): i for i, t in enumerate(tags)}
+    etype = 1 if gdim == 2 else 2
+    _, enodes = gmsh.model.mesh.getElementsByType(etype)
+    facets = np.array([index[int(t)] for t in enodes], dtype=np.int32).reshape(-1, gdim)
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    # orient: 2D normal (t_y, -t_x) must be +y  -> segments run in -x direction;
+    # 3D normal t1 x t2 must be +z.
+    x = nodes[facets]
+    if gdim == 2:
+        flip = (x[:, 1, 0] - x[:, 0, 0]) > 0
+    else:
+        t1, t2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
+        flip = np.cross(t1, t2)[:, 2] < 0
+    facets[flip] = facets[flip][:, ::-1] if gdim == 2 else facets[flip][:, [0, 2, 1]]
+    return np.ascontiguousarray(nodes, dtype=np.float64), facets, ("interval" if gdim == 2 else "triangle")

@@ -1,0 +1,16 @@
+"""Registry of runnable cases: ``tribofx run CASE``."""
+
+from .hertz import HertzCase
+
+__all__ = ["CASES", "get_case"]
+
+CASES = {c.name: c for c in (HertzCase,)}
+
+
+def get_case(name):
+    """Return the case class called ``name`` or raise :class:`tribofx.params.InputError`."""
+    from ..params import InputError
+
+    if name not in CASES:
+        raise InputError(f"unknown case {name!r}; available: {', '.join(sorted(CASES))}")
+    return CASES[name]

@@ -1,0 +1,207 @@
+"""Hertz contact: an elastic cylinder (plane strain) or sphere pressed on a rigid plane.
+
+The body is symmetry-reduced (half cylinder cross-section x ≥ 0 / quarter
+sphere x, y ≥ 0), clamped on its flat face, and the rigid plane is pushed
+against it.  The plane position δ is found by a secant iteration so that the
+normal contact force equals the prescribed ``load``; the load is applied in
+``steps`` increments (friction makes the response path dependent).
+
+Hertz reference (E* = E/(1 − ν²) against a rigid plane):
+2D, load P per unit length:  a = √(4PR/(πE*)),  p_max = 2P/(πa);
+3D, load P:                  a = (3PR/(4E*))^{1/3},  p_max = 3P/(2πa²).
+"""
+
+import math
+
+import numpy as np
+from mpi4py import MPI
+
+from ..contact_problem import ContactProblem, ContactSettings
+from ..forms.hyperelastic import lame_parameters
+from ..meshes.hertz import CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y, hertz_body
+from ..newton import NewtonDivergence
+from ..obstacles import AnalyticObstacle, MeshedObstacle
+from ..params import InputError, Param
+
+__all__ = ["HertzCase", "hertz_reference"]
+
+
+def hertz_reference(dim, E, nu, R, load):
+    """Hertz contact size (half-width in 2D, radius in 3D; mm) and peak pressure (MPa)."""
+    Es = E / (1 - nu**2)
+    if dim == 2:
+        a = math.sqrt(4 * load * R / (math.pi * Es))
+        return a, 2 * load / (math.pi * a)
+    a = (3 * load * R / (4 * Es)) ** (1 / 3)
+    return a, 3 * load / (2 * math.pi * a**2)
+
+
+class HertzCase:
+    """Case ``hertz``; see the module docstring."""
+
+    name = "hertz"
+    doc = "elastic cylinder (dim=2) or sphere (dim=3) pressed on a rigid plane, vs Hertz"
+    params = (
+        Param("dim", int, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model)",
+              choices=(2, 3)),
+        Param("E", float, 10.0, "MPa", "Young's modulus", lower=0.0),
+        Param("nu", float, 0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0,
+              upper=0.5),
+        Param("R", float, 10.0, "mm", "radius of the cylinder/sphere", lower=0.0),
+        Param("load", float, None, "N/mm (dim=2) or N (dim=3)",
+              "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
+              lower=0.0),
+        Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0.0,
+              closed=True),
+        Param("obstacle", str, "analytic", "-", "rigid plane in closed form or as a gmsh mesh",
+              choices=("analytic", "mesh")),
+        Param("material", str, "neo-hookean", "-", "strain energy",
+              choices=("neo-hookean", "linear")),
+        Param("mesh", int, 1, "-", "refinement level (element size halves per level)",
+              lower=0, upper=6, closed=True),
+        Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
+    )
+
+    @staticmethod
+    def validate(v):
+        """Fill derived defaults and check cross-parameter consistency."""
+        if v["load"] is None:
+            v["load"] = 0.2 if v["dim"] == 2 else 0.5
+        a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
+        if a > 0.5 * v["R"]:
+            raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
+
+    @staticmethod
+    def mesh_sizes(v):
+        """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
+        a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
+        per_a = (12 if v["dim"] == 2 else 4) * 2 ** v["mesh"]
+        return a / per_a, v["R"] / (6 if v["dim"] == 2 else 4), 1.5 * a
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD):
+        """Mesh, obstacle and :class:`ContactProblem` of the case (not yet loaded)."""
+        dim, R = v["dim"], v["R"]
+        h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
+        msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
+        normal = np.eye(dim)[dim - 1]
+        if v["obstacle"] == "analytic":
+            def factory(m, Vs):
+                return AnalyticObstacle(m, "plane", np.zeros(dim), normal=normal)
+        else:
+            from ..meshes.obstacles import plane_surface_mesh
+
+            nodes, facets, ctype = plane_surface_mesh(dim, (-0.2 * R, 1.2 * R), 4 * h_fine)
+
+            def factory(m, Vs):
+                return MeshedObstacle(m, Vs, nodes, facets, ctype)
+
+        mu, lmbda = lame_parameters(v["E"], v["nu"])
+        settings = ContactSettings(rho_n=v["E"] / h_fine, friction=v["friction"],
+                                   slip="lagrangian")
+        prob = ContactProblem(msh, ft, CONTACT, "plane_strain" if dim == 2 else "3d",
+                              v["material"], {"mu": mu, "lmbda": lmbda}, factory, settings)
+        prob.add_dirichlet(LOADED, np.zeros(dim))
+        prob.add_dirichlet(SYMMETRY_X, 0.0, component=0)
+        if dim == 3:
+            prob.add_dirichlet(SYMMETRY_Y, 0.0, component=1)
+        prob.finalize()
+        return prob
+
+    @staticmethod
+    def model_fraction(dim):
+        """Fraction of the full body that is modelled (symmetry)."""
+        return 0.5 if dim == 2 else 0.25
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False):
+        """Load the body to ``load`` and record contact size and peak pressure."""
+        dim, R = v["dim"], v["R"]
+        prob = cls.build(v)
+        frac = cls.model_fraction(dim)
+        record.data["num_dofs"] = prob.solver.num_dofs
+        a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
+        loader = SecantLoader(prob, dim - 1, record, verbose)
+        targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
+        delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
+        try:
+            for k, target in enumerate(targets):
+                delta = loader.reach(target, delta * (1 if k == 0 else (k + 1) / k))
+                if progress is not None:
+                    progress.update(1)
+        finally:
+            cls._report(prob, v, record, frac, a_h, p_h)
+        return prob
+
+    @staticmethod
+    def _report(prob, v, record, frac, a_h, p_h):
+        dim = v["dim"]
+        area, pmax = prob.contact_measures()
+        size = area if dim == 2 else math.sqrt(4 * area / math.pi)
+        force = prob.contact_force()
+        key = "contact_half_width" if dim == 2 else "contact_radius"
+        record.result(key, size, "mm")
+        record.result(f"hertz_{key}", a_h, "mm")
+        record.result("p_max", pmax, "MPa")
+        record.result("hertz_p_max", p_h, "MPa")
+        record.result(f"{key}_rel_error", size / a_h - 1)
+        record.result("p_max_rel_error", pmax / p_h - 1)
+        record.result("normal_load_full_body", float(force[dim - 1] / frac),
+                      "N/mm" if dim == 2 else "N")
+        record.result("tangential_force_modelled_part", [float(f) for f in force[: dim - 1]],
+                      "N/mm" if dim == 2 else "N")
+        prof = prob.gather_profile()
+        if prob.mesh.comm.rank == 0:
+            r = (prof["x"][:, 0] if dim == 2
+                 else np.linalg.norm(prof["x"][:, :2], axis=1))
+            record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}
+
+
+class SecantLoader:
+    """Displacement-controlled loading by a rigid translation δ of the obstacle.
+
+    :meth:`reach` finds δ such that the normal contact force equals a target by
+    a secant iteration; each trial is a full Newton solve warm-started from the
+    previous trial.  A failed Newton solve restores the last state and halves
+    the δ increment (step cutting).
+    """
+
+    def __init__(self, prob, axis, record, verbose=False, rtol=1e-6, max_trials=25):
+        self.prob, self.axis, self.record = prob, axis, record
+        self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
+        self.delta_done = 0.0
+
+    def _force(self, delta):
+        self.prob.obstacle.offset.value[self.axis] = delta
+        report = self.prob.solve(verbose=self.verbose)
+        self.iterations.append(report.iterations)
+        return self.prob.contact_force()[self.axis]
+
+    def reach(self, target, delta):
+        """Solve for the obstacle position giving ``target`` normal force; returns δ."""
+        self.iterations = []
+        saved = self.prob.state()
+        d0 = self.delta_done
+        f0 = None
+        d1 = delta
+        for _ in range(self.max_trials):
+            try:
+                f1 = self._force(d1)
+            except NewtonDivergence:
+                self.prob.restore(saved)
+                d1 = 0.5 * (self.delta_done + d1)
+                continue
+            if abs(f1 - target) <= self.rtol * target:
+                break
+            if f0 is None or f1 == f0:
+                # power-law update from the origin of the loading
+                d_new = d1 * (target / f1) ** (0.7) if f1 > 0 else 2 * d1
+            else:
+                d_new = d1 - (f1 - target) * (d1 - d0) / (f1 - f0)
+            d0, f0, d1 = d1, f1, d_new
+        else:
+            raise NewtonDivergence(f"load {target:g} not reached in {self.max_trials} trials")
+        self.prob.commit()
+        self.delta_done = d1
+        self.record.data["newton_iterations"].append(self.iterations)
+        return d1

@@ -1,0 +1,66 @@
+"""Command line: ``tribofx list`` and ``tribofx run CASE [--set k=v ...] [--out DIR]``."""
+
+import argparse
+import sys
+
+__all__ = ["main"]
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        sys.stderr.write(f"tribofx: error: {message}\n")
+        sys.exit(2)
+
+
+def _list():
+    from .cases import CASES
+
+    for name, case in sorted(CASES.items()):
+        print(f"{name}: {case.doc}")
+        for p in case.params:
+            extra = f" one of {list(p.choices)}" if p.choices else ""
+            print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
+
+
+def main(argv=None):
+    """Entry point of the ``tribofx`` command; returns the exit status."""
+    parser = _Parser(prog="tribofx", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("list", help="list cases and their parameters")
+    run = sub.add_parser("run", help="run a case")
+    run.add_argument("case")
+    run.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    run.add_argument("--out", default=None)
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--verbose", action="store_true", help="print Newton residuals")
+    args = parser.parse_args(argv)
+    if args.command == "list":
+        _list()
+        return 0
+    from .params import InputError
+
+    overrides = {}
+    for item in args.set:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            sys.stderr.write(f"tribofx: error: --set expects KEY=VALUE, got {item!r}\n")
+            return 2
+        overrides[key.strip()] = value.strip()
+    try:
+        import dolfinx_solver  # noqa: F401  (must precede dolfinx/petsc4py)
+
+        from .runner import run_case
+
+        summary = run_case(args.case, overrides, args.out or f"results/{args.case}",
+                           progress=not args.quiet, verbose=args.verbose)
+    except InputError as err:
+        sys.stderr.write(f"tribofx: error: {err}\n")
+        return 2
+    if not summary["status"].startswith("ok"):
+        sys.stderr.write(f"tribofx: run {summary['status']}\n")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,104 @@
+"""Rigid countersurfaces for contact: analytic (plane, cylinder, sphere) or meshed.
+
+An obstacle turns a UFL position x into a :class:`tribofx.forms.contact.ContactGeometry`
+through the functions of ``forms/contact``.  Its rigid translation ``offset`` (mm)
+is a ``dolfinx.fem.Constant`` that drivers move to load the body.
+
+A :class:`MeshedObstacle` carries the closest-point data of the C++ kernel as
+nodal (P1) fields on the contact submesh; :meth:`MeshedObstacle.update` refreshes
+them at the current slave node positions and is called before every residual
+assembly, so that the Newton tangent stays consistent.
+"""
+
+import numpy as np
+import ufl
+
+from dolfinx import fem
+
+from .forms import contact as cf
+
+__all__ = ["AnalyticObstacle", "MeshedObstacle"]
+
+
+class AnalyticObstacle:
+    """Plane, cylinder or sphere given in closed form.
+
+    Args:
+        mesh: bulk mesh (for the constants).
+        shape: "plane", "cylinder" or "sphere".
+        point: a point of the plane, or the centre of cylinder/sphere (mm).
+        normal: unit outer normal of the plane (towards the body).
+        radius: cylinder/sphere radius (mm).
+        axis: unit axis of a 3D cylinder.
+    """
+
+    def __init__(self, mesh, shape, point, normal=None, radius=None, axis=None):
+        if shape not in ("plane", "cylinder", "sphere"):
+            raise ValueError(f"unknown obstacle shape {shape!r}")
+        gdim = mesh.geometry.dim
+        self.shape = shape
+        self.point = np.asarray(point, dtype=float)
+        self.offset = fem.Constant(mesh, np.zeros(gdim))
+        self._normal = None if normal is None else ufl.as_vector(list(map(float, normal)))
+        self._radius = radius
+        self._axis = None if axis is None else ufl.as_vector(list(map(float, axis)))
+
+    def geometry(self, x):
+        """Closest-point geometry of the (translated) obstacle at the UFL position ``x``."""
+        c = ufl.as_vector(list(map(float, self.point))) + self.offset
+        if self.shape == "plane":
+            return cf.plane_countersurface(x, c, self._normal)
+        if self.shape == "cylinder":
+            return cf.cylinder_countersurface(x, c, self._radius, self._axis)
+        return cf.sphere_countersurface(x, c, self._radius)
+
+    def update(self, x_nodes):
+        """Nothing to refresh for a closed-form obstacle."""
+
+
+class MeshedObstacle:
+    """Rigid countersurface given as a surface mesh, projected by the C++ kernel.
+
+    Args:
+        mesh: bulk mesh (for the offset constant).
+        V_sub: vector P1 space on the contact submesh (holds the nodal data).
+        nodes, facets, cell_type: surface mesh in the packing of
+            :func:`tribofx.projection.closest_point_projection`.
+    """
+
+    def __init__(self, mesh, V_sub, nodes, facets, cell_type):
+        from .projection import closest_point_projection
+
+        self._project = closest_point_projection
+        gdim = mesh.geometry.dim
+        self.nodes = np.asarray(nodes, dtype=float)
+        self.facets = np.asarray(facets, dtype=np.int32)
+        self.cell_type = cell_type
+        self.offset = fem.Constant(mesh, np.zeros(gdim))
+        sub = V_sub.mesh
+        T = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim)))
+        S = fem.functionspace(sub, ("Lagrange", 1))
+        self.x0 = fem.Function(V_sub, name="x0")
+        self.gap0 = fem.Function(S, name="gap0")
+        self.normal0 = fem.Function(V_sub, name="normal0")
+        self.xbar0 = fem.Function(V_sub, name="xbar0")
+        self.dnormal = fem.Function(T, name="dnormal_dx")
+        self.dxbar = fem.Function(T, name="dxbar_dx")
+
+    def geometry(self, x):
+        """Second-order expansion of the kernel data about the last update point."""
+        return cf.meshed_countersurface(
+            x, self.x0, self.gap0, self.normal0, self.dnormal, self.xbar0, self.dxbar
+        )
+
+    def update(self, x_nodes):
+        """Project the slave nodes ``x_nodes`` (n, gdim) — ordered as the P1 dofs — and store."""
+        gdim = x_nodes.shape[1]
+        off = self.offset.value
+        res = self._project(x_nodes - off, self.nodes, self.facets, self.cell_type)
+        self.x0.x.array[:] = x_nodes.ravel()
+        self.gap0.x.array[:] = res.gap
+        self.normal0.x.array[:] = res.normal.ravel()
+        self.xbar0.x.array[:] = (res.x_bar + off).ravel()
+        self.dnormal.x.array[:] = res.dn_dx.reshape(-1, gdim * gdim).ravel()
+        self.dxbar.x.array[:] = res.dxbar_dx.reshape(-1, gdim * gdim).ravel()

@@ -1,0 +1,71 @@
+"""Run outputs: ``summary.json``, VTX (.bp) fields for ParaView and PNG plots."""
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["RunRecord", "write_vtx"]
+
+
+def _jsonable(obj):
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _jsonable(obj.tolist())
+    if isinstance(obj, (np.floating, np.integer, np.bool_)):
+        return obj.item()
+    return obj
+
+
+class RunRecord:
+    """Collects what a run reports and writes ``summary.json`` (rank 0 only).
+
+    The summary holds: case name, status, parameters with units, results (a dict
+    of value/unit pairs or plain values), Newton iterations per step, wall time,
+    number of unknowns, DOLFINx version and MPI size.
+    """
+
+    def __init__(self, case, params, units, outdir, comm):
+        import dolfinx
+
+        self.comm = comm
+        self.outdir = Path(outdir)
+        self.t0 = time.perf_counter()
+        self.data = {
+            "case": case,
+            "status": "running",
+            "units": {"length": "mm", "force": "N", "stress": "MPa", "time": "s"},
+            "parameters": {k: {"value": params[k], "unit": units[k]} for k in params},
+            "results": {},
+            "newton_iterations": [],
+            "num_dofs": None,
+            "wall_time_s": None,
+            "dolfinx_version": dolfinx.__version__,
+            "mpi_size": comm.size,
+        }
+
+    def result(self, key, value, unit="-"):
+        """Record a scalar or list result with its unit."""
+        self.data["results"][key] = {"value": value, "unit": unit}
+
+    def write(self, status):
+        """Write ``summary.json`` with ``status`` ("ok" or "failed: …")."""
+        self.data["status"] = status
+        self.data["wall_time_s"] = time.perf_counter() - self.t0
+        if self.comm.rank == 0:
+            self.outdir.mkdir(parents=True, exist_ok=True)
+            with open(self.outdir / "summary.json", "w") as f:
+                json.dump(_jsonable(self.data), f, indent=2)
+        return self.data
+
+
+def write_vtx(comm, path, functions, t=0.0):
+    """Write ``functions`` (same mesh, Lagrange) to the VTX file ``path``."""
+    from dolfinx.io import VTXWriter
+
+    with VTXWriter(comm, str(path), functions, engine="BP4") as w:
+        w.write(t)

@@ -1,0 +1,86 @@
+"""Case parameters: declaration, parsing of ``--set key=value`` and validation.
+
+Every violation raises :class:`InputError` with a one-line message; the CLI turns
+it into exit status 2.
+"""
+
+from dataclasses import dataclass
+
+__all__ = ["InputError", "Param", "resolve"]
+
+
+class InputError(ValueError):
+    """Bad user input (unknown case or key, wrong type, value out of range)."""
+
+
+@dataclass(frozen=True)
+class Param:
+    """One case parameter.
+
+    Attributes:
+        name: key used with ``--set``.
+        type: ``int``, ``float``, ``str`` or ``bool``.
+        default: default value (None: derived by the case from the others).
+        unit: unit string (``"-"`` for dimensionless).
+        doc: one-line description.
+        choices: allowed values for strings/ints.
+        lower, upper: open bounds (``lower < value < upper``) unless ``closed``.
+        closed: bounds are inclusive.
+    """
+
+    name: str
+    type: type
+    default: object
+    unit: str
+    doc: str
+    choices: tuple | None = None
+    lower: float | None = None
+    upper: float | None = None
+    closed: bool = False
+
+    def parse(self, text):
+        """Convert ``text`` to the parameter's type and check its range."""
+        try:
+            if self.type is bool:
+                low = text.strip().lower()
+                if low not in ("true", "false", "1", "0", "yes", "no"):
+                    raise ValueError
+                value = low in ("true", "1", "yes")
+            else:
+                value = self.type(text)
+        except ValueError:
+            raise InputError(
+                f"parameter {self.name!r} expects {self.type.__name__}, got {text!r}"
+            ) from None
+        self.check(value)
+        return value
+
+    def check(self, value):
+        """Raise :class:`InputError` if ``value`` is outside the allowed set or range."""
+        if self.choices is not None and value not in self.choices:
+            raise InputError(
+                f"parameter {self.name!r} must be one of {list(self.choices)}, got {value!r}"
+            )
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            if value != value:
+                raise InputError(f"parameter {self.name!r} is NaN")
+            lo, hi = self.lower, self.upper
+            if lo is not None and (value < lo or (value == lo and not self.closed)):
+                rel = ">=" if self.closed else ">"
+                raise InputError(f"parameter {self.name!r} must be {rel} {lo} {self.unit}, "
+                                 f"got {value}")
+            if hi is not None and (value > hi or (value == hi and not self.closed)):
+                rel = "<=" if self.closed else "<"
+                raise InputError(f"parameter {self.name!r} must be {rel} {hi} {self.unit}, "
+                                 f"got {value}")
+
+
+def resolve(params, overrides):
+    """Return {name: value} from declared ``params`` and ``overrides`` {name: text}."""
+    table = {p.name: p for p in params}
+    values = {p.name: p.default for p in params}
+    for key, text in overrides.items():
+        if key not in table:
+            raise InputError(f"unknown parameter {key!r}; known: {', '.join(table)}")
+        values[key] = table[key].parse(text)
+    return values

@@ -1,0 +1,34 @@
+"""PNG plots of case results (rank 0, matplotlib Agg backend)."""
+
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["plot_hertz_pressure"]
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_hertz_pressure(profile, path):
+    """Nodal contact pressure against the Hertz distribution p₀√(1 − r²/a²)."""
+    plt = _pyplot()
+    a, p0 = profile["a"], profile["p0"]
+    r = np.linspace(0, a, 200)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(r, p0 * np.sqrt(1 - (r / a) ** 2), "k-", label="Hertz")
+    mask = profile["r"] < 1.6 * a
+    ax.plot(profile["r"][mask], profile["p"][mask], "o", ms=3, label="tribofx (nodal)")
+    ax.set_xlabel("x (mm)" if profile["dim"] == 2 else "r (mm)")
+    ax.set_ylabel("contact pressure (MPa)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
+    plt.close(fig)
