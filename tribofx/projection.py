@@ -88,14 +88,20 @@ def closest_point_projection(
     ``|x - x(xi)|`` over the surface are found, with ``x(xi)`` the Lagrange
     map of the facet. A bounding box tree over the facets (boxes of the
     Bernstein control points, which enclose curved facets exactly) is searched
-    nearest-first with pruning. On each candidate facet the interior problem is
-    solved (closed form for affine facets, otherwise Newton with the Hessian
-    ``A`` below, each iterate projected onto the reference facet, at most 50
-    iterations, step tolerance 1e-14); if that does not converge strictly
-    inside, the closest point on the edges of the reference facet is taken
-    (closed form / clamped 1D Newton). Among facets whose distances tie with
-    the minimum ``dmin`` (``dmin >= d (1 - 1e-12) - 1e-300``) the lowest facet
-    index wins.
+    nearest-first with pruning. On each candidate facet:
+
+    1. the interior problem is solved: closed form for affine facets,
+       otherwise Newton with the Hessian ``A`` below (Gauss-Newton if ``A`` is
+       not SPD), each iterate projected onto the reference facet, at most 50
+       iterations, step tolerance 1e-14 (or a stalled step below 1e-8),
+       abandoned after 3 consecutive iterates on the boundary; it is accepted
+       if it converged strictly inside to a point with SPD ``A``;
+    2. otherwise (or, for curved facets, if a vertex is closer than that
+       interior minimum) the closest point on the edges of the reference facet
+       is taken (closed form / clamped 1D Newton compared with the end points).
+
+    Among facets whose distances tie with the minimum ``dmin``
+    (``dmin >= d (1 - 1e-12) - 1e-300``) the lowest facet index wins.
 
     Args:
         points: ``(n, gdim)`` float64 point coordinates.

@@ -22,6 +22,8 @@ __all__ = ["closest_point_projection_ref"]
 
 _MAX_IT = 50
 _NEWTON_TOL = 1e-14
+_MAX_BOUNDARY_HITS = 3
+_NEWTON_STALL_TOL = 1e-8
 _TIE_RTOL = 1e-12
 _TIE_ATOL = 1e-300
 _INTERIOR = -1
@@ -136,17 +138,20 @@ class _Element:
     simplex: bool
     tabulate: Callable
     centroid: tuple = ()
+    vertices: tuple = ()
     edge_start: tuple = ()
     edge_dir: tuple = ()
 
 
 _TRI = dict(
     centroid=(1.0 / 3.0, 1.0 / 3.0),
+    vertices=((0.0, 0.0), (1.0, 0.0), (0.0, 1.0)),
     edge_start=((1.0, 0.0), (0.0, 0.0), (0.0, 0.0)),
     edge_dir=((-1.0, 1.0), (0.0, 1.0), (1.0, 0.0)),
 )
 _QUAD = dict(
     centroid=(0.5, 0.5),
+    vertices=((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)),
     edge_start=((0.0, 0.0), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0)),
     edge_dir=((1.0, 0.0), (0.0, 1.0), (0.0, 1.0), (1.0, 0.0)),
 )
@@ -207,6 +212,7 @@ def _line_minimiser(el: _Element, x: np.ndarray, X: np.ndarray, a: tuple, e: tup
         te = _along(e, t)
         return np.clip(_dot(te, x - gx) / _dot(te, te), 0.0, 1.0)
     s = np.full(m, 0.5)
+    prev = np.full(m, np.inf)
     act = np.arange(m)
     for _ in range(_MAX_IT):
         if len(act) == 0:
@@ -225,8 +231,16 @@ def _line_minimiser(el: _Element, x: np.ndarray, X: np.ndarray, a: tuple, e: tup
         sn = np.clip(sa - r / h, 0.0, 1.0)
         step = np.abs(sn - sa)
         s[act] = sn
-        act = act[~(step <= _NEWTON_TOL)]
-    return s
+        done = (step <= _NEWTON_TOL) | ((step <= _NEWTON_STALL_TOL) & (step >= prev[act]))
+        prev[act] = step
+        act = act[~done]
+
+    def dist2(sv: np.ndarray) -> np.ndarray:
+        g = x - _evaluate(el, X, _point_on_line(a, e, sv))[0]
+        return _dot(g, g)
+
+    ds, d0, d1 = dist2(s), dist2(np.zeros(m)), dist2(np.ones(m))
+    return np.where((d0 < ds) & (d0 <= d1), 0.0, np.where(d1 < ds, 1.0, s))
 
 
 def _strictly_inside(el: _Element, p: np.ndarray) -> np.ndarray:
@@ -261,11 +275,14 @@ def _project_reference(el: _Element, p: np.ndarray) -> np.ndarray:
 
 
 def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Projected Newton for the interior problem; returns xi and a converged flag."""
+    """Projected Newton for the interior problem; returns xi and a flag for a converged minimum."""
     m = len(x)
     xi = np.empty((m, 2))
     xi[:] = el.centroid
     converged = np.zeros(m, dtype=bool)
+    hits = np.zeros(m, dtype=np.int64)
+    spd = np.zeros(m, dtype=bool)
+    prev = np.full(m, np.inf)
     act = np.arange(m)
     for _ in range(_MAX_IT):
         if len(act) == 0:
@@ -281,6 +298,7 @@ def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.nda
         H11 = G11 - _dot(g, d[:, 1, 1])
         det = H00 * H11 - H01 * H01
         gn = ~((H00 > 0.0) & (det > 0.0))
+        spd[act] = ~gn
         H00, H01, H11 = np.where(gn, G00, H00), np.where(gn, G01, H01), np.where(gn, G11, H11)
         det = np.where(gn, H00 * H11 - H01 * H01, det)
         ok = det > 0.0
@@ -291,10 +309,12 @@ def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.nda
         xn = _project_reference(el, np.stack([xa[:, 0] + d0, xa[:, 1] + d1], axis=-1))
         step = np.maximum(np.abs(xn[:, 0] - xa[:, 0]), np.abs(xn[:, 1] - xa[:, 1]))
         xi[act] = xn
-        done = step <= _NEWTON_TOL
+        done = (step <= _NEWTON_TOL) | ((step <= _NEWTON_STALL_TOL) & (step >= prev[act]))
+        prev[act] = step
         converged[act[done]] = True
-        act = act[~done]
-    return xi, converged
+        hits[act] = np.where(_strictly_inside(el, xn), 0, hits[act] + 1)
+        act = act[~done & (hits[act] != _MAX_BOUNDARY_HITS)]
+    return xi, converged & spd
 
 
 def _project_pairs(
@@ -320,22 +340,29 @@ def _project_pairs(
         else:
             xi, converged = _interior_newton(el, x, X)
             found = converged & _strictly_inside(el, xi)
-        rest = np.flatnonzero(~found)
-        xr, Xr = x[rest], X[rest]
-        best = None
+        search = ~found
+        best_all = np.zeros(m)
+        if not el.affine:
+            # A curved facet may have several local minima: if a vertex is closer
+            # than the interior minimum, search the edges as well
+            g = x - _evaluate(el, X, xi)[0]
+            best_all = np.where(found, _dot(g, g), 0.0)
+            for v in el.vertices:
+                gv = x - _evaluate(el, X, np.broadcast_to(np.asarray(v), (m, 2)))[0]
+                search |= found & (_dot(gv, gv) < best_all)
+        rest = np.flatnonzero(search)
+        xr, Xr, fr = x[rest], X[rest], found[rest]
+        best, bxi, bst = best_all[rest], xi[rest], state[rest]
         for k, (a, e) in enumerate(zip(el.edge_start, el.edge_dir)):
             s = _line_minimiser(el, xr, Xr, a, e)
             xe = _point_on_line(a, e, s)
             g = xr - _evaluate(el, Xr, xe)[0]
             d2 = _dot(g, g)
             st = np.where((s > 0.0) & (s < 1.0), k, _VERTEX)
-            if best is None:
-                best, bxi, bst = d2, xe, st
-            else:
-                upd = d2 < best
-                best = np.where(upd, d2, best)
-                bxi = np.where(upd[:, None], xe, bxi)
-                bst = np.where(upd, st, bst)
+            upd = ((k == 0) & ~fr) | (d2 < best)
+            best = np.where(upd, d2, best)
+            bxi = np.where(upd[:, None], xe, bxi)
+            bst = np.where(upd, st, bst)
         if len(rest):
             xi[rest] = bxi
             state[rest] = bst

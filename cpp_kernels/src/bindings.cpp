@@ -1,3 +1,115 @@
+// Copyright (C) 2025 tribofx contributors
+// SPDX-License-Identifier: MIT
+//
+// nanobind module tribofx._cpp
+
+#include "projection.hpp"
+
+#include <cstdint>
 #include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace nb = nanobind;
-NB_MODULE(_cpp, m) { m.def("version", []() { return 1; }); }
+using namespace nb::literals;
+
+namespace
+{
+
+template <typename T>
+using CArray2 = nb::ndarray<const T, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+
+/// Hand a std::vector over to NumPy without copying.
+template <typename T, typename S = T>
+nb::ndarray<nb::numpy, T> to_numpy(std::vector<S>&& v,
+                                   std::initializer_list<std::size_t> shape)
+{
+  static_assert(sizeof(T) == sizeof(S));
+  auto* data = new std::vector<S>(std::move(v));
+  nb::capsule owner(data,
+                    [](void* p) noexcept { delete static_cast<std::vector<S>*>(p); });
+  return nb::ndarray<nb::numpy, T>(reinterpret_cast<T*>(data->data()), shape.size(),
+                                   shape.begin(), owner);
+}
+
+template <class E, int gdim>
+nb::dict project(const CArray2<double>& points, const CArray2<double>& nodes,
+                 const CArray2<std::int32_t>& facets)
+{
+  constexpr int tdim = E::tdim;
+  const std::size_t n = points.shape(0);
+  const std::size_t nv = nodes.shape(0);
+  const std::size_t nf = facets.shape(0);
+  if (points.shape(1) != gdim or nodes.shape(1) != gdim)
+    throw std::invalid_argument("points and nodes must have shape (., " +
+                                std::to_string(gdim) + ") for this cell type");
+  if (facets.shape(1) != static_cast<std::size_t>(E::num_nodes))
+    throw std::invalid_argument("facets must have " + std::to_string(E::num_nodes) +
+                                " nodes per facet for this cell type");
+  if (nf == 0)
+    throw std::invalid_argument("the surface mesh has no facets");
+  std::span<const std::int32_t> f(facets.data(), nf * E::num_nodes);
+  if (std::ranges::any_of(f, [nv](std::int32_t i)
+                          { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
+    throw std::invalid_argument("facet node index out of range");
+
+  tribofx::projection::ProjectionOutput out;
+  {
+    nb::gil_scoped_release release;
+    out = tribofx::projection::project_points<E, gdim>(
+        std::span(points.data(), n * gdim), std::span(nodes.data(), nv * gdim), f);
+  }
+
+  nb::dict d;
+  d["facet"] = to_numpy<std::int32_t>(std::move(out.facet), {n});
+  d["xi"] = to_numpy<double>(std::move(out.xi), {n, tdim});
+  d["x_bar"] = to_numpy<double>(std::move(out.x_bar), {n, gdim});
+  d["gap"] = to_numpy<double>(std::move(out.gap), {n});
+  d["normal"] = to_numpy<double>(std::move(out.normal), {n, gdim});
+  d["tangents"] = to_numpy<double>(std::move(out.tangents), {n, tdim, gdim});
+  d["dxi_dx"] = to_numpy<double>(std::move(out.dxi_dx), {n, tdim, gdim});
+  d["dxbar_dx"] = to_numpy<double>(std::move(out.dxbar_dx), {n, gdim, gdim});
+  d["dn_dx"] = to_numpy<double>(std::move(out.dn_dx), {n, gdim, gdim});
+  d["curvature"] = to_numpy<double>(std::move(out.curvature), {n, tdim, tdim});
+  d["inside"] = to_numpy<bool>(std::move(out.inside), {n});
+  d["distance"] = to_numpy<double>(std::move(out.distance), {n});
+  return d;
+}
+
+nb::dict closest_point_projection(const CArray2<double>& points,
+                                  const CArray2<double>& nodes,
+                                  const CArray2<std::int32_t>& facets,
+                                  const std::string& cell_type)
+{
+  namespace el = tribofx::elements;
+  if (cell_type == "interval")
+    return project<el::Interval2, 2>(points, nodes, facets);
+  if (cell_type == "interval3")
+    return project<el::Interval3, 2>(points, nodes, facets);
+  if (cell_type == "triangle")
+    return project<el::Triangle3, 3>(points, nodes, facets);
+  if (cell_type == "triangle6")
+    return project<el::Triangle6, 3>(points, nodes, facets);
+  if (cell_type == "quadrilateral")
+    return project<el::Quadrilateral4, 3>(points, nodes, facets);
+  if (cell_type == "quadrilateral9")
+    return project<el::Quadrilateral9, 3>(points, nodes, facets);
+  throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
+}
+
+} // namespace
+
+NB_MODULE(_cpp, m)
+{
+  m.doc() = "tribofx C++ kernels";
+  m.def("version", []() { return 1; });
+  m.def("closest_point_projection", &closest_point_projection, "points"_a.noconvert(),
+        "nodes"_a.noconvert(), "facets"_a.noconvert(), "cell_type"_a,
+        "Closest-point projection of points onto a surface mesh (see "
+        "tribofx.projection.closest_point_projection). Returns a dict of arrays.");
+}
