@@ -98,9 +98,6 @@ class BlockNewton:
         pc = self.ksp.getPC()
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
-        opts = PETSc.Options()
-        opts[f"{petsc_prefix}mat_mumps_icntl_14"] = 200  # extra workspace for contact pivots
-        opts[f"{petsc_prefix}mat_mumps_icntl_24"] = 1  # null-pivot detection
         self.ksp.setFromOptions()
 
     @property
@@ -120,6 +117,16 @@ class BlockNewton:
 
     def _jacobian(self):
         fem_petsc.assemble_jacobian(None, self.x, self.A, None, self.u, self.J, None, self.bcs)
+
+    def assemble(self):
+        """Assemble residual ``b`` and Jacobian ``A`` at the current values of ``u``.
+
+        Dirichlet rows are treated as in :meth:`solve`; returns ``(b, A)``.
+        """
+        fem_petsc.assign(self.u, self.x)
+        self._residual()
+        self._jacobian()
+        return self.b, self.A
 
     def solve(self, verbose=False):
         """Run Newton from the current values of ``u``; return a :class:`NewtonReport`.

@@ -1,0 +1,113 @@
+"""Taylor tests: every residual form against its UFL Jacobian (remainder must decay like ε²)."""
+
+import numpy as np
+import pytest
+import ufl
+from mpi4py import MPI
+from taylor import taylor_orders
+
+from dolfinx import fem, mesh
+from tribofx.contact_problem import ContactProblem, ContactSettings
+from tribofx.forms import hyperelastic as hf
+from tribofx.obstacles import AnalyticObstacle
+
+# remainder orders of an exact Jacobian are 2 up to round-off; 1.8 leaves room for
+# the ε-range where round-off starts to show (a wrong tangent gives order 1)
+MIN_ORDER = 1.8
+
+
+def assert_exact_jacobian(orders, rel_rem):
+    # a residual that is linear in the unknowns leaves only round-off (≪ 1e-9 of
+    # the linear term); otherwise the remainder must decay at second order
+    assert rel_rem.max() < 1e-9 or orders.min() > MIN_ORDER, (orders, rel_rem)
+
+
+def _smooth(f, scale, seed):
+    rng = np.random.default_rng(seed)
+    c = rng.uniform(-1, 1, (f.function_space.value_size, 3))
+    f.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
+                                              for ci in c]))
+
+
+def _random(f, scale, seed):
+    rng = np.random.default_rng(seed + MPI.COMM_WORLD.rank)
+    f.x.array[:] = scale * rng.uniform(-1, 1, f.x.array.shape)
+    f.x.scatter_forward()
+
+
+@pytest.mark.parametrize("kind", ["3d", "plane_strain", "axisymmetric"])
+@pytest.mark.parametrize("material", ["neo-hookean", "mooney-rivlin", "linear"])
+def test_hyperelastic_jacobian(kind, material):
+    comm = MPI.COMM_WORLD
+    msh = (mesh.create_unit_cube(comm, 2, 2, 2) if kind == "3d"
+           else mesh.create_rectangle(comm, [[0.5, 0], [1.5, 1]], [4, 4]))
+    V = fem.functionspace(msh, ("Lagrange", 2, (msh.geometry.dim,)))
+    u, du = fem.Function(V), fem.Function(V)
+    _smooth(u, 0.1, 1)
+    _random(du, 1.0, 2)
+    params = ({"mu1": 0.6, "mu2": 0.4, "kappa": 20.0} if material == "mooney-rivlin"
+              else {"mu": 1.0, "lmbda": 2.0})
+    R = hf.internal_virtual_work(u, ufl.TestFunction(V), kind, material, params,
+                                 ufl.Measure("dx", msh, metadata={"quadrature_degree": 4}))
+    orders, rem = taylor_orders(R, u, [du])
+    print(kind, material, orders, rem)
+    assert_exact_jacobian(orders, rem)
+
+
+def _box_problem(shape, friction, slip, gdim=2):
+    comm = MPI.COMM_WORLD
+    if gdim == 2:
+        msh = mesh.create_rectangle(comm, [[0, 0], [1, 0.5]], [6, 3])
+    else:
+        msh = mesh.create_box(comm, [[0, 0, 0], [1, 1, 0.5]], [3, 3, 2])
+    fdim = gdim - 1
+    bot = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[gdim - 1], 0))
+    ft = mesh.meshtags(msh, fdim, np.sort(bot), np.full(len(bot), 1, dtype=np.int32))
+    e = np.eye(gdim)[gdim - 1]
+
+    def factory(m, Vs):
+        if shape == "plane":
+            return AnalyticObstacle(m, "plane", 0.05 * e, normal=e)
+        # curved countersurfaces below the body, penetrating the bottom face
+        centre = 0.5 * np.ones(gdim)
+        centre[-1] = -2.0 + 0.05
+        if shape == "cylinder" and gdim == 3:
+            return AnalyticObstacle(m, "cylinder", centre, radius=2.0, axis=(0, 1, 0))
+        return AnalyticObstacle(m, shape, centre, radius=2.0)
+
+    V = np.zeros(gdim)
+    V[0] = 1.0
+    settings = ContactSettings(rho_n=10.0, friction=friction, rho_t=10.0, slip=slip,
+                               V=tuple(V), V_master=tuple(np.zeros(gdim)), dtau=0.3)
+    # linear bulk law: the bulk residual is linear, so the remainder is that of contact alone
+    prob = ContactProblem(msh, ft, 1, "3d" if gdim == 3 else "plane_strain", "linear",
+                          {"mu": 1.0, "lmbda": 1.5}, factory, settings)
+    return prob
+
+
+@pytest.mark.parametrize("shape,friction,slip,gdim", [
+    ("plane", 0.0, "lagrangian", 2),
+    ("plane", 0.4, "lagrangian", 2),
+    ("plane", 0.4, "eulerian", 2),
+    ("cylinder", 0.4, "lagrangian", 2),
+    ("cylinder", 0.4, "eulerian", 2),
+    ("sphere", 0.4, "lagrangian", 3),
+    ("cylinder", 0.3, "eulerian", 3),
+])
+def test_contact_jacobian(shape, friction, slip, gdim):
+    prob = _box_problem(shape, friction, slip, gdim)
+    _smooth(prob.u, 0.01, 3)
+    # x_old shifted so that the Lagrangian slip is finite and sliding
+    prob.x_old.x.array[:] -= 0.02
+    prob.lam_n.x.array[:] = -0.3
+    if prob.lam_t is not None:
+        _random(prob.lam_t, 0.2, 4)
+    dirs = []
+    for k, f in enumerate(prob.unknowns):
+        d = fem.Function(f.function_space)
+        _random(d, 1.0, 10 + k)
+        dirs.append(d)
+    orders, rem = taylor_orders(prob.residuals, prob.unknowns, dirs, [prob.emap],
+                                prob._pre_evaluate, eps0=1e-4)
+    print(shape, friction, slip, gdim, orders, rem)
+    assert_exact_jacobian(orders, rem)
