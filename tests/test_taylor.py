@@ -67,13 +67,13 @@ def _box_problem(shape, friction, slip, gdim=2):
 
     def factory(m, Vs):
         if shape == "plane":
-            return AnalyticObstacle(m, "plane", 0.05 * e, normal=e)
+            return AnalyticObstacle(Vs.mesh, "plane", 0.05 * e, normal=e)
         # curved countersurfaces below the body, penetrating the bottom face
         centre = 0.5 * np.ones(gdim)
         centre[-1] = -2.0 + 0.05
         if shape == "cylinder" and gdim == 3:
-            return AnalyticObstacle(m, "cylinder", centre, radius=2.0, axis=(0, 1, 0))
-        return AnalyticObstacle(m, shape, centre, radius=2.0)
+            return AnalyticObstacle(Vs.mesh, "cylinder", centre, radius=2.0, axis=(0, 1, 0))
+        return AnalyticObstacle(Vs.mesh, shape, centre, radius=2.0)
 
     V = np.zeros(gdim)
     V[0] = 1.0
@@ -97,8 +97,8 @@ def _box_problem(shape, friction, slip, gdim=2):
 def test_contact_jacobian(shape, friction, slip, gdim):
     prob = _box_problem(shape, friction, slip, gdim)
     _smooth(prob.u, 0.01, 3)
-    # x_old shifted so that the Lagrangian slip is finite and sliding
-    prob.x_old.x.array[:] -= 0.02
+    # last-step projection shifted so that the Lagrangian slip is finite and sliding
+    prob.xbar_n.x.array[:] -= 0.02
     prob.lam_n.x.array[:] = -0.3
     if prob.lam_t is not None:
         _random(prob.lam_t, 0.2, 4)

@@ -91,7 +91,7 @@ class ContactProblem:
         self.u = fem.Function(self.V, name="displacement")
         self.lam_n = fem.Function(self.Q, name="contact_pressure_nominal")
         self.u_sub = fem.Function(self.Vs, name="u_contact")
-        self.x_old = fem.Function(self.Vs, name="x_old")
+        self.xbar_n = fem.Function(self.Vs, name="projection_at_last_step")
         # trace map: submesh P1 dof -> bulk dof (vertex values of u)
         bulk = _node_to_dof(self.V)
         subm = _node_to_dof(self.Vs)
@@ -123,7 +123,10 @@ class ContactProblem:
                 slip = cf.eulerian_slip(self.u, self.geometry, ufl.as_vector(settings.V),
                                         ufl.as_vector(settings.V_master), settings.dtau)
             else:
-                xbar_old = self.obstacle.geometry(self.x_old).projection
+                # material point of the rigid master hit at the last converged step,
+                # carried along by the rigid translation of the obstacle since then
+                self.offset_n = fem.Constant(self.sub, self.obstacle.offset.value.copy())
+                xbar_old = self.xbar_n + self.obstacle.offset - self.offset_n
                 slip = cf.lagrangian_slip(self.geometry, xbar_old)
         self.slip = slip
         rho_t = settings.rho_t if settings.rho_t is not None else settings.rho_n
@@ -137,8 +140,10 @@ class ContactProblem:
         self.residuals = [self.R_u, R_n] + ([R_t] if R_t is not None else [])
         self.bcs = []
         self.solver = None
-        self.update_trace()
-        self.x_old.x.array[:] = self.positions().ravel()
+        x_sub = ufl.SpatialCoordinate(self.sub) + self.u_sub
+        self._xbar_expr = fem.Expression(self.obstacle.geometry(x_sub).projection,
+                                         self.Vs.element.interpolation_points)
+        self.commit()
 
     # -- set-up -------------------------------------------------------------
     def add_traction(self, tag, traction):
@@ -159,7 +164,27 @@ class ContactProblem:
             c = fem.Constant(self.mesh, float(value))
             dofs = fem.locate_dofs_topological(Vc, fdim, facets)
             self.bcs.append(fem.dirichletbc(c, dofs, Vc))
+        if self.lam_t is not None:
+            self._fix_friction_multiplier(facets, component)
         return c
+
+    def _fix_friction_multiplier(self, facets, component):
+        """Zero the friction multiplier where u is prescribed on contact nodes.
+
+        A slave node whose displacement component is prescribed (e.g. on a
+        symmetry plane) cannot also carry a stick constraint in that direction:
+        the two would be redundant and the Jacobian singular.  Its friction
+        traction in that direction is zero (symmetry), so it is prescribed.
+        """
+        fdim = self.mesh.topology.dim - 1
+        gdim = self.mesh.geometry.dim
+        blocks = fem.locate_dofs_topological(self.V, fdim, facets)
+        sub_blocks = self._sub_dofs[np.isin(self._bulk_dofs, blocks)]
+        comps = range(gdim) if component is None else [component]
+        for c in comps:
+            self.bcs.append(fem.dirichletbc(fem.Constant(self.sub, 0.0),
+                                            (gdim * sub_blocks + c).astype(np.int32),
+                                            self.Vs.sub(c)))
 
     def finalize(self, **newton_kw):
         """Compile forms and create the Newton solver."""
@@ -171,6 +196,11 @@ class ContactProblem:
         force = -tn * self.geometry.normal - (tt if tt is not None else 0 * self.geometry.normal)
         self._force_forms = [fem.form(force[i] * self.weight * self.dsc, entity_maps=[self.emap])
                              for i in range(gdim)]
+        self._magnitude_forms = [
+            fem.form(-tn * self.weight * self.dsc, entity_maps=[self.emap]),
+            fem.form((ufl.sqrt(ufl.dot(tt, tt)) if tt is not None else 0 * tn) * self.weight
+                     * self.dsc, entity_maps=[self.emap]),
+        ]
         q = ufl.TestFunction(self.Q)
         j = kin.area_ratio(kin.deformation_gradient(self.u, self.kind),
                            ufl.FacetNormal(self.mesh), self.kind)
@@ -204,16 +234,18 @@ class ContactProblem:
 
     def commit(self):
         """Accept the converged step: the slip history moves to the current state."""
-        self.update_trace()
-        self.x_old.x.array[:] = self.positions().ravel()
+        self._pre_evaluate()
+        self.xbar_n.interpolate(self._xbar_expr)
+        if self.slip is not None and self.settings.slip == "lagrangian":
+            self.offset_n.value[:] = self.obstacle.offset.value
 
     def state(self):
         """Copy of all unknowns and history (for step cutting)."""
-        return [f.x.array.copy() for f in self.unknowns + [self.x_old]]
+        return [f.x.array.copy() for f in self.unknowns + [self.xbar_n]]
 
     def restore(self, state):
         """Restore a state obtained from :meth:`state`."""
-        for f, a in zip(self.unknowns + [self.x_old], state):
+        for f, a in zip(self.unknowns + [self.xbar_n], state):
             f.x.array[:] = a
         self._pre_evaluate()
 
@@ -223,6 +255,12 @@ class ContactProblem:
         comm = self.mesh.comm
         return np.array([comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
                          for f in self._force_forms])
+
+    def traction_magnitudes(self):
+        """(∫ |T_N| dS, ∫ ‖T_T‖ dS): total normal and frictional traction magnitudes (N)."""
+        comm = self.mesh.comm
+        return tuple(comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
+                     for f in self._magnitude_forms)
 
     def _nodal(self, form):
         vec = fem.assemble_vector(form)

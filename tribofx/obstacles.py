@@ -24,7 +24,7 @@ class AnalyticObstacle:
     """Plane, cylinder or sphere given in closed form.
 
     Args:
-        mesh: bulk mesh (for the constants).
+        mesh: mesh the constants live on (the contact submesh).
         shape: "plane", "cylinder" or "sphere".
         point: a point of the plane, or the centre of cylinder/sphere (mm).
         normal: unit outer normal of the plane (towards the body).
@@ -60,7 +60,7 @@ class MeshedObstacle:
     """Rigid countersurface given as a surface mesh, projected by the C++ kernel.
 
     Args:
-        mesh: bulk mesh (for the offset constant).
+        mesh: mesh the offset constant lives on (the contact submesh).
         V_sub: vector P1 space on the contact submesh (holds the nodal data).
         nodes, facets, cell_type: surface mesh in the packing of
             :func:`tribofx.projection.closest_point_projection`.

@@ -57,8 +57,9 @@ class HertzCase:
               choices=("analytic", "mesh")),
         Param("material", str, "neo-hookean", "-", "strain energy",
               choices=("neo-hookean", "linear")),
-        Param("mesh", int, 1, "-", "refinement level (element size halves per level)",
-              lower=0, upper=6, closed=True),
+        Param("mesh", int, 2, "-",
+              "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
+              "in 3D, a = Hertz contact size", lower=0, upper=7, closed=True),
         Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
     )
 
@@ -75,7 +76,7 @@ class HertzCase:
     def mesh_sizes(v):
         """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
         a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
-        per_a = (12 if v["dim"] == 2 else 4) * 2 ** v["mesh"]
+        per_a = (6 if v["dim"] == 2 else 2) * 2 ** v["mesh"]
         return a / per_a, v["R"] / (6 if v["dim"] == 2 else 4), 1.5 * a
 
     @classmethod
@@ -87,14 +88,14 @@ class HertzCase:
         normal = np.eye(dim)[dim - 1]
         if v["obstacle"] == "analytic":
             def factory(m, Vs):
-                return AnalyticObstacle(m, "plane", np.zeros(dim), normal=normal)
+                return AnalyticObstacle(Vs.mesh, "plane", np.zeros(dim), normal=normal)
         else:
             from ..meshes.obstacles import plane_surface_mesh
 
             nodes, facets, ctype = plane_surface_mesh(dim, (-0.2 * R, 1.2 * R), 4 * h_fine)
 
             def factory(m, Vs):
-                return MeshedObstacle(m, Vs, nodes, facets, ctype)
+                return MeshedObstacle(Vs.mesh, Vs, nodes, facets, ctype)
 
         mu, lmbda = lame_parameters(v["E"], v["nu"])
         settings = ContactSettings(rho_n=v["E"] / h_fine, friction=v["friction"],
@@ -150,6 +151,14 @@ class HertzCase:
                       "N/mm" if dim == 2 else "N")
         record.result("tangential_force_modelled_part", [float(f) for f in force[: dim - 1]],
                       "N/mm" if dim == 2 else "N")
+        # weighted L2 distance of the nodal pressures from the Hertz distribution
+        d = prob.nodal_contact_data()
+        rr = d["x"][:, 0] if dim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
+        ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
+        comm = prob.mesh.comm
+        num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
+        den = comm.allreduce(float(np.sum(d["weight"] * ph**2)), op=MPI.SUM)
+        record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
         prof = prob.gather_profile()
         if prob.mesh.comm.rank == 0:
             r = (prof["x"][:, 0] if dim == 2
