@@ -147,14 +147,18 @@ def augmented_lagrangian_contact(
     """Contact residual blocks (eq. 8 with the Alart–Curnier constraint equations).
 
     Args:
-        u, v: displacement and its test function (bulk space).
+        u: displacement (bulk space).
+        v: test function of the displacement.
         geometry: :class:`ContactGeometry` of the countersurface at x = X + u.
-        lam_n, mu_n: normal multiplier (nominal traction, MPa) and its test function.
+        lam_n: normal multiplier, the nominal normal traction (MPa).
+        mu_n: test function of ``lam_n``.
         rho_n: normal augmentation parameter (MPa/mm).
         ds: measure over the reference slave surface Γ_c.
-        lam_t, mu_t, rho_t, slip, mu: tangential multiplier, its test function,
-            augmentation (MPa per unit of ``slip``), slip expression and friction
-            coefficient; omit all for frictionless contact.
+        lam_t: tangential multiplier (MPa); None for frictionless contact.
+        mu_t: test function of ``lam_t``.
+        rho_t: tangential augmentation (MPa per unit of ``slip``).
+        slip: slip expression (Lagrangian increment or Eulerian v_T Δτ).
+        mu: Coulomb friction coefficient.
         weight: reference measure factor (2πR for axisymmetric bodies, else 1).
 
     Returns:

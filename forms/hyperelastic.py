@@ -83,7 +83,7 @@ def first_piola(F, material, params):
 
 
 def internal_virtual_work(u, v, kind, material, params, dx):
-    """Internal virtual work ∫ P : Grad δφ dV of eq. (7), with the axisymmetric 2πR weight."""
+    """Return the internal virtual work ∫ P : Grad δφ dV of eq. (7), 2πR-weighted if axisymmetric."""
     F = deformation_gradient(u, kind)
     P = first_piola(F, material, params)
     w = reference_volume_factor(u.ufl_function_space().mesh, kind)

@@ -33,7 +33,7 @@ def _check(kind):
 
 
 def grad3(v, kind):
-    """Reference gradient of a displacement-like field ``v`` as a 3×3 tensor.
+    """Return the reference gradient of a displacement-like field ``v`` as a 3×3 tensor.
 
     For plane strain the third row/column vanish; for axisymmetry the (3,3)
     entry is the hoop term v_R / R.
@@ -80,7 +80,7 @@ def area_ratio(F, N, kind):
 
 
 def spatial_position(u):
-    """Current position x = X + u (eq. 1)."""
+    """Return the current position x = X + u (eq. 1)."""
     return ufl.SpatialCoordinate(u.ufl_function_space().mesh) + u
 
 

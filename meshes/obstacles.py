@@ -54,4 +54,5 @@ def plane_surface_mesh(gdim, extent, size, height=0.0):
         t1, t2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
         flip = np.cross(t1, t2)[:, 2] < 0
     facets[flip] = facets[flip][:, ::-1] if gdim == 2 else facets[flip][:, [0, 2, 1]]
-    return np.ascontiguousarray(nodes, dtype=np.float64), facets, ("interval" if gdim == 2 else "triangle")
+    cell_type = "interval" if gdim == 2 else "triangle"
+    return np.ascontiguousarray(nodes, dtype=np.float64), facets, cell_type

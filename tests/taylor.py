@@ -6,9 +6,9 @@ For a direction d, the remainder r(ε) = ‖R(u + ε d) − R(u) − ε J(u) d�
 like ε² when J is the exact derivative of R; the observed orders are returned.
 """
 
+import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 
-import dolfinx.fem.petsc as fem_petsc
 from tribofx.newton import BlockNewton
 
 

@@ -2,11 +2,11 @@
 
 import numpy as np
 import pytest
-from mpi4py import MPI
-
 from dolfinx import mesh
-from tribofx.contact_problem import ContactProblem, ContactSettings
+from mpi4py import MPI
 from tribofx.forms.hyperelastic import lame_parameters
+
+from tribofx.contact_problem import ContactProblem, ContactSettings
 from tribofx.obstacles import AnalyticObstacle
 
 MU_F = 0.3

@@ -3,9 +3,9 @@
 import pytest
 from mpi4py import MPI
 
+from tribofx.cases.hertz import HertzCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
-from tribofx.cases.hertz import HertzCase
 
 
 def run_hertz(tmp_path, **overrides):

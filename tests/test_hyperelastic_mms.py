@@ -8,11 +8,11 @@ for the axisymmetric case), so an error in the weak form shows up as a lost rate
 import numpy as np
 import pytest
 import ufl
-from mpi4py import MPI
-
 from dolfinx import fem, mesh
+from mpi4py import MPI
 from tribofx.forms import hyperelastic as hf
 from tribofx.forms import kinematics as kin
+
 from tribofx.newton import BlockNewton
 
 MU, LMBDA = 1.0, 2.0
@@ -96,6 +96,7 @@ CASES = [
 ]
 
 
+@pytest.mark.mpi
 @pytest.mark.parametrize("kind,material,degree,sizes", CASES)
 def test_mms_rates(kind, material, degree, sizes):
     errs = np.array([_solve(n, degree, kind, material) for n in sizes])

@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 import ufl
+from dolfinx import fem, mesh
 from mpi4py import MPI
 from taylor import taylor_orders
-
-from dolfinx import fem, mesh
-from tribofx.contact_problem import ContactProblem, ContactSettings
 from tribofx.forms import hyperelastic as hf
+
+from tribofx.contact_problem import ContactProblem, ContactSettings
 from tribofx.obstacles import AnalyticObstacle
 
 # remainder orders of an exact Jacobian are 2 up to round-off; 1.8 leaves room for
@@ -85,6 +85,7 @@ def _box_problem(shape, friction, slip, gdim=2):
     return prob
 
 
+@pytest.mark.mpi
 @pytest.mark.parametrize("shape,friction,slip,gdim", [
     ("plane", 0.0, "lagrangian", 2),
     ("plane", 0.4, "lagrangian", 2),

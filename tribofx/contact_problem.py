@@ -10,11 +10,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import ufl
-from mpi4py import MPI
-
 from dolfinx import fem, la
-from dolfinx.cpp import mesh as _cpp_mesh
 from dolfinx import mesh as dmesh
+from dolfinx.cpp import mesh as _cpp_mesh
+from mpi4py import MPI
 
 from .forms import contact as cf
 from .forms import hyperelastic as hf
@@ -218,7 +217,7 @@ class ContactProblem:
         us[self._sub_dofs] = ub[self._bulk_dofs]
 
     def positions(self):
-        """Current positions x = X + u of the slave nodes, (n_sub_dofs, gdim), dof order."""
+        """Return current slave-node positions x = X + u, shape (n_sub_dofs, gdim), dof order."""
         gdim = self.mesh.geometry.dim
         return self._X_sub + self.u_sub.x.array.reshape(-1, gdim)
 

@@ -9,14 +9,13 @@ outside UFL (closest-point projections by the C++ kernel) follow the iterate.
 
 from dataclasses import dataclass, field
 
+import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
-from ufl.algorithms import expand_derivatives
-from petsc4py import PETSc
-
-import dolfinx.fem.petsc as fem_petsc
 from dolfinx import fem
 from dolfinx.la.petsc import _ghost_update
+from petsc4py import PETSc
+from ufl.algorithms import expand_derivatives
 
 __all__ = ["BlockNewton", "NewtonDivergence", "NewtonReport"]
 

@@ -12,7 +12,6 @@ assembly, so that the Newton tangent stays consistent.
 
 import numpy as np
 import ufl
-
 from dolfinx import fem
 
 from .forms import contact as cf

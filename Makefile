@@ -1,0 +1,37 @@
+# tribofx: `make demo` sets everything up and runs the main demo; `make test` runs the tests.
+VENV     ?= .venv
+PY       := $(VENV)/bin/python
+MPIEXEC  := $(VENV)/bin/mpiexec
+export UCX_TLS ?= self,sm,tcp
+export OMP_NUM_THREADS ?= 1
+STAMP    := $(VENV)/.tribofx-installed
+SOURCES  := pyproject.toml $(wildcard cpp_kernels/CMakeLists.txt cpp_kernels/src/*)
+
+.PHONY: setup demo test test-slow lint bench clean
+
+setup: $(STAMP)
+
+$(STAMP): $(SOURCES) .ci/setup.sh
+	VENV=$(VENV) bash .ci/setup.sh
+	touch $@
+
+demo: setup
+	$(PY) demos/demo_hertz.py --out results/hertz
+
+# serial: the whole suite; then the tests marked `mpi` again on 2 processes
+test: setup
+	$(PY) -m pytest -q $(PYTEST_ARGS)
+	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
+
+test-slow: setup
+	$(PY) -m pytest -q --runslow $(PYTEST_ARGS)
+
+lint: setup
+	$(VENV)/bin/ruff check .
+
+bench: setup
+	$(PY) benchmarks/bench_projection.py
+	$(PY) benchmarks/bench_hertz.py
+
+clean:
+	rm -rf build results $(VENV)
