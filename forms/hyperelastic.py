@@ -83,7 +83,7 @@ def first_piola(F, material, params):
 
 
 def internal_virtual_work(u, v, kind, material, params, dx):
-    """Return the internal virtual work ∫ P : Grad δφ dV of eq. (7), 2πR-weighted if axisymmetric."""
+    """Return the internal virtual work ∫ P : Grad δφ dV of eq. (7), 2πR-weighted if axisym."""
     F = deformation_gradient(u, kind)
     P = first_piola(F, material, params)
     w = reference_volume_factor(u.ufl_function_space().mesh, kind)

@@ -50,7 +50,7 @@ class ContactSettings:
 def _node_to_dof(V):
     """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
     msh = V.mesh
-    xdm = msh.geometry.dofmap
+    xdm = msh.geometry.dofmaps[0]
     nv = _cpp_mesh.cell_num_vertices(msh.topology.cell_type)
     if xdm.shape[1] != nv:
         raise ValueError("contact requires an affine (P1) geometry of the contact body")

@@ -189,11 +189,6 @@ class BlockNewton:
         _ghost_update(self.x, PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
         x0.destroy()
 
-    def __del__(self):
-        for obj in ("A", "b", "x", "dx", "ksp"):
-            if hasattr(self, obj):
-                getattr(self, obj).destroy()
-
 
 def _nonzero_or_none(a):
     a = expand_derivatives(a)
