@@ -9,7 +9,7 @@ from taylor import taylor_orders
 from tribofx.forms import hyperelastic as hf
 
 from tribofx.contact_problem import ContactProblem, ContactSettings
-from tribofx.obstacles import AnalyticObstacle
+from tribofx.obstacles import AnalyticObstacle, MeshedObstacle
 
 # remainder orders of an exact Jacobian are 2 up to round-off; 1.8 leaves room for
 # the ε-range where round-off starts to show (a wrong tangent gives order 1)
@@ -54,6 +54,18 @@ def test_hyperelastic_jacobian(kind, material):
     assert_exact_jacobian(orders, rem)
 
 
+def _arc_mesh(quadratic, n=40):
+    """Arc of the circle of radius 2 centred at (0.5, −1.95), counter-clockwise
+    (outward normal), as interval or interval3 facets."""
+    theta = np.linspace(np.pi / 3, 2 * np.pi / 3, 2 * n + 1 if quadratic else n + 1)
+    nodes = np.c_[0.5 + 2 * np.cos(theta), -1.95 + 2 * np.sin(theta)]
+    if quadratic:
+        facets = np.c_[np.arange(0, 2 * n, 2), np.arange(2, 2 * n + 1, 2),
+                       np.arange(1, 2 * n, 2)]
+        return nodes, facets.astype(np.int32), "interval3"
+    return nodes, np.c_[np.arange(n), np.arange(1, n + 1)].astype(np.int32), "interval"
+
+
 def _box_problem(shape, friction, slip, gdim=2):
     comm = MPI.COMM_WORLD
     if gdim == 2:
@@ -66,6 +78,8 @@ def _box_problem(shape, friction, slip, gdim=2):
     e = np.eye(gdim)[gdim - 1]
 
     def factory(m, Vs):
+        if shape.startswith("meshed"):
+            return MeshedObstacle(Vs.mesh, Vs, *_arc_mesh(shape.endswith("quadratic")))
         if shape == "plane":
             return AnalyticObstacle(Vs.mesh, "plane", 0.05 * e, normal=e)
         # curved countersurfaces below the body, penetrating the bottom face
@@ -94,6 +108,11 @@ def _box_problem(shape, friction, slip, gdim=2):
     ("cylinder", 0.4, "eulerian", 2),
     ("sphere", 0.4, "lagrangian", 3),
     ("cylinder", 0.3, "eulerian", 3),
+    # countersurfaces given as meshes, through the C++ kernel's derivatives:
+    # curved (quadratic) facets without friction, flat facets with friction
+    ("meshed-quadratic", 0.0, "lagrangian", 2),
+    ("meshed-affine", 0.4, "lagrangian", 2),
+    ("meshed-affine", 0.4, "eulerian", 2),
 ])
 def test_contact_jacobian(shape, friction, slip, gdim):
     prob = _box_problem(shape, friction, slip, gdim)

@@ -19,6 +19,15 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     Raises :class:`tribofx.params.InputError` for bad input.  A Newton failure
     that step cutting cannot cure ends the run with status "failed: …"; the last
     converged state is still written.
+
+    A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple) and
+    the static/class methods ``validate(values)``, ``run(values, record, progress,
+    verbose)`` (returns the problem object; on failure it raises
+    :class:`NewtonDivergence` with the problem, restored to its last converged
+    state, as attribute ``problem``), ``vtx_fields(problem)`` ({file stem:
+    [Functions on one mesh]}) and ``plot(profile, outdir)`` (rank 0; ``profile``
+    is what ``run`` stored in ``record.profile``).  ``run`` advances ``progress``
+    once per load/time step; the bar length is ``values["steps"]`` when present.
     """
     case = get_case(name)
     values = resolve(case.params, overrides or {})
@@ -46,10 +55,8 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
         out.mkdir(parents=True, exist_ok=True)
     comm.barrier()
     if prob is not None:
-        write_vtx(comm, out / "displacement.bp", [prob.u])
-        write_vtx(comm, out / "contact.bp", [prob.lam_n])
+        for name, functions in case.vtx_fields(prob).items():
+            write_vtx(comm, out / f"{name}.bp", functions)
     if comm.rank == 0 and record.profile is not None:
-        from .plots import plot_hertz_pressure
-
-        plot_hertz_pressure(record.profile, out / "pressure.png")
+        case.plot(record.profile, out)
     return record.write(status)

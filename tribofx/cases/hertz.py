@@ -110,6 +110,18 @@ class HertzCase:
         return prob
 
     @staticmethod
+    def vtx_fields(prob):
+        """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
+        return {"displacement": [prob.u], "contact": [prob.lam_n]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Pressure profile against Hertz (``pressure.png``)."""
+        from ..plots import plot_hertz_pressure
+
+        plot_hertz_pressure(profile, outdir / "pressure.png")
+
+    @staticmethod
     def model_fraction(dim):
         """Fraction of the full body that is modelled (symmetry)."""
         return 0.5 if dim == 2 else 0.25
@@ -130,6 +142,9 @@ class HertzCase:
                 delta = loader.reach(target, delta * (1 if k == 0 else (k + 1) / k))
                 if progress is not None:
                     progress.update(1)
+        except NewtonDivergence as err:
+            err.problem = prob  # restored to the last converged load step
+            raise
         finally:
             cls._report(prob, v, record, frac, a_h, p_h)
         return prob
@@ -209,6 +224,7 @@ class SecantLoader:
                 d_new = d1 - (f1 - target) * (d1 - d0) / (f1 - f0)
             d0, f0, d1 = d1, f1, d_new
         else:
+            self.prob.restore(saved)
             raise NewtonDivergence(f"load {target:g} not reached in {self.max_trials} trials")
         self.prob.commit()
         self.delta_done = d1
