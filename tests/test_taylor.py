@@ -66,9 +66,11 @@ def _arc_mesh(quadratic, n=40):
     return nodes, np.c_[np.arange(n), np.arange(1, n + 1)].astype(np.int32), "interval"
 
 
-def _box_problem(shape, friction, slip, gdim=2):
+def _box_problem(shape, friction, slip, gdim=2, kind=None):
     comm = MPI.COMM_WORLD
-    if gdim == 2:
+    if kind == "axisymmetric":  # ring section 0.5 ≤ R ≤ 1.5 (R > 0 for the hoop terms)
+        msh = mesh.create_rectangle(comm, [[0.5, 0], [1.5, 0.5]], [6, 3])
+    elif gdim == 2:
         msh = mesh.create_rectangle(comm, [[0, 0], [1, 0.5]], [6, 3])
     else:
         msh = mesh.create_box(comm, [[0, 0, 0], [1, 1, 0.5]], [3, 3, 2])
@@ -94,7 +96,8 @@ def _box_problem(shape, friction, slip, gdim=2):
     settings = ContactSettings(rho_n=10.0, friction=friction, rho_t=10.0, slip=slip,
                                V=tuple(V), V_master=tuple(np.zeros(gdim)), dtau=0.3)
     # linear bulk law: the bulk residual is linear, so the remainder is that of contact alone
-    prob = ContactProblem(msh, ft, 1, "3d" if gdim == 3 else "plane_strain", "linear",
+    kind = kind or ("3d" if gdim == 3 else "plane_strain")
+    prob = ContactProblem(msh, ft, 1, kind, "linear",
                           {"mu": 1.0, "lmbda": 1.5}, factory, settings)
     return prob
 
@@ -114,8 +117,8 @@ def _box_problem(shape, friction, slip, gdim=2):
     ("meshed-affine", 0.4, "lagrangian", 2),
     ("meshed-affine", 0.4, "eulerian", 2),
 ])
-def test_contact_jacobian(shape, friction, slip, gdim):
-    prob = _box_problem(shape, friction, slip, gdim)
+def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
+    prob = _box_problem(shape, friction, slip, gdim, kind)
     _smooth(prob.u, 0.01, 3)
     # last-step projection shifted so that the Lagrangian slip is finite and sliding
     prob.xbar_n.x.array[:] -= 0.02
@@ -131,3 +134,10 @@ def test_contact_jacobian(shape, friction, slip, gdim):
                                 prob._pre_evaluate, eps0=1e-4)
     print(shape, friction, slip, gdim, orders, rem)
     assert_exact_jacobian(orders, rem)
+
+
+@pytest.mark.mpi
+def test_axisymmetric_contact_jacobian():
+    # axisymmetric body (2πR-weighted contact and hoop stretch) on a rigid cylinder
+    # section, with Lagrangian friction
+    test_contact_jacobian("cylinder", 0.4, "lagrangian", 2, kind="axisymmetric")
