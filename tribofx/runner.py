@@ -12,6 +12,12 @@ from .params import resolve
 __all__ = ["run_case"]
 
 
+def _progress_bar(total, name="run"):
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=name, unit="step")
+
+
 def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=True,
              verbose=False):
     """Run case ``name`` with ``overrides`` {key: text}; returns the summary dict.
@@ -36,11 +42,7 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     out = Path(out)
     record = RunRecord(name, values, units, out, comm)
     record.profile = None
-    bar = None
-    if progress and comm.rank == 0:
-        from tqdm import tqdm
-
-        bar = tqdm(total=values.get("steps", 1), desc=name, unit="step")
+    bar = _progress_bar(values.get("steps", 1), name) if progress and comm.rank == 0 else None
     status = "ok"
     prob = None
     try:

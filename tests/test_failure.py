@@ -1,0 +1,42 @@
+"""A run whose Newton iteration fails for good keeps and writes its last converged state."""
+
+import json
+
+import pytest
+
+import tribofx.runner as runner
+from tribofx.newton import BlockNewton, NewtonDivergence
+from tribofx.runner import run_case
+
+
+def test_failed_run_keeps_last_converged_state(tmp_path, monkeypatch):
+    original = BlockNewton.solve
+    state = {"solves": 0, "limit": None}
+
+    def solve(self, verbose=False):
+        state["solves"] += 1
+        if state["limit"] is not None and state["solves"] > state["limit"]:
+            raise NewtonDivergence("injected failure")
+        return original(self, verbose)
+
+    class FirstStepOnly:
+        """Progress bar stand-in: once step 1 is done, every later solve fails."""
+
+        def update(self, n):
+            if state["limit"] is None:
+                state["limit"] = state["solves"]
+
+        def close(self):
+            pass
+
+    monkeypatch.setattr(BlockNewton, "solve", solve)
+    monkeypatch.setattr(runner, "_progress_bar", lambda total, name: FirstStepOnly())
+    out = tmp_path / "run"
+    summary = run_case("hertz", {"mesh": "0", "load": "0.05", "steps": "3"}, out)
+    assert summary["status"].startswith("failed")
+    assert len(summary["newton_iterations"]) == 1  # one converged load step
+    # what is reported and written is step 1: a third of the load (secant tolerance 1e-6)
+    load = summary["results"]["normal_load_full_body"]["value"]
+    assert load == pytest.approx(0.05 / 3, rel=1e-5)
+    assert json.loads((out / "summary.json").read_text())["status"] == summary["status"]
+    assert (out / "displacement.bp").is_dir() and (out / "pressure.png").is_file()
