@@ -1,10 +1,11 @@
 """Registry of runnable cases: ``tribofx run CASE``."""
 
 from .hertz import HertzCase
+from .reynolds import CylinderCase, SliderCase
 
 __all__ = ["CASES", "get_case"]
 
-CASES = {c.name: c for c in (HertzCase,)}
+CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase)}
 
 
 def get_case(name):
