@@ -1,11 +1,14 @@
 """Registry of runnable cases: ``tribofx run CASE``."""
 
+from .ehl import EHLCylinderLayerCase
 from .hertz import HertzCase
 from .reynolds import CylinderCase, SliderCase
+from .wear import WearPinCase
 
 __all__ = ["CASES", "get_case"]
 
-CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase)}
+CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
+                                  WearPinCase)}
 
 
 def get_case(name):

@@ -1,0 +1,111 @@
+"""Shape mapping Ψ of the worn body as an ALE field on the initial mesh (chapter §4.1, §4.4).
+
+Three configurations (eq. 19): initial Ω̂ (the mesh, never moved), worn
+undeformed Ω = Ψ(Ω̂) and deformed ω.  On the initial mesh
+
+    X = Ψ(X̂) = X̂ + w,        x = X̂ + u,
+
+i.e. the displacement ``u`` is measured from the *initial* configuration (so the
+contact kinematics x = X̂ + u of ``forms/contact`` is unchanged and the contact
+multiplier is a traction per unit initial area).  With G = I + Grad_X̂ w the
+deformation gradient relative to the worn configuration and the measures are
+
+    F = (I + Grad_X̂ u) G⁻¹,   dV = det G dV̂,   N dS = cof(G) N̂ dŜ   (Nanson).
+
+The stress-free state of the worn body is u = w (F = I).  Only ``"3d"`` and
+``"plane_strain"`` kinematics are supported here (the hoop stretch of an
+axisymmetric worn body would need the worn radius).
+
+The interior of Ψ is fixed by an auxiliary (linear) elasticity problem on Ω̂
+driven by the normal component of the wear increment on Γ̂_c (eq. 28), with the
+tangential component free there and zero normal motion on the rest of the
+boundary (set by the driver as Dirichlet conditions on the normal component).
+Lengths in mm.
+"""
+
+import ufl
+
+from .hyperelastic import first_piola
+from .kinematics import grad3
+
+__all__ = [
+    "aux_elasticity",
+    "cofactor",
+    "deformation_gradient_worn",
+    "internal_virtual_work_worn",
+    "nanson_vector",
+    "shape_gradient",
+    "traction_work_worn",
+    "volume_factor",
+]
+
+
+def _check(kind):
+    if kind not in ("3d", "plane_strain"):
+        raise ValueError(f"worn-body kinematics support '3d' and 'plane_strain', not {kind!r}")
+
+
+def shape_gradient(w):
+    """G = Grad_X̂ Ψ = I + Grad_X̂ w (gdim × gdim)."""
+    return ufl.Identity(len(w)) + ufl.grad(w)
+
+
+def cofactor(G):
+    """Cofactor matrix cof G = det(G) G^{-T}, written polynomially (no division) in 2D/3D."""
+    n = G.ufl_shape[0]
+    if n == 2:
+        return ufl.as_matrix([[G[1, 1], -G[1, 0]], [-G[0, 1], G[0, 0]]])
+    return ufl.as_matrix([
+        [G[(i + 1) % 3, (j + 1) % 3] * G[(i + 2) % 3, (j + 2) % 3]
+         - G[(i + 1) % 3, (j + 2) % 3] * G[(i + 2) % 3, (j + 1) % 3] for j in range(3)]
+        for i in range(3)])
+
+
+def nanson_vector(w, N_hat):
+    """Unnormalised worn normal a = cof(G) N̂ with |a| = dS/dŜ = j_w (Nanson's formula).
+
+    On a boundary facet cof(G) N̂ depends on the tangential derivative of w only,
+    so it is well defined for a continuous piecewise linear w.
+    """
+    return cofactor(shape_gradient(w)) * N_hat
+
+
+def volume_factor(w):
+    """Volume factor det G = dV/dV̂ of the shape mapping; det G ≤ 0: inverted cell."""
+    return ufl.det(shape_gradient(w))
+
+
+def _G3(w, kind):
+    _check(kind)
+    return ufl.Identity(3) + grad3(w, kind)
+
+
+def deformation_gradient_worn(u, w, kind):
+    """F = (I + Grad_X̂ u)(I + Grad_X̂ w)⁻¹ (3×3; plane strain embeds F₃₃ = 1)."""
+    return (ufl.Identity(3) + grad3(u, kind)) * ufl.inv(_G3(w, kind))
+
+
+def internal_virtual_work_worn(u, w, du, kind, material, params, dx):
+    """∫_Ω P(F) : Grad_X δu dV pulled back to Ω̂: ∫ P : (Grad_X̂ δu G⁻¹) det G dV̂."""
+    G = _G3(w, kind)
+    Ginv = ufl.inv(G)
+    F = (ufl.Identity(3) + grad3(u, kind)) * Ginv
+    P = first_piola(F, material, params)
+    return ufl.inner(P, grad3(du, kind) * Ginv) * ufl.det(G) * dx
+
+
+def traction_work_worn(traction, w, du, N_hat, ds):
+    """Work of a dead nominal traction T* given per unit *worn* area: ∫ T*·δu j_w dŜ."""
+    a = nanson_vector(w, N_hat)
+    return ufl.dot(traction, du) * ufl.sqrt(ufl.dot(a, a)) * ds
+
+
+def aux_elasticity(w, dw, mu, lmbda, dx):
+    """Auxiliary (mesh-motion) linear elasticity ∫ σ(w) : ε(δw) dV̂ on the initial mesh.
+
+    ``mu``, ``lmbda`` are Lamé constants of the fictitious material (MPa); only
+    their ratio matters for Ψ, their size scales the constraint multiplier.
+    """
+    eps = ufl.sym(ufl.grad(w))
+    return (2 * mu * ufl.inner(eps, ufl.sym(ufl.grad(dw)))
+            + lmbda * ufl.tr(eps) * ufl.div(dw)) * dx

@@ -1,0 +1,227 @@
+"""Soft-EHL coupling: lubrication surface S = P(γ_l) on a rigid cylinder (chapter §6.2–6.4, §7).
+
+Kinematics (plane, gdim = 2; all lengths mm).  A point X of the reference
+lubricated boundary Γ_l (unit outer normal N, unit tangent T) is placed at
+x = X + u.  Its closest point on the rigid cylinder (centre c, radius R) is
+
+    y = P(x) = c + R ν,   ν = (x − c)/|x − c|,   h = (x − y)·ν = |x − c| − R   (36–37)
+
+(ν points from the cylinder into the film).  Everything the Reynolds equation
+needs depends only on the trace of x on Γ_l and on its tangential derivative
+F_t = F (I − N⊗N):
+
+    ∂P/∂x = (R/|x − c|)(I − ν⊗ν),    F_y = (∂P/∂x) F,
+    A = F_y (I − N⊗N) + ν⊗N         (tangents of Γ_l → tangents of S, N → ν),
+    ds_S = |det A| dS,  grad_S f = A^{-T} Grad_Γ f,  div_S w = tr(Grad_Γ w · A^{-1}).
+
+Velocities (cylinder frame, the frame of the chapter's §8.2): the cylinder is at
+rest, the layer material flows through the deformed mesh with v = F V (eq. 26),
+V = U T the nominal sliding velocity.  The mean tangential velocity on S is
+v̄ = ½ (I − ν⊗ν) F V (eq. 41–42) and the film is steady at fixed point of S, so
+∂h/∂t = 0 in eq. (49).
+
+Fluid traction on the layer (eq. 46), i = layer, countersurface at rest:
+
+    t = −p n − (μ/h)(I − ν⊗ν) F V − (h/2) grad_S p,
+
+as nominal traction T dS = t ds on Γ_l: −p J F^{-T} N (Nanson) for the pressure
+and j = |F T| for the shear terms.  The Couette and Poiseuille shear terms are
+switchable (``shear``).
+
+The geometrically linear (classical EHL) variant (``model="linear"``) evaluates
+the whole geometry at the undeformed configuration (u = 0): the lubrication
+surface S0 = P(Γ_l), its operators A0, ds_S0, v̄0 = ½(I − ν0⊗ν0)V, and the
+film thickness linearised in u, h = g(X) + ν0(X)·u (g, ν0 of the undeformed
+point X); the traction acts on the reference surface, T = −p N − (μ/h) v0_T −
+(h/2) grad_S0 p.  Both models coincide for u → 0, so their difference is of
+higher order in the deformation.
+
+Integration.  DOLFINx 0.11 does not differentiate a facet-submesh function in
+an integral over facets of the bulk mesh, and does not evaluate bulk
+coefficients in integrals over the submesh.  The Reynolds equation is therefore
+written on the submesh in terms of the trace field u_s (same values as u on
+Γ_l, imposed by :func:`trace_constraint`), and the solid sees the tangential
+pressure gradient through a cellwise constant submesh field g = Grad_Γ p·T
+(:func:`tangential_gradient_constraint`, exact for P1 pressure).
+
+Units: mm, N, s, MPa (viscosity MPa·s, μU in N/mm).
+"""
+
+from dataclasses import dataclass
+
+import ufl
+
+from . import reynolds as rf
+
+__all__ = [
+    "MODELS",
+    "LubricationKinematics",
+    "WeightedMeasure",
+    "fluid_traction",
+    "lubrication_kinematics",
+    "reynolds_on_surface",
+    "tangential_gradient_constraint",
+    "trace_constraint",
+]
+
+MODELS = ("finite", "linear")
+
+
+class WeightedMeasure:
+    """A measure times a weight, ``expr * WeightedMeasure(w, dx) == (expr * w) * dx``.
+
+    Lets the Reynolds forms of :mod:`forms.reynolds` (which take a measure) run on
+    S pulled back to Γ_l, with the weight w = ds_S/dS.
+    """
+
+    def __init__(self, weight, measure):
+        self.weight, self.measure = weight, measure
+
+    def __rmul__(self, integrand):
+        return (integrand * self.weight) * self.measure
+
+    def __call__(self, *args, **kwargs):
+        """Return the weighted measure with new subdomain data/metadata."""
+        return WeightedMeasure(self.weight, self.measure(*args, **kwargs))
+
+
+@dataclass(frozen=True)
+class LubricationKinematics:
+    """UFL expressions of the lubrication surface at a point of Γ_l.
+
+    Attributes:
+        h: film thickness (mm).
+        nu: unit normal ν of S at y, pointing into the film (towards the layer).
+        y: projection point y = P(x) on the cylinder (mm).
+        A: tangent map Γ_l → S (gdim × gdim).
+        stretch: ds_S/dS = |det A|.
+        vbar: mean tangential velocity v̄ (mm/s).
+        v_layer: tangential (w.r.t. S) velocity of the layer surface (mm/s).
+    """
+
+    h: ufl.core.expr.Expr
+    nu: ufl.core.expr.Expr
+    y: ufl.core.expr.Expr
+    A: ufl.core.expr.Expr
+    stretch: ufl.core.expr.Expr
+    vbar: ufl.core.expr.Expr
+    v_layer: ufl.core.expr.Expr
+
+    def grad(self, f, grad_gamma=ufl.grad):
+        """Surface gradient grad_S f = A^{-T} Grad_Γ f of a scalar field on Γ_l."""
+        return ufl.inv(self.A).T * grad_gamma(f)
+
+    def div(self, w, grad_gamma=ufl.grad):
+        """Surface divergence div_S w = tr(Grad_Γ w · A^{-1}) of a vector field on Γ_l."""
+        return ufl.tr(grad_gamma(w) * ufl.inv(self.A))
+
+
+def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite"):
+    """Lubrication surface S = P(γ_l) on a rigid cylinder, as UFL of the displacement.
+
+    Args:
+        X: reference position on Γ_l (mm).
+        disp: displacement u at X (mm).
+        grad_disp: displacement gradient whose action on tangents of Γ_l is exact
+            (bulk Grad u, or the tangential gradient of the trace on the submesh).
+        N: unit outer normal of Γ_l (reference, constant vector).
+        center: cylinder centre c (mm).
+        radius: cylinder radius R (mm).
+        V: nominal sliding velocity of the layer in the cylinder frame (mm/s),
+            tangent to Γ_l.
+        model: "finite" (S = P(γ_l)) or "linear" (classical EHL, see module doc).
+    """
+    if model not in MODELS:
+        raise ValueError(f"unknown model {model!r}; expected one of {MODELS}")
+    gdim = len(N)
+    Id = ufl.Identity(gdim)
+    PN = Id - ufl.outer(N, N)
+    if model == "linear":
+        # all geometry at the reference configuration (u = 0): S0 = P(Γ_l); h linear in u
+        k0 = lubrication_kinematics(X, ufl.zero(gdim), ufl.zero(gdim, gdim), N, center, radius,
+                                    V, "finite")
+        return LubricationKinematics(h=k0.h + ufl.dot(k0.nu, disp), nu=k0.nu, y=k0.y, A=k0.A,
+                                     stretch=k0.stretch, vbar=k0.vbar, v_layer=k0.v_layer)
+    x = X + disp
+    d = x - center
+    r = ufl.sqrt(ufl.dot(d, d))
+    nu = d / r
+    Pnu = Id - ufl.outer(nu, nu)
+    Ft = (Id + grad_disp) * PN           # F (I − N⊗N)
+    A = (radius / r) * Pnu * Ft + ufl.outer(nu, N)
+    v_layer = Pnu * (Ft * V)             # tangential part of v = F V (V ⊥ N)
+    return LubricationKinematics(h=r - radius, nu=nu, y=center + radius * nu, A=A,
+                                 stretch=abs(ufl.det(A)), vbar=0.5 * v_layer,
+                                 v_layer=v_layer)
+
+
+def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,
+                        nodal_dx=None, grad_gamma=ufl.grad):
+    """Steady Reynolds residual (49) on S pulled back to Γ_l (p = 0 on ∂S by Dirichlet).
+
+    ``dx`` is the measure of Γ_l (the facet submesh), ``eps`` the penalty of
+    cavitation (MPa·s/mm, None: no cavitation), ``supg`` adds the SUPG term with
+    element size ``h_e`` (mm on Γ_l, scaled to S here) and pressure scale ``p_c``
+    (MPa) in the Péclet number; ``nodal_dx`` is the vertex-quadrature measure for
+    the penalty.
+    """
+    dS = WeightedMeasure(kin.stretch, dx)
+
+    def grad(f):
+        return kin.grad(f, grad_gamma)
+
+    def div(w):
+        return kin.div(w, grad_gamma)
+
+    F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad)
+    if supg:
+        D = kin.h**2 * p_c / (12 * mu)
+        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
+        F += rf.supg_stabilisation(p, 0.0, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
+                                   div=div)
+    if eps is not None:
+        F += rf.cavitation_penalty(p, dp, eps, WeightedMeasure(kin.stretch, nodal_dx or dx))
+    return F
+
+
+def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
+    """Nominal traction (MPa per reference length) of the film on the layer, eq. (46).
+
+    Args:
+        p: pressure (MPa).
+        dpdT: tangential derivative Grad_Γ p · T of the pressure on Γ_l (MPa/mm).
+        kin: :class:`LubricationKinematics` evaluated with the bulk displacement.
+        F: deformation gradient (gdim × gdim) of the bulk.
+        N: unit outer normal of Γ_l (reference).
+        T: unit tangent of Γ_l (reference), the direction of V.
+        mu: viscosity (MPa·s).
+        model: "finite" (Nanson, current normal and stretch) or "linear" (reference surface).
+        shear: include the Couette −(μ/h)(v_layer − v_cyl) and Poiseuille −(h/2) grad_S p
+            terms.
+    """
+    if model == "linear":
+        Tn = -p * N
+        if shear:
+            grad_S_p = ufl.inv(kin.A).T * (dpdT * T)
+            Tn = Tn - (mu / kin.h) * kin.v_layer - (kin.h / 2) * grad_S_p
+        return Tn
+    Tn = -p * ufl.det(F) * ufl.inv(F).T * N      # −p n ds/dS (Nanson)
+    if shear:
+        FT = F * T
+        j = ufl.sqrt(ufl.dot(FT, FT))             # ds/dS of γ_l
+        grad_S_p = ufl.inv(kin.A).T * (dpdT * T)
+        Tn = Tn - j * ((mu / kin.h) * kin.v_layer + (kin.h / 2) * grad_S_p)
+    return Tn
+
+
+def trace_constraint(u_s, u, du_s, ds):
+    """Residual ∫_Γl (u_s − u)·δu_s dS that makes the submesh field u_s the trace of u.
+
+    u_s and u have the same degree on Γ_l, so the L2 projection is the identity.
+    """
+    return ufl.dot(u_s - u, du_s) * ds
+
+
+def tangential_gradient_constraint(g, p, dg, T, dx):
+    """Residual ∫_Γl (g − Grad_Γ p·T) δg dS: g is the tangential pressure derivative."""
+    return (g - ufl.dot(ufl.grad(p), T)) * dg * dx

@@ -1,0 +1,102 @@
+"""Archard-type wear at finite deformation (chapter §3, eqs. 10–18; §4.4, eq. 28).
+
+Rates are volumes per unit area and time (mm/s).  Notation:
+
+* ``Ẇ`` nominal wear rate, per unit area of the *undeformed (worn)* configuration
+  Ω (eq. 10); ``ẇ`` spatial wear rate, per unit current area (eq. 11);
+  j ẇ = J Ẇ (eq. 12).
+* ``ḋ = t_T·v_T`` spatial, ``Ḋ = j ḋ = T_T·v_T`` nominal frictional dissipation
+  density (eq. 13; MPa·mm/s = N/(mm·s)).
+* Nominal Archard law (14): Ẇ = K Ḋ; spatial law (15)–(16): ẇ = k ḋ, i.e.
+  Ẇ = (k/J) Ḋ.  With Coulomb friction ‖T_T‖ = μ|T_N| and the classical
+  Archard coefficient k_A (mm³/(N·mm)): Ẇ = k_A |T_N| ‖v_T‖, so K = k_A/μ.
+  Frictionless contact (the pin example) uses the pressure form directly.
+* Slave/master rates (17)–(18).
+
+The tractions entering these laws are nominal tractions *per unit area of the
+worn configuration*.  When the contact multiplier λ is a traction per unit area
+of the initial configuration Γ̂_c (every unknown lives on the initial mesh), the
+volume removed per unit initial area and time is Ẇ j_w = k_A |λ| ‖v_T‖ with
+j_w = dS/dŜ — see :func:`worn_volume_rate_density`.
+"""
+
+import ufl
+
+__all__ = [
+    "archard_nominal",
+    "archard_pressure_form",
+    "archard_spatial",
+    "dissipation_nominal",
+    "dissipation_spatial",
+    "master_nominal_rate",
+    "shape_update_residual",
+    "slave_nominal_rate",
+    "worn_volume_rate_density",
+]
+
+
+def dissipation_spatial(t_t, v_t):
+    """Spatial frictional dissipation density ḋ = t_T·v_T (eq. 13₁), MPa·mm/s."""
+    return ufl.dot(t_t, v_t)
+
+
+def dissipation_nominal(d_spatial, j):
+    """Nominal dissipation density Ḋ = j ḋ (eq. 13₂), j = ds/dS."""
+    return j * d_spatial
+
+
+def archard_nominal(K, D_nominal):
+    """Nominal Archard law Ẇ = K Ḋ (eq. 14); K in mm³/(N·mm)·(1/μ) = 1/MPa."""
+    return K * D_nominal
+
+
+def archard_spatial(k, D_nominal, J):
+    """Spatial Archard law ẇ = k ḋ written nominally, Ẇ = (k/J) Ḋ (eq. 16)."""
+    return k / J * D_nominal
+
+
+def archard_pressure_form(k, T_n, slip_speed):
+    """Archard law in the pressure form Ẇ = k |T_N| ‖v_T‖ (frictionless or K = k/μ).
+
+    Args:
+        k: Archard coefficient (mm³/(N·mm) = 1/MPa); may be a UFL expression (e.g.
+            depth dependent).
+        T_n: nominal normal traction (≤ 0 in contact, MPa).
+        slip_speed: ‖v_T‖ (mm/s).
+    """
+    return k * ufl.max_value(-T_n, 0) * slip_speed
+
+
+def slave_nominal_rate(K1, t_t_nominal, slip_rate):
+    """Slave-surface nominal rate Ẇ⁽¹⁾ = K⁽¹⁾ T_Tα ξ̄̇^α (eq. 17)."""
+    return K1 * ufl.dot(t_t_nominal, slip_rate)
+
+
+def master_nominal_rate(K2, D1_nominal, j1, j2):
+    """Master-surface nominal rate Ẇ⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾ Ḋ⁽¹⁾ (eq. 18)."""
+    return j2 / j1 * K2 * D1_nominal
+
+
+def worn_volume_rate_density(W_dot, j_w):
+    """Volume removed per unit *initial* area and time, Ẇ j_w (j_w = dS/dŜ), mm/s."""
+    return W_dot * j_w
+
+
+def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds):
+    """Weak form of the discrete shape evolution law (28) on the contact boundary.
+
+    ∫_Γ̂c η [(w − w_n)·a + Δt Ẇ_{n+θ} j_w] dŜ = 0, where ``a`` is the Nanson
+    vector cof(∇̂Ψ) N̂ of the worn boundary (so that (w − w_n)·a dŜ is the volume
+    swept per unit initial area) and ``rate_density`` = Ẇ j_w.  Evaluated with a
+    vertex quadrature rule this is the nodal update of the normal component.
+
+    Args:
+        w: shape-change field at t_{n+1} (mm).
+        w_old: shape-change field at t_n (mm).
+        a: unnormalised worn normal (Nanson vector, dimensionless).
+        rate_density: Ẇ j_w (mm/s).
+        dt: time step Δt (s).
+        eta: test function of the constraint multiplier.
+        ds: measure over the initial contact boundary Γ̂_c.
+    """
+    return eta * (ufl.dot(w - w_old, a) + dt * rate_density) * ds

@@ -1,0 +1,240 @@
+"""Pin-on-flat finite wear (chapter §4.4, Figs. 2–4): case ``wear-pin``.
+
+A neo-Hookean plane-strain pin of width W and height H with a rounded tip
+(circular arc of radius R_tip through the lowest point) is pressed by a uniform
+traction q on its top face onto a rigid plane y = 0 that slides at speed V.
+Contact is frictionless; the lateral faces x = ±W/2 are constrained laterally
+(u_x = 0) and free vertically.  Archard wear, nominal rate Ẇ = k p V (eq. 14
+in pressure form), changes the shape of the tip; the shape evolution (28) is
+integrated to t = T by the explicit (θ = 0) or implicit (θ = 1) scheme on the
+initial mesh (see :mod:`tribofx.wear_problem`).
+
+Default data (the chapter leaves them to Stupkiewicz 2013; chosen in its
+spirit): W = H = 2 mm, R_tip = 4 mm (tip height 0.127 mm), q = 2 MPa
+(4 N/mm), V = 10 mm/s, k = 5·10⁻⁶ mm³/(N·mm), T = 1000 s, so that the worn
+area k q W V T = 0.2 mm² per mm (mean depth 0.1 mm) flattens most of the tip.
+E = 640 MPa (small-deformation regime: initial Hertz half-width 0.17 mm) to
+E = 10 MPa (finite deformation, full contact), ν = 0.3.  The structured mesh
+has n × n squares (split in triangles), n = 10·2^mesh.
+"""
+
+import math
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..contact_problem import ContactSettings
+from ..forms.hyperelastic import lame_parameters
+from ..meshes.pin import CONTACT, SIDES, TOP, pin_body, tip_height
+from ..newton import NewtonDivergence
+from ..obstacles import AnalyticObstacle
+from ..params import InputError, Param
+from ..wear_problem import WearProblem
+
+__all__ = ["WearPinCase", "solve_initial_contact"]
+
+
+def solve_initial_contact(prob, load, q, E, W, R, H, verbose=False, max_ramp=5):
+    """First (unworn) contact solve under the full traction; ramps the load on failure.
+
+    The initial guess translates the pin down by δ₀ ≈ a²/(2R) + qH/E (a the
+    2D Hertz half-width, capped at W/2) so that the tip nodes start active.
+    Returns the Newton iterations spent.
+    """
+    Es = E / (1 - 0.3**2)
+    a = min(math.sqrt(4 * q * W * R / (math.pi * Es)), W / 2) if R and not math.isinf(R) else 0
+    delta0 = (a * a / (2 * R) if a else 0.0) + q * H / E
+    saved = prob.state()
+    its = 0
+    for level in range(max_ramp):
+        n = 2**level
+        prob.restore(saved)
+        prob.u.x.array.reshape(-1, 2)[:, 1] = -delta0 / n
+        try:
+            for i in range(1, n + 1):
+                load.value = i / n
+                if i > 1:
+                    prob.u.x.array.reshape(-1, 2)[:, 1] -= delta0 / n
+                its += prob.solve(verbose=verbose).iterations
+            prob.commit()
+            return its
+        except NewtonDivergence:
+            continue
+    raise NewtonDivergence("initial contact solve failed after load ramping")
+
+
+class WearPinCase:
+    """Case ``wear-pin``; see the module docstring."""
+
+    name = "wear-pin"
+    doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
+    params = (
+        Param("scheme", str, "implicit", "-", "θ-scheme: explicit (θ=0) or implicit (θ=1)",
+              choices=("explicit", "implicit")),
+        Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
+        Param("T", float, 1000.0, "s", "end time", lower=0.0),
+        Param("k", float, 5e-6, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
+              lower=0.0, closed=True),
+        Param("V", float, 10.0, "mm/s", "sliding speed of the rigid plane", lower=0.0,
+              closed=True),
+        Param("E", float, 640.0, "MPa", "Young's modulus", lower=0.0),
+        Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
+        Param("mesh", int, 1, "-", "refinement level: n × n structured mesh, n = 10·2^mesh",
+              lower=0, upper=4, closed=True),
+        Param("q", float, 2.0, "MPa", "uniform traction on the top face", lower=0.0),
+        Param("W", float, 2.0, "mm", "pin width", lower=0.0),
+        Param("H", float, 2.0, "mm", "pin height", lower=0.0),
+        Param("R_tip", float, 4.0, "mm", "tip radius (0: flat-ended punch)", lower=0.0,
+              closed=True),
+        Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
+              closed=True),
+    )
+
+    @staticmethod
+    def validate(v):
+        """Check cross-parameter consistency."""
+        R = v["R_tip"]
+        if R and R < v["W"] / 2:
+            raise InputError(f"R_tip = {R} mm must be 0 (flat) or >= W/2 = {v['W'] / 2} mm")
+        if tip_height(v["W"] / 2, R) >= 0.5 * v["H"]:
+            raise InputError("the rounded tip must be lower than half the pin height")
+        if v["dt"] > v["T"]:
+            raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+
+    @staticmethod
+    def n_elements(v):
+        """Elements per side of the structured mesh."""
+        return 10 * 2 ** v["mesh"]
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD, n=None):
+        """Mesh and :class:`WearProblem` of the case; returns ``(problem, load_factor)``."""
+        n = cls.n_elements(v) if n is None else n
+        W, H = v["W"], v["H"]
+        R = v["R_tip"] if v["R_tip"] > 0 else math.inf
+        msh, ft = pin_body(W, H, R, n, comm)
+        h = W / n
+        mu, lmbda = lame_parameters(v["E"], v["nu"])
+
+        def factory(m, Vs):
+            return AnalyticObstacle(Vs.mesh, "plane", np.zeros(2), normal=np.array([0.0, 1.0]))
+
+        prob = WearProblem(msh, ft, CONTACT, "plane_strain", "neo-hookean",
+                           {"mu": mu, "lmbda": lmbda}, factory, ContactSettings(rho_n=v["E"] / h),
+                           k=v["k"], slip_speed=v["V"], scheme=v["scheme"], aux_E=v["E"])
+        load = fem.Constant(msh, 1.0)
+        prob.add_traction(TOP, load * ufl.as_vector([0.0, -v["q"]]))
+        prob.add_dirichlet(SIDES, 0.0, component=0)
+        prob.add_shape_dirichlet(SIDES, 0)
+        prob.add_shape_dirichlet(TOP, 1)
+        prob.finalize()
+        return prob, load
+
+    @staticmethod
+    def vtx_fields(prob):
+        """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
+        return {"displacement": [prob.u, prob.w], "contact": [prob.lam_n]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Worn profiles at every step (``profiles.png``) and wear history (``wear.png``)."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        for t, pts in zip(profile["times"], profile["profiles"]):
+            p = np.asarray(pts)
+            ax.plot(p[:, 0], p[:, 1], lw=1, label=f"t = {t:g} s")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.set_title(f"worn tip, {profile['scheme']} scheme, Δt = {profile['dt']:g} s")
+        if len(profile["times"]) <= 12:
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(outdir / "profiles.png", dpi=120)
+        plt.close(fig)
+        fig, ax = plt.subplots(figsize=(5, 3.5))
+        ax.plot(profile["time"], profile["wear_volume"], "o-", label="worn area (mm²/mm)")
+        ax.plot(profile["time"], profile["max_wear_depth"], "s-", label="max depth (mm)")
+        ax.set_xlabel("t (s)")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(outdir / "wear.png", dpi=120)
+        plt.close(fig)
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, n=None):
+        """Integrate the wear of the pin from t = 0 to T; record per-step histories."""
+        prob, load = cls.build(v, n=n)
+        R = v["R_tip"] if v["R_tip"] > 0 else math.inf
+        record.data["num_dofs"] = prob.solver.num_dofs
+        if prob.shape_solver is not None:
+            record.data["num_dofs_shape"] = prob.shape_solver.num_dofs
+        hist = {k: [] for k in ("time", "wear_volume", "max_wear_depth", "contact_radius",
+                                "newton_iterations", "wear_rate_integral", "dt")}
+        profiles, ptimes = [], []
+
+        def log(t, its, dt):
+            area, _ = prob.contact_measures()
+            d = prob.nodal_shape_data()
+            comm = prob.mesh.comm
+            hist["time"].append(t)
+            hist["dt"].append(dt)
+            hist["wear_volume"].append(prob.worn_volume())
+            hist["max_wear_depth"].append(
+                comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX))
+            hist["contact_radius"].append(area / 2)
+            hist["newton_iterations"].append(its)
+            hist["wear_rate_integral"].append(prob.wear_rate_integral())
+            record.data["newton_iterations"].append(its)
+            s = prob.gather_shape()
+            if comm.rank == 0:
+                profiles.append(s["X_worn"].tolist())
+                ptimes.append(t)
+
+        its0 = solve_initial_contact(prob, load, v["q"], v["E"], v["W"], R, v["H"], verbose)
+        log(0.0, its0, 0.0)
+        t, T, dt = 0.0, v["T"], v["dt"]
+        cuts = 0
+        try:
+            while t < T * (1 - 1e-12):
+                h = min(dt / 2**cuts, T - t)
+                try:
+                    reports = prob.step(h, verbose=verbose)
+                except NewtonDivergence:
+                    cuts += 1
+                    if cuts > v["max_cuts"]:
+                        raise
+                    continue
+                t += h
+                log(t, int(sum(r.iterations for r in reports)), h)
+                record.data.setdefault("newton_residuals", []).append(
+                    [float(x) for x in reports[-1].residuals])
+                cuts = 0 if abs(t / dt - round(t / dt)) < 1e-9 else cuts
+                if progress is not None:
+                    progress.update(1)
+        except NewtonDivergence as err:
+            err.problem = prob
+            raise
+        finally:
+            cls._report(prob, v, record, hist, profiles, ptimes)
+        return prob
+
+    @staticmethod
+    def _report(prob, v, record, hist, profiles, ptimes):
+        units = {"time": "s", "wear_volume": "mm^3/mm", "max_wear_depth": "mm",
+                 "contact_radius": "mm (half-width)", "newton_iterations": "-",
+                 "wear_rate_integral": "mm^3/(mm*s)", "dt": "s"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        d = prob.gather_shape()
+        if prob.mesh.comm.rank == 0:
+            record.result("final_profile", d["X_worn"].tolist(), "mm (worn configuration)")
+            record.result("final_profile_deformed", d["x"].tolist(), "mm (current)")
+            record.result("final_pressure", d["p"].tolist(), "MPa")
+            record.profile = {**hist, "profiles": profiles, "times": ptimes,
+                              "scheme": v["scheme"], "dt": v["dt"]}

@@ -1,0 +1,239 @@
+"""Finite wear of a hyperelastic body on a rigid countersurface: θ-scheme in slow time (§4.4).
+
+Everything lives on the initial mesh (DESIGN.md, "Working on the initial
+mesh"): the displacement u from the initial configuration (x = X̂ + u), the
+shape change w of the worn configuration (X = X̂ + w, the ALE field of Ψ), the
+normal contact multiplier λ (traction per unit initial area, on the contact
+facet submesh) and the multiplier ζ of the shape update (same submesh).
+
+Residuals (forms from :mod:`tribofx.forms.ale`, :mod:`tribofx.forms.wear`,
+:mod:`tribofx.forms.contact`):
+
+* deformation on the worn body, pulled back to Ω̂:
+  ∫ P(F) : (Grad δu G⁻¹) det G dV̂ − ∫ T*·δu j_w dŜ + G_c(u, λ) = 0,
+  F = (I + Grad u) G⁻¹, G = I + Grad w;
+* auxiliary elasticity for w with the discrete shape evolution law (28) as a
+  nodal constraint on Γ̂_c (vertex quadrature, multiplier ζ):
+  ∫ σ_aux(w) : ε(δw) dV̂ + ∫_Γ̂c ζ δw·a dŜ = 0,
+  ∫_Γ̂c η [(w − w_n)·a + Δt k V |λ_{n+θ}|] dŜ = 0,
+  with zero normal motion of the rest of the boundary as Dirichlet conditions.
+
+The normal of (28) is taken as the Nanson vector a = cof(G_{n+½}) N̂ of the
+mid-step shape (w + w_n)/2.  This differs from N_{n+θ} by O(Δt) per step
+(the first-order accuracy of the θ-scheme is unchanged), and it makes
+(w − w_n)·a dŜ the exact area swept by a linear boundary segment, so the
+discrete worn volume equals the time integral of the wear rate exactly (a
+discrete geometric conservation law).  k V |λ| = Ẇ j_w is the nominal Archard
+rate (14) per unit initial area (frictionless pressure form, slip speed V).
+
+Schemes: ``implicit`` (θ = 1) solves (u, λ, w, ζ) in one BlockNewton with the
+exact tangent; ``explicit`` (θ = 0) first updates (w, ζ) with the rate of the
+known state (λ_n), then solves the contact problem (u, λ) on the new shape.  A
+shape update that inverts a cell (det G ≤ 0) or a Newton failure cuts the step.
+Units: mm, N, s, MPa.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from .contact_problem import ContactProblem, _node_to_dof
+from .forms import ale
+from .forms import contact as cf
+from .forms import wear as wf
+from .newton import BlockNewton, NewtonDivergence
+
+__all__ = ["MeshInversion", "WearProblem"]
+
+SCHEMES = ("explicit", "implicit")
+
+
+class MeshInversion(NewtonDivergence):
+    """The shape update inverted a cell (det(I + Grad w) ≤ 0); the step must be cut."""
+
+
+class WearProblem(ContactProblem):
+    """A :class:`ContactProblem` whose body wears (Archard, frictionless pressure form).
+
+    Extra args (others as :class:`ContactProblem`; friction must be 0):
+        k: Archard coefficient (mm³/(N·mm)).
+        slip_speed: sliding speed V of the countersurface relative to the body (mm/s).
+        scheme: "explicit" (θ = 0) or "implicit" (θ = 1).
+        aux_E, aux_nu: fictitious Young's modulus (MPa) and Poisson ratio of the
+            auxiliary elasticity problem (default: E of the body scale, 0.3).
+    """
+
+    def __init__(self, msh, facet_tags, contact_tag, kind, material, mat_params,
+                 obstacle_factory, settings, k, slip_speed, scheme="implicit", aux_E=1.0,
+                 aux_nu=0.3, quadrature_degree=None):
+        if scheme not in SCHEMES:
+            raise ValueError(f"unknown wear scheme {scheme!r}; expected one of {SCHEMES}")
+        if settings.friction != 0:
+            raise ValueError("WearProblem implements the frictionless (pressure) Archard form")
+        super().__init__(msh, facet_tags, contact_tag, kind, material, mat_params,
+                         obstacle_factory, settings, quadrature_degree=quadrature_degree)
+        self.scheme = scheme
+        # a distinct (equal) space: Dirichlet conditions are sorted into blocks by space
+        self.Vw = fem.functionspace(msh, self.V.ufl_element())
+        self.w = fem.Function(self.Vw, name="shape_change")
+        self.w_n = fem.Function(self.Vw, name="shape_change_old")
+        self.zeta = fem.Function(self.Q, name="shape_multiplier")
+        self.lam_old = fem.Function(self.Q, name="contact_multiplier_old")
+        self.dt = fem.Constant(msh, 0.0)  # 0: no wear in a plain contact solve
+        self.k = fem.Constant(msh, float(k))
+        self.slip_speed = fem.Constant(msh, float(slip_speed))
+        self.N_hat = ufl.FacetNormal(msh)
+        du = self._v
+        # deformation problem on the worn configuration (replaces the parent's R_u)
+        R_uc, R_n, _ = cf.augmented_lagrangian_contact(
+            self.u, du, self.geometry, self.lam_n, ufl.TestFunction(self.Q), settings.rho_n,
+            self.dsc, weight=self.weight)
+        self.R_u = ale.internal_virtual_work_worn(self.u, self.w, du, kind, material,
+                                                  mat_params, self.dx) + R_uc
+        self.R_n = R_n
+        # shape evolution: auxiliary elasticity + nodal normal constraint (28)
+        dw = ufl.TestFunction(self.Vw)
+        eta = ufl.TestFunction(self.Q)
+        a = ale.nanson_vector(0.5 * (self.w + self.w_n), self.N_hat)
+        lam = self.lam_n if scheme == "implicit" else self.lam_old
+        self.rate_density = wf.archard_pressure_form(self.k, lam, self.slip_speed)
+        mu_a = aux_E / (2 * (1 + aux_nu))
+        lmbda_a = aux_E * aux_nu / ((1 + aux_nu) * (1 - 2 * aux_nu))
+        self.R_w = (ale.aux_elasticity(self.w, dw, mu_a, lmbda_a, self.dx)
+                    + self.zeta * ufl.dot(dw, a) * self.dsc)
+        self.R_z = wf.shape_update_residual(self.w, self.w_n, a, self.rate_density, self.dt,
+                                            eta, self.dsc)
+        self.w_bcs = []
+        self.shape_solver = None
+        gmap_w = _node_to_dof(self.Vw)
+        node_of_bulk = np.full(len(gmap_w), -1, dtype=np.int64)
+        node_of_bulk[_node_to_dof(self.V)] = np.arange(len(gmap_w))
+        self._bulk_dofs_w = gmap_w[node_of_bulk[self._bulk_dofs]]
+
+    # -- set-up -------------------------------------------------------------
+    def add_traction(self, tag, traction):
+        """Dead nominal traction (UFL vector, MPa) per unit *worn* area on facets ``tag``."""
+        self.R_u = self.R_u - ale.traction_work_worn(traction, self.w, self._v, self.N_hat,
+                                                     self.ds(tag))
+
+    def add_shape_dirichlet(self, tag, component):
+        """Zero normal motion of the worn boundary: w[component] = 0 on facets ``tag``."""
+        fdim = self.mesh.topology.dim - 1
+        Vc = self.Vw.sub(component)
+        dofs = fem.locate_dofs_topological(Vc, fdim, self.facet_tags.find(tag))
+        self.w_bcs.append(fem.dirichletbc(fem.Constant(self.mesh, 0.0), dofs, Vc))
+
+    def finalize(self, **newton_kw):
+        """Compile forms and create the Newton solver(s) of the chosen scheme."""
+        if self.scheme == "implicit":
+            self.residuals = [self.R_u, self.R_n, self.R_w, self.R_z]
+            self.unknowns = [self.u, self.lam_n, self.w, self.zeta]
+            self.bcs = self.bcs + self.w_bcs
+        else:
+            self.residuals = [self.R_u, self.R_n]
+            self.unknowns = [self.u, self.lam_n]
+            self.shape_solver = BlockNewton([self.R_w, self.R_z], [self.w, self.zeta],
+                                            bcs=self.w_bcs, entity_maps=[self.emap],
+                                            **newton_kw)
+        super().finalize(**newton_kw)
+        msh = self.mesh
+        G = ale.shape_gradient(self.w)
+        self._worn_volume = fem.form((1 - ufl.det(G)) * self.dx)
+        lam_now = wf.archard_pressure_form(self.k, self.lam_n, self.slip_speed)
+        self._rate_form = fem.form(lam_now * self.dsc, entity_maps=[self.emap])
+        vs = ufl.TestFunction(self.Vs)
+        self._normal_form = fem.form(ufl.dot(vs, self.N_hat) * self.dsc, entity_maps=[self.emap])
+        self._DG0 = fem.functionspace(msh, ("DG", 0))
+        self._detG = fem.Function(self._DG0)
+        self._detG_expr = fem.Expression(ufl.det(G), self._DG0.element.interpolation_points)
+        n = self._nodal(self._normal_form).reshape(-1, msh.geometry.dim)
+        self._N_nodal = n / np.linalg.norm(n, axis=1)[:, None]
+
+    # -- state --------------------------------------------------------------
+    def _all(self):
+        return [self.u, self.lam_n, self.w, self.w_n, self.zeta, self.lam_old, self.xbar_n]
+
+    def state(self):
+        """Copy of all unknowns and history (for step cutting)."""
+        return [f.x.array.copy() for f in self._all()]
+
+    def restore(self, state):
+        """Restore a state obtained from :meth:`state`."""
+        for f, a in zip(self._all(), state):
+            f.x.array[:] = a
+        self._pre_evaluate()
+
+    # -- time stepping ------------------------------------------------------
+    def min_volume_factor(self):
+        """Smallest det(I + Grad w) over all cells (≤ 0: the worn mesh is inverted)."""
+        self._detG.interpolate(self._detG_expr)
+        n = self._DG0.dofmap.index_map.size_local
+        return self.mesh.comm.allreduce(float(np.min(self._detG.x.array[:n], initial=np.inf)),
+                                        op=MPI.MIN)
+
+    def _check_mesh(self):
+        m = self.min_volume_factor()
+        if not m > 0:
+            raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
+
+    def step(self, dt, verbose=False):
+        """Advance the shape by one step Δt (s); returns the list of Newton reports.
+
+        On failure (Newton divergence or inverted mesh) the state at entry is
+        restored and :class:`NewtonDivergence` (or :class:`MeshInversion`) raised.
+        """
+        saved = self.state()
+        self.dt.value = dt
+        self.w_n.x.array[:] = self.w.x.array
+        try:
+            if self.scheme == "implicit":
+                reports = [self.solver.solve(verbose=verbose)]
+                self._check_mesh()
+            else:
+                self.lam_old.x.array[:] = self.lam_n.x.array
+                reports = [self.shape_solver.solve(verbose=verbose)]
+                self._check_mesh()
+                # warm start: keep the deformed configuration x = X̂ + u (the gaps and
+                # the active set stay), only the worn reference has changed
+                reports.append(self.solver.solve(verbose=verbose))
+        except NewtonDivergence:
+            self.restore(saved)
+            raise
+        self.commit()
+        return reports
+
+    # -- post-processing ----------------------------------------------------
+    def _sum(self, form):
+        return self.mesh.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
+
+    def worn_volume(self):
+        """Worn volume ∫_Ω̂ (1 − det G) dV̂ (mm³; per unit thickness, mm², in plane strain)."""
+        return self._sum(self._worn_volume)
+
+    def wear_rate_integral(self):
+        """∫_Γc Ẇ dS = ∫_Γ̂c k V |λ| dŜ at the current state (mm³/s; mm²/s per mm in 2D)."""
+        return self._sum(self._rate_form)
+
+    def nodal_shape_data(self):
+        """Per owned contact node: initial X̂, worn X = X̂ + w, wear depth −w·N̂, pressure, active."""
+        gdim = self.mesh.geometry.dim
+        d = self.nodal_contact_data()
+        n_own = len(d["p"])
+        wb = self.w.x.array.reshape(-1, gdim)
+        ws = np.zeros_like(self._X_sub)
+        ws[self._sub_dofs] = wb[self._bulk_dofs_w]
+        d["X_hat"] = self._X_sub[:n_own]
+        d["X_worn"] = self._X_sub[:n_own] + ws[:n_own]
+        d["depth"] = -np.sum(ws[:n_own] * self._N_nodal[:n_own], axis=1)
+        return d
+
+    def gather_shape(self):
+        """:meth:`nodal_shape_data` of all ranks on rank 0 (None elsewhere), sorted by X̂[0]."""
+        d = self.nodal_shape_data()
+        allp = self.mesh.comm.gather(d, root=0)
+        if self.mesh.comm.rank != 0:
+            return None
+        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
+        order = np.argsort(out["X_hat"][:, 0])
+        return {k: v[order] for k, v in out.items()}
