@@ -7,6 +7,7 @@ from mpi4py import MPI
 from tribofx.forms.hyperelastic import lame_parameters
 
 from tribofx.contact_problem import ContactProblem, ContactSettings
+from tribofx.newton import convergence_orders
 from tribofx.obstacles import AnalyticObstacle
 
 MU_F = 0.3
@@ -40,13 +41,6 @@ def _block(slip, gdim):
     return prob, top_u
 
 
-def _orders(res):
-    r = np.asarray(res)
-    r = r[r > 1e-13 * r[0]]  # below this the residual is at round-off
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
-
-
 @pytest.mark.mpi
 @pytest.mark.parametrize("gdim", [2, 3])
 def test_steady_sliding_eulerian(gdim):
@@ -67,7 +61,7 @@ def test_steady_sliding_eulerian(gdim):
     # the small in-plane shear ∂u_y/∂x of the 3D block, so the net drag is −μ N
     # exactly in 2D and to O(shear²) in 3D
     assert -T / N == pytest.approx(MU_F, rel=1e-8 if gdim == 2 else 1e-4)
-    orders = _orders(reports[-1].residuals)
+    orders = convergence_orders(reports[-1].residuals)
     print("Newton residuals", reports[-1].residuals, "orders", orders)
     # quadratic convergence of the semismooth Newton: final order ≈ 2
     assert orders[-1] > 1.8

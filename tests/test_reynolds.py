@@ -8,7 +8,7 @@ import pytest
 from mpi4py import MPI
 
 from tribofx.cases.reynolds import CylinderCase, SliderCase, cylinder_references
-from tribofx.newton import NewtonDivergence
+from tribofx.newton import NewtonDivergence, convergence_orders
 from tribofx.output import RunRecord
 from tribofx.params import InputError, resolve
 
@@ -21,13 +21,6 @@ def run_case(case, tmp_path, **overrides):
     rec.profile = None
     prob = case.run(values, rec)
     return {k: v["value"] for k, v in rec.data["results"].items()}, rec, prob
-
-
-def _orders(res):
-    r = np.asarray(res)
-    r = r[r > 1e-13 * r[0]]  # below this the residual is at round-off
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
 
 
 # ----------------------------------------------------------------------------- slider
@@ -154,7 +147,7 @@ def test_cylinder_jfo_swift_stieber_and_mass_balance(tmp_path):
 def test_jfo_newton_rate(tmp_path):
     res, rec, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=800)
     its = rec.data["newton_iterations"][0]
-    orders = _orders(rec.data["newton_residuals"])
+    orders = convergence_orders(rec.data["newton_residuals"])
     print("iterations per mesh level", its, "residuals", rec.data["newton_residuals"],
           "orders", orders)
     # nested iteration: every level converges in a few semismooth Newton steps

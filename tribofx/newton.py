@@ -17,7 +17,7 @@ from dolfinx.la.petsc import _ghost_update
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
-__all__ = ["BlockNewton", "NewtonDivergence", "NewtonReport"]
+__all__ = ["BlockNewton", "NewtonDivergence", "NewtonReport", "convergence_orders"]
 
 
 class NewtonDivergence(RuntimeError):
@@ -32,14 +32,22 @@ class NewtonReport:
     residuals: list = field(default_factory=list)
     increments: list = field(default_factory=list)
 
-    def rates(self):
-        """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of the residual history."""
-        r = np.asarray(self.residuals)
-        r = r[r > 0]
-        if len(r) < 3:
-            return np.array([])
-        lr = np.log(r)
-        return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+    def rates(self, floor=1e-13):
+        """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""
+        return convergence_orders(self.residuals, floor)
+
+
+def convergence_orders(residuals, floor=1e-13):
+    """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of a residual history.
+
+    Residuals below ``floor`` × r₀ are at round-off and are dropped first.
+    """
+    r = np.asarray(residuals, dtype=float)
+    r = r[r > floor * r[0]] if len(r) else r
+    if len(r) < 3:
+        return np.array([])
+    lr = np.log(r)
+    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
 
 
 class BlockNewton:
