@@ -36,6 +36,20 @@ point X); the traction acts on the reference surface, T = −p N − (μ/h) v0_T
 (h/2) grad_S0 p.  Both models coincide for u → 0, so their difference is of
 higher order in the deformation.
 
+Meshed countersurface (``surface=`` of :func:`lubrication_kinematics`).  The
+cylinder may instead be a surface mesh, projected by the C++ kernel
+:func:`tribofx.lubrication_projection.lubrication_projection` at the nodes of
+Γ_l (expansion point x₀, nodal P1 data refreshed before every assembly); the
+data enter as Taylor expansions in d = x − x₀ (:func:`meshed_countersurface`):
+
+    h = h₀ + ν₀·d + ½ d·(∂ν/∂x) d,   ν = ν₀ + (∂ν/∂x) d,
+    ∂P/∂x = (∂P/∂x)₀ + (∂²P/∂x²)₀ d,   y = y₀ + (∂P/∂x)₀ d + ½ (∂²P/∂x²)₀[d, d],
+
+so value, first and second derivative of h and value and first derivative of
+ν, ∂P/∂x (hence of A, ds_S, v̄) are those of the kernel at x₀.  Omitted: the
+second derivatives of ν and of ∂P/∂x (third derivatives of P), which matter
+only where d ≠ 0 at the quadrature points (P2 displacement: d = O(h_e²)).
+
 Integration.  DOLFINx 0.11 does not differentiate a facet-submesh function in
 an integral over facets of the bulk mesh, and does not evaluate bulk
 coefficients in integrals over the submesh.  The Reynolds equation is therefore
@@ -57,8 +71,10 @@ __all__ = [
     "MODELS",
     "LubricationKinematics",
     "WeightedMeasure",
+    "cylinder_countersurface",
     "fluid_traction",
     "lubrication_kinematics",
+    "meshed_countersurface",
     "reynolds_on_surface",
     "tangential_gradient_constraint",
     "trace_constraint",
@@ -116,7 +132,39 @@ class LubricationKinematics:
         return ufl.tr(grad_gamma(w) * ufl.inv(self.A))
 
 
-def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite"):
+def cylinder_countersurface(x, center, radius):
+    """Closed-form projection onto the cylinder: (h, ν, y, ∂P/∂x) at the UFL position x."""
+    d = x - center
+    r = ufl.sqrt(ufl.dot(d, d))
+    nu = d / r
+    dP = (radius / r) * (ufl.Identity(len(x)) - ufl.outer(nu, nu))
+    return r - radius, nu, center + radius * nu, dP
+
+
+def meshed_countersurface(x, x0, h0, nu0, y0, dy0, dnu0, d2y0):
+    """Meshed countersurface through kernel data at the expansion point x0 (module doc).
+
+    Args:
+        x: UFL position on Γ_l (mm).
+        x0: expansion point (nodal positions of Γ_l, mm).
+        h0: film thickness at x0 (mm).
+        nu0: unit normal ν at P(x0).
+        y0: projection P(x0) (mm).
+        dy0: ∂P/∂x at x0 (gdim × gdim).
+        dnu0: ∂ν/∂x at x0 (gdim × gdim, 1/mm).
+        d2y0: list of gdim tensors, ``d2y0[k][i, j] = ∂²P_i/∂x_j∂x_k`` at x0.
+
+    Returns:
+        (h, ν, y, ∂P/∂x) as UFL expressions of x.
+    """
+    d = x - x0
+    D = sum(d2y0[k] * d[k] for k in range(len(d2y0)))
+    h = h0 + ufl.dot(nu0, d) + 0.5 * ufl.dot(d, dnu0 * d)
+    return h, nu0 + dnu0 * d, y0 + dy0 * d + 0.5 * D * d, dy0 + D
+
+
+def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite",
+                           surface=None):
     """Lubrication surface S = P(γ_l) on a rigid cylinder, as UFL of the displacement.
 
     Args:
@@ -130,6 +178,9 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         V: nominal sliding velocity of the layer in the cylinder frame (mm/s),
             tangent to Γ_l.
         model: "finite" (S = P(γ_l)) or "linear" (classical EHL, see module doc).
+        surface: None (analytic cylinder) or a callable x ↦ (h, ν, y, ∂P/∂x), e.g.
+            :func:`meshed_countersurface` bound to its data; for ``model="linear"``
+            its data must be expanded about the reference positions X.
     """
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {MODELS}")
@@ -139,20 +190,20 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
     if model == "linear":
         # all geometry at the reference configuration (u = 0): S0 = P(Γ_l); h linear in u
         k0 = lubrication_kinematics(X, ufl.zero(gdim), ufl.zero(gdim, gdim), N, center, radius,
-                                    V, "finite")
+                                    V, "finite", surface)
         return LubricationKinematics(h=k0.h + ufl.dot(k0.nu, disp), nu=k0.nu, y=k0.y, A=k0.A,
                                      stretch=k0.stretch, vbar=k0.vbar, v_layer=k0.v_layer)
     x = X + disp
-    d = x - center
-    r = ufl.sqrt(ufl.dot(d, d))
-    nu = d / r
+    if surface is None:
+        h, nu, y, dP = cylinder_countersurface(x, center, radius)
+    else:
+        h, nu, y, dP = surface(x)
     Pnu = Id - ufl.outer(nu, nu)
     Ft = (Id + grad_disp) * PN           # F (I − N⊗N)
-    A = (radius / r) * Pnu * Ft + ufl.outer(nu, N)
+    A = dP * Ft + ufl.outer(nu, N)
     v_layer = Pnu * (Ft * V)             # tangential part of v = F V (V ⊥ N)
-    return LubricationKinematics(h=r - radius, nu=nu, y=center + radius * nu, A=A,
-                                 stretch=abs(ufl.det(A)), vbar=0.5 * v_layer,
-                                 v_layer=v_layer)
+    return LubricationKinematics(h=h, nu=nu, y=y, A=A, stretch=abs(ufl.det(A)),
+                                 vbar=0.5 * v_layer, v_layer=v_layer)
 
 
 def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,

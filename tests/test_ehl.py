@@ -174,3 +174,39 @@ def test_serial_equals_two_processes(tmp_path):
         # same discrete problem; the secant stops at |W − W*| ≤ 1e-6 W*, so
         # partition-dependent round-off moves the results by ~1e-6 relative
         assert v2 == pytest.approx(v1, rel=1e-5)
+
+
+# ------------------------------------------------------------ meshed countersurface
+
+
+def test_meshed_countersurface_matches_analytic():
+    """countersurface=mesh (interval3 arc, C++ lubrication projection) vs the closed form."""
+    loads = [0.1, 0.2, 0.3]
+    res, trials, rates = {}, {}, {}
+    for cs in ("analytic", "mesh"):
+        v = values(W=0.3, steps=3, countersurface=cs)
+        prob, control, out = _sweep(v, loads)
+        res[cs], trials[cs] = out, control.trials
+        prob.s.value = prob.s.value * 0.97
+        rep = prob.solve()
+        rates[cs] = (rep.iterations, _orders(rep.residuals)[-1])
+    v = values(countersurface="mesh")
+    R, h_e = v["R"], 0.04 / 2 ** v["mesh"]
+    delta = 2 * Case.arc_half_angle(v) / v["cs_facets"]  # facet angle (rad)
+    # facet geometry error of the P2 arc: O(R δ⁴) in h (≈ 1e-13 mm here, see
+    # test_lubrication_projection); the nodal P1 data interpolate h between the
+    # Γ_l nodes, a shift of the film of at most h_e²/(8R) (mean h_e²/(12R)) against
+    # the closed form evaluated at the quadrature points
+    tol_h = h_e**2 / (8 * R) + 10 * R * delta**4
+    for a, m in zip(res["analytic"], res["mesh"]):
+        print("analytic", a, "\nmesh    ", m)
+        assert abs(m["h_min"] - a["h_min"]) < tol_h
+        # at the same load the pressure reacts to the film shape, not its level:
+        # relative change ≤ 2 Δh/h_min
+        assert m["p_max"] == pytest.approx(a["p_max"], rel=2 * tol_h / a["h_min"])
+    print("trials", trials, "rates", rates)
+    n_a = sum(map(sum, trials["analytic"]))
+    n_m = sum(map(sum, trials["mesh"]))
+    assert n_m <= 1.2 * n_a + 2
+    assert rates["mesh"][0] <= rates["analytic"][0] + 1
+    assert rates["mesh"][1] > 1.6  # quadratic: the tangent through the kernel data is exact

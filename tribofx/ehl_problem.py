@@ -57,11 +57,16 @@ class EHLProblem:
         eps: cavitation penalty (MPa·s/mm) or None.
         p_c: pressure scale of SUPG (MPa).  h_ref: film scale for row scaling (mm).
         degree: Lagrange degree of u.
+        countersurface: None (analytic cylinder) or ``(nodes, facets, cell_type)``, the
+            cylinder as a surface mesh in its own frame (axis at the origin, normal
+            out of the cylinder), moved with the cylinder (offset (0, R + s)) and
+            projected by :func:`tribofx.lubrication_projection.lubrication_projection`
+            at the P1 nodes of Γ_l before every assembly (see :mod:`forms.ehl`).
     """
 
     def __init__(self, msh, cell_tags, facet_tags, materials, lub_tag, clamp_tag, R, U, mu,
                  model="finite", shear=True, supg=True, eps=None, p_c=1.0, h_ref=1e-2,
-                 degree=1, s0=0.0):
+                 degree=1, s0=0.0, countersurface=None):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}")
         self.mesh, self.model, self.shear = msh, model, shear
@@ -100,10 +105,15 @@ class EHLProblem:
         # bulk-side kinematics (solid tractions) and submesh kinematics (Reynolds)
         X = ufl.SpatialCoordinate(msh)
         Xs = ufl.SpatialCoordinate(sub)
+        self._Q1v = fem.functionspace(sub, ("Lagrange", 1, (gdim,)))
+        surface = None
+        self.countersurface = countersurface
+        if countersurface is not None:
+            surface = self._meshed_surface(*countersurface)
         self.kin_bulk = ef.lubrication_kinematics(X, self.u, ufl.grad(self.u), N, center,
-                                                  self.R, V_slide, model)
+                                                  self.R, V_slide, model, surface)
         self.kin_sub = ef.lubrication_kinematics(Xs, self.u_s, ufl.grad(self.u_s), N, center,
-                                                 self.R, V_slide, model)
+                                                 self.R, V_slide, model, surface)
         v = ufl.TestFunction(self.V)
         dus = ufl.TestFunction(self.Vs)
         dp = ufl.TestFunction(self.Q)
@@ -150,17 +160,66 @@ class EHLProblem:
         ends = fem.locate_dofs_geometrical(self.Q, lambda y: np.isclose(np.abs(y[0]), x_l))
         self.bcs.append(fem.dirichletbc(np.float64(0.0), ends, self.Q))
         self.solver = BlockNewton(residuals, unknowns, bcs=self.bcs, entity_maps=[self.emap],
-                                  rtol=1e-10, atol=1e-12, max_it=25, max_backtracks=6)
+                                  rtol=1e-10, atol=1e-12, max_it=25, max_backtracks=6,
+                                  pre_evaluate=self.update_countersurface)
         # post-processing forms
         self._force = [fem.form(self.traction[i] * self.ds_l, entity_maps=[self.emap])
                        for i in range(gdim)]
-        Q1v = fem.functionspace(sub, ("Lagrange", 1, (gdim,)))
+        Q1v = self._Q1v
         pts = self.Q.element.interpolation_points
         self._h_expr = fem.Expression(self.kin_sub.h, pts)
         self._y_expr = fem.Expression(self.kin_sub.y, Q1v.element.interpolation_points)
         self._x_expr = fem.Expression(Xs + self.u_s, Q1v.element.interpolation_points)
-        self._Q1v = Q1v
         self.iterations = []
+
+    # -- meshed countersurface ---------------------------------------------------
+    def _meshed_surface(self, nodes, facets, cell_type):
+        """Nodal P1 fields of the kernel data on Γ_l; returns the UFL surface map."""
+        from .lubrication_projection import lubrication_projection
+
+        self._lub_project = lubrication_projection
+        self._cs = (np.asarray(nodes, dtype=float), np.asarray(facets, dtype=np.int32),
+                    cell_type)
+        sub, gdim = self.sub, self.mesh.geometry.dim
+        T = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim)))
+        S = fem.functionspace(sub, ("Lagrange", 1))
+        V1 = self._Q1v
+        self._cs_u = fem.Function(V1)
+        self._cs_X = V1.tabulate_dof_coordinates()[:, :gdim]
+        self.cs_x0 = fem.Function(V1, name="cs_x0")
+        self.cs_h0 = fem.Function(S, name="cs_h0")
+        self.cs_nu0 = fem.Function(V1, name="cs_nu0")
+        self.cs_y0 = fem.Function(V1, name="cs_y0")
+        self.cs_dy0 = fem.Function(T, name="cs_dy_dx")
+        self.cs_dnu0 = fem.Function(T, name="cs_dnu_dx")
+        self.cs_d2y0 = [fem.Function(T, name=f"cs_d2y_dx{k}") for k in range(gdim)]
+        fields = (self.cs_x0, self.cs_h0, self.cs_nu0, self.cs_y0, self.cs_dy0, self.cs_dnu0,
+                  self.cs_d2y0)
+        self.update_countersurface()
+        return lambda x: ef.meshed_countersurface(x, *fields)
+
+    def update_countersurface(self):
+        """Project the nodes of Γ_l (current, or reference for ``model="linear"``)."""
+        if self.countersurface is None:
+            return
+        nodes, facets, cell_type = self._cs
+        gdim = self.mesh.geometry.dim
+        x = self._cs_X.copy()
+        if self.model == "finite":
+            self._cs_u.interpolate(self.u_s)
+            x += self._cs_u.x.array.reshape(-1, gdim)
+        off = np.array([0.0, self.R + float(self.s.value)])
+        r = self._lub_project(x - off, nodes, facets, cell_type)
+        if not np.all(r.facet >= 0):
+            raise ValueError("meshed countersurface: projection failed")
+        self.cs_x0.x.array[:] = x.ravel()
+        self.cs_h0.x.array[:] = r.h
+        self.cs_nu0.x.array[:] = r.nu.ravel()
+        self.cs_y0.x.array[:] = (r.y + off).ravel()
+        self.cs_dy0.x.array[:] = r.dy_dx.ravel()
+        self.cs_dnu0.x.array[:] = r.dnu_dx.ravel()
+        for k, f in enumerate(self.cs_d2y0):
+            f.x.array[:] = np.ascontiguousarray(r.d2y_dx2[..., k]).ravel()
 
     # -- solving ---------------------------------------------------------------
     def solve(self, verbose=False):
@@ -192,6 +251,7 @@ class EHLProblem:
 
     def profile(self):
         """Nodal X, current x, projection y, film h and pressure p on rank 0 (sorted by X)."""
+        self.update_countersurface()
         h = fem.Function(self.Q)
         h.interpolate(self._h_expr)
         y = fem.Function(self._Q1v)

@@ -3,6 +3,7 @@
 //
 // nanobind module tribofx._cpp
 
+#include "lubrication.hpp"
 #include "projection.hpp"
 
 #include <cstdint>
@@ -37,12 +38,12 @@ nb::ndarray<nb::numpy, T> to_numpy(std::vector<S>&& v,
                                    shape.begin(), owner);
 }
 
+/// Validate shapes and node indices; returns the facet connectivity span.
 template <class E, int gdim>
-nb::dict project(const CArray2<double>& points, const CArray2<double>& nodes,
-                 const CArray2<std::int32_t>& facets)
+std::span<const std::int32_t> check_inputs(const CArray2<double>& points,
+                                           const CArray2<double>& nodes,
+                                           const CArray2<std::int32_t>& facets)
 {
-  constexpr int tdim = E::tdim;
-  const std::size_t n = points.shape(0);
   const std::size_t nv = nodes.shape(0);
   const std::size_t nf = facets.shape(0);
   if (points.shape(1) != gdim or nodes.shape(1) != gdim)
@@ -57,6 +58,17 @@ nb::dict project(const CArray2<double>& points, const CArray2<double>& nodes,
   if (std::ranges::any_of(f, [nv](std::int32_t i)
                           { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
     throw std::invalid_argument("facet node index out of range");
+  return f;
+}
+
+template <class E, int gdim>
+nb::dict project(const CArray2<double>& points, const CArray2<double>& nodes,
+                 const CArray2<std::int32_t>& facets)
+{
+  constexpr int tdim = E::tdim;
+  const std::size_t n = points.shape(0);
+  const std::size_t nv = nodes.shape(0);
+  const auto f = check_inputs<E, gdim>(points, nodes, facets);
 
   tribofx::projection::ProjectionOutput out;
   {
@@ -102,6 +114,59 @@ nb::dict closest_point_projection(const CArray2<double>& points,
   throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
 }
 
+template <class E, int gdim>
+nb::dict lubricate(const CArray2<double>& points, const CArray2<double>& nodes,
+                   const CArray2<std::int32_t>& facets)
+{
+  constexpr int tdim = E::tdim;
+  const std::size_t n = points.shape(0);
+  const std::size_t nv = nodes.shape(0);
+  const auto f = check_inputs<E, gdim>(points, nodes, facets);
+
+  tribofx::lubrication::LubricationOutput out;
+  {
+    nb::gil_scoped_release release;
+    out = tribofx::lubrication::lubrication_points<E, gdim>(
+        std::span(points.data(), n * gdim), std::span(nodes.data(), nv * gdim), f);
+  }
+
+  auto& pr = out.proj;
+  nb::dict d;
+  d["facet"] = to_numpy<std::int32_t>(std::move(pr.facet), {n});
+  d["xi"] = to_numpy<double>(std::move(pr.xi), {n, tdim});
+  d["y"] = to_numpy<double>(std::move(pr.x_bar), {n, gdim});
+  d["nu"] = to_numpy<double>(std::move(pr.normal), {n, gdim});
+  d["h"] = to_numpy<double>(std::move(pr.gap), {n});
+  d["dy_dx"] = to_numpy<double>(std::move(pr.dxbar_dx), {n, gdim, gdim});
+  d["dnu_dx"] = to_numpy<double>(std::move(pr.dn_dx), {n, gdim, gdim});
+  d["dh_dx"] = to_numpy<double>(std::move(out.dh_dx), {n, gdim});
+  d["d2h_dx2"] = to_numpy<double>(std::move(out.d2h_dx2), {n, gdim, gdim});
+  d["d2y_dx2"] = to_numpy<double>(std::move(out.d2y_dx2), {n, gdim, gdim, gdim});
+  d["inside"] = to_numpy<bool>(std::move(pr.inside), {n});
+  d["distance"] = to_numpy<double>(std::move(pr.distance), {n});
+  return d;
+}
+
+nb::dict lubrication_projection(const CArray2<double>& points, const CArray2<double>& nodes,
+                                const CArray2<std::int32_t>& facets,
+                                const std::string& cell_type)
+{
+  namespace el = tribofx::elements;
+  if (cell_type == "interval")
+    return lubricate<el::Interval2, 2>(points, nodes, facets);
+  if (cell_type == "interval3")
+    return lubricate<el::Interval3, 2>(points, nodes, facets);
+  if (cell_type == "triangle")
+    return lubricate<el::Triangle3, 3>(points, nodes, facets);
+  if (cell_type == "triangle6")
+    return lubricate<el::Triangle6, 3>(points, nodes, facets);
+  if (cell_type == "quadrilateral")
+    return lubricate<el::Quadrilateral4, 3>(points, nodes, facets);
+  if (cell_type == "quadrilateral9")
+    return lubricate<el::Quadrilateral9, 3>(points, nodes, facets);
+  throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
+}
+
 } // namespace
 
 NB_MODULE(_cpp, m)
@@ -112,4 +177,9 @@ NB_MODULE(_cpp, m)
         "nodes"_a.noconvert(), "facets"_a.noconvert(), "cell_type"_a,
         "Closest-point projection of points onto a surface mesh (see "
         "tribofx.projection.closest_point_projection). Returns a dict of arrays.");
+  m.def("lubrication_projection", &lubrication_projection, "points"_a.noconvert(),
+        "nodes"_a.noconvert(), "facets"_a.noconvert(), "cell_type"_a,
+        "Lubrication-surface projection with film thickness and derivatives (see "
+        "tribofx.lubrication_projection.lubrication_projection). Returns a dict of "
+        "arrays.");
 }

@@ -41,7 +41,20 @@ from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
 
-__all__ = ["EHLCylinderLayerCase"]
+__all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
+
+
+def cylinder_arc(R, n, alpha):
+    """Lower arc θ ∈ [−π/2 − α, −π/2 + α] of the circle of radius R about 0 (mm).
+
+    ``n`` interval3 facets (v0, v1, midpoint, nodes on the circle), numbered
+    counter-clockwise so that the facet normal (t_y, −t_x) points out of the
+    cylinder, into the film.  Returns (nodes, facets, "interval3").
+    """
+    th = np.linspace(-0.5 * math.pi - alpha, -0.5 * math.pi + alpha, 2 * n + 1)
+    nodes = R * np.c_[np.cos(th), np.sin(th)]
+    k = 2 * np.arange(n)
+    return nodes, np.c_[k, k + 2, k + 1].astype(np.int32), "interval3"
 
 
 class EHLCylinderLayerCase:
@@ -75,6 +88,11 @@ class EHLCylinderLayerCase:
         Param("mesh", int, 1, "-", "refinement: element size 0.04/2^mesh mm along Γ_l",
               lower=0, upper=6, closed=True),
         Param("degree", int, 2, "-", "Lagrange degree of the displacement", choices=(1, 2)),
+        Param("countersurface", str, "analytic", "-",
+              "cylinder in closed form, or meshed (interval3 arc, C++ projection kernel)",
+              choices=("analytic", "mesh")),
+        Param("cs_facets", int, 400, "-", "interval3 facets of the meshed cylinder arc", lower=1,
+              upper=100000, closed=True),
     )
 
     @staticmethod
@@ -111,12 +129,20 @@ class EHLCylinderLayerCase:
         materials = {LAYER: mat(v["E"])}
         if v["t_c"] > 0:
             materials[COATING] = mat(v["E_c"])
+        cs = None
+        if v["countersurface"] == "mesh":
+            cs = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))
         W1 = v["W"] / v["steps"]
         h_r, p_s, eps = cls.scales(v, W1)
         return EHLProblem(msh, ct, ft, materials, LUBRICATED, BOTTOM, v["R"], v["U"], v["mu"],
                           model=v["model"], shear=v["shear"], supg=v["supg"],
                           eps=eps if v["penalty"] > 0 else None, p_c=p_s, h_ref=h_r,
-                          degree=v["degree"], s0=h_r)
+                          degree=v["degree"], s0=h_r, countersurface=cs)
+
+    @staticmethod
+    def arc_half_angle(v):
+        """Half angle (rad) of the meshed arc: covers the film zone |x| ≤ x_l with 25 % margin."""
+        return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):

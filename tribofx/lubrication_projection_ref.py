@@ -1,0 +1,59 @@
+"""NumPy twin of the C++ lubrication-surface projection (``cpp_kernels/src/lubrication.hpp``).
+
+:func:`lubrication_projection_ref` has the signature and result of
+:func:`tribofx.lubrication_projection.lubrication_projection`: the closest point
+comes from :func:`tribofx.projection_ref.closest_point_projection_ref`, the film
+data are computed with the same formulas as the C++ kernel, vectorised over points.
+For testing only (brute-force facet search).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from tribofx.lubrication_projection import LubricationResult
+from tribofx.projection import _validate
+from tribofx.projection_ref import _ELEMENTS, _evaluate, closest_point_projection_ref
+
+__all__ = ["lubrication_projection_ref"]
+
+
+def _second_derivative(el, x: np.ndarray, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """d2y_i/dx_j dx_k (m, g, g, g) of interior projections (third derivatives of x(ξ) = 0)."""
+    xs, t, d = _evaluate(el, X, xi)
+    g = x - xs
+    gdim = x.shape[1]
+    A = np.einsum("mai,mbi->mab", t, t) - np.einsum("mi,mabi->mab", g, d)
+    Ai = np.linalg.inv(A)
+    Xi = np.einsum("mab,mbj->maj", Ai, t)
+    dt = np.einsum("mben,mek->mbnk", d, Xi)
+    dg = np.eye(gdim)[None] - np.einsum("men,mek->mnk", t, Xi)
+    dA = (np.einsum("mbnk,mcn->mbck", dt, t) + np.einsum("mbn,mcnk->mbck", t, dt)
+          - np.einsum("mnk,mbcn->mbck", dg, d))
+    dAi = -np.einsum("mac,mcek,meb->mabk", Ai, dA, Ai)
+    dXi = np.einsum("mabk,mbj->majk", dAi, t) + np.einsum("mab,mbjk->majk", Ai, dt)
+    return np.einsum("maik,maj->mijk", dt, Xi) + np.einsum("mai,majk->mijk", t, dXi)
+
+
+def lubrication_projection_ref(
+    points: npt.ArrayLike, nodes: npt.ArrayLike, facets: npt.ArrayLike, cell_type: str
+) -> LubricationResult:
+    """NumPy version of :func:`tribofx.lubrication_projection.lubrication_projection`."""
+    points, nodes, facets = _validate(points, nodes, facets, cell_type)
+    el = _ELEMENTS[cell_type]
+    n, gdim = points.shape
+    pr = closest_point_projection_ref(points, nodes, facets, cell_type)
+    g = points - pr.x_bar
+    dh = (pr.normal + np.einsum("pi,pij->pj", g, pr.dn_dx)
+          - np.einsum("pi,pij->pj", pr.normal, pr.dxbar_dx))
+    d2y = np.zeros((n, gdim, gdim, gdim))
+    d2y[pr.facet < 0] = np.nan
+    ins = pr.inside & (pr.facet >= 0)
+    if ins.any():
+        X = nodes[facets[pr.facet[ins]]]
+        d2y[ins] = _second_derivative(el, points[ins], X, pr.xi[ins])
+    return LubricationResult(
+        facet=pr.facet, xi=pr.xi, y=pr.x_bar, nu=pr.normal, h=pr.gap, dy_dx=pr.dxbar_dx,
+        dnu_dx=pr.dn_dx, dh_dx=dh, d2h_dx2=pr.dn_dx.copy(), d2y_dx2=d2y, inside=pr.inside,
+        distance=pr.distance)
