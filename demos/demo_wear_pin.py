@@ -31,7 +31,13 @@ How to change a parameter
 -------------------------
 Edit ``OVERRIDES`` below (keys as in ``tribofx list``), e.g.
 ``{"scheme": "explicit", "dt": "5"}`` for the explicit scheme with 200 steps,
-``{"E": "20"}`` for the finite-deformation regime, ``{"mesh": "2"}`` for 40×40.
+``{"E": "20"}`` for the finite-deformation regime, ``{"mesh": "2"}`` for 40×40,
+``{"law": "spatial"}`` for the spatial Archard law (15)–(16), Ẇ = (k/J) p V,
+``{"k_grad": "-5"}`` for a wear coefficient graded with depth,
+k(d) = k max(1 + k_grad·d, 0) (k_grad in 1/mm; negative: k rises towards the
+surface as in the graded layer of §5.3).  The explicit scheme is stable only for
+Δt below Δt_cr ~ h/E (eq. 31; ≈ 3.8 s at E = 640 MPa on 20×20, see
+benchmarks/bench_wear.py).
 The same run from the command line:
 ``tribofx run wear-pin --set dt=200 --out results/wear-pin``.
 

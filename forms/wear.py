@@ -26,6 +26,7 @@ __all__ = [
     "archard_nominal",
     "archard_pressure_form",
     "archard_spatial",
+    "depth_graded_coefficient",
     "dissipation_nominal",
     "dissipation_spatial",
     "master_nominal_rate",
@@ -55,16 +56,37 @@ def archard_spatial(k, D_nominal, J):
     return k / J * D_nominal
 
 
-def archard_pressure_form(k, T_n, slip_speed):
+def archard_pressure_form(k, T_n, slip_speed, J=None):
     """Archard law in the pressure form Ẇ = k |T_N| ‖v_T‖ (frictionless or K = k/μ).
+
+    With ``J`` given, the spatial law (15) in pressure form, ẇ = k |t_N| ‖v_T‖,
+    written nominally by (12)/(16): Ẇ = (k/J) |T_N| ‖v_T‖ (T_N = j t_N).
 
     Args:
         k: Archard coefficient (mm³/(N·mm) = 1/MPa); may be a UFL expression (e.g.
-            depth dependent).
+            depth dependent, :func:`depth_graded_coefficient`).
         T_n: nominal normal traction (≤ 0 in contact, MPa).
         slip_speed: ‖v_T‖ (mm/s).
+        J: det F of the deformation relative to the worn configuration (None:
+            nominal law (14)).
     """
-    return k * ufl.max_value(-T_n, 0) * slip_speed
+    rate = k * ufl.max_value(-T_n, 0) * slip_speed
+    return rate if J is None else rate / J
+
+
+def depth_graded_coefficient(k0, grad, depth):
+    """Wear coefficient varying linearly with the worn depth, k = k₀ max(1 + g d, 0).
+
+    A graded surface layer (chapter §5.3, Fig. 10b): g > 0 when the coefficient
+    rises with depth, g < 0 when it rises towards the surface (the clip at 0 keeps
+    a layer that is worn through from producing negative wear).
+
+    Args:
+        k0: coefficient at the initial surface (mm³/(N·mm)).
+        grad: relative gradient g (1/mm).
+        depth: wear depth d below the initial surface (mm), e.g. −w·N̂.
+    """
+    return k0 * ufl.max_value(1 + grad * depth, 0)
 
 
 def slave_nominal_rate(K1, t_t_nominal, slip_rate):

@@ -24,7 +24,10 @@ mid-step shape (w + w_n)/2.  This differs from N_{n+θ} by O(Δt) per step
 (w − w_n)·a dŜ the exact area swept by a linear boundary segment, so the
 discrete worn volume equals the time integral of the wear rate exactly (a
 discrete geometric conservation law).  k V |λ| = Ẇ j_w is the nominal Archard
-rate (14) per unit initial area (frictionless pressure form, slip speed V).
+rate (14) per unit initial area (frictionless pressure form, slip speed V);
+options: the spatial law (15)–(16), k V |λ| / J with J = det F relative to the
+worn configuration, and a depth-graded coefficient k(d), d = −w·N̂ (both taken
+at t_{n+θ}).
 
 Schemes: ``implicit`` (θ = 1) solves (u, λ, w, ζ) in one BlockNewton with the
 exact tangent; ``explicit`` (θ = 0) first updates (w, ζ) with the rate of the
@@ -47,6 +50,7 @@ from .newton import BlockNewton, NewtonDivergence
 __all__ = ["MeshInversion", "WearProblem"]
 
 SCHEMES = ("explicit", "implicit")
+LAWS = ("nominal", "spatial")
 
 
 class MeshInversion(NewtonDivergence):
@@ -62,18 +66,26 @@ class WearProblem(ContactProblem):
         scheme: "explicit" (θ = 0) or "implicit" (θ = 1).
         aux_E, aux_nu: fictitious Young's modulus (MPa) and Poisson ratio of the
             auxiliary elasticity problem (default: E of the body scale, 0.3).
+        law: "nominal" (eq. 14, Ẇ = k p V) or "spatial" (eqs. 15–16, Ẇ = (k/J) p V,
+            J = det F relative to the worn configuration, evaluated at t_{n+θ}).
+        k_grad: relative depth gradient g (1/mm) of the wear coefficient,
+            k(d) = k max(1 + g d, 0), d = −w·N̂ the wear depth at t_{n+θ} (0: constant).
     """
 
     def __init__(self, msh, facet_tags, contact_tag, kind, material, mat_params,
                  obstacle_factory, settings, k, slip_speed, scheme="implicit", aux_E=1.0,
-                 aux_nu=0.3, quadrature_degree=None):
+                 aux_nu=0.3, quadrature_degree=None, law="nominal", k_grad=0.0):
         if scheme not in SCHEMES:
             raise ValueError(f"unknown wear scheme {scheme!r}; expected one of {SCHEMES}")
+        if law not in LAWS:
+            raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
         if settings.friction != 0:
             raise ValueError("WearProblem implements the frictionless (pressure) Archard form")
         super().__init__(msh, facet_tags, contact_tag, kind, material, mat_params,
                          obstacle_factory, settings, quadrature_degree=quadrature_degree)
         self.scheme = scheme
+        self.law = law
+        self.kind = kind
         # a distinct (equal) space: Dirichlet conditions are sorted into blocks by space
         self.Vw = fem.functionspace(msh, self.V.ufl_element())
         self.w = fem.Function(self.Vw, name="shape_change")
@@ -82,6 +94,7 @@ class WearProblem(ContactProblem):
         self.lam_old = fem.Function(self.Q, name="contact_multiplier_old")
         self.dt = fem.Constant(msh, 0.0)  # 0: no wear in a plain contact solve
         self.k = fem.Constant(msh, float(k))
+        self.k_grad = fem.Constant(msh, float(k_grad))
         self.slip_speed = fem.Constant(msh, float(slip_speed))
         self.N_hat = ufl.FacetNormal(msh)
         du = self._v
@@ -96,8 +109,12 @@ class WearProblem(ContactProblem):
         dw = ufl.TestFunction(self.Vw)
         eta = ufl.TestFunction(self.Q)
         a = ale.nanson_vector(0.5 * (self.w + self.w_n), self.N_hat)
-        lam = self.lam_n if scheme == "implicit" else self.lam_old
-        self.rate_density = wf.archard_pressure_form(self.k, lam, self.slip_speed)
+        # rate at t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit (u, λ, w)_n (during the
+        # shape update u still holds u_n)
+        if scheme == "implicit":
+            self.rate_density = self._rate(self.lam_n, self.u, self.w)
+        else:
+            self.rate_density = self._rate(self.lam_old, self.u, self.w_n)
         mu_a = aux_E / (2 * (1 + aux_nu))
         lmbda_a = aux_E * aux_nu / ((1 + aux_nu) * (1 - 2 * aux_nu))
         self.R_w = (ale.aux_elasticity(self.w, dw, mu_a, lmbda_a, self.dx)
@@ -110,6 +127,14 @@ class WearProblem(ContactProblem):
         node_of_bulk = np.full(len(gmap_w), -1, dtype=np.int64)
         node_of_bulk[_node_to_dof(self.V)] = np.arange(len(gmap_w))
         self._bulk_dofs_w = gmap_w[node_of_bulk[self._bulk_dofs]]
+
+    def _rate(self, lam, u, w):
+        """Ẇ j_w = k(d) V |λ| (nominal) or k(d) V |λ| / J (spatial) per unit initial area."""
+        k = wf.depth_graded_coefficient(self.k, self.k_grad, -ufl.dot(w, self.N_hat))
+        J = None
+        if self.law == "spatial":
+            J = ufl.det(ale.deformation_gradient_worn(u, w, self.kind))
+        return wf.archard_pressure_form(k, lam, self.slip_speed, J)
 
     # -- set-up -------------------------------------------------------------
     def add_traction(self, tag, traction):
@@ -140,7 +165,7 @@ class WearProblem(ContactProblem):
         msh = self.mesh
         G = ale.shape_gradient(self.w)
         self._worn_volume = fem.form((1 - ufl.det(G)) * self.dx)
-        lam_now = wf.archard_pressure_form(self.k, self.lam_n, self.slip_speed)
+        lam_now = self._rate(self.lam_n, self.u, self.w)
         self._rate_form = fem.form(lam_now * self.dsc, entity_maps=[self.emap])
         vs = ufl.TestFunction(self.Vs)
         self._normal_form = fem.form(ufl.dot(vs, self.N_hat) * self.dsc, entity_maps=[self.emap])
@@ -212,7 +237,7 @@ class WearProblem(ContactProblem):
         return self._sum(self._worn_volume)
 
     def wear_rate_integral(self):
-        """∫_Γc Ẇ dS = ∫_Γ̂c k V |λ| dŜ at the current state (mm³/s; mm²/s per mm in 2D)."""
+        """∫_Γc Ẇ dS = ∫_Γ̂c Ẇ j_w dŜ at the current state (mm³/s; mm²/s per mm in 2D)."""
         return self._sum(self._rate_form)
 
     def nodal_shape_data(self):

@@ -14,7 +14,9 @@ spirit): W = H = 2 mm, R_tip = 4 mm (tip height 0.127 mm), q = 2 MPa
 (4 N/mm), V = 10 mm/s, k = 5·10⁻⁶ mm³/(N·mm), T = 1000 s, so that the worn
 area k q W V T = 0.2 mm² per mm (mean depth 0.1 mm) flattens most of the tip.
 E = 640 MPa (small-deformation regime: initial Hertz half-width 0.17 mm) to
-E = 10 MPa (finite deformation, full contact), ν = 0.3.  The structured mesh
+E = 10 MPa (finite deformation, full contact), ν = 0.3.  Options: ``law``
+(nominal Ẇ = k p V, eq. 14, or spatial Ẇ = (k/J) p V, eqs. 15–16) and a wear
+coefficient graded with the worn depth d, k(d) = k max(1 + k_grad d, 0).  The structured mesh
 has n × n squares (split in triangles), n = 10·2^mesh.
 """
 
@@ -33,7 +35,8 @@ from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
 from ..wear_problem import WearProblem
 
-__all__ = ["WearPinCase", "solve_initial_contact"]
+__all__ = ["WearPinCase", "checkerboard_amplitude", "explicit_critical_step",
+           "solve_initial_contact"]
 
 
 def solve_initial_contact(prob, load, q, E, W, R, H, verbose=False, max_ramp=5):
@@ -65,6 +68,76 @@ def solve_initial_contact(prob, load, q, E, W, R, H, verbose=False, max_ramp=5):
     raise NewtonDivergence("initial contact solve failed after load ramping")
 
 
+def _seed_checkerboard(prob, W, n, eps):
+    """Add a wear-depth perturbation ε(−1)^i to the contact nodes x_i = −W/2 + i h of a flat pin."""
+    X = prob.Vw.tabulate_dof_coordinates()
+    on = np.isclose(X[:, 1], 0.0, atol=1e-9 * W)
+    i = np.rint((X[on, 0] + W / 2) / (W / n)).astype(int)
+    prob.w.x.array.reshape(-1, 2)[on, 1] += eps * (-1.0) ** i
+    prob.w.x.scatter_forward()
+
+
+def checkerboard_amplitude(prob):
+    """Amplitude of the node-to-node alternating mode of the wear depth on Γ̂_c (mm).
+
+    Projection of d_i − mean(d) onto (−1)^i − mean((−1)^i), nodes sorted by X̂;
+    the same value on every rank.
+    """
+    d = prob.mesh.comm.bcast(prob.gather_shape(), root=0)
+    depth = d["depth"] - np.mean(d["depth"])
+    s = (-1.0) ** np.arange(len(depth))
+    s -= s.mean()
+    return float(depth @ s / (s @ s))
+
+
+def explicit_critical_step(v, n, lo, hi, steps=3, iters=12, eps=1e-6):
+    """Largest stable Δt (s) of the explicit scheme on an n × n flat-ended pin (eq. 31).
+
+    The stability probe: the flat pin in the homogeneous state (parameters ``v``
+    of ``wear-pin``, R_tip forced to 0) gets a node-to-node alternating wear-depth
+    perturbation of amplitude ε (the highest mode the mesh carries, i.e. the
+    first to go unstable), the contact problem is re-solved, and ``steps``
+    explicit steps are taken.  Forward Euler multiplies that mode by g = 1 − Δt kV S
+    per step (S: pressure per unit depth of the mode, ∝ E/h), so Δt is stable iff
+    the amplitude does not grow, |a_steps| ≤ |a_0|; a Newton failure or inverted
+    mesh also counts as unstable.  Bisection on log Δt in [lo, hi] (lo stable, hi
+    unstable, both checked).  Returns ``(dt_cr, probe)`` with ``probe`` the list of
+    (Δt, a_steps/a_0) evaluated.
+    """
+    v = {**v, "scheme": "explicit", "R_tip": 0.0}
+    prob, load = WearPinCase.build(v, n=n)
+    solve_initial_contact(prob, load, v["q"], v["E"], v["W"], math.inf, v["H"])
+    _seed_checkerboard(prob, v["W"], n, eps)
+    prob.solver.solve()
+    prob.commit()
+    start = prob.state()
+    a0 = checkerboard_amplitude(prob)
+    probe = []
+
+    def growth(dt):
+        prob.restore(start)
+        try:
+            for _ in range(steps):
+                prob.step(dt)
+        except NewtonDivergence:
+            probe.append((dt, math.inf))
+            return math.inf
+        g = checkerboard_amplitude(prob) / a0
+        probe.append((dt, g))
+        return abs(g)
+
+    if not growth(lo) <= 1 or not growth(hi) > 1:
+        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {probe}")
+    for _ in range(iters):
+        mid = math.sqrt(lo * hi)
+        if growth(mid) <= 1:
+            lo = mid
+        else:
+            hi = mid
+    prob.restore(start)
+    return math.sqrt(lo * hi), probe
+
+
 class WearPinCase:
     """Case ``wear-pin``; see the module docstring."""
 
@@ -88,6 +161,10 @@ class WearPinCase:
         Param("H", float, 2.0, "mm", "pin height", lower=0.0),
         Param("R_tip", float, 4.0, "mm", "tip radius (0: flat-ended punch)", lower=0.0,
               closed=True),
+        Param("law", str, "nominal", "-", "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
+              choices=("nominal", "spatial")),
+        Param("k_grad", float, 0.0, "1/mm",
+              "depth gradient g of the wear coefficient, k(d) = k max(1 + g d, 0)"),
         Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
     )
@@ -123,7 +200,8 @@ class WearPinCase:
 
         prob = WearProblem(msh, ft, CONTACT, "plane_strain", "neo-hookean",
                            {"mu": mu, "lmbda": lmbda}, factory, ContactSettings(rho_n=v["E"] / h),
-                           k=v["k"], slip_speed=v["V"], scheme=v["scheme"], aux_E=v["E"])
+                           k=v["k"], slip_speed=v["V"], scheme=v["scheme"], aux_E=v["E"],
+                           law=v["law"], k_grad=v["k_grad"])
         load = fem.Constant(msh, 1.0)
         prob.add_traction(TOP, load * ufl.as_vector([0.0, -v["q"]]))
         prob.add_dirichlet(SIDES, 0.0, component=0)
