@@ -15,7 +15,11 @@ for p in $apt_pkgs; do
 done
 if [ -n "$missing" ]; then
   echo "setup: installing Debian packages:$missing"
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup: need root or sudo to install:$missing" >&2; exit 1; }
+    SUDO="sudo"
+  fi
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing
 fi
@@ -38,6 +42,6 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 "$VENV/bin/python" -m pip install -q --upgrade pip
 "$VENV/bin/python" -m pip install -q "dolfinx-solver-real==0.11.0.post0" gmsh meshio matplotlib \
-  tqdm pytest ruff nanobind scikit-build-core numpy
+  tqdm pytest ruff nanobind scikit-build-core numpy cmake ninja
 "$VENV/bin/python" -m pip install -q --no-build-isolation -e .
 UCX_TLS=self,sm,tcp "$VENV/bin/python" -c "import dolfinx_solver, dolfinx, gmsh, tribofx._cpp; print('setup: dolfinx', dolfinx.__version__, 'gmsh', gmsh.__version__, 'tribofx ok')"

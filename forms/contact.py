@@ -86,21 +86,27 @@ def sphere_countersurface(x, center, radius):
     return cylinder_countersurface(x, center, radius, axis=None)
 
 
-def meshed_countersurface(x, x0, gap0, normal0, dnormal_dx, xbar0, dxbar_dx):
+def meshed_countersurface(x, x0, gap0, normal0, dnormal_dx, xbar0, dxbar_dx, d2xbar_dx2=None):
     """Countersurface given as a mesh, through closest-point data at the expansion point x0.
 
     The C++ kernel returns, at the current slave positions x0, the gap g₀, the
     normal n₀, its derivative ∂n/∂x (= ∂²g/∂x²), the projection x̄₀ and ∂x̄/∂x.
     They enter as second-order Taylor expansions in d = x − x0,
 
-        g(x) = g₀ + n₀·d + ½ d·(∂n/∂x) d,   n(x) = n₀ + (∂n/∂x) d,   x̄(x) = x̄₀ + (∂x̄/∂x) d,
+        g(x) = g₀ + n₀·d + ½ d·(∂n/∂x) d,   n(x) = n₀ + (∂n/∂x) d,
+        x̄(x) = x̄₀ + (∂x̄/∂x) d + ½ (∂²x̄/∂x²)[d, d],
 
-    so that value, first and second derivative of g_N at x = x0 are exact and the
-    Newton tangent is consistent (the data are refreshed at every iterate).
+    so that value, first and second derivatives of g_N and x̄ at x = x0 are exact
+    and the Newton tangent is consistent, friction included (the data are
+    refreshed at every iterate).  Without ``d2xbar_dx2`` (flat facets) the last
+    term is dropped.
     """
     d = x - x0
     g = gap0 + ufl.dot(normal0, d) + 0.5 * ufl.dot(d, dnormal_dx * d)
-    return ContactGeometry(gap=g, normal=normal0 + dnormal_dx * d, projection=xbar0 + dxbar_dx * d)
+    xbar = xbar0 + dxbar_dx * d
+    if d2xbar_dx2 is not None:
+        xbar += 0.5 * ufl.dot(ufl.dot(d2xbar_dx2, d), d)
+    return ContactGeometry(gap=g, normal=normal0 + dnormal_dx * d, projection=xbar)
 
 
 def lagrangian_slip(geometry, xbar_old):
@@ -133,7 +139,8 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
     if lam_t is None:
         return t_n, None
     n = geometry.normal
-    lhat_t = lam_t - ufl.dot(lam_t, n) * n + rho_t * slip
+    # tangential parts only: a Lagrangian slip is a chord of a curved countersurface
+    lhat_t = lam_t - ufl.dot(lam_t, n) * n + rho_t * (slip - ufl.dot(slip, n) * n)
     radius = -mu * t_n
     norm = ufl.sqrt(ufl.dot(lhat_t, lhat_t) + 1e-24)
     t_t = ufl.conditional(ufl.lt(norm, radius), lhat_t, radius / norm * lhat_t)
@@ -159,7 +166,8 @@ def augmented_lagrangian_contact(
         rho_t: tangential augmentation (MPa per unit of ``slip``).
         slip: slip expression (Lagrangian increment or Eulerian v_T Δτ).
         mu: Coulomb friction coefficient.
-        weight: reference measure factor (2πR for axisymmetric bodies, else 1).
+        weight: reference measure factor of the virtual work (2πR for axisymmetric
+            bodies, else 1).
 
     Returns:
         (R_u, R_n, R_t): contributions to the momentum residual and the normal and
@@ -167,9 +175,11 @@ def augmented_lagrangian_contact(
     """
     t_n, t_t = contact_tractions(geometry, lam_n, rho_n, lam_t, rho_t, slip, mu)
     R_u = t_n * ufl.derivative(geometry.gap, u, v) * weight * ds
-    R_n = -(1 / rho_n) * (lam_n - t_n) * mu_n * weight * ds
+    # the constraint rows hold pointwise (vertex rule): no 2πR weight, which would
+    # make the rows of nodes on the axis of an axisymmetric body vanish
+    R_n = -(1 / rho_n) * (lam_n - t_n) * mu_n * ds
     R_t = None
     if lam_t is not None:
         R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * weight * ds
-        R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * weight * ds
+        R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * ds
     return R_u, R_n, R_t

@@ -34,6 +34,9 @@ def test_list():
     (["run", "hertz", "--set", "friction=-0.1"], "must be >= 0"),
     (["run", "hertz", "--set", "load=1e6"], "load too large"),
     (["run", "hertz", "--set", "E"], "KEY=VALUE"),
+    (["run", "hertz", "--set", "E=inf"], "must be finite"),
+    (["run", "hertz", "--set", "R=nan"], "must be finite"),
+    (["run", "hertz", "--set", "load=1e-30"], "load too small"),
     (["frobnicate"], "invalid choice"),
 ])
 def test_bad_input(args, fragment):

@@ -40,3 +40,28 @@ def test_failed_run_keeps_last_converged_state(tmp_path, monkeypatch):
     assert load == pytest.approx(0.05 / 3, rel=1e-5)
     assert json.loads((out / "summary.json").read_text())["status"] == summary["status"]
     assert (out / "displacement.bp").is_dir() and (out / "pressure.png").is_file()
+
+
+def test_secant_give_up_restores_obstacle_position(tmp_path, monkeypatch):
+    # the second load step is given only 2 secant trials: its Newton solves converge
+    # but the load is not reached, so the step fails; the reported state (computed
+    # with the obstacle position) must be that of step 1
+    from tribofx.cases.hertz import SecantLoader
+
+    original = SecantLoader.reach
+    calls = {"n": 0}
+
+    def reach(self, target, delta):
+        calls["n"] += 1
+        self.max_trials = 25 if calls["n"] == 1 else 2
+        return original(self, target, delta)
+
+    monkeypatch.setattr(SecantLoader, "reach", reach)
+    summary = run_case("hertz", {"mesh": "0", "load": "0.05", "steps": "3"}, tmp_path / "r",
+                       progress=False)
+    assert summary["status"].startswith("failed")
+    assert len(summary["newton_iterations"]) == 1
+    # force recomputed from the restored multipliers and obstacle position (secant
+    # tolerance 1e-6): a stale obstacle position would change it at first order
+    load = summary["results"]["normal_load_full_body"]["value"]
+    assert load == pytest.approx(0.05 / 3, rel=1e-5)

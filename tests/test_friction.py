@@ -85,4 +85,5 @@ def test_lagrangian_sliding_reaches_mu():
         print(k, rep.iterations, f, f[0] / f[1])
     # the plane drags the body along +x; once everything slips T = μ N exactly
     assert history[-1] == pytest.approx(MU_F, rel=1e-8)
-    assert history[0] < history[-1] + 1e-12
+    # a genuine stick phase first: the first drag step is well inside the cone
+    assert history[0] < 0.9 * MU_F

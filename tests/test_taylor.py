@@ -112,8 +112,10 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     ("sphere", 0.4, "lagrangian", 3),
     ("cylinder", 0.3, "eulerian", 3),
     # countersurfaces given as meshes, through the C++ kernel's derivatives:
-    # curved (quadratic) facets without friction, flat facets with friction
+    # curved (quadratic) and flat facets, with and without friction
     ("meshed-quadratic", 0.0, "lagrangian", 2),
+    ("meshed-quadratic", 0.4, "lagrangian", 2),
+    ("meshed-quadratic", 0.4, "eulerian", 2),
     ("meshed-affine", 0.4, "lagrangian", 2),
     ("meshed-affine", 0.4, "eulerian", 2),
 ])

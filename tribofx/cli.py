@@ -54,7 +54,10 @@ def main(argv=None):
         summary = run_case(args.case, overrides, args.out or f"results/{args.case}",
                            progress=not args.quiet, verbose=args.verbose)
     except InputError as err:
-        sys.stderr.write(f"tribofx: error: {err}\n")
+        from mpi4py import MPI
+
+        if MPI.COMM_WORLD.rank == 0:  # every rank detects it; one line in all
+            sys.stderr.write(f"tribofx: error: {err}\n")
         return 2
     if not summary["status"].startswith("ok"):
         sys.stderr.write(f"tribofx: run {summary['status']}\n")

@@ -238,14 +238,21 @@ class ContactProblem:
         if self.slip is not None and self.settings.slip == "lagrangian":
             self.offset_n.value[:] = self.obstacle.offset.value
 
+    def _state_constants(self):
+        return [self.obstacle.offset] + ([self.offset_n] if hasattr(self, "offset_n") else [])
+
     def state(self):
-        """Copy of all unknowns and history (for step cutting)."""
-        return [f.x.array.copy() for f in self.unknowns + [self.xbar_n]]
+        """Copy of all unknowns, the slip history and the obstacle position (step cutting)."""
+        return ([f.x.array.copy() for f in self.unknowns + [self.xbar_n]]
+                + [c.value.copy() for c in self._state_constants()])
 
     def restore(self, state):
         """Restore a state obtained from :meth:`state`."""
-        for f, a in zip(self.unknowns + [self.xbar_n], state):
+        fields = self.unknowns + [self.xbar_n]
+        for f, a in zip(fields, state):
             f.x.array[:] = a
+        for c, a in zip(self._state_constants(), state[len(fields):]):
+            c.value[:] = a
         self._pre_evaluate()
 
     # -- post-processing ----------------------------------------------------

@@ -4,8 +4,10 @@ An obstacle turns a UFL position x into a :class:`tribofx.forms.contact.ContactG
 through the functions of ``forms/contact``.  Its rigid translation ``offset`` (mm)
 is a ``dolfinx.fem.Constant`` that drivers move to load the body.
 
-A :class:`MeshedObstacle` carries the closest-point data of the C++ kernel as
-nodal (P1) fields on the contact submesh; :meth:`MeshedObstacle.update` refreshes
+A :class:`MeshedObstacle` carries the closest-point data of the C++ kernels
+(projection, normal, their first derivatives and ∂²x̄/∂x², from
+:func:`tribofx.lubrication_projection.lubrication_projection`) as nodal (P1)
+fields on the contact submesh; :meth:`MeshedObstacle.update` refreshes
 them at the current slave node positions and is called before every residual
 assembly, so that the Newton tangent stays consistent.
 """
@@ -66,9 +68,9 @@ class MeshedObstacle:
     """
 
     def __init__(self, mesh, V_sub, nodes, facets, cell_type):
-        from .projection import closest_point_projection
+        from .lubrication_projection import lubrication_projection
 
-        self._project = closest_point_projection
+        self._project = lubrication_projection
         gdim = mesh.geometry.dim
         self.nodes = np.asarray(nodes, dtype=float)
         self.facets = np.asarray(facets, dtype=np.int32)
@@ -76,6 +78,7 @@ class MeshedObstacle:
         self.offset = fem.Constant(mesh, np.zeros(gdim))
         sub = V_sub.mesh
         T = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim)))
+        T3 = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim, gdim)))
         S = fem.functionspace(sub, ("Lagrange", 1))
         self.x0 = fem.Function(V_sub, name="x0")
         self.gap0 = fem.Function(S, name="gap0")
@@ -83,21 +86,23 @@ class MeshedObstacle:
         self.xbar0 = fem.Function(V_sub, name="xbar0")
         self.dnormal = fem.Function(T, name="dnormal_dx")
         self.dxbar = fem.Function(T, name="dxbar_dx")
+        self.d2xbar = fem.Function(T3, name="d2xbar_dx2")
 
     def geometry(self, x):
         """Second-order expansion of the kernel data about the last update point."""
         return cf.meshed_countersurface(
-            x, self.x0, self.gap0, self.normal0, self.dnormal, self.xbar0, self.dxbar
+            x, self.x0, self.gap0, self.normal0, self.dnormal, self.xbar0, self.dxbar,
+            self.d2xbar,
         )
 
     def update(self, x_nodes):
         """Project the slave nodes ``x_nodes`` (n, gdim) — ordered as the P1 dofs — and store."""
-        gdim = x_nodes.shape[1]
         off = self.offset.value
         res = self._project(x_nodes - off, self.nodes, self.facets, self.cell_type)
         self.x0.x.array[:] = x_nodes.ravel()
-        self.gap0.x.array[:] = res.gap
-        self.normal0.x.array[:] = res.normal.ravel()
-        self.xbar0.x.array[:] = (res.x_bar + off).ravel()
-        self.dnormal.x.array[:] = res.dn_dx.reshape(-1, gdim * gdim).ravel()
-        self.dxbar.x.array[:] = res.dxbar_dx.reshape(-1, gdim * gdim).ravel()
+        self.gap0.x.array[:] = res.h
+        self.normal0.x.array[:] = res.nu.ravel()
+        self.xbar0.x.array[:] = (res.y + off).ravel()
+        self.dnormal.x.array[:] = res.dnu_dx.ravel()
+        self.dxbar.x.array[:] = res.dy_dx.ravel()
+        self.d2xbar.x.array[:] = res.d2y_dx2.ravel()

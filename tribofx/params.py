@@ -4,6 +4,7 @@ Every violation raises :class:`InputError` with a one-line message; the CLI turn
 it into exit status 2.
 """
 
+import math
 from dataclasses import dataclass
 
 __all__ = ["InputError", "Param", "resolve"]
@@ -62,8 +63,8 @@ class Param:
                 f"parameter {self.name!r} must be one of {list(self.choices)}, got {value!r}"
             )
         if isinstance(value, (int, float)) and not isinstance(value, bool):
-            if value != value:
-                raise InputError(f"parameter {self.name!r} is NaN")
+            if not math.isfinite(value):
+                raise InputError(f"parameter {self.name!r} must be finite, got {value}")
             lo, hi = self.lower, self.upper
             if lo is not None and (value < lo or (value == lo and not self.closed)):
                 rel = ">=" if self.closed else ">"

@@ -71,6 +71,8 @@ class HertzCase:
         a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
         if a > 0.5 * v["R"]:
             raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
+        if a < 1e-4 * v["R"]:
+            raise InputError(f"load too small to resolve: a/R = {a / v['R']:.1e} < 1e-4")
 
     @staticmethod
     def mesh_sizes(v):
