@@ -3,9 +3,8 @@
 import numpy as np
 import pytest
 import ufl
-from mpi4py import MPI
-
 from dolfinx import fem, mesh
+from mpi4py import MPI
 from tribofx.forms import hyperelastic as hf
 
 MSH = mesh.create_unit_square(MPI.COMM_WORLD, 1, 1)
