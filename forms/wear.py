@@ -23,12 +23,14 @@ j_w = dS/dŜ — see :func:`worn_volume_rate_density`.
 import ufl
 
 __all__ = [
+    "archard_dissipation_form",
     "archard_nominal",
     "archard_pressure_form",
     "archard_spatial",
     "depth_graded_coefficient",
     "dissipation_nominal",
     "dissipation_spatial",
+    "cycle_average_rate",
     "master_nominal_rate",
     "shape_update_residual",
     "slave_nominal_rate",
@@ -72,6 +74,36 @@ def archard_pressure_form(k, T_n, slip_speed, J=None):
     """
     rate = k * ufl.max_value(-T_n, 0) * slip_speed
     return rate if J is None else rate / J
+
+
+def archard_dissipation_form(k, mu, t_t, v_t, J=None):
+    """Archard law driven by the frictional dissipation, Ẇ = K Ḋ, K = k/μ (eqs. 13–14).
+
+    ``t_t`` is the nominal friction traction and ``v_t`` the slip velocity (or a
+    slip increment, giving the wear increment ΔW = K T_T·Δs), so Ḋ = T_T·v_T is
+    the nominal dissipation density (13₂).  With Coulomb sliding, ‖T_T‖ = μ|T_N|
+    and T_T ∥ v_T, this equals the pressure form k |T_N| ‖v_T‖; in stick it is 0.
+    With ``J`` given: the spatial law (15)–(16), Ẇ = (K/J) Ḋ.
+
+    Args:
+        k: Archard coefficient (mm³/(N·mm)); may be a UFL expression.
+        mu: Coulomb friction coefficient μ > 0.
+        t_t: nominal friction traction T_T (MPa), oriented along the slip.
+        v_t: slip velocity (mm/s) or slip increment (mm).
+        J: det F relative to the worn configuration (None: nominal law (14)).
+    """
+    rate = archard_nominal(k / mu, ufl.dot(t_t, v_t))
+    return rate if J is None else rate / J
+
+
+def cycle_average_rate(increment, period):
+    """Average wear rate at the slow time scale, W̄̇ = ΔW / Δτ (eq. 23).
+
+    ``increment`` is the wear ΔW accumulated over one fast-time cycle of duration
+    ``period`` = Δτ (eq. 22), e.g. Σ_j K T_T·Δs_j over the sub-steps j of a stroke
+    cycle (numbers or numpy arrays).
+    """
+    return increment / period
 
 
 def depth_graded_coefficient(k0, grad, depth):

@@ -29,6 +29,15 @@ options: the spatial law (15)–(16), k V |λ| / J with J = det F relative to th
 worn configuration, and a depth-graded coefficient k(d), d = −w·N̂ (both taken
 at t_{n+θ}).
 
+Friction (chapter eqs. 13–14): with a Coulomb coefficient μ > 0 the contact
+carries a friction multiplier λ_T and the rate is the dissipation form
+Ẇ j_w = K T_T·v_T, K = k/μ (T_T per unit initial area), which equals k |λ| ‖v_T‖
+in sliding.  Steady sliding uses the Eulerian slip velocity v_T of eq. 26–27
+(slip = v_T Δτ, Δτ the pseudo-time ``dtau``).  With Lagrangian (incremental)
+friction the deformation problem is a fast-time process and the shape is driven
+by an externally supplied cycle-averaged rate (``averaged=True``, field
+``rate_bar``, eqs. 21–23; see :mod:`tribofx.time_scale`).
+
 Schemes: ``implicit`` (θ = 1) solves (u, λ, w, ζ) in one BlockNewton with the
 exact tangent; ``explicit`` (θ = 0) first updates (w, ζ) with the rate of the
 known state (λ_n), then solves the contact problem (u, λ) on the new shape.  A
@@ -58,9 +67,10 @@ class MeshInversion(NewtonDivergence):
 
 
 class WearProblem(ContactProblem):
-    """A :class:`ContactProblem` whose body wears (Archard, frictionless pressure form).
+    """A :class:`ContactProblem` whose body wears (Archard, pressure or dissipation form).
 
-    Extra args (others as :class:`ContactProblem`; friction must be 0):
+    Extra args (others as :class:`ContactProblem`; ``settings.friction`` = μ > 0 selects
+    the dissipation form Ẇ = (k/μ) T_T·v_T of eqs. 13–14):
         k: Archard coefficient (mm³/(N·mm)).
         slip_speed: sliding speed V of the countersurface relative to the body (mm/s).
         scheme: "explicit" (θ = 0) or "implicit" (θ = 1).
@@ -70,20 +80,30 @@ class WearProblem(ContactProblem):
             J = det F relative to the worn configuration, evaluated at t_{n+θ}).
         k_grad: relative depth gradient g (1/mm) of the wear coefficient,
             k(d) = k max(1 + g d, 0), d = −w·N̂ the wear depth at t_{n+θ} (0: constant).
+        averaged: the shape update (28) is driven by the nodal field ``rate_bar``
+            (cycle-averaged rate per unit initial area, mm/s, set by a slow-time
+            driver) instead of the instantaneous rate; the shape and deformation
+            problems are then solved one after the other (as for ``explicit``).
     """
 
     def __init__(self, msh, facet_tags, contact_tag, kind, material, mat_params,
                  obstacle_factory, settings, k, slip_speed, scheme="implicit", aux_E=1.0,
-                 aux_nu=0.3, quadrature_degree=None, law="nominal", k_grad=0.0):
+                 aux_nu=0.3, quadrature_degree=None, law="nominal", k_grad=0.0,
+                 averaged=False):
         if scheme not in SCHEMES:
             raise ValueError(f"unknown wear scheme {scheme!r}; expected one of {SCHEMES}")
         if law not in LAWS:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
-        if settings.friction != 0:
-            raise ValueError("WearProblem implements the frictionless (pressure) Archard form")
+        if settings.friction < 0:
+            raise ValueError("friction coefficient must be >= 0")
+        if settings.friction > 0 and settings.slip != "eulerian" and not averaged:
+            raise ValueError("Lagrangian (fast-time) friction needs averaged=True and a "
+                             "slow-time driver (tribofx.time_scale)")
         super().__init__(msh, facet_tags, contact_tag, kind, material, mat_params,
                          obstacle_factory, settings, quadrature_degree=quadrature_degree)
         self.scheme = scheme
+        self.averaged = averaged
+        self.mu = settings.friction
         self.law = law
         self.kind = kind
         # a distinct (equal) space: Dirichlet conditions are sorted into blocks by space
@@ -92,6 +112,7 @@ class WearProblem(ContactProblem):
         self.w_n = fem.Function(self.Vw, name="shape_change_old")
         self.zeta = fem.Function(self.Q, name="shape_multiplier")
         self.lam_old = fem.Function(self.Q, name="contact_multiplier_old")
+        self.rate_bar = fem.Function(self.Q, name="cycle_averaged_wear_rate")
         self.dt = fem.Constant(msh, 0.0)  # 0: no wear in a plain contact solve
         self.k = fem.Constant(msh, float(k))
         self.k_grad = fem.Constant(msh, float(k_grad))
@@ -99,19 +120,24 @@ class WearProblem(ContactProblem):
         self.N_hat = ufl.FacetNormal(msh)
         du = self._v
         # deformation problem on the worn configuration (replaces the parent's R_u)
-        R_uc, R_n, _ = cf.augmented_lagrangian_contact(
+        ca = self._contact_args
+        mu_t = ufl.TestFunction(self.Vs) if self.lam_t is not None else None
+        R_uc, R_n, R_t = cf.augmented_lagrangian_contact(
             self.u, du, self.geometry, self.lam_n, ufl.TestFunction(self.Q), settings.rho_n,
-            self.dsc, weight=self.weight)
+            self.dsc, self.lam_t, mu_t, ca["rho_t"], ca["slip"], ca["mu"], weight=self.weight)
         self.R_u = ale.internal_virtual_work_worn(self.u, self.w, du, kind, material,
                                                   mat_params, self.dx) + R_uc
         self.R_n = R_n
+        self.R_t = R_t
         # shape evolution: auxiliary elasticity + nodal normal constraint (28)
         dw = ufl.TestFunction(self.Vw)
         eta = ufl.TestFunction(self.Q)
         a = ale.nanson_vector(0.5 * (self.w + self.w_n), self.N_hat)
         # rate at t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit (u, λ, w)_n (during the
         # shape update u still holds u_n)
-        if scheme == "implicit":
+        if averaged:
+            self.rate_density = self.rate_bar
+        elif scheme == "implicit":
             self.rate_density = self._rate(self.lam_n, self.u, self.w)
         else:
             self.rate_density = self._rate(self.lam_old, self.u, self.w_n)
@@ -128,13 +154,24 @@ class WearProblem(ContactProblem):
         node_of_bulk[_node_to_dof(self.V)] = np.arange(len(gmap_w))
         self._bulk_dofs_w = gmap_w[node_of_bulk[self._bulk_dofs]]
 
-    def _rate(self, lam, u, w):
-        """Ẇ j_w = k(d) V |λ| (nominal) or k(d) V |λ| / J (spatial) per unit initial area."""
+    def _rate(self, lam, u, w, slip=None):
+        """Wear rate per unit initial area Ẇ j_w at the state (λ, u, w).
+
+        Frictionless: k(d) V |λ| (pressure form).  With friction μ > 0: the
+        dissipation form (k(d)/μ) T_T·v_T, v_T = slip/Δτ (Eulerian slip) or, with
+        ``slip`` given (e.g. a Lagrangian slip increment), the increment
+        (k(d)/μ) T_T·slip.  Spatial law: divided by J = det F (worn reference).
+        """
         k = wf.depth_graded_coefficient(self.k, self.k_grad, -ufl.dot(w, self.N_hat))
         J = None
         if self.law == "spatial":
             J = ufl.det(ale.deformation_gradient_worn(u, w, self.kind))
-        return wf.archard_pressure_form(k, lam, self.slip_speed, J)
+        if self.lam_t is None:
+            return wf.archard_pressure_form(k, lam, self.slip_speed, J)
+        _, t_t = cf.contact_tractions(self.geometry, lam, **self._contact_args)
+        if slip is None:
+            slip = self._contact_args["slip"] / self.settings.dtau
+        return wf.archard_dissipation_form(k, self.mu, t_t, slip, J)
 
     # -- set-up -------------------------------------------------------------
     def add_traction(self, tag, traction):
@@ -151,13 +188,15 @@ class WearProblem(ContactProblem):
 
     def finalize(self, **newton_kw):
         """Compile forms and create the Newton solver(s) of the chosen scheme."""
-        if self.scheme == "implicit":
-            self.residuals = [self.R_u, self.R_n, self.R_w, self.R_z]
-            self.unknowns = [self.u, self.lam_n, self.w, self.zeta]
+        fr = [self.R_t] if self.lam_t is not None else []
+        fu = [self.lam_t] if self.lam_t is not None else []
+        if self.scheme == "implicit" and not self.averaged:
+            self.residuals = [self.R_u, self.R_n] + fr + [self.R_w, self.R_z]
+            self.unknowns = [self.u, self.lam_n] + fu + [self.w, self.zeta]
             self.bcs = self.bcs + self.w_bcs
         else:
-            self.residuals = [self.R_u, self.R_n]
-            self.unknowns = [self.u, self.lam_n]
+            self.residuals = [self.R_u, self.R_n] + fr
+            self.unknowns = [self.u, self.lam_n] + fu
             self.shape_solver = BlockNewton([self.R_w, self.R_z], [self.w, self.zeta],
                                             bcs=self.w_bcs, entity_maps=[self.emap],
                                             **newton_kw)
@@ -165,8 +204,15 @@ class WearProblem(ContactProblem):
         msh = self.mesh
         G = ale.shape_gradient(self.w)
         self._worn_volume = fem.form((1 - ufl.det(G)) * self.dx)
-        lam_now = self._rate(self.lam_n, self.u, self.w)
+        lam_now = self.rate_bar if self.averaged else self._rate(self.lam_n, self.u, self.w)
         self._rate_form = fem.form(lam_now * self.dsc, entity_maps=[self.emap])
+        if self.averaged and self.lam_t is not None:
+            # wear increment of a fast sub-step, K T_T·Δs (lumped: nodal values × weight)
+            incr = self._rate(self.lam_n, self.u, self.w, slip=self._contact_args["slip"])
+            self._increment_form = fem.form(incr * ufl.TestFunction(self.Q) * self.dsc,
+                                            entity_maps=[self.emap])
+            self._lumped_plain = fem.form(ufl.TestFunction(self.Q) * self.dsc,
+                                          entity_maps=[self.emap])
         vs = ufl.TestFunction(self.Vs)
         self._normal_form = fem.form(ufl.dot(vs, self.N_hat) * self.dsc, entity_maps=[self.emap])
         self._DG0 = fem.functionspace(msh, ("DG", 0))
@@ -177,17 +223,58 @@ class WearProblem(ContactProblem):
 
     # -- state --------------------------------------------------------------
     def _all(self):
-        return [self.u, self.lam_n, self.w, self.w_n, self.zeta, self.lam_old, self.xbar_n]
+        extra = [self.lam_t] if self.lam_t is not None else []
+        return [self.u, self.lam_n, self.w, self.w_n, self.zeta, self.lam_old, self.xbar_n,
+                self.rate_bar] + extra
 
     def state(self):
         """Copy of all unknowns and history (for step cutting)."""
-        return [f.x.array.copy() for f in self._all()]
+        out = [f.x.array.copy() for f in self._all()]
+        if self.lam_t is not None and self.settings.slip == "lagrangian":
+            out.append(self.offset_n.value.copy())
+            out.append(self.obstacle.offset.value.copy())
+        return out
 
     def restore(self, state):
         """Restore a state obtained from :meth:`state`."""
-        for f, a in zip(self._all(), state):
+        fs = self._all()
+        for f, a in zip(fs, state):
             f.x.array[:] = a
+        if len(state) > len(fs):
+            self.offset_n.value[:] = state[len(fs)]
+            self.obstacle.offset.value[:] = state[len(fs) + 1]
         self._pre_evaluate()
+
+    def nodal_wear_increment(self):
+        """Wear increment K T_T·Δs of the last fast sub-step per unit initial area (mm).
+
+        Lagrangian friction with ``averaged=True`` only; to be called after the
+        sub-step's solve and before :meth:`commit` (Δs is measured from the last
+        committed projection point).  Returns the local array on the Q dofs.
+        """
+        num = self._nodal(self._increment_form)
+        den = self._nodal(self._lumped_plain)
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def shape_step(self, dt, rate, verbose=False):
+        """Shape update (28) over Δt with the given nodal rate (``averaged`` problems).
+
+        Solves the shape subproblem (w, ζ) for (w − w_n)·a = −Δt rate with w_n
+        the current shape and checks the mesh; the deformation problem is not
+        re-solved.  Raises :class:`MeshInversion` (state restored) or
+        :class:`NewtonDivergence`.
+        """
+        saved = self.state()
+        self.dt.value = dt
+        self.rate_bar.x.array[:] = rate
+        self.w_n.x.array[:] = self.w.x.array
+        try:
+            report = self.shape_solver.solve(verbose=verbose)
+            self._check_mesh()
+        except NewtonDivergence:
+            self.restore(saved)
+            raise
+        return report
 
     # -- time stepping ------------------------------------------------------
     def min_volume_factor(self):

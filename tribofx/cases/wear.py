@@ -18,6 +18,19 @@ E = 10 MPa (finite deformation, full contact), ν = 0.3.  Options: ``law``
 (nominal Ẇ = k p V, eq. 14, or spatial Ẇ = (k/J) p V, eqs. 15–16) and a wear
 coefficient graded with the worn depth d, k(d) = k max(1 + k_grad d, 0).  The structured mesh
 has n × n squares (split in triangles), n = 10·2^mesh.
+
+Friction (``friction`` = μ > 0, eqs. 13–14): the wear rate is driven by the
+frictional dissipation, Ẇ = (k/μ) T_T·v_T, which equals k p V in sliding.
+``mode=steady``: steady sliding of the plane at V with the Eulerian slip
+velocity (v = F V − V_plane, eqs. 26–27; the pin is at rest, so v_T = −V e_x).
+``mode=cyclic`` (μ > 0 required): time-scale separation (§4.2, eqs. 21–23, the
+reciprocating pin-on-flat test of §5.1): per slow step one fast reciprocating
+cycle of the plane (peak-to-peak ``stroke`` 2A, ``fast_steps`` sub-steps, a
+run-in stage from −A first, Lagrangian friction), wear increment accumulated
+over the cycle and averaged, shape updated by the θ-scheme on the slow time (θ
+= 0 ``explicit``, θ = 1 ``implicit`` by Picard iteration; see
+:mod:`tribofx.time_scale`).  A slow step stands for ``cycles_per_step`` cycles,
+Δt = cycles_per_step · 2 stroke / V (0: Δt = ``dt``).
 """
 
 import math
@@ -33,6 +46,7 @@ from ..meshes.pin import CONTACT, SIDES, TOP, pin_body, tip_height
 from ..newton import NewtonDivergence
 from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
+from ..time_scale import ReciprocatingCycle, TimeScaleDriver
 from ..wear_problem import WearProblem
 
 __all__ = ["WearPinCase", "checkerboard_amplitude", "explicit_critical_step",
@@ -165,6 +179,18 @@ class WearPinCase:
               choices=("nominal", "spatial")),
         Param("k_grad", float, 0.0, "1/mm",
               "depth gradient g of the wear coefficient, k(d) = k max(1 + g d, 0)"),
+        Param("friction", float, 0.0, "-",
+              "Coulomb coefficient μ (> 0: dissipation-driven wear, K = k/μ)",
+              lower=0.0, closed=True),
+        Param("mode", str, "steady", "-",
+              "steady sliding (Eulerian slip) or cyclic (reciprocating, time-scale separation)",
+              choices=("steady", "cyclic")),
+        Param("stroke", float, 1.0, "mm", "cyclic: peak-to-peak stroke 2A of the flat",
+              lower=0.0),
+        Param("fast_steps", int, 8, "-", "cyclic: fast sub-steps per cycle (multiple of 4)",
+              lower=4, upper=100000, closed=True),
+        Param("cycles_per_step", float, 0.0, "-",
+              "cyclic: cycles per slow step (0: Δt = dt)", lower=0.0, closed=True),
         Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
     )
@@ -177,8 +203,22 @@ class WearPinCase:
             raise InputError(f"R_tip = {R} mm must be 0 (flat) or >= W/2 = {v['W'] / 2} mm")
         if tip_height(v["W"] / 2, R) >= 0.5 * v["H"]:
             raise InputError("the rounded tip must be lower than half the pin height")
-        if v["dt"] > v["T"]:
-            raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+        if v["mode"] == "cyclic":
+            if v["friction"] <= 0:
+                raise InputError("mode=cyclic needs friction > 0 (Lagrangian Coulomb friction)")
+            if v["fast_steps"] % 4:
+                raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
+            if v["V"] <= 0:
+                raise InputError("mode=cyclic needs V > 0")
+        if WearPinCase.slow_step(v) > v["T"]:
+            raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
+
+    @staticmethod
+    def slow_step(v):
+        """Slow time step Δt (s): ``dt``, or cycles_per_step · 2 stroke / V in cyclic mode."""
+        if v["mode"] == "cyclic" and v["cycles_per_step"] > 0:
+            return v["cycles_per_step"] * 2 * v["stroke"] / v["V"]
+        return v["dt"]
 
     @staticmethod
     def n_elements(v):
@@ -186,8 +226,12 @@ class WearPinCase:
         return 10 * 2 ** v["mesh"]
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, n=None):
-        """Mesh and :class:`WearProblem` of the case; returns ``(problem, load_factor)``."""
+    def build(cls, v, comm=MPI.COMM_WORLD, n=None, setup=None):
+        """Mesh and :class:`WearProblem` of the case; returns ``(problem, load_factor)``.
+
+        ``setup(prob)``, if given, is called before the forms are compiled (extra
+        boundary conditions, e.g. in tests).
+        """
         n = cls.n_elements(v) if n is None else n
         W, H = v["W"], v["H"]
         R = v["R_tip"] if v["R_tip"] > 0 else math.inf
@@ -199,16 +243,45 @@ class WearPinCase:
             return AnalyticObstacle(Vs.mesh, "plane", np.zeros(2), normal=np.array([0.0, 1.0]))
 
         prob = WearProblem(msh, ft, CONTACT, "plane_strain", "neo-hookean",
-                           {"mu": mu, "lmbda": lmbda}, factory, ContactSettings(rho_n=v["E"] / h),
+                           {"mu": mu, "lmbda": lmbda}, factory, cls.settings(v, h),
                            k=v["k"], slip_speed=v["V"], scheme=v["scheme"], aux_E=v["E"],
-                           law=v["law"], k_grad=v["k_grad"])
+                           law=v["law"], k_grad=v["k_grad"], averaged=v["mode"] == "cyclic")
         load = fem.Constant(msh, 1.0)
         prob.add_traction(TOP, load * ufl.as_vector([0.0, -v["q"]]))
         prob.add_dirichlet(SIDES, 0.0, component=0)
         prob.add_shape_dirichlet(SIDES, 0)
         prob.add_shape_dirichlet(TOP, 1)
+        if setup is not None:
+            setup(prob)
         prob.finalize()
         return prob, load
+
+    @staticmethod
+    def settings(v, h):
+        """Contact settings: frictionless, steady (Eulerian) or cyclic (Lagrangian) friction."""
+        mu = v["friction"]
+        if mu == 0:
+            return ContactSettings(rho_n=v["E"] / h)
+        if v["mode"] == "cyclic":
+            return ContactSettings(rho_n=v["E"] / h, friction=mu, slip="lagrangian")
+        # the pin is at rest (V = 0), the plane slides at V e_x: v_T = −V e_x, eq. 26
+        return ContactSettings(rho_n=v["E"] / h, friction=mu, slip="eulerian", V=(0.0, 0.0),
+                               V_master=(v["V"], 0.0), dtau=1.0)
+
+    @classmethod
+    def stepper(cls, prob, v):
+        """Callable(Δt, verbose) advancing one slow step; returns the Newton iterations."""
+        if v["mode"] == "cyclic":
+            cycle = ReciprocatingCycle(v["stroke"], v["fast_steps"], v["V"])
+            theta = 1.0 if v["scheme"] == "implicit" else 0.0
+            return TimeScaleDriver(prob, cycle, theta=theta).step
+
+        def step(dt, verbose=False):
+            reports = prob.step(dt, verbose=verbose)
+            step.last = reports
+            return int(sum(r.iterations for r in reports))
+        step.last = None
+        return step
 
     @staticmethod
     def vtx_fields(prob):
@@ -275,23 +348,28 @@ class WearPinCase:
                 ptimes.append(t)
 
         its0 = solve_initial_contact(prob, load, v["q"], v["E"], v["W"], R, v["H"], verbose)
+        advance = cls.stepper(prob, v)
+        if v["mode"] == "cyclic":
+            its0 += advance.__self__.restart(verbose)  # contact at the centre, sliding
         log(0.0, its0, 0.0)
-        t, T, dt = 0.0, v["T"], v["dt"]
+        t, T, dt = 0.0, v["T"], cls.slow_step(v)
         cuts = 0
         try:
             while t < T * (1 - 1e-12):
                 h = min(dt / 2**cuts, T - t)
                 try:
-                    reports = prob.step(h, verbose=verbose)
+                    its = advance(h, verbose=verbose)
                 except NewtonDivergence:
                     cuts += 1
                     if cuts > v["max_cuts"]:
                         raise
                     continue
                 t += h
-                log(t, int(sum(r.iterations for r in reports)), h)
-                record.data.setdefault("newton_residuals", []).append(
-                    [float(x) for x in reports[-1].residuals])
+                log(t, its, h)
+                reports = getattr(advance, "last", None)
+                if reports:
+                    record.data.setdefault("newton_residuals", []).append(
+                        [float(x) for x in reports[-1].residuals])
                 cuts = 0 if abs(t / dt - round(t / dt)) < 1e-9 else cuts
                 if progress is not None:
                     progress.update(1)
@@ -315,4 +393,4 @@ class WearPinCase:
             record.result("final_profile_deformed", d["x"].tolist(), "mm (current)")
             record.result("final_pressure", d["p"].tolist(), "MPa")
             record.profile = {**hist, "profiles": profiles, "times": ptimes,
-                              "scheme": v["scheme"], "dt": v["dt"]}
+                              "scheme": v["scheme"], "dt": WearPinCase.slow_step(v)}
