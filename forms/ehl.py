@@ -73,6 +73,8 @@ __all__ = [
     "WeightedMeasure",
     "cylinder_countersurface",
     "fluid_traction",
+    "intermediate_surface",
+    "jfo_on_surface",
     "lubrication_kinematics",
     "meshed_countersurface",
     "reynolds_on_surface",
@@ -164,7 +166,7 @@ def meshed_countersurface(x, x0, h0, nu0, y0, dy0, dnu0, d2y0):
 
 
 def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite",
-                           surface=None):
+                           surface=None, alpha=None):
     """Lubrication surface S = P(γ_l) on a rigid cylinder, as UFL of the displacement.
 
     Args:
@@ -181,6 +183,9 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         surface: None (analytic cylinder) or a callable x ↦ (h, ν, y, ∂P/∂x), e.g.
             :func:`meshed_countersurface` bound to its data; for ``model="linear"``
             its data must be expanded about the reference positions X.
+        alpha: None (S = P(γ_l), closed form) or a scalar (UFL constant) α ∈ [0, 1]:
+            the intermediate surface S_α = (1 − α) P(γ_l) + α γ_l of Fig. 23
+            (see :func:`intermediate_surface`; α = 0 gives S = P(γ_l) to round-off).
     """
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {MODELS}")
@@ -190,7 +195,7 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
     if model == "linear":
         # all geometry at the reference configuration (u = 0): S0 = P(Γ_l); h linear in u
         k0 = lubrication_kinematics(X, ufl.zero(gdim), ufl.zero(gdim, gdim), N, center, radius,
-                                    V, "finite", surface)
+                                    V, "finite", surface, alpha)
         return LubricationKinematics(h=k0.h + ufl.dot(k0.nu, disp), nu=k0.nu, y=k0.y, A=k0.A,
                                      stretch=k0.stretch, vbar=k0.vbar, v_layer=k0.v_layer)
     x = X + disp
@@ -198,11 +203,41 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         h, nu, y, dP = cylinder_countersurface(x, center, radius)
     else:
         h, nu, y, dP = surface(x)
-    Pnu = Id - ufl.outer(nu, nu)
     Ft = (Id + grad_disp) * PN           # F (I − N⊗N)
+    if alpha is not None:
+        return intermediate_surface(h, nu, y, dP, Ft, N, V, alpha)
+    Pnu = Id - ufl.outer(nu, nu)
     A = dP * Ft + ufl.outer(nu, N)
     v_layer = Pnu * (Ft * V)             # tangential part of v = F V (V ⊥ N)
     return LubricationKinematics(h=h, nu=nu, y=y, A=A, stretch=abs(ufl.det(A)),
+                                 vbar=0.5 * v_layer, v_layer=v_layer)
+
+
+def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
+    """Kinematics on the intermediate lubrication surface S_α (Fig. 23), plane (gdim = 2).
+
+    With y = P(x) the projection onto the countersurface and x the layer point,
+
+        z = (1 − α) y + α x = y + α h ν                      (point of S_α)
+        G = (1 − α) ∂P/∂x F + α F,  τ = G T                  (tangent of S_α, per dS)
+        n_α = (τ_y, −τ_x)/|τ|                                (unit normal of S_α)
+        A_α = G (I − N⊗N) + n_α⊗N,  ds_Sα = |τ| dS = |det A_α| dS,
+        v̄ = ½ (I − n_α⊗n_α) F V,   h = (x − y)·ν             (film unchanged)
+
+    so α = 0 is S = P(γ_l) (n_0 = ν: the tangent ∂P/∂x F T of the countersurface
+    is ⊥ ν) and α = 1 is S = γ_l (G = F, v̄ = ½ F V, the tangent of the layer).  The
+    film thickness is the gap between the physical surfaces along ν for every α;
+    only the surface carrying the Reynolds equation (its metric, its operators
+    grad_S, div_S and the tangential projection of the velocity) depends on α.
+    Everything is UFL of the displacement, so the Newton tangent stays exact.
+    """
+    G = (1 - alpha) * dP * Ft + alpha * Ft
+    tau = G * ufl.as_vector([N[1], -N[0]])       # G T with T = (N_y, −N_x)
+    jt = ufl.sqrt(ufl.dot(tau, tau))
+    n_a = ufl.as_vector([tau[1], -tau[0]]) / jt
+    A = G + ufl.outer(n_a, N)                    # G already annihilates N
+    v_layer = (ufl.Identity(2) - ufl.outer(n_a, n_a)) * (Ft * V)
+    return LubricationKinematics(h=h, nu=nu, y=y + alpha * h * nu, A=A, stretch=abs(ufl.det(A)),
                                  vbar=0.5 * v_layer, v_layer=v_layer)
 
 
@@ -233,6 +268,55 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     if eps is not None:
         F += rf.cavitation_penalty(p, dp, eps, WeightedMeasure(kin.stretch, nodal_dx or dx))
     return F
+
+
+def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
+                   grad_gamma=ufl.grad, T=None, ds_ends=None):
+    """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l, steady.
+
+    Returns (transport, constraint): the transport residual
+
+        ∫_S ( θ h³/(12μ) grad_S p·grad_S δp + div_S(θ h v̄) δp ) ds  (+ SUPG),  θ = 1 − min(λ, 1),
+
+    (ds = ds_S, grad_S, div_S through A, continuous P1 λ so the jump term on Σ
+    vanishes) and the nodal complementarity (52) ∫ (q_ref/h_e) min(p/p_c, λ) δλ dS
+    with the vertex quadrature ``nodal_dx`` (C = 0 node by node; semismooth Newton
+    through ``ufl.derivative`` of ``min_value``).  SUPG (Remark 3.2) uses the
+    diffusivity D = s h² p_c/(12μ) blended by the full-film fraction s(p, λ)
+    (:func:`forms.reynolds.jfo_diffusivity`), element size h_e scaled to S.
+    ``ds_ends`` (the end points of Γ_l, with the reference tangent ``T``) adds
+    the jumps of the Couette flux between elements (see the code), so that the
+    discrete form is conservative node by node.
+    """
+    dS = WeightedMeasure(kin.stretch, dx)
+
+    def grad(f):
+        return kin.grad(f, grad_gamma)
+
+    def div(w):
+        return kin.div(w, grad_gamma)
+
+    lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
+    F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
+    if supg:
+        D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
+        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
+        F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
+                                   div=div)
+    if ds_ends is not None:
+        # v̄ = ½(I − ν⊗ν)FV is discontinuous between elements for a C⁰ displacement:
+        # the element-wise divergence theorem leaves the jumps of the Couette flux
+        # w_t = θ h v̄·t_S at the nodes, −Σ_F [[w_t]] δp (zero for the exact solution).
+        # They are added element by element, without interior-facet integrals:
+        # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
+        # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
+        tS = kin.A * T
+        w_t = (1 - lam_c) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
+        n = ufl.FacetNormal(ds_ends.ufl_domain())
+        F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
+        F += w_t * ufl.dot(T, n) * dp * ds_ends
+    C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=q_ref / h_e)
+    return F, C
 
 
 def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):

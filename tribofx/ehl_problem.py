@@ -7,7 +7,9 @@ Unknowns, all on the initial mesh:
 * u_s — trace of u on the submesh (same degree as u, tied to u by an L2
   projection that is the identity, see :func:`forms.ehl.trace_constraint`);
 * g — tangential pressure derivative Grad_Γ p·T, DG0 on the submesh (only with
-  the shear tractions).
+  the shear tractions);
+* λ — void fraction of the JFO cavitation model, P1 on the submesh (only with
+  ``cavitation="jfo"``).
 
 The Reynolds equation is integrated over the submesh in (u_s, p), the solid
 virtual work over the bulk and Γ_l in (u, p, g); one monolithic
@@ -62,13 +64,25 @@ class EHLProblem:
             out of the cylinder), moved with the cylinder (offset (0, R + s)) and
             projected by :func:`tribofx.lubrication_projection.lubrication_projection`
             at the P1 nodes of Γ_l before every assembly (see :mod:`forms.ehl`).
+        cavitation: "penalty" (ε⁻¹ min(p, 0), p = 0 at both ends of Γ_l) or "jfo"
+            (mass-conserving, eq. 57 with λ and nodal complementarity; flooded inlet
+            at X = −x_l: p = λ = 0 there; natural outlet).  Needs U > 0.
+        alpha: None (S = P(γ_l)) or α ∈ [0, 1], the intermediate lubrication surface
+            S_α = (1 − α) P(γ_l) + α γ_l (:func:`forms.ehl.intermediate_surface`).
     """
+
+    CAVITATION = ("penalty", "jfo")
 
     def __init__(self, msh, cell_tags, facet_tags, materials, lub_tag, clamp_tag, R, U, mu,
                  model="finite", shear=True, supg=True, eps=None, p_c=1.0, h_ref=1e-2,
-                 degree=1, s0=0.0, countersurface=None):
+                 degree=1, s0=0.0, countersurface=None, cavitation="penalty", alpha=None):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}")
+        if cavitation not in self.CAVITATION:
+            raise ValueError(f"unknown cavitation model {cavitation!r}")
+        if cavitation == "jfo" and not U > 0:
+            raise ValueError("cavitation='jfo' needs U > 0 (inlet at X = -x_l)")
+        self.cavitation = cavitation
         self.mesh, self.model, self.shear = msh, model, shear
         self.R, self.U, self.mu = float(R), float(U), float(mu)
         gdim = msh.geometry.dim
@@ -92,8 +106,10 @@ class EHLProblem:
         T = ufl.as_vector([1.0, 0.0])
         self.N, self.T = N, T
         center = ufl.as_vector([0.0, self.R + self.s])
-        V_slide = ufl.as_vector([self.U, 0.0])
+        self.U_c = fem.Constant(sub, self.U)
+        V_slide = ufl.as_vector([self.U_c, 0.0])
         mu_c = fem.Constant(sub, self.mu)
+        self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
 
         qd = {"quadrature_degree": 4}
         dx = ufl.Measure("dx", msh, subdomain_data=cell_tags)
@@ -111,9 +127,9 @@ class EHLProblem:
         if countersurface is not None:
             surface = self._meshed_surface(*countersurface)
         self.kin_bulk = ef.lubrication_kinematics(X, self.u, ufl.grad(self.u), N, center,
-                                                  self.R, V_slide, model, surface)
+                                                  self.R, V_slide, model, surface, self.alpha)
         self.kin_sub = ef.lubrication_kinematics(Xs, self.u_s, ufl.grad(self.u_s), N, center,
-                                                 self.R, V_slide, model, surface)
+                                                 self.R, V_slide, model, surface, self.alpha)
         v = ufl.TestFunction(self.V)
         dus = ufl.TestFunction(self.Vs)
         dp = ufl.TestFunction(self.Q)
@@ -121,6 +137,7 @@ class EHLProblem:
         E_ref = max(_young(m, prm) for m, prm in materials.values())
         self._c_p = fem.Constant(sub, self.mu / h_ref)
         c_u = fem.Constant(sub, E_ref / h_ref)
+        self._E_ref = E_ref
 
         R_u = 0
         for tag, (material, params) in materials.items():
@@ -139,17 +156,55 @@ class EHLProblem:
                                           shear=shear, model=model)
         R_u -= ufl.dot(self.traction, v) * self.ds_l
         R_us = c_u * ef.trace_constraint(self.u_s, self.u, dus, self.ds_l)
-        self.eps = None if eps is None else fem.Constant(sub, float(eps))
-        R_p = self._c_p * ef.reynolds_on_surface(
-            self.p, dp, self.kin_sub, mu_c, self.dx_s, eps=self.eps, supg=supg,
-            p_c=fem.Constant(sub, float(p_c)), h_e=ufl.CellDiameter(sub), nodal_dx=nodal)
+        self.p_c = fem.Constant(sub, float(p_c))
+        h_e = ufl.CellDiameter(sub)
+        PN = ufl.Identity(gdim) - ufl.outer(N, N)
+
+        def grad_gamma(f):
+            """Tangential gradient Grad_Γ f = grad f (I − N⊗N) on Γ_l.
+
+            UFL's grad of an expression of the spatial coordinate on the submesh
+            (a manifold) keeps the derivative along N (grad X = I), so it is
+            projected explicitly.
+            """
+            g = ufl.grad(f)
+            return PN * g if len(g.ufl_shape) == 1 else g * PN
+
+        self.grad_gamma = grad_gamma
+        self.eps = None
+        self.lam = None
+        if cavitation == "penalty":
+            self.eps = None if eps is None else fem.Constant(sub, float(eps))
+            R_p = self._c_p * ef.reynolds_on_surface(
+                self.p, dp, self.kin_sub, mu_c, self.dx_s, eps=self.eps, supg=supg,
+                p_c=self.p_c, h_e=h_e, nodal_dx=nodal, grad_gamma=grad_gamma)
+        else:
+            self.Ql = fem.functionspace(sub, ("Lagrange", 1))
+            self.lam = fem.Function(self.Ql, name="void_fraction")
+            self.q_ref = fem.Constant(sub, 0.5 * self.U * float(h_ref))
+            dlam = ufl.TestFunction(self.Ql)
+
+            def transport(test):
+                return ef.jfo_on_surface(self.p, self.lam, test, dlam, self.kin_sub, mu_c,
+                                         self.dx_s, self.p_c, self.q_ref, h_e, nodal,
+                                         supg=supg, grad_gamma=grad_gamma, T=T,
+                                         ds_ends=self._ds_ends())
+
+            F_t, C = transport(dp)
+            self._transport = lambda test: transport(test)[0]
+            R_p = self._c_p * F_t
+        self._c_g = fem.Constant(sub, float(h_ref))
         residuals = [R_u, R_us, R_p]
         if shear:
             dg = ufl.TestFunction(self.G)
-            residuals.append(fem.Constant(sub, float(h_ref))
+            residuals.append(self._c_g
                              * ef.tangential_gradient_constraint(self.g, self.p, dg, T,
                                                                  self.dx_s))
+        if self.lam is not None:
+            unknowns.append(self.lam)
+            residuals.append(self._c_p * C)
         self.unknowns, self.residuals = unknowns, residuals
+        self._c_u = c_u
 
         fdim = tdim - 1
         bdofs = fem.locate_dofs_topological(self.V, fdim, facet_tags.find(clamp_tag))
@@ -157,8 +212,28 @@ class EHLProblem:
         xs = self.sub.geometry.x
         x_l = msh.comm.allreduce(float(np.abs(xs[:, 0]).max(initial=0.0)), op=MPI.MAX)
         self.x_l = x_l
-        ends = fem.locate_dofs_geometrical(self.Q, lambda y: np.isclose(np.abs(y[0]), x_l))
-        self.bcs.append(fem.dirichletbc(np.float64(0.0), ends, self.Q))
+        if cavitation == "penalty":
+            ends = fem.locate_dofs_geometrical(self.Q,
+                                               lambda y: np.isclose(np.abs(y[0]), x_l))
+            self.bcs.append(fem.dirichletbc(np.float64(0.0), ends, self.Q))
+        else:  # flooded inlet: p = 0, λ = 0; outlet natural (p = 0 by complementarity)
+            inlet = fem.locate_dofs_geometrical(self.Q, lambda y: np.isclose(y[0], -x_l))
+            inlet_l = fem.locate_dofs_geometrical(self.Ql, lambda y: np.isclose(y[0], -x_l))
+            self.bcs += [fem.dirichletbc(np.float64(0.0), inlet, self.Q),
+                         fem.dirichletbc(np.float64(0.0), inlet_l, self.Ql)]
+            self._phi = {}
+            for key, xe in (("in", -x_l), ("out", x_l)):
+                phi = fem.Function(self.Q)
+                dofs = fem.locate_dofs_geometrical(self.Q, lambda y, xe=xe: np.isclose(y[0], xe))
+                phi.x.array[dofs] = 1.0
+                self._phi[key] = phi
+            # Couette flux θ h v̄·t_S along S (t_S: unit tangent of S in the direction of +X)
+            kin = self.kin_sub
+            tS = kin.A * T
+            tS = tS / ufl.sqrt(ufl.dot(tS, tS))
+            self._g_expr = fem.Expression((1 - ufl.min_value(self.lam, 1.0)) * kin.h
+                                          * ufl.dot(kin.vbar, tS),
+                                          self.Q.element.interpolation_points)
         self.solver = BlockNewton(residuals, unknowns, bcs=self.bcs, entity_maps=[self.emap],
                                   rtol=1e-10, atol=1e-12, max_it=25, max_backtracks=6,
                                   pre_evaluate=self.update_countersurface)
@@ -171,6 +246,86 @@ class EHLProblem:
         self._y_expr = fem.Expression(self.kin_sub.y, Q1v.element.interpolation_points)
         self._x_expr = fem.Expression(Xs + self.u_s, Q1v.element.interpolation_points)
         self.iterations = []
+
+    # -- JFO ----------------------------------------------------------------------
+    def _ds_ends(self):
+        """Measure of the two end points X = ±x_l of Γ_l (the submesh's true boundary).
+
+        Tagged explicitly: in parallel the untagged ``ds`` of the facet submesh
+        also contains the vertices on the partition boundary.
+        """
+        sub = self.sub
+        xs = sub.geometry.x
+        x_l = sub.comm.allreduce(float(np.abs(xs[:, 0]).max(initial=0.0)), op=MPI.MAX)
+        sub.topology.create_connectivity(0, 1)
+        ends = dmesh.locate_entities(sub, 0, lambda y: np.isclose(np.abs(y[0]), x_l))
+        tags = dmesh.meshtags(sub, 0, ends, np.full(len(ends), 1, dtype=np.int32))
+        return ufl.Measure("ds", sub, subdomain_data=tags, subdomain_id=1,
+                           metadata={"quadrature_degree": 4})
+
+    def jfo_initial_guess(self):
+        """Void fraction of a film that ruptures at its minimum h_m and keeps its flux.
+
+        λ = max(0, 1 − h_m/h) downstream of the minimum film, 0 upstream (as
+        :meth:`tribofx.cases.reynolds.Reynolds1D.jfo_initial_guess`), from the
+        current film h; p is left as it is.
+        """
+        if self.lam is None:
+            return
+        self.update_countersurface()
+        h = fem.Function(self.Q)
+        h.interpolate(self._h_expr)
+        X = self.Q.tabulate_dof_coordinates()[:, 0]
+        n = self.Q.dofmap.index_map.size_local
+        loc = (float(h.x.array[:n].min(initial=np.inf)),
+               float(X[np.argmin(h.x.array[:n])]) if n else 0.0)
+        h_m, X_m = min(self.mesh.comm.allgather(loc))
+        lam = np.where(X > X_m, np.maximum(0.0, 1 - h_m / h.x.array), 0.0)
+        # λ and p share the P1 layout of the same submesh
+        self.lam.x.array[:] = lam
+        self.lam.x.scatter_forward()
+
+    def consistent_fluxes(self):
+        """JFO: volume fluxes (mm²/s) into and out of the film from the discrete residual.
+
+        With R(φ) the transport residual (57) (+ SUPG) and g = θ h v̄·t_S the
+        Couette flux along S: q_in = g(−x_l) + R(φ_in), q_out = g(x_l) − R(φ_out),
+        φ the hat functions of the end nodes.  The hat functions sum to one, so
+        q_out − q_in is the sum of the interior equations plus the quadrature
+        error of ∫ d g/dX: zero to solver tolerance for the conservative model.
+        """
+        if self.lam is None:
+            raise ValueError("consistent fluxes need cavitation='jfo'")
+        self.update_countersurface()
+        comm = self.mesh.comm
+        R = {k: comm.allreduce(fem.assemble_scalar(fem.form(
+            self._transport(phi), entity_maps=[self.emap])), op=MPI.SUM)
+            for k, phi in self._phi.items()}
+        g = fem.Function(self.Q)
+        g.interpolate(self._g_expr)
+        out = {}
+        for k, phi in self._phi.items():
+            n = self.Q.dofmap.index_map.size_local
+            idx = np.nonzero(phi.x.array[:n] > 0.5)[0]
+            val = float(g.x.array[idx[0]]) if len(idx) else None
+            out[k] = next(v for v in comm.allgather(val) if v is not None)
+        return out["in"] + R["in"], out["out"] - R["out"]
+
+    def set_speed(self, U, p_c=None, eps=None, h_ref=None):
+        """Change the sliding speed U (mm/s) and, optionally, the scales that depend on it."""
+        self.U = float(U)
+        self.U_c.value = self.U
+        if p_c is not None:
+            self.p_c.value = float(p_c)
+        if eps is not None and self.eps is not None:
+            self.eps.value = float(eps)
+        if h_ref is not None:
+            self._c_p.value = self.mu / h_ref
+            self._c_u.value = self._E_ref / h_ref
+            self._c_g.value = float(h_ref)
+        if self.lam is not None:
+            self.q_ref.value = 0.5 * self.U * float(h_ref if h_ref is not None
+                                                    else self.mu / self._c_p.value)
 
     # -- meshed countersurface ---------------------------------------------------
     def _meshed_surface(self, nodes, facets, cell_type):
@@ -262,6 +417,8 @@ class EHLProblem:
         X = self.Q.tabulate_dof_coordinates()[:n, :2]
         d = {"X": X[:, 0], "x": x.x.array.reshape(-1, 2)[:n], "y": y.x.array.reshape(-1, 2)[:n],
              "h": h.x.array[:n], "p": self.p.x.array[:n]}
+        if self.lam is not None:
+            d["lam"] = self.lam.x.array[:n]
         allp = self.mesh.comm.gather(d, root=0)
         if self.mesh.comm.rank != 0:
             return None
@@ -379,3 +536,54 @@ class LoadControl:
                     continue
                 if on_step is not None:
                     on_step(Wn, its, final=(Wn >= W * (1 - 1e-12)))
+
+    def speed_sweep(self, speeds, scales=None, on_step=None, max_cuts=6):
+        """Continuation in the sliding speed at the load reached last (``W_done``).
+
+        For each U of ``speeds`` (mm/s) in turn the speed is moved from the
+        current one in geometric increments (one increment first), the cylinder
+        position found again for the same load; a failed increment restores the
+        last converged state and halves the increment in log U (step cutting).
+        ``scales(U)`` returns the speed-dependent (p_c, ε, h_ref) of the problem
+        (None: unchanged); ``on_step(U, its, final)`` is called after each
+        converged increment.
+        """
+        prob, W = self.prob, self.W_done
+        if not W > 0:
+            raise ValueError("speed_sweep needs a converged load (run sweep first)")
+        for U in speeds:
+            U = float(U)
+            if not U > 0:
+                raise ValueError("speeds must be positive")
+            ratio = U / prob.U
+            cuts = 0
+            while abs(prob.U / U - 1) > 1e-12:
+                U_old = prob.U
+                Un = U_old * ratio if abs(math.log(ratio)) < abs(math.log(U / U_old)) else U
+                saved = prob.state()
+                slope_saved = self.slope
+                self._set_speed(Un, scales)
+                self.slope *= Un / U_old     # rigid film: s ∝ μU/W
+                try:
+                    self.W_done = W
+                    its = self.find_position(W)
+                except NewtonDivergence:
+                    prob.restore(saved)
+                    self._set_speed(U_old, scales)
+                    self.slope = slope_saved
+                    cuts += 1
+                    if cuts > max_cuts:
+                        raise
+                    ratio = math.sqrt(Un / U_old)
+                    if self.verbose and prob.mesh.comm.rank == 0:
+                        print(f" step cut: speed ratio reduced to {ratio:.4g}")
+                    continue
+                if on_step is not None:
+                    on_step(Un, its, final=abs(Un / U - 1) <= 1e-12)
+
+    def _set_speed(self, U, scales):
+        if scales is None:
+            self.prob.set_speed(U)
+        else:
+            p_c, eps, h_ref = scales(U)
+            self.prob.set_speed(U, p_c=p_c, eps=eps, h_ref=h_ref)

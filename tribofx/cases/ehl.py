@@ -8,9 +8,16 @@ through the deformed mesh with v = F V, V = (U, 0) (eq. 26), the cylinder is
 at rest.  The lubrication surface is S = P(γ_l), the projection of the deformed
 layer surface onto the cylinder (§7.2); the film thickness h, the mean velocity
 v̄ = ½(I − ν⊗ν)FV and the surface operators of S follow the deformation and
-enter the exact Newton tangent (forms/ehl.py).  Cavitation: penalty on p < 0
-(Swift–Stieber/Reynolds conditions in the limit).  The fluid traction (46)
-(pressure, optionally the Couette and Poiseuille shear) loads the layer.
+enter the exact Newton tangent (forms/ehl.py).  Cavitation: ``penalty`` on
+p < 0 (Swift–Stieber/Reynolds conditions in the limit) or ``jfo`` (mass
+conserving, §6.5: void fraction λ, weak form (57) on S, nodal complementarity,
+flooded inlet).  ``alpha`` moves the lubrication surface to
+S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23).  The fluid traction (46) (pressure,
+optionally the Couette and Poiseuille shear) loads the layer.  ``speeds``
+continues the solution at the final load in the sliding speed (step cutting in
+log U) and records friction coefficient, h_min, p_max against μU
+(``speed_*`` results, ``friction_vs_speed.png``); the other results are those of
+the load sweep at ``U``.
 
 Default data (in the spirit of the chapter; mm, N, s, MPa):
 
@@ -93,6 +100,15 @@ class EHLCylinderLayerCase:
               choices=("analytic", "mesh")),
         Param("cs_facets", int, 400, "-", "interval3 facets of the meshed cylinder arc", lower=1,
               upper=100000, closed=True),
+        Param("cavitation", str, "penalty", "-",
+              "penalty (Swift–Stieber limit) or jfo (mass-conserving, void fraction λ)",
+              choices=("penalty", "jfo")),
+        Param("alpha", float, 0.0, "-",
+              "lubrication surface S_α = (1 − α) P(γ_l) + α γ_l (0: S = P(γ_l), 1: S = γ_l)",
+              lower=0.0, upper=1.0, closed=True),
+        Param("speeds", str, "", "mm/s",
+              "comma-separated sliding speeds for continuation in U at the final load W "
+              "(empty: none); records the friction coefficient vs μU"),
     )
 
     @staticmethod
@@ -104,6 +120,19 @@ class EHLCylinderLayerCase:
             raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
         if v["x_l"] > 0.8 * v["R"]:
             raise InputError(f"x_l = {v['x_l']} mm must be < 0.8 R (film beyond the cylinder)")
+        try:
+            speeds = EHLCylinderLayerCase.speed_list(v)
+        except ValueError as err:
+            raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
+        if any(not U > 0 for U in speeds):
+            raise InputError("speeds must be positive (mm/s)")
+        if v["cavitation"] == "jfo" and not v["U"] > 0:
+            raise InputError("cavitation=jfo needs U > 0")
+
+    @staticmethod
+    def speed_list(v):
+        """Return the continuation speeds (mm/s) of ``speeds``."""
+        return [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
 
     @staticmethod
     def scales(v, W=None):
@@ -116,8 +145,12 @@ class EHLCylinderLayerCase:
         return h_r, p_s, eps
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Mesh and :class:`EHLProblem` (unloaded; the cylinder at the rigid clearance)."""
+    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False):
+        """Mesh and :class:`EHLProblem` (unloaded; the cylinder at the rigid clearance).
+
+        ``alpha = 0`` uses the closed-form S = P(γ_l) unless ``intermediate`` (then
+        the general S_α kinematics with α = 0, for checking that they coincide).
+        """
         h_fine = 0.04 / 2 ** v["mesh"]
         H = v["H"]
         msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], h_fine, H / 5, comm)
@@ -134,10 +167,15 @@ class EHLCylinderLayerCase:
             cs = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))
         W1 = v["W"] / v["steps"]
         h_r, p_s, eps = cls.scales(v, W1)
-        return EHLProblem(msh, ct, ft, materials, LUBRICATED, BOTTOM, v["R"], v["U"], v["mu"],
+        prob = EHLProblem(msh, ct, ft, materials, LUBRICATED, BOTTOM, v["R"], v["U"], v["mu"],
                           model=v["model"], shear=v["shear"], supg=v["supg"],
                           eps=eps if v["penalty"] > 0 else None, p_c=p_s, h_ref=h_r,
-                          degree=v["degree"], s0=h_r, countersurface=cs)
+                          degree=v["degree"], s0=h_r, countersurface=cs,
+                          cavitation=v["cavitation"],
+                          alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None)
+        if v["cavitation"] == "jfo":
+            prob.jfo_initial_guess()
+        return prob
 
     @staticmethod
     def arc_half_angle(v):
@@ -168,14 +206,48 @@ class EHLCylinderLayerCase:
                     progress.update(1)
 
         targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
+        speed = {k: [] for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max",
+                                 "clearance")}
+
+        def on_speed(U, its, final):
+            record.data["newton_iterations"].append(its)
+            if final:
+                m = prob.measures()
+                speed["U"].append(U)
+                speed["mu_U"].append(v["mu"] * U)
+                for k in ("friction_coefficient", "h_min", "p_max", "clearance"):
+                    speed[k].append(m[k])
+                if progress is not None:
+                    progress.update(1)
+
         try:
             control.sweep(targets, on_step)
+            speeds = cls.speed_list(v)
+            if speeds:
+                for k in ("friction_coefficient", "h_min", "p_max", "clearance"):
+                    speed[k].append(steps[k][-1])
+                speed["U"].append(v["U"])
+                speed["mu_U"].append(v["mu"] * v["U"])
+                control.speed_sweep(speeds, lambda U: cls.speed_scales(v, U), on_speed)
         except NewtonDivergence as err:
-            err.problem = prob  # restored to the last converged load step
+            err.problem = prob  # restored to the last converged load (or speed) step
             raise
         finally:
             cls._report(prob, steps, profiles, v, record)
+            if len(speed["U"]) > 1:
+                units = {"U": "mm/s", "mu_U": "N/mm", "friction_coefficient": "-",
+                         "h_min": "mm", "p_max": "MPa", "clearance": "mm"}
+                for k, vals in speed.items():
+                    record.result(f"speed_{k}", list(vals), units[k])
+                if prob.mesh.comm.rank == 0 and record.profile is not None:
+                    record.profile["speed"] = {k: list(vals) for k, vals in speed.items()}
         return prob
+
+    @classmethod
+    def speed_scales(cls, v, U):
+        """(p_c, ε, h_ref) of the problem at the final load W and speed U."""
+        h_r, p_s, eps = cls.scales(dict(v, U=U), v["W"])
+        return p_s, eps, h_r
 
     @staticmethod
     def _report(prob, steps, profiles, v, record):
@@ -221,3 +293,13 @@ class EHLCylinderLayerCase:
         fig.tight_layout()
         fig.savefig(outdir / "profiles.png", dpi=120)
         plt.close(fig)
+        if "speed" in profile:
+            sp = profile["speed"]
+            fig, ax = plt.subplots(figsize=(5, 4))
+            ax.loglog(1e3 * np.asarray(sp["mu_U"]), sp["friction_coefficient"], "o-")
+            ax.set_xlabel("μU (N/m)")
+            ax.set_ylabel("friction coefficient")
+            ax.grid(alpha=0.3, which="both")
+            fig.tight_layout()
+            fig.savefig(outdir / "friction_vs_speed.png", dpi=120)
+            plt.close(fig)
