@@ -228,21 +228,17 @@ class WearProblem(ContactProblem):
                 self.rate_bar] + extra
 
     def state(self):
-        """Copy of all unknowns and history (for step cutting)."""
-        out = [f.x.array.copy() for f in self._all()]
-        if self.lam_t is not None and self.settings.slip == "lagrangian":
-            out.append(self.offset_n.value.copy())
-            out.append(self.obstacle.offset.value.copy())
-        return out
+        """Copy of all unknowns, history and obstacle position (for step cutting)."""
+        return ([f.x.array.copy() for f in self._all()]
+                + [c.value.copy() for c in self._state_constants()])
 
     def restore(self, state):
         """Restore a state obtained from :meth:`state`."""
         fs = self._all()
         for f, a in zip(fs, state):
             f.x.array[:] = a
-        if len(state) > len(fs):
-            self.offset_n.value[:] = state[len(fs)]
-            self.obstacle.offset.value[:] = state[len(fs) + 1]
+        for c, a in zip(self._state_constants(), state[len(fs):]):
+            c.value[:] = a
         self._pre_evaluate()
 
     def nodal_wear_increment(self):
@@ -312,6 +308,8 @@ class WearProblem(ContactProblem):
         except NewtonDivergence:
             self.restore(saved)
             raise
+        finally:
+            self.dt.value = 0.0  # a later plain solve() must not wear again
         self.commit()
         return reports
 
