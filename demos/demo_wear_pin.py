@@ -40,6 +40,11 @@ surface as in the graded layer of §5.3).  The explicit scheme is stable only fo
 benchmarks/bench_wear.py).
 The same run from the command line:
 ``tribofx run wear-pin --set dt=200 --out results/wear-pin``.
+The error-versus-Δt study of Figs. 3–4 (explicit and implicit, Δt = 200 … 5 s,
+implicit reference Δt = 0.78125 s; error_vs_dt.png, profiles.png and the
+``study_*`` results in summary.json):
+``tribofx run wear-pin --set study=dt --set study_meshes=1 --out results/wear-pin-study``
+(about 2 min on 20×20; all meshes and moduli: benchmarks/bench_wear_study.py).
 
 Checks at the end: the worn volume equals Archard's k F V t exactly (F = q W is
 the constant normal load), the tip is flattened (contact half-width → W/2) and

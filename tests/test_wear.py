@@ -384,3 +384,55 @@ def test_cyclic_converges_to_steady_sliding_for_long_strokes(tmp_path):
     assert all(1.9 < a / b < 2.1 for a, b in zip(dvol[:-1], dvol[1:]))
     assert all(d > 0 for d in dvol)  # stick at the reversals only removes wear
     assert err[-1] < 4e-4 and dvol[-1] < 0.01 * vol
+
+
+# -- study=dt: error versus Δt, explicit instability (Figs. 3-4) -------------------
+
+class _StudyRecord:
+    def __init__(self):
+        self.data, self.profile = {}, None
+
+    def result(self, key, value, unit="-"):
+        self.data[key] = value
+
+
+def test_dt_study_first_order_and_explicit_instability(tmp_path):
+    # tiny 6 × 6 pin, E = 80 MPa, T = 400 s (the tip is not yet flat, so the
+    # worn profile depends on Δt at first order); reference: Richardson
+    # 2 p(3.125 s) − p(6.25 s) of implicit runs
+    from tribofx.cases.wear import plot_dt_study, run_dt_study
+
+    values = resolve(WearPinCase.params, {"E": "80", "T": "400", "study": "dt",
+                                          "study_dts": "200,50,25,12.5", "study_ref": "richardson",
+                                          "study_ref_dt": "3.125"})
+    WearPinCase.validate(values)
+    dts = WearPinCase.study_lists(values)[0]
+    rec = _StudyRecord()
+    run_dt_study(values, rec, [6], dts)
+    err = rec.data["study_error_implicit"]["6x6"]
+    dt_cr = rec.data["study_dt_cr"]["6x6"]
+    orders = [math.log2(a / b) for a, b in zip(err[1:-1], err[2:])]
+    print("dt_cr", dt_cr, "implicit errors", err, "orders", orders,
+          "explicit errors", rec.data["study_error_explicit"]["6x6"],
+          "oscillation", rec.data["study_oscillation_explicit"]["6x6"],
+          rec.data["study_oscillation_implicit"]["6x6"])
+    assert rec.data["study_dt"] == dts
+    # backward Euler, first order: error ∝ Δt; measured orders 1.00, 1.02 (errors
+    # 4.6e-3, 1.14e-3, 5.7e-4, 2.8e-4 mm); ±0.15 covers the reference error and
+    # the active-set changes of the coarse contact zone
+    assert all(abs(o - 1) < 0.15 for o in orders)
+    assert err[0] > err[1] > err[2] > err[3] > 0
+    # Δt = 200 s is ≈ 2 Δt_cr (measured Δt_cr ≈ 103 s): the explicit run is
+    # flagged unstable (node-to-node oscillating error), the implicit one is not,
+    # and every run with Δt < Δt_cr is stable
+    assert dt_cr is not None and 200.0 > 1.5 * dt_cr
+    assert rec.data["study_unstable_explicit"]["6x6"][0]
+    assert not any(rec.data["study_unstable_implicit"]["6x6"])
+    assert not any(u for u, dt in zip(rec.data["study_unstable_explicit"]["6x6"], dts)
+                   if dt < dt_cr)
+    exp0 = rec.data["study_error_explicit"]["6x6"][0]
+    assert exp0 is None or exp0 > 2 * err[0]
+    if MPI.COMM_WORLD.rank == 0:
+        plot_dt_study(rec.profile, tmp_path)
+        assert (tmp_path / "error_vs_dt.png").stat().st_size > 0
+        assert (tmp_path / "profiles.png").stat().st_size > 0

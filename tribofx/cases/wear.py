@@ -31,9 +31,26 @@ over the cycle and averaged, shape updated by the θ-scheme on the slow time (θ
 = 0 ``explicit``, θ = 1 ``implicit`` by Picard iteration; see
 :mod:`tribofx.time_scale`).  A slow step stands for ``cycles_per_step`` cycles,
 Δt = cycles_per_step · 2 stroke / V (0: Δt = ``dt``).
+
+``study=dt`` (Fig. 3 and Fig. 4 of the chapter): for the given E and each mesh
+level of ``study_meshes`` (default: ``mesh``), the explicit and the implicit
+scheme are run to T with every Δt of ``study_dts`` (default 200, 100, 50, 20,
+10, 5 s), plus an implicit reference run with Δt = ``study_ref_dt`` (default
+T/1280 = 0.78125 s, as in the chapter; ``study_ref=richardson``: 2 p(Δt_r) −
+p(2 Δt_r) of two implicit runs instead).  The error of a run is the Euclidean
+norm (as in the chapter) of the difference of the final worn nodal positions X̂ + w on
+Γ̂_c from the reference (mm; the max nodal distance is also stored).  A run is
+flagged unstable if it fails (Newton divergence or an inverted mesh at its
+nominal Δt: explicit runs get no step cutting) or if its error is dominated by
+the node-to-node alternating (checkerboard) mode, :func:`oscillation_ratio` of the
+vertical error > ``OSCILLATION_TOL``, or (explicit) if Δt exceeds the critical
+step Δt_cr of the mesh (:func:`explicit_critical_step`, also reported).  Writes ``error_vs_dt.png``,
+``profiles.png`` and the ``study_*`` results in summary.json.
 """
 
 import math
+import time
+from pathlib import Path
 
 import numpy as np
 import ufl
@@ -50,7 +67,21 @@ from ..time_scale import ReciprocatingCycle, TimeScaleDriver
 from ..wear_problem import WearProblem
 
 __all__ = ["WearPinCase", "checkerboard_amplitude", "explicit_critical_step",
-           "solve_initial_contact"]
+           "oscillation_ratio", "run_dt_study", "solve_initial_contact"]
+
+OSCILLATION_TOL = 0.7  # unstable: node-to-node oscillating part of the error > 70 %
+
+
+def oscillation_ratio(err):
+    """Share of the node-to-node alternating mode in a nodal error e_i (nodes sorted by X̂).
+
+    ‖(e_{i−1} − 2 e_i + e_{i+1})/4‖ / ‖e_i‖ over the interior nodes: ≈ 1 for an
+    alternating (checkerboard) error, O((h/L)²) for a smooth one.
+    """
+    err = np.asarray(err, dtype=float)
+    hp = (err[:-2] - 2 * err[1:-1] + err[2:]) / 4
+    den = np.linalg.norm(err[1:-1])
+    return float(np.linalg.norm(hp) / den) if den > 0 else 0.0
 
 
 def solve_initial_contact(prob, load, q, E, W, R, H, verbose=False, max_ramp=5):
@@ -193,7 +224,33 @@ class WearPinCase:
               "cyclic: cycles per slow step (0: Δt = dt)", lower=0.0, closed=True),
         Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
+        Param("study", str, "none", "-",
+              "none: one run; dt: explicit and implicit error versus Δt study (Figs. 3-4)",
+              choices=("none", "dt")),
+        Param("study_dts", str, "200,100,50,20,10,5", "s",
+              "study=dt: comma-separated time steps"),
+        Param("study_meshes", str, "", "-",
+              "study=dt: comma-separated mesh levels (n = 10·2^level; empty: mesh)"),
+        Param("study_ref_dt", float, 0.78125, "s",
+              "study=dt: time step of the implicit reference run", lower=0.0),
+        Param("study_ref", str, "fine", "-",
+              "study=dt: reference = implicit run at study_ref_dt (fine) or Richardson "
+              "2 p(study_ref_dt) - p(2 study_ref_dt)", choices=("fine", "richardson")),
+        Param("study_critical", bool, True, "-",
+              "study=dt: also compute the explicit critical step of each mesh"),
     )
+
+    @staticmethod
+    def study_lists(v):
+        """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
+        def split(text):
+            return [t for t in text.replace(";", ",").split(",") if t.strip()]
+        try:
+            dts = [float(t) for t in split(v["study_dts"])]
+            levels = [int(t) for t in split(v["study_meshes"])] or [v["mesh"]]
+        except ValueError as err:
+            raise InputError(f"study lists: {err}") from None
+        return dts, levels
 
     @staticmethod
     def validate(v):
@@ -212,6 +269,17 @@ class WearPinCase:
                 raise InputError("mode=cyclic needs V > 0")
         if WearPinCase.slow_step(v) > v["T"]:
             raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
+        if v["study"] == "dt":
+            dts, levels = WearPinCase.study_lists(v)
+            if not dts or any(d <= 0 or d > v["T"] for d in dts):
+                raise InputError(f"study_dts = {v['study_dts']!r}: need 0 < Δt <= T")
+            if any(not 0 <= m <= 4 for m in levels):
+                raise InputError(f"study_meshes = {v['study_meshes']!r}: levels 0..4")
+            if v["mode"] != "steady":
+                raise InputError("study=dt supports mode=steady only")
+            r = v["study_ref_dt"] * (2 if v["study_ref"] == "richardson" else 1)
+            if r > v["T"] or r >= min(dts):
+                raise InputError("study_ref_dt must be below the study time steps")
 
     @staticmethod
     def slow_step(v):
@@ -290,7 +358,12 @@ class WearPinCase:
 
     @staticmethod
     def plot(profile, outdir):
-        """Worn profiles at every step (``profiles.png``) and wear history (``wear.png``)."""
+        """Worn profiles at every step (``profiles.png``) and wear history (``wear.png``).
+
+        ``study=dt``: ``error_vs_dt.png`` and ``profiles.png`` (see :func:`plot_dt_study`).
+        """
+        if profile.get("study") == "dt":
+            return plot_dt_study(profile, outdir)
         import matplotlib
 
         matplotlib.use("Agg")
@@ -320,6 +393,10 @@ class WearPinCase:
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, n=None):
         """Integrate the wear of the pin from t = 0 to T; record per-step histories."""
+        if v["study"] == "dt":
+            dts, levels = cls.study_lists(v)
+            ns = [10 * 2**m for m in levels] if n is None else [n]
+            return run_dt_study(v, record, ns, dts, progress=progress, verbose=verbose)
         prob, load = cls.build(v, n=n)
         R = v["R_tip"] if v["R_tip"] > 0 else math.inf
         record.data["num_dofs"] = prob.solver.num_dofs
@@ -394,3 +471,234 @@ class WearPinCase:
             record.result("final_pressure", d["p"].tolist(), "MPa")
             record.profile = {**hist, "profiles": profiles, "times": ptimes,
                               "scheme": v["scheme"], "dt": WearPinCase.slow_step(v)}
+
+
+# -- study=dt: error versus Δt of the explicit and implicit schemes (Figs. 3-4) -------
+
+class _SubRecord:
+    """Minimal stand-in for :class:`tribofx.output.RunRecord` for the runs of a study."""
+
+    def __init__(self):
+        self.data = {"newton_iterations": [], "results": {}}
+        self.profile = None
+
+    def result(self, key, value, unit="-"):
+        self.data["results"][key] = {"value": value, "unit": unit}
+
+
+def _study_run(v, n, scheme, dt, verbose=False):
+    """One run of a study; returns (problem, dict with status, profiles, costs)."""
+    over = {**v, "study": "none", "scheme": scheme, "dt": dt}
+    if scheme == "explicit":
+        over["max_cuts"] = 0  # at its nominal Δt: a failure is the instability
+    sub = _SubRecord()
+    t0 = time.perf_counter()
+    status = "ok"
+    try:
+        prob = WearPinCase.run(over, sub, n=n, verbose=verbose)
+    except NewtonDivergence as err:
+        status = f"failed: {type(err).__name__}: {err}"[:200]
+        prob = getattr(err, "problem", None)
+    wall = time.perf_counter() - t0
+    comm = MPI.COMM_WORLD if prob is None else prob.mesh.comm
+    res = {k: r["value"] for k, r in sub.data["results"].items()}
+    out = {"status": status, "wall_time_s": comm.allreduce(wall, op=MPI.MAX),
+           "steps": len(res.get("time", [0.0])) - 1,
+           "newton_iterations": int(sum(res.get("newton_iterations", [0])[1:])),
+           "final_time": res["time"][-1] if res.get("time") else 0.0,
+           "max_wear_depth": res["max_wear_depth"][-1] if res.get("max_wear_depth") else 0.0,
+           "checkerboard": checkerboard_amplitude(prob) if prob is not None else math.nan}
+    prof = sub.profile if comm.rank == 0 else None
+    out["final_profile"] = comm.bcast(
+        np.asarray(res["final_profile"]) if comm.rank == 0 and "final_profile" in res else None,
+        root=0)
+    out["profiles"] = comm.bcast(
+        None if prof is None else {"times": prof["times"], "profiles": prof["profiles"]}, root=0)
+    return prob, out
+
+
+def run_dt_study(v, record, ns, dts, progress=None, verbose=False):
+    """``study=dt`` of ``wear-pin`` on the n × n meshes ``ns`` for the time steps ``dts``.
+
+    Records ``study_dt``, ``study_error_explicit`` and ``study_error_implicit``
+    ({"n×n": [error per Δt, None if the run failed]}, mm, Euclidean norm of the
+    final worn contact-node positions minus the reference), the max-norm
+    counterparts ``study_maxerror_*``, ``study_unstable_*`` and ``study_status_*``
+    flags, checkerboard amplitudes, costs and ``study_dt_cr`` (explicit critical
+    step per mesh, None if not computed or not bracketed).  Returns the reference
+    problem of the last mesh; ``record.profile`` holds what :func:`plot_dt_study` needs.
+    """
+    T = v["T"]
+    ref_dt = v["study_ref_dt"]
+    res = {key: {} for key in ("error_explicit", "error_implicit", "maxerror_explicit",
+                               "maxerror_implicit", "unstable_explicit", "unstable_implicit",
+                               "status_explicit", "status_implicit", "oscillation_explicit",
+                               "oscillation_implicit", "checkerboard_explicit",
+                               "checkerboard_implicit", "wall_time_explicit",
+                               "wall_time_implicit", "newton_explicit", "newton_implicit",
+                               "dt_cr", "reference_wall_time", "reference_correction",
+                               "checkerboard_reference")}
+    plots = {"study": "dt", "dts": list(dts), "E": v["E"], "T": T, "meshes": {}}
+    prob_ref = None
+    for n in ns:
+        key = f"{n}x{n}"
+        t0 = time.perf_counter()
+        prob_ref, ref = _study_run(v, n, "implicit", ref_dt, verbose)
+        if not ref["status"] == "ok":
+            raise NewtonDivergence(f"study reference run ({key}, Δt = {ref_dt} s) "
+                                   f"{ref['status']}")
+        p_ref = ref["final_profile"]
+        correction = 0.0
+        if v["study_ref"] == "richardson":
+            _, coarse = _study_run(v, n, "implicit", 2 * ref_dt, verbose)
+            if not coarse["status"] == "ok":
+                raise NewtonDivergence(f"study reference run ({key}, Δt = {2 * ref_dt} s) "
+                                       f"{coarse['status']}")
+            correction = float(np.linalg.norm(p_ref - coarse["final_profile"]))
+            p_ref = 2 * p_ref - coarse["final_profile"]
+        res["reference_wall_time"][key] = time.perf_counter() - t0
+        res["reference_correction"][key] = correction
+        res["checkerboard_reference"][key] = ref["checkerboard"]
+        dt_cr = None
+        if v["study_critical"]:
+            try:
+                dt_cr = explicit_critical_step(v, n, lo=0.01, hi=1e4)[0]
+            except (ValueError, NewtonDivergence):
+                dt_cr = None
+        res["dt_cr"][key] = dt_cr
+        runs = {"reference": {"dt": ref_dt, "profiles": ref["profiles"],
+                              "final_profile": p_ref}}
+        for scheme in ("explicit", "implicit"):
+            for name in ("error", "maxerror", "unstable", "oscillation", "status", "checkerboard",
+                         "wall_time", "newton"):
+                res[f"{name}_{scheme}"][key] = []
+            for dt in dts:
+                _, r = _study_run(v, n, scheme, dt, verbose)
+                ok = r["status"] == "ok"
+                if ok:
+                    diff = r["final_profile"] - p_ref
+                    err = float(np.linalg.norm(diff))
+                    maxerr = float(np.max(np.linalg.norm(diff, axis=1)))
+                    osc = oscillation_ratio(diff[:, 1])
+                else:
+                    err = maxerr = osc = None
+                res[f"error_{scheme}"][key].append(err)
+                res[f"maxerror_{scheme}"][key].append(maxerr)
+                res[f"unstable_{scheme}"][key].append(
+                    bool(not ok or osc > OSCILLATION_TOL
+                         or (scheme == "explicit" and dt_cr is not None and dt > dt_cr)))
+                res[f"oscillation_{scheme}"][key].append(osc)
+                res[f"status_{scheme}"][key].append(r["status"])
+                res[f"checkerboard_{scheme}"][key].append(r["checkerboard"])
+                res[f"wall_time_{scheme}"][key].append(r["wall_time_s"])
+                res[f"newton_{scheme}"][key].append(r["newton_iterations"])
+                runs[(scheme, dt)] = {"profiles": r["profiles"], "ok": ok}
+                if progress is not None:
+                    progress.update(1)
+        plots["meshes"][key] = {"runs": runs, "dt_cr": dt_cr,
+                                "error_explicit": res["error_explicit"][key],
+                                "error_implicit": res["error_implicit"][key],
+                                "unstable_explicit": res["unstable_explicit"][key],
+                                "unstable_implicit": res["unstable_implicit"][key]}
+    record.result("study_dt", list(dts), "s")
+    units = {"error": "mm (Euclidean norm over the contact nodes)",
+             "maxerror": "mm (max nodal distance)", "unstable": "-", "status": "-",
+             "oscillation": "-",
+             "checkerboard": "mm", "wall_time": "s", "newton": "-", "dt_cr": "s",
+             "reference": "s", "checkerboard_reference": "mm"}
+    for name, val in res.items():
+        record.result(f"study_{name}", val, units.get(name.split("_")[0], units.get(name, "-")))
+    ref_txt = (f"implicit, Δt = {ref_dt:g} s" if v["study_ref"] == "fine" else
+               f"Richardson 2 p({ref_dt:g} s) − p({2 * ref_dt:g} s), implicit")
+    record.result("study_reference", ref_txt, "-")
+    record.result("study_unstable_criterion",
+                  "failed at nominal Δt, or oscillation ratio of the error > "
+                  f"{OSCILLATION_TOL:g}, or explicit with Δt > study_dt_cr", "-")
+    plots["reference"] = ref_txt
+    if prob_ref is not None and prob_ref.mesh.comm.rank == 0:
+        record.profile = plots
+    return prob_ref
+
+
+def plot_dt_study(study, outdir):
+    """Plot ``study=dt``: ``error_vs_dt.png`` and ``profiles.png``.
+
+    ``error_vs_dt.png``: log-log, explicit and implicit panels, one curve per
+    mesh, unstable runs as red crosses, Δt_cr dotted (like Fig. 4).
+    ``profiles.png``: worn profiles every 200 s (the largest Δt) for Δt = 200 s
+    and 5 s (or the largest and smallest Δt) against the reference, explicit
+    left, implicit right, one row per mesh (like Fig. 3).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    dts = np.asarray(study["dts"])
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
+    for ax, scheme in zip(axes, ("explicit", "implicit")):
+        for i, (key, m) in enumerate(study["meshes"].items()):
+            color = f"C{i}"
+            err = np.array([np.nan if e is None else e for e in m[f"error_{scheme}"]])
+            bad = np.asarray(m[f"unstable_{scheme}"])
+            ax.loglog(dts, err, "o-", color=color, label=f"{key}, {scheme}")
+            if bad.any():
+                top = np.nanmax(err) if np.isfinite(err).any() else 1.0
+                ax.loglog(dts[bad], np.where(np.isfinite(err[bad]), err[bad], top), "x",
+                          color="red", ms=10, mew=2)
+            if scheme == "explicit" and m["dt_cr"]:
+                ax.axvline(m["dt_cr"], color=color, ls=":", lw=1)
+        ok = [e for m in study["meshes"].values() for e in m[f"error_{scheme}"] if e]
+        if ok:  # slope-1 guide
+            x = np.array([dts.min(), dts.max()])
+            ax.loglog(x, min(ok) * x / dts.min(), "k--", lw=0.8, label="slope 1")
+        ax.set_xlabel("Δt (s)")
+        ax.set_title(f"{scheme}, E = {study['E']:g} MPa (× unstable, ⋮ Δt_cr)")
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel("error of the worn contact profile (mm)")
+    fig.suptitle(f"reference: {study['reference']}", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(Path(outdir) / "error_vs_dt.png", dpi=120)
+    plt.close(fig)
+
+    big, small = max(dts), min(dts)
+    if 5.0 in dts:
+        small = 5.0
+    if 200.0 in dts:
+        big = 200.0
+    meshes = study["meshes"]
+    fig, axes = plt.subplots(len(meshes), 2, figsize=(10, 3.2 * len(meshes)), squeeze=False)
+    for row, (key, m) in zip(axes, meshes.items()):
+        ref = m["runs"]["reference"]["profiles"]
+        marks = [t for t in ref["times"] if abs(t / big - round(t / big)) < 1e-9]
+        ylim = None
+        for ax, scheme in zip(row, ("explicit", "implicit")):
+            for dt, style in ((big, "-"), (small, "--")):
+                run = m["runs"].get((scheme, dt))
+                if run is None or run["profiles"] is None:
+                    continue
+                for j, (t, p) in enumerate(zip(run["profiles"]["times"],
+                                               run["profiles"]["profiles"])):
+                    if any(abs(t - s) < 1e-6 for s in marks):
+                        p = np.asarray(p)
+                        ax.plot(p[:, 0], p[:, 1], style, color="C0" if dt == big else "C1",
+                                lw=1, label=f"Δt = {dt:g} s" if j == 0 else None)
+            for j, (t, p) in enumerate(zip(ref["times"], ref["profiles"])):
+                if t in marks:
+                    p = np.asarray(p)
+                    ax.plot(p[:, 0], p[:, 1], ":", color="k", lw=1,
+                            label=f"reference Δt = {m['runs']['reference']['dt']:g} s"
+                            if j == 0 else None)
+                    lo, hi = p[:, 1].min(), p[:, 1].max()
+                    ylim = (min(lo, ylim[0]) if ylim else lo, max(hi, ylim[1]) if ylim else hi)
+            if ylim:
+                pad = 0.3 * (ylim[1] - ylim[0])
+                ax.set_ylim(ylim[0] - pad, ylim[1] + pad)
+            ax.set_title(f"{scheme}, {key}, E = {study['E']:g} MPa, t = {marks[0]:g}…"
+                         f"{marks[-1]:g} s", fontsize=9)
+            ax.set_xlabel("X (mm)")
+            ax.set_ylabel("worn Y (mm)")
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(Path(outdir) / "profiles.png", dpi=120)
+    plt.close(fig)

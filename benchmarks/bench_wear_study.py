@@ -1,0 +1,78 @@
+"""wear-pin: the full error-versus-Δt study of Fig. 4 (and the profiles of Fig. 3).
+
+Runs ``tribofx run wear-pin --set study=dt`` (explicit and implicit, Δt = 200,
+100, 50, 20, 10, 5 s, implicit reference Δt = 0.78125 s = T/1280) for
+
+* Fig. 4 left: E = 10, 20, 40, 80, 160, 320, 640 MPa on the 80 × 80 mesh (level 3);
+* Fig. 4 right: meshes 20 × 20, 40 × 40, 80 × 80 (levels 1, 2, 3) at E = 640 MPa;
+
+each in its own folder under ``--out`` (summary.json, error_vs_dt.png,
+profiles.png), then collects the critical steps and errors in ``study.json`` and
+the check Δt_cr ∝ h/E (eq. 31).  The 80 × 80 reference alone is 1280 monolithic
+steps: expect hours on 2 cores.  A smaller version, e.g.
+
+    .venv/bin/python benchmarks/bench_wear_study.py --Es 40,160,640 --E-mesh 1 --meshes 0,1,2
+
+(``--E-mesh``: mesh level of the E sweep; ``--dts``, ``--ref-dt`` as in the case.)
+"""
+
+import argparse
+import json
+import os
+import time
+from pathlib import Path
+
+os.environ.setdefault("UCX_TLS", "self,sm,tcp")
+
+import dolfinx_solver  # noqa: F401
+from mpi4py import MPI
+
+from tribofx.runner import run_case
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--Es", default="10,20,40,80,160,320,640", help="moduli (MPa), E sweep")
+parser.add_argument("--E-mesh", type=int, default=3, help="mesh level of the E sweep")
+parser.add_argument("--meshes", default="1,2,3", help="mesh levels of the mesh sweep")
+parser.add_argument("--E-meshes", type=float, default=640.0, help="E (MPa) of the mesh sweep")
+parser.add_argument("--dts", default="200,100,50,20,10,5")
+parser.add_argument("--ref-dt", default="0.78125")
+parser.add_argument("--out", default="benchmarks/results/wear_study")
+args = parser.parse_args()
+comm = MPI.COMM_WORLD
+out = Path(args.out)
+
+jobs = [(f"E{float(E):g}_mesh{args.E_mesh}", {"E": E, "study_meshes": str(args.E_mesh)})
+        for E in args.Es.split(",") if E.strip()]
+jobs.append((f"E{args.E_meshes:g}_meshes", {"E": str(args.E_meshes),
+                                             "study_meshes": args.meshes}))
+collected = {}
+for label, over in jobs:
+    t0 = time.perf_counter()
+    s = run_case("wear-pin", {"study": "dt", "study_dts": args.dts,
+                              "study_ref_dt": args.ref_dt, **over},
+                 out=out / label, progress=False)
+    r = {k: v["value"] for k, v in s["results"].items()}
+    collected[label] = {"E_MPa": float(over["E"]), "status": s["status"],
+                        "wall_time_s": time.perf_counter() - t0,
+                        **{k: r.get(k) for k in ("study_dt", "study_dt_cr", "study_error_explicit",
+                                                 "study_error_implicit", "study_unstable_explicit",
+                                                 "study_unstable_implicit", "study_reference")}}
+    if comm.rank == 0:
+        c = collected[label]
+        print(f"{label}: {c['status']}, {c['wall_time_s']:.0f} s, dt_cr {c['study_dt_cr']}")
+        for mesh, e in (c["study_error_explicit"] or {}).items():
+            print(f"  {mesh} explicit {e}\n  {mesh} implicit {c['study_error_implicit'][mesh]}"
+                  f"\n  unstable explicit {c['study_unstable_explicit'][mesh]}")
+
+# eq. 31: Δt_cr · E / h should be the same for every E and mesh
+check = {}
+for c in collected.values():
+    for mesh, dt_cr in (c["study_dt_cr"] or {}).items():
+        if dt_cr:
+            n = int(mesh.split("x")[0])
+            check[f"E{c['E_MPa']:g}_{mesh}"] = dt_cr * c["E_MPa"] * n
+if comm.rank == 0:
+    print("dt_cr * E / h (MPa s / mm, up to the factor W = 2 mm):", check)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "study.json").write_text(json.dumps({"runs": collected, "dt_cr_E_over_h": check},
+                                               indent=2))
