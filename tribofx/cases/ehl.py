@@ -32,6 +32,14 @@ Default data (in the spirit of the chapter; mm, N, s, MPa):
 comparison (dashed lines of Fig. 22).  The load is controlled by the vertical
 position of the cylinder, found by a secant iteration per load step.
 
+``compare=linear`` runs the load sweep for both models in one run and
+``compare=alpha`` for α = 0, 0.5, 1 (finite model); the results of each variant
+carry its name as prefix (``finite_``, ``linear_``, ``alpha0_``, ``alpha0.5_``,
+``alpha1_``; listed in ``variants``), the profiles of all variants at every load
+share one plot (``profiles_finite_vs_linear.png``, ``profiles_alpha.png``, as
+the chapter's Figs. 22–23).  :func:`mesh_convergence` gives h_min, p_max on
+mesh levels 0, 1, 2 at one load.
+
 Results: minimum film h_min, central film h_central (below the cylinder axis),
 peak pressure p_max, friction coefficient (tangential film force on the layer /
 W), per load step; profiles p(x), h(x) (``profiles.png``); VTX of u and p.
@@ -48,7 +56,7 @@ from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
 
-__all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
+__all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence"]
 
 
 def cylinder_arc(R, n, alpha):
@@ -109,7 +117,22 @@ class EHLCylinderLayerCase:
         Param("speeds", str, "", "mm/s",
               "comma-separated sliding speeds for continuation in U at the final load W "
               "(empty: none); records the friction coefficient vs μU"),
+        Param("compare", str, "none", "-",
+              "one load sweep per variant in the same run: linear (model = finite and "
+              "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
+              "the variant", choices=("none", "linear", "alpha")),
     )
+
+    #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
+    COMPARE = {
+        "linear": (("finite", "finite deformation", {"model": "finite"}),
+                   ("linear", "geometrically linear", {"model": "linear"})),
+        "alpha": (("alpha0", "α = 0 (S = P(γ_l))", {"alpha": 0.0}),
+                  ("alpha0.5", "α = 0.5", {"alpha": 0.5}),
+                  ("alpha1", "α = 1 (S = γ_l)", {"alpha": 1.0})),
+    }
+    #: plot file of each ``compare`` option
+    COMPARE_PLOT = {"linear": "profiles_finite_vs_linear.png", "alpha": "profiles_alpha.png"}
 
     @staticmethod
     def validate(v):
@@ -128,6 +151,10 @@ class EHLCylinderLayerCase:
             raise InputError("speeds must be positive (mm/s)")
         if v["cavitation"] == "jfo" and not v["U"] > 0:
             raise InputError("cavitation=jfo needs U > 0")
+        if v["compare"] != "none" and speeds:
+            raise InputError("speeds (continuation in U) is not available with compare")
+        if v["compare"] == "alpha" and v["model"] != "finite":
+            raise InputError("compare=alpha is a study of the finite-deformation model")
 
     @staticmethod
     def speed_list(v):
@@ -184,7 +211,81 @@ class EHLCylinderLayerCase:
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):
-        """Load sweep W/steps … W; records the per-step film measures."""
+        """Load sweep W/steps … W (per variant of ``compare``); records the film measures."""
+        if v["compare"] != "none":
+            return cls._run_compare(v, record, progress, verbose)
+        return cls._run_single(v, record, progress, verbose)
+
+    @classmethod
+    def _run_compare(cls, v, record, progress, verbose):
+        """One load sweep per variant of ``compare``, results prefixed ``<variant>_``.
+
+        All variants share the mesh parameters and the loads; the profiles of
+        every variant go to one plot (:attr:`COMPARE_PLOT`).  The problem of the
+        first variant is returned (VTX output); a variant that fails ends the run
+        after recording what has converged.
+        """
+        targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
+        variants, first = {}, None
+        record.result("mu_U", v["mu"] * v["U"], "N/mm")
+        record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
+        record.data["variant_newton_iterations"] = {}
+        for name, label, over in cls.COMPARE[v["compare"]]:
+            vv = dict(v, **over)
+            prob = cls.build(vv)
+            if first is None:
+                first = prob
+                record.data["num_dofs"] = prob.solver.num_dofs
+            steps = {k: [] for k in cls.STEP_KEYS}
+            profiles, its_all = [], []
+            record.data["variant_newton_iterations"][name] = its_all
+
+            def on_step(W, its, final, prob=prob, vv=vv, steps=steps, profiles=profiles,
+                        its_all=its_all):
+                its_all.append(its)
+                record.data["newton_iterations"].append(its)
+                if not final:
+                    return
+                m = prob.measures()
+                for k in steps:
+                    steps[k].append(m[k])
+                prof = prob.profile()
+                if prob.mesh.comm.rank == 0:
+                    xx = prof["y"][:, 0] if vv["model"] == "finite" else prof["X"]
+                    profiles.append({"W": W, "x": xx, "p": prof["p"], "h": prof["h"]})
+                if progress is not None:
+                    progress.update(1)
+
+            try:
+                LoadControl(prob, verbose=verbose).sweep(targets, on_step)
+            except NewtonDivergence as err:
+                err.problem = prob
+                raise
+            finally:
+                cls._report_steps(steps, record, prefix=f"{name}_")
+                variants[name] = {"label": label, "model": vv["model"], "alpha": vv["alpha"],
+                                  "steps": profiles}
+                if prob.mesh.comm.rank == 0:
+                    record.profile = {"compare": v["compare"], "variants": variants}
+        return first
+
+    STEP_KEYS = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
+    STEP_UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
+                  "friction_coefficient": "-", "clearance": "mm"}
+
+    @classmethod
+    def _report_steps(cls, steps, record, prefix=""):
+        """Final-load values and per-step lists ``<prefix>steps_<key>`` of a load sweep."""
+        if steps["W"]:
+            for k in ("h_min", "h_central", "p_max", "friction_coefficient"):
+                record.result(prefix + k, steps[k][-1], cls.STEP_UNITS[k])
+            record.result(prefix + "W_reached", steps["W"][-1], "N/mm")
+        for k, vals in steps.items():
+            record.result(f"{prefix}steps_{k}", list(vals), cls.STEP_UNITS[k])
+
+    @classmethod
+    def _run_single(cls, v, record, progress=None, verbose=False):
+        """Load sweep of one model (``compare=none``), optionally continued in speed."""
         prob = cls.build(v)
         record.data["num_dofs"] = prob.solver.num_dofs
         control = LoadControl(prob, verbose=verbose)
@@ -249,17 +350,9 @@ class EHLCylinderLayerCase:
         h_r, p_s, eps = cls.scales(dict(v, U=U), v["W"])
         return p_s, eps, h_r
 
-    @staticmethod
-    def _report(prob, steps, profiles, v, record):
-        if steps["W"]:
-            for k, unit in (("h_min", "mm"), ("h_central", "mm"), ("p_max", "MPa"),
-                            ("friction_coefficient", "-")):
-                record.result(k, steps[k][-1], unit)
-            record.result("W_reached", steps["W"][-1], "N/mm")
-        units = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
-                 "friction_coefficient": "-", "clearance": "mm"}
-        for k, vals in steps.items():
-            record.result(f"steps_{k}", list(vals), units[k])
+    @classmethod
+    def _report(cls, prob, steps, profiles, v, record):
+        cls._report_steps(steps, record)
         record.result("mu_U", v["mu"] * v["U"], "N/mm")
         if prob.mesh.comm.rank == 0 and profiles:
             record.profile = {"model": v["model"], "steps": profiles}
@@ -269,13 +362,20 @@ class EHLCylinderLayerCase:
         """Displacement (bulk) and film pressure (Γ_l submesh)."""
         return {"displacement": [prob.u], "pressure": [prob.p]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure and film-thickness profiles at every load step (``profiles.png``)."""
+    @classmethod
+    def plot(cls, profile, outdir):
+        """Pressure and film-thickness profiles at every load step (``profiles.png``).
+
+        With ``compare``: all variants on the same axes (:attr:`COMPARE_PLOT`).
+        """
         import matplotlib
 
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+
+        if "variants" in profile:
+            cls._plot_compare(profile, outdir, plt)
+            return
 
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
         for k, st in enumerate(profile["steps"]):
@@ -303,3 +403,65 @@ class EHLCylinderLayerCase:
             fig.tight_layout()
             fig.savefig(outdir / "friction_vs_speed.png", dpi=120)
             plt.close(fig)
+
+    @classmethod
+    def _plot_compare(cls, profile, outdir, plt):
+        """Figs. 22–23 of the chapter: p(x) and h(x) per load (colour) and variant (line)."""
+        from matplotlib.lines import Line2D
+
+        styles = ("-", "--", ":", "-.")
+        fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+        handles = []
+        for j, var in enumerate(profile["variants"].values()):
+            ls = styles[j % len(styles)]
+            n = len(var["steps"])
+            for k, st in enumerate(var["steps"]):
+                c = plt.cm.viridis(k / max(1, n - 1))
+                lab = f"W = {st['W']:.3g} N/mm" if j == 0 else None
+                a1.plot(st["x"], st["p"], color=c, ls=ls, lw=1, label=lab)
+                a2.plot(st["x"], 1e3 * np.asarray(st["h"]), color=c, ls=ls, lw=1)
+            handles.append(Line2D([], [], color="k", ls=ls, lw=1, label=var["label"]))
+        a1.set_ylabel("pressure p (MPa)")
+        a1.legend(fontsize=7, ncol=2)
+        a1.grid(alpha=0.3)
+        a1.set_title("coated layer: " + ("finite deformation vs geometrically linear"
+                                         if profile["compare"] == "linear"
+                                         else "lubrication surface S_α"))
+        a2.legend(handles=handles, fontsize=7)
+        a2.set_ylabel("film thickness h (µm)")
+        a2.set_yscale("log")
+        a2.set_xlabel("x (mm, cylinder frame)")
+        a2.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(outdir / cls.COMPARE_PLOT[profile["compare"]], dpi=120)
+        plt.close(fig)
+
+
+def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORLD):
+    """Film measures at one load W for the mesh levels ``levels`` (all else as in ``v``).
+
+    Each level is a separate problem (element size 0.04/2^level mm along Γ_l),
+    loaded in ``steps`` increments (default ``v["steps"]``) to W (default
+    ``v["W"]``).  Returns a list of dicts (level, h_fine, num_dofs, h_min,
+    h_central, p_max, newton_iterations) and, from the second level on, the
+    differences ``d_h_min``, ``d_p_max`` to the previous level (relative to the
+    finer value).
+    """
+    W = v["W"] if W is None else W
+    steps = v["steps"] if steps is None else steps
+    rows = []
+    for level in levels:
+        vv = dict(v, mesh=int(level), W=W, steps=steps)
+        prob = EHLCylinderLayerCase.build(vv, comm)
+        control = LoadControl(prob)
+        control.sweep([W * (k + 1) / steps for k in range(steps)])
+        m = prob.measures()
+        row = {"level": int(level), "h_fine": 0.04 / 2 ** int(level),
+               "num_dofs": prob.solver.num_dofs, "h_min": m["h_min"],
+               "h_central": m["h_central"], "p_max": m["p_max"],
+               "newton_iterations": [list(t) for t in control.trials]}
+        if rows:
+            for k in ("h_min", "p_max"):
+                row[f"d_{k}"] = abs(row[k] - rows[-1][k]) / abs(row[k])
+        rows.append(row)
+    return rows
