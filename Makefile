@@ -29,9 +29,12 @@ test-slow: setup
 lint: setup
 	$(VENV)/bin/ruff check .
 
+# the full Fig. 4 wear study (benchmarks/bench_wear_study.py) takes hours: run it by hand
 bench: setup
 	$(PY) benchmarks/bench_projection.py
 	$(PY) benchmarks/bench_hertz.py
+	$(PY) benchmarks/bench_wear.py
+	$(PY) benchmarks/bench_ehl.py
 
 clean:
 	rm -rf build results $(VENV)
