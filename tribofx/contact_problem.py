@@ -11,7 +11,6 @@ from dataclasses import dataclass
 import numpy as np
 import ufl
 from dolfinx import fem, la
-from dolfinx import mesh as dmesh
 from dolfinx.cpp import mesh as _cpp_mesh
 from mpi4py import MPI
 
@@ -19,6 +18,7 @@ from .forms import contact as cf
 from .forms import hyperelastic as hf
 from .forms import kinematics as kin
 from .newton import BlockNewton
+from .submesh import facet_submesh
 
 __all__ = ["ContactProblem", "ContactSettings"]
 
@@ -78,12 +78,8 @@ class ContactProblem:
         self.mesh, self.facet_tags, self.kind = msh, facet_tags, kind
         self.settings = settings
         gdim = msh.geometry.dim
-        tdim = msh.topology.dim
-        msh.topology.create_connectivity(tdim - 1, tdim)
-        cfacets = facet_tags.find(contact_tag)
-        if msh.comm.allreduce(len(cfacets), op=MPI.SUM) == 0:
-            raise ValueError(f"mesh has no facets tagged {contact_tag} (contact surface)")
-        self.sub, self.emap, _, gmap = dmesh.create_submesh(msh, tdim - 1, cfacets)
+        self.sub, self.emap, gmap = facet_submesh(msh, facet_tags, contact_tag,
+                                                  "contact surface")
         self.V = fem.functionspace(msh, ("Lagrange", degree, (gdim,)))
         self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (gdim,)))
         self.Q = fem.functionspace(self.sub, ("Lagrange", 1))

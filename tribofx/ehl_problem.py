@@ -34,6 +34,7 @@ from mpi4py import MPI
 from .forms import ehl as ef
 from .forms import hyperelastic as hf
 from .newton import BlockNewton, NewtonDivergence
+from .submesh import facet_submesh
 
 __all__ = ["EHLProblem", "LoadControl", "rigid_clearance"]
 
@@ -88,12 +89,7 @@ class EHLProblem:
         gdim = msh.geometry.dim
         if gdim != 2:
             raise ValueError("EHLProblem is plane strain (gdim = 2)")
-        tdim = msh.topology.dim
-        msh.topology.create_connectivity(tdim - 1, tdim)
-        lub = facet_tags.find(lub_tag)
-        if msh.comm.allreduce(len(lub), op=MPI.SUM) == 0:
-            raise ValueError(f"mesh has no facets tagged {lub_tag} (lubricated surface)")
-        self.sub, self.emap, _, _ = dmesh.create_submesh(msh, tdim - 1, lub)
+        self.sub, self.emap, _ = facet_submesh(msh, facet_tags, lub_tag, "lubricated surface")
         sub = self.sub
         self.V = fem.functionspace(msh, ("Lagrange", degree, (gdim,)))
         self.Vs = fem.functionspace(sub, ("Lagrange", degree, (gdim,)))
@@ -206,7 +202,7 @@ class EHLProblem:
         self.unknowns, self.residuals = unknowns, residuals
         self._c_u = c_u
 
-        fdim = tdim - 1
+        fdim = msh.topology.dim - 1
         bdofs = fem.locate_dofs_topological(self.V, fdim, facet_tags.find(clamp_tag))
         self.bcs = [fem.dirichletbc(np.zeros(gdim), bdofs, self.V)]
         xs = self.sub.geometry.x
