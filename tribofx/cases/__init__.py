@@ -4,11 +4,12 @@ from .ehl import EHLCylinderLayerCase
 from .hertz import HertzCase
 from .reynolds import CylinderCase, SliderCase
 from .wear import WearPinCase
+from .wear_groove import WearBallHalfspaceCase
 
 __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
-                                  WearPinCase)}
+                                  WearPinCase, WearBallHalfspaceCase)}
 
 
 def get_case(name):
