@@ -244,7 +244,7 @@ class GrooveProblem(ContactProblem):
         top2 = np.abs(X2d[:, 1]) < tol
         self._top2 = np.flatnonzero(top2)
         self._rate_fixed = None
-        self.rtol, self.atol, self.max_it = 1e-9, 1e-10, 30
+        self.rtol, self.atol, self.max_it = 1e-9, 5e-10, 30
 
     # -- assembly --------------------------------------------------------------
     def sync(self):
