@@ -174,10 +174,18 @@ class WearProblem(ContactProblem):
         return wf.archard_dissipation_form(k, self.mu, t_t, slip, J)
 
     # -- set-up -------------------------------------------------------------
-    def add_traction(self, tag, traction):
-        """Dead nominal traction (UFL vector, MPa) per unit *worn* area on facets ``tag``."""
-        self.R_u = self.R_u - ale.traction_work_worn(traction, self.w, self._v, self.N_hat,
-                                                     self.ds(tag))
+    def add_traction(self, tag, traction, per_worn_area=True):
+        """Dead nominal traction (UFL vector, MPa) on facets ``tag``.
+
+        Per unit *worn* area (default), or per unit *initial* area with
+        ``per_worn_area=False`` (then ∫ T*·δu dŜ: the resultant is fixed whatever
+        the tangential shape change of the loaded face, e.g. a prescribed force).
+        """
+        if per_worn_area:
+            self.R_u = self.R_u - ale.traction_work_worn(traction, self.w, self._v, self.N_hat,
+                                                         self.ds(tag))
+        else:
+            self.R_u = self.R_u - ufl.dot(traction, self._v) * self.weight * self.ds(tag)
 
     def add_shape_dirichlet(self, tag, component):
         """Zero normal motion of the worn boundary: w[component] = 0 on facets ``tag``."""
@@ -285,18 +293,24 @@ class WearProblem(ContactProblem):
         if not m > 0:
             raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
 
-    def step(self, dt, verbose=False):
+    def step(self, dt, verbose=False, solve=None):
         """Advance the shape by one step Δt (s); returns the list of Newton reports.
 
+        ``solve(verbose)``, if given, replaces the Newton solve of the (implicit:
+        coupled; explicit: deformation) problem and returns a list of reports,
+        e.g. an outer iteration on the obstacle position for a prescribed force.
         On failure (Newton divergence or inverted mesh) the state at entry is
         restored and :class:`NewtonDivergence` (or :class:`MeshInversion`) raised.
         """
         saved = self.state()
         self.dt.value = dt
         self.w_n.x.array[:] = self.w.x.array
+        if solve is None:
+            def solve(verbose):
+                return [self.solver.solve(verbose=verbose)]
         try:
             if self.scheme == "implicit":
-                reports = [self.solver.solve(verbose=verbose)]
+                reports = solve(verbose)
                 self._check_mesh()
             else:
                 self.lam_old.x.array[:] = self.lam_n.x.array
@@ -304,7 +318,7 @@ class WearProblem(ContactProblem):
                 self._check_mesh()
                 # warm start: keep the deformed configuration x = X̂ + u (the gaps and
                 # the active set stay), only the worn reference has changed
-                reports.append(self.solver.solve(verbose=verbose))
+                reports += solve(verbose)
         except NewtonDivergence:
             self.restore(saved)
             raise
