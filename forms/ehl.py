@@ -77,7 +77,10 @@ __all__ = [
     "jfo_on_surface",
     "lubrication_kinematics",
     "meshed_countersurface",
+    "oriented_cell_normal",
+    "plane_countersurface",
     "reynolds_on_surface",
+    "tangential_gradient",
     "tangential_gradient_constraint",
     "trace_constraint",
 ]
@@ -115,6 +118,8 @@ class LubricationKinematics:
         stretch: ds_S/dS = |det A|.
         vbar: mean tangential velocity v̄ (mm/s).
         v_layer: tangential (w.r.t. S) velocity of the layer surface (mm/s).
+        v_counter: tangential velocity of the rigid countersurface at y (mm/s),
+            None for a countersurface at rest.
     """
 
     h: ufl.core.expr.Expr
@@ -124,6 +129,7 @@ class LubricationKinematics:
     stretch: ufl.core.expr.Expr
     vbar: ufl.core.expr.Expr
     v_layer: ufl.core.expr.Expr
+    v_counter: ufl.core.expr.Expr = None
 
     def grad(self, f, grad_gamma=ufl.grad):
         """Surface gradient grad_S f = A^{-T} Grad_Γ f of a scalar field on Γ_l."""
@@ -141,6 +147,50 @@ def cylinder_countersurface(x, center, radius):
     nu = d / r
     dP = (radius / r) * (ufl.Identity(len(x)) - ufl.outer(nu, nu))
     return r - radius, nu, center + radius * nu, dP
+
+
+def plane_countersurface(x, offset, normal=None):
+    """Closed-form projection onto the rigid plane {y : y·n = offset}: (h, ν, y, ∂P/∂x).
+
+    ν = n (default e_z in 3D, e_y in 2D) points from the plane into the film, so
+
+        y = x − (x·n − offset) n,   h = x·n − offset,   ∂P/∂x = I − n⊗n      (36–37)
+
+    (§8.3: the ball above the plane z = z_p, h = x_z − z_p).
+    """
+    gdim = len(x)
+    if normal is None:
+        normal = ufl.as_vector([0.0] * (gdim - 1) + [1.0])
+    h = ufl.dot(x, normal) - offset
+    return h, normal, x - h * normal, ufl.Identity(gdim) - ufl.outer(normal, normal)
+
+
+def oriented_cell_normal(domain, center):
+    """Return the unit normal of the (affine) cells of a surface mesh, away from ``center``.
+
+    ``ufl.CellNormal`` of a manifold mesh has the orientation of the cell's
+    vertex numbering; the sign of its dot product with X − c makes it the outer
+    normal of a convex body around c (Γ_l of the ball, reference normal N).
+    """
+    n = ufl.CellNormal(domain)
+    X = ufl.SpatialCoordinate(domain)
+    return ufl.sign(ufl.dot(n, X - center)) * n
+
+
+def tangential_gradient(N):
+    """Return f ↦ Grad_Γ f, the gradient projected with (I − N⊗N) (N: reference normal).
+
+    UFL's grad of an expression of the spatial coordinate on a facet submesh
+    (a manifold) keeps the derivative along N (grad X = I); the projection
+    removes it.  Vector fields: (Grad w)(I − N⊗N).
+    """
+    PN = ufl.Identity(len(N)) - ufl.outer(N, N)
+
+    def grad_gamma(f):
+        g = ufl.grad(f)
+        return PN * g if len(g.ufl_shape) == 1 else g * PN
+
+    return grad_gamma
 
 
 def meshed_countersurface(x, x0, h0, nu0, y0, dy0, dnu0, d2y0):
@@ -166,7 +216,7 @@ def meshed_countersurface(x, x0, h0, nu0, y0, dy0, dnu0, d2y0):
 
 
 def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite",
-                           surface=None, alpha=None):
+                           surface=None, alpha=None, V_counter=None):
     """Lubrication surface S = P(γ_l) on a rigid cylinder, as UFL of the displacement.
 
     Args:
@@ -186,6 +236,10 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         alpha: None (S = P(γ_l), closed form) or a scalar (UFL constant) α ∈ [0, 1]:
             the intermediate surface S_α = (1 − α) P(γ_l) + α γ_l of Fig. 23
             (see :func:`intermediate_surface`; α = 0 gives S = P(γ_l) to round-off).
+        V_counter: None (countersurface at rest) or the velocity of the rigid
+            countersurface at y (mm/s, e.g. 2U e_x of the plane of §8.3); its
+            tangential part (I − ν⊗ν) V_counter enters v̄ = ½(v_layer + v_counter)
+            (eq. 41) and the Couette traction (46).  gdim = 2 or 3 (alpha: 2 only).
     """
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {MODELS}")
@@ -195,9 +249,10 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
     if model == "linear":
         # all geometry at the reference configuration (u = 0): S0 = P(Γ_l); h linear in u
         k0 = lubrication_kinematics(X, ufl.zero(gdim), ufl.zero(gdim, gdim), N, center, radius,
-                                    V, "finite", surface, alpha)
+                                    V, "finite", surface, alpha, V_counter)
         return LubricationKinematics(h=k0.h + ufl.dot(k0.nu, disp), nu=k0.nu, y=k0.y, A=k0.A,
-                                     stretch=k0.stretch, vbar=k0.vbar, v_layer=k0.v_layer)
+                                     stretch=k0.stretch, vbar=k0.vbar, v_layer=k0.v_layer,
+                                     v_counter=k0.v_counter)
     x = X + disp
     if surface is None:
         h, nu, y, dP = cylinder_countersurface(x, center, radius)
@@ -205,12 +260,19 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         h, nu, y, dP = surface(x)
     Ft = (Id + grad_disp) * PN           # F (I − N⊗N)
     if alpha is not None:
+        if V_counter is not None:
+            raise ValueError("the intermediate surface S_α assumes a countersurface at rest")
         return intermediate_surface(h, nu, y, dP, Ft, N, V, alpha)
     Pnu = Id - ufl.outer(nu, nu)
     A = dP * Ft + ufl.outer(nu, N)
     v_layer = Pnu * (Ft * V)             # tangential part of v = F V (V ⊥ N)
+    if V_counter is None:
+        return LubricationKinematics(h=h, nu=nu, y=y, A=A, stretch=abs(ufl.det(A)),
+                                     vbar=0.5 * v_layer, v_layer=v_layer)
+    v_counter = Pnu * V_counter          # eq. (42) on the countersurface
     return LubricationKinematics(h=h, nu=nu, y=y, A=A, stretch=abs(ufl.det(A)),
-                                 vbar=0.5 * v_layer, v_layer=v_layer)
+                                 vbar=0.5 * (v_layer + v_counter), v_layer=v_layer,
+                                 v_counter=v_counter)
 
 
 def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
@@ -324,28 +386,39 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
 
     Args:
         p: pressure (MPa).
-        dpdT: tangential derivative Grad_Γ p · T of the pressure on Γ_l (MPa/mm).
+        dpdT: tangential derivative Grad_Γ p · T of the pressure on Γ_l (MPa/mm), or
+            (vector, gdim = 3) the tangential gradient Grad_Γ p itself.
         kin: :class:`LubricationKinematics` evaluated with the bulk displacement.
         F: deformation gradient (gdim × gdim) of the bulk.
         N: unit outer normal of Γ_l (reference).
-        T: unit tangent of Γ_l (reference), the direction of V.
+        T: unit tangent of Γ_l (reference), the direction of V (gdim = 2; unused
+            when ``dpdT`` is the gradient vector).
         mu: viscosity (MPa·s).
         model: "finite" (Nanson, current normal and stretch) or "linear" (reference surface).
-        shear: include the Couette −(μ/h)(v_layer − v_cyl) and Poiseuille −(h/2) grad_S p
-            terms.
+        shear: include the Couette −(μ/h)(v_layer − v_counter) and Poiseuille
+            −(h/2) grad_S p terms (v_counter = ``kin.v_counter``, 0 if None).
     """
+    if len(ufl.shape(dpdT)) == 1:
+        grad_gamma_p = dpdT                       # Grad_Γ p (gdim = 3)
+    else:
+        grad_gamma_p = dpdT * T                   # (Grad_Γ p·T) T (gdim = 2)
+    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
     if model == "linear":
         Tn = -p * N
         if shear:
-            grad_S_p = ufl.inv(kin.A).T * (dpdT * T)
-            Tn = Tn - (mu / kin.h) * kin.v_layer - (kin.h / 2) * grad_S_p
+            grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
+            Tn = Tn - (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
         return Tn
     Tn = -p * ufl.det(F) * ufl.inv(F).T * N      # −p n ds/dS (Nanson)
     if shear:
-        FT = F * T
-        j = ufl.sqrt(ufl.dot(FT, FT))             # ds/dS of γ_l
-        grad_S_p = ufl.inv(kin.A).T * (dpdT * T)
-        Tn = Tn - j * ((mu / kin.h) * kin.v_layer + (kin.h / 2) * grad_S_p)
+        if len(N) == 2:
+            FT = F * T
+            j = ufl.sqrt(ufl.dot(FT, FT))         # ds/dS of γ_l
+        else:
+            nJ = ufl.det(F) * ufl.inv(F).T * N
+            j = ufl.sqrt(ufl.dot(nJ, nJ))         # ds/dS = J|F⁻ᵀN| (Nanson)
+        grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
+        Tn = Tn - j * ((mu / kin.h) * v_rel + (kin.h / 2) * grad_S_p)
     return Tn
 
 
@@ -357,6 +430,12 @@ def trace_constraint(u_s, u, du_s, ds):
     return ufl.dot(u_s - u, du_s) * ds
 
 
-def tangential_gradient_constraint(g, p, dg, T, dx):
-    """Residual ∫_Γl (g − Grad_Γ p·T) δg dS: g is the tangential pressure derivative."""
+def tangential_gradient_constraint(g, p, dg, T, dx, grad_gamma=None):
+    """Residual ∫_Γl (g − Grad_Γ p·T) δg dS: g is the tangential pressure derivative.
+
+    Vector g (DG0, gdim = 3): ∫_Γl (g − Grad_Γ p)·δg dS with ``grad_gamma`` the
+    projected gradient (:func:`tangential_gradient`); exact for P1 p on affine cells.
+    """
+    if len(ufl.shape(g)) == 1:
+        return ufl.dot(g - grad_gamma(p), dg) * dx
     return (g - ufl.dot(ufl.grad(p), T)) * dg * dx

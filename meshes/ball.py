@@ -1,0 +1,105 @@
+"""gmsh model of the quarter ball of the soft-EHL ball-on-plane case (chapter §8.3).
+
+The ball (radius R, centre (0, 0, R)) touches the rigid plane z = 0 at the
+origin.  Only the lower hemisphere z ≤ R of the half y ≥ 0 is meshed (a
+quarter of the ball): the sliding direction x lies in the symmetry plane
+y = 0, the load is applied at the horizontal mid-plane z = R.  The spherical
+surface is split at the height z_cap = R (1 − cos θ_l) into the lubricated
+cap (polar angle θ ≤ θ_l about the contact point, boundary on the circle
+z = z_cap, exactly) and the free surface.  Tetrahedra have size ``h_fine``
+within ``r_fine`` of the contact point and grow to ``h_coarse``.
+
+Cell tag 1.  Facet tags: 1 lubricated cap Γ_l, 2 free spherical surface,
+3 mid-plane z = R (loaded), 4 symmetry plane y = 0.  Lengths in mm.
+"""
+
+import math
+
+import gmsh
+from dolfinx.io import gmsh as gmshio
+from mpi4py import MPI
+
+__all__ = ["FREE", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height", "quarter_ball"]
+
+LUBRICATED, FREE, MIDPLANE, SYMMETRY = 1, 2, 3, 4
+
+
+def cap_height(R, theta_l):
+    """Height z_cap = R (1 − cos θ_l) (mm) of the boundary circle of the lubricated cap."""
+    return R * (1 - math.cos(theta_l))
+
+
+def _build(R, theta_l, h_fine, h_coarse, r_fine):
+    occ = gmsh.model.occ
+    z_cap = cap_height(R, theta_l)
+    ball = occ.addSphere(0, 0, R, R)
+    box = occ.addBox(-R, 0, 0, 2 * R, R, R)
+    half, _ = occ.intersect([(3, ball)], [(3, box)])
+    cut = occ.addBox(-R, 0, 0, 2 * R, R, z_cap)
+    low, _ = occ.intersect(half, [(3, cut)], removeObject=False)
+    occ.cut(half, low, removeTool=False)
+    occ.removeAllDuplicates()
+    occ.synchronize()
+    tol = 1e-8 * R
+    tags = {LUBRICATED: [], FREE: [], MIDPLANE: [], SYMMETRY: []}
+    for dim, tag in gmsh.model.getEntities(2):
+        x, y, z = occ.getCenterOfMass(dim, tag)
+        if abs(y) < tol:
+            tags[SYMMETRY].append(tag)
+        elif abs(z - R) < tol:
+            tags[MIDPLANE].append(tag)
+        elif abs(z - z_cap) < tol:
+            continue                     # interior disc z = z_cap (splits the volume)
+        elif z < z_cap:
+            tags[LUBRICATED].append(tag)
+        else:
+            tags[FREE].append(tag)
+    vols = [t for _, t in gmsh.model.getEntities(3)]
+    gmsh.model.addPhysicalGroup(3, vols, 1)
+    for k, v in tags.items():
+        gmsh.model.addPhysicalGroup(2, v, k)
+    p0 = occ.addPoint(0, 0, 0)
+    occ.synchronize()
+    f = gmsh.model.mesh.field
+    d = f.add("Distance")
+    f.setNumbers(d, "PointsList", [p0])
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", d)
+    f.setNumber(t, "SizeMin", h_fine)
+    f.setNumber(t, "SizeMax", h_coarse)
+    f.setNumber(t, "DistMin", r_fine)
+    f.setNumber(t, "DistMax", r_fine + 0.5 * R)
+    f.setAsBackgroundMesh(t)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    gmsh.option.setNumber("Mesh.Algorithm", 6)
+    gmsh.option.setNumber("Mesh.Optimize", 1)
+    gmsh.model.mesh.generate(3)
+
+
+def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+    """Build the quarter ball and return ``(mesh, cell_tags, facet_tags)``.
+
+    Args:
+        R: ball radius (mm).
+        theta_l: polar angle (rad) of the lubricated cap about the contact point.
+        h_fine: element size within ``r_fine`` of the contact point (mm).
+        h_coarse: element size far from it (mm).
+        r_fine: radius of the refined zone (mm).
+        comm: MPI communicator; the model is built on rank 0 and distributed.
+    """
+    if not 0 < theta_l < 0.5 * math.pi:
+        raise ValueError(f"cap angle must be in (0, π/2), got {theta_l}")
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("quarter_ball")
+    if comm.rank == 0:
+        _build(R, theta_l, h_fine, h_coarse, r_fine)
+    data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    return data.mesh, data.cell_tags, data.facet_tags
