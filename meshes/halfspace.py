@@ -68,9 +68,13 @@ def _tags(msh, rules):
     return dmesh.meshtags(msh, fdim, facets.astype(np.int32), values[order][idx])
 
 
-def grids(Lx, Ly, H, h, lx, ly, lz, nc):
-    """Return the graded 1D grids (x ascending over [−L_x, L_x], y over [0, L_y], z over [−H, 0])."""
-    gx = graded_grid(Lx, lx, h, nc[0])
+def grids(Lx, Ly, H, h, lx, ly, lz, nc, hx=None):
+    """Return the graded 1D grids: x over [−L_x, L_x], y over [0, L_y], z over [−H, 0].
+
+    ``h`` is the fine spacing in y and z, ``hx`` (default h) along x; ``nc`` the
+    numbers of coarse elements (x per side, y, z).
+    """
+    gx = graded_grid(Lx, lx, h if hx is None else hx, nc[0])
     gx = np.concatenate([-gx[::-1], gx[1:]])
     gy = graded_grid(Ly, ly, h, nc[1])
     gz = -graded_grid(H, lz, h, nc[2])[::-1]

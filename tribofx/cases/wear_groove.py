@@ -30,8 +30,10 @@ values, these are chosen in its spirit):
   times the substrate values.
 
 Mesh: block x ∈ [−27a, 27a], y ∈ [0, 27a], z ∈ [−27a, 0] (a the Hertz radius),
-element size h = 0.45 a / 2^mesh in the contact region (|x| ≤ 2.25a,
-y ≤ 5.4a, depth ≤ 1.35a), geometric coarsening outside; Q1 hexahedra.
+element size h = 0.45 a / 2^mesh in y and z in the contact region (y ≤ 5.4a,
+depth ≤ 1.35a) and h/2 along x for |x| ≤ 1.8a (once the groove conforms to the
+ball the contact is a narrow band, half-length ≈ 0.45a along x), geometric
+coarsening outside; Q1 hexahedra.
 Reported ``wear_volume`` is the full groove cross-section area (both halves),
 i.e. the worn volume per unit groove length (mm³/mm); ``contact_radius`` is
 the contact half-width across the groove (y), ``contact_half_length`` along x.
@@ -125,7 +127,7 @@ class WearBallHalfspaceCase:
         a, p0, delta = hertz_sphere(v["E"], v["nu"], v["R"], v["F"])
         h = 0.45 * a / 2 ** v["mesh"]
         Lb = 27 * a
-        gx, gy, gz = hs.grids(Lb, Lb, Lb, h, 2.25 * a, 5.4 * a, 1.35 * a, (4, 5, 6))
+        gx, gy, gz = hs.grids(Lb, Lb, Lb, h, 1.8 * a, 5.4 * a, 1.35 * a, (4, 5, 6), hx=h / 2)
         msh, ft = hs.halfspace_block(comm, gx, gy, gz)
         sec, sft = hs.cross_section(comm, gy, gz)
         graded = (v["grade_alpha"], v["grade_depth"]) if v["graded"] else None
