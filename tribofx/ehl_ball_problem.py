@@ -332,6 +332,7 @@ class BallLoadControl:
         self.ds0 = float(ds0)
         self.max_step = max_step
         self.points = []          # converged (s, ln W)
+        self.history = []         # last two converged (W, state)
         self.trials = []
         self.W_done = 0.0
 
@@ -351,8 +352,13 @@ class BallLoadControl:
             print(f" s = {s:.6e} mm: W = {W:.6e} N ({its} Newton iterations)")
         return W, its
 
-    def find_position(self, W):
-        """Move the plane until the film carries ``W`` (N); returns the Newton iterations."""
+    def find_position(self, W, predicted=None):
+        """Move the plane until the film carries ``W`` (N); returns the Newton iterations.
+
+        ``predicted``: a predicted state (:meth:`EHLBallProblem.state`) for the
+        first trial; if its Newton solve fails the iteration restarts from the
+        current (converged) state.
+        """
         from .newton import NewtonDivergence
 
         prob = self.prob
@@ -360,6 +366,16 @@ class BallLoadControl:
         points = list(self.points)
         its_all = []
         step_max = self.max_step
+        if predicted is not None:
+            prob.restore(predicted)
+            Wt, its = self._solve_at(float(prob.s.value))
+            its_all.append(its)
+            if Wt is None or not Wt > 0:
+                prob.restore(saved)
+            else:
+                points.append((float(prob.s.value), math.log(Wt)))
+                if abs(Wt - W) <= self.rtol * W:
+                    return self._done(W, points, its_all)
         for _ in range(self.max_trials):
             s1 = float(prob.s.value)
             if len(points) >= 2 and points[-1][1] != points[-2][1]:
@@ -383,20 +399,42 @@ class BallLoadControl:
                 continue
             points.append((s1 + step, math.log(Wt)))
             if step_max is not None:      # let a cut step grow back after a success
-                grow = 2 * step_max
+                grow = 1.5 * step_max
                 step_max = grow if self.max_step is None else min(self.max_step, grow)
             if abs(Wt - W) <= self.rtol * W:
-                self.points = points[-2:]
-                self.trials.append(its_all)
-                self.W_done = W
-                return its_all
+                return self._done(W, points, its_all)
         prob.restore(saved)
         raise NewtonDivergence(f"load {W:g} N not reached in {self.max_trials} trials")
 
-    def sweep(self, targets, on_step=None):
-        """Reach each load of ``targets`` in turn; calls ``on_step(W, its, final=True)``."""
+    def _done(self, W, points, its_all):
+        self.points = points[-2:]
+        self.trials.append(its_all)
+        self.W_done = W
+        self.history = (self.history + [(W, self.prob.state())])[-2:]
+        return its_all
+
+    def sweep(self, targets, on_step=None, restart=None):
+        """Reach each load of ``targets`` in turn; calls ``on_step(W, its, final=True)``.
+
+        Predictor of each load: ``restart(W)`` when given (e.g.
+        :meth:`EHLBallProblem.hertz_start` at W: for soft EHL the Hertz state is
+        closer to the solution than an extrapolation, which can cut the thin
+        film), else linear extrapolation in W of the last two converged states
+        (unknowns and plane position); the secant corrector then follows.
+        """
         for W in targets:
-            its = self.find_position(W)
+            pred = None
+            if self.history and restart is not None:
+                current = self.prob.state()
+                restart(W)
+                pred = self.prob.state()
+                self.prob.restore(current)
+            elif len(self.history) == 2:
+                (W0, x0), (W1, x1) = self.history
+                t = (W - W1) / (W1 - W0)
+                pred = [a1 + t * (a1 - a0) if isinstance(a1, np.ndarray) else
+                        a1 + t * (a1 - a0) for a0, a1 in zip(x0, x1)]
+            its = self.find_position(W, pred)
             if on_step is not None:
                 on_step(W, its, final=True)
 

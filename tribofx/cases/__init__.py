@@ -1,15 +1,17 @@
 """Registry of runnable cases: ``tribofx run CASE``."""
 
 from .ehl import EHLCylinderLayerCase
+from .ehl_ball import EHLBallCase
 from .hertz import HertzCase
 from .reynolds import CylinderCase, SliderCase
 from .wear import WearPinCase
+from .wear_ball import WearBallCase
 from .wear_groove import WearBallHalfspaceCase
 
 __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
-                                  WearPinCase, WearBallHalfspaceCase)}
+                                  WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase)}
 
 
 def get_case(name):
