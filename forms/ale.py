@@ -35,6 +35,7 @@ __all__ = [
     "internal_virtual_work_worn",
     "nanson_vector",
     "shape_gradient",
+    "swept_nanson_vector",
     "traction_work_worn",
     "volume_factor",
 ]
@@ -68,6 +69,21 @@ def nanson_vector(w, N_hat):
     so it is well defined for a continuous piecewise linear w.
     """
     return cofactor(shape_gradient(w)) * N_hat
+
+
+def swept_nanson_vector(w, w_old, N_hat):
+    """Time average over a step of the Nanson vector, ∫₀¹ cof(G(s)) N̂ ds, G(s) linear in s.
+
+    For a P1 boundary facet whose vertices move linearly from w_n to w, the
+    volume swept per unit initial area is (w − w_n)·∫₀¹ a(s) ds (eq. 28 with
+    this ``a`` is then an exact discrete volume balance).  cof G is linear in G
+    in 2D (the mid-step vector a(½) is exact) and quadratic in 3D, where
+    Simpson's rule (a(0) + 4 a(½) + a(1))/6 is exact.
+    """
+    if len(w) == 2:
+        return nanson_vector(0.5 * (w + w_old), N_hat)
+    return (nanson_vector(w_old, N_hat) + 4 * nanson_vector(0.5 * (w + w_old), N_hat)
+            + nanson_vector(w, N_hat)) / 6
 
 
 def volume_factor(w):

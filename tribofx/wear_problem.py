@@ -18,12 +18,14 @@ Residuals (forms from :mod:`tribofx.forms.ale`, :mod:`tribofx.forms.wear`,
   ∫_Γ̂c η [(w − w_n)·a + Δt k V |λ_{n+θ}|] dŜ = 0,
   with zero normal motion of the rest of the boundary as Dirichlet conditions.
 
-The normal of (28) is taken as the Nanson vector a = cof(G_{n+½}) N̂ of the
-mid-step shape (w + w_n)/2.  This differs from N_{n+θ} by O(Δt) per step
-(the first-order accuracy of the θ-scheme is unchanged), and it makes
-(w − w_n)·a dŜ the exact area swept by a linear boundary segment, so the
-discrete worn volume equals the time integral of the wear rate exactly (a
-discrete geometric conservation law).  k V |λ| = Ẇ j_w is the nominal Archard
+The normal of (28) is taken as the step average of the Nanson vector,
+a = ∫₀¹ cof(G(s)) N̂ ds along the linear path from w_n to w (2D: cof(G_{n+½}) N̂
+of the mid-step shape; 3D: Simpson's rule, exact for the quadratic cofactor;
+:func:`tribofx.forms.ale.swept_nanson_vector`).  This differs from N_{n+θ} by
+O(Δt) per step (the first-order accuracy of the θ-scheme is unchanged), and it
+makes (w − w_n)·a dŜ the exact volume (2D: area) swept by a linear boundary
+facet, so the discrete worn volume equals the time integral of the wear rate
+exactly (a discrete geometric conservation law).  k V |λ| = Ẇ j_w is the nominal Archard
 rate (14) per unit initial area (frictionless pressure form, slip speed V);
 options: the spatial law (15)–(16), k V |λ| / J with J = det F relative to the
 worn configuration, and a depth-graded coefficient k(d), d = −w·N̂ (both taken
@@ -132,7 +134,7 @@ class WearProblem(ContactProblem):
         # shape evolution: auxiliary elasticity + nodal normal constraint (28)
         dw = ufl.TestFunction(self.Vw)
         eta = ufl.TestFunction(self.Q)
-        a = ale.nanson_vector(0.5 * (self.w + self.w_n), self.N_hat)
+        a = ale.swept_nanson_vector(self.w, self.w_n, self.N_hat)
         # rate at t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit (u, λ, w)_n (during the
         # shape update u still holds u_n)
         if averaged:

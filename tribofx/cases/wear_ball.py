@@ -65,8 +65,8 @@ from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
 from ..wear_problem import WearProblem
 
-__all__ = ["ForceControl", "WearBallCase", "hertz_radius", "rigid_cap_radius",
-           "shape_unknown_fraction"]
+__all__ = ["ForceControl", "WearBallCase", "explicit_critical_step", "hertz_radius",
+           "pressure_nonuniformity", "rigid_cap_radius", "shape_unknown_fraction"]
 
 MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the wear)
 
@@ -91,6 +91,84 @@ def shape_unknown_fraction(prob):
     if prob.shape_solver is not None:  # explicit: separate shape solve
         total += shape
     return shape / total
+
+
+def pressure_nonuniformity(prob):
+    """Relative standard deviation of the nodal contact pressure over the inner scar.
+
+    Area-weighted over the active nodes within 0.7 of the contact radius (the
+    edge nodes carry partial lumped areas); 0 for a uniform pressure.
+    """
+    comm = prob.mesh.comm
+    d = prob.nodal_contact_data()
+    area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
+    a_c = math.sqrt(2 * area / math.pi)
+    r = np.linalg.norm(d["x"][:, :2], axis=1)
+    sel = d["active"] & (r < 0.7 * a_c)
+    w, p = d["weight"][sel], d["p"][sel]
+    sw, swp, swp2 = (comm.allreduce(float(np.sum(x)), op=MPI.SUM) for x in (w, w * p, w * p * p))
+    if sw <= 0:
+        return math.inf
+    mean = swp / sw
+    return math.sqrt(max(swp2 / sw - mean * mean, 0.0)) / mean if mean > 0 else math.inf
+
+
+def explicit_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0,
+                           comm=MPI.COMM_WORLD):
+    """Largest stable explicit Δt (s) from a developed scar, by experiment (bisection).
+
+    The implicit scheme (``v["dt"]``) runs to ``t0`` on the mesh of ``v``; its
+    state is copied into an explicit problem on the same mesh, which takes
+    ``steps`` steps of Δt.  Wear evens out the pressure (the continuous
+    problem is dissipative): an unstable Δt amplifies the highest mode
+    geometrically, a stable one leaves the pressure nonuniformity
+    (:func:`pressure_nonuniformity`) near its value at t0 (the implicit state
+    at t0 is not exactly on the accurate path, so it may rebound by a few per
+    cent).  Δt counts as stable iff the nonuniformity after the steps is at
+    most ``growth_tol`` times the one at t0 and no step fails (Newton
+    divergence, inverted mesh).
+    Bisection on log Δt in [lo, hi] (lo stable, hi unstable, both checked).
+    Returns ``(dt_cr, probe)``, ``probe`` the list of (Δt, nonuniformity ratio).
+    """
+    class _Rec:
+        def __init__(self):
+            self.data = {"newton_iterations": [], "results": {}}
+            self.profile = None
+
+        def result(self, key, value, unit="-"):
+            self.data["results"][key] = value
+
+    rec = _Rec()
+    cls = WearBallCase
+    cls.run({**v, "scheme": "implicit"}, rec, comm=comm, t_stop=t0)
+    start = rec.problem.state()
+    s0 = pressure_nonuniformity(rec.problem)
+    prob = cls.build({**v, "scheme": "explicit"}, comm=comm)
+    ctrl = ForceControl(prob, v)
+    probe = []
+
+    def growth(dt):
+        prob.restore(start)
+        try:
+            for _ in range(steps):
+                ctrl.predict(dt)
+                prob.step(dt, solve=ctrl.solve)
+        except NewtonDivergence:
+            probe.append((dt, math.inf))
+            return math.inf
+        g = pressure_nonuniformity(prob) / s0
+        probe.append((dt, g))
+        return g
+
+    if not growth(lo) <= growth_tol or not growth(hi) > growth_tol:
+        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {probe}")
+    for _ in range(iters):
+        mid = math.sqrt(lo * hi)
+        if growth(mid) <= growth_tol:
+            lo = mid
+        else:
+            hi = mid
+    return math.sqrt(lo * hi), probe
 
 
 class ForceControl:
@@ -299,19 +377,22 @@ class WearBallCase:
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, newton_kw=None, on_step=None,
-            comm=MPI.COMM_WORLD):
+            comm=MPI.COMM_WORLD, t_stop=None):
         """Integrate the wear of the ball from t = 0 to T; record per-step histories.
 
-        ``on_step(prob, t, reports)``, if given, is called after every accepted step.
+        ``on_step(prob, t, reports)``, if given, is called after every accepted step;
+        ``t_stop`` < T ends the run early (on the mesh built for T).
         """
         t_wall = time.perf_counter()
         prob = cls.build(v, comm=comm, newton_kw=newton_kw)
         ctrl = ForceControl(prob, v)
-        comm = prob.mesh.comm
         record.data["num_dofs"] = prob.solver.num_dofs
         if prob.shape_solver is not None:
             record.data["num_dofs_shape"] = prob.shape_solver.num_dofs
         record.result("shape_unknown_fraction", shape_unknown_fraction(prob), "-")
+        record.problem = prob
+        record.control = ctrl
+        comm = prob.mesh.comm
         record.result("h_contact_zone", prob.h_fine, "mm")
         keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
                 "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral")
@@ -334,7 +415,7 @@ class WearBallCase:
         its0 = ctrl.initial(verbose)
         state["initial_plane"] = cls.contact_plane(prob)
         log(0.0, its0, 0.0)
-        t, T, dt = 0.0, v["T"], v["dt"]
+        t, T, dt = 0.0, v["T"] if t_stop is None else min(t_stop, v["T"]), v["dt"]
         cuts = 0
         try:
             while t < T * (1 - 1e-12):
@@ -352,6 +433,8 @@ class WearBallCase:
                 log(t, its, h)
                 record.data.setdefault("newton_residuals", []).append(
                     [float(x) for x in reports[-1].residuals])
+                record.data.setdefault("newton_residuals_all", []).append(
+                    [[float(x) for x in r.residuals] for r in reports])
                 if on_step is not None:
                     on_step(prob, t, reports)
                 # substepping: double the step back once t is aligned with the coarser step
