@@ -208,10 +208,18 @@ def _long(graded):
     return prob, v
 
 
+@pytest.fixture(scope="module")
+def long_homogeneous():
+    """Homogeneous half-space to T = 1000 s (shared by the slow tests)."""
+    if MPI.COMM_WORLD.size > 1:
+        pytest.skip("serial-only case")
+    return _long(False)
+
+
 @serial
 @pytest.mark.slow
-def test_long_time_groove_follows_the_ball():
-    prob, v = _long(False)
+def test_long_time_groove_follows_the_ball(long_homogeneous):
+    prob, v = long_homogeneous
     A = 2 * prob.groove_area()
     d = float(prob.line_profile()["depth"].max())
     b = 3 * A / (4 * d)  # half-width of the parabolic groove z = y²/2R − d of area A = 4bd/3
@@ -230,7 +238,7 @@ def test_long_time_groove_follows_the_ball():
 
 @serial
 @pytest.mark.slow
-def test_graded_layer_shifts_pressure_to_the_centre():
+def test_graded_layer_shifts_pressure_to_the_centre(long_homogeneous):
     """FGM layer (Fig. 10b): k and E rise towards the surface, so the groove edges
     (shallow, high k) need less pressure for the common sinking rate.
 
@@ -240,15 +248,14 @@ def test_graded_layer_shifts_pressure_to_the_centre():
     """
     out = {}
     for graded in (False, True):
-        prob, v = _long(graded)
+        prob, v = _long(True) if graded else long_homogeneous
         A = 2 * prob.groove_area()
         lp = prob.line_profile()
         d = float(lp["depth"].max())
         b = 3 * A / (4 * d)
         y, pint = prob.averaged_pressure()
         depth = np.interp(y, lp["worn"][:, 0], lp["depth"])
-        kf = 1 + (v["grade_alpha"] * np.maximum(1 - depth / v["grade_depth"], 0) if graded
-                  else 0)
+        kf = 1 + v["grade_alpha"] * np.maximum(1 - depth / v["grade_depth"], 0) * graded
         inner = y < 0.8 * b
         uniform = kf[inner] * pint[inner] / (kf[0] * pint[0])
         edge = np.interp(0.8 * b, y, pint) / pint[0]

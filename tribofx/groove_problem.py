@@ -147,7 +147,7 @@ class GrooveProblem(ContactProblem):
 
         super().__init__(msh, ft, hs.TOP, "3d", material, {"mu": mu, "lmbda": lmbda}, factory,
                          ContactSettings(rho_n=E / h), quadrature_degree=quadrature_degree)
-        self.scheme, self.R, self.F, self.L, self.Vs_speed = scheme, R, F, L, V
+        self.scheme, self.R, self.F, self.L, self.speed = scheme, R, F, L, V
         self.E = E
         self.dt = 0.0
         # -- 3D deformation on the worn configuration -----------------------

@@ -42,6 +42,7 @@ Serial only (InputError under mpiexec).
 
 import math
 import time
+from pathlib import Path
 
 import numpy as np
 from mpi4py import MPI
@@ -51,7 +52,7 @@ from ..meshes import halfspace as hs
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
 
-__all__ = ["WearBallHalfspaceCase", "hertz_sphere"]
+__all__ = ["WearBallHalfspaceCase", "hertz_sphere", "plot_groove", "plot_pressure_across"]
 
 REGIMES = {"small": {"E": 2.0e5, "k": 1.0e-7, "grade_depth": 0.01},
            "finite": {"E": 10.0, "k": 1.0e-4, "grade_depth": 0.3}}
@@ -154,6 +155,9 @@ class WearBallHalfspaceCase:
     def run(cls, v, record, progress=None, verbose=False):
         """Integrate the groove from t = 0 to T; record per-step histories."""
         v = cls.resolved(v)
+        for key in REGIMES[v["regime"]]:  # record the regime defaults actually used
+            if key in record.data["parameters"]:
+                record.data["parameters"][key]["value"] = v[key]
         t_start = time.perf_counter()
         prob, info = cls.build(v)
         n_u, n_l = len(prob.u.x.array), len(prob.lam_n.x.array)
@@ -254,7 +258,6 @@ def plot_groove(profile, outdir, compare=None):
     import matplotlib
 
     matplotlib.use("Agg")
-    from pathlib import Path
 
     import matplotlib.pyplot as plt
 
@@ -290,22 +293,35 @@ def plot_groove(profile, outdir, compare=None):
     fig.savefig(outdir / "pressure_maps.png", dpi=120)
     plt.close(fig)
 
+    entries = [("graded" if prof["graded"] else "homogeneous", prof["pressure_x0"],
+                prof["pressure_integral"]) for prof in (profile, compare) if prof is not None]
+    plot_pressure_across(entries, outdir / "pressure_across.png", profile["times"][-1],
+                         1.5 * max(profile["contact_radius"]))
+
+
+def plot_pressure_across(entries, path, t, ymax):
+    """Pressure across the groove at x = 0 and ∫ p dx versus y (Fig. 10 bottom).
+
+    ``entries``: list of (label, [(y, p)], [(y, ∫p dx)]), e.g. homogeneous and graded.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.5))
-    for prof, style in ((profile, "-"), (compare, "--")):
-        if prof is None:
-            continue
-        lab = "graded" if prof["graded"] else "homogeneous"
-        p = np.asarray(prof["pressure_x0"])
-        axes[0].plot(p[:, 0], p[:, 1], style + "o", ms=3, label=lab)
-        q = np.asarray(prof["pressure_integral"])
-        axes[1].plot(q[:, 0], q[:, 1], style + "o", ms=3, label=lab)
+    for (label, px0, pint), style in zip(entries, ("-o", "--s", ":^")):
+        p = np.asarray(px0)
+        axes[0].plot(p[:, 0], p[:, 1], style, ms=3, label=label)
+        q = np.asarray(pint)
+        axes[1].plot(q[:, 0], q[:, 1], style, ms=3, label=label)
     axes[0].set_ylabel("p at x = 0 (MPa)")
     axes[1].set_ylabel("∫ p dx (N/mm)")
     for ax in axes:
         ax.set_xlabel("y (mm)")
-        ax.set_xlim(0, 1.5 * max(profile["contact_radius"]))
+        ax.set_xlim(0, ymax)
         ax.legend(fontsize=8)
-    fig.suptitle(f"pressure across the groove at t = {profile['times'][-1]:g} s (Fig. 10 bottom)")
+    fig.suptitle(f"pressure across the groove at t = {t:g} s (Fig. 10 bottom)")
     fig.tight_layout()
-    fig.savefig(outdir / "pressure_across.png", dpi=120)
+    fig.savefig(path, dpi=120)
     plt.close(fig)
