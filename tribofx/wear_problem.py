@@ -176,18 +176,10 @@ class WearProblem(ContactProblem):
         return wf.archard_dissipation_form(k, self.mu, t_t, slip, J)
 
     # -- set-up -------------------------------------------------------------
-    def add_traction(self, tag, traction, per_worn_area=True):
-        """Dead nominal traction (UFL vector, MPa) on facets ``tag``.
-
-        Per unit *worn* area (default), or per unit *initial* area with
-        ``per_worn_area=False`` (then ∫ T*·δu dŜ: the resultant is fixed whatever
-        the tangential shape change of the loaded face, e.g. a prescribed force).
-        """
-        if per_worn_area:
-            self.R_u = self.R_u - ale.traction_work_worn(traction, self.w, self._v, self.N_hat,
-                                                         self.ds(tag))
-        else:
-            self.R_u = self.R_u - ufl.dot(traction, self._v) * self.weight * self.ds(tag)
+    def add_traction(self, tag, traction):
+        """Dead nominal traction (UFL vector, MPa) per unit *worn* area on facets ``tag``."""
+        self.R_u = self.R_u - ale.traction_work_worn(traction, self.w, self._v, self.N_hat,
+                                                     self.ds(tag))
 
     def add_shape_dirichlet(self, tag, component):
         """Zero normal motion of the worn boundary: w[component] = 0 on facets ``tag``."""
