@@ -189,3 +189,18 @@ def test_explicit_conditionally_implicit_unconditionally_stable(tmp_path):
     assert g_exp > 10  # geometric amplification of the highest mode
     assert g_imp < 1.5  # a few per cent of rebound allowed (the start is off-path)
     assert 3.0 < dt_cr < 30.0
+
+
+@pytest.mark.parametrize("over,fragment", [
+    ({"dt": "2000"}, "exceeds T"),
+    ({"k": "1e-4"}, "beyond 0.6 R"),
+    ({"F": "1e7"}, "load too large"),
+    ({"scheme": "trapezoidal"}, "must be one of"),
+])
+def test_bad_input_is_rejected(over, fragment):
+    from tribofx.cases import get_case
+    from tribofx.params import InputError
+
+    assert get_case("wear-ball-flat") is WearBallCase
+    with pytest.raises(InputError, match=fragment):
+        WearBallCase.validate(resolve(WearBallCase.params, over))

@@ -17,14 +17,15 @@ Model: quarter ball (the lower hemisphere cut by the symmetry plane y = 0 that
 contains the sliding direction), :func:`tribofx.meshes.wear_ball.quarter_ball`,
 P1 tetrahedra of size h = a_H/(2·2^mesh) within r_fine = 1.25 a_T (a_T the
 rigid-cap scar radius at T, at least 2 a_H) of the initial contact point, R/4
-far away.  The load F/2 of the half contact is applied on the horizontal
-mid-plane z = R as a uniform dead traction F/(πR²) per unit initial area whose
-in-plane displacements are fixed (u_x = u_y = 0, the support of the friction
-force); the mid-plane translates vertically (its vertical displacement is
-uniform to within the small bending of the hemisphere, reported as
-``midplane_uz_spread``) and the contact force equals F exactly at every
-converged state.  Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no
-normal motion on the mid-plane (w_z = 0).
+far away.  Loading (chapter: at the mid-plane, which moves vertically as a
+rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
+supports the friction force and its moment) and the rigid flat is translated
+vertically by δ (``approach``), found in every solve by an outer secant
+iteration (:class:`ForceControl`, the Newton solve of the step inside) so that
+the contact force of the half contact is F/2 to 10⁻⁸.  A uniform traction on a
+free mid-plane is not used: the friction moment μ F R would tilt the ball.
+Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
+the mid-plane (w_z = 0).
 
 Parameters (chapter §5.2: R = 5 mm, E = 100 GPa, ν = 0.3, F = 100 N, Hertz
 radius a_H = 0.15 mm, p₀ = 2.1 GPa, T = 1000 s, implicit Δt = 100 s).  Left
@@ -46,7 +47,8 @@ Recorded per step: ``time``, ``wear_volume`` (full ball, mm³), ``max_wear_depth
 ``contact_radius`` (from the active contact area A of the half disc, √(2A/π)),
 ``scar_radius`` (√(2Rh − h²) from the max depth h, the flat-scar radius),
 ``pressure_ratio`` (max/min nodal pressure over the nodes within 0.7 of the
-contact radius), ``newton_iterations``, ``wear_rate_integral`` (full ball,
+contact radius), ``approach`` (flat position δ, mm), ``newton_iterations``
+(all trials of the force iteration), ``wear_rate_integral`` (full ball,
 mm³/s), ``dt``; ``final_profile``: worn contact boundary along the symmetry
 line y = 0 ([x, z] points, mm).
 """
