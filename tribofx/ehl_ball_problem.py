@@ -92,6 +92,7 @@ class EHLBallProblem:
         if gdim != 3:
             raise ValueError("EHLBallProblem is three-dimensional (gdim = 3)")
         self.mesh, self.model, self.shear = msh, model, shear
+        self.cell_tags, self.facet_tags = cell_tags, facet_tags
         self.R, self.U, self.mu, self.z_cap = float(R), float(U), float(mu), float(z_cap)
         self.sub, self.emap, _ = facet_submesh(msh, facet_tags, lub_tag, "lubricated cap")
         sub = self.sub
@@ -185,6 +186,10 @@ class EHLBallProblem:
                                       max_it=25)
         self._force = [fem.form(self.traction[i] * self.ds_l, entity_maps=[self.emap])
                        for i in range(gdim)]
+        # Couette drag alone (post-processing, also when it does not load the ball)
+        couette = ef.fluid_traction(0.0, ufl.zero(gdim), self.kin_bulk, F, N_b, None, mu_c,
+                                    shear=True, model=model)
+        self._couette = fem.form(couette[0] * self.ds_l, entity_maps=[self.emap])
         pts = self.Q.element.interpolation_points
         self._h_expr = fem.Expression(self.kin_sub.h, pts)
         self._x_expr = fem.Expression(Xs + self.u_s, self.Vs.element.interpolation_points)
@@ -256,6 +261,13 @@ class EHLBallProblem:
         return np.array([comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
                          for f in self._force])
 
+    def min_film(self):
+        """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
+        h = fem.Function(self.Q)
+        h.interpolate(self._h_expr)
+        n = self.Q.dofmap.index_map.size_local
+        return self.mesh.comm.allreduce(float(h.x.array[:n].min(initial=np.inf)), op=MPI.MIN)
+
     def load(self):
         """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
         return 2.0 * float(self.film_force()[2])
@@ -291,7 +303,13 @@ class EHLBallProblem:
         return xx[order], prof["h"][on][order], prof["p"][on][order]
 
     def measures(self):
-        """h_central (on the axis, x = 0), h_min, p_max, W, friction coefficient (all ranks)."""
+        """h_central (on the axis, x = 0), h_min, p_max, W, friction coefficients (all ranks).
+
+        ``friction_coefficient``: x-force of the film traction on the ball / W (all
+        terms that load the ball; with ``shear=False`` only the pressure part);
+        ``couette_friction_coefficient``: the Couette drag ∫ j (μ/h)|V| dS / W,
+        evaluated also when the shear does not load the ball.
+        """
         prof = self.profile()
         res = None
         if self.mesh.comm.rank == 0:
@@ -306,6 +324,9 @@ class EHLBallProblem:
         res["friction_force"] = 2.0 * float(f[0])
         res["friction_coefficient"] = (abs(float(f[0])) / float(f[2]) if f[2] > 0
                                        else math.nan)
+        fc = self.mesh.comm.allreduce(fem.assemble_scalar(self._couette), op=MPI.SUM)
+        res["couette_friction_coefficient"] = (abs(fc) / float(f[2]) if f[2] > 0
+                                               else math.nan)
         res["clearance"] = float(self.s.value)
         return res
 
@@ -350,6 +371,9 @@ class BallLoadControl:
         W = prob.load()
         if self.verbose and prob.mesh.comm.rank == 0:
             print(f" s = {s:.6e} mm: W = {W:.6e} N ({its} Newton iterations)")
+        if not prob.min_film() > 0:       # a converged but unphysical branch (h ≤ 0)
+            prob.restore(saved)
+            return None, -1
         return W, its
 
     def find_position(self, W, predicted=None):
@@ -438,12 +462,15 @@ class BallLoadControl:
             if on_step is not None:
                 on_step(W, its, final=True)
 
-    def speed_sweep(self, speeds, scales=None, on_step=None, max_cuts=4):
+    def speed_sweep(self, speeds, scales=None, on_step=None, max_cuts=4, restart=None):
         """Continuation in the entrainment speed U (mm/s) at the load reached last.
 
         Geometric increments to each U of ``speeds``; a failed increment restores
         the last converged state and halves the increment in log U.  ``scales(U)``
         gives (p_c, ε, h_ref) at speed U; ``on_step(U, its, final)`` per increment.
+        ``restart(U)`` (e.g. the Hertz start with the film of speed U) predicts the
+        state of each increment; without it the plane is shifted by the change
+        h_c ((U_new/U_old)^0.64 − 1) of the Hamrock–Dowson film.
         """
         from .newton import NewtonDivergence
 
@@ -459,16 +486,25 @@ class BallLoadControl:
                 saved, points = prob.state(), list(self.points)
                 h_c = prob.measures()["h_central"]
                 self._set_speed(Un, scales)
-                # film ∝ U^0.64 (Hamrock–Dowson): shift the secant points by the film change
-                dh = h_c * ((Un / U_old) ** 0.64 - 1)
-                self.points = [(s + dh, lw) for s, lw in points]
-                prob.s.value = float(prob.s.value) + dh
+                ds0 = self.ds0
+                self.ds0 = ds0 * (Un / U_old) ** 0.64      # film scale follows the speed
+                pred = None
+                if restart is not None:
+                    restart(Un)
+                    pred = prob.state()
+                    prob.restore(saved)
+                    self.points = []
+                else:
+                    # film ∝ U^0.64 (Hamrock–Dowson): shift the secant points by the change
+                    dh = h_c * ((Un / U_old) ** 0.64 - 1)
+                    self.points = [(s + dh, lw) for s, lw in points]
+                    prob.s.value = float(prob.s.value) + dh
                 try:
-                    its = self.find_position(W)
+                    its = self.find_position(W, pred)
                 except NewtonDivergence:
                     prob.restore(saved)
                     self._set_speed(U_old, scales)
-                    self.points = points
+                    self.points, self.ds0 = points, ds0
                     cuts += 1
                     if cuts > max_cuts:
                         raise

@@ -39,7 +39,10 @@ variant at the final load in U and records the friction coefficient (friction
 force / W) against μU (Fig. 27).
 
 Results: h_central (film on the symmetry axis at x = 0), h_min (and where),
-p_max, friction coefficient, the plane position, per load step; Hertz and
+p_max, friction coefficient (x-force of the traction that loads the ball / W;
+without shear tractions only its pressure part) and the Couette friction
+coefficient (drag ∫ (μ/h) 2U ds / W, for every variant), the plane position,
+per load step; Hertz and
 Hamrock–Dowson (1978) references at the final load; plots ``film_map.png``
 (h over the (x, y) projection), ``centerline.png`` (p, h on y = 0, every
 variant), ``friction_vs_speed.png``; VTX of u (bulk) and p (cap).
@@ -99,7 +102,8 @@ class EHLBallCase:
                 ("no-shear", "finite, no shear tractions", {"model": "finite", "shear": False}),
                 ("linear", "geometrically linear", {"model": "linear", "shear": True}))
     STEP_UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
-                  "friction_coefficient": "-", "clearance": "mm"}
+                  "friction_coefficient": "-", "couette_friction_coefficient": "-",
+                  "clearance": "mm"}
 
     @staticmethod
     def e_star(v):
@@ -232,8 +236,10 @@ class EHLBallCase:
                 speeds = cls.speed_list(v)
                 if speeds:
                     on_speed(v["U"], [], True)
-                    control.speed_sweep(speeds, lambda U, vv=vv: cls.speed_scales(vv, U),
-                                        on_speed)
+                    control.speed_sweep(
+                        speeds, lambda U, vv=vv: cls.speed_scales(vv, U), on_speed,
+                        restart=lambda U, vv=vv, prob=prob: prob.hertz_start(
+                            vv["W"], cls.e_star(vv), cls.scales(vv, U=U)[2]))
             except NewtonDivergence as err:
                 err.problem = prob
                 raise
@@ -261,7 +267,8 @@ class EHLBallCase:
     @classmethod
     def _report(cls, steps, speed, record, prefix):
         if steps["W"]:
-            for k in ("h_central", "h_min", "p_max", "friction_coefficient", "clearance"):
+            for k in ("h_central", "h_min", "p_max", "friction_coefficient",
+                      "couette_friction_coefficient", "clearance"):
                 record.result(prefix + k, steps[k][-1], cls.STEP_UNITS[k])
             record.result(prefix + "W_reached", steps["W"][-1], "N")
         for k, vals in steps.items():
