@@ -1,4 +1,4 @@
-"""Soft-EHL coupling: lubrication surface S = P(γ_l) on a rigid cylinder (chapter §6.2–6.4, §7).
+"""Soft-EHL coupling: lubrication surface S = P(γ_l) on a rigid cylinder or plane (§6.2–6.4, §7).
 
 Kinematics (plane, gdim = 2; all lengths mm).  A point X of the reference
 lubricated boundary Γ_l (unit outer normal N, unit tangent T) is placed at
@@ -49,6 +49,19 @@ so value, first and second derivative of h and value and first derivative of
 ν, ∂P/∂x (hence of A, ds_S, v̄) are those of the kernel at x₀.  Omitted: the
 second derivatives of ν and of ∂P/∂x (third derivatives of P), which matter
 only where d ≠ 0 at the quadrature points (P2 displacement: d = O(h_e²)).
+
+Three dimensions (the ball of §8.3).  The same expressions hold for gdim = 3
+with a 2D lubricated surface: A maps the tangent plane of Γ_l to that of S and
+N to ν, so |det A| is the area ratio ds_S/dS.  The countersurface may move: a
+rigid plane z = z_p (:func:`plane_countersurface`: y = x − (x_z − z_p) e_z,
+ν = e_z, h = x_z − z_p, ∂P/∂x = I − e_z⊗e_z) sliding with V_c gives
+v̄ = ½(v_layer + (I − ν⊗ν)V_c) (eq. 41) and the Couette traction
+−(μ/h)(v_layer − v_c) (eq. 46; ``V_counter`` of :func:`lubrication_kinematics`).
+The shear stretch is ds/dS = J|F⁻ᵀN|.  The reference normal N of the curved
+Γ_l varies: on the submesh it is the normal of each flat cell
+(:func:`oriented_cell_normal`), on the bulk side the facet normal (the same
+vector), and the tangential pressure gradient Grad_Γ p is a vector DG0 field
+(:func:`tangential_gradient_constraint` with :func:`tangential_gradient`).
 
 Integration.  DOLFINx 0.11 does not differentiate a facet-submesh function in
 an integral over facets of the bulk mesh, and does not evaluate bulk
