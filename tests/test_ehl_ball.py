@@ -45,6 +45,7 @@ def light_load():
     return v, prob, out[-1]
 
 
+@pytest.mark.mpi
 def test_film_matches_hamrock_dowson(light_load):
     """Central and minimum film against the isoviscous-elastic formulas (k = 1)."""
     v, prob, m = light_load
@@ -77,6 +78,7 @@ def test_newton_quadratic(light_load):
     assert orders[-1] > 1.6
 
 
+@pytest.mark.mpi
 def test_tangential_pressure_gradient_is_exact(light_load):
     """g = Grad_Γ p for a linear pressure: the projection of ∇p onto each flat triangle."""
     _, prob, _ = light_load
