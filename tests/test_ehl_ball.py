@@ -47,18 +47,30 @@ def light_load():
 
 @pytest.mark.mpi
 def test_film_matches_hamrock_dowson(light_load):
-    """Central and minimum film against the isoviscous-elastic formulas (k = 1)."""
+    """Central and minimum film against the isoviscous-elastic formulas (k = 1).
+
+    The central film converges about linearly in the element size (h_c at
+    W = 4 N on meshes 0, 1, 2: 25.1, 30.4, 33.3 µm, observed order 0.9), so it
+    is also extrapolated (Richardson, order 1) from meshes 0 and 1.
+    """
     v, prob, m = light_load
     hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], Case.e_star(v))
-    d_c, d_m = m["h_central"] / hc - 1, m["h_min"] / hm - 1
+    m0 = _solve(dict(v, mesh=0))[1][-1]
+    h_ext = 2 * m["h_central"] - m0["h_central"]
+    d_c, d_m, d_x = m["h_central"] / hc - 1, m["h_min"] / hm - 1, h_ext / hc - 1
     print(f"h_c = {m['h_central']:.5g} mm (HD {hc:.5g}, {100 * d_c:+.1f} %), "
           f"h_min = {m['h_min']:.5g} mm (HD {hm:.5g}, {100 * d_m:+.1f} %), dofs "
-          f"{prob.solver.num_dofs}")
+          f"{prob.solver.num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
+          f"extrapolated h_c = {h_ext:.5g} mm ({100 * d_x:+.1f} %)")
     assert m["W"] == pytest.approx(v["W"], rel=1e-4)          # load control tolerance
+    # refinement thickens the central film (under-resolved inlet on coarse meshes)
+    assert m0["h_central"] < m["h_central"]
     # Hamrock & Dowson fitted their numerical half-space solutions within about
     # ±10–20 %; the ball here is finite-strain (a/R ≈ 0.18), ν = 0.45 not 0.5, the
-    # cavitation a penalty and the mesh a/8: 20 % on h_c, 25 % on h_min.
+    # cavitation a penalty: 20 % on h_c (mesh 1 and extrapolated), 25 % on h_min
+    # (mesh 1, element size a/8).
     assert abs(d_c) < 0.20
+    assert abs(d_x) < 0.20
     assert abs(d_m) < 0.25
     # the minimum film lies downstream (x > 0: the plane moves in +x) of the centre
     assert m["x_h_min"] > 0 and m["h_min"] < m["h_central"]
