@@ -2,6 +2,7 @@
 
 from .ehl import EHLCylinderLayerCase
 from .ehl_ball import EHLBallCase
+from .ehl_oring import EHLORingCase
 from .hertz import HertzCase
 from .reynolds import CylinderCase, SliderCase
 from .wear import WearPinCase
@@ -11,7 +12,8 @@ from .wear_groove import WearBallHalfspaceCase
 __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
-                                  WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase)}
+                                  WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
+                                  EHLORingCase)}
 
 
 def get_case(name):
