@@ -233,11 +233,13 @@ class ORingProblem:
                         fem.dirichletbc(fem.Constant(sub, 0.0), hi, self.Q)]
             Xq = self.Q.tabulate_dof_coordinates()
             self.p.x.array[:] = np.where(Xq[:, 1] < self.center[1], float(p_s), 0.0)
-            # atol 1e-6 N: ~1e-8 of the housing reaction; the Reynolds rows of the
-            # thick-film flanks reach their round-off floor near 1e-7
+            # atol 1e-8 of the force scale E·2πR_c·a² (≈ 2e-5 N, 1e-7 of the housing
+            # reaction): the Reynolds rows of the thick-film flanks reach their
+            # round-off floor at 1e-7…1e-5 N depending on the mesh
+            self.atol = 1e-8 * E * Rc * self.a**2
             self.solver = _FilmNewton(self, self.residuals, self.unknowns, bcs=self.bcs,
-                                      entity_maps=[self.emap, self.cmap], rtol=1e-10, atol=1e-6,
-                                      max_it=40, max_backtracks=10)
+                                      entity_maps=[self.emap, self.cmap], rtol=1e-10,
+                                      atol=self.atol, max_it=40, max_backtracks=10)
         self._trace_solver = None
         self.iterations = []
 
@@ -354,7 +356,8 @@ class ORingProblem:
         if not self.dry:
             self._trace()
             frozen = BlockNewton([self.residuals[2]], [self.p], bcs=self.bcs,
-                                 entity_maps=[self.emap], rtol=1e-10, atol=1e-6, max_it=30)
+                                 entity_maps=[self.emap], rtol=1e-10, atol=self.atol,
+                                 max_it=30)
             its.append(frozen.solve(verbose=verbose).iterations)
         its.append(self.solve(verbose=verbose).iterations)
 
