@@ -263,10 +263,11 @@ def plot_groove(profile, outdir, compare=None):
 
     outdir = Path(outdir)
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    for t, pts in zip(profile["times"], profile["profiles"]):
+    colors = plt.cm.viridis(np.linspace(0, 0.9, len(profile["times"])))
+    for t, pts, c in zip(profile["times"], profile["profiles"], colors):
         p = np.asarray(pts)
         p = np.vstack([p[::-1] * [-1, 1], p[1:]])
-        ax.plot(p[:, 0], 1e3 * p[:, 1], lw=1, label=f"t = {t:g} s")
+        ax.plot(p[:, 0], 1e3 * p[:, 1], lw=1, color=c, label=f"t = {t:g} s")
     ax.set_xlim(-1.5 * max(profile["contact_radius"]), 1.5 * max(profile["contact_radius"]))
     ax.set_xlabel("y (mm)")
     ax.set_ylabel("worn surface z (µm)")
