@@ -33,6 +33,12 @@ Tribol. Int.; ball R = 12.7 mm, soft-EHL, W up to 40 N with a contact radius
   a/(4·2^mesh) within 1.6 a of the contact point (a at the final load),
   ``mesh`` = 1 (≈ 11k unknowns, ≈ 40 s for the default sweep on one core).
 
+Limits (this implementation): loads up to ≈ 10 N (a ≈ 0.3 R) run; at 20–40 N
+the first coupled solve from the Hertz state does not converge on meshes of
+level ≤ 1.  Speeds below μU ≈ 0.1 N/m need finer meshes (thin films; the
+chapter's "severe conditions") than level 1.  P1 displacement shows the
+zig-zag oscillations of p and h the chapter describes (§8.1) at level 1.
+
 ``compare=all`` runs the load sweep for the full model, the model without
 shear tractions and the geometrically linear model in one run (Fig. 26; results
 prefixed ``full_``, ``no-shear_``, ``linear_``).  ``speeds`` (mm/s) continues every
@@ -165,6 +171,10 @@ class EHLBallCase:
         _, _, h_c, _ = cls.scales(v, W1)
         prob.hertz_start(W1, cls.e_star(v), h_c)
         its0 = prob.solve(verbose=verbose).iterations
+        if not prob.min_film() > 0:
+            raise NewtonDivergence(
+                f"the first load W = {W1:g} N converged to a film with h <= 0 (contact under-"
+                "resolved by the mesh): raise mesh or use fewer load steps")
         d = hertz_ball(v["W"], v["R"], cls.e_star(v))[1]
         control = BallLoadControl(prob, ds0=0.1 * h_c, max_step=0.1 * d, verbose=verbose)
         targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
