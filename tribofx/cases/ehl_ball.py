@@ -217,9 +217,10 @@ class EHLBallCase:
             steps = {k: [] for k in cls.STEP_UNITS}
             its_all = []
             record.data["variant_newton_iterations"][name or vv["model"]] = its_all
-            speed = {k: [] for k in ("U", "mu_U", "friction_coefficient", "h_central", "h_min",
+            speed = {k: [] for k in ("U", "mu_U", "friction_coefficient",
+                                     "couette_friction_coefficient", "h_central", "h_min",
                                      "p_max")}
-            var = {"label": label}
+            var = {"label": label, "shear": vv["shear"]}
             profile["variants"][name or vv["model"]] = var
 
             def on_step(W, its, final, prob=prob, steps=steps, its_all=its_all):
@@ -238,7 +239,8 @@ class EHLBallCase:
                     m = prob.measures()
                     speed["U"].append(U)
                     speed["mu_U"].append(v["mu"] * U)
-                    for k in ("friction_coefficient", "h_central", "h_min", "p_max"):
+                    for k in ("friction_coefficient", "couette_friction_coefficient",
+                              "h_central", "h_min", "p_max"):
                         speed[k].append(m[k])
 
             try:
@@ -286,7 +288,8 @@ class EHLBallCase:
             record.result(f"{prefix}steps_{k}", list(vals), cls.STEP_UNITS[k])
         if len(speed["U"]) > 1:
             units = {"U": "mm/s", "mu_U": "N/mm", "friction_coefficient": "-",
-                     "h_central": "mm", "h_min": "mm", "p_max": "MPa"}
+                     "couette_friction_coefficient": "-", "h_central": "mm", "h_min": "mm",
+                     "p_max": "MPa"}
             for k, vals in speed.items():
                 record.result(f"{prefix}speed_{k}", list(vals), units[k])
 
@@ -348,9 +351,13 @@ class EHLBallCase:
             fig, ax = plt.subplots(figsize=(5, 4))
             for j, (k, s) in enumerate(sp.items()):
                 order = np.argsort(s["mu_U"])
-                ax.loglog(1e3 * np.asarray(s["mu_U"])[order],
-                          np.asarray(s["friction_coefficient"])[order], "o" + styles[j % 3],
-                          label=profile["variants"][k]["label"])
+                var = profile["variants"][k]
+                # without shear tractions the film force has no drag: plot the Couette drag
+                key = ("friction_coefficient" if var.get("shear", True)
+                       else "couette_friction_coefficient")
+                lab = var["label"] + ("" if key == "friction_coefficient" else " (Couette drag)")
+                ax.loglog(1e3 * np.asarray(s["mu_U"])[order], np.asarray(s[key])[order],
+                          "o" + styles[j % 3], label=lab)
             ax.set_xlabel("μU (N/m)")
             ax.set_ylabel("friction coefficient")
             ax.legend(fontsize=8)
