@@ -13,12 +13,20 @@ k = 1e-8 mm³/(N·mm), V = 10 mm/s, μ = 0.4, T = 1000 s, mesh level 0):
    stable) over ``--t-explicit`` (default 0.3 T: a SHORTENED horizon, the
    full explicit run takes ~160 steps; its cost to T is extrapolated linearly
    and labelled as such), compared with the implicit run at the same time
-   (scar radius, max depth, worn contact boundary);
+   (scar radius, max depth, worn contact boundary) and with a reference
+   implicit run with Δt = ``--ref-dt`` (10 s) to that time (max nodal distance
+   of the worn contact boundary: the accuracy of both runs);
 4. the fraction of the unknowns that belong to Ψ (w and its multiplier ζ).
 
 Prints a table and writes benchmarks/results/wear_ball.json.
 
     .venv/bin/python benchmarks/bench_wear_ball.py [--mesh 0] [--t-explicit 300] [--out FILE]
+
+``--accuracy-dts 5.263,2.5,1.25 --t-explicit 100 --ref-dt 5`` instead runs only
+the explicit scheme with those steps (from t = 0) and implicit Δt = 100 s to the
+horizon, with their errors against the reference: the explicit step that gives
+the implicit accuracy (the early Hertzian stage limits it below the late-time
+Δt_cr).
 """
 
 import argparse
@@ -36,6 +44,7 @@ import numpy as np
 from mpi4py import MPI
 
 from tribofx.cases.wear_ball import WearBallCase, explicit_critical_step, rigid_cap_radius
+from tribofx.newton import NewtonDivergence
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 
@@ -43,6 +52,11 @@ parser = argparse.ArgumentParser()
 parser.add_argument("--mesh", type=int, default=0)
 parser.add_argument("--t-explicit", type=float, default=300.0,
                     help="horizon of the explicit run (s); T for the full run")
+parser.add_argument("--ref-dt", type=float, default=10.0,
+                    help="time step of the implicit reference run to the explicit horizon (s)")
+parser.add_argument("--accuracy-dts", default="",
+                    help="only an accuracy study: explicit runs with these comma-separated Δt "
+                         "(s) to --t-explicit, against the reference, next to implicit 100 s")
 parser.add_argument("--out", default="benchmarks/results/wear_ball.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
@@ -70,7 +84,38 @@ def profile_at(rec):
     return np.asarray(d["X_worn"])
 
 
+def accuracy_study(t_e, dts):
+    """Errors at t_e of implicit Δt = 100 s (or t_e) and explicit runs against the reference."""
+    res = {"horizon": t_e, "reference": f"implicit, Δt = {args.ref_dt:g} s", "runs": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        _, rec_r, wall_r = run(tmp, t_stop=t_e, scheme="implicit", dt=args.ref_dt)
+        p_ref = profile_at(rec_r)
+        res["reference_wall_time_s"] = wall_r
+        for scheme, dt in [("implicit", min(100.0, t_e))] + [("explicit", d) for d in dts]:
+            try:
+                r, rec, wall = run(tmp, t_stop=t_e, scheme=scheme, dt=dt, max_cuts=0)
+                e = float(np.max(np.linalg.norm(profile_at(rec) - p_ref, axis=1)))
+                row = {"scheme": scheme, "dt": dt, "steps": r["steps"], "wall_time_s": wall,
+                       "newton_iterations": int(sum(r["newton_iterations"][1:])),
+                       "max_pressure_ratio": float(max(r["pressure_ratio"][1:])),
+                       "profile_error_mm": e}
+            except NewtonDivergence as err:
+                row = {"scheme": scheme, "dt": dt, "failed": str(err)[:120]}
+            res["runs"].append(row)
+            if comm.rank == 0:
+                print(row, flush=True)
+    return res
+
+
 out = {}
+if args.accuracy_dts:
+    dts = [float(x) for x in args.accuracy_dts.split(",")]
+    out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts)
+    if comm.rank == 0:
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        with open(args.out, "w") as f:
+            json.dump(out, f, indent=2, default=float)
+    raise SystemExit(0)
 with tempfile.TemporaryDirectory() as tmp:
     t0 = time.perf_counter()
     dt_cr, probe = explicit_critical_step(v0, 0.3 * T, 3.0, 30.0, steps=5, iters=3)
@@ -98,7 +143,14 @@ with tempfile.TemporaryDirectory() as tmp:
     exp, rec_e, wall_e = run(tmp, t_stop=t_e, scheme="explicit", dt=dt_e, max_cuts=0)
     # the implicit state at t_e (a multiple of 100 s, kept by ``keep``) for comparison
     i_te = int(np.argmin(np.abs(np.asarray(imp["time"]) - t_e)))
-    diff = float(np.max(np.linalg.norm(profile_at(rec_e) - snap["profile"], axis=1)))
+    p_exp = profile_at(rec_e)
+    ref, rec_r, wall_r = run(tmp, t_stop=t_e, scheme="implicit", dt=args.ref_dt)
+    p_ref = profile_at(rec_r)
+
+    def err(p):
+        return float(np.max(np.linalg.norm(p - p_ref, axis=1)))
+
+    diff = float(np.max(np.linalg.norm(p_exp - snap["profile"], axis=1)))
     scale = T / t_e
     out["explicit"] = {"dt": dt_e, "horizon": t_e, "wall_time_s": wall_e, "steps": exp["steps"],
                        "newton_iterations": int(sum(exp["newton_iterations"][1:])),
@@ -115,7 +167,12 @@ with tempfile.TemporaryDirectory() as tmp:
         "implicit_max_depth": imp["max_wear_depth"][i_te],
         "explicit_max_depth": exp["max_wear_depth"][-1],
         "rigid_cap_radius": float(rigid_cap_radius(v0["k"], v0["F"], v0["R"], v0["V"] * t_e)),
-        "max_nodal_distance_worn_profiles_mm": diff}
+        "max_nodal_distance_worn_profiles_mm": diff,
+        "reference": f"implicit, Δt = {args.ref_dt:g} s", "reference_wall_time_s": wall_r,
+        "reference_scar_radius": ref["scar_radius"][-1],
+        "reference_max_depth": ref["max_wear_depth"][-1],
+        "implicit_profile_error_mm": err(snap["profile"]),
+        "explicit_profile_error_mm": err(p_exp)}
     out["cost_ratio_wall"] = out["explicit"]["wall_time_T_s"] / wall_i
     out["cost_ratio_newton"] = out["explicit"]["newton_iterations_T"] / out["implicit"][
         "newton_iterations"]
@@ -139,6 +196,11 @@ if comm.rank == 0:
     print(f"at t = {cmp['time']:g} s: scar radius implicit {cmp['implicit_scar_radius']:.4f}, "
           f"explicit {cmp['explicit_scar_radius']:.4f}, rigid cap {cmp['rigid_cap_radius']:.4f} "
           f"mm; worn profiles differ by ≤ {cmp['max_nodal_distance_worn_profiles_mm']:.2e} mm")
+    print(f"  reference ({cmp['reference']}): scar radius {cmp['reference_scar_radius']:.4f} mm,"
+          f" max depth {cmp['reference_max_depth']:.5f} mm (implicit Δt=100: "
+          f"{cmp['implicit_max_depth']:.5f}, explicit: {cmp['explicit_max_depth']:.5f}); max "
+          f"nodal error of the worn boundary: implicit {cmp['implicit_profile_error_mm']:.2e} mm,"
+          f" explicit {cmp['explicit_profile_error_mm']:.2e} mm")
     print(f"cost ratio explicit/implicit: wall {out['cost_ratio_wall']:.1f}, Newton "
           f"{out['cost_ratio_newton']:.1f}, steps {out['step_ratio']:.1f}{lab}")
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)

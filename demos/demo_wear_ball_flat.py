@@ -38,7 +38,7 @@ uniform pressure F/(πa²) (≈ 127 MPa at T).
 How to change a parameter
 -------------------------
 Edit ``OVERRIDES`` (keys as in ``tribofx list``), e.g. ``{"scheme": "explicit",
-"dt": "5"}`` (stable only below Δt_cr ≈ 10 s on this mesh; see
+"dt": "5"}`` (stable only below Δt_cr ≈ 6 s on this mesh; see
 benchmarks/bench_wear_ball.py), ``{"mesh": "1"}`` for h = a_H/4 in the contact
 zone, ``{"friction": "0.3"}``.  From the command line:
 ``tribofx run wear-ball-flat --set dt=100 --out results/wear-ball-flat``.

@@ -7,7 +7,7 @@ worn volume and integrated wear rate, backward-Euler first order, the quadratic
 rate of the monolithic Newton, and a serial run (for 2 processes).
 
 The default (not slow) tests use short horizons (the mesh is built for T, so a
-short T also means a small mesh) and take ≈ 40 s serial.
+short T also means a small mesh) and take ≈ 20 s serial.
 """
 
 import math
