@@ -159,7 +159,7 @@ class EHLORingCase:
         Param("eps", float, 1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³",
               lower=0),
         Param("supg", bool, True, "-", "SUPG in the Reynolds equation"),
-        Param("gap0", float, 0.01, "mm", "initial clearance to the rod", lower=0),
+        Param("gap0", float, 0.02, "mm", "initial clearance to the rod", lower=0),
         Param("mount_steps", int, 10, "-", "squeeze increments", lower=1),
         Param("ramp_steps", int, 4, "-", "p_s increments per target", lower=1),
         Param("speed_steps", int, 3, "-", "geometric speed increments", lower=1),
@@ -260,6 +260,12 @@ class EHLORingCase:
         """Displacement (bulk) and film pressure (Γ_l submesh)."""
         return {"displacement": [prob.u], "pressure": [prob.p]}
 
+    @staticmethod
+    def _h_scale(groups):
+        """Largest film at the pressure peak over the plotted states (mm)."""
+        hs = [st["h"][int(np.argmax(st["p"]))] for states in groups for st in states]
+        return max(hs) if hs else 1e-3
+
     @classmethod
     def plot(cls, profile, outdir):
         """``profiles.png`` (p, h vs z per p_s, out solid / in dashed), ``mesh_study.png``."""
@@ -281,7 +287,7 @@ class EHLORingCase:
         a1.grid(alpha=0.3)
         a1.set_title(f"O-ring seal, |U| = {profile['U']:g} mm/s")
         a2.set_ylabel("film thickness h (µm)")
-        a2.set_ylim(0, None)
+        a2.set_ylim(0, 4e3 * cls._h_scale(profile["strokes"].values()))
         a2.set_xlabel("z (mm, position on the rod; air side > 0)")
         a2.grid(alpha=0.3)
         fig.tight_layout()
@@ -297,6 +303,7 @@ class EHLORingCase:
             a1.grid(alpha=0.3)
             a1.set_title("mesh-density study (outstroke)")
             a2.set_ylabel("film thickness h (µm)")
+            a2.set_ylim(0, 4e3 * cls._h_scale([profile["mesh"]]))
             a2.set_xlabel("z (mm)")
             a2.grid(alpha=0.3)
             fig.tight_layout()
