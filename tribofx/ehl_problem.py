@@ -451,11 +451,6 @@ def _young(material, params):
 class LoadControl:
     """Cylinder position for a prescribed load, with load continuation and step cutting.
 
-    ``guess(W)`` and ``slope`` (ds/d(1/W)) replace the rigid-cylinder estimates
-    of the first position and of the secant slope (problems other than the
-    cylinder: any object with ``s``, ``mu``, ``U``, ``solve``, ``state``,
-    ``restore``, ``load``, ``mesh``, ``set_speed``).
-
     :meth:`find_position` runs a secant iteration on f(s) = 1/W(s) − 1/W* (linear
     in s for a rigid film, W ∝ 1/h0), each trial a full Newton solve warm-started
     from the previous trial; a failed trial is restored and moved halfway back
@@ -464,12 +459,10 @@ class LoadControl:
     last converged state.
     """
 
-    def __init__(self, prob, rtol=1e-6, max_trials=30, verbose=False, guess=None, slope=None):
+    def __init__(self, prob, rtol=1e-6, max_trials=30, verbose=False):
         self.prob, self.rtol, self.max_trials, self.verbose = prob, rtol, max_trials, verbose
         # ds/d(1/W), initially that of the rigid cylinder (s = 2.45 μUR/W)
-        self.slope = rigid_clearance(1.0, prob.mu, prob.U, prob.R) if slope is None else slope
-        # first position for a load W (other problems than the cylinder, e.g. the ball)
-        self.guess = guess or (lambda W: rigid_clearance(W, prob.mu, prob.U, prob.R))
+        self.slope = rigid_clearance(1.0, prob.mu, prob.U, prob.R)
         self.W_done = 0.0
         self.trials = []
 
@@ -478,7 +471,7 @@ class LoadControl:
         prob = self.prob
         saved = prob.state()
         s_ok = float(prob.s.value)
-        s1 = s_ok if self.W_done > 0 else self.guess(W)
+        s1 = s_ok if self.W_done > 0 else rigid_clearance(W, prob.mu, prob.U, prob.R)
         if self.W_done > 0:
             s1 = s_ok + self.slope * (1 / W - 1 / self.W_done)
         its, prev = [], None
