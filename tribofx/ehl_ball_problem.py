@@ -6,9 +6,8 @@ horizontal mid-plane z = R is held (u = 0) and the rigid plane z = z_p = −s
 moves instead (a rigid translation of the whole system, so this is the
 chapter's mid-plane moving vertically as a rigid plane under the load W).
 s is the clearance of the lowest point of the undeformed ball (s < 0:
-indentation) and is found for a prescribed load by
-:class:`tribofx.ehl_problem.LoadControl` with the ``guess``/``slope`` of this
-problem.
+indentation) and is found for a prescribed load by :class:`BallLoadControl`
+(secant in ln W, the counterpart of :class:`tribofx.ehl_problem.LoadControl`).
 
 Unknowns, all on the initial mesh (as :class:`tribofx.ehl_problem.EHLProblem`):
 u (P1 vector, bulk), u_s (P1 vector trace of u on the facet submesh of the
