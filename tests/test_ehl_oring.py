@@ -141,29 +141,33 @@ def test_parallel_matches_serial():
 
 @pytest.mark.slow
 def test_inverse_theory():
-    """Film at the pressure peak vs the inverse theory of the dry contact (Blok 1963).
+    """Film of the loaded zone vs the inverse theory of the dry contact (Blok 1963).
 
     h_c = sqrt(8μU/(9w)), w the maximum inlet gradient of the dry contact
-    pressure of the same ring: exact for a rigid film profile in the limit of
-    high load (soft EHL: the pressure tends to the dry one); the finite film
-    modifies the inlet and the dry nodal pressure is an approximation of w, so
-    30 % is allowed (density 8).
+    pressure of the same ring: exact for the film at the pressure maximum in the
+    limit of high load (soft EHL: the pressure tends to the dry one); the finite
+    film modifies the inlet and the nodal dry pressure only approximates w, so
+    30 % is allowed (density 8; h_mean: mean film where p > p_max/2).
     """
-    v = values(mesh=8, p_s=1)
-    h_c, w, _ = dry_reference(v, 1.0)
+    v = values(mesh=8)
+    h_c, w, _ = dry_reference(v, 0.5)
     prob = build(v, v["U"])
-    solve_to(prob, v, v["U"], [1.0])
-    h = prob.measures()["h_at_p_max"]
+    solve_to(prob, v, v["U"], [0.5])
+    h = prob.measures()["h_mean"]
     assert abs(h - h_c) < 0.3 * h_c, (h, h_c, w)
 
 
 @pytest.mark.slow
 def test_mesh_convergence():
-    """h at the pressure peak: the change from density 4 to 8 is smaller than from 2 to 4."""
+    """Densities 2, 4, 8: the mean film changes less from 4 to 8 than from 2 to 4 and the
+    zigzag amplitude (oscillation indicator) decreases (chapter Fig. 18)."""
     v = values()
-    hs = []
+    hs, osc = [], []
     for n in (2, 4, 8):
         prob = build(v, v["U"], mesh=n)
         solve_to(prob, v, v["U"], [0.5])
-        hs.append(prob.measures()["h_at_p_max"])
+        m = prob.measures()
+        hs.append(m["h_mean"])
+        osc.append(m["oscillation"])
     assert abs(hs[2] - hs[1]) < abs(hs[1] - hs[0]), hs
+    assert osc[0] > osc[1] > osc[2], osc
