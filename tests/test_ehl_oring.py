@@ -147,7 +147,7 @@ def test_inverse_theory():
     pressure of the same ring: exact for the film at the pressure maximum in the
     limit of high load (soft EHL: the pressure tends to the dry one); the finite
     film modifies the inlet and the nodal dry pressure only approximates w, so
-    30 % is allowed (density 8; h_mean: mean film where p > p_max/2).
+    30 % is allowed (density 8; h_mean: mean film where p − p_s > (p_max − p_s)/2).
     """
     v = values(mesh=8)
     h_c, w, _ = dry_reference(v, 0.5)

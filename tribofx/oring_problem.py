@@ -481,14 +481,16 @@ class ORingProblem:
         if self.mesh.comm.rank == 0:
             z, h, p = prof["z"], prof["h"], prof["p"]
             k, i = int(np.argmax(p)), int(np.argmin(h))
-            zone = flux_zone(prof)
+            ps = float(self.p_s.value)
+            thr = ps + 0.5 * (p[k] - ps)      # loaded zone: half the rise above p_s
+            zone = flux_zone(prof, thr)
             qz = prof["q"][zone]
             res = {"p_max": float(p[k]), "z_p_max": float(z[k]), "h_at_p_max": float(h[k]),
                    "h_min": float(h[i]), "z_h_min": float(z[i]),
-                   "h_mean": float(np.mean(h[p > 0.5 * p[k]])),
+                   "h_mean": float(np.mean(h[p > thr])),
                    "flux": float(np.median(qz)),
                    "flux_spread": float((qz.max() - qz.min()) / abs(np.median(qz))),
-                   "oscillation": oscillation_indicator(z, h, p)}
+                   "oscillation": oscillation_indicator(h, p, thr)}
         res = self.mesh.comm.bcast(res, root=0)
         f = self.forces()
         res["load_per_circumference"] = float(f["film"][0]) / (2 * math.pi * self.r_rod)
@@ -498,10 +500,10 @@ class ORingProblem:
         return res
 
 
-def flux_zone(prof, frac=0.5):
-    """Cells strictly inside the nodes with p > frac·p_max (the loaded, uncavitated film)."""
+def flux_zone(prof, threshold):
+    """Cells strictly inside the nodes with p > threshold (the loaded, uncavitated film)."""
     z, p = prof["z"], prof["p"]
-    hot = z[p > frac * p.max()]
+    hot = z[p > threshold]
     zc = prof["z_cell"]
     return (zc > hot.min()) & (zc < hot.max())
 
@@ -541,14 +543,14 @@ class _FilmNewton(BlockNewton):
         x0.destroy()
 
 
-def oscillation_indicator(z, h, p, frac=0.5):
-    """Spurious-oscillation (zigzag) amplitude of the film in the loaded zone p > frac·p_max.
+def oscillation_indicator(h, p, threshold):
+    """Spurious-oscillation (zigzag) amplitude of the film in the loaded zone p > threshold.
 
-    mean |h_{i+1} − 2h_i + h_{i−1}| / (4 mean h) over the nodes of the zone: a
-    nodal zigzag ±δ gives δ/h̄, a smooth film O((Δz)² h''/h̄) → 0 with refinement.
+    mean |h_{i+1} − 2h_i + h_{i−1}| / (4 mean h) over the nodes of the zone (sorted
+    by z): a nodal zigzag ±δ gives δ/h̄, a smooth film O((Δz)² h''/h̄) → 0 with
+    refinement.
     """
-    zone = p > frac * p.max()
-    hz = h[zone]
+    hz = h[p > threshold]
     if len(hz) < 3:
         return 0.0
     return float(np.mean(np.abs(np.diff(hz, 2))) / (4 * np.mean(hz)))

@@ -42,7 +42,8 @@ Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 
 ``study=mesh`` repeats the outstroke at the first p_s on the densities
 ``mesh_levels`` (Figs. 18–19) and reports an oscillation indicator per density
-(mean |Δ²h| / 4h̄ in the loaded zone p > p_max/2: the relative zigzag amplitude)
+(mean |Δ²h| / 4h̄ in the loaded zone p − p_s > (p_max − p_s)/2: the relative
+zigzag amplitude)
 and the change of the mean film h̄ of that zone from level to level.
 
 Results per stroke and p_s (prefix ``out_``/``in_`` and ``ps<value>_``): p_max,
