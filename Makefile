@@ -35,6 +35,9 @@ bench: setup
 	$(PY) benchmarks/bench_hertz.py
 	$(PY) benchmarks/bench_wear.py
 	$(PY) benchmarks/bench_ehl.py
+	$(PY) benchmarks/bench_ehl_ball.py
+	$(PY) benchmarks/bench_wear_ball.py
+	$(PY) benchmarks/bench_wear_groove.py
 
 clean:
 	rm -rf build results $(VENV)
