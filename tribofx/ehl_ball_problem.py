@@ -429,6 +429,58 @@ class BallLoadControl:
         prob.restore(saved)
         raise NewtonDivergence(f"load {W:g} N not reached in {self.max_trials} trials")
 
+    def indent(self, W, ds, scales=None, on_step=None, min_ds=1e-4):
+        """Displacement control: lower the plane from the current converged state until W (N).
+
+        Each step moves the plane by −Δs from the last converged state (its
+        unknowns are the initial guess: no extrapolation), Newton solves at the
+        fixed position and the load W(s) is an output.  A step whose Newton
+        solve fails or whose film has min h ≤ 0 (the unphysical branch) is
+        restored and halved; a success lets Δs grow by 1.5 (never above
+        ``ds``).  ``scales(W)`` gives (p_c, ε, h_ref) at the load reached last
+        (they follow the load: p0 ∝ W^{1/3}); ``on_step(W, its)`` per converged
+        step.  Once a step passes W, :meth:`find_position` hits W by the
+        secant through the two bracketing converged states, starting from the
+        nearer one.  Raises NewtonDivergence (state: last converged) when Δs
+        falls below ``min_ds``·``ds``.  Returns the Newton iterations per step.
+        """
+        from .newton import NewtonDivergence
+
+        prob = self.prob
+        step, its_all = float(ds), []
+        W_cur = prob.load()
+        lnW = math.log(W_cur) if W_cur > 0 else None
+        self.points = [(float(prob.s.value), lnW)] if lnW is not None else []
+        while W_cur < W * (1 - self.rtol):
+            if scales is not None and W_cur > 0:
+                p_c, eps, h_ref = scales(W_cur)
+                prob.set_speed(prob.U, p_c=p_c, eps=eps, h_ref=h_ref)
+            s1, before = float(prob.s.value), prob.state()
+            Wt, its = self._solve_at(s1 - step)
+            its_all.append(its)
+            if Wt is None or not Wt > W_cur:
+                prob.restore(before)
+                step *= 0.5
+                if self.verbose and prob.mesh.comm.rank == 0:
+                    print(f" indentation step cut: Δs = {step:.3e} mm")
+                if step < min_ds * ds:
+                    raise NewtonDivergence(f"displacement control stalled at W = {W_cur:g} N "
+                                           f"(step {step:.2e} mm)")
+                continue
+            W_cur = Wt
+            self.points = (self.points + [(s1 - step, math.log(Wt))])[-2:]
+            if on_step is not None:
+                on_step(Wt, its)
+            step = min(float(ds), 1.5 * step)
+        if scales is not None:
+            p_c, eps, h_ref = scales(W)
+            prob.set_speed(prob.U, p_c=p_c, eps=eps, h_ref=h_ref)
+        if abs(W_cur - W) > self.rtol * W:
+            its_all += self.find_position(W)
+        else:
+            self._done(W, self.points, [])
+        return its_all
+
     def _done(self, W, points, its_all):
         self.points = points[-2:]
         self.trials.append(its_all)

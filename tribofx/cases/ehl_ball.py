@@ -96,6 +96,10 @@ class EHLBallCase:
         Param("mesh", int, 1, "-", "element size a/(4·2^mesh) near the contact", lower=0,
               upper=3, closed=True),
         Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
+        Param("start_speed", float, 30.0, "-",
+              "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
+              "displacement control (thick film), then U is continued down to U",
+              lower=1.0, closed=True),
         Param("speeds", str, "", "mm/s",
               "comma-separated entrainment speeds for continuation in U at the final load "
               "(empty: none); records the friction coefficient vs μU"),
@@ -165,8 +169,19 @@ class EHLBallCase:
                               eps=eps if v["penalty"] > 0 else None, p_c=p0, h_ref=h_c)
 
     @classmethod
+    def large_load(cls, v):
+        """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
+        return hertz_ball(v["W"], v["R"], cls.e_star(v))[0] > v["R"] / 3
+
+    @classmethod
     def load_sweep(cls, prob, v, on_step=None, verbose=False):
-        """Hertz start at W/steps, then the loads W/steps, …, W; returns the controller."""
+        """Reach the loads W/steps, …, W at the speed U; return the controller.
+
+        a(W) ≤ R/3: Hertz start at each load, secant on the plane position;
+        larger loads: the thick-film path (:meth:`thick_film_sweep`).
+        """
+        if cls.large_load(v):
+            return cls.thick_film_sweep(prob, v, on_step, verbose)
         W1 = v["W"] / v["steps"]
         _, _, h_c, _ = cls.scales(v, W1)
         prob.hertz_start(W1, cls.e_star(v), h_c)
@@ -191,6 +206,57 @@ class EHLBallCase:
             control.points = [(float(prob.s.value), math.log(prob.load()))]
         control.sweep(targets, step, restart=lambda W: prob.hertz_start(
             W, cls.e_star(v), cls.scales(v, W)[2]))
+        return control
+
+    @classmethod
+    def thick_film_sweep(cls, prob, v, on_step=None, verbose=False):
+        """Reach each load by displacement control on a thick film, then continue down in U.
+
+        At large loads (a → R/2, finite strain) the coupled solve from a Hertz
+        state does not converge, so: (i) at the speed U_s = ``start_speed``·U
+        (film ≈ start_speed^0.64 thicker) the Hertz state at W_0 = min(W/steps, W/4)
+        (a_0 ≈ 0.63 a, resolved by the mesh made for a) is solved; (ii) the plane
+        is lowered step by step (displacement control,
+        :meth:`BallLoadControl.indent`, each step from the last converged state,
+        step cutting, h ≤ 0 rejected) until the film carries the next target
+        load, hit by the secant; (iii) from that state U is continued down to U
+        at fixed load (:meth:`BallLoadControl.speed_sweep`, plane shifted by the
+        Hamrock–Dowson film change, cut in log U on failure) and the load step
+        is recorded; (iv) the next load continues from the state at U_s.
+        ``on_step(W, its, final)`` gets all Newton iterations of the load.
+        """
+        E_s, R, U = cls.e_star(v), v["R"], v["U"]
+        Us = v["start_speed"] * U
+        W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
+
+        def scales_at(W, Uv):
+            _, p0, h_c, eps = cls.scales(v, W, Uv)
+            return p0, eps, h_c
+
+        prob.set_speed(Us, *scales_at(W0, Us))
+        prob.hertz_start(W0, E_s, cls.scales(v, W0, Us)[2])
+        its0 = prob.solve(verbose=verbose).iterations
+        if not prob.min_film() > 0:
+            raise NewtonDivergence(f"the start load W = {W0:g} N at U = {Us:g} mm/s converged "
+                                   "to a film with h <= 0: raise start_speed or mesh")
+        d = hertz_ball(v["W"], R, E_s)[1]
+        control = BallLoadControl(prob, ds0=0.1 * cls.scales(v, W0, Us)[2], max_step=0.1 * d,
+                                  verbose=verbose)
+        its_pending = [its0]
+        for k in range(v["steps"]):
+            Wk = v["W"] * (k + 1) / v["steps"]
+            its = its_pending + control.indent(Wk, 0.05 * d, lambda W: scales_at(W, Us))
+            its_pending = []
+            carrier = (prob.state(), list(control.points), control.ds0)
+            if Us != U:
+                control.speed_sweep([U], lambda Uv, Wk=Wk: scales_at(Wk, Uv),
+                                    lambda Uv, i, final, its=its: its.extend(i), max_cuts=6)
+            if on_step is not None:
+                on_step(Wk, its, True)
+            if k + 1 < v["steps"] and Us != U:
+                prob.restore(carrier[0])
+                control.points, control.ds0 = carrier[1], carrier[2]
+                prob.set_speed(Us, *scales_at(Wk, Us))
         return control
 
     @classmethod
@@ -251,8 +317,9 @@ class EHLBallCase:
                     on_speed(v["U"], [], True)
                     control.speed_sweep(
                         speeds, lambda U, vv=vv: cls.speed_scales(vv, U), on_speed,
-                        restart=lambda U, vv=vv, prob=prob: prob.hertz_start(
-                            vv["W"], cls.e_star(vv), cls.scales(vv, U=U)[2]))
+                        restart=None if cls.large_load(vv) else (
+                            lambda U, vv=vv, prob=prob: prob.hertz_start(
+                                vv["W"], cls.e_star(vv), cls.scales(vv, U=U)[2])))
             except NewtonDivergence as err:
                 err.problem = prob
                 raise
