@@ -1,6 +1,6 @@
 """O-ring soft EHL (chapter §8.1): global equilibrium, axisymmetric Nanson against the
-divergence theorem, exact coupled tangent and quadratic Newton, serial = 2 ranks,
-inverse hydrodynamic theory and mesh convergence (slow)."""
+divergence theorem, exact coupled tangent and quadratic Newton, inverse hydrodynamic
+relations, serial = 2 ranks, mesh convergence (slow)."""
 
 import math
 
@@ -14,7 +14,8 @@ from tribofx.forms import hyperelastic as hf
 from tribofx.forms import kinematics as km
 
 from tribofx.cases.ehl_oring import EHLORingCase as Case
-from tribofx.cases.ehl_oring import axial_balance, build, dry_reference, solve_to
+from tribofx.cases.ehl_oring import axial_balance, build, solve_to
+from tribofx.oring_problem import inverse_film
 from tribofx.params import InputError, resolve
 
 # coarse, fast settings: density 2 (0.05 mm on the film arc), P1, thick film at 1000 mm/s
@@ -139,22 +140,30 @@ def test_parallel_matches_serial():
     assert np.allclose(out[0], out[1], rtol=1e-6, atol=0), out
 
 
-@pytest.mark.slow
-def test_inverse_theory():
-    """Film of the loaded zone vs the inverse theory of the dry contact (Blok 1963).
+def test_inverse_hydrodynamic_relations():
+    """Inverse theory of lubrication (Blok 1963) on the computed film, density 4.
 
-    h_c = sqrt(8μU/(9w)), w the maximum inlet gradient of the dry contact
-    pressure of the same ring: exact for the film at the pressure maximum in the
-    limit of high load (soft EHL: the pressure tends to the dry one); the finite
-    film modifies the inlet and the nodal dry pressure only approximates w, so
-    30 % is allowed (density 8; h_mean: mean film where p − p_s > (p_max − p_s)/2).
+    For the steady Reynolds equation with constant flux q = ½U h − h³p'/(12μ),
+    at the inlet point of maximum pressure gradient w (p'' = 0, h' ≠ 0):
+    h* = 3q/U and w = 2μU/h*², hence the film of the pressure plateau
+    h_c = 2q/U = sqrt(8μU/(9w)).  w is the largest nodal difference quotient of p
+    on the inlet side; 10 % covers the P1 difference quotient and the mild
+    oscillations of density 4 (measured: 3 %).
     """
-    v = values(mesh=8)
-    h_c, w, _ = dry_reference(v, 0.5)
+    v = values(mesh=4)
     prob = build(v, v["U"])
     solve_to(prob, v, v["U"], [0.5])
-    h = prob.measures()["h_mean"]
-    assert abs(h - h_c) < 0.3 * h_c, (h, h_c, w)
+    pr, m = prob.profile(), prob.measures()
+    if prob.mesh.comm.rank != 0:
+        return
+    z, p, h = pr["z"], pr["p"], pr["h"]
+    gp = np.diff(p) / np.diff(z)
+    inlet = 0.5 * (z[1:] + z[:-1]) < z[np.argmax(p)]      # outstroke: sealed side
+    j = int(np.argmax(np.where(inlet, gp, -np.inf)))
+    h_c = inverse_film(v["mu"], v["U"], gp[j])
+    assert abs(m["h_mean"] - h_c) < 0.1 * h_c, (m["h_mean"], h_c)
+    assert abs(2 * m["flux"] / v["U"] - h_c) < 0.1 * h_c, (m["flux"], h_c)
+    assert abs(0.5 * (h[j] + h[j + 1]) - 1.5 * h_c) < 0.1 * 1.5 * h_c
 
 
 @pytest.mark.slow
