@@ -18,9 +18,10 @@ rigid rod r = r_rod:
   :class:`tribofx.ehl_problem.EHLProblem`: trace u_s, P1 pressure p, DG0
   tangential pressure derivative g; p = p_s at the sealed-side end, p = 0 at the
   air-side end, penalty cavitation, SUPG;
-* rod (``dry=True``, the reference of the inverse theory): frictionless
-  contact with the rod, multipliers λ_r at the nodes of u on Γ_l, p_s on the
-  sealed half of Γ_l where it is open.
+* rod (``dry=True``): frictionless contact with the rod instead of the film,
+  multipliers λ_r at the nodes of u on Γ_l, p_s on the sealed half of Γ_l where
+  it is open (a dry reference; its nodal pressure is too rough on P1 meshes for
+  Blok's inverse theory, so no test relies on it).
 
 Mounting (:meth:`ORingProblem.mount`): the ring starts clear of the rod by
 ``gap0`` and touching the groove bottom and the air-side wall; the groove bottom

@@ -66,7 +66,7 @@ from ..newton import NewtonDivergence
 from ..oring_problem import ORingProblem, inverse_film
 from ..params import InputError, Param
 
-__all__ = ["EHLORingCase", "build", "dry_reference"]
+__all__ = ["EHLORingCase", "axial_balance", "build", "solve_to"]
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
@@ -115,19 +115,6 @@ def solve_to(prob, v, U, p_s_targets, on_state=None, verbose=False):
         if on_state is not None:
             on_state(p_s)
     return its
-
-
-def dry_reference(v, p_s, comm=MPI.COMM_WORLD):
-    """Inverse-theory film (mm) from the dry rod contact of the same ring at p_s.
-
-    Dry mounting and pressurising as in the run; h_c = sqrt(8μ|U|/(9w)) with w
-    the maximum inlet gradient of the dry contact pressure (Blok 1963).
-    Returns (h_c, w, dry problem).
-    """
-    prob = build(v, v["U"], comm=comm, dry=True)
-    solve_to(prob, v, v["U"], [p_s])
-    w = prob.dry_inlet_gradient(v["U"])
-    return inverse_film(v["mu"], v["U"], w), w, prob
 
 
 def axial_balance(prob):
