@@ -146,6 +146,8 @@ def explicit_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0,
     start = rec.problem.state()
     s0 = pressure_nonuniformity(rec.problem)
     prob = cls.build({**v, "scheme": "explicit"}, comm=comm)
+    if not np.array_equal(prob.mesh.geometry.x, rec.problem.mesh.geometry.x):
+        raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
     ctrl = ForceControl(prob, v)
     probe = []
 
@@ -153,8 +155,7 @@ def explicit_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0,
         prob.restore(start)
         try:
             for _ in range(steps):
-                ctrl.predict(dt)
-                prob.step(dt, solve=ctrl.solve)
+                ctrl.step(dt)
         except NewtonDivergence:
             probe.append((dt, math.inf))
             return math.inf
@@ -180,7 +181,7 @@ class ForceControl:
     (equivalently the mid-plane moves down by δ as a rigid plane, chapter §5.2).
     :meth:`solve` is an outer secant iteration on δ around the Newton solve of
     the problem (implicit: the coupled wear step), started from the predictor
-    :meth:`predict` and the stiffness estimate dF/dδ ≈ E* a of the half contact
+    :meth:`predicted_position` and the stiffness estimate dF/dδ ≈ E* a of the half contact
     (a the current contact radius); it stops at |F_z − F/2| ≤ rtol F/2.
     """
 
@@ -209,21 +210,36 @@ class ForceControl:
             if self.prob.scheme == "implicit" else 0.0
         return 0.5 * math.pi * a * a / (math.pi * a / (2 * self.Es) + c_wear)
 
-    def predict(self, dt):
-        """Move the flat by the rigid-cap wear-depth increment over Δt (predictor)."""
+    def predicted_position(self, dt):
+        """Position of the flat after Δt by the rigid-cap wear-depth increment (predictor).
+
+        Computed from the state at step entry; the flat is not moved, so the explicit
+        scheme's wear rate is that of the known state n (θ = 0).
+        """
         v, comm = self.v, self.prob.mesh.comm
         d = self.prob.nodal_shape_data()
         h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
         c = v["k"] * v["F"] / (math.pi * v["R"])  # h² = c s for a rigid cap
         s = h * h / c if c > 0 else 0.0
-        self.prob.obstacle.offset.value[2] += math.sqrt(c * (s + v["V"] * dt)) - h
+        return self.delta + math.sqrt(c * (s + v["V"] * dt)) - h
 
-    def solve(self, verbose=False):
-        """Outer secant iteration on δ; returns the Newton reports of all trials."""
+    def step(self, dt, verbose=False):
+        """One wear step Δt at the prescribed force; returns the Newton reports.
+
+        The secant on δ starts from :meth:`predicted_position` and runs inside
+        :meth:`WearProblem.step` (after the explicit shape update), so a failed
+        step restores the flat together with the rest of the state at entry.
+        """
+        start = self.predicted_position(dt)
+        return self.prob.step(dt, verbose=verbose,
+                              solve=lambda vb: self.solve(vb, start=start))
+
+    def solve(self, verbose=False, start=None):
+        """Outer secant iteration on δ from ``start`` (default: the current δ); Newton reports."""
         prob = self.prob
         reports, trials = [], []
         slope = self._slope()
-        d = self.delta
+        d = self.delta if start is None else start
         for _ in range(self.max_trials):
             prob.obstacle.offset.value[2] = d
             reports.append(prob.solver.solve(verbose=verbose))
@@ -423,8 +439,7 @@ class WearBallCase:
             while t < T * (1 - 1e-12):
                 h = min(dt / 2**cuts, T - t)
                 try:
-                    ctrl.predict(h)  # restored by step() on failure
-                    reports = prob.step(h, verbose=verbose, solve=ctrl.solve)
+                    reports = ctrl.step(h, verbose=verbose)
                 except NewtonDivergence:
                     cuts += 1
                     if cuts > v["max_cuts"]:
