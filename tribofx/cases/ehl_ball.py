@@ -33,11 +33,25 @@ Tribol. Int.; ball R = 12.7 mm, soft-EHL, W up to 40 N with a contact radius
   a/(4·2^mesh) within 1.6 a of the contact point (a at the final load),
   ``mesh`` = 1 (≈ 11k unknowns, ≈ 40 s for the default sweep on one core).
 
-Limits (this implementation): loads up to ≈ 10 N (a ≈ 0.3 R) run; at 20–40 N
-the first coupled solve from the Hertz state does not converge on meshes of
-level ≤ 1.  Speeds below μU ≈ 0.1 N/m need finer meshes (thin films; the
-chapter's "severe conditions") than level 1.  P1 displacement shows the
-zig-zag oscillations of p and h the chapter describes (§8.1) at level 1.
+Load path: for a(W) ≤ R/3 (W ≲ 12 N) each load starts from the Hertz state and
+the plane position is found by a secant in ln W.  Larger loads (a → R/2,
+finite strain), where the coupled solve from a Hertz state does not converge,
+use displacement control on a thick film: at ``start_speed``·U (default 30,
+film ≈ 9× thicker) from the Hertz state at min(W/steps, W/4) the plane is
+lowered step by step (each step from the last converged state, step cutting,
+converged films with min h ≤ 0 rejected), the target load is hit by a secant
+between the bracketing converged states, then U is continued down to U at
+fixed load.  Penalty, SUPG and row scales follow the load and the speed.
+
+Limits (measured): W = 40 N (a = 6.34 mm ≈ R/2, needs ``theta_l`` ≥ 49°, e.g. 55)
+runs on mesh 0 (2.4k unknowns, ≈ 12 s) down to μU ≈ 1 N/m (U = 1e5 mm/s with
+the default μ); below that the side-lobe minimum film collapses (min h → 0,
+the chapter's "severe conditions") on mesh 0; on mesh 1 at W = 20 N the same
+happens near μU = 0.1 N/m.  Thinner films need finer meshes than levels 0–1.
+P1 displacement shows the zig-zag oscillations of p and h the chapter
+describes (§8.1) at level 1.
+
+    tribofx run ehl-ball --set W=40 --set theta_l=55 --set U=3e5 --set mesh=0
 
 ``compare=all`` runs the load sweep for the full model, the model without
 shear tractions and the geometrically linear model in one run (Fig. 26; results
