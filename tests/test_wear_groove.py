@@ -99,8 +99,12 @@ def test_monolithic_newton_quadratic(implicit_run):
         res = s["reports"][0].residuals
         print("residuals", ["%.2e" % x for x in res], "orders", _orders(res))
         # exact tangent of (u, λ, w₂, ζ) incl. the extrusion couplings: once the active
-        # set is settled the observed order is ≈ 2 (semismooth Newton; measured 2.6–2.8)
-        assert max(_orders(res)) > 1.8
+        # set is settled the observed order is ≈ 2 (semismooth Newton; measured 2.6–2.8);
+        # the last order above the solver floor is asserted (an early ratio can be large
+        # before the set settles; residuals below 1e-8 of the first are at the
+        # Newton tolerance, where the ratio measures round-off)
+        r = np.asarray(res)
+        assert _orders(r[r > 1e-8 * r.max()])[-1] > 1.8
 
 
 @serial
@@ -196,6 +200,11 @@ def test_hertz_reference():
     assert 4 * Es * a**3 / (3 * 5.0) == pytest.approx(10.0, rel=1e-12)
     assert p0 * 2 * math.pi * a * a / 3 == pytest.approx(10.0, rel=1e-12)
     assert delta == pytest.approx(a * a / 5.0)
+    # independent numbers: the chapter's §5.2 data (R = 5 mm, E = 100 GPa, ν = 0.3,
+    # F = 100 N) give a = 0.15 mm and p0 = 2.1 GPa (quoted to two digits there)
+    a, p0, _ = hertz_sphere(1e5, 0.3, 5.0, 100.0)
+    assert a == pytest.approx(0.15, abs=0.005)
+    assert p0 == pytest.approx(2100.0, abs=50.0)
 
 
 def _long(graded):

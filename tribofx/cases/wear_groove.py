@@ -120,6 +120,14 @@ class WearBallHalfspaceCase:
         a, _, _ = hertz_sphere(v["E"], v["nu"], v["R"], v["F"])
         if a > 0.5 * v["R"]:
             raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
+        if v["L"] < 4 * a:
+            raise InputError(f"L = {v['L']:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
+                             " one pass per cycle is assumed")
+        # final groove half-width if it follows the ball: area 2b³/(3R) = k F V T / L
+        b = (1.5 * v["R"] * v["k"] * v["F"] * v["V"] * v["T"] / v["L"]) ** (1 / 3)
+        if b > 5.4 * a:
+            raise InputError(f"final groove half-width ≈ {b:.3g} mm exceeds the refined zone "
+                             f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
