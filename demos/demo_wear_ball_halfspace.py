@@ -37,7 +37,8 @@ the soft elastomer of Fig. 9 (E = 10 MPa, a/R = 0.3), ``{"mesh": "1"}`` to halve
 the element size, ``{"scheme": "explicit", "dt": "0.5"}`` for forward Euler
 (stable only for small Δt, see benchmarks/bench_wear_groove.py).  From the
 command line: ``tribofx run wear-ball-halfspace --set graded=true --out results/groove``.
-Serial only.
+The case also runs under ``mpiexec -n 2`` (same results as serial, checked by
+tests/test_wear_groove.py::test_two_ranks_match_serial); this demo is run serially.
 
 Checks at the end: the groove area equals Archard's global balance
 k F V T / L (to the surface strain of ‖v_T‖ ≈ V), the groove conforms to the

@@ -34,9 +34,16 @@ extrusion are assembled as J_{u w₂} = J_{u w₃} P and J_{ζ ·} = (Δt/L) P�
 (J_{ζ w₂} also gets Pᵀ J_{r w₃} P through the graded wear coefficient and the
 graded modulus, which depend on the worn depth).  The blocks are assembled by
 DOLFINx as PETSc matrices, multiplied by P (PETSc MatMatMult), nested,
-converted to one AIJ matrix and factorised by MUMPS.  This
-algebraic coupling is serial only: the constructor raises
-:class:`~tribofx.params.InputError` on more than one MPI rank.
+merged into one (MPI)AIJ matrix and factorised by MUMPS.
+
+Parallel layout: the 3D block is distributed by DOLFINx; the cross-section
+mesh is replicated on every rank (``COMM_SELF``), so w₂, ζ and their forms are
+identical everywhere and w₃ = P w₂ is a local copy on every rank (ghosts
+included).  In the global system the few cross-section unknowns (≈ 2 % of all)
+are owned by rank 0 (local size n₂ there, 0 elsewhere); P is an MPIAIJ matrix
+(rows: owned 3D dofs, columns: global cross-section dofs) and Pᵀ r is summed
+over the ranks.  The monolithic row layout on each rank is [u, λ] owned
+(+ [w₂, ζ] on rank 0); the Newton update of w₂, ζ is broadcast from rank 0.
 
 Schemes: ``implicit`` (θ = 1) — one monolithic Newton on (u, λ, w₂, ζ);
 ``explicit`` (θ = 0) — shape update (w₂, ζ) with the rate of the converged
@@ -46,7 +53,7 @@ state, then the contact problem (u, λ) on the new shape.  Units: mm, N, s, MPa.
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
-from dolfinx import fem
+from dolfinx import fem, la
 from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
@@ -75,28 +82,39 @@ def _nonzero(a):
 
 
 class _Extrusion:
-    """The 0/1 extrusion matrix P (one unit entry per row): index arrays and PETSc AIJ."""
+    """The 0/1 extrusion matrix P (one unit entry per row): index arrays and PETSc (MPI)AIJ.
 
-    def __init__(self, rows, cols, shape):
-        self.rows, self.cols, self.shape = rows, cols, shape
-        indptr = np.zeros(shape[0] + 1, dtype=PETSc.IntType)
-        np.add.at(indptr, rows + 1, 1)
+    ``rows`` are local 3D dofs (owned and ghost), ``cols`` cross-section dofs
+    (replicated numbering); ``n_own``/``start``/``n_glob`` the owned rows, the
+    global index of the first and the global number of 3D dofs.  The PETSc
+    matrix holds the owned rows; its columns are owned by rank 0.
+    """
+
+    def __init__(self, rows, cols, shape, comm, n_own, start, n_glob):
+        self.rows, self.cols, self.shape, self.comm = rows, cols, shape, comm
+        own = rows < n_own
+        self.rows_own, self.cols_own = rows[own], cols[own]
+        indptr = np.zeros(n_own + 1, dtype=PETSc.IntType)
+        np.add.at(indptr, self.rows_own + 1, 1)
         indptr = np.cumsum(indptr).astype(PETSc.IntType)
-        order = np.argsort(rows, kind="stable")
+        order = np.argsort(self.rows_own, kind="stable")
+        n2 = shape[1]
         self.mat = PETSc.Mat().createAIJ(
-            size=shape, csr=(indptr, cols[order].astype(PETSc.IntType), np.ones(len(rows))),
-            comm=PETSc.COMM_SELF)
+            size=((n_own, n_glob), (n2 if comm.rank == 0 else 0, n2)),
+            csr=(indptr, self.cols_own[order].astype(PETSc.IntType),
+                 np.ones(len(self.rows_own))), comm=comm)
         self.mat.assemble()
 
     def apply(self, v2):
-        """P v₂."""
+        """P v₂ on the local 3D dofs (owned and ghost)."""
         out = np.zeros(self.shape[0])
         out[self.rows] = v2[self.cols]
         return out
 
     def transpose(self, v3):
-        """Pᵀ v₃ (sum over the x layers)."""
-        return np.bincount(self.cols, weights=v3[self.rows], minlength=self.shape[1])
+        """Pᵀ v₃ (sum over the x layers of the owned entries, summed over the ranks)."""
+        loc = np.bincount(self.cols_own, weights=v3[self.rows_own], minlength=self.shape[1])
+        return self.comm.allreduce(loc, op=MPI.SUM) if self.comm.size > 1 else loc
 
     def average(self, rate3, L):
         """(1/L) Pᵀ r: the path average of :func:`forms.wear_groove.path_averaged_rate`."""
@@ -135,9 +153,9 @@ class GrooveProblem(ContactProblem):
 
     def __init__(self, msh, ft, sec, sec_ft, E, nu, R, F, V, L, k, h, scheme="implicit",
                  material="neo-hookean", graded=None, law="nominal", quadrature_degree=2):
-        if msh.comm.size > 1:
-            raise InputError("wear-ball-halfspace: the extrusion coupling is serial only "
-                             "(run without mpiexec)")
+        if sec.comm.size > 1:
+            raise InputError("wear-ball-halfspace: the cross-section mesh must be replicated "
+                             "(created on COMM_SELF)")
         if scheme not in ("implicit", "explicit"):
             raise ValueError(f"unknown scheme {scheme!r}")
         mu, lmbda = hf.lame_parameters(E, nu)
@@ -165,6 +183,7 @@ class GrooveProblem(ContactProblem):
         ymax = msh.comm.allreduce(msh.geometry.x[:, 1].max(), MPI.MAX)
         q = 0.5 * F / ((xmax - xmin) * ymax)
         self.bottom_traction = q
+        self._xlen = xmax - xmin
         R_ext = hf.external_virtual_work(ufl.as_vector([0.0, 0.0, q]), v, "3d", self.ds(hs.BOTTOM))
         self.R_u = ale.internal_virtual_work_worn(self.u, self.w3, v, "3d", material, params,
                                                   self.dx) + R_uc - R_ext
@@ -198,9 +217,23 @@ class GrooveProblem(ContactProblem):
         # -- extrusion matrices ------------------------------------------------
         X3d = self.V.tabulate_dof_coordinates()
         X2d = self.V2.tabulate_dof_coordinates()[:, :2]
-        self.Pw = _Extrusion(*hs.prolongation(X3d, X2d, components=[(1, 0), (2, 1)]))
+        comm = msh.comm
+        self.comm = comm
+        imV, bsV, imQ = self.V.dofmap.index_map, self.V.dofmap.index_map_bs, \
+            self.Q.dofmap.index_map
+        self._nown = {"u": imV.size_local * bsV, "l": imQ.size_local,
+                      "w": len(self.w2.x.array), "z": len(self.zeta.x.array)}
+        self._start = {"u": imV.local_range[0] * bsV, "l": imQ.local_range[0], "w": 0, "z": 0}
+        self._nglob = {"u": imV.size_global * bsV, "l": imQ.size_global,
+                       "w": self._nown["w"], "z": self._nown["z"]}
+        if comm.rank != 0:  # the cross-section unknowns are owned by rank 0
+            self._nown["w"] = self._nown["z"] = 0
+        self._layout = comm.allgather((dict(self._nown), dict(self._start)))
+        self.Pw = _Extrusion(*hs.prolongation(X3d, X2d, components=[(1, 0), (2, 1)]), comm,
+                             self._nown["u"], self._start["u"], self._nglob["u"])
         self.Pc = _Extrusion(*hs.prolongation(self.Q.tabulate_dof_coordinates(),
-                                              self.Q2.tabulate_dof_coordinates()[:, :2]))
+                                              self.Q2.tabulate_dof_coordinates()[:, :2]), comm,
+                             self._nown["l"], self._start["l"], self._nglob["l"])
         # -- compiled forms ------------------------------------------------------
         em3, em2 = {"entity_maps": [self.emap]}, {"entity_maps": [self.emap2]}
         self.fn = {"u": self.u, "l": self.lam_n, "w": self.w2, "z": self.zeta}
@@ -246,21 +279,58 @@ class GrooveProblem(ContactProblem):
         self._rate_fixed = None
         self.rtol, self.atol, self.max_it = 1e-9, 5e-10, 30
 
+    def global_sizes(self):
+        """Global numbers of unknowns per block: u, λ (3D), w₂, ζ (cross-section)."""
+        return dict(self._nglob)
+
     # -- assembly --------------------------------------------------------------
     def sync(self):
-        """w₃ = P w₂ (the groove is uniform along x)."""
+        """w₃ = P w₂ (the groove is uniform along x); local copy, ghosts included."""
         self.w3.x.array[:] = self.Pw.apply(self.w2.x.array)
 
     def _vec(self, key):
-        return fem.assemble_vector(self._F[key]).array.copy()
+        """Assembled residual vector: owned part for the 3D blocks, all for the section."""
+        vec = fem.assemble_vector(self._F[key])
+        if key in ("w", "z"):
+            return vec.array.copy()
+        vec.scatter_reverse(la.InsertMode.add)
+        n = self._nown["u" if key == "u" else "l"]
+        return vec.array[:n].copy()
 
     def _mat(self, key, unk):
         A = fem_petsc.assemble_matrix(self._J[key, unk])
         A.assemble()
         return A
 
+    def _norm(self, r):
+        s = float(np.dot(r, r))
+        return float(np.sqrt(self.comm.allreduce(s, op=MPI.SUM) if self.comm.size > 1 else s))
+
+    def _offsets(self, blocks):
+        """Per rank: offset of its rows in the monolithic vector and of each block in them."""
+        sizes = [sum(n[b] for b in blocks) for n, _ in self._layout]
+        roff = np.concatenate([[0], np.cumsum(sizes)])
+        boff = []
+        for n, _ in self._layout:
+            o, d = 0, {}
+            for b in blocks:
+                d[b] = o
+                o += n[b]
+            boff.append(d)
+        return roff, boff
+
+    def _global_index(self, blocks, b, g):
+        """Monolithic global index of the block-``b`` global dof indices ``g``."""
+        roff, boff = self._offsets(blocks)
+        if b in ("w", "z"):
+            return roff[0] + boff[0][b] + g
+        starts = np.array([s[b] for _, s in self._layout])
+        owner = np.searchsorted(starts, g, side="right") - 1
+        ob = np.array([bo[b] for bo in boff])
+        return roff[owner] + ob[owner] + g - starts[owner]
+
     def rate_vector(self):
-        """Nodal 3D wear rate r_i = ∫_Γ̂c Ẇ j_w φ_i dŜ (mm³/s) at the current state."""
+        """Nodal 3D wear rate r_i = ∫_Γ̂c Ẇ j_w φ_i dŜ (mm³/s) at the current state (owned)."""
         self.sync()
         return self._vec("r")
 
@@ -275,31 +345,29 @@ class GrooveProblem(ContactProblem):
                 r = r + c * self.Pc.average(rate, 1.0)
             else:
                 r = self._vec(b)
-            r[self._bc[b]] = 0.0
-            out.append(r)
+            r[self._bc[b][:len(r)]] = 0.0
+            out.append(r[:self._nown[b]])
         return np.concatenate(out)
 
     def _jacobian(self, blocks):
         c = self.dt / self.L
-        made = []
-        rows = []
+        made, parts = [], []  # parts: (row block, column block, matrix, local to rank 0)
         for b in blocks:
-            row = []
             for d in blocks:
-                A = None
                 if b in ("u", "l"):
                     if d in ("u", "l") and (b, d) in self._J:
-                        A = self._mat(b, d)
+                        parts.append((b, d, self._mat(b, d), False))
                     elif d == "w" and (b, "w") in self._J:
                         J3 = self._mat(b, "w")
-                        A = J3.matMult(self.Pw.mat)  # J_{u w2} = J_{u w3} P
                         made.append(J3)
+                        # J_{u w2} = J_{u w3} P
+                        parts.append((b, d, J3.matMult(self.Pw.mat), False))
                 elif b == "w":
                     if d in ("w", "z") and ("w", d) in self._J:
-                        A = self._mat("w", d)
+                        parts.append((b, d, self._mat("w", d), True))
                 else:  # shape update rows: R_z + (Δt/L) Pᵀ r
                     if d == "w" and ("z", "w") in self._J:
-                        A = self._mat("z", "w")
+                        parts.append((b, d, self._mat("z", "w"), True))
                     if self._rate_fixed is None and ("r", d) in self._J:
                         Jr = self._mat("r", d)
                         made.append(Jr)
@@ -308,86 +376,98 @@ class GrooveProblem(ContactProblem):
                             made.append(Jr)
                         B = self.Pc.mat.transposeMatMult(Jr)
                         B.scale(c)
-                        if A is None:
-                            A = B
-                        else:
-                            A.axpy(1.0, B, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
-                            made.append(B)
-                if A is not None:
-                    made.append(A)
-                row.append(A)
-            rows.append(row)
-        K = self._stitch(rows, blocks)
-        for m in made:
+                        parts.append((b, d, B, False))
+        K = self._stitch(parts, blocks)
+        for m in made + [p[2] for p in parts]:
             m.destroy()
         return K
 
-    def _stitch(self, rows, blocks):
-        """One AIJ matrix from the block rows (COO merge), Dirichlet rows → identity."""
-        sizes = [len(self.fn[b].x.array) for b in blocks]
-        off = np.concatenate([[0], np.cumsum(sizes)])
+    def _stitch(self, parts, blocks):
+        """One (MPI)AIJ matrix from the block parts (COO merge), Dirichlet rows → identity."""
+        roff, boff = self._offsets(blocks)
+        rank = self.comm.rank
+        my0 = roff[rank]
         ri, ci, vals = [], [], []
-        for bi, row in enumerate(rows):
-            for bj, A in enumerate(row):
-                if A is None:
-                    continue
-                ip, ind, val = A.getValuesCSR()
-                ri.append(off[bi] + np.repeat(np.arange(len(ip) - 1), np.diff(ip)))
-                ci.append(off[bj] + ind)
-                vals.append(val)
-        ri, ci, vals = np.concatenate(ri), np.concatenate(ci), np.concatenate(vals)
-        bc = np.concatenate([self._bc[b] for b in blocks])
-        keep = ~bc[ri]
-        rbc = np.flatnonzero(bc)
+        for b, d, A, rank0_only in parts:
+            if rank0_only and rank != 0:
+                continue
+            ip, ind, val = A.getValuesCSR()
+            nrow = len(ip) - 1
+            if nrow == 0:
+                continue
+            ri.append(my0 + boff[rank][b] + np.repeat(np.arange(nrow), np.diff(ip)))
+            ci.append(self._global_index(blocks, d, np.asarray(ind, dtype=np.int64)))
+            vals.append(val)
+        ri = np.concatenate(ri) if ri else np.zeros(0, np.int64)
+        ci = np.concatenate(ci) if ci else np.zeros(0, np.int64)
+        vals = np.concatenate(vals) if vals else np.zeros(0)
+        bc = np.concatenate([self._bc[b][:self._nown[b]] for b in blocks])
+        nloc = len(bc)
+        keep = ~bc[ri - my0]
+        rbc = my0 + np.flatnonzero(bc)
         ri = np.concatenate([ri[keep], rbc])
         ci = np.concatenate([ci[keep], rbc])
         vals = np.concatenate([vals[keep], np.ones(len(rbc))])
-        order = np.lexsort((ci, ri))
-        ri, ci, vals = ri[order], ci[order], vals[order]
-        n = off[-1]
-        indptr = np.zeros(n + 1, dtype=PETSc.IntType)
+        # sum duplicate entries (the two parts of the ζ–w₂ block), sort by (row, column)
+        N = int(roff[-1])
+        key, inv = np.unique((ri - my0) * N + ci, return_inverse=True)
+        vals = np.bincount(inv.ravel(), weights=vals, minlength=len(key))
+        ri, ci = key // N, key % N
+        indptr = np.zeros(nloc + 1, dtype=PETSc.IntType)
         np.add.at(indptr, ri + 1, 1)
         indptr = np.cumsum(indptr).astype(PETSc.IntType)
-        K = PETSc.Mat().createAIJ(size=(n, n), csr=(indptr, ci.astype(PETSc.IntType), vals),
-                                  comm=PETSc.COMM_SELF)
+        K = PETSc.Mat().createAIJ(size=((nloc, N), (nloc, N)),
+                                  csr=(indptr, ci.astype(PETSc.IntType), vals), comm=self.comm)
         K.assemble()
         return K
 
     def residual(self, blocks=BLOCKS):
-        """Residual of the listed blocks at the current unknowns (Dirichlet rows zeroed)."""
+        """Residual of the listed blocks (owned rows; w₂, ζ on rank 0), Dirichlet rows zeroed."""
         return self._residual(blocks)
 
     def jacobian(self, blocks=BLOCKS):
-        """Exact Jacobian (PETSc AIJ) of :meth:`residual`, Dirichlet rows → identity."""
+        """Exact Jacobian (PETSc (MPI)AIJ) of :meth:`residual`, Dirichlet rows → identity."""
         return self._jacobian(blocks)
 
     def _get(self, blocks):
-        return np.concatenate([self.fn[b].x.array for b in blocks])
+        return np.concatenate([self.fn[b].x.array[:self._nown[b]] for b in blocks])
 
     def _set(self, blocks, x):
         i = 0
         for b in blocks:
-            n = len(self.fn[b].x.array)
-            self.fn[b].x.array[:] = x[i:i + n]
+            n = self._nown[b]
+            f = self.fn[b]
+            if b in ("w", "z"):
+                vals = x[i:i + n] if self.comm.rank == 0 else None
+                if self.comm.size > 1:
+                    vals = self.comm.bcast(vals, root=0)
+                f.x.array[:] = vals
+            else:
+                f.x.array[:n] = x[i:i + n]
+                f.x.scatter_forward()
             i += n
         self.sync()
 
-    @staticmethod
-    def _lu(A, rhs):
-        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    def _lu(self, A, rhs):
+        comm = self.comm
+        ksp = PETSc.KSP().create(comm)
         ksp.setOperators(A)
         ksp.setType("preonly")
         pc = ksp.getPC()
         pc.setType("lu")
         pc.setFactorSolverType("mumps")
-        b = PETSc.Vec().createWithArray(rhs, comm=PETSc.COMM_SELF)
+        N = A.getSize()[0]
+        b = PETSc.Vec().createWithArray(rhs, size=(len(rhs), N), comm=comm)
         x = b.duplicate()
         ksp.solve(b, x)
         ok = ksp.getConvergedReason() >= 0
         out = x.array.copy()
-        for o in (ksp, A, x):
+        for o in (ksp, A, x, b):
             o.destroy()
-        return out if ok and np.all(np.isfinite(out)) else None
+        ok = bool(ok and np.all(np.isfinite(out)))
+        if comm.size > 1:
+            ok = comm.allreduce(ok, op=MPI.LAND)
+        return out if ok else None
 
     def newton(self, blocks, verbose=False):
         """Semismooth Newton on the listed blocks (others frozen); returns a NewtonReport."""
@@ -395,9 +475,10 @@ class GrooveProblem(ContactProblem):
         rep = NewtonReport()
         r0 = None
         x = x0.copy()
+        verbose = verbose and self.comm.rank == 0
         for it in range(self.max_it + 1):
             R = self._residual(blocks)
-            r = float(np.linalg.norm(R))
+            r = self._norm(R)
             rep.residuals.append(r)
             if verbose:
                 print(f"  newton {it:2d} [{''.join(blocks)}]: |R| = {r:.3e}")
@@ -412,11 +493,11 @@ class GrooveProblem(ContactProblem):
             dx = self._lu(self._jacobian(blocks), R)
             if dx is None:
                 break
-            rep.increments.append(float(np.linalg.norm(dx)))
+            rep.increments.append(self._norm(dx))
             alpha = 1.0
             for _ in range(7):  # backtracking (Armijo) against active-set cycling
                 self._set(blocks, x - alpha * dx)
-                if np.linalg.norm(self._residual(blocks)) < (1 - 1e-4 * alpha) * r:
+                if self._norm(self._residual(blocks)) < (1 - 1e-4 * alpha) * r:
                     break
                 alpha *= 0.5
             else:
@@ -488,7 +569,8 @@ class GrooveProblem(ContactProblem):
 
     def averaged_rate_integral(self):
         """(1/L) ∫_Γ̂c Ẇ j_w dŜ: growth rate of the half groove area (mm²/s) at the current state."""
-        return float(np.sum(self.rate_vector())) / self.L
+        s = float(np.sum(self.rate_vector()))
+        return (self.comm.allreduce(s, op=MPI.SUM) if self.comm.size > 1 else s) / self.L
 
     def line_profile(self):
         """Top line of the cross-section: initial Ŷ, worn (Y, Z) and depth −w_z, sorted by Ŷ."""
@@ -497,12 +579,26 @@ class GrooveProblem(ContactProblem):
         o = np.argsort(X2[:, 0])
         return {"Y_hat": X2[o, 0], "worn": (X2 + w)[o], "depth": -w[o, 1]}
 
+    def _surface_owned(self):
+        n = self._nown["l"]
+        vec = fem.assemble_vector(self._lumped3)
+        vec.scatter_reverse(la.InsertMode.add)
+        lam = self.lam_n.x.array[:n]
+        return {"X": self._Xq[:n, :2].copy(), "p": np.maximum(-lam, 0.0),
+                "weight": vec.array[:n].copy(), "active": lam < 0}
+
     def surface_data(self):
-        """Top-surface nodes: initial (x, y), nominal pressure p = −λ, lumped weight, active."""
-        lam = self.lam_n.x.array
-        wgt = fem.assemble_vector(self._lumped3).array
-        return {"X": self._Xq[:, :2].copy(), "p": np.maximum(-lam, 0.0), "weight": wgt,
-                "active": lam < 0}
+        """Top-surface nodes: initial (x, y), nominal pressure p = −λ, lumped weight, active.
+
+        In parallel the owned nodes of all ranks, sorted by (x, y), on every rank.
+        """
+        d = self._surface_owned()
+        if self.comm.size == 1:
+            return d
+        parts = self.comm.allgather(d)
+        d = {k: np.concatenate([p[k] for p in parts]) for k in d}
+        o = np.lexsort((d["X"][:, 1], d["X"][:, 0]))
+        return {k: a[o] for k, a in d.items()}
 
     def contact_extent(self):
         """Half-length along x and half-width along y of the contact (last active node), mm."""
@@ -519,19 +615,19 @@ class GrooveProblem(ContactProblem):
         (small-deformation regime); at finite deformation it exceeds it by the
         tilt of the ball normal.
         """
-        d = self.surface_data()
-        return float(np.sum(d["p"] * d["weight"]))
+        d = self._surface_owned()
+        s = float(np.sum(d["p"] * d["weight"]))
+        return self.comm.allreduce(s, op=MPI.SUM) if self.comm.size > 1 else s
 
     def averaged_pressure(self):
         """Pressure integrated along the sliding path, ∫ p dx (N/mm), per line node.
 
         Lumped: (Pᵀ(p_i w_i))_j / ∫ φ_j dy.  Returns (y, ∫ p dx) sorted by y.
         """
-        d = self.surface_data()
+        d = self._surface_owned()
         # ∫ p φ_j dx dy divided by the line weight ∫ φ_j dy = ∫ p dx (lumped)
         num = self.Pc.transpose(d["p"] * d["weight"])
         den = self.Pc.transpose(d["weight"])
-        xs = self._Xq[:, 0]
-        line_w = den / (xs.max() - xs.min())  # ∫ φ_j dy = ∫∫ φ_j dx dy / (2 L_x)
+        line_w = den / self._xlen  # ∫ φ_j dy = ∫∫ φ_j dx dy / (2 L_x)
         o = np.argsort(self._X_line)
         return self._X_line[o], (num / line_w)[o]
