@@ -44,10 +44,11 @@ between the bracketing converged states, then U is continued down to U at
 fixed load.  Penalty, SUPG and row scales follow the load and the speed.
 
 Limits (measured): W = 40 N (a = 6.34 mm ≈ R/2, needs ``theta_l`` ≥ 49°, e.g. 55)
-runs on mesh 0 (2.4k unknowns, ≈ 12 s) down to μU ≈ 1 N/m (U = 1e5 mm/s with
+runs on mesh 0 (2.4k unknowns, ≈ 13 s) down to μU = 1 N/m (U = 1e5 mm/s with
 the default μ); below that the side-lobe minimum film collapses (min h → 0,
 the chapter's "severe conditions") on mesh 0; on mesh 1 at W = 20 N the same
-happens near μU = 0.1 N/m.  Thinner films need finer meshes than levels 0–1.
+happens near μU = 0.1 N/m.  Thinner films need finer meshes than levels 0–1;
+W = 40 N on mesh 1 (three variants) did not finish within 7 min on one core.
 P1 displacement shows the zig-zag oscillations of p and h the chapter
 describes (§8.1) at level 1.
 
