@@ -18,7 +18,8 @@ In one run, for the case defaults (small-deformation set, mesh level 0):
    thousands of explicit steps to T is not done here);
 4. the share of the unknowns that belong to Ψ (w₂ and its multiplier ζ).
 
-Prints a table and writes benchmarks/results/wear_groove.json.  Serial only.
+Prints a table and writes benchmarks/results/wear_groove.json (run serially here;
+the case also runs under mpiexec).
 
     .venv/bin/python benchmarks/bench_wear_groove.py [--mesh 0] [--out FILE]
 """
