@@ -16,31 +16,11 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
+from .sizing import point_refinement
+
 __all__ = ["CONTACT", "LOADED", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
 
 CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y = 1, 2, 3, 4
-
-
-def _size_field(h_fine, h_coarse, r_fine, R, point_tag):
-    f = gmsh.model.mesh.field
-    d = f.add("Distance")
-    f.setNumbers(d, "PointsList", [point_tag])
-    t = f.add("Threshold")
-    f.setNumber(t, "InField", d)
-    f.setNumber(t, "SizeMin", h_fine)
-    f.setNumber(t, "SizeMax", h_coarse)
-    f.setNumber(t, "DistMin", r_fine)
-    f.setNumber(t, "DistMax", r_fine + 0.6 * R)
-    f.setAsBackgroundMesh(t)
-    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-    # regular surface triangles (frontal-Delaunay) and optimised tetrahedra keep
-    # the nodal contact pressures of linear elements smooth
-    gmsh.option.setNumber("Mesh.Algorithm", 6)
-    gmsh.option.setNumber("Mesh.Smoothing", 5)
-    gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
 
 
 def _build_2d(R, h_fine, h_coarse, r_fine):
@@ -68,7 +48,7 @@ def _build_2d(R, h_fine, h_coarse, r_fine):
     if not p0:
         p0 = [occ.addPoint(0, 0, 0)]
         occ.synchronize()
-    _size_field(h_fine, h_coarse, r_fine, R, p0[0])
+    point_refinement(h_fine, h_coarse, r_fine, R, p0[0])
     gmsh.model.mesh.generate(2)
 
 
@@ -95,7 +75,7 @@ def _build_3d(R, h_fine, h_coarse, r_fine):
         gmsh.model.addPhysicalGroup(2, v, k)
     p0 = [t for _, t in gmsh.model.getEntities(0)
           if sum(abs(c) for c in gmsh.model.getValue(0, t, [])) < 1e-8 * R]
-    _size_field(h_fine, h_coarse, r_fine, R, p0[0])
+    point_refinement(h_fine, h_coarse, r_fine, R, p0[0])
     gmsh.model.mesh.generate(3)
 
 

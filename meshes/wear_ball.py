@@ -17,6 +17,8 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
+from .sizing import point_refinement
+
 __all__ = ["CONTACT", "LOADED", "SYMMETRY_Y", "quarter_ball"]
 
 CONTACT, LOADED, SYMMETRY_Y = 1, 2, 4
@@ -48,23 +50,7 @@ def _build(R, h_fine, h_coarse, r_fine):
         p0 = [occ.addPoint(0, 0, 0)]
         occ.synchronize()
         gmsh.model.mesh.embed(0, p0, 2, tags[CONTACT][0])
-    f = gmsh.model.mesh.field
-    d = f.add("Distance")
-    f.setNumbers(d, "PointsList", p0)
-    t = f.add("Threshold")
-    f.setNumber(t, "InField", d)
-    f.setNumber(t, "SizeMin", h_fine)
-    f.setNumber(t, "SizeMax", h_coarse)
-    f.setNumber(t, "DistMin", r_fine)
-    f.setNumber(t, "DistMax", r_fine + 0.6 * R)
-    f.setAsBackgroundMesh(t)
-    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-    gmsh.option.setNumber("Mesh.Algorithm", 6)
-    gmsh.option.setNumber("Mesh.Smoothing", 5)
-    gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
+    point_refinement(h_fine, h_coarse, r_fine, R, p0[0])
     gmsh.model.mesh.generate(3)
 
 
