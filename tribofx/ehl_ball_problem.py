@@ -34,6 +34,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from .ehl_problem import PositionedEHL
 from .forms import ehl as ef
 from .forms import hyperelastic as hf
 from .newton import BlockNewton
@@ -66,7 +67,7 @@ def hamrock_dowson(W, mu, U, R, E_star, k=1.0):
     return Hc * R, Hm * R
 
 
-class EHLBallProblem:
+class EHLBallProblem(PositionedEHL):
     """Quarter ball ``msh`` lubricated on ``facet_tags == lub_tag`` against a rigid plane.
 
     Args:
@@ -223,22 +224,6 @@ class EHLBallProblem:
         z_c = min(self.mesh.comm.allgather(loc))[1]
         self.s.value = h0 - z_c
         return rep
-
-    def solve(self, verbose=False):
-        """Newton solve at the current plane position; returns the NewtonReport."""
-        report = self.solver.solve(verbose=verbose)
-        self.iterations.append(report.iterations)
-        return report
-
-    def state(self):
-        """Copy of the unknowns and of the plane position (for step cutting)."""
-        return [f.x.array.copy() for f in self.unknowns] + [float(self.s.value)]
-
-    def restore(self, state):
-        """Restore a state from :meth:`state`."""
-        for f, a in zip(self.unknowns, state[:-1]):
-            f.x.array[:] = a
-        self.s.value = state[-1]
 
     def set_speed(self, U, p_c=None, eps=None, h_ref=None):
         """Change the entrainment speed U (mm/s) and, optionally, the scales depending on it."""

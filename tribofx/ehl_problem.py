@@ -36,7 +36,7 @@ from .forms import hyperelastic as hf
 from .newton import BlockNewton, NewtonDivergence
 from .submesh import facet_submesh
 
-__all__ = ["EHLProblem", "LoadControl", "rigid_clearance"]
+__all__ = ["EHLProblem", "LoadControl", "PositionedEHL", "rigid_clearance"]
 
 
 def rigid_clearance(W, mu, U, R):
@@ -47,7 +47,31 @@ def rigid_clearance(W, mu, U, R):
     return 2.45 * mu * U * R / W
 
 
-class EHLProblem:
+class PositionedEHL:
+    """Solve / state / restore of an EHL problem whose rigid countersurface sits at ``s``.
+
+    Needs ``solver`` (:class:`BlockNewton`), ``unknowns``, the constant ``s`` (position
+    of the countersurface, mm) and the list ``iterations``.
+    """
+
+    def solve(self, verbose=False):
+        """Newton solve at the current countersurface position; returns the NewtonReport."""
+        report = self.solver.solve(verbose=verbose)
+        self.iterations.append(report.iterations)
+        return report
+
+    def state(self):
+        """Copy of the unknowns and of the countersurface position (for step cutting)."""
+        return [f.x.array.copy() for f in self.unknowns] + [float(self.s.value)]
+
+    def restore(self, state):
+        """Restore a state from :meth:`state`."""
+        for f, a in zip(self.unknowns, state[:-1]):
+            f.x.array[:] = a
+        self.s.value = state[-1]
+
+
+class EHLProblem(PositionedEHL):
     """Coated layer ``msh`` lubricated on ``facet_tags == lub_tag`` against a rigid cylinder.
 
     Args:
@@ -373,22 +397,6 @@ class EHLProblem:
             f.x.array[:] = np.ascontiguousarray(r.d2y_dx2[..., k]).ravel()
 
     # -- solving ---------------------------------------------------------------
-    def solve(self, verbose=False):
-        """Newton solve at the current cylinder position; returns the NewtonReport."""
-        report = self.solver.solve(verbose=verbose)
-        self.iterations.append(report.iterations)
-        return report
-
-    def state(self):
-        """Copy of the unknowns and of the cylinder position (for step cutting)."""
-        return [f.x.array.copy() for f in self.unknowns] + [float(self.s.value)]
-
-    def restore(self, state):
-        """Restore a state from :meth:`state`."""
-        for f, a in zip(self.unknowns, state[:-1]):
-            f.x.array[:] = a
-        self.s.value = state[-1]
-
     # -- results ---------------------------------------------------------------
     def film_force(self):
         """Force (N/mm) the film exerts on the layer, [tangential, vertical]."""
