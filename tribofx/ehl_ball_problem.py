@@ -225,19 +225,6 @@ class EHLBallProblem(PositionedEHL):
         self.s.value = h0 - z_c
         return rep
 
-    def set_speed(self, U, p_c=None, eps=None, h_ref=None):
-        """Change the entrainment speed U (mm/s) and, optionally, the scales depending on it."""
-        self.U = float(U)
-        self.U_c.value = self.U
-        if p_c is not None:
-            self.p_c.value = float(p_c)
-        if eps is not None and self.eps is not None:
-            self.eps.value = float(eps)
-        if h_ref is not None:
-            self._c_p.value = self.mu / h_ref
-            self._c_u.value = self._E_ref / h_ref
-            self._c_g.value = float(h_ref)
-
     # -- results ---------------------------------------------------------------
     def film_force(self):
         """Force (N) of the film on the modelled half of the ball, [x, y, z]."""

@@ -70,6 +70,24 @@ class PositionedEHL:
             f.x.array[:] = a
         self.s.value = state[-1]
 
+    def set_speed(self, U, p_c=None, eps=None, h_ref=None):
+        """Change the speed U (mm/s) and, optionally, the scales that depend on it.
+
+        ``p_c``: SUPG pressure scale (MPa); ``eps``: cavitation penalty; ``h_ref``: film
+        scale of the row scaling (mm).  Needs ``U_c``, ``p_c``, ``eps``, ``mu``, ``_E_ref``
+        and the row-scale constants ``_c_p``, ``_c_u``, ``_c_g``.
+        """
+        self.U = float(U)
+        self.U_c.value = self.U
+        if p_c is not None:
+            self.p_c.value = float(p_c)
+        if eps is not None and self.eps is not None:
+            self.eps.value = float(eps)
+        if h_ref is not None:
+            self._c_p.value = self.mu / h_ref
+            self._c_u.value = self._E_ref / h_ref
+            self._c_g.value = float(h_ref)
+
 
 class EHLProblem(PositionedEHL):
     """Coated layer ``msh`` lubricated on ``facet_tags == lub_tag`` against a rigid cylinder.
@@ -333,16 +351,7 @@ class EHLProblem(PositionedEHL):
 
     def set_speed(self, U, p_c=None, eps=None, h_ref=None):
         """Change the sliding speed U (mm/s) and, optionally, the scales that depend on it."""
-        self.U = float(U)
-        self.U_c.value = self.U
-        if p_c is not None:
-            self.p_c.value = float(p_c)
-        if eps is not None and self.eps is not None:
-            self.eps.value = float(eps)
-        if h_ref is not None:
-            self._c_p.value = self.mu / h_ref
-            self._c_u.value = self._E_ref / h_ref
-            self._c_g.value = float(h_ref)
+        super().set_speed(U, p_c, eps, h_ref)
         if self.lam is not None:
             self.q_ref.value = 0.5 * self.U * float(h_ref if h_ref is not None
                                                     else self.mu / self._c_p.value)

@@ -171,16 +171,27 @@ def explicit_critical_step(v, n, lo, hi, steps=3, iters=12, eps=1e-6):
         probe.append((dt, g))
         return abs(g)
 
-    if not growth(lo) <= 1 or not growth(hi) > 1:
-        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {probe}")
+    dt_cr = bisect_critical_step(growth, lo, hi, iters, probe=probe)
+    prob.restore(start)
+    return dt_cr, probe
+
+
+def bisect_critical_step(growth, lo, hi, iters, tol=1.0, probe=()):
+    """Critical step by bisection on log Δt: ``growth(Δt) <= tol`` is stable.
+
+    ``lo`` must be stable and ``hi`` unstable (both checked; ``probe``, the
+    evaluations so far, goes into the error message).  Returns √(lo·hi) after
+    ``iters`` halvings of the log-bracket.
+    """
+    if not growth(lo) <= tol or not growth(hi) > tol:
+        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {list(probe)}")
     for _ in range(iters):
         mid = math.sqrt(lo * hi)
-        if growth(mid) <= 1:
+        if growth(mid) <= tol:
             lo = mid
         else:
             hi = mid
-    prob.restore(start)
-    return math.sqrt(lo * hi), probe
+    return math.sqrt(lo * hi)
 
 
 class WearPinCase:

@@ -66,6 +66,7 @@ from ..newton import NewtonDivergence
 from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
 from ..wear_problem import WearProblem
+from .wear import bisect_critical_step
 
 __all__ = ["ForceControl", "WearBallCase", "explicit_critical_step", "hertz_radius",
            "pressure_nonuniformity", "rigid_cap_radius", "shape_unknown_fraction"]
@@ -163,15 +164,7 @@ def explicit_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0,
         probe.append((dt, g))
         return g
 
-    if not growth(lo) <= growth_tol or not growth(hi) > growth_tol:
-        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {probe}")
-    for _ in range(iters):
-        mid = math.sqrt(lo * hi)
-        if growth(mid) <= growth_tol:
-            lo = mid
-        else:
-            hi = mid
-    return math.sqrt(lo * hi), probe
+    return bisect_critical_step(growth, lo, hi, iters, tol=growth_tol, probe=probe), probe
 
 
 class ForceControl:
