@@ -34,9 +34,9 @@ from tribofx.forms.hyperelastic import external_virtual_work, internal_virtual_w
 from tribofx.meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY
 
 from tribofx.cases.ehl_ball import EHLBallCase as Case
-from tribofx.ehl_ball_problem import hertz_ball
 from tribofx.newton import BlockNewton
 from tribofx.params import resolve
+from tribofx.references import hertz
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--W", type=float, default=6.0, help="final load (N)")
@@ -100,7 +100,7 @@ w = ufl.TestFunction(V)
 mu, lm = lame_parameters(v["E"], v["nu"])
 R = internal_virtual_work(u, w, "3d", "neo-hookean", {"mu": mu, "lmbda": lm},
                           ufl.Measure("dx", msh))
-a, _, p0 = hertz_ball(v["W"], v["R"], Case.e_star(v))
+a, p0 = Case.hertz_contact(v)[:2]
 X = ufl.SpatialCoordinate(msh)
 pH = p0 * ufl.sqrt(ufl.max_value(0.0, 1 - (X[0] ** 2 + X[1] ** 2) / a**2))
 ds = ufl.Measure("ds", msh, subdomain_data=ft, subdomain_id=LUBRICATED)
@@ -118,7 +118,7 @@ t_coupled = min(t_coupled, timed_iteration(prob.solver, args.repeat), key=lambda
 result = {
     "parameters": {"W": v["W"], "steps": v["steps"], "mesh": v["mesh"], "model": v["model"],
                    "mu_U_N_per_mm": v["mu"] * v["U"], "theta_l_deg": v["theta_l"],
-                   "h_fine_mm": hertz_ball(v["W"], v["R"], Case.e_star(v))[0]
+                   "h_fine_mm": hertz(v["W"], v["R"], v["E"], v["nu"]).a
                    / (4 * 2 ** v["mesh"])},
     "mpi_size": comm.size,
     "num_dofs_coupled": prob.solver.num_dofs,

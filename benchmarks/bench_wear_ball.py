@@ -43,10 +43,11 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball import WearBallCase, explicit_critical_step, rigid_cap_radius
+from tribofx.cases.wear_ball import WearBallCase, explicit_critical_step
 from tribofx.newton import NewtonDivergence
 from tribofx.output import RunRecord
 from tribofx.params import resolve
+from tribofx.references import rigid_cap_radius
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--mesh", type=int, default=0)

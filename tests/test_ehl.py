@@ -14,9 +14,9 @@ from mpi4py import MPI
 from taylor import taylor_orders
 
 from tribofx.cases.ehl import EHLCylinderLayerCase as Case
-from tribofx.cases.reynolds import cylinder_references
 from tribofx.ehl_problem import LoadControl
 from tribofx.params import resolve
+from tribofx.references import cylinder_references
 
 # coarse, fast settings (element size 0.04 mm on Γ_l, P1 displacement)
 FAST = {"mesh": 0, "degree": 1}

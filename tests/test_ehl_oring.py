@@ -15,8 +15,8 @@ from tribofx.forms import kinematics as km
 
 from tribofx.cases.ehl_oring import EHLORingCase as Case
 from tribofx.cases.ehl_oring import axial_balance, build, solve_to
-from tribofx.oring_problem import inverse_film
 from tribofx.params import InputError, resolve
+from tribofx.references import inverse_film
 
 # coarse, fast settings: density 2 (0.05 mm on the film arc), P1, thick film at 1000 mm/s
 FAST = {"mesh": 2, "U": 1000, "p_s": 0.5}

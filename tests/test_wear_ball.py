@@ -22,11 +22,11 @@ from tribofx.cases.wear_ball import (
     explicit_critical_step,
     hertz_radius,
     pressure_nonuniformity,
-    rigid_cap_radius,
 )
 from tribofx.newton import NewtonDivergence, convergence_orders
 from tribofx.output import RunRecord
 from tribofx.params import resolve
+from tribofx.references import rigid_cap_radius
 
 
 def _run(tmp_path, comm=MPI.COMM_WORLD, t_stop=None, **over):

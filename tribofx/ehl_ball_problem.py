@@ -38,33 +38,21 @@ from .ehl_problem import PositionedEHL
 from .forms import ehl as ef
 from .forms import hyperelastic as hf
 from .newton import BlockNewton
+from .references import hamrock_dowson, hertz
 from .submesh import facet_submesh
 
+# hamrock_dowson is re-exported from tribofx.references
 __all__ = ["BallLoadControl", "EHLBallProblem", "hamrock_dowson", "hertz_ball"]
 
 
 def hertz_ball(W, R, E_star):
-    """Hertz contact radius a (mm), approach δ (mm) and peak pressure p0 (MPa) of a ball on a plane.
+    """Hertz radius a (mm), approach δ (mm), peak pressure p0 (MPa) of a ball on a rigid plane.
 
-    a = (3WR/(4E*))^{1/3}, δ = a²/R, p0 = 3W/(2πa²); W in N, E* = E/(1 − ν²) (rigid plane).
+    Kept for existing callers; the formula is :func:`tribofx.references.hertz` (W in N,
+    E* the composite modulus; a rigid plane: E* = E/(1 − ν²)).
     """
-    a = (3 * W * R / (4 * E_star)) ** (1 / 3)
-    return a, a * a / R, 3 * W / (2 * math.pi * a * a)
-
-
-def hamrock_dowson(W, mu, U, R, E_star, k=1.0):
-    """Isoviscous-elastic (soft EHL) central and minimum film (mm) of Hamrock & Dowson (1978).
-
-    Ĥ_c = 7.32(1 − 0.72 e^{−0.28k}) Û^0.64 Ŵ^−0.22,
-    Ĥ_min = 7.43(1 − 0.85 e^{−0.31k}) Û^0.65 Ŵ^−0.21,
-    Ĥ = h/R_x, Û = μ u_m/(E' R_x), Ŵ = W/(E' R_x²), E' = 2E* (rigid plane), k = 1
-    (ball, R_x = R), u_m = U the mean entrainment speed.  Returns (h_c, h_min).
-    """
-    Ep = 2 * E_star
-    Uh, Wh = mu * U / (Ep * R), W / (Ep * R * R)
-    Hc = 7.32 * (1 - 0.72 * math.exp(-0.28 * k)) * Uh**0.64 * Wh**-0.22
-    Hm = 7.43 * (1 - 0.85 * math.exp(-0.31 * k)) * Uh**0.65 * Wh**-0.21
-    return Hc * R, Hm * R
+    h = hertz(W, R, E_star, 0.0)
+    return h.a, h.delta, h.p0
 
 
 class EHLBallProblem(PositionedEHL):
@@ -207,7 +195,8 @@ class EHLBallProblem(PositionedEHL):
         (the pressure is nearly Hertzian), which a Newton solve from the
         undeformed ball is not.  Returns the dry Newton report.
         """
-        a, _, p0 = hertz_ball(W, self.R, E_star)
+        h = hertz(W, self.R, E_star, 0.0)     # E* given: ν = 0 makes E₁ = E*
+        a, p0 = h.a, h.p0
         self.p_dry.interpolate(
             lambda x: p0 * np.sqrt(np.maximum(0.0, 1 - (x[0] ** 2 + x[1] ** 2) / a**2)))
         rep = self.dry_solver.solve()

@@ -34,17 +34,11 @@ from mpi4py import MPI
 from .forms import ehl as ef
 from .forms import hyperelastic as hf
 from .newton import BlockNewton, NewtonDivergence
+from .references import rigid_clearance
 from .submesh import facet_submesh
 
+# rigid_clearance is re-exported from tribofx.references
 __all__ = ["EHLProblem", "LoadControl", "PositionedEHL", "rigid_clearance"]
-
-
-def rigid_clearance(W, mu, U, R):
-    """Minimum film (mm) of a rigid cylinder in pure sliding at load W: W = 2.45 μ U R/h0.
-
-    (Martin's result W = 4.9 μ u_m R/h0 with Reynolds conditions, u_m = U/2.)
-    """
-    return 2.45 * mu * U * R / W
 
 
 class PositionedEHL:

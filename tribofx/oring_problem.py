@@ -21,7 +21,8 @@ rigid rod r = r_rod:
 * rod (``dry=True``): frictionless contact with the rod instead of the film,
   multipliers λ_r at the nodes of u on Γ_l, p_s on the sealed half of Γ_l where
   it is open (a dry reference; its nodal pressure is too rough on P1 meshes for
-  Blok's inverse theory, so no test relies on it).
+  Blok's inverse theory, :func:`tribofx.references.inverse_film`, so no test
+  relies on it).
 
 Mounting (:meth:`ORingProblem.mount`): the ring starts clear of the rod by
 ``gap0`` and touching the groove bottom and the air-side wall; the groove bottom
@@ -50,19 +51,9 @@ from .meshes.oring import HOUSING, LUBRICATED, SEALED
 from .newton import BlockNewton, NewtonDivergence
 from .submesh import facet_submesh
 
-__all__ = ["ORingProblem", "inverse_film", "oscillation_indicator"]
+__all__ = ["ORingProblem", "oscillation_indicator"]
 
 _CONTACT = 99
-
-
-def inverse_film(mu, U, w):
-    """Film thickness at the pressure maximum by the inverse theory (Blok 1963), mm.
-
-    With the flux q = ½U h − h³ p'/(12μ) constant and p'' = 0 at the inlet point
-    of maximum pressure gradient w (MPa/mm), there h* = 3q/U and w = 2μ|U|/h*²,
-    so at the pressure maximum (p' = 0) h_c = 2q/U = sqrt(8μ|U|/(9w)).
-    """
-    return math.sqrt(8 * mu * abs(U) / (9 * w))
 
 
 class ORingProblem:

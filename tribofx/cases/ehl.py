@@ -50,11 +50,12 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..ehl_problem import EHLProblem, LoadControl, rigid_clearance
+from ..ehl_problem import EHLProblem, LoadControl
 from ..forms.hyperelastic import lame_parameters
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
+from ..references import rigid_clearance
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence"]
 

@@ -75,11 +75,12 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..ehl_ball_problem import BallLoadControl, EHLBallProblem, hamrock_dowson, hertz_ball
+from ..ehl_ball_problem import BallLoadControl, EHLBallProblem
 from ..forms.hyperelastic import lame_parameters
 from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
+from ..references import composite_modulus, hamrock_dowson, hertz
 
 __all__ = ["EHLBallCase"]
 
@@ -134,12 +135,17 @@ class EHLBallCase:
     @staticmethod
     def e_star(v):
         """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
-        return v["E"] / (1 - v["nu"] ** 2)
+        return composite_modulus(v["E"], v["nu"])
+
+    @staticmethod
+    def hertz_contact(v, W=None):
+        """Hertz contact of the ball on the rigid plane at W (default ``v["W"]``, N)."""
+        return hertz(v["W"] if W is None else W, v["R"], v["E"], v["nu"])
 
     @classmethod
     def validate(cls, v):
         """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W)."""
-        a = hertz_ball(v["W"], v["R"], cls.e_star(v))[0]
+        a = cls.hertz_contact(v).a
         r_cap = v["R"] * math.sin(math.radians(v["theta_l"]))
         if r_cap < 1.5 * a:
             raise InputError(f"cap radius R sin θ_l = {r_cap:.3g} mm < 1.5 a = {1.5 * a:.3g} mm "
@@ -163,14 +169,15 @@ class EHLBallCase:
         """Hertz a (mm), p0 (MPa), Hamrock–Dowson h_c (mm) and penalty ε (MPa·s/mm)."""
         W = v["W"] if W is None else W
         U = v["U"] if U is None else U
-        a, _, p0 = hertz_ball(W, v["R"], cls.e_star(v))
+        h = cls.hertz_contact(v, W)
+        a, p0 = h.a, h.p0
         h_c = hamrock_dowson(W, v["mu"], U, v["R"], cls.e_star(v))[0]
         return a, p0, h_c, v["penalty"] * 12 * v["mu"] * a * a / h_c**3
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
         """Mesh and :class:`EHLBallProblem` (unloaded)."""
-        a = hertz_ball(v["W"], v["R"], cls.e_star(v))[0]
+        a = cls.hertz_contact(v).a
         th = math.radians(v["theta_l"])
         h_fine = a / (4 * 2 ** v["mesh"])
         msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
@@ -186,7 +193,7 @@ class EHLBallCase:
     @classmethod
     def large_load(cls, v):
         """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
-        return hertz_ball(v["W"], v["R"], cls.e_star(v))[0] > v["R"] / 3
+        return cls.hertz_contact(v).a > v["R"] / 3
 
     @classmethod
     def load_sweep(cls, prob, v, on_step=None, verbose=False):
@@ -205,7 +212,7 @@ class EHLBallCase:
             raise NewtonDivergence(
                 f"the first load W = {W1:g} N converged to a film with h <= 0 (contact under-"
                 "resolved by the mesh): raise mesh or use fewer load steps")
-        d = hertz_ball(v["W"], v["R"], cls.e_star(v))[1]
+        d = cls.hertz_contact(v).delta
         control = BallLoadControl(prob, ds0=0.1 * h_c, max_step=0.1 * d, verbose=verbose)
         targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
         first = [True]
@@ -241,7 +248,7 @@ class EHLBallCase:
         start solve fails, U_s ×0.3, ×3, ×0.1, ×10 are tried in turn.
         ``on_step(W, its, final)`` gets all Newton iterations of the load.
         """
-        E_s, R, U = cls.e_star(v), v["R"], v["U"]
+        E_s, U = cls.e_star(v), v["U"]
         Us = v["start_speed"] * U
         W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
 
@@ -265,7 +272,7 @@ class EHLBallCase:
         else:
             raise NewtonDivergence(f"the start load W = {W0:g} N did not converge (speeds "
                                    f"{0.1 * Us:g}–{10 * Us:g} mm/s): change start_speed or mesh")
-        d = hertz_ball(v["W"], R, E_s)[1]
+        d = cls.hertz_contact(v).delta
         control = BallLoadControl(prob, ds0=0.1 * cls.scales(v, W0, Us)[2], max_step=0.1 * d,
                                   verbose=verbose)
         its_pending = [its0]

@@ -63,8 +63,9 @@ from mpi4py import MPI
 
 from ..meshes.oring import oring_section
 from ..newton import NewtonDivergence
-from ..oring_problem import ORingProblem, inverse_film
+from ..oring_problem import ORingProblem
 from ..params import InputError, Param
+from ..references import inverse_film
 
 __all__ = ["EHLORingCase", "axial_balance", "build", "solve_to"]
 

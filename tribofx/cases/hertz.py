@@ -6,9 +6,8 @@ against it.  The plane position δ is found by a secant iteration so that the
 normal contact force equals the prescribed ``load``; the load is applied in
 ``steps`` increments (friction makes the response path dependent).
 
-Hertz reference (E* = E/(1 − ν²) against a rigid plane):
-2D, load P per unit length:  a = √(4PR/(πE*)),  p_max = 2P/(πa);
-3D, load P:                  a = (3PR/(4E*))^{1/3},  p_max = 3P/(2πa²).
+Hertz reference: :func:`tribofx.references.hertz_reference` (E* = E/(1 − ν²)
+against a rigid plane; 2D: load per unit length, half-width; 3D: radius).
 """
 
 import math
@@ -22,18 +21,10 @@ from ..meshes.hertz import CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y, hertz_body
 from ..newton import NewtonDivergence
 from ..obstacles import AnalyticObstacle, MeshedObstacle
 from ..params import InputError, Param
+from ..references import hertz_reference
 
+# hertz_reference is re-exported from tribofx.references
 __all__ = ["HertzCase", "hertz_reference"]
-
-
-def hertz_reference(dim, E, nu, R, load):
-    """Hertz contact size (half-width in 2D, radius in 3D; mm) and peak pressure (MPa)."""
-    Es = E / (1 - nu**2)
-    if dim == 2:
-        a = math.sqrt(4 * load * R / (math.pi * Es))
-        return a, 2 * load / (math.pi * a)
-    a = (3 * load * R / (4 * Es)) ** (1 / 3)
-    return a, 3 * load / (2 * math.pi * a**2)
 
 
 class HertzCase:

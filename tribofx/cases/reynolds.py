@@ -5,15 +5,8 @@ with the weak forms of ``forms/reynolds.py``):
 
 ``reynolds-slider`` — plane inclined slider (pad at rest, plane runner sliding
 at U, so v̄ = U/2 and ∂h/∂t = 0 by eq. 61), gap h = h0(1 + K − K x/L) on
-0 ≤ x ≤ L, p = 0 at both ends.  Integrating (h³/(12μ)) p' = v̄(h − h*) twice
-(classical; e.g. Hamrock, Schmid & Jacobson, *Fundamentals of Machine Elements /
-Fluid Film Lubrication*, ch. "Hydrodynamic lubrication of thrust slider
-bearings"; Cameron, *Basic Lubrication Theory*) gives, with s = x/L,
-
-    p(x) = 6μUL K s(1 − s) / (h0² (2 + K) (1 + K − K s)²),
-    h* = 2 h0 (1 + K)/(2 + K),
-    x_pmax = L (1 + K)/(2 + K),     p_max = 3μUL K / (2 h0² (1 + K)(2 + K)),
-    W/B = ∫ p dx = (6μUL²/(K² h0²)) (ln(1 + K) − 2K/(2 + K)).
+0 ≤ x ≤ L, p = 0 at both ends; compared with the closed-form pressure, load and
+peak of :func:`tribofx.references.slider_reference` (Reynolds 1886, Cameron).
 
 ``reynolds-cylinder`` — rigid cylinder of radius R near a rigid plane, parabolic
 gap h = h0 + x²/(2R) on x_in ≤ x ≤ x_out, mean entrainment speed u_m (both
@@ -25,12 +18,8 @@ the Swift–Stieber conditions p = p' = 0), ``jfo`` (mass-conserving JFO model,
 unknowns p and λ; inlet p = 0, λ = 0 (flooded), outlet natural: no Poiseuille
 flux, and p = 0 there by complementarity since the outlet lies in the
 cavitation zone).  References, computed by NumPy quadrature independently of
-the FE code (:func:`cylinder_references`), are for the same inlet position:
-
-* half-Sommerfeld: p' = 12μu_m (h − h*)/h³ with p(x_in) = p(x_out) = 0, negative
-  pressures set to zero;
-* Swift–Stieber (Reynolds): the same ODE with p(x_in) = 0 and p = p' = 0 at the
-  unknown rupture x_r (then h* = h(x_r)), found by bisection on x_r.
+the FE code for the same inlet position: the half-Sommerfeld and the
+Swift–Stieber solutions of :func:`tribofx.references.cylinder_references`.
 
 Units: mm, N, s, MPa (viscosity MPa·s; loads per unit width/length N/mm).
 """
@@ -46,7 +35,9 @@ from mpi4py import MPI
 from ..forms import reynolds as rf
 from ..newton import BlockNewton, NewtonDivergence
 from ..params import InputError, Param
+from ..references import cylinder_references, slider_pressure, slider_reference
 
+# cylinder_references and slider_reference are re-exported from tribofx.references
 __all__ = [
     "CylinderCase",
     "Reynolds1D",
@@ -54,118 +45,6 @@ __all__ = [
     "cylinder_references",
     "slider_reference",
 ]
-
-
-# --------------------------------------------------------------------------- references
-
-
-def slider_reference(K, L, h0, U, mu):
-    """Analytic inclined slider: dict with ``pressure`` (callable of x), load, p_max, x_p_max."""
-    c = 6 * mu * U * L / h0**2
-
-    def pressure(x):
-        s = np.asarray(x) / L
-        return c * K * s * (1 - s) / ((2 + K) * (1 + K - K * s) ** 2)
-
-    if abs(K) < 1e-12:
-        return {"pressure": pressure, "load": 0.0, "p_max": 0.0, "x_p_max": 0.5 * L}
-    load = c * L / K**2 * (math.log1p(K) - 2 * K / (2 + K))
-    x_m = L * (1 + K) / (2 + K)
-    return {"pressure": pressure, "load": load, "p_max": float(pressure(x_m)), "x_p_max": x_m}
-
-
-def _cumtrapz(f, x):
-    out = np.zeros_like(f)
-    out[1:] = np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(x))
-    return out
-
-
-def _simpson(f, x):
-    n = len(x) - 1
-    assert n % 2 == 0
-    dx = (x[-1] - x[0]) / n
-    return dx / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
-
-
-def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
-    """Half-Sommerfeld and Swift–Stieber solutions of the rigid cylinder–plane contact.
-
-    Pure NumPy (composite Simpson / trapezoid with ``n`` intervals).  With
-    ``inlet_void`` λ_in > 0 (starved inlet, JFO only) the Swift–Stieber solution
-    is that of the supplied flux Q = (1 − λ_in) h(x_in) u_m: h* = Q/u_m fixes the
-    rupture point (h(x_r) = h*) and the reformation point x_f (where the film
-    fills the gap and the pressure starts) solves ∫_{x_f}^{x_r} (h − h*)/h³ dx = 0.
-
-    The result is {"half_sommerfeld": d, "swift_stieber": d}, each d with ``x``, ``p`` (MPa) on
-    a fine grid and ``load`` (N/mm), ``p_max`` (MPa), ``x_p_max``, ``x_rupture``
-    (mm), ``h_star`` (mm, film thickness at which p' = 0) and ``flux`` = h* u_m
-    (mm²/s).  For half-Sommerfeld ``x_rupture`` is the zero of the full
-    Sommerfeld pressure downstream of its maximum.
-    """
-    n += n % 2
-
-    def gap(x):
-        return h0 + x**2 / (2 * R)
-
-    c = 12 * mu * um
-    refs = {}
-    # full Sommerfeld, p(x_in) = p(x_out) = 0
-    x = np.linspace(x_in, x_out, n + 1)
-    h = gap(x)
-    hs = _simpson(h**-2, x) / _simpson(h**-3, x)
-    p = c * _cumtrapz((h - hs) / h**3, x)
-    i = int(np.argmax(p))
-    neg = np.nonzero(p[i:] < 0)[0]
-    if len(neg):
-        j = i + neg[0]
-        xr = x[j - 1] - p[j - 1] * (x[j] - x[j - 1]) / (p[j] - p[j - 1])
-    else:
-        xr = x_out
-    pp = np.maximum(p, 0)
-    refs["half_sommerfeld"] = {"x": x, "p": pp, "p_full": p, "load": _simpson(pp, x),
-                               "p_max": p[i], "x_p_max": x[i], "x_rupture": xr,
-                               "h_star": hs, "flux": hs * um}
-
-    def G(xa, xb, hs):
-        xs = np.linspace(xa, xb, n // 4 + 1)
-        hh = gap(xs)
-        return _simpson((hh - hs) / hh**3, xs)
-
-    def bisect(f, a, b):
-        for _ in range(80):
-            m = 0.5 * (a + b)
-            a, b = (m, b) if f(m) > 0 else (a, m)
-        return 0.5 * (a + b)
-
-    if inlet_void == 0:
-        # Swift–Stieber: bisection on the rupture point x_r, p(x_r)/c = G(x_in, x_r) = 0
-        if G(x_in, x_out, gap(x_out)) > 0:
-            raise InputError(f"x_out = {x_out} mm lies upstream of the Swift–Stieber "
-                             "rupture point")
-        xr = bisect(lambda xr: G(x_in, xr, gap(xr)), 0.0, x_out)
-        xf = x_in
-    else:
-        # starved inlet: h* from the supplied flux, x_f from G(x_f, x_r) = 0
-        hs = (1 - inlet_void) * gap(x_in)
-        if hs <= h0:
-            raise InputError(f"inlet_void = {inlet_void} starves the contact completely")
-        xr = math.sqrt(2 * R * (hs - h0))
-        if xr >= x_out or G(x_in, xr, hs) <= 0:
-            raise InputError(f"inlet_void = {inlet_void}: the supplied film does not reform "
-                             "inside [x_in, x_out] (not starved, or x_out too small)")
-        xf = bisect(lambda xf: G(xf, xr, hs), x_in, -xr)
-    hs = gap(xr)
-    x = np.linspace(x_in, x_out, n + 1)
-    h = gap(x)
-    p = np.zeros_like(x)
-    full = (x >= xf) & (x < xr)
-    p[full] = c * _cumtrapz((h[full] - hs) / h[full] ** 3, x[full])
-    p = np.maximum(p, 0)
-    i = int(np.argmax(p))
-    refs["swift_stieber"] = {"x": x, "p": p, "load": _simpson(p, x), "p_max": p[i],
-                             "x_p_max": x[i], "x_rupture": xr, "x_reformation": xf,
-                             "h_star": hs, "flux": hs * um}
-    return refs
 
 
 # --------------------------------------------------------------------------- FE problem
@@ -437,9 +316,7 @@ class SliderCase:
         K, L, h0, U, mu = (v[k] for k in ("K", "L", "h0", "U", "mu"))
         ref = slider_reference(K, L, h0, U, mu)
         load = prob.integral(prob.p)
-        x = ufl.SpatialCoordinate(prob.mesh)[0]
-        s = x / L
-        p_ex = 6 * mu * U * L / h0**2 * K * s * (1 - s) / ((2 + K) * (1 + K - K * s) ** 2)
+        p_ex = slider_pressure(ufl.SpatialCoordinate(prob.mesh)[0], K, L, h0, U, mu)
         err = math.sqrt(prob.integral((prob.p - p_ex) ** 2))
         nrm = math.sqrt(prob.integral(p_ex**2))
         prof = prob.profile()
@@ -542,8 +419,11 @@ class CylinderCase:
         if v["inlet_void"] > 0 and v["cavitation"] != "jfo":
             raise InputError("inlet_void > 0 (starved inlet) needs cavitation=jfo")
         if v["cavitation"] != "none":
-            refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
-                                       v["x_out"], n=20_000, inlet_void=v["inlet_void"])
+            try:
+                refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
+                                           v["x_out"], n=20_000, inlet_void=v["inlet_void"])
+            except ValueError as err:
+                raise InputError(str(err)) from None
             xr = refs["swift_stieber"]["x_rupture"]
             if v["x_out"] < xr + 0.02 * (v["x_out"] - v["x_in"]):
                 raise InputError(f"x_out = {v['x_out']} mm must lie downstream of the "

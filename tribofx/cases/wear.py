@@ -63,6 +63,7 @@ from ..meshes.pin import CONTACT, SIDES, TOP, pin_body, tip_height
 from ..newton import NewtonDivergence
 from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
+from ..references import hertz
 from ..time_scale import ReciprocatingCycle, TimeScaleDriver
 from ..wear_problem import WearProblem
 
@@ -91,8 +92,8 @@ def solve_initial_contact(prob, load, q, E, W, R, H, verbose=False, max_ramp=5):
     2D Hertz half-width, capped at W/2) so that the tip nodes start active.
     Returns the Newton iterations spent.
     """
-    Es = E / (1 - 0.3**2)
-    a = min(math.sqrt(4 * q * W * R / (math.pi * Es)), W / 2) if R and not math.isinf(R) else 0
+    # 2D Hertz half-width of the tip (ν = 0.3 for the guess only), at most the pin width
+    a = min(hertz(q * W, R, E, 0.3, line=True).a, W / 2) if R and not math.isinf(R) else 0
     delta0 = (a * a / (2 * R) if a else 0.0) + q * H / E
     saved = prob.state()
     its = 0

@@ -35,13 +35,11 @@ mm³/(N·mm) (mild-wear range of steels, 10⁻⁹–10⁻⁷), so that the slidi
 distance s = V T = 10⁴ mm gives a scar of radius a = (4kFRs/π)^{1/4} = 0.50 mm
 ≈ 3.3 a_H and a uniform pressure of F/(πa²) ≈ 127 MPa at T.
 
-Rigid-cap Archard law (the late-time reference): once the scar radius a is
-well beyond a_H the elastic approach (∼ a_H²/R) is small against the worn depth
-h = a²/(2R), the worn surface is a plane and the ball wears as a rigid sphere
-truncated at depth h: worn volume π h²(3R − h)/3 ≈ π a⁴/(4R); Archard's law
-integrated over the contact gives the worn volume k F s (whatever the pressure
-distribution), hence a(s) = (4kFRs/π)^{1/4}, and uniform wear rate of a rigid
-flat scar means uniform pressure p = F/(πa²).
+Rigid-cap Archard law (the late-time reference,
+:func:`tribofx.references.rigid_cap_radius`): once the scar radius a is well
+beyond a_H the elastic approach (∼ a_H²/R) is small against the worn depth, the
+worn surface is a plane and the ball wears as a rigid sphere truncated flat,
+a(s) = (4kFRs/π)^{1/4}, at the uniform pressure F/(πa²).
 
 Recorded per step: ``time``, ``wear_volume`` (full ball, mm³), ``max_wear_depth``,
 ``contact_radius`` (from the active contact area A of the half disc, √(2A/π)),
@@ -65,9 +63,11 @@ from ..meshes.wear_ball import CONTACT, LOADED, SYMMETRY_Y, quarter_ball
 from ..newton import NewtonDivergence
 from ..obstacles import AnalyticObstacle
 from ..params import InputError, Param
+from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
 from ..wear_problem import WearProblem
 from .wear import bisect_critical_step
 
+# rigid_cap_radius is re-exported from tribofx.references
 __all__ = ["ForceControl", "WearBallCase", "explicit_critical_step", "hertz_radius",
            "pressure_nonuniformity", "rigid_cap_radius", "shape_unknown_fraction"]
 
@@ -75,13 +75,11 @@ MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the
 
 
 def hertz_radius(F, R, E, nu):
-    """Hertz contact radius a = (3FR/(4E*))^{1/3}, E* = E/(1 − ν²), rigid flat (mm)."""
-    return (3 * F * R * (1 - nu**2) / (4 * E)) ** (1 / 3)
+    """Hertz radius (mm) of the ball on the rigid flat; kept for existing callers.
 
-
-def rigid_cap_radius(k, F, R, s):
-    """Scar radius of a rigid sphere worn flat by Archard's law, a = (4kFRs/π)^{1/4} (mm)."""
-    return (4 * k * F * R * np.asarray(s, dtype=float) / math.pi) ** 0.25
+    The formula is :func:`tribofx.references.hertz` (``hertz(F, R, E, nu).a``).
+    """
+    return hertz(F, R, E, nu).a
 
 
 def shape_unknown_fraction(prob):
@@ -181,7 +179,7 @@ class ForceControl:
     def __init__(self, prob, v, rtol=1e-8, max_trials=12):
         self.prob, self.v = prob, v
         self.target = MODEL_FRACTION * v["F"]
-        self.Es = v["E"] / (1 - v["nu"] ** 2)
+        self.Es = composite_modulus(v["E"], v["nu"])
         self.rtol, self.max_trials = rtol, max_trials
         self.trials = []
 
@@ -198,7 +196,7 @@ class ForceControl:
         """
         area, _ = self.prob.contact_measures()
         a = max(math.sqrt(2 * area / math.pi),
-                hertz_radius(self.v["F"], self.v["R"], self.v["E"], self.v["nu"]))
+                hertz(self.v["F"], self.v["R"], self.v["E"], self.v["nu"]).a)
         c_wear = self.v["k"] * self.v["V"] * float(self.prob.dt.value) \
             if self.prob.scheme == "implicit" else 0.0
         return 0.5 * math.pi * a * a / (math.pi * a / (2 * self.Es) + c_wear)
@@ -212,9 +210,9 @@ class ForceControl:
         v, comm = self.v, self.prob.mesh.comm
         d = self.prob.nodal_shape_data()
         h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
-        c = v["k"] * v["F"] / (math.pi * v["R"])  # h² = c s for a rigid cap
-        s = h * h / c if c > 0 else 0.0
-        return self.delta + math.sqrt(c * (s + v["V"] * dt)) - h
+        # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
+        dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
+        return self.delta + math.sqrt(h * h + dh2) - h
 
     def step(self, dt, verbose=False):
         """One wear step Δt at the prescribed force; returns the Newton reports.
@@ -254,7 +252,7 @@ class ForceControl:
         If the full approach fails, the flat is brought up in 2, 4, … steps first.
         """
         v = self.v
-        aH = hertz_radius(v["F"], v["R"], v["E"], v["nu"])
+        delta = hertz(v["F"], v["R"], v["E"], v["nu"]).delta
         saved = self.prob.state()
         for level in range(max_ramp):
             self.prob.restore(saved)
@@ -262,9 +260,9 @@ class ForceControl:
             its = 0
             try:
                 for i in range(1, n):
-                    self.prob.obstacle.offset.value[2] = aH**2 / v["R"] * i / n
+                    self.prob.obstacle.offset.value[2] = delta * i / n
                     its += self.prob.solver.solve(verbose=verbose).iterations
-                self.prob.obstacle.offset.value[2] = aH**2 / v["R"]
+                self.prob.obstacle.offset.value[2] = delta
                 its += sum(r.iterations for r in self.solve(verbose))
             except NewtonDivergence:
                 continue
@@ -303,7 +301,7 @@ class WearBallCase:
         """Check cross-parameter consistency."""
         if v["dt"] > v["T"]:
             raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
-        aH = hertz_radius(v["F"], v["R"], v["E"], v["nu"])
+        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         if aH > 0.2 * v["R"]:
             raise InputError(f"load too large for small strains: a_H/R = {aH / v['R']:.2f}")
         aT = WearBallCase.mesh_sizes(v)[2] / 1.25
@@ -313,7 +311,7 @@ class WearBallCase:
     @staticmethod
     def mesh_sizes(v):
         """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
-        aH = hertz_radius(v["F"], v["R"], v["E"], v["nu"])
+        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
         return aH / (2 * 2 ** v["mesh"]), v["R"] / 4, 1.25 * aT
 

@@ -52,6 +52,7 @@ from ..groove_problem import GrooveProblem
 from ..meshes import halfspace as hs
 from ..newton import NewtonDivergence
 from ..params import InputError, Param
+from ..references import hertz, rigid_groove_halfwidth
 
 __all__ = ["WearBallHalfspaceCase", "hertz_sphere", "plot_groove", "plot_pressure_across"]
 
@@ -60,10 +61,11 @@ REGIMES = {"small": {"E": 2.0e5, "k": 1.0e-7, "grade_depth": 0.01},
 
 
 def hertz_sphere(E, nu, R, F):
-    """Hertz contact of a rigid sphere on an elastic half-space: (a, p₀, δ) in mm, MPa, mm."""
-    Es = E / (1 - nu**2)
-    a = (3 * F * R / (4 * Es)) ** (1 / 3)
-    return a, 3 * F / (2 * math.pi * a * a), a * a / R
+    """Hertz contact of a rigid sphere on an elastic half-space: (a, p₀, δ) in mm, MPa, mm.
+
+    Kept for existing callers; the formula is :func:`tribofx.references.hertz`.
+    """
+    return hertz(F, R, E, nu)[:3]
 
 
 class WearBallHalfspaceCase:
@@ -116,14 +118,14 @@ class WearBallHalfspaceCase:
         v = cls.resolved(v)
         if v["dt"] > v["T"]:
             raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
-        a, _, _ = hertz_sphere(v["E"], v["nu"], v["R"], v["F"])
+        a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         if a > 0.5 * v["R"]:
             raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
         if v["L"] < 4 * a:
             raise InputError(f"L = {v['L']:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
                              " one pass per cycle is assumed")
-        # final groove half-width if it follows the ball: area 2b³/(3R) = k F V T / L
-        b = (1.5 * v["R"] * v["k"] * v["F"] * v["V"] * v["T"] / v["L"]) ** (1 / 3)
+        # final groove half-width if it follows the ball
+        b = float(rigid_groove_halfwidth(v["k"], v["F"], v["R"], v["V"] * v["T"], v["L"]))
         if b > 5.4 * a:
             raise InputError(f"final groove half-width ≈ {b:.3g} mm exceeds the refined zone "
                              f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
@@ -132,7 +134,7 @@ class WearBallHalfspaceCase:
     def build(cls, v, comm=MPI.COMM_WORLD):
         """Mesh and :class:`GrooveProblem`; returns ``(problem, info)``."""
         v = cls.resolved(v)
-        a, p0, delta = hertz_sphere(v["E"], v["nu"], v["R"], v["F"])
+        a, p0, delta = hertz(v["F"], v["R"], v["E"], v["nu"])[:3]
         h = 0.45 * a / 2 ** v["mesh"]
         Lb = 27 * a
         gx, gy, gz = hs.grids(Lb, Lb, Lb, h, 1.8 * a, 5.4 * a, 1.35 * a, (4, 5, 6), hx=h / 2)
