@@ -227,8 +227,10 @@ def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
       reformation point x_f where the film fills the gap and the pressure starts
       solves ∫_{x_f}^{x_r} (h − h*)/h³ dx = 0.
 
-    Computed by NumPy quadrature (composite Simpson / trapezoid with ``n``
-    intervals; relative error ≲ 10⁻⁸ for n = 2·10⁵ on the default cases).  For
+    Computed by NumPy quadrature with ``n`` intervals of width Δx: h* and x_r by
+    composite Simpson (fourth order, ≲ 10⁻⁸ relative for n = 2·10⁵), the pressure and
+    the load by the cumulative trapezoid rule (second order, ≈ (Δx/ℓ)² relative,
+    ℓ = √(2Rh₀)).  For
     x_in → −∞ the loads tend to 4 μu_m R/h₀ (half-Sommerfeld, x_out → ∞) and to
     Martin's 4.9 μu_m R/h₀ (Swift–Stieber, :func:`rigid_clearance`).  Valid for
     rigid surfaces, h ≪ R, isoviscous incompressible Newtonian fluid, no side
