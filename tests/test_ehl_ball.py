@@ -1,5 +1,6 @@
 """Soft-EHL ball on a rigid plane (chapter §8.3, 3D): Hamrock–Dowson film, finite → linear
-limit, quadratic Newton, exact tangential pressure gradient, serial = 2 ranks."""
+limit, quadratic Newton, tangential pressure gradient against the exact one on the sphere,
+serial = 2 ranks."""
 
 import json
 import math
@@ -62,7 +63,11 @@ def test_film_matches_hamrock_dowson(light_load):
           f"h_min = {m['h_min']:.5g} mm (HD {hm:.5g}, {100 * d_m:+.1f} %), dofs "
           f"{prob.solver.num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
           f"extrapolated h_c = {h_ext:.5g} mm ({100 * d_x:+.1f} %)")
-    assert m["W"] == pytest.approx(v["W"], rel=1e-4)          # load control tolerance
+    # equilibrium of the solved state (not the load controller's own stopping test): the
+    # reaction of the held mid-plane, from the bulk stresses, balances the film force
+    reaction, bound = _mid_plane_reaction(prob, v), _equilibrium_bound(prob, m["W"])
+    print(f"mid-plane reaction {reaction!r} N, film force {m['W']!r} N, bound {bound:.2e}")
+    assert abs(reaction + m["W"]) <= bound
     # refinement thickens the central film (under-resolved inlet on coarse meshes)
     assert m0["h_central"] < m["h_central"]
     # Hamrock & Dowson fitted their numerical half-space solutions within about
@@ -91,25 +96,79 @@ def test_newton_quadratic(light_load):
 
 
 @pytest.mark.mpi
-def test_tangential_pressure_gradient_is_exact(light_load):
-    """g = Grad_Γ p for a linear pressure: the projection of ∇p onto each flat triangle."""
-    _, prob, _ = light_load
+def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
+    """g (the DG0 unknown of the solved system) against the exact surface gradient on the sphere.
+
+    Analytic field f(x) = c·x + ½ xᵀA x on the ball surface |X − X_c| = R (X_c =
+    (0, 0, R)): exact Grad_Γ f(y) = (I − ν⊗ν) ∇f(y), ν = (y − X_c)/R, computed
+    here in NumPy (no UFL, no code normal).  The code side: p = P1 interpolant of
+    f on the cap Γ_l, and g from the DG0 constraint ∫ (g − Grad_Γ p)·δg dS = 0 of
+    the solved system, solved cell by cell (the DG0 mass matrix is diagonal).
+
+    Tolerance, per flat triangle T (vertices x_k on the sphere, centroid x_g, its
+    radial projection y_g, unit plane normal N_T, in-plane edges e_1, e_2 = columns
+    of E, d_k = x_k − x_g, M₂ = ‖A‖₂ the bound of the Hessian):
+    (a) interpolation: ε = g_T − P_T ∇f(x_g) is in-plane with ε·e_k = r_k − r_0,
+        r_k the Taylor remainders |r_k| ≤ ½ M₂ |d_k|², so |ε| ≤ ‖β‖/σ_min(E),
+        β_k = ½ M₂ (|d_k|² + |d_0|²) — O(h);
+    (b) centroid off the sphere: M₂ |x_g − y_g| — O(h²/R);
+    (c) flat-cell normal: ‖N_T⊗N_T − ν⊗ν‖ |∇f(y_g)| = sin∠(N_T, ν) |∇f(y_g)| — O(h/R).
+    |g_T − Grad_Γ f(y_g)| ≤ (a) + (b) + (c) must hold on every cell (measured
+    ≈ 0.6 of the bound on mesh 1; a projection with the wrong normal, e.g. e_z,
+    gives 9.5× the bound).
+    """
+    from tribofx.forms.ehl import tangential_gradient_constraint
+
+    v, prob, _ = light_load
+    R = v["R"]
+    Xc = np.array([0.0, 0.0, R])
     c = np.array([0.3, -0.7, 0.2])
+    A = np.array([[2.0, 0.5, 0.0], [0.5, -1.0, 0.3], [0.0, 0.3, 1.0]]) / R
+    M2 = np.linalg.norm(A, 2)
+
+    def grad_f(y):  # (n, 3)
+        return c[None, :] + y @ A
+
     p = fem.Function(prob.Q)
-    p.interpolate(lambda x: c[0] * x[0] + c[1] * x[1] + c[2] * x[2])
-    N = prob.N_s
-    ref = (ufl.Identity(3) - ufl.outer(N, N)) * ufl.as_vector(c.tolist())
-    g = fem.Function(prob.G)
-    # solve the DG0 constraint ∫ (g − Grad_Γ p)·δg = 0 cell by cell (mass matrix diagonal)
-    g.interpolate(fem.Expression(prob.grad_gamma(p), prob.G.element.interpolation_points))
-    err = fem.assemble_scalar(fem.form(ufl.inner(g - ref, g - ref) * prob.dx_s))
-    nrm = fem.assemble_scalar(fem.form(ufl.inner(ref, ref) * prob.dx_s))
-    err, nrm = (MPI.COMM_WORLD.allreduce(x, op=MPI.SUM) for x in (err, nrm))
-    # the tangential part is exact for P1 on affine cells: round-off only
-    assert math.sqrt(err / nrm) < 1e-10
-    # ... and it is tangential: g·N = 0 with the oriented cell normal
-    gn = fem.assemble_scalar(fem.form(ufl.dot(g, N) ** 2 * prob.dx_s))
-    assert MPI.COMM_WORLD.allreduce(gn, op=MPI.SUM) < 1e-20 * nrm
+    p.interpolate(lambda x: c @ x + 0.5 * np.einsum("in,ij,jn->n", x, A, x))
+    dg = ufl.TestFunction(prob.G)
+    b = fem.assemble_vector(fem.form(tangential_gradient_constraint(
+        fem.Function(prob.G), p, dg, None, prob.dx_s, prob.grad_gamma)))
+    m = fem.assemble_vector(fem.form(ufl.dot(ufl.as_vector([1.0, 1.0, 1.0]), dg) * prob.dx_s))
+    sub = prob.sub
+    nc = sub.topology.index_map(sub.topology.dim).size_local
+    cell_dofs = prob.G.dofmap.list[:nc, 0]
+    g = (-b.array.reshape(-1, 3) / m.array.reshape(-1, 3))[cell_dofs]
+    X = sub.geometry.x[sub.geometry.dofmaps[0][:nc]]  # (cells, 3 vertices, 3)
+    # precondition: the cap nodes lie on the sphere (round-off)
+    assert np.abs(np.linalg.norm(X - Xc, axis=2) - R).max() < 1e-10 * R
+    xg = X.mean(axis=1)
+    yg = Xc + R * (xg - Xc) / np.linalg.norm(xg - Xc, axis=1)[:, None]
+    nu = (yg - Xc) / R
+    gf = grad_f(yg)
+    exact = gf - np.sum(gf * nu, axis=1)[:, None] * nu
+    E = np.stack([X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]], axis=2)
+    sv = np.linalg.svd(E, compute_uv=False)
+    d2 = np.sum((X - xg[:, None, :]) ** 2, axis=2)
+    beta = 0.5 * M2 * np.stack([d2[:, 1] + d2[:, 0], d2[:, 2] + d2[:, 0]], axis=1)
+    NT = np.cross(E[:, :, 0], E[:, :, 1])
+    NT /= np.linalg.norm(NT, axis=1)[:, None]
+    sin = np.linalg.norm(np.cross(NT, nu), axis=1)
+    bound = (np.linalg.norm(beta, axis=1) / sv[:, 1] + M2 * np.linalg.norm(xg - yg, axis=1)
+             + sin * np.linalg.norm(gf, axis=1))
+    err = np.linalg.norm(g - exact, axis=1)
+    comm = MPI.COMM_WORLD
+    worst = comm.allreduce(float(np.max(err / bound, initial=0.0)), op=MPI.MAX)
+    rel = np.concatenate(comm.allgather(bound / np.linalg.norm(exact, axis=1)))
+    print(f"max error/bound {worst:.3f}; bound/|Grad_Γ f|: median {np.median(rel):.3f}, "
+          f"max {rel.max():.3f}")
+    assert worst <= 1.0
+    # the bound has resolving power: a few % of the gradient on most cells
+    assert np.median(rel) < 0.1
+    # g lies in the plane of its cell: |g·N_T| at round-off, ≤ 100 ε κ(E) |∇f| per cell
+    kappa = sv[:, 0] / sv[:, 1]
+    gn = np.abs(np.sum(g * NT, axis=1))
+    assert np.all(gn <= 100 * np.finfo(float).eps * kappa * np.linalg.norm(gf, axis=1))
 
 
 def test_finite_and_linear_agree_as_load_vanishes():
@@ -174,6 +233,21 @@ def _pressure_radius(prob):
     return math.sqrt(2.5 * num / den)
 
 
+def _equilibrium_bound(prob, W):
+    """Bound (N) on |mid-plane reaction + film force W| of a solved state.
+
+    The z rows of the momentum residual of the half ball sum to ∫ P : Grad e_z (= 0)
+    − F_z(film); the mid-plane rows (held, not on the lubricated cap) carry the
+    internal force, i.e. half the reaction, so reaction + W = −2 Σ_free b_z and,
+    by Cauchy–Schwarz, |reaction + W| ≤ 2 √n_z ‖b‖ (‖b‖ the residual norm of the
+    coupled Newton system at the solved state, n_z the number of z rows), plus
+    assembly round-off (1e-12 W).
+    """
+    b, _ = prob.solver.assemble()
+    n_z = prob.V.dofmap.index_map.size_global
+    return 2 * math.sqrt(n_z) * b.norm() + 1e-12 * abs(W)
+
+
 def _mid_plane_reaction(prob, v):
     """Vertical reaction (N, whole ball) of the held mid-plane: the weak residual at its dofs."""
     from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
@@ -208,6 +282,7 @@ def test_large_load_40N():
             m = out[-1]
             m["a_p"] = _pressure_radius(prob)
             m["reaction"] = _mid_plane_reaction(prob, v)
+            m["bound"] = _equilibrium_bound(prob, m["W"])
             res[W, model] = m
             print(W, model, {k: m[k] for k in ("W", "reaction", "h_central", "h_min", "p_max",
                                                "a_p", "friction_coefficient", "iterations")})
@@ -215,11 +290,9 @@ def test_large_load_40N():
     a_h = hertz_ball(40.0, v["R"], Case.e_star(v))[0]
     for model in ("finite", "linear"):
         m = res[40.0, model]
-        # the secant stops at |W − W*| ≤ 1e-4 W*
-        assert m["W"] == pytest.approx(40.0, rel=1e-4)
-        # global equilibrium: the mid-plane reaction balances the film force (the
-        # residual of the free dofs is below the Newton tolerance 1e-10)
-        assert abs(m["reaction"] + m["W"]) < 1e-6 * m["W"]
+        # global equilibrium of the solved state: the mid-plane reaction balances the
+        # film force within the Newton residual bound (see _equilibrium_bound)
+        assert abs(m["reaction"] + m["W"]) <= m["bound"]
         assert m["h_min"] > 0
     a_f = res[40.0, "finite"]["a_p"]
     print(f"pressure radius {a_f:.3f} mm, Hertz a = {a_h:.3f} mm")
