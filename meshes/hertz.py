@@ -18,9 +18,11 @@ from mpi4py import MPI
 
 from .sizing import point_refinement
 
-__all__ = ["CONTACT", "LOADED", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
+__all__ = ["CONTACT", "LOADED", "NAMES", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
 
 CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y = 1, 2, 3, 4
+NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_x": SYMMETRY_X,
+         "symmetry_y": SYMMETRY_Y}
 
 
 def _build_2d(R, h_fine, h_coarse, r_fine):

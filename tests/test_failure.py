@@ -5,12 +5,12 @@ import json
 import pytest
 
 import tribofx.runner as runner
-from tribofx.newton import BlockNewton, NewtonDivergence
+from tribofx.problem import NewtonDivergence, Problem
 from tribofx.runner import run_case
 
 
 def test_failed_run_keeps_last_converged_state(tmp_path, monkeypatch):
-    original = BlockNewton.solve
+    original = Problem.solve
     state = {"solves": 0, "limit": None}
 
     def solve(self, verbose=False):
@@ -29,7 +29,7 @@ def test_failed_run_keeps_last_converged_state(tmp_path, monkeypatch):
         def close(self):
             pass
 
-    monkeypatch.setattr(BlockNewton, "solve", solve)
+    monkeypatch.setattr(Problem, "solve", solve)
     monkeypatch.setattr(runner, "_progress_bar", lambda total, name: FirstStepOnly())
     out = tmp_path / "run"
     summary = run_case("hertz", {"mesh": "0", "load": "0.05", "steps": "3"}, out)
@@ -46,17 +46,17 @@ def test_secant_give_up_restores_obstacle_position(tmp_path, monkeypatch):
     # the second load step is given only 2 secant trials: its Newton solves converge
     # but the load is not reached, so the step fails; the reported state (computed
     # with the obstacle position) must be that of step 1
-    from tribofx.cases.hertz import SecantLoader
+    from tribofx.continuation import Continuation
 
-    original = SecantLoader.reach
+    original = Continuation.reach
     calls = {"n": 0}
 
-    def reach(self, target, delta):
+    def reach(self, target, guess=None):
         calls["n"] += 1
         self.max_trials = 25 if calls["n"] == 1 else 2
-        return original(self, target, delta)
+        return original(self, target, guess)
 
-    monkeypatch.setattr(SecantLoader, "reach", reach)
+    monkeypatch.setattr(Continuation, "reach", reach)
     summary = run_case("hertz", {"mesh": "0", "load": "0.05", "steps": "3"}, tmp_path / "r",
                        progress=False)
     assert summary["status"].startswith("failed")

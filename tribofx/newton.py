@@ -7,8 +7,6 @@ after each update of the unknowns and before assembly, so that data computed
 outside UFL (closest-point projections by the C++ kernel) follow the iterate.
 """
 
-from dataclasses import dataclass, field
-
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
@@ -17,37 +15,9 @@ from dolfinx.la.petsc import _ghost_update
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
+from .problem import NewtonDivergence, NewtonReport, convergence_orders
+
 __all__ = ["BlockNewton", "NewtonDivergence", "NewtonReport", "convergence_orders"]
-
-
-class NewtonDivergence(RuntimeError):
-    """Raised when the Newton iteration does not converge."""
-
-
-@dataclass
-class NewtonReport:
-    """Outcome of one Newton solve: iterations and the residual-norm history."""
-
-    iterations: int = 0
-    residuals: list = field(default_factory=list)
-    increments: list = field(default_factory=list)
-
-    def rates(self, floor=1e-13):
-        """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""
-        return convergence_orders(self.residuals, floor)
-
-
-def convergence_orders(residuals, floor=1e-13):
-    """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of a residual history.
-
-    Residuals below ``floor`` × r₀ are at round-off and are dropped first.
-    """
-    r = np.asarray(residuals, dtype=float)
-    r = r[r > floor * r[0]] if len(r) else r
-    if len(r) < 3:
-        return np.array([])
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
 
 
 class BlockNewton:

@@ -18,10 +18,47 @@ from dolfinx import fem
 
 from .forms import contact as cf
 
-__all__ = ["AnalyticObstacle", "MeshedObstacle"]
+__all__ = [
+    "AnalyticObstacle",
+    "MeshedObstacle",
+    "rigid_cylinder",
+    "rigid_plane",
+    "rigid_sphere",
+    "rigid_surface_mesh",
+]
 
 
-class AnalyticObstacle:
+class _RigidMotion:
+    """Rigid translation ``offset`` (mm) of a countersurface and its value at the last commit.
+
+    The contact interface asks a counterpart for ``motion_since_commit()`` (the
+    displacement of the master's material points since the last converged step,
+    which carries the projection point of the Lagrangian slip), ``commit()`` and
+    ``state_fields()``; a deformable master body answers the same questions.
+    """
+
+    def _init_motion(self, mesh, gdim):
+        self.offset = fem.Constant(mesh, np.zeros(gdim))
+        self.offset_n = fem.Constant(mesh, np.zeros(gdim))
+
+    def motion_since_commit(self):
+        """UFL displacement of the master's material points since the last commit."""
+        return self.offset - self.offset_n
+
+    def commit(self):
+        """Make the current position the reference of the next step's slip."""
+        self.offset_n.value[:] = self.offset.value
+
+    def state_fields(self):
+        """Return the position constants."""
+        return [self.offset, self.offset_n]
+
+    def unknowns(self):
+        """Return no unknowns: a rigid countersurface has none."""
+        return []
+
+
+class AnalyticObstacle(_RigidMotion):
     """Plane, cylinder or sphere given in closed form.
 
     Args:
@@ -39,7 +76,7 @@ class AnalyticObstacle:
         gdim = mesh.geometry.dim
         self.shape = shape
         self.point = np.asarray(point, dtype=float)
-        self.offset = fem.Constant(mesh, np.zeros(gdim))
+        self._init_motion(mesh, gdim)
         self._normal = None if normal is None else ufl.as_vector(list(map(float, normal)))
         self._radius = radius
         self._axis = None if axis is None else ufl.as_vector(list(map(float, axis)))
@@ -57,7 +94,7 @@ class AnalyticObstacle:
         """Nothing to refresh for a closed-form obstacle."""
 
 
-class MeshedObstacle:
+class MeshedObstacle(_RigidMotion):
     """Rigid countersurface given as a surface mesh, projected by the C++ kernel.
 
     Args:
@@ -75,7 +112,7 @@ class MeshedObstacle:
         self.nodes = np.asarray(nodes, dtype=float)
         self.facets = np.asarray(facets, dtype=np.int32)
         self.cell_type = cell_type
-        self.offset = fem.Constant(mesh, np.zeros(gdim))
+        self._init_motion(mesh, gdim)
         sub = V_sub.mesh
         T = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim)))
         T3 = fem.functionspace(sub, ("Lagrange", 1, (gdim, gdim, gdim)))
@@ -106,3 +143,27 @@ class MeshedObstacle:
         self.dnormal.x.array[:] = res.dnu_dx.ravel()
         self.dxbar.x.array[:] = res.dy_dx.ravel()
         self.d2xbar.x.array[:] = res.d2y_dx2.ravel()
+
+
+def rigid_plane(point, normal):
+    """Counterpart factory: the rigid plane through ``point`` with unit normal ``normal``."""
+    return lambda Vs: AnalyticObstacle(Vs.mesh, "plane", point, normal=normal)
+
+
+def rigid_cylinder(center, radius, axis=None):
+    """Counterpart factory: a rigid cylinder (disc in 2D) of ``radius`` about ``center``."""
+    return lambda Vs: AnalyticObstacle(Vs.mesh, "cylinder", center, radius=radius, axis=axis)
+
+
+def rigid_sphere(center, radius):
+    """Counterpart factory: a rigid sphere of ``radius`` about ``center``."""
+    return lambda Vs: AnalyticObstacle(Vs.mesh, "sphere", center, radius=radius)
+
+
+def rigid_surface_mesh(nodes, facets, cell_type):
+    """Counterpart factory: a rigid surface mesh projected by the C++ kernel.
+
+    ``nodes`` (n, gdim) float, ``facets`` (m, k) int32, ``cell_type`` as for
+    :func:`tribofx.projection.closest_point_projection`.
+    """
+    return lambda Vs: MeshedObstacle(Vs.mesh, Vs, nodes, facets, cell_type)

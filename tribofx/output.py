@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["RunRecord", "write_vtx"]
+__all__ = ["RunRecord", "write_summary", "write_vtx"]
 
 
 def _jsonable(obj):
@@ -56,11 +56,16 @@ class RunRecord:
         """Write ``summary.json`` with ``status`` ("ok" or "failed: …")."""
         self.data["status"] = status
         self.data["wall_time_s"] = time.perf_counter() - self.t0
-        if self.comm.rank == 0:
-            self.outdir.mkdir(parents=True, exist_ok=True)
-            with open(self.outdir / "summary.json", "w") as f:
-                json.dump(_jsonable(self.data), f, indent=2)
+        write_summary(self.comm, self.outdir / "summary.json", self.data)
         return self.data
+
+
+def write_summary(comm, path, data):
+    """Write the dict ``data`` as JSON to ``path`` on rank 0 (NumPy values converted)."""
+    if comm.rank == 0:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(_jsonable(data), indent=2))
 
 
 def write_vtx(comm, path, functions, t=0.0):

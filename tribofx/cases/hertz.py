@@ -15,12 +15,14 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..contact_problem import ContactProblem, ContactSettings
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..meshes.hertz import CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y, hertz_body
-from ..newton import NewtonDivergence
-from ..obstacles import AnalyticObstacle, MeshedObstacle
+from ..interfaces import Contact
+from ..meshes.hertz import NAMES, hertz_body
+from ..obstacles import rigid_plane, rigid_surface_mesh
 from ..params import InputError, Param
+from ..problem import NewtonDivergence, Problem
 from ..references import hertz_reference
 
 # hertz_reference is re-exported from tribofx.references
@@ -74,38 +76,35 @@ class HertzCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
-        """Mesh, obstacle and :class:`ContactProblem` of the case (not yet loaded)."""
+        """Body, contact interface and :class:`Problem` of the case (not yet loaded)."""
         dim, R = v["dim"], v["R"]
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
         msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
         normal = np.eye(dim)[dim - 1]
         if v["obstacle"] == "analytic":
-            def factory(m, Vs):
-                return AnalyticObstacle(Vs.mesh, "plane", np.zeros(dim), normal=normal)
+            plane = rigid_plane(np.zeros(dim), normal)
         else:
             from ..meshes.obstacles import plane_surface_mesh
 
-            nodes, facets, ctype = plane_surface_mesh(dim, (-0.2 * R, 1.2 * R), 4 * h_fine)
-
-            def factory(m, Vs):
-                return MeshedObstacle(Vs.mesh, Vs, nodes, facets, ctype)
-
+            plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
+                                                           4 * h_fine))
         mu, lmbda = lame_parameters(v["E"], v["nu"])
-        settings = ContactSettings(rho_n=v["E"] / h_fine, friction=v["friction"],
-                                   slip="lagrangian")
-        prob = ContactProblem(msh, ft, CONTACT, "plane_strain" if dim == 2 else "3d",
-                              v["material"], {"mu": mu, "lmbda": lmbda}, factory, settings)
-        prob.add_dirichlet(LOADED, np.zeros(dim))
-        prob.add_dirichlet(SYMMETRY_X, 0.0, component=0)
+        body = Body(msh, ft, NAMES, "plane_strain" if dim == 2 else "3d",
+                    (v["material"], {"mu": mu, "lmbda": lmbda}))
+        body.add_dirichlet("loaded", np.zeros(dim))
+        body.add_dirichlet("symmetry_x", 0.0, component=0)
         if dim == 3:
-            prob.add_dirichlet(SYMMETRY_Y, 0.0, component=1)
-        prob.finalize()
-        return prob
+            body.add_dirichlet("symmetry_y", 0.0, component=1)
+        contact = Contact(body, "contact", plane, rho_n=v["E"] / h_fine,
+                          friction=v["friction"])
+        problem = Problem([body, contact], name="hertz")
+        return body, contact, problem
 
     @staticmethod
-    def vtx_fields(prob):
+    def vtx_fields(run):
         """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
-        return {"displacement": [prob.u], "contact": [prob.lam_n]}
+        body, contact, _ = run
+        return {"displacement": [body.u], "contact": [contact.lam_n]}
 
     @staticmethod
     def plot(profile, outdir):
@@ -121,33 +120,40 @@ class HertzCase:
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):
-        """Load the body to ``load`` and record contact size and peak pressure."""
+        """Load the body to ``load`` and record contact size and peak pressure.
+
+        The plane's position δ is driven by :meth:`Continuation.reach` so that the
+        normal contact force equals each load increment.
+        """
         dim, R = v["dim"], v["R"]
-        prob = cls.build(v)
+        body, contact, problem = run = cls.build(v)
         frac = cls.model_fraction(dim)
-        record.data["num_dofs"] = prob.solver.num_dofs
+        record.data["num_dofs"] = problem.num_dofs
         a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
-        loader = SecantLoader(prob, dim - 1, record, verbose)
+        axis = dim - 1
+        control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
+                               response=lambda: contact.force()[axis], verbose=verbose,
+                               record=record.data["newton_iterations"])
         targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
         delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
         try:
             for k, target in enumerate(targets):
-                delta = loader.reach(target, delta * (1 if k == 0 else (k + 1) / k))
+                delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
                 if progress is not None:
                     progress.update(1)
         except NewtonDivergence as err:
-            err.problem = prob  # restored to the last converged load step
+            err.problem = run  # restored to the last converged load step
             raise
         finally:
-            cls._report(prob, v, record, frac, a_h, p_h)
-        return prob
+            cls._report(contact, v, record, frac, a_h, p_h)
+        return run
 
     @staticmethod
-    def _report(prob, v, record, frac, a_h, p_h):
+    def _report(contact, v, record, frac, a_h, p_h):
         dim = v["dim"]
-        area, pmax = prob.contact_measures()
+        area, pmax = contact.measures()
         size = area if dim == 2 else math.sqrt(4 * area / math.pi)
-        force = prob.contact_force()
+        force = contact.force()
         key = "contact_half_width" if dim == 2 else "contact_radius"
         record.result(key, size, "mm")
         record.result(f"hertz_{key}", a_h, "mm")
@@ -160,66 +166,15 @@ class HertzCase:
         record.result("tangential_force_modelled_part", [float(f) for f in force[: dim - 1]],
                       "N/mm" if dim == 2 else "N")
         # weighted L2 distance of the nodal pressures from the Hertz distribution
-        d = prob.nodal_contact_data()
+        d = contact.nodal_data()
         rr = d["x"][:, 0] if dim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
         ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
-        comm = prob.mesh.comm
+        comm = contact.body.mesh.comm
         num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
         den = comm.allreduce(float(np.sum(d["weight"] * ph**2)), op=MPI.SUM)
         record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
-        prof = prob.gather_profile()
-        if prob.mesh.comm.rank == 0:
+        prof = contact.gather_profile()
+        if comm.rank == 0:
             r = (prof["x"][:, 0] if dim == 2
                  else np.linalg.norm(prof["x"][:, :2], axis=1))
             record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}
-
-
-class SecantLoader:
-    """Displacement-controlled loading by a rigid translation δ of the obstacle.
-
-    :meth:`reach` finds δ such that the normal contact force equals a target by
-    a secant iteration; each trial is a full Newton solve warm-started from the
-    previous trial.  A failed Newton solve restores the last state and halves
-    the δ increment (step cutting).
-    """
-
-    def __init__(self, prob, axis, record, verbose=False, rtol=1e-6, max_trials=25):
-        self.prob, self.axis, self.record = prob, axis, record
-        self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
-        self.delta_done = 0.0
-
-    def _force(self, delta):
-        self.prob.obstacle.offset.value[self.axis] = delta
-        report = self.prob.solve(verbose=self.verbose)
-        self.iterations.append(report.iterations)
-        return self.prob.contact_force()[self.axis]
-
-    def reach(self, target, delta):
-        """Solve for the obstacle position giving ``target`` normal force; returns δ."""
-        self.iterations = []
-        saved = self.prob.state()
-        d0 = self.delta_done
-        f0 = None
-        d1 = delta
-        for _ in range(self.max_trials):
-            try:
-                f1 = self._force(d1)
-            except NewtonDivergence:
-                self.prob.restore(saved)
-                d1 = 0.5 * (self.delta_done + d1)
-                continue
-            if abs(f1 - target) <= self.rtol * target:
-                break
-            if f0 is None or f1 == f0:
-                # power-law update from the origin of the loading
-                d_new = d1 * (target / f1) ** (0.7) if f1 > 0 else 2 * d1
-            else:
-                d_new = d1 - (f1 - target) * (d1 - d0) / (f1 - f0)
-            d0, f0, d1 = d1, f1, d_new
-        else:
-            self.prob.restore(saved)
-            raise NewtonDivergence(f"load {target:g} not reached in {self.max_trials} trials")
-        self.prob.commit()
-        self.delta_done = d1
-        self.record.data["newton_iterations"].append(self.iterations)
-        return d1

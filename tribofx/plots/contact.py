@@ -1,24 +1,17 @@
-"""PNG plots of case results (rank 0, matplotlib Agg backend)."""
+"""Plots of contact results: the Hertz pressure profile."""
 
 from pathlib import Path
 
 import numpy as np
 
+from .common import pyplot
+
 __all__ = ["plot_hertz_pressure"]
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def plot_hertz_pressure(profile, path):
     """Nodal contact pressure against the Hertz distribution p₀√(1 − r²/a²)."""
-    plt = _pyplot()
+    plt = pyplot()
     a, p0 = profile["a"], profile["p0"]
     r = np.linspace(0, a, 200)
     fig, ax = plt.subplots(figsize=(6, 4))

@@ -1,0 +1,240 @@
+"""A hyperelastic body: mesh and named tags, kinematic kind, material, u, BCs and loads.
+
+Everything lives on the initial mesh (DESIGN.md, "Working on the initial mesh").
+A body contributes the internal virtual work of eq. (7) to the row of its
+displacement u,
+
+    ∫_Ω P(F) : Grad δu dV − ∫_Γt T*·δu dS = 0,        F = I + Grad u,
+
+2πR-weighted for axisymmetric bodies.  With ``shape=True`` it also carries the
+ALE shape field w of the wear formulation (X = X̂ + w, eqs. 19–20): the internal
+work is then written on the worn configuration, F = (I + Grad u)(I + Grad w)⁻¹
+(:func:`tribofx.forms.ale.internal_virtual_work_worn`), and w obeys the
+auxiliary elasticity problem (:func:`tribofx.forms.ale.aux_elasticity`) whose
+boundary data a wear interface supplies.  An optional constant Eulerian
+background velocity V (eq. 26) is stored for interfaces that need v = F V.
+
+Tags are looked up by name (``names = {"contact": 1, ...}``), so that a case or a
+user's mesh file names its boundaries once.  Units: mm, N, MPa.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from .forms import ale
+from .forms import hyperelastic as hf
+from .forms import kinematics as kin
+from .params import InputError
+from .problem import BlockTolerance
+
+__all__ = ["Body", "shear_modulus"]
+
+
+def shear_modulus(material, params):
+    """Small-strain shear modulus (MPa) of a law of :mod:`tribofx.forms.hyperelastic`."""
+    if "mu" in params:
+        return float(params["mu"])
+    if "mu1" in params:
+        return float(params["mu1"]) + float(params.get("mu2", 0.0))
+    raise ValueError(f"no shear modulus in the parameters of {material!r}")
+
+
+class Body:
+    """A deformable body on the initial mesh ``mesh``.
+
+    Args:
+        mesh: the mesh (affine geometry for contact interfaces).
+        facet_tags: facet meshtags; ``names`` maps boundary names to their values.
+        names: {boundary name: facet tag value}.
+        kind: "3d", "plane_strain" or "axisymmetric".
+        material: (law, params) of :mod:`tribofx.forms.hyperelastic`, or
+            {cell tag value: (law, params)} for a body of several materials
+            (then ``cell_tags`` is required).
+        cell_tags: cell meshtags (for several materials).
+        degree: Lagrange degree of u.
+        quadrature_degree: volume quadrature degree (None: automatic).
+        shape: carry the ALE shape field w (finite wear).
+        aux: (E, ν) of the auxiliary elasticity of w (MPa, -).
+        velocity: constant Eulerian background velocity V (mm/s), or None.
+        name: name of the body (unknown names, reports).
+        rtol: relative size of the momentum stopping tolerance (see :meth:`tolerances`).
+    """
+
+    def __init__(self, mesh, facet_tags, names, kind, material, cell_tags=None, degree=1,
+                 quadrature_degree=None, shape=False, aux=(1.0, 0.3), velocity=None,
+                 name="body", rtol=1e-10):
+        if kind not in kin.KINDS:
+            raise ValueError(f"unknown kind {kind!r}; expected one of {kin.KINDS}")
+        self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
+        self.cell_tags, self.name = cell_tags, name
+        self.materials = material if isinstance(material, dict) else {None: material}
+        if None not in self.materials and cell_tags is None:
+            raise ValueError("several materials need cell_tags")
+        gdim = mesh.geometry.dim
+        self.gdim = gdim
+        self.V = fem.functionspace(mesh, ("Lagrange", degree, (gdim,)))
+        self.u = fem.Function(self.V, name=f"{name}_displacement" if name != "body"
+                              else "displacement")
+        qd = {} if quadrature_degree is None else {"quadrature_degree": quadrature_degree}
+        self.dx = ufl.Measure("dx", mesh, subdomain_data=cell_tags, metadata=qd)
+        self.ds = ufl.Measure("ds", mesh, subdomain_data=facet_tags)
+        self.weight = kin.reference_volume_factor(mesh, kind)
+        self.velocity = None if velocity is None else fem.Constant(
+            mesh, np.asarray(velocity, dtype=float))
+        self.v = ufl.TestFunction(self.V)
+        self._bcs, self._loads = [], []
+        self._multiplier_fixes = []  # interfaces told about prescribed components
+        self.w = self.w_n = None
+        self._w_bcs = []
+        if shape:
+            # a distinct (equal) space: Dirichlet conditions are sorted into blocks by space
+            self.Vw = fem.functionspace(mesh, self.V.ufl_element())
+            self.w = fem.Function(self.Vw, name="shape_change")
+            self.w_n = fem.Function(self.Vw, name="shape_change_old")
+            E_a, nu_a = aux
+            self._aux = hf.lame_parameters(E_a, nu_a)
+        lo = mesh.comm.allreduce(mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf),
+                                 op=MPI.MIN)
+        hi = mesh.comm.allreduce(mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf),
+                                 op=MPI.MAX)
+        self.length = float(np.linalg.norm(hi - lo))
+        self.stiffness = max(shear_modulus(m, p) for m, p in self.materials.values())
+        self.rtol = rtol
+
+    # -- tags ------------------------------------------------------------------
+    def tag(self, name):
+        """Facet tag value of the boundary ``name`` (one-line error if unknown)."""
+        if name not in self.names:
+            raise InputError(f"{self.name}: no boundary named {name!r}; "
+                             f"known: {', '.join(self.names)}")
+        return self.names[name]
+
+    def facets(self, name):
+        """Local facet indices of the boundary ``name`` (error if empty on all ranks)."""
+        facets = self.facet_tags.find(self.tag(name))
+        if self.mesh.comm.allreduce(len(facets), op=MPI.SUM) == 0:
+            raise InputError(f"{self.name}: boundary {name!r} has no facets")
+        return facets
+
+    # -- boundary conditions and loads ------------------------------------------
+    def add_dirichlet(self, name, value, component=None):
+        """Prescribe u (or one ``component``) on boundary ``name``; returns the value Constant."""
+        fdim = self.mesh.topology.dim - 1
+        facets = self.facets(name)
+        if component is None:
+            c = fem.Constant(self.mesh, np.asarray(value, dtype=float))
+            dofs = fem.locate_dofs_topological(self.V, fdim, facets)
+            self._bcs.append(fem.dirichletbc(c, dofs, self.V))
+        else:
+            Vc = self.V.sub(component)
+            c = fem.Constant(self.mesh, float(value))
+            dofs = fem.locate_dofs_topological(Vc, fdim, facets)
+            self._bcs.append(fem.dirichletbc(c, dofs, Vc))
+        self._multiplier_fixes.append((facets, component))
+        return c
+
+    def prescribed(self):
+        """(facets, component) pairs where u is prescribed (component None: all)."""
+        return list(self._multiplier_fixes)
+
+    def add_traction(self, name, traction):
+        """Dead nominal traction T* (UFL vector, MPa) on boundary ``name``.
+
+        On a body with a shape field the traction is per unit *worn* area.
+        """
+        ds = self.ds(self.tag(name))
+        if self.w is not None:
+            self._loads.append(ale.traction_work_worn(traction, self.w, self.v,
+                                                      ufl.FacetNormal(self.mesh), ds))
+        else:
+            self._loads.append(hf.external_virtual_work(traction, self.v, self.kind, ds))
+
+    def add_follower_pressure(self, name, pressure):
+        """Follower pressure p (MPa) on boundary ``name``: T = −p J F⁻ᵀ N (Nanson)."""
+        F = kin.deformation_gradient(self.u, self.kind)
+        t = -pressure * kin.nanson_normal(F, ufl.FacetNormal(self.mesh), self.kind)
+        t = ufl.as_vector([t[i] for i in range(self.gdim)])
+        self._loads.append(hf.external_virtual_work(t, self.v, self.kind,
+                                                    self.ds(self.tag(name))))
+
+    def add_shape_dirichlet(self, name, component):
+        """Zero normal motion of the worn boundary: w[component] = 0 on boundary ``name``."""
+        fdim = self.mesh.topology.dim - 1
+        Vc = self.Vw.sub(component)
+        dofs = fem.locate_dofs_topological(Vc, fdim, self.facets(name))
+        self._w_bcs.append(fem.dirichletbc(fem.Constant(self.mesh, 0.0), dofs, Vc))
+
+    # -- kinematics ----------------------------------------------------------------
+    def position(self):
+        """Return the current position x = X̂ + u (UFL) of the initial mesh's points."""
+        return kin.spatial_position(self.u)
+
+    def deformation_gradient(self):
+        """F relative to the current reference (worn if the body has a shape field)."""
+        if self.w is not None:
+            return ale.deformation_gradient_worn(self.u, self.w, self.kind)
+        return kin.deformation_gradient(self.u, self.kind)
+
+    # -- component protocol (tribofx.problem) ---------------------------------------
+    def internal_work(self):
+        """Return the internal virtual work of eq. (7) over all materials (worn if shaped)."""
+        R = 0
+        for tag, (law, params) in self.materials.items():
+            dx = self.dx if tag is None else self.dx(tag)
+            if self.w is not None:
+                R += ale.internal_virtual_work_worn(self.u, self.w, self.v, self.kind, law,
+                                                    params, dx)
+            else:
+                R += hf.internal_virtual_work(self.u, self.v, self.kind, law, params, dx)
+        return R
+
+    def unknowns(self):
+        """Return u, and w for a shaped body."""
+        return [self.u] + ([self.w] if self.w is not None else [])
+
+    def contributions(self):
+        """Return internal work minus loads on u's row, auxiliary elasticity on w's row."""
+        R = self.internal_work()
+        for load in self._loads:
+            R = R - load
+        out = [(self.u, R)]
+        if self.w is not None:
+            mu_a, lmbda_a = self._aux
+            out.append((self.w, ale.aux_elasticity(self.w, ufl.TestFunction(self.Vw), mu_a,
+                                                   lmbda_a, self.dx)))
+        return out
+
+    def bcs(self):
+        """Dirichlet conditions of u (and w)."""
+        return self._bcs + self._w_bcs
+
+    def entity_maps(self):
+        """Return no entity maps: a body's forms live on its own mesh."""
+        return []
+
+    def refresh(self):
+        """Nothing computed outside UFL."""
+
+    def tolerances(self):
+        """Momentum rows: nodal force ≤ rtol·G·L^{d−1} (N; N/mm in plane strain).
+
+        G is the body's shear modulus and L the diameter of its bounding box, so
+        the tolerance is ``rtol`` of the force that strains the whole body by 1.
+        The shape rows (auxiliary elasticity, fictitious modulus E_a) use
+        rtol·E_a·L^{d−1}.
+        """
+        d = 2 if self.kind in ("3d", "axisymmetric") else 1
+        out = {self.u: BlockTolerance(self.rtol * self.stiffness * self.length**d,
+                                      "N" if d == 2 else "N/mm")}
+        if self.w is not None:
+            out[self.w] = BlockTolerance(self.rtol * self._aux[0] * self.length**d, "aux")
+        return out
+
+    def state_fields(self):
+        """Return u (and w, w_n)."""
+        return self.unknowns() + ([self.w_n] if self.w_n is not None else [])
+
+    def commit(self):
+        """Nothing to move on for the bulk."""

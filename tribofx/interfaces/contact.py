@@ -1,0 +1,278 @@
+"""Frictional contact of a body's boundary with a counterpart (chapter §2, eqs. 1–9).
+
+The slave surface Γ_c is a named boundary of a :class:`tribofx.body.Body`.  Its
+nominal tractions are unknown P1 fields on the facet submesh of Γ_c (λ_N, and
+λ_T with friction), coupled to the bulk through an entity map.  The residual is
+the Alart–Curnier augmented Lagrangian of
+:func:`tribofx.forms.contact.augmented_lagrangian_contact`,
+
+    G_c = ∫_Γc (T_N δg_N + T_T·δx̄) dS − ∫_Γc (1/ρ_N)(λ_N − T_N) δλ_N dS
+          − ∫_Γc (1/ρ_T)(λ_T − T_T)·δλ_T dS,
+
+integrated with vertex quadrature (the classical nodal scheme).  Slip is the
+increment of the projection point over a step (Lagrangian) or the Eulerian
+relative velocity v = F V − V_master times a pseudo-time (steady sliding, eqs.
+26–27).
+
+The counterpart is an object with ``geometry(x)`` (a
+:class:`tribofx.forms.contact.ContactGeometry` of the UFL position x),
+``update(x_nodes)`` (kernel data at the slave nodes, before every assembly),
+``motion_since_commit()``, ``commit()``, ``state_fields()`` and ``unknowns()``;
+the rigid countersurfaces of :mod:`tribofx.obstacles` are such objects, created
+from a factory ``counterpart(V_sub)``.  Nothing here assumes the counterpart is
+rigid.  Units: mm, N, MPa.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from dolfinx.cpp import mesh as _cpp_mesh
+from mpi4py import MPI
+
+from ..forms import contact as cf
+from ..forms import kinematics as kin
+from ..problem import BlockTolerance
+from ..submesh import facet_submesh
+
+__all__ = ["Contact", "node_to_dof"]
+
+
+def node_to_dof(V):
+    """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
+    msh = V.mesh
+    xdm = msh.geometry.dofmaps[0]
+    nv = _cpp_mesh.cell_num_vertices(msh.topology.cell_type)
+    if xdm.shape[1] != nv:
+        raise ValueError("contact requires an affine (P1) geometry of the contact body")
+    out = np.full(msh.geometry.x.shape[0], -1, dtype=np.int64)
+    out[xdm.ravel()] = V.dofmap.list[:, :nv].ravel()
+    return out
+
+
+class Contact:
+    """Contact of ``body`` on boundary ``boundary`` with ``counterpart``.
+
+    Args:
+        body: the slave :class:`tribofx.body.Body`.
+        boundary: name of the potential contact surface Γ_c.
+        counterpart: factory ``counterpart(V_sub)`` returning the counterpart
+            (e.g. :func:`tribofx.obstacles.rigid_plane`).
+        rho_n: normal augmentation parameter (MPa/mm).
+        friction: Coulomb coefficient μ (0: frictionless, no tangential multiplier).
+        rho_t: tangential augmentation (MPa per unit of slip measure; default rho_n).
+        slip: "lagrangian" or "eulerian" (needs the body's ``velocity``).
+        V_master: velocity of the counterpart's surface for eulerian slip (mm/s).
+        dtau: pseudo-time turning a slip velocity into a slip (s).
+        name: name of the interface (reports).
+        rtol: relative size of the gap tolerance (× the body size, mm).
+    """
+
+    def __init__(self, body, boundary, counterpart, rho_n, friction=0.0, rho_t=None,
+                 slip="lagrangian", V_master=None, dtau=1.0, name="contact", rtol=1e-10):
+        if slip not in ("lagrangian", "eulerian"):
+            raise ValueError(f"unknown slip {slip!r}")
+        if friction < 0:
+            raise ValueError("friction coefficient must be >= 0")
+        self.body, self.name, self.rtol = body, name, rtol
+        msh, gdim = body.mesh, body.gdim
+        self.sub, self.emap, gmap = facet_submesh(msh, body.facet_tags, body.tag(boundary),
+                                                  f"{body.name} {boundary}")
+        self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (gdim,)))
+        self.Q = fem.functionspace(self.sub, ("Lagrange", 1))
+        self.lam_n = fem.Function(self.Q, name="contact_pressure_nominal")
+        self.u_sub = fem.Function(self.Vs, name="u_contact")
+        self.xbar_n = fem.Function(self.Vs, name="projection_at_last_step")
+        bulk = node_to_dof(body.V)
+        subm = node_to_dof(self.Vs)
+        nsub = self.sub.geometry.x.shape[0]
+        self.sub_dofs = subm[np.arange(nsub)]
+        self.bulk_dofs = bulk[gmap[np.arange(nsub)]]
+        self.X_sub = np.zeros((len(self.u_sub.x.array) // gdim, gdim))
+        self.X_sub[self.sub_dofs] = self.sub.geometry.x[:, :gdim]
+        self.counterpart = counterpart(self.Vs)
+        self.dsc = ufl.Measure("ds", msh, subdomain_data=body.facet_tags,
+                               subdomain_id=body.tag(boundary),
+                               metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
+        self.geometry = self.counterpart.geometry(body.position())
+        self.friction, self.slip_kind = float(friction), slip
+        self.rho_n = rho_n
+        self.rho_t = rho_t if rho_t is not None else rho_n
+        self.lam_t = self.slip = None
+        if friction > 0:
+            self.lam_t = fem.Function(self.Vs, name="friction_traction_nominal")
+            if slip == "eulerian":
+                if body.velocity is None:
+                    raise ValueError("eulerian slip needs the body's background velocity")
+                Vm = np.zeros(gdim) if V_master is None else np.asarray(V_master, float)
+                self.V_master = fem.Constant(msh, Vm)
+                self.slip = cf.eulerian_slip(body.u, self.geometry, body.velocity,
+                                             self.V_master, dtau)
+            else:
+                xbar_old = self.xbar_n + self.counterpart.motion_since_commit()
+                self.slip = cf.lagrangian_slip(self.geometry, xbar_old)
+        x_sub = ufl.SpatialCoordinate(self.sub) + self.u_sub
+        self._xbar_expr = fem.Expression(self.counterpart.geometry(x_sub).projection,
+                                         self.Vs.element.interpolation_points)
+        self._post = None
+        self.commit()
+
+    # -- laws ------------------------------------------------------------------
+    @property
+    def law(self):
+        """Keyword arguments of :func:`tribofx.forms.contact.contact_tractions`."""
+        return dict(rho_n=self.rho_n, lam_t=self.lam_t, rho_t=self.rho_t, slip=self.slip,
+                    mu=self.friction)
+
+    def tractions(self):
+        """Nominal (T_N, T_T) of the Alart–Curnier law at the current state (UFL)."""
+        return cf.contact_tractions(self.geometry, self.lam_n, **self.law)
+
+    # -- component protocol --------------------------------------------------------
+    def unknowns(self):
+        """λ_N (and λ_T), plus the counterpart's unknowns."""
+        return [self.lam_n] + ([self.lam_t] if self.lam_t is not None else []) \
+            + list(self.counterpart.unknowns())
+
+    def contributions(self):
+        """Contact virtual work on u's row, the constraint rows of λ_N and λ_T."""
+        mu_t = ufl.TestFunction(self.Vs) if self.lam_t is not None else None
+        R_u, R_n, R_t = cf.augmented_lagrangian_contact(
+            self.body.u, self.body.v, self.geometry, self.lam_n, ufl.TestFunction(self.Q),
+            self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction,
+            weight=self.body.weight)
+        out = [(self.body.u, R_u), (self.lam_n, R_n)]
+        if R_t is not None:
+            out.append((self.lam_t, R_t))
+        return out
+
+    def bcs(self):
+        """Zero friction multiplier where u is prescribed on contact nodes.
+
+        A slave node whose displacement component is prescribed (e.g. on a
+        symmetry plane) cannot also carry a stick constraint in that direction:
+        the two would be redundant and the Jacobian singular.  Its friction
+        traction in that direction is zero (symmetry), so it is prescribed.
+        """
+        if self.lam_t is None:
+            return []
+        fdim = self.body.mesh.topology.dim - 1
+        gdim = self.body.gdim
+        out = []
+        for facets, component in self.body.prescribed():
+            blocks = fem.locate_dofs_topological(self.body.V, fdim, facets)
+            sub_blocks = self.sub_dofs[np.isin(self.bulk_dofs, blocks)]
+            for c in range(gdim) if component is None else [component]:
+                out.append(fem.dirichletbc(fem.Constant(self.sub, 0.0),
+                                           (gdim * sub_blocks + c).astype(np.int32),
+                                           self.Vs.sub(c)))
+        return out
+
+    def entity_maps(self):
+        """Return the submesh ↔ bulk entity map."""
+        return [self.emap]
+
+    def refresh(self):
+        """Copy u to the submesh and let the counterpart project the slave nodes."""
+        gdim = self.body.gdim
+        ub = self.body.u.x.array.reshape(-1, gdim)
+        us = self.u_sub.x.array.reshape(-1, gdim)
+        us[self.sub_dofs] = ub[self.bulk_dofs]
+        self.counterpart.update(self.positions())
+
+    def tolerances(self):
+        """Constraint rows over their lumped measure: a gap (slip) ≤ rtol·L mm."""
+        atol = self.rtol * self.body.length
+        ones = ufl.as_vector([1.0] * self.body.gdim)
+        out = {self.lam_n: BlockTolerance(atol, "mm", ufl.TestFunction(self.Q) * self.dsc)}
+        if self.lam_t is not None:
+            out[self.lam_t] = BlockTolerance(
+                atol, "mm", ufl.dot(ufl.TestFunction(self.Vs), ones) * self.dsc)
+        return out
+
+    def state_fields(self):
+        """Multipliers, the slip history and the counterpart's state."""
+        return self.unknowns() + [self.xbar_n] + list(self.counterpart.state_fields())
+
+    def commit(self):
+        """Accept the converged step: the slip history moves to the current state."""
+        self.refresh()
+        self.xbar_n.interpolate(self._xbar_expr)
+        self.counterpart.commit()
+
+    # -- outputs ---------------------------------------------------------------------
+    def positions(self):
+        """Return slave-node positions x = X + u, shape (n_sub_dofs, gdim), dof order."""
+        return self.X_sub + self.u_sub.x.array.reshape(-1, self.body.gdim)
+
+    def _forms(self):
+        if self._post is None:
+            tn, tt = self.tractions()
+            w, n = self.body.weight, self.geometry.normal
+            force = -tn * n - (tt if tt is not None else 0 * n)
+            em = [self.emap]
+            q = ufl.TestFunction(self.Q)
+            j = kin.area_ratio(kin.deformation_gradient(self.body.u, self.body.kind),
+                               ufl.FacetNormal(self.body.mesh), self.body.kind)
+            tmag = ufl.sqrt(ufl.dot(tt, tt)) if tt is not None else 0 * tn
+            self._post = {
+                "force": [fem.form(force[i] * w * self.dsc, entity_maps=em)
+                          for i in range(self.body.gdim)],
+                "magnitudes": [fem.form(-tn * w * self.dsc, entity_maps=em),
+                               fem.form(tmag * w * self.dsc, entity_maps=em)],
+                "lumped": fem.form(q * w * self.dsc, entity_maps=em),
+                "lumped_j": fem.form(j * q * w * self.dsc, entity_maps=em),
+                "active": fem.form(ufl.conditional(ufl.lt(tn, 0), 1.0, 0.0) * q * self.dsc,
+                                   entity_maps=em),
+            }
+        return self._post
+
+    def _sum(self, form):
+        return self.body.mesh.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
+
+    def nodal(self, form):
+        """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
+        vec = fem.assemble_vector(form)
+        vec.scatter_reverse(la.InsertMode.add)
+        vec.scatter_forward()
+        return vec.array.copy()
+
+    def force(self):
+        """Total force exerted by the counterpart on the (modelled part of the) body (N)."""
+        return np.array([self._sum(f) for f in self._forms()["force"]])
+
+    def traction_magnitudes(self):
+        """(∫ |T_N| dS, ∫ ‖T_T‖ dS): total normal and frictional traction magnitudes (N)."""
+        return tuple(self._sum(f) for f in self._forms()["magnitudes"])
+
+    def nodal_data(self):
+        """Per owned submesh node: reference X, current x, Cauchy pressure p = −T_N/j, weight.
+
+        The weight is the lumped current area (length in 2D, per radian·2π in
+        axisymmetry) of the node; ``active`` flags nodes in contact.
+        """
+        f = self._forms()
+        n_own = self.Q.dofmap.index_map.size_local
+        w, wj, act = self.nodal(f["lumped"]), self.nodal(f["lumped_j"]), self.nodal(f["active"])
+        j = np.divide(wj, w, out=np.ones_like(w), where=w > 0)
+        p = -self.lam_n.x.array / j
+        x = self.positions()
+        return {"X": self.X_sub[:n_own], "x": x[:n_own], "p": p[:n_own],
+                "weight": wj[:n_own], "active": act[:n_own] > 0}
+
+    def measures(self):
+        """Global contact area (sum of active lumped current weights) and peak pressure."""
+        d = self.nodal_data()
+        comm = self.body.mesh.comm
+        area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
+        pmax = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
+        return area, pmax
+
+    def gather_profile(self):
+        """All nodal contact data on rank 0 (None elsewhere), sorted by reference X[0]."""
+        d = self.nodal_data()
+        allp = self.body.mesh.comm.gather(d, root=0)
+        if self.body.mesh.comm.rank != 0:
+            return None
+        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
+        order = np.argsort(out["X"][:, 0])
+        return {k: v[order] for k, v in out.items()}

@@ -1,0 +1,383 @@
+"""One monolithic problem: the unknowns and residual blocks of bodies and interfaces.
+
+A *component* (a :class:`tribofx.body.Body` or an interface of
+:mod:`tribofx.interfaces`) declares
+
+* ``unknowns()``: its ``dolfinx.fem.Function`` unknowns, in order;
+* ``contributions()``: a list of ``(unknown, form)`` pairs, the residual terms it
+  adds to the row of ``unknown`` (the form is linear in the test function of
+  ``unknown``'s space; every term is built by :mod:`tribofx.forms`);
+* ``bcs()``: Dirichlet conditions on any of its own or other unknowns;
+* ``entity_maps()``: entity maps of its mixed-dimensional forms;
+* ``refresh()``: data computed outside UFL (C++ kernel projections, traces),
+  run before *every* residual and Jacobian evaluation, line-search trials
+  included;
+* ``tolerances()``: ``{unknown: BlockTolerance}``, the stopping test of its rows
+  in physical units;
+* ``state_fields()``: Functions and Constants that make up its state (unknowns,
+  histories, positions) for :meth:`Problem.state` / :meth:`Problem.restore`;
+* ``commit()``: accept a converged step (histories move on).
+
+:class:`Problem` sums the contributions row by row, takes the exact tangent by
+``ufl.derivative`` of each block, and solves with PETSc SNES through the public
+DOLFINx 0.11 :class:`dolfinx.fem.petsc.NonlinearProblem`.  Every PETSc object has
+the options prefix ``tribofx_<name>_``; the defaults (``newtonls``, the
+backtracking of :meth:`Problem._backtrack`, the linear-solver strategy of
+:mod:`tribofx.solvers`) are set only where the options database has no value,
+so ``-tribofx_<name>_snes_monitor`` or ``-tribofx_<name>_pc_type`` on the
+command line override them.
+
+Stopping test (per block, physical units): block ``i`` is converged when
+``max_k |r_k / w_k| ≤ atol_i``, with ``w`` the block's lumped row measure (or 1):
+nodal forces in N (N/mm in plane strain) for momentum rows, a gap in mm for
+contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
+every block is converged, never on one 2-norm over mixed units.
+"""
+
+from dataclasses import dataclass, field
+
+import dolfinx.fem.petsc as fem_petsc
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from mpi4py import MPI
+from petsc4py import PETSc
+from ufl.algorithms import expand_derivatives
+
+from .solvers import DirectSolver
+
+__all__ = [
+    "BlockTolerance",
+    "NewtonDivergence",
+    "NewtonReport",
+    "Problem",
+    "convergence_orders",
+]
+
+
+class NewtonDivergence(RuntimeError):
+    """Raised when the Newton iteration does not converge (the unknowns are restored)."""
+
+
+@dataclass
+class BlockTolerance:
+    """Stopping tolerance of one block of rows, in the block's physical unit.
+
+    Attributes:
+        atol: tolerance on ``max |r / w|`` (in ``unit``).
+        unit: unit of ``r / w`` (for reports), e.g. "N", "mm".
+        weight: UFL linear form whose assembled vector is the lumped row measure
+            ``w`` (None: 1, the rows already carry the unit).
+    """
+
+    atol: float
+    unit: str = "-"
+    weight: object = None
+
+
+@dataclass
+class NewtonReport:
+    """Outcome of one Newton solve: iterations, residual 2-norms and per-block norms."""
+
+    iterations: int = 0
+    residuals: list = field(default_factory=list)
+    blocks: list = field(default_factory=list)
+    increments: list = field(default_factory=list)
+    reason: int = 0
+
+    def rates(self, floor=1e-13):
+        """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""
+        return convergence_orders(self.residuals, floor)
+
+
+def convergence_orders(residuals, floor=1e-13):
+    """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of a residual history.
+
+    Residuals below ``floor`` × r₀ are at round-off and are dropped first.
+    """
+    r = np.asarray(residuals, dtype=float)
+    r = r[r > floor * r[0]] if len(r) else r
+    if len(r) < 3:
+        return np.array([])
+    lr = np.log(r)
+    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+
+
+def _nonzero_or_none(a):
+    a = expand_derivatives(a)
+    return None if a.empty() else a
+
+
+def _unique(items):
+    out = []
+    for it in items:
+        if not any(it is o for o in out):
+            out.append(it)
+    return out
+
+
+class Problem:
+    """Monolithic Newton problem of ``components`` (bodies and interfaces).
+
+    Args:
+        components: bodies and interfaces (see the module docstring).
+        unknowns: the subset of the components' unknowns to solve for (default:
+            all, in component order); the others enter as data.  A staggered
+            scheme builds one Problem per subset.
+        name: options prefix ``tribofx_<name>_`` of the SNES, KSP and PC.
+        solver: linear-solver strategy (default :class:`tribofx.solvers.DirectSolver`).
+        max_it: maximum Newton iterations.
+        max_backtracks: step halvings of the backtracking line search (0: full steps).
+        petsc_options: further defaults under the prefix (the command line wins).
+        tolerances: ``{unknown: BlockTolerance}`` overriding the components'.
+    """
+
+    _names = {}
+
+    def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
+                 max_backtracks=6, petsc_options=None, tolerances=None):
+        self.components = list(components)
+        every = _unique([u for c in self.components for u in c.unknowns()])
+        self.u = every if unknowns is None else list(unknowns)
+        for ui in self.u:
+            if not any(ui is e for e in every):
+                raise ValueError(f"unknown {ui.name!r} is not owned by any component")
+        rows = {id(ui): 0 for ui in self.u}
+        for c in self.components:
+            for ui, form in c.contributions():
+                if id(ui) in rows:
+                    rows[id(ui)] = rows[id(ui)] + form
+        for ui in self.u:
+            if rows[id(ui)] == 0:
+                raise ValueError(f"no residual contribution for unknown {ui.name!r}")
+        self.residual_forms = [rows[id(ui)] for ui in self.u]
+        J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
+              for uj in self.u] for Fi in self.residual_forms]
+        # DOLFINx sorts the conditions into blocks by space; those on unknowns that
+        # are not solved for here are ignored
+        self.bcs = [bc for c in self.components for bc in c.bcs()]
+        emaps = _unique([m for c in self.components for m in c.entity_maps()])
+        count = Problem._names.get(name, 0)
+        Problem._names[name] = count + 1
+        self.name = name if count == 0 else f"{name}{count}"
+        self.prefix = f"tribofx_{self.name}_"
+        self._nlp = fem_petsc.NonlinearProblem(
+            self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",
+            petsc_options_prefix=self.prefix, entity_maps=emaps or None)
+        self.snes = self._nlp.solver
+        self.max_it, self.max_backtracks = int(max_it), int(max_backtracks)
+        self.solver = solver if solver is not None else DirectSolver()
+        defaults = {"snes_type": "newtonls", "snes_linesearch_type": "basic",
+                    "snes_max_it": self.max_it, "snes_max_fail": 1,
+                    **self.solver.options(), **(petsc_options or {})}
+        opts = PETSc.Options()
+        for key, value in defaults.items():
+            if not opts.hasName(self.prefix + key):
+                opts[self.prefix + key] = value
+        self.snes.setFromOptions()
+        self.solver.configure(self)
+        # wrap the residual callback: refresh the components' data at every iterate
+        b, (fn, args, kargs) = self.snes.getFunction()
+        self._assemble_residual = (fn, args, kargs)
+        self.snes.setFunction(self._residual, b)
+        self.snes.setConvergenceTest(self._converged)
+        if self.max_backtracks > 0:
+            self.snes.setLineSearchPreCheck(self._backtrack)
+        self._tolerances = self._collect_tolerances(tolerances or {})
+        self._cache = None
+        self._report = None
+        self.report = None
+
+    # -- set-up --------------------------------------------------------------
+    def _collect_tolerances(self, overrides):
+        tol = {}
+        for c in self.components:
+            for ui, t in c.tolerances().items():
+                tol.setdefault(id(ui), t)
+        for ui, t in overrides.items():
+            tol[id(ui)] = t
+        blocks, start = [], 0
+        for ui in self.u:
+            V = ui.function_space
+            n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+            t = tol.get(id(ui))
+            if t is None:
+                raise ValueError(f"no stopping tolerance for unknown {ui.name!r}")
+            w = None
+            if t.weight is not None:
+                vec = fem.assemble_vector(fem.form(t.weight, entity_maps=self._emaps()))
+                vec.scatter_reverse(la.InsertMode.add)
+                w = vec.array[:n].copy()
+                w[w <= 0] = 1.0
+            blocks.append((ui.name, slice(start, start + n), t, w))
+            start += n
+        return blocks
+
+    def _emaps(self):
+        return _unique([m for c in self.components for m in c.entity_maps()]) or None
+
+    @property
+    def num_dofs(self):
+        """Global number of unknowns of the block system."""
+        return self._nlp.x.getSize()
+
+    @property
+    def A(self):
+        """The PETSc Jacobian matrix."""
+        return self._nlp.A
+
+    # -- callbacks -----------------------------------------------------------
+    def refresh(self):
+        """Run every component's ``refresh`` at the current values of the unknowns."""
+        for c in self.components:
+            c.refresh()
+
+    def _residual(self, snes, x, b):
+        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
+        key = x.getArray(readonly=True)
+        if self._cache is not None:
+            same = self._cache[0].shape == key.shape and np.array_equal(self._cache[0], key)
+            if x.comm.tompi4py().allreduce(same, op=MPI.LAND):
+                self._cache[1].copy(b)
+                return
+        fem_petsc.assign(x, self.u)
+        self.refresh()
+        fn, args, kargs = self._assemble_residual
+        fn(snes, x, b, *args, **kargs)
+
+    def _block_norms(self, b):
+        arr = b.getArray(readonly=True)
+        comm = b.comm.tompi4py()
+        out = []
+        for _, sl, _, w in self._tolerances:
+            r = arr[sl] if w is None else arr[sl] / w
+            out.append(comm.allreduce(float(np.max(np.abs(r), initial=0.0)), op=MPI.MAX))
+        return out
+
+    def _converged(self, snes, it, norms):
+        fnorm = norms[2]
+        b = snes.getFunction()[0]
+        blocks = self._block_norms(b)
+        self._report.residuals.append(fnorm)
+        self._report.blocks.append(blocks)
+        if self._verbose and snes.comm.rank == 0:
+            parts = "  ".join(f"{n} {v:.2e} {t.unit}" for (n, _, t, _), v in
+                              zip(self._tolerances, blocks))
+            print(f"  {self.name} newton {it:2d}: |R| = {fnorm:.3e}   {parts}")
+        if not np.isfinite(fnorm):
+            return PETSc.SNES.ConvergedReason.DIVERGED_FNORM_NAN
+        if all(v <= t.atol for v, (_, _, t, _) in zip(blocks, self._tolerances)):
+            return PETSc.SNES.ConvergedReason.CONVERGED_FNORM_ABS
+        if it >= self.max_it:
+            return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
+        return PETSc.SNES.ConvergedReason.ITERATING
+
+    def _backtrack(self, x, y):
+        """Line search: the full Newton step unless it raises ‖R‖₂; then halve it.
+
+        Semismooth Newton on contact and friction can cycle between active sets;
+        halving the step while ‖R‖ does not decrease (Armijo, c = 1e-4) breaks
+        the cycle.  Near the solution the full step is accepted, which keeps the
+        local quadratic rate.  If no trial decreases ‖R‖ the full step is taken.
+        The accepted trial's residual is cached, so SNES does not assemble it again.
+        """
+        r0 = self.snes.getFunctionNorm()
+        xt, bt = x.duplicate(), x.duplicate()
+        alpha = 1.0
+        for _ in range(self.max_backtracks + 1):
+            xt.waxpy(-alpha, y, x)
+            self._cache = None
+            self._residual(self.snes, xt, bt)
+            self._cache = (xt.getArray(readonly=True).copy(), bt)
+            if bt.norm() < (1 - 1e-4 * alpha) * r0:
+                if alpha != 1.0:
+                    y.scale(alpha)
+                xt.destroy()
+                return
+            alpha *= 0.5
+        self._cache = None
+        xt.destroy()
+        bt.destroy()
+
+    # -- solve ---------------------------------------------------------------
+    def solve(self, verbose=False):
+        """Newton from the current values of the unknowns; returns a :class:`NewtonReport`.
+
+        Raises :class:`NewtonDivergence` (the unknowns back at their entry
+        values) when SNES does not converge.
+        """
+        backup = [ui.x.array.copy() for ui in self.u]
+        self._report = NewtonReport()
+        self._verbose = verbose
+        self._cache = None
+        try:
+            self._nlp.solve()
+        finally:
+            if self._cache is not None:
+                self._cache[1].destroy()
+            self._cache = None
+        reason = self.snes.getConvergedReason()
+        report = self._report
+        report.reason = int(reason)
+        report.iterations = self.snes.getIterationNumber()
+        self.report = report
+        if reason <= 0:
+            for ui, a in zip(self.u, backup):
+                ui.x.array[:] = a
+            self.refresh()
+            raise NewtonDivergence(
+                f"Newton did not converge ({self._reason_name(reason)}) in "
+                f"{report.iterations} iterations (residual history "
+                f"{['%.2e' % v for v in report.residuals]})")
+        for ui in self.u:
+            ui.x.scatter_forward()
+        self.refresh()
+        return report
+
+    @staticmethod
+    def _reason_name(reason):
+        names = {v: k for k, v in vars(PETSc.SNES.ConvergedReason).items()
+                 if isinstance(v, int)}
+        return names.get(int(reason), str(reason))
+
+    def assemble(self):
+        """Residual ``b`` and Jacobian ``A`` at the current unknowns (Taylor tests)."""
+        x = self._nlp.x
+        fem_petsc.assign(self.u, x)
+        self._cache = None
+        b = self._nlp.b
+        self._residual(self.snes, x, b)
+        self.snes.computeJacobian(x, self._nlp.A)
+        return b, self._nlp.A
+
+    def residual_at(self, x):
+        """Residual at the block vector ``x`` (a copy; the unknowns end at ``x``)."""
+        b = x.duplicate()
+        self._cache = None
+        self._residual(self.snes, x, b)
+        return b
+
+    # -- state ---------------------------------------------------------------
+    def state_fields(self):
+        """Functions and Constants making up the state of every component."""
+        return _unique([f for c in self.components for f in c.state_fields()])
+
+    def state(self):
+        """Copy of the full state (unknowns, histories, positions, parameters)."""
+        return [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy()
+                for f in self.state_fields()]
+
+    def restore(self, state):
+        """Restore a state from :meth:`state` and refresh the kernel data."""
+        for f, a in zip(self.state_fields(), state):
+            if hasattr(f, "x"):
+                f.x.array[:] = a
+            else:
+                f.value = a
+        self.refresh()
+
+    def commit(self):
+        """Accept the converged step in every component."""
+        self.refresh()
+        for c in self.components:
+            c.commit()
