@@ -35,6 +35,7 @@ __all__ = [
     "internal_virtual_work_worn",
     "nanson_vector",
     "shape_gradient",
+    "shape_multiplier_work",
     "swept_nanson_vector",
     "traction_work_worn",
     "volume_factor",
@@ -125,3 +126,12 @@ def aux_elasticity(w, dw, mu, lmbda, dx):
     eps = ufl.sym(ufl.grad(w))
     return (2 * mu * ufl.inner(eps, ufl.sym(ufl.grad(dw)))
             + lmbda * ufl.tr(eps) * ufl.div(dw)) * dx
+
+
+def shape_multiplier_work(zeta, dw, a, ds):
+    """Work of the shape-update multiplier on the auxiliary problem, ∫ ζ δw·a dŜ (eq. 28).
+
+    ζ enforces the discrete shape evolution law (28) as a nodal constraint on the
+    worn boundary; a is the (swept) Nanson vector of that boundary.
+    """
+    return zeta * ufl.dot(dw, a) * ds
