@@ -55,16 +55,24 @@ class Body:
         cell_tags: cell meshtags (for several materials).
         degree: Lagrange degree of u.
         quadrature_degree: volume quadrature degree (None: automatic).
-        shape: carry the ALE shape field w (finite wear).
+        shape: carry the ALE shape field w (finite wear): True — w is an unknown
+            with its auxiliary elasticity rows; "image" — w is the image of a
+            reduced field owned by another component (e.g. a cross-section
+            extruded along the sliding direction, :mod:`tribofx.interfaces.steady_wear`),
+            a coefficient here; a ``fem.Function``: that Function is the image
+            (for material parameters that depend on it, e.g. a graded layer).
         aux: (E, ν) of the auxiliary elasticity of w (MPa, -).
         velocity: constant Eulerian background velocity V (mm/s), or None.
         name: name of the body (unknown names, reports).
         rtol: relative size of the momentum stopping tolerance (see :meth:`tolerances`).
+        force_scale: force (N; N/mm in plane strain) the momentum tolerance is
+            relative to (default G·L^{d−1}, see :meth:`tolerances`); a case with
+            loads far below the body's stiffness passes its load.
     """
 
     def __init__(self, mesh, facet_tags, names, kind, material, cell_tags=None, degree=1,
                  quadrature_degree=None, shape=False, aux=(1.0, 0.3), velocity=None,
-                 name="body", rtol=1e-10):
+                 name="body", rtol=1e-10, force_scale=None):
         if kind not in kin.KINDS:
             raise ValueError(f"unknown kind {kind!r}; expected one of {kin.KINDS}")
         self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
@@ -88,7 +96,12 @@ class Body:
         self._multiplier_fixes = []  # interfaces told about prescribed components
         self.w = self.w_n = None
         self._w_bcs = []
-        if shape:
+        self.shape_is_unknown = shape is True
+        if isinstance(shape, fem.Function):
+            self.w = shape
+        elif shape == "image":
+            self.w = fem.Function(self.V, name="shape_change_3d")
+        elif shape:
             # a distinct (equal) space: Dirichlet conditions are sorted into blocks by space
             self.Vw = fem.functionspace(mesh, self.V.ufl_element())
             self.w = fem.Function(self.Vw, name="shape_change")
@@ -102,6 +115,7 @@ class Body:
         self.length = float(np.linalg.norm(hi - lo))
         self.stiffness = max(shear_modulus(m, p) for m, p in self.materials.values())
         self.rtol = rtol
+        self.force_scale = force_scale
 
     # -- tags ------------------------------------------------------------------
     def tag(self, name):
@@ -192,7 +206,7 @@ class Body:
 
     def unknowns(self):
         """Return u, and w for a shaped body."""
-        return [self.u] + ([self.w] if self.w is not None else [])
+        return [self.u] + ([self.w] if self.shape_is_unknown else [])
 
     def contributions(self):
         """Return internal work minus loads on u's row, auxiliary elasticity on w's row."""
@@ -200,7 +214,7 @@ class Body:
         for load in self._loads:
             R = R - load
         out = [(self.u, R)]
-        if self.w is not None:
+        if self.shape_is_unknown:
             mu_a, lmbda_a = self._aux
             out.append((self.w, ale.aux_elasticity(self.w, ufl.TestFunction(self.Vw), mu_a,
                                                    lmbda_a, self.dx)))
@@ -210,6 +224,13 @@ class Body:
         """Dirichlet conditions of u (and w)."""
         return self._bcs + self._w_bcs
 
+    def bcs_by_unknown(self):
+        """Dirichlet conditions sorted by unknown."""
+        out = {self.u: list(self._bcs)}
+        if self.shape_is_unknown:
+            out[self.w] = list(self._w_bcs)
+        return out
+
     def entity_maps(self):
         """Return no entity maps: a body's forms live on its own mesh."""
         return []
@@ -218,23 +239,24 @@ class Body:
         """Nothing computed outside UFL."""
 
     def tolerances(self):
-        """Momentum rows: nodal force ≤ rtol·G·L^{d−1} (N; N/mm in plane strain).
+        """Momentum rows: nodal force ≤ rtol·(force scale) (N; N/mm in plane strain).
 
-        G is the body's shear modulus and L the diameter of its bounding box, so
-        the tolerance is ``rtol`` of the force that strains the whole body by 1.
-        The shape rows (auxiliary elasticity, fictitious modulus E_a) use
-        rtol·E_a·L^{d−1}.
+        The force scale is ``force_scale`` or G·L^{d−1}, G the body's shear modulus
+        and L the diameter of its bounding box: the force that strains the whole
+        body by 1.  The shape rows (auxiliary elasticity, fictitious modulus E_a)
+        use rtol·E_a·L^{d−1}.
         """
         d = 2 if self.kind in ("3d", "axisymmetric") else 1
-        out = {self.u: BlockTolerance(self.rtol * self.stiffness * self.length**d,
-                                      "N" if d == 2 else "N/mm")}
-        if self.w is not None:
+        scale = self.force_scale if self.force_scale is not None \
+            else self.stiffness * self.length**d
+        out = {self.u: BlockTolerance(self.rtol * scale, "N" if d == 2 else "N/mm")}
+        if self.shape_is_unknown:
             out[self.w] = BlockTolerance(self.rtol * self._aux[0] * self.length**d, "aux")
         return out
 
     def state_fields(self):
         """Return u (and w, w_n)."""
-        return self.unknowns() + ([self.w_n] if self.w_n is not None else [])
+        return self.unknowns() + ([self.w_n] if self.shape_is_unknown else [])
 
     def commit(self):
         """Nothing to move on for the bulk."""

@@ -151,22 +151,16 @@ class Problem:
             if rows[id(ui)] == 0:
                 raise ValueError(f"no residual contribution for unknown {ui.name!r}")
         self.residual_forms = [rows[id(ui)] for ui in self.u]
-        J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
-              for uj in self.u] for Fi in self.residual_forms]
-        # DOLFINx sorts the conditions into blocks by space; those on unknowns that
-        # are not solved for here are ignored
-        self.bcs = [bc for c in self.components for bc in c.bcs()]
-        emaps = _unique([m for c in self.components for m in c.entity_maps()])
         count = Problem._names.get(name, 0)
         Problem._names[name] = count + 1
         self.name = name if count == 0 else f"{name}{count}"
         self.prefix = f"tribofx_{self.name}_"
-        self._nlp = fem_petsc.NonlinearProblem(
-            self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",
-            petsc_options_prefix=self.prefix, entity_maps=emaps or None)
-        self.snes = self._nlp.solver
         self.max_it, self.max_backtracks = int(max_it), int(max_backtracks)
         self.solver = solver if solver is not None else DirectSolver()
+        # DOLFINx sorts the conditions into blocks by space; those on unknowns that
+        # are not solved for here are ignored
+        self.bcs = [bc for c in self.components for bc in c.bcs()]
+        self._create_snes()
         defaults = {"snes_type": "newtonls", "snes_linesearch_type": "basic",
                     "snes_max_it": self.max_it, "snes_max_fail": 1,
                     **self.solver.options(), **(petsc_options or {})}
@@ -174,12 +168,9 @@ class Problem:
         for key, value in defaults.items():
             if not opts.hasName(self.prefix + key):
                 opts[self.prefix + key] = value
+        self.snes.setOptionsPrefix(self.prefix)
         self.snes.setFromOptions()
         self.solver.configure(self)
-        # wrap the residual callback: refresh the components' data at every iterate
-        b, (fn, args, kargs) = self.snes.getFunction()
-        self._assemble_residual = (fn, args, kargs)
-        self.snes.setFunction(self._residual, b)
         self.snes.setConvergenceTest(self._converged)
         if self.max_backtracks > 0:
             self.snes.setLineSearchPreCheck(self._backtrack)
@@ -187,6 +178,29 @@ class Problem:
         self._cache = None
         self._report = None
         self.report = None
+
+    def _create_snes(self):
+        """SNES of the blocked UFL system (public NonlinearProblem), residual wrapped."""
+        J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
+              for uj in self.u] for Fi in self.residual_forms]
+        self._nlp = fem_petsc.NonlinearProblem(
+            self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",
+            petsc_options_prefix=self.prefix, entity_maps=self._emaps())
+        self.snes = self._nlp.solver
+        self._x, self._A = self._nlp.x, self._nlp.A
+        # wrap the residual callback: refresh the components' data at every iterate
+        b, (fn, args, kargs) = self.snes.getFunction()
+        self._assemble_residual = (fn, args, kargs)
+        self.snes.setFunction(self._residual, b)
+
+    def _owned_size(self, ui):
+        """Return the number of rows of ``ui`` owned by this rank."""
+        V = ui.function_space
+        return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+
+    def _owned(self, vec, ui):
+        """Owned part of an assembled, reverse-scattered DOLFINx vector of ``ui``'s space."""
+        return vec.array[:self._owned_size(ui)]
 
     # -- set-up --------------------------------------------------------------
     def _collect_tolerances(self, overrides):
@@ -198,8 +212,7 @@ class Problem:
             tol[id(ui)] = t
         blocks, start = [], 0
         for ui in self.u:
-            V = ui.function_space
-            n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+            n = self._owned_size(ui)
             t = tol.get(id(ui))
             if t is None:
                 raise ValueError(f"no stopping tolerance for unknown {ui.name!r}")
@@ -207,7 +220,7 @@ class Problem:
             if t.weight is not None:
                 vec = fem.assemble_vector(fem.form(t.weight, entity_maps=self._emaps()))
                 vec.scatter_reverse(la.InsertMode.add)
-                w = vec.array[:n].copy()
+                w = self._owned(vec, ui).copy()
                 w[w <= 0] = 1.0
             blocks.append((ui.name, slice(start, start + n), t, w))
             start += n
@@ -219,12 +232,12 @@ class Problem:
     @property
     def num_dofs(self):
         """Global number of unknowns of the block system."""
-        return self._nlp.x.getSize()
+        return self._x.getSize()
 
     @property
     def A(self):
         """The PETSc Jacobian matrix."""
-        return self._nlp.A
+        return self._A
 
     # -- callbacks -----------------------------------------------------------
     def refresh(self):
@@ -233,14 +246,26 @@ class Problem:
             c.refresh()
 
     def _residual(self, snes, x, b):
-        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
         key = x.getArray(readonly=True)
         if self._cache is not None:
             same = self._cache[0].shape == key.shape and np.array_equal(self._cache[0], key)
             if x.comm.tompi4py().allreduce(same, op=MPI.LAND):
                 self._cache[1].copy(b)
                 return
+        self._evaluate(snes, x, b)
+
+    def _set_unknowns(self, x):
+        """Copy the block vector ``x`` into the unknowns (ghosts updated)."""
+        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self.u)
+
+    def _get_unknowns(self, x):
+        """Copy the unknowns into the block vector ``x``."""
+        fem_petsc.assign(self.u, x)
+
+    def _evaluate(self, snes, x, b):
+        """Residual at ``x`` into ``b``: unknowns ← x, refresh, blocked UFL assembly."""
+        self._set_unknowns(x)
         self.refresh()
         fn, args, kargs = self._assemble_residual
         fn(snes, x, b, *args, **kargs)
@@ -311,7 +336,9 @@ class Problem:
         self._verbose = verbose
         self._cache = None
         try:
-            self._nlp.solve()
+            self._get_unknowns(self._x)
+            self.snes.solve(None, self._x)
+            self._set_unknowns(self._x)
         finally:
             if self._cache is not None:
                 self._cache[1].destroy()
@@ -342,13 +369,13 @@ class Problem:
 
     def assemble(self):
         """Residual ``b`` and Jacobian ``A`` at the current unknowns (Taylor tests)."""
-        x = self._nlp.x
-        fem_petsc.assign(self.u, x)
+        x = self._x
+        self._get_unknowns(x)
         self._cache = None
-        b = self._nlp.b
+        b = self.snes.getFunction()[0]
         self._residual(self.snes, x, b)
-        self.snes.computeJacobian(x, self._nlp.A)
-        return b, self._nlp.A
+        self.snes.computeJacobian(x, self._A)
+        return b, self._A
 
     def residual_at(self, x):
         """Residual at the block vector ``x`` (a copy; the unknowns end at ``x``)."""

@@ -64,7 +64,7 @@ class Contact:
         V_master: velocity of the counterpart's surface for eulerian slip (mm/s).
         dtau: pseudo-time turning a slip velocity into a slip (s).
         name: name of the interface (reports).
-        rtol: relative size of the gap tolerance (× the body size, mm).
+        rtol: relative size of the gap tolerance (see :meth:`tolerances`).
     """
 
     def __init__(self, body, boundary, counterpart, rho_n, friction=0.0, rho_t=None,
@@ -167,6 +167,10 @@ class Contact:
                                            self.Vs.sub(c)))
         return out
 
+    def bcs_by_unknown(self):
+        """Dirichlet conditions sorted by unknown."""
+        return {self.lam_t: self.bcs()} if self.lam_t is not None else {}
+
     def entity_maps(self):
         """Return the submesh ↔ bulk entity map."""
         return [self.emap]
@@ -180,8 +184,14 @@ class Contact:
         self.counterpart.update(self.positions())
 
     def tolerances(self):
-        """Constraint rows over their lumped measure: a gap (slip) ≤ rtol·L mm."""
-        atol = self.rtol * self.body.length
+        """Constraint rows over their lumped measure: a gap (slip) ≤ rtol·G/ρ_N mm.
+
+        A gap error g moves the augmented traction by ρ_N g, so this bounds the
+        traction error by rtol·G (G the body's shear modulus); it is kept above
+        the round-off of the positions, 100 ε L.
+        """
+        atol = max(self.rtol * self.body.stiffness / float(self.rho_n),
+                   100 * np.finfo(float).eps * self.body.length)
         ones = ufl.as_vector([1.0] * self.body.gdim)
         out = {self.lam_n: BlockTolerance(atol, "mm", ufl.TestFunction(self.Q) * self.dsc)}
         if self.lam_t is not None:

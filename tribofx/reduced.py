@@ -1,0 +1,315 @@
+"""A problem with reduced unknowns: fields on a replicated mesh mapped linearly into the body.
+
+Some unknowns are cheaper to carry on a smaller, *replicated* mesh (created on
+``COMM_SELF`` on every rank) and to map into the distributed body by a fixed
+linear operator: the quasi-steady wear groove of §5.3 keeps its shape mapping Ψ
+on one cross-section and extrudes it along the sliding direction, w₃ = P w₂, so
+the shape unknowns are a few per cent of all unknowns.  UFL cannot assemble
+across two unrelated meshes, so this problem assembles its monolithic system
+block by block:
+
+* a *reduction* (image w₃, reduced unknown w₂, map P) keeps w₃ = P w₂ before every
+  evaluation; a form that depends on w₃ gets the Jacobian block J_{· w₂} = J_{· w₃} P;
+* an *algebraic row* adds s·Qᵀ r to the row of a reduced unknown, with r the
+  assembled vector of a UFL form on the body (e.g. the nodal wear rate) and Q a
+  map like P; its Jacobian is s·Qᵀ J_{r ·} (with the reduction product again);
+* Dirichlet rows become identity rows with residual u − g.
+
+Layout: distributed unknowns are owned as DOLFINx owns them; a replicated
+unknown is owned by rank 0 (identical copies elsewhere; its Newton update is
+broadcast).  The blocks are assembled by DOLFINx, multiplied by the maps
+(PETSc MatMatMult) and merged into one (MPI)AIJ matrix by a COO sum.
+
+A component declares, besides the protocol of :mod:`tribofx.problem`,
+``bcs_by_unknown()`` ({unknown: [DirichletBC]}), and optionally
+``reductions()`` (a list of :class:`Reduction`) and ``algebraic_rows()`` (a list
+of :class:`AlgebraicRow`).  The map objects have ``apply(v2)`` (image values on
+the local dofs, ghosts included), ``transpose(v3)`` (Qᵀ of the owned entries,
+summed over ranks) and ``mat`` (PETSc MPIAIJ: owned image rows × reduced
+columns owned by rank 0).
+"""
+
+from dataclasses import dataclass
+
+import dolfinx.fem.petsc as fem_petsc
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from .problem import Problem, _nonzero_or_none
+
+__all__ = ["AlgebraicRow", "ReducedProblem", "Reduction"]
+
+
+@dataclass
+class Reduction:
+    """image = P · reduced: ``image`` a Function on the body, ``reduced`` a replicated unknown."""
+
+    image: object
+    reduced: object
+    P: object
+
+
+@dataclass
+class AlgebraicRow:
+    """Row of ``row`` += scale() · Qᵀ r, r the assembled vector of the linear ``form``.
+
+    ``fixed``: None, or a callable returning None (r is live, with its Jacobian) or a
+    vector used instead of r (frozen data, no Jacobian).
+    """
+
+    row: object
+    form: object
+    Q: object
+    scale: object
+    fixed: object = None
+
+
+class ReducedProblem(Problem):
+    """A :class:`tribofx.problem.Problem` whose unknowns may live on replicated meshes.
+
+    Arguments as for :class:`tribofx.problem.Problem`.
+    """
+
+    def _create_snes(self):
+        comm = MPI.COMM_WORLD if self.u[0].function_space.mesh.comm.size == 1 \
+            else self.u[0].function_space.mesh.comm
+        dist = [ui for ui in self.u if ui.function_space.mesh.comm.size > 1]
+        if dist:
+            comm = dist[0].function_space.mesh.comm
+        self.comm = comm
+        self._replicated = {id(ui): ui.function_space.mesh.comm.size == 1 and comm.size > 1
+                            for ui in self.u}
+        self._red = [r for c in self.components for r in getattr(c, "reductions", list)()]
+        self._alg = [r for c in self.components for r in getattr(c, "algebraic_rows", list)()]
+        by_image = {id(r.reduced): r for r in self._red}
+        emaps = self._emaps()
+        kw = {"entity_maps": emaps} if emaps else {}
+        self._F = [fem.form(f, **kw) for f in self.residual_forms]
+        self._J = {}
+        for i, Fi in enumerate(self.residual_forms):
+            for j, uj in enumerate(self.u):
+                self._add_jacobian(("F", i), j, Fi, uj, by_image, kw)
+        self._Falg = [fem.form(a.form, **kw) for a in self._alg]
+        for k, a in enumerate(self._alg):
+            for j, uj in enumerate(self.u):
+                self._add_jacobian(("A", k), j, a.form, uj, by_image, kw)
+        self._bc_rows = self._collect_bcs()
+        sizes = [self._owned_size(ui) for ui in self.u]
+        self._sizes = comm.allgather(sizes)
+        self._starts = comm.allgather(
+            [0 if self._replicated[id(ui)] else
+             ui.function_space.dofmap.index_map.local_range[0]
+             * ui.function_space.dofmap.index_map_bs for ui in self.u])
+        nloc = sum(sizes)
+        self._row0 = int(np.sum([sum(s) for s in self._sizes[:comm.rank]]))
+        self._N = int(np.sum([sum(s) for s in self._sizes]))
+        self._x = PETSc.Vec().createMPI((nloc, self._N), comm=comm)
+        b = self._x.duplicate()
+        self._set_maps()
+        self._get_unknowns(self._x)
+        self._A = self._jacobian_matrix()
+        self.snes = PETSc.SNES().create(comm)
+        self.snes.setFunction(self._residual, b)
+        self.snes.setJacobian(self._jacobian, self._A)
+
+    def _add_jacobian(self, key, j, F, uj, by_image, kw):
+        """Jacobian block of form F in unknown j: direct, and through uj's image."""
+        direct = _nonzero_or_none(ufl.derivative(F, uj, ufl.TrialFunction(uj.function_space)))
+        red = by_image.get(id(uj))
+        via = None
+        if red is not None:
+            img = red.image
+            via = _nonzero_or_none(ufl.derivative(F, img, ufl.TrialFunction(img.function_space)))
+        if direct is not None:
+            self._J[key, j, "direct"] = fem.form(direct, **kw)
+        if via is not None:
+            self._J[key, j, "image"] = (fem.form(via, **kw), red.P)
+
+    def _collect_bcs(self):
+        rows = {}
+        for c in self.components:
+            for ui, bcs in c.bcs_by_unknown().items():
+                if any(ui is v for v in self.u):
+                    rows.setdefault(id(ui), []).extend(bcs)
+        return rows
+
+    # -- layout ------------------------------------------------------------------
+    def _owned_size(self, ui):
+        V = ui.function_space
+        if V.mesh.comm.size == 1 and MPI.COMM_WORLD.size > 1:
+            n = len(ui.x.array)
+            return n if MPI.COMM_WORLD.rank == 0 else 0
+        return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+
+    def _owned(self, vec, ui):
+        return vec.array[:self._owned_size(ui)]
+
+    def _offsets(self):
+        """Local offset of each unknown's rows on every rank, and each rank's first row."""
+        boff = [np.concatenate([[0], np.cumsum(s)])[:-1] for s in self._sizes]
+        roff = np.concatenate([[0], np.cumsum([sum(s) for s in self._sizes])])
+        return roff, boff
+
+    def _global_index(self, j, g):
+        """Monolithic global index of unknown j's global dof indices ``g``."""
+        roff, boff = self._offsets()
+        if self._replicated[id(self.u[j])]:
+            return roff[0] + boff[0][j] + g
+        starts = np.array([s[j] for s in self._starts])
+        sizes = np.array([s[j] for s in self._sizes])
+        owner = np.searchsorted(starts + sizes, g, side="right")
+        ob = np.array([b[j] for b in boff])
+        return roff[owner] + ob[owner] + g - starts[owner]
+
+    def refresh(self):
+        """Images ← maps of the reduced unknowns, then every component's refresh."""
+        self._set_maps()
+        super().refresh()
+
+    def _set_maps(self):
+        for r in self._red:
+            r.image.x.array[:] = r.P.apply(r.reduced.x.array)
+
+    # -- unknowns <-> vector -------------------------------------------------------
+    def _set_unknowns(self, x):
+        arr = x.getArray(readonly=True)
+        i = 0
+        for ui in self.u:
+            n = self._owned_size(ui)
+            if self._replicated[id(ui)]:
+                vals = arr[i:i + n].copy() if self.comm.rank == 0 else None
+                ui.x.array[:] = self.comm.bcast(vals, root=0)
+            else:
+                ui.x.array[:n] = arr[i:i + n]
+                ui.x.scatter_forward()
+            i += n
+        self._set_maps()
+
+    def _get_unknowns(self, x):
+        x.setArray(np.concatenate([ui.x.array[:self._owned_size(ui)] for ui in self.u]))
+
+    # -- assembly --------------------------------------------------------------------
+    def _vector(self, form, ui=None, n=None):
+        vec = fem.assemble_vector(form)
+        vec.scatter_reverse(la.InsertMode.add)
+        return vec.array[:n].copy() if n is not None else self._owned(vec, ui).copy()
+
+    def _alg_vector(self, k):
+        a = self._alg[k]
+        frozen = a.fixed() if a.fixed is not None else None
+        if frozen is not None:
+            return frozen
+        Vr = a.form.arguments()[0].ufl_function_space()
+        n = Vr.dofmap.index_map.size_local * Vr.dofmap.index_map_bs
+        return self._vector(self._Falg[k], n=n)
+
+    def algebraic_vector(self, k):
+        """Assembled vector r (owned rows) of algebraic row ``k`` at the current state."""
+        return self._alg_vector(k)
+
+    def _evaluate(self, snes, x, b):
+        self._set_unknowns(x)
+        self.refresh()
+        parts = []
+        for i, ui in enumerate(self.u):
+            r = self._vector(self._F[i], ui)
+            for k, a in enumerate(self._alg):
+                if a.row is ui:
+                    r = r + float(a.scale()) * a.Q.transpose(self._alg_vector(k))[:len(r)]
+            for bc in self._bc_rows.get(id(ui), []):
+                full = np.zeros_like(ui.x.array)
+                full[:len(r)] = r
+                bc.set(full, x0=ui.x.array, alpha=-1.0)
+                r = full[:len(r)]
+            parts.append(r)
+        b.setArray(np.concatenate(parts) if parts else np.zeros(0))
+
+    def _matrices(self, key, j):
+        """Assembled Jacobian blocks (PETSc) of row ``key`` in unknown j (direct, image·P)."""
+        out, made = [], []
+        d = self._J.get((key, j, "direct"))
+        if d is not None:
+            A = fem_petsc.assemble_matrix(d)
+            A.assemble()
+            out.append(A)
+        v = self._J.get((key, j, "image"))
+        if v is not None:
+            A = fem_petsc.assemble_matrix(v[0])
+            A.assemble()
+            made.append(A)
+            out.append(A.matMult(v[1].mat))
+        return out, made
+
+    def _jacobian_matrix(self):
+        rank = self.comm.rank
+        roff, boff = self._offsets()
+        my0 = roff[rank]
+        ri, ci, vals, made = [], [], [], []
+
+        def add(i, j, A, replicated_rows):
+            if replicated_rows and rank != 0:
+                return
+            ip, ind, val = A.getValuesCSR()
+            nrow = len(ip) - 1
+            if nrow == 0 or len(val) == 0:
+                return
+            ri.append(my0 + boff[rank][i] + np.repeat(np.arange(nrow), np.diff(ip)))
+            ci.append(self._global_index(j, np.asarray(ind, dtype=np.int64)))
+            vals.append(val)
+
+        for i, ui in enumerate(self.u):
+            rep = self._replicated[id(ui)]
+            for j in range(len(self.u)):
+                mats, tmp = self._matrices(("F", i), j)
+                made += mats + tmp
+                for A in mats:
+                    add(i, j, A, rep)
+            for k, a in enumerate(self._alg):
+                if a.row is not ui or (a.fixed is not None and a.fixed() is not None):
+                    continue
+                for j in range(len(self.u)):
+                    mats, tmp = self._matrices(("A", k), j)
+                    made += mats + tmp
+                    for A in mats:
+                        B = a.Q.mat.transposeMatMult(A)
+                        B.scale(float(a.scale()))
+                        made.append(B)
+                        add(i, j, B, False)
+        ri = np.concatenate(ri) if ri else np.zeros(0, np.int64)
+        ci = np.concatenate(ci) if ci else np.zeros(0, np.int64)
+        vals = np.concatenate(vals) if vals else np.zeros(0)
+        nloc = sum(self._sizes[rank])
+        bc = np.zeros(nloc, dtype=bool)
+        for i, ui in enumerate(self.u):
+            for d in self._bc_rows.get(id(ui), []):
+                idx = d.dof_indices()[0]
+                idx = idx[idx < self._sizes[rank][i]]
+                bc[boff[rank][i] + idx] = True
+        keep = ~bc[ri - my0]
+        rbc = my0 + np.flatnonzero(bc)
+        ri = np.concatenate([ri[keep], rbc])
+        ci = np.concatenate([ci[keep], rbc])
+        vals = np.concatenate([vals[keep], np.ones(len(rbc))])
+        N = self._N
+        key, inv = np.unique((ri - my0) * N + ci, return_inverse=True)
+        vals = np.bincount(inv.ravel(), weights=vals, minlength=len(key))
+        ri, ci = key // N, key % N
+        indptr = np.zeros(nloc + 1, dtype=PETSc.IntType)
+        np.add.at(indptr, ri + 1, 1)
+        indptr = np.cumsum(indptr).astype(PETSc.IntType)
+        K = PETSc.Mat().createAIJ(size=((nloc, N), (nloc, N)),
+                                  csr=(indptr, ci.astype(PETSc.IntType), vals), comm=self.comm)
+        K.assemble()
+        for m in made:
+            m.destroy()
+        return K
+
+    def _jacobian(self, snes, x, A, P):
+        self._set_unknowns(x)
+        self.refresh()
+        K = self._jacobian_matrix()
+        K.copy(A, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+        K.destroy()
