@@ -108,10 +108,10 @@ class Body:
             self.w_n = fem.Function(self.Vw, name="shape_change_old")
             E_a, nu_a = aux
             self._aux = hf.lame_parameters(E_a, nu_a)
-        lo = mesh.comm.allreduce(mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf),
-                                 op=MPI.MIN)
-        hi = mesh.comm.allreduce(mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf),
-                                 op=MPI.MAX)
+        lo = mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf)
+        hi = mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf)
+        mesh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
+        mesh.comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
         self.length = float(np.linalg.norm(hi - lo))
         self.stiffness = max(shear_modulus(m, p) for m, p in self.materials.values())
         self.rtol = rtol
