@@ -68,11 +68,14 @@ class Body:
         force_scale: force (N; N/mm in plane strain) the momentum tolerance is
             relative to (default G·L^{d−1}, see :meth:`tolerances`); a case with
             loads far below the body's stiffness passes its load.
+        stiffness: small-strain shear modulus G (MPa) of the tolerances (default: from
+            the material parameters; needed when they are UFL expressions, e.g. a
+            modulus graded with the depth).
     """
 
     def __init__(self, mesh, facet_tags, names, kind, material, cell_tags=None, degree=1,
                  quadrature_degree=None, shape=False, aux=(1.0, 0.3), velocity=None,
-                 name="body", rtol=1e-10, force_scale=None):
+                 name="body", rtol=1e-10, force_scale=None, stiffness=None):
         if kind not in kin.KINDS:
             raise ValueError(f"unknown kind {kind!r}; expected one of {kin.KINDS}")
         self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
@@ -113,7 +116,8 @@ class Body:
         mesh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
         mesh.comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
         self.length = float(np.linalg.norm(hi - lo))
-        self.stiffness = max(shear_modulus(m, p) for m, p in self.materials.values())
+        self.stiffness = float(stiffness) if stiffness is not None else max(
+            shear_modulus(m, p) for m, p in self.materials.values())
         self.rtol = rtol
         self.force_scale = force_scale
 
