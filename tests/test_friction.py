@@ -22,6 +22,7 @@ and nodally |λ − T| ≤ ρ ‖b‖ / w_min (w_min the smallest lumped facet w
 """
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -30,9 +31,10 @@ from dolfinx import fem, la, mesh
 from mpi4py import MPI
 from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
 
-from tribofx.contact_problem import ContactProblem, ContactSettings
-from tribofx.newton import convergence_orders
-from tribofx.obstacles import AnalyticObstacle
+from tribofx.body import Body
+from tribofx.interfaces import Contact
+from tribofx.obstacles import rigid_plane
+from tribofx.problem import Problem, convergence_orders
 
 MU_F = 0.3
 E, NU = 10.0, 0.3
@@ -53,18 +55,17 @@ def _block(slip, gdim):
     order = np.argsort(idx)
     ft = mesh.meshtags(msh, fdim, idx[order], val[order])
     e = np.eye(gdim)
-    V = tuple(e[0]) if slip == "eulerian" else None
-    settings = ContactSettings(rho_n=10.0 / 0.125, friction=MU_F, rho_t=10.0 / 0.125,
-                               slip=slip, V=V, V_master=tuple(np.zeros(gdim)), dtau=1.0)
     mu, lmbda = lame_parameters(E, NU)
-    prob = ContactProblem(
-        msh, ft, 1, "3d" if gdim == 3 else "plane_strain", "neo-hookean",
-        {"mu": mu, "lmbda": lmbda},
-        lambda m, Vs: AnalyticObstacle(Vs.mesh, "plane", np.zeros(gdim), normal=e[gdim - 1]),
-        settings)
-    top_u = prob.add_dirichlet(TOP, np.zeros(gdim))
-    prob.finalize()
-    return prob, top_u
+    body = Body(msh, ft, {"bottom": 1, "top": TOP}, "3d" if gdim == 3 else "plane_strain",
+                ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                velocity=e[0] if slip == "eulerian" else None)
+    top_u = body.add_dirichlet("top", np.zeros(gdim))
+    contact = Contact(body, "bottom", rigid_plane(np.zeros(gdim), e[gdim - 1]),
+                      rho_n=10.0 / 0.125, friction=MU_F, rho_t=10.0 / 0.125, slip=slip,
+                      V_master=np.zeros(gdim), dtau=1.0)
+    sim = SimpleNamespace(body=body, contact=contact,
+                          problem=Problem([body, contact], name=f"friction_{slip}"))
+    return sim, top_u
 
 
 def _sum(form):
@@ -73,41 +74,43 @@ def _sum(form):
 
 def _top_reaction(prob):
     """Force (N) the clamp exerts on the body: ∫ P : Grad w dV, w = e_i on the top dofs."""
-    gdim = prob.mesh.geometry.dim
-    fdim = prob.mesh.topology.dim - 1
+    gdim = prob.body.mesh.geometry.dim
+    fdim = prob.body.mesh.topology.dim - 1
     mu, lmbda = lame_parameters(E, NU)
     kind = "3d" if gdim == 3 else "plane_strain"
     out = np.zeros(gdim)
     for i in range(gdim):
-        w = fem.Function(prob.V)
-        dofs = fem.locate_dofs_topological(prob.V.sub(i), fdim, prob.facet_tags.find(TOP))
+        w = fem.Function(prob.body.V)
+        dofs = fem.locate_dofs_topological(prob.body.V.sub(i), fdim, prob.body.facet_tags.find(TOP))
         w.x.array[dofs] = 1.0
-        out[i] = _sum(internal_virtual_work(prob.u, w, kind, "neo-hookean",
-                                            {"mu": mu, "lmbda": lmbda}, prob.dx))
+        out[i] = _sum(internal_virtual_work(prob.body.u, w, kind, "neo-hookean",
+                                            {"mu": mu, "lmbda": lmbda}, prob.body.dx))
     return out
 
 
 def _multiplier_force(prob):
     """Force (N) of the plane on the body from the solved multipliers: −∫ (λ_N n + P_T λ_T) dS."""
-    gdim = prob.mesh.geometry.dim
+    gdim = prob.body.mesh.geometry.dim
     n = ufl.as_vector(np.eye(gdim)[gdim - 1].tolist())
-    lt = prob.lam_t - ufl.dot(prob.lam_t, n) * n
-    f = -(prob.lam_n * n + lt)
+    lt = prob.contact.lam_t - ufl.dot(prob.contact.lam_t, n) * n
+    f = -(prob.contact.lam_n * n + lt)
     return np.array([MPI.COMM_WORLD.allreduce(
-        fem.assemble_scalar(fem.form(f[i] * prob.dsc, entity_maps=[prob.emap])), op=MPI.SUM)
+        fem.assemble_scalar(fem.form(f[i] * prob.contact.dsc,
+                                     entity_maps=[prob.contact.emap])), op=MPI.SUM)
         for i in range(gdim)])
 
 
 def _nodal_multipliers(prob):
     """Owned nodal (λ_N, tangential λ_T, lumped weight) on the contact submesh, all ranks."""
-    gdim = prob.mesh.geometry.dim
-    n_own = prob.Q.dofmap.index_map.size_local
+    gdim = prob.body.mesh.geometry.dim
+    n_own = prob.contact.Q.dofmap.index_map.size_local
     # Q and Vs are P1 on the same submesh: the blocked dofmap is the scalar one
-    assert np.array_equal(prob.Q.tabulate_dof_coordinates(), prob.Vs.tabulate_dof_coordinates())
-    lam_n = prob.lam_n.x.array[:n_own]
-    lam_t = prob.lam_t.x.array.reshape(-1, gdim)[:n_own, :gdim - 1]
-    vec = fem.assemble_vector(fem.form(ufl.TestFunction(prob.Q) * prob.dsc,
-                                       entity_maps=[prob.emap]))
+    assert np.array_equal(prob.contact.Q.tabulate_dof_coordinates(),
+                          prob.contact.Vs.tabulate_dof_coordinates())
+    lam_n = prob.contact.lam_n.x.array[:n_own]
+    lam_t = prob.contact.lam_t.x.array.reshape(-1, gdim)[:n_own, :gdim - 1]
+    vec = fem.assemble_vector(fem.form(ufl.TestFunction(prob.contact.Q) * prob.contact.dsc,
+                                       entity_maps=[prob.contact.emap]))
     vec.scatter_reverse(la.InsertMode.add)
     weight = vec.array[:n_own].copy()
     comm = MPI.COMM_WORLD
@@ -118,10 +121,10 @@ def _nodal_multipliers(prob):
 
 def _bounds(prob, r_final):
     """(δ_eq, nodal multiplier tolerance) from the final residual norm (module docstring)."""
-    gdim = prob.mesh.geometry.dim
-    s = prob.settings
-    n_u = prob.V.dofmap.index_map.size_global * gdim
-    n_s = prob.Q.dofmap.index_map.size_global
+    gdim = prob.body.mesh.geometry.dim
+    s = prob.contact
+    n_u = prob.body.V.dofmap.index_map.size_global * gdim
+    n_s = prob.contact.Q.dofmap.index_map.size_global
     _, _, w = _nodal_multipliers(prob)
     d_eq = (math.sqrt(n_u) + (s.rho_n + s.rho_t) * math.sqrt(n_s)) * r_final
     d_nodal = (s.rho_t + MU_F * s.rho_n) * r_final / w[w > 0].min()
@@ -146,7 +149,7 @@ def test_steady_sliding_eulerian(gdim):
     reports = []
     for k in range(1, 4):
         top_u.value[gdim - 1] = -0.02 * k
-        reports.append(prob.solve())
+        reports.append(prob.problem.solve())
     r_final = reports[-1].residuals[-1]
     # (1) global equilibrium of the solved state: clamp reaction (bulk stresses) +
     # contact force (solved multipliers) = 0 within δ_eq (module docstring)
@@ -162,9 +165,9 @@ def test_steady_sliding_eulerian(gdim):
     if gdim == 2:
         tan2 = 0.0
     else:
-        DG = fem.functionspace(prob.mesh, ("DG", 0, (gdim, gdim)))
+        DG = fem.functionspace(prob.body.mesh, ("DG", 0, (gdim, gdim)))
         g = fem.Function(DG)
-        g.interpolate(fem.Expression(ufl.grad(prob.u), DG.element.interpolation_points))
+        g.interpolate(fem.Expression(ufl.grad(prob.body.u), DG.element.interpolation_points))
         G = g.x.array.reshape(-1, gdim, gdim)
         tan2 = MPI.COMM_WORLD.allreduce(
             float(np.max(G[:, 1, 0] ** 2 / (1 + G[:, 0, 0]) ** 2, initial=0.0)), op=MPI.MAX)
@@ -202,13 +205,13 @@ def test_lagrangian_sliding_reaches_mu():
     gdim = 2
     prob, top_u = _block("lagrangian", gdim)
     top_u.value[1] = -0.05
-    prob.solve()
-    prob.commit()
+    prob.problem.solve()
+    prob.problem.commit()
     # translate the rigid plane tangentially in +x: stick first, then full sliding
     history, nodal = [], []
     for k in range(1, 11):
-        prob.obstacle.offset.value[0] = 0.03 * k
-        rep = prob.solve()
+        prob.contact.counterpart.offset.value[0] = 0.03 * k
+        rep = prob.problem.solve()
         R, F, d_eq, d_nodal = _check_equilibrium(prob, rep.residuals[-1])
         lam_n, lam_t, w = _nodal_multipliers(prob)
         on = w > 0
@@ -220,7 +223,7 @@ def test_lagrangian_sliding_reaches_mu():
         mag, cone = mag[act], cone[act]
         nodal.append((np.sum(mag < cone - d_nodal), np.abs(mag - cone).max(), d_nodal))
         history.append((R[0] / R[1], (1 + MU_F) * d_eq / abs(R[1])))
-        prob.commit()
+        prob.problem.commit()
         print(k, rep.iterations, "reaction", R, "R_x/R_y", R[0] / R[1],
               "sticking nodes", nodal[-1][0], "of", on.sum())
     # the clamp holds the block against the drag of the plane (+x on the body):
