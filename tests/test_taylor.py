@@ -8,8 +8,10 @@ from mpi4py import MPI
 from taylor import taylor_orders
 from tribofx.forms import hyperelastic as hf
 
-from tribofx.contact_problem import ContactProblem, ContactSettings
-from tribofx.obstacles import AnalyticObstacle, MeshedObstacle
+from tribofx.body import Body
+from tribofx.interfaces import Contact
+from tribofx.obstacles import rigid_cylinder, rigid_plane, rigid_sphere, rigid_surface_mesh
+from tribofx.problem import Problem
 
 # remainder orders of an exact Jacobian are 2 up to round-off; 1.8 leaves room for
 # the ε-range where round-off starts to show (a wrong tangent gives order 1)
@@ -79,27 +81,27 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     ft = mesh.meshtags(msh, fdim, np.sort(bot), np.full(len(bot), 1, dtype=np.int32))
     e = np.eye(gdim)[gdim - 1]
 
-    def factory(m, Vs):
-        if shape.startswith("meshed"):
-            return MeshedObstacle(Vs.mesh, Vs, *_arc_mesh(shape.endswith("quadratic")))
-        if shape == "plane":
-            return AnalyticObstacle(Vs.mesh, "plane", 0.05 * e, normal=e)
-        # curved countersurfaces below the body, penetrating the bottom face
+    if shape.startswith("meshed"):
+        counterpart = rigid_surface_mesh(*_arc_mesh(shape.endswith("quadratic")))
+    elif shape == "plane":
+        counterpart = rigid_plane(0.05 * e, e)
+    else:  # curved countersurfaces below the body, penetrating the bottom face
         centre = 0.5 * np.ones(gdim)
         centre[-1] = -2.0 + 0.05
         if shape == "cylinder" and gdim == 3:
-            return AnalyticObstacle(Vs.mesh, "cylinder", centre, radius=2.0, axis=(0, 1, 0))
-        return AnalyticObstacle(Vs.mesh, shape, centre, radius=2.0)
-
+            counterpart = rigid_cylinder(centre, 2.0, axis=(0, 1, 0))
+        elif shape == "cylinder":
+            counterpart = rigid_cylinder(centre, 2.0)
+        else:
+            counterpart = rigid_sphere(centre, 2.0)
     V = np.zeros(gdim)
     V[0] = 1.0
-    settings = ContactSettings(rho_n=10.0, friction=friction, rho_t=10.0, slip=slip,
-                               V=tuple(V), V_master=tuple(np.zeros(gdim)), dtau=0.3)
     # linear bulk law: the bulk residual is linear, so the remainder is that of contact alone
     kind = kind or ("3d" if gdim == 3 else "plane_strain")
-    prob = ContactProblem(msh, ft, 1, kind, "linear",
-                          {"mu": 1.0, "lmbda": 1.5}, factory, settings)
-    return prob
+    body = Body(msh, ft, {"bottom": 1}, kind, ("linear", {"mu": 1.0, "lmbda": 1.5}), velocity=V)
+    contact = Contact(body, "bottom", counterpart, rho_n=10.0, friction=friction, rho_t=10.0,
+                      slip=slip, V_master=np.zeros(gdim), dtau=0.3)
+    return body, contact, Problem([body, contact], name="taylor_contact")
 
 
 @pytest.mark.mpi
@@ -120,20 +122,20 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     ("meshed-affine", 0.4, "eulerian", 2),
 ])
 def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
-    prob = _box_problem(shape, friction, slip, gdim, kind)
-    _smooth(prob.u, 0.01, 3)
+    body, contact, problem = _box_problem(shape, friction, slip, gdim, kind)
+    _smooth(body.u, 0.01, 3)
     # last-step projection shifted so that the Lagrangian slip is finite and sliding
-    prob.xbar_n.x.array[:] -= 0.02
-    prob.lam_n.x.array[:] = -0.3
-    if prob.lam_t is not None:
-        _random(prob.lam_t, 0.2, 4)
+    contact.xbar_n.x.array[:] -= 0.02
+    contact.lam_n.x.array[:] = -0.3
+    if contact.lam_t is not None:
+        _random(contact.lam_t, 0.2, 4)
     dirs = []
-    for k, f in enumerate(prob.unknowns):
+    for k, f in enumerate(problem.u):
         d = fem.Function(f.function_space)
         _random(d, 1.0, 10 + k)
         dirs.append(d)
-    orders, rem = taylor_orders(prob.residuals, prob.unknowns, dirs, [prob.emap],
-                                prob._pre_evaluate, eps0=1e-4)
+    orders, rem = taylor_orders(problem.residual_forms, problem.u, dirs, problem.entity_maps,
+                                problem.refresh, eps0=1e-4)
     print(shape, friction, slip, gdim, orders, rem)
     assert_exact_jacobian(orders, rem)
 

@@ -230,6 +230,11 @@ class Problem:
         return _unique([m for c in self.components for m in c.entity_maps()]) or None
 
     @property
+    def entity_maps(self):
+        """Entity maps of the components' mixed-dimensional forms (a list)."""
+        return self._emaps() or []
+
+    @property
     def num_dofs(self):
         """Global number of unknowns of the block system."""
         return self._x.getSize()
