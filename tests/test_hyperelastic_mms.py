@@ -11,9 +11,9 @@ import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
 from tribofx.forms import hyperelastic as hf
-from tribofx.forms import kinematics as kin
 
-from tribofx.newton import BlockNewton
+from tribofx.body import Body
+from tribofx.problem import Problem
 
 MU, LMBDA = 1.0, 2.0
 MR = {"mu1": 0.6, "mu2": 0.4, "kappa": 20.0}
@@ -61,23 +61,21 @@ def _solve(n, degree, kind, material):
         msh = mesh.create_rectangle(comm, [[0.5, 0.0], [1.5, 1.0]], [n, n])
     else:
         msh = mesh.create_unit_square(comm, n, n)
-    gdim = msh.geometry.dim
-    V = fem.functionspace(msh, ("Lagrange", degree, (gdim,)))
-    u, v = fem.Function(V), ufl.TestFunction(V)
     X = ufl.SpatialCoordinate(msh)
     uex = _exact(X, kind)
     qdeg = 2 * degree + 3
-    dx = ufl.Measure("dx", msh, metadata={"quadrature_degree": qdeg})
-    w = kin.reference_volume_factor(msh, kind)
-    B = _body_force(X, uex, kind, material)
-    R = hf.internal_virtual_work(u, v, kind, material, _params(material), dx) \
-        - ufl.dot(B, v) * w * dx
-    msh.topology.create_connectivity(msh.topology.dim - 1, msh.topology.dim)
+    fdim = msh.topology.dim - 1
+    msh.topology.create_connectivity(fdim, msh.topology.dim)
     bfacets = mesh.exterior_facet_indices(msh.topology)
-    ubc = fem.Function(V)
-    ubc.interpolate(fem.Expression(uex, V.element.interpolation_points))
-    bc = fem.dirichletbc(ubc, fem.locate_dofs_topological(V, msh.topology.dim - 1, bfacets))
-    BlockNewton(R, u, bcs=[bc], rtol=1e-12, atol=1e-12).solve()
+    ft = mesh.meshtags(msh, fdim, bfacets, np.full(len(bfacets), 1, dtype=np.int32))
+    body = Body(msh, ft, {"boundary": 1}, kind, (material, _params(material)), degree=degree,
+                quadrature_degree=qdeg, rtol=1e-12)
+    body.add_body_force(_body_force(X, uex, kind, material))
+    ubc = fem.Function(body.V)
+    ubc.interpolate(fem.Expression(uex, body.V.element.interpolation_points))
+    body.add_dirichlet("boundary", ubc)
+    Problem([body], name="mms").solve()
+    u, dx = body.u, body.dx
     e = u - uex
     el2 = fem.assemble_scalar(fem.form(ufl.inner(e, e) * dx))
     eh1 = fem.assemble_scalar(fem.form(ufl.inner(ufl.grad(e), ufl.grad(e)) * dx))

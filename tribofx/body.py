@@ -138,10 +138,18 @@ class Body:
 
     # -- boundary conditions and loads ------------------------------------------
     def add_dirichlet(self, name, value, component=None):
-        """Prescribe u (or one ``component``) on boundary ``name``; returns the value Constant."""
+        """Prescribe u (or one ``component``) on boundary ``name``; returns the value holder.
+
+        ``value``: a vector, a scalar (with ``component``) or a Function of the
+        body's space; the returned Constant (or the Function) can be changed later.
+        """
         fdim = self.mesh.topology.dim - 1
         facets = self.facets(name)
-        if component is None:
+        if isinstance(value, fem.Function):  # a field, e.g. a manufactured solution
+            c = value
+            dofs = fem.locate_dofs_topological(self.V, fdim, facets)
+            self._bcs.append(fem.dirichletbc(c, dofs))
+        elif component is None:
             c = fem.Constant(self.mesh, np.asarray(value, dtype=float))
             dofs = fem.locate_dofs_topological(self.V, fdim, facets)
             self._bcs.append(fem.dirichletbc(c, dofs, self.V))
@@ -168,6 +176,10 @@ class Body:
                                                       ufl.FacetNormal(self.mesh), ds))
         else:
             self._loads.append(hf.external_virtual_work(traction, self.v, self.kind, ds))
+
+    def add_body_force(self, force):
+        """Dead body force B (UFL vector, N/mm³ per unit reference volume): ∫ B·δu dV."""
+        self._loads.append(ufl.dot(force, self.v) * self.weight * self.dx)
 
     def add_follower_pressure(self, name, pressure):
         """Follower pressure p (MPa) on boundary ``name``: T = −p J F⁻ᵀ N (Nanson)."""
