@@ -5,7 +5,7 @@ from pathlib import Path
 from mpi4py import MPI
 
 from .cases import get_case
-from .newton import NewtonDivergence
+from .problem import NewtonDivergence
 from .output import RunRecord, write_vtx
 from .params import resolve
 
