@@ -172,7 +172,9 @@ class Problem:
         self.snes.setFromOptions()
         self.solver.configure(self)
         self.snes.setConvergenceTest(self._converged)
-        if self.max_backtracks > 0:
+        # the backtracking of _backtrack rides on the "basic" line search; another
+        # type chosen on the command line (e.g. bt) replaces it
+        if self.max_backtracks > 0 and self.snes.getLineSearch().getType() == "basic":
             self.snes.setLineSearchPreCheck(self._backtrack)
         self._tolerances = self._collect_tolerances(tolerances or {})
         self._cache = None
