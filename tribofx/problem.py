@@ -130,12 +130,19 @@ class Problem:
         max_backtracks: step halvings of the backtracking line search (0: full steps).
         petsc_options: further defaults under the prefix (the command line wins).
         tolerances: ``{unknown: BlockTolerance}`` overriding the components'.
+        line_search: "armijo" (halve while ‖R‖₂ does not decrease) or "admissible"
+            (halve only while a component's ``admissible()`` is False or R is not
+            finite — for residuals whose 2-norm is a poor merit function, e.g. a
+            film with thick flanks, where a step must only keep the film open).
     """
 
     _names = {}
 
     def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
-                 max_backtracks=6, petsc_options=None, tolerances=None):
+                 max_backtracks=6, petsc_options=None, tolerances=None, line_search="armijo"):
+        if line_search not in ("armijo", "admissible"):
+            raise ValueError(f"unknown line search {line_search!r}")
+        self.line_search = line_search
         self.components = list(components)
         every = _unique([u for c in self.components for u in c.unknowns()])
         self.u = every if unknowns is None else list(unknowns)
@@ -311,7 +318,10 @@ class Problem:
         halving the step while ‖R‖ does not decrease (Armijo, c = 1e-4) breaks
         the cycle.  Near the solution the full step is accepted, which keeps the
         local quadratic rate.  If no trial decreases ‖R‖ the full step is taken.
-        The accepted trial's residual is cached, so SNES does not assemble it again.
+        With ``line_search="admissible"`` a trial is accepted when every
+        component's ``admissible()`` holds and R is finite; if none is, the
+        smallest trial is taken.  The accepted trial's residual is cached, so SNES
+        does not assemble it again.
         """
         r0 = self.snes.getFunctionNorm()
         xt, bt = x.duplicate(), x.duplicate()
@@ -321,15 +331,25 @@ class Problem:
             self._cache = None
             self._residual(self.snes, xt, bt)
             self._cache = (xt.getArray(readonly=True).copy(), bt)
-            if bt.norm() < (1 - 1e-4 * alpha) * r0:
+            if self._accept(bt.norm(), r0, alpha):
                 if alpha != 1.0:
                     y.scale(alpha)
                 xt.destroy()
                 return
             alpha *= 0.5
-        self._cache = None
+        if self.line_search == "admissible":  # the last (smallest) trial step
+            y.scale(2 * alpha)
+        else:  # Armijo found no decrease: the full step
+            self._cache = None
+            bt.destroy()
         xt.destroy()
-        bt.destroy()
+
+    def _accept(self, r, r0, alpha):
+        """Line-search test of a trial with residual 2-norm ``r`` (``r0`` at the iterate)."""
+        ok = all(getattr(c, "admissible", lambda: True)() for c in self.components)
+        if self.line_search == "admissible":
+            return ok and np.isfinite(r)
+        return ok and r < (1 - 1e-4 * alpha) * r0
 
     # -- solve ---------------------------------------------------------------
     def solve(self, verbose=False):
