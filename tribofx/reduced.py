@@ -35,7 +35,6 @@ import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
 from dolfinx import fem, la
-from mpi4py import MPI
 from petsc4py import PETSc
 
 from .problem import Problem, _nonzero_or_none
@@ -74,15 +73,14 @@ class ReducedProblem(Problem):
     """
 
     def _create_snes(self):
-        comm = MPI.COMM_WORLD if self.u[0].function_space.mesh.comm.size == 1 \
-            else self.u[0].function_space.mesh.comm
-        dist = [ui for ui in self.u if ui.function_space.mesh.comm.size > 1]
-        if dist:
-            comm = dist[0].function_space.mesh.comm
+        self._red = [r for c in self.components for r in getattr(c, "reductions", list)()]
+        # the communicator of the distributed body (of the unknowns or of the images of
+        # the reduced ones); a problem whose meshes are all on COMM_SELF runs serially
+        comms = [f.function_space.mesh.comm for f in self.u + [r.image for r in self._red]]
+        comm = max(comms, key=lambda c: c.size)
         self.comm = comm
         self._replicated = {id(ui): ui.function_space.mesh.comm.size == 1 and comm.size > 1
                             for ui in self.u}
-        self._red = [r for c in self.components for r in getattr(c, "reductions", list)()]
         self._alg = [r for c in self.components for r in getattr(c, "algebraic_rows", list)()]
         by_image = {id(r.reduced): r for r in self._red}
         emaps = self._emaps()
@@ -139,9 +137,8 @@ class ReducedProblem(Problem):
     # -- layout ------------------------------------------------------------------
     def _owned_size(self, ui):
         V = ui.function_space
-        if V.mesh.comm.size == 1 and MPI.COMM_WORLD.size > 1:
-            n = len(ui.x.array)
-            return n if MPI.COMM_WORLD.rank == 0 else 0
+        if V.mesh.comm.size == 1 and self.comm.size > 1:  # replicated: owned by rank 0
+            return len(ui.x.array) if self.comm.rank == 0 else 0
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
 
     def _owned(self, vec, ui):
