@@ -5,7 +5,7 @@ small-deformation regime):
 
 1. the critical step Δt_cr of the explicit scheme on this mesh and modulus, by
    bisection with the flat-pin stability probe
-   (:func:`tribofx.cases.wear.explicit_critical_step`);
+   (:func:`tribofx.wear_study.pin_critical_step`);
 2. a reference worn profile: Richardson extrapolation 2 p(Δt/2) − p(Δt) of two
    implicit runs with Δt = 10 s and 5 s (second order);
 3. implicit, Δt = 200 s (5 steps), and explicit at its largest stable step
@@ -36,10 +36,11 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear import WearPinCase, explicit_critical_step
-from tribofx.newton import NewtonDivergence
+from tribofx.cases.wear import WearPinCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
+from tribofx.problem import NewtonDivergence
+from tribofx.wear_study import pin_critical_step
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--E", type=float, default=640.0)
@@ -51,7 +52,7 @@ units = {p.name: p.unit for p in WearPinCase.params}
 
 
 def run(tmp, **over):
-    """One wear-pin run; returns (problem or None, results, wall time, status)."""
+    """One wear-pin run; returns (stepper or None, results, wall time, status)."""
     over = {"E": args.E, "mesh": args.mesh, **over}
     values = resolve(WearPinCase.params, {k: str(v) for k, v in over.items()})
     WearPinCase.validate(values)
@@ -78,7 +79,7 @@ with tempfile.TemporaryDirectory() as tmp:
     values = resolve(WearPinCase.params, {"E": str(args.E), "mesh": str(args.mesh)})
     n = WearPinCase.n_elements(values)
     t0 = time.perf_counter()
-    dt_cr, _ = explicit_critical_step(values, n, lo=0.05, hi=200.0)
+    dt_cr, _ = pin_critical_step(values, n, lo=0.05, hi=200.0)
     t_probe = time.perf_counter() - t0
     T = values["T"]
     dt_exp = T / math.ceil(T / dt_cr)
@@ -110,11 +111,10 @@ with tempfile.TemporaryDirectory() as tmp:
             row["max_wear_depth_mm"] = res["max_wear_depth"][-1]
             if over["scheme"] == "implicit":
                 gdim = 2
-                n_w = prob.Vw.dofmap.index_map.size_global * gdim
-                n_z = prob.Q.dofmap.index_map.size_global
-                row["num_dofs"] = prob.solver.num_dofs
-                row["psi_fraction"] = (n_w + n_z) / prob.solver.num_dofs
-                row["w_fraction"] = n_w / prob.solver.num_dofs
+                n_w = prob.wear.body.Vw.dofmap.index_map.size_global * gdim
+                row["num_dofs"] = prob.problem.num_dofs
+                row["psi_fraction"] = prob.shape_unknown_fraction()
+                row["w_fraction"] = n_w / prob.problem.num_dofs
         rows.append(row)
 
 imp, exp, imp_m = rows[0], rows[1], rows[3]

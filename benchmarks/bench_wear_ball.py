@@ -4,7 +4,7 @@ In one run, for the ``wear-ball-flat`` defaults (R = 5 mm, E = 100 GPa, F = 100 
 k = 1e-8 mm³/(N·mm), V = 10 mm/s, μ = 0.4, T = 1000 s, mesh level 0):
 
 1. the critical step Δt_cr of the explicit scheme on this mesh, by experiment:
-   bisection with :func:`tribofx.cases.wear_ball.explicit_critical_step` (5
+   bisection with :func:`tribofx.wear_study.ball_critical_step` (5
    explicit steps from the implicit state at t0 = 0.3 T; unstable = the pressure
    nonuniformity over the scar more than doubles, or a step fails);
 2. implicit, Δt = 100 s, to T: wall time, steps, Newton iterations (all outer
@@ -43,11 +43,12 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball import WearBallCase, explicit_critical_step
-from tribofx.newton import NewtonDivergence
+from tribofx.cases.wear_ball import WearBallCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
+from tribofx.problem import NewtonDivergence
 from tribofx.references import rigid_cap_radius
+from tribofx.wear_study import ball_critical_step
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--mesh", type=int, default=0)
@@ -81,8 +82,7 @@ def run(tmp, t_stop=None, on_step=None, **over):
 
 
 def profile_at(rec):
-    d = comm.bcast(rec.problem.gather_shape(), root=0)
-    return np.asarray(d["X_worn"])
+    return np.asarray(rec.stepper.wear.gather_shape(root_only=False)["X_worn"])
 
 
 def accuracy_study(t_e, dts):
@@ -119,16 +119,16 @@ if args.accuracy_dts:
     raise SystemExit(0)
 with tempfile.TemporaryDirectory() as tmp:
     t0 = time.perf_counter()
-    dt_cr, probe = explicit_critical_step(v0, 0.3 * T, 3.0, 30.0, steps=5, iters=3)
+    dt_cr, probe = ball_critical_step(v0, 0.3 * T, 3.0, 30.0, steps=5, iters=3)
     out["critical_step"] = {"dt_cr": dt_cr, "probe": probe,
                             "largest_stable": max(d for d, g in probe if g <= 2.0),
                             "wall_time_s": time.perf_counter() - t0}
     t_e = min(args.t_explicit, T)
     snap = {}
 
-    def keep(prob, t, reports):
-        if abs(t - t_e) < 1e-9:
-            snap["profile"] = np.asarray(comm.bcast(prob.gather_shape(), root=0)["X_worn"])
+    def keep(stepper, report):
+        if abs(stepper.t - t_e) < 1e-9:
+            snap["profile"] = np.asarray(stepper.wear.gather_shape(root_only=False)["X_worn"])
 
     imp, rec_i, wall_i = run(tmp, on_step=keep, scheme="implicit", dt=100)
     out["implicit"] = {"dt": 100.0, "wall_time_s": wall_i, "steps": imp["steps"],

@@ -131,7 +131,16 @@ def aux_elasticity(w, dw, mu, lmbda, dx):
 def shape_multiplier_work(zeta, dw, a, ds):
     """Work of the shape-update multiplier on the auxiliary problem, ∫ ζ δw·a dŜ (eq. 28).
 
-    ζ enforces the discrete shape evolution law (28) as a nodal constraint on the
-    worn boundary; a is the (swept) Nanson vector of that boundary.
+    The discrete shape evolution law (28), (w − w_n)·a = −Δt Ẇ j_w on Γ̂_c, is
+    imposed nodally (vertex quadrature ``ds``) by a multiplier ζ; its reaction
+    on the auxiliary elasticity of w acts along the (swept) Nanson vector ``a``
+    (:func:`swept_nanson_vector`), so the tangential component of w on Γ̂_c stays
+    free (chapter §4.1, after eq. 20).
+
+    Args:
+        zeta: multiplier of the nodal constraint (on the contact submesh).
+        dw: test function of the shape change w.
+        a: the normal of the constraint, e.g. :func:`swept_nanson_vector`.
+        ds: (vertex-rule) measure over the initial contact boundary Γ̂_c.
     """
     return zeta * ufl.dot(dw, a) * ds

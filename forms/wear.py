@@ -34,6 +34,8 @@ __all__ = [
     "master_nominal_rate",
     "shape_update_residual",
     "slave_nominal_rate",
+    "slave_wear_rate",
+    "wear_depth",
     "worn_volume_rate_density",
 ]
 
@@ -124,6 +126,29 @@ def depth_graded_coefficient(k0, grad, depth):
 def slave_nominal_rate(K1, t_t_nominal, slip_rate):
     """Slave-surface nominal rate Ẇ⁽¹⁾ = K⁽¹⁾ T_Tα ξ̄̇^α (eq. 17)."""
     return K1 * ufl.dot(t_t_nominal, slip_rate)
+
+
+def slave_wear_rate(k, T_n, slip_speed=None, mu=None, t_t=None, v_t=None, J=None):
+    """Nominal Archard rate of the slave surface per unit initial area, Ẇ⁽¹⁾ j_w (eqs. 14–17).
+
+    Without a friction traction (``t_t`` None): the pressure form k |T_N| ‖v_T‖
+    (:func:`archard_pressure_form`, frictionless sliding at ``slip_speed``).
+    With friction: the dissipation form (17), K T_T·v_T, K = k/μ
+    (:func:`archard_dissipation_form`; ``v_t`` the slip velocity ξ̄̇ of the slave
+    point relative to the master, or a slip increment for a wear increment).
+    With ``J`` (det F relative to the worn configuration): the spatial law (16).
+    The tractions are nominal per unit initial area (the multipliers of
+    ``forms/contact``), so the result is the volume removed per unit initial
+    area and time (mm/s).
+    """
+    if t_t is None:
+        return archard_pressure_form(k, T_n, slip_speed, J)
+    return archard_dissipation_form(k, mu, t_t, v_t, J)
+
+
+def wear_depth(w, N_hat):
+    """Wear depth d = −w·N̂ below the initial surface (mm), N̂ its outer unit normal."""
+    return -ufl.dot(w, N_hat)
 
 
 def master_nominal_rate(K2, D1_nominal, j1, j2):

@@ -15,9 +15,10 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["CONTACT", "SIDES", "TOP", "pin_body", "tip_height"]
+__all__ = ["CONTACT", "NAMES", "SIDES", "TOP", "pin_body", "tip_height"]
 
 CONTACT, TOP, SIDES = 1, 2, 3
+NAMES = {"contact": CONTACT, "top": TOP, "sides": SIDES}  # boundary names of a Body
 
 
 def tip_height(x, R):

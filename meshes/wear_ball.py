@@ -19,9 +19,10 @@ from mpi4py import MPI
 
 from .sizing import point_refinement
 
-__all__ = ["CONTACT", "LOADED", "SYMMETRY_Y", "quarter_ball"]
+__all__ = ["CONTACT", "LOADED", "NAMES", "SYMMETRY_Y", "quarter_ball"]
 
 CONTACT, LOADED, SYMMETRY_Y = 1, 2, 4
+NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_y": SYMMETRY_Y}  # of a Body
 
 
 def _build(R, h_fine, h_coarse, r_fine):

@@ -4,38 +4,44 @@ explicit critical step ~ h/E (eq. 31), nominal vs spatial law (14–16), depth-g
 Frictional, dissipation-driven wear (eqs. 13–14) in steady sliding and the
 time-scale separation driver for reciprocating sliding (§4.2, eqs. 21–23).
 
+Also: Taylor tests of the implicit and explicit wear tangents, and a restart from the
+per-step checkpoint of the slow-time stepper.
+
 Small structured pin meshes (n × n squares) keep the whole file well under 2 min.
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 from mpi4py import MPI
+from petsc4py import PETSc
+from taylor_problem import owned_arrays, taylor_orders
 
 from tribofx.cases.wear import WearPinCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
-from tribofx.wear_problem import MeshInversion
+from tribofx.problem import convergence_orders
+from tribofx.stepper import MeshInversion
 
 K, Q, V, W = 5e-6, 2.0, 10.0, 2.0
+MU = 0.3  # Coulomb coefficient of the frictional tests
 
 
-def _run(tmp_path, n, **over):
+def _run(tmp_path, n, setup=None, **over):
     values = resolve(WearPinCase.params, {k: str(v) for k, v in over.items()})
     WearPinCase.validate(values)
     units = {p.name: p.unit for p in WearPinCase.params}
     rec = RunRecord("wear-pin", values, units, tmp_path, MPI.COMM_WORLD)
     rec.profile = None
-    prob = WearPinCase.run(values, rec, n=n)
+    stepper = WearPinCase.run(values, rec, n=n, setup=setup)
     res = {k: v["value"] for k, v in rec.data["results"].items()}
-    return prob, res, rec
+    return stepper, res, rec
 
 
-def _final_profile(prob):
-    d = prob.gather_shape()
-    d = MPI.COMM_WORLD.bcast(d, root=0)
-    return np.asarray(d["X_worn"])
+def _final_profile(stepper):
+    return np.asarray(stepper.wear.gather_shape(root_only=False)["X_worn"])
 
 
 @pytest.mark.mpi
@@ -54,7 +60,7 @@ def test_flat_punch_archard(tmp_path, scheme):
     assert vol == pytest.approx(K * Q * V * W * t, rel=1e-9, abs=1e-12)
     p = np.asarray(res["final_pressure"]) if MPI.COMM_WORLD.rank == 0 else np.array([Q])
     assert p == pytest.approx(Q, rel=1e-9)
-    assert prob.min_volume_factor() == pytest.approx(1 - depth[-1] / 2.0, rel=1e-9)
+    assert prob.wear.min_volume_factor() == pytest.approx(1 - depth[-1] / 2.0, rel=1e-9)
 
 
 @pytest.mark.mpi
@@ -98,44 +104,63 @@ def test_implicit_first_order_and_explicit_limit(tmp_path):
 
 
 def _orders(res):
-    r = np.asarray(res)
-    r = r[r > 1e-13 * r[0]]  # below this the residual is at round-off
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+    return convergence_orders(res, 1e-13)  # below 1e-13 r₀ the residual is at round-off
 
 
-def test_monolithic_newton_quadratic(tmp_path):
-    _, _, rec = _run(tmp_path, 6, scheme="implicit", dt=200, T=400, E=40)
+@pytest.mark.parametrize("friction", [0.0, MU])
+def test_monolithic_newton_quadratic(tmp_path, friction):
+    _, _, rec = _run(tmp_path, 6, scheme="implicit", dt=200, T=400, E=40, friction=friction)
     for hist in rec.data["newton_residuals"]:
         print("residuals", ["%.2e" % x for x in hist], "orders", _orders(hist))
-    # exact tangent of the monolithic (u, λ, w, ζ) system: once the active set is
-    # settled the last observed order is ≈ 2 (semismooth Newton; measured 2.10)
+    # exact tangent of the monolithic (u, λ, [λ_T], w, ζ) system: once the active set
+    # is settled the last observed order is ≈ 2 (semismooth Newton; measured 2.10
+    # frictionless); with a steady-sliding friction multiplier λ_T the same
     assert _orders(rec.data["newton_residuals"][-1])[-1] > 1.8
+
+
+def _newton_error(problem):
+    """Error estimate of the converged iterate: the next Newton correction ‖J⁻¹R‖_∞ at it
+    (quadratic convergence, checked in test_monolithic_newton_quadratic, makes it
+    a sharp estimate; over all unknowns, mm and MPa)."""
+    b, A = problem.assemble()
+    ksp = PETSc.KSP().create(A.comm)
+    ksp.setOperators(A)
+    ksp.setType("preonly")
+    ksp.getPC().setType("lu")
+    ksp.getPC().setFactorSolverType("mumps")
+    dx = b.duplicate()
+    ksp.solve(b, dx)
+    err = dx.norm(PETSc.NormType.INFINITY)
+    ksp.destroy()
+    dx.destroy()
+    return err
 
 
 def _pin_steps(comm, n=6, dt=250.0, T=500.0, E=40.0):
     """Rounded pin (R_tip = 4 mm), implicit, on ``comm``: per step the worn area, max
-    depth, contact half-width, worn profile (on every rank) and the Newton reports."""
-    from tribofx.cases.wear import solve_initial_contact
-
+    depth, contact half-width, worn profile (on every rank), the Newton reports and
+    the error estimate of the converged step."""
     values = resolve(WearPinCase.params, {"scheme": "implicit", "dt": str(dt), "T": str(T),
                                           "E": str(E)})
-    prob, load = WearPinCase.build(values, comm=comm, n=n)
-    solve_initial_contact(prob, load, Q, E, W, values["R_tip"], values["H"])
+    stepper, load = WearPinCase.build(values, comm=comm, n=n)
+    WearPinCase.load_up(stepper, load, values)
+    wear = stepper.wear
     hist = []
 
     def measure(reports):
-        area, _ = prob.contact_measures()
-        d = prob.nodal_shape_data()
-        depth = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
-        shape = comm.bcast(prob.gather_shape(), root=0)
-        hist.append({"volume": prob.worn_volume(), "depth": depth, "radius": area / 2,
-                     "profile": np.asarray(shape["X_worn"]), "reports": reports})
+        area, _ = wear.contact.measures()
+        wear.dt.value = dt  # the residual of the step just taken (end_step zeroed Δt)
+        error = _newton_error(stepper.problem) if reports else 0.0
+        wear.dt.value = 0.0
+        hist.append({"volume": wear.worn_volume(), "depth": wear.max_depth(),
+                     "radius": area / 2, "error": error,
+                     "profile": np.asarray(wear.gather_shape(root_only=False)["X_worn"]),
+                     "reports": reports})
 
     measure([])
     for _ in range(round(T / dt)):
-        measure(prob.step(dt))
-    return prob, hist
+        measure(stepper.step(dt).reports)
+    return stepper, hist
 
 
 @pytest.mark.mpi
@@ -150,10 +175,10 @@ def test_rounded_pin_worn_area_is_k_F_V_t():
     # are (1/ρ_N)(λ − T_N) w (≤ ρ_N √n_λ ‖b‖), the shape-update rows are
     # (w − w_n)·a w + Δt k V |λ| w (≤ √n_λ ‖b‖ on the swept area):
     # |ΔA − k q W V Δt| ≤ (Δt k V (√n_y + ρ_N √n_λ) + √n_λ) ‖b‖.
-    prob, hist = _pin_steps(MPI.COMM_WORLD)
-    n_y = prob.V.dofmap.index_map.size_global
-    n_l = prob.Q.dofmap.index_map.size_global
-    rho = prob.settings.rho_n
+    stepper, hist = _pin_steps(MPI.COMM_WORLD)
+    n_y = stepper.wear.body.V.dofmap.index_map.size_global
+    n_l = stepper.wear.contact.Q.dofmap.index_map.size_global
+    rho = stepper.wear.contact.rho_n
     dt = 250.0
     bound = 0.0
     for k, h in enumerate(hist):
@@ -167,14 +192,6 @@ def test_rounded_pin_worn_area_is_k_F_V_t():
         assert abs(h["volume"] - exact) <= bound + 1e-14
 
 
-def _newton_error(report):
-    """Error estimate of the last Newton iterate: quadratic convergence (the rate is checked
-    in test_monolithic_newton_quadratic), e_{k+1} ≈ C ‖dx_k‖² with C = ‖dx_k‖/‖dx_{k−1}‖²
-    from the last two increments (‖·‖ over all unknowns, mm and MPa)."""
-    inc = report.increments
-    return inc[-1] ** 3 / inc[-2] ** 2 if len(inc) > 1 else inc[-1]
-
-
 @pytest.mark.mpi
 def test_serial_parallel_agree():
     # the same problem on all processes (COMM_WORLD) and on rank 0 alone (COMM_SELF)
@@ -184,18 +201,18 @@ def test_serial_parallel_agree():
     ref = None
     if MPI.COMM_WORLD.rank == 0:
         _, ref = _pin_steps(MPI.COMM_SELF)
-        ref = [{k: h[k] for k in ("volume", "depth", "radius", "profile")}
-               | {"error": _newton_error(h["reports"][-1]) if h["reports"] else 0.0}
+        ref = [{k: h[k] for k in ("volume", "depth", "radius", "profile", "error")}
                for h in ref]
     ref = MPI.COMM_WORLD.bcast(ref, root=0)
     n_facets = 6
     for h, r in zip(par[1:], ref[1:]):
         # the discrete problem does not depend on the partition, so the two runs differ
-        # by their Newton errors only, ε = e_par + e_ser (estimate above): nodal worn
+        # by their Newton errors only, ε = e_par + e_ser (the next Newton correction of
+        # each converged step, _newton_error): nodal worn
         # positions and the max depth within ε, the contact half-width (half the sum of
         # the current lengths of the active facets, each changing by ≤ 2ε) within
         # n_facets ε — with the same active set
-        eps = _newton_error(h["reports"][-1]) + r["error"]
+        eps = h["error"] + r["error"]
         dprof = np.abs(h["profile"] - r["profile"]).max()
         print("2 ranks", h["volume"], h["depth"], h["radius"], "serial", r["volume"],
               r["depth"], r["radius"], "max profile difference", dprof, "ε", eps)
@@ -209,34 +226,34 @@ def test_serial_parallel_agree():
 def test_inverting_shape_update_is_rejected(tmp_path, scheme):
     # flat punch: a wear increment k q V Δt = 2.5 mm exceeds the pin height
     # (2 mm), so the uniform shape change w_y = d(1 − y/H) has det G = 1 − d/H < 0;
-    # the step must be refused and the state restored (the driver then cuts Δt)
-    from tribofx.cases.wear import solve_initial_contact
-
+    # the step must be refused and the state restored (the stepper then cuts Δt)
     values = resolve(WearPinCase.params, {"scheme": scheme, "R_tip": "0", "E": "40"})
-    prob, load = WearPinCase.build(values, n=4)
-    solve_initial_contact(prob, load, Q, 40.0, W, math.inf, 2.0)
-    w0 = prob.w.x.array.copy()
+    stepper, load = WearPinCase.build(values, n=4)
+    WearPinCase.load_up(stepper, load, values)
+    w = stepper.wear.body.w
+    w0 = w.x.array.copy()
     with pytest.raises(MeshInversion):
-        prob.step(2.5 / (K * Q * V))
-    assert np.array_equal(prob.w.x.array, w0)
-    prob.step(0.5 / (K * Q * V))  # a 0.5 mm increment is fine
-    assert prob.min_volume_factor() == pytest.approx(0.75, rel=1e-9)
+        stepper.step(2.5 / (K * Q * V))
+    assert np.array_equal(w.x.array, w0)
+    assert stepper.t == 0.0 and stepper.steps == 0
+    stepper.step(0.5 / (K * Q * V))  # a 0.5 mm increment is fine
+    assert stepper.wear.min_volume_factor() == pytest.approx(0.75, rel=1e-9)
 
 
 # -- explicit-scheme stability (eq. 31) ------------------------------------------
 
 def _critical(n, E):
-    from tribofx.cases.wear import explicit_critical_step
+    from tribofx.wear_study import pin_critical_step
 
     values = resolve(WearPinCase.params, {"E": str(E)})
-    dt_cr, probe = explicit_critical_step(values, n, lo=5.0, hi=2000.0)
+    dt_cr, probe = pin_critical_step(values, n, lo=5.0, hi=2000.0)
     return dt_cr, probe
 
 
 @pytest.mark.mpi
 def test_explicit_critical_step_scales_like_h_over_E():
     # flat pin, alternating (highest-mode) wear-depth perturbation, bisection on
-    # the growth of its amplitude over 3 explicit steps (see explicit_critical_step)
+    # the growth of its amplitude over 3 explicit steps (see pin_critical_step)
     cr = {(n, E): _critical(n, E) for n, E in [(8, 40.0), (16, 40.0), (8, 80.0)]}
     for key, (dt, probe) in cr.items():
         print("n, E =", key, "dt_cr =", dt, "s; probe", [(round(a, 2), round(g, 3))
@@ -341,35 +358,18 @@ def test_depth_graded_coefficient_first_order(tmp_path):
 
 # -- frictional (dissipation-driven) wear, eqs. 13–14 ------------------------------
 
-MU = 0.3
 
 
-def _clamp_contact_face(prob):
+def _clamp_contact_face(body, contact):
     # tangentially clamped contact face (u_x = 0 there, the friction force is carried
     # by the constraint): the deformation stays the homogeneous uniaxial strain of the
     # frictionless laterally constrained punch, so pressure = q exactly
-    from tribofx.meshes.pin import CONTACT
-
-    prob.add_dirichlet(CONTACT, 0.0, component=0)
+    body.add_dirichlet("contact", 0.0, component=0)
 
 
 def _run_built(tmp_path, n, setup, **over):
-    values = resolve(WearPinCase.params, {k: str(v) for k, v in over.items()})
-    WearPinCase.validate(values)
-    orig = WearPinCase.build
-
-    def build(v, comm=MPI.COMM_WORLD, n=None, setup_=None):
-        return orig(v, comm, n, setup=setup)
-
-    units = {p.name: p.unit for p in WearPinCase.params}
-    rec = RunRecord("wear-pin", values, units, tmp_path, MPI.COMM_WORLD)
-    rec.profile = None
-    WearPinCase.build = build
-    try:
-        prob = WearPinCase.run(values, rec, n=n)
-    finally:
-        WearPinCase.build = orig
-    return prob, {k: v["value"] for k, v in rec.data["results"].items()}
+    stepper, res, _ = _run(tmp_path, n, setup=setup, **over)
+    return stepper, res
 
 
 @pytest.mark.mpi
@@ -384,12 +384,13 @@ def test_frictional_dissipation_wear_flat_punch(tmp_path, scheme):
     t = np.asarray(res["time"])
     depth = np.asarray(res["max_wear_depth"])
     print(scheme, "frictional depth", depth, "frictionless", ref["max_wear_depth"])
-    assert prob.lam_t is not None and prob.mu == MU
+    contact = prob.wear.contact
+    assert contact.lam_t is not None and contact.friction == MU
     assert depth == pytest.approx(np.asarray(ref["max_wear_depth"]), rel=1e-9, abs=1e-12)
     assert depth == pytest.approx(K * Q * V * t, rel=1e-9, abs=1e-12)
     assert res["wear_volume"] == pytest.approx(ref["wear_volume"], rel=1e-9, abs=1e-12)
     # the friction force is μ times the normal force (full sliding)
-    fn, ft = prob.traction_magnitudes()
+    fn, ft = contact.traction_magnitudes()
     assert ft == pytest.approx(MU * fn, rel=1e-9)
 
 
@@ -424,25 +425,16 @@ def test_cyclic_converges_to_steady_sliding_for_long_strokes(tmp_path):
     # remainder is the stick phase at the two reversals (the elastic tangential
     # displacement of the contact, ~ μ p h/G, is recovered without slip), a
     # deficit of O(δ/stroke): the error must halve when the stroke doubles.
-    from tribofx.cases import wear as cw
-
     common = dict(scheme="explicit", dt=200, T=200, E=40, friction=MU)
-    orig = cw.WearPinCase.settings
 
-    def reversed_plane(v, h):
-        s = orig(v, h)
-        s.V_master = (-v["V"], 0.0)
-        return s
+    def reversed_plane(body, contact):
+        contact.V_master.value[0] = -V  # the plane slides the other way
 
     def worn_y(res):
         return np.asarray(res["final_profile"])[:, 1]
 
     _, plus, _ = _run(tmp_path, 6, **common)
-    cw.WearPinCase.settings = staticmethod(reversed_plane)
-    try:
-        _, minus, _ = _run(tmp_path, 6, **common)
-    finally:
-        cw.WearPinCase.settings = staticmethod(orig)
+    _, minus, _ = _run(tmp_path, 6, setup=reversed_plane, **common)
     steady = 0.5 * (worn_y(plus) + worn_y(minus))
     vol = plus["wear_volume"][-1]
     assert vol == pytest.approx(K * Q * W * V * 200, rel=1e-9)  # k F V Δt
@@ -476,7 +468,8 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
     # tiny 6 × 6 pin, E = 80 MPa, T = 400 s (the tip is not yet flat, so the
     # worn profile depends on Δt at first order); reference: Richardson
     # 2 p(3.125 s) − p(6.25 s) of implicit runs
-    from tribofx.cases.wear import plot_dt_study, run_dt_study
+    from tribofx.plots.wear import plot_dt_study
+    from tribofx.wear_study import run_dt_study
 
     values = resolve(WearPinCase.params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "200,50,25,12.5", "study_ref": "richardson",
@@ -512,3 +505,92 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
         plot_dt_study(rec.profile, tmp_path)
         assert (tmp_path / "error_vs_dt.png").stat().st_size > 0
         assert (tmp_path / "profiles.png").stat().st_size > 0
+
+
+# -- Taylor tests of the wear tangents (u, λ_N, [λ_T], w, ζ) --------------------------
+
+def _smooth_direction(f, scale, seed):
+    from dolfinx import fem
+
+    d = fem.Function(f.function_space)
+    rng = np.random.default_rng(seed)
+    c = rng.uniform(-1, 1, (f.function_space.value_size, 3))
+    d.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
+                                              for ci in c]))
+    return d
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("scheme", ["implicit", "explicit"])
+@pytest.mark.parametrize("friction,law,k_grad", [(0.0, "nominal", 0.0),
+                                                 (0.0, "spatial", 10.0),
+                                                 (MU, "nominal", 0.0),
+                                                 (MU, "spatial", 10.0)])
+def test_wear_tangent_taylor(scheme, friction, law, k_grad):
+    # the exact UFL tangent of the wear rows and their coupling: the monolithic
+    # (u, λ_N, [λ_T], w, ζ) system of θ = 1, and the shape step (w, ζ) of θ = 0 with
+    # the rate of the known state.  State: one converged wear step of the rounded pin
+    # (finite w ≠ w_n, an active contact zone, sliding friction), Δt > 0.  Smooth
+    # directions of size 1e-3 (mm, MPa) stay within every branch of the semismooth
+    # law (active set, Coulomb cone, k(d) > 0) for ε ≤ 1e-3, so the remainder of an
+    # exact tangent decays like ε² (order 2; a wrong coupling block gives order 1)
+    values = resolve(WearPinCase.params, {"scheme": scheme, "E": "40", "friction": str(friction),
+                                          "law": law, "k_grad": str(k_grad)})
+    stepper, load = WearPinCase.build(values, n=4)
+    WearPinCase.load_up(stepper, load, values)
+    stepper.step(200.0)
+    stepper.wear.dt.value = 200.0  # the residual of the step (end_step zeroed Δt)
+    # the converged inactive nodes sit on the kink λ_N = 0 of the rate k V max(−λ_N, 0)
+    # (a semismooth branch point): move them off it, into the open contact branch
+    lam = stepper.wear.contact.lam_n.x.array
+    lam[lam > -1e-9] = 0.05
+    problem = stepper.problem if scheme == "implicit" else stepper.shape
+    dirs = [_smooth_direction(f, 1e-3, 7 + i) for i, f in enumerate(problem.u)]
+    orders, rem = taylor_orders(problem, owned_arrays(problem, dirs), eps0=1e-3)
+    print(scheme, friction, law, k_grad, [f.name for f in problem.u], "orders", orders,
+          "relative remainders", rem)
+    assert stepper.wear.max_depth() > 0.01  # a finite shape change is linearised
+    # round-off floor ~1e-12 of the linear term; 1.8: the ε-range where it starts to show
+    assert rem.max() < 1e-10 or orders.min() > 1.8, (orders, rem)
+
+
+# -- checkpoint and restart of the slow-time stepper ----------------------------------
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("scheme", ["implicit", "explicit", "cyclic"])
+def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
+    # a checkpoint is written after every accepted step; a fresh stepper restored
+    # from the checkpoint of step 1 must take step 2 exactly as the original run
+    # did: the same discrete problem from the same state by the same operations,
+    # so the states agree to round-off (1e-12 of their size)
+    import shutil
+
+    comm = MPI.COMM_WORLD
+    over = {"scheme": scheme, "E": "40"}
+    if scheme == "cyclic":  # reciprocating, time-scale separation (contact memory, rate_bar)
+        over.update(scheme="explicit", mode="cyclic", friction=str(MU), fast_steps="4")
+    values = resolve(WearPinCase.params, over)
+    tmp = Path(comm.bcast(str(tmp_path), root=0))  # one folder for all ranks
+    ck, copy = tmp / "ck", tmp / "ck_step1"
+    stepper, load = WearPinCase.build(values, n=4, checkpoint=ck)
+    WearPinCase.load_up(stepper, load, values)
+
+    def keep_step1(st, report):
+        if st.steps == 1 and comm.rank == 0:
+            shutil.copytree(ck, copy)
+        comm.barrier()
+
+    stepper.start()  # the cyclic run-in (nothing otherwise)
+    stepper.run(400.0, 200.0, on_step=keep_step1)
+    ref = stepper.state()
+    fresh, load2 = WearPinCase.build(values, n=4)
+    fresh.load_checkpoint(copy)
+    assert fresh.t == 200.0 and fresh.steps == 1 and fresh.dt == 200.0
+    assert float(load2.value) == 1.0  # the load factor is part of the state
+    fresh.run(400.0, 200.0)
+    new = fresh.state()
+    assert new["t"] == ref["t"] and new["steps"] == ref["steps"]
+    for a, b in zip(ref["fields"], new["fields"]):
+        scale = max(float(np.max(np.abs(a), initial=0.0)), 1e-300)
+        assert np.max(np.abs(a - b), initial=0.0) <= 1e-12 * scale
+    assert fresh.wear.max_depth() > 0.01

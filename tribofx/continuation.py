@@ -131,12 +131,15 @@ class Continuation:
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
         return out
 
-    def reach(self, target, guess=None):
+    def reach(self, target, guess=None, slope=None):
         """Find the parameter at which the response equals ``target``; returns it.
 
         ``guess``: first trial value (default: secant extrapolation of the
-        converged history, or the current value).  Raises NewtonDivergence (state
-        restored) when ``max_trials`` trials do not reach the target.
+        converged history, or the current value).  ``slope``: an estimate of
+        d(response)/d(parameter) for the first update (default: a power law
+        through the origin of the loading); the later updates are secants.
+        Raises NewtonDivergence (state restored) when ``max_trials`` trials do
+        not reach the target.
         """
         saved = self.problem.state()
         iterations = []
@@ -158,7 +161,9 @@ class Continuation:
             f1 = self.response()
             if abs(f1 - target) <= self.rtol * abs(target):
                 break
-            if f0 is None or f1 == f0:
+            if (f0 is None or f1 == f0) and slope is not None:
+                d_new = d1 + (target - f1) / slope
+            elif f0 is None or f1 == f0:
                 # power-law update from the origin of the loading
                 d_new = d1 * (target / f1) ** 0.7 if f1 > 0 else 2 * d1
             else:

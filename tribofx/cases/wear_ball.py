@@ -8,10 +8,12 @@ eqs. 26–27: v_T = −V e_x, fixed direction, Coulomb μ: sliding everywhere in
 contact), and the ball wears by the dissipation form of Archard's law (eqs.
 13–14) Ẇ = K T_T·v_T, K = k/μ, i.e. Ẇ = k p V per unit area.  The shape
 evolution (28) is integrated on the initial mesh by the implicit (θ = 1,
-monolithic Newton in u, λ_N, λ_T, w, ζ) or explicit (θ = 0) scheme; see
-:mod:`tribofx.wear_problem`.  A step that fails (Newton divergence or an
-inverted cell) is halved (``max_cuts``) and the step size is doubled back as
-soon as the time is aligned with the coarser step (substepping at the start).
+monolithic Newton in u, λ_N, λ_T, w, ζ) or explicit (θ = 0) scheme: a
+:class:`tribofx.body.Body` with a shape field, a :class:`tribofx.interfaces.Contact`
+with Eulerian slip, a :class:`tribofx.interfaces.Wear` on it and the slow time by
+:class:`tribofx.stepper.Stepper`.  A step that fails (Newton divergence, force
+not reached or an inverted cell) is halved (``max_cuts``) and the step size is
+doubled back as soon as the time is aligned with the coarser step.
 
 Model: quarter ball (the lower hemisphere cut by the symmetry plane y = 0 that
 contains the sliding direction), :func:`tribofx.meshes.wear_ball.quarter_ball`,
@@ -20,9 +22,10 @@ rigid-cap scar radius at T, at least 2 a_H) of the initial contact point, R/4
 far away.  Loading (chapter: at the mid-plane, which moves vertically as a
 rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
 supports the friction force and its moment) and the rigid flat is translated
-vertically by δ (``approach``), found in every solve by an outer secant
-iteration (:class:`ForceControl`, the Newton solve of the step inside) so that
-the contact force of the half contact is F/2 to 10⁻⁸.  A uniform traction on a
+vertically by δ (``approach``), found in every solve by the secant iteration of
+:meth:`tribofx.continuation.Continuation.reach` around the Newton solve of the
+step (:class:`tribofx.stepper.ResponseControl`) so that the contact force of the
+half contact is F/2 to 10⁻⁸.  A uniform traction on a
 free mid-plane is not used: the friction moment μ F R would tilt the ball.
 Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
 the mid-plane (w_z = 0).
@@ -57,218 +60,20 @@ import time
 import numpy as np
 from mpi4py import MPI
 
-from ..contact_problem import ContactSettings
+from ..body import Body
+from ..continuation import ConstantParameter
 from ..forms.hyperelastic import lame_parameters
-from ..meshes.wear_ball import CONTACT, LOADED, SYMMETRY_Y, quarter_ball
-from ..newton import NewtonDivergence
-from ..obstacles import AnalyticObstacle
+from ..interfaces import Contact, Wear
+from ..meshes.wear_ball import NAMES, quarter_ball
+from ..obstacles import rigid_plane
 from ..params import InputError, Param
+from ..problem import NewtonDivergence
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
-from ..wear_problem import WearProblem
-from .wear import bisect_critical_step
+from ..stepper import ResponseControl, Stepper
 
-# rigid_cap_radius is re-exported from tribofx.references
-__all__ = ["ForceControl", "WearBallCase", "explicit_critical_step", "hertz_radius",
-           "pressure_nonuniformity", "rigid_cap_radius", "shape_unknown_fraction"]
+__all__ = ["MODEL_FRACTION", "WearBallCase"]
 
 MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the wear)
-
-
-def hertz_radius(F, R, E, nu):
-    """Hertz radius (mm) of the ball on the rigid flat; kept for existing callers.
-
-    The formula is :func:`tribofx.references.hertz` (``hertz(F, R, E, nu).a``).
-    """
-    return hertz(F, R, E, nu).a
-
-
-def shape_unknown_fraction(prob):
-    """Fraction of the global unknowns that belong to the shape field w (and its multiplier ζ)."""
-    def n(f):
-        im = f.function_space.dofmap.index_map
-        return im.size_global * f.function_space.dofmap.index_map_bs
-    total = sum(n(f) for f in prob.unknowns)
-    shape = n(prob.w) + n(prob.zeta)
-    if prob.shape_solver is not None:  # explicit: separate shape solve
-        total += shape
-    return shape / total
-
-
-def pressure_nonuniformity(prob):
-    """Relative standard deviation of the nodal contact pressure over the inner scar.
-
-    Area-weighted over the active nodes within 0.7 of the contact radius (the
-    edge nodes carry partial lumped areas); 0 for a uniform pressure.
-    """
-    comm = prob.mesh.comm
-    d = prob.nodal_contact_data()
-    area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
-    a_c = math.sqrt(2 * area / math.pi)
-    r = np.linalg.norm(d["x"][:, :2], axis=1)
-    sel = d["active"] & (r < 0.7 * a_c)
-    w, p = d["weight"][sel], d["p"][sel]
-    sw, swp, swp2 = (comm.allreduce(float(np.sum(x)), op=MPI.SUM) for x in (w, w * p, w * p * p))
-    if sw <= 0:
-        return math.inf
-    mean = swp / sw
-    return math.sqrt(max(swp2 / sw - mean * mean, 0.0)) / mean if mean > 0 else math.inf
-
-
-def explicit_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0,
-                           comm=MPI.COMM_WORLD):
-    """Largest stable explicit Δt (s) from a developed scar, by experiment (bisection).
-
-    The implicit scheme (``v["dt"]``) runs to ``t0`` on the mesh of ``v``; its
-    state is copied into an explicit problem on the same mesh, which takes
-    ``steps`` steps of Δt.  Wear evens out the pressure (the continuous
-    problem is dissipative): an unstable Δt amplifies the highest mode
-    geometrically, a stable one leaves the pressure nonuniformity
-    (:func:`pressure_nonuniformity`) near its value at t0 (the implicit state
-    at t0 is not exactly on the accurate path, so it may rebound by a few per
-    cent).  Δt counts as stable iff the nonuniformity after the steps is at
-    most ``growth_tol`` times the one at t0 and no step fails (Newton
-    divergence, inverted mesh).
-    Bisection on log Δt in [lo, hi] (lo stable, hi unstable, both checked).
-    Returns ``(dt_cr, probe)``, ``probe`` the list of (Δt, nonuniformity ratio).
-    """
-    class _Rec:
-        def __init__(self):
-            self.data = {"newton_iterations": [], "results": {}}
-            self.profile = None
-
-        def result(self, key, value, unit="-"):
-            self.data["results"][key] = value
-
-    rec = _Rec()
-    cls = WearBallCase
-    cls.run({**v, "scheme": "implicit"}, rec, comm=comm, t_stop=t0)
-    start = rec.problem.state()
-    s0 = pressure_nonuniformity(rec.problem)
-    prob = cls.build({**v, "scheme": "explicit"}, comm=comm)
-    if not np.array_equal(prob.mesh.geometry.x, rec.problem.mesh.geometry.x):
-        raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
-    ctrl = ForceControl(prob, v)
-    probe = []
-
-    def growth(dt):
-        prob.restore(start)
-        try:
-            for _ in range(steps):
-                ctrl.step(dt)
-        except NewtonDivergence:
-            probe.append((dt, math.inf))
-            return math.inf
-        g = pressure_nonuniformity(prob) / s0
-        probe.append((dt, g))
-        return g
-
-    return bisect_critical_step(growth, lo, hi, iters, tol=growth_tol, probe=probe), probe
-
-
-class ForceControl:
-    """Position δ of the rigid flat (obstacle offset along z) that carries the force F/2.
-
-    In the ball frame the mid-plane is clamped and the flat is pushed up by δ
-    (equivalently the mid-plane moves down by δ as a rigid plane, chapter §5.2).
-    :meth:`solve` is an outer secant iteration on δ around the Newton solve of
-    the problem (implicit: the coupled wear step), started from the predictor
-    :meth:`predicted_position` and the stiffness estimate dF/dδ ≈ E* a of the half contact
-    (a the current contact radius); it stops at |F_z − F/2| ≤ rtol F/2.
-    """
-
-    def __init__(self, prob, v, rtol=1e-8, max_trials=12):
-        self.prob, self.v = prob, v
-        self.target = MODEL_FRACTION * v["F"]
-        self.Es = composite_modulus(v["E"], v["nu"])
-        self.rtol, self.max_trials = rtol, max_trials
-        self.trials = []
-
-    @property
-    def delta(self):
-        """Current position of the flat (mm, positive towards the ball)."""
-        return float(self.prob.obstacle.offset.value[2])
-
-    def _slope(self):
-        """Stiffness estimate dF/dδ of the half contact (N/mm).
-
-        Flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
-        (implicit step) with the wear compliance k V Δt.
-        """
-        area, _ = self.prob.contact_measures()
-        a = max(math.sqrt(2 * area / math.pi),
-                hertz(self.v["F"], self.v["R"], self.v["E"], self.v["nu"]).a)
-        c_wear = self.v["k"] * self.v["V"] * float(self.prob.dt.value) \
-            if self.prob.scheme == "implicit" else 0.0
-        return 0.5 * math.pi * a * a / (math.pi * a / (2 * self.Es) + c_wear)
-
-    def predicted_position(self, dt):
-        """Position of the flat after Δt by the rigid-cap wear-depth increment (predictor).
-
-        Computed from the state at step entry; the flat is not moved, so the explicit
-        scheme's wear rate is that of the known state n (θ = 0).
-        """
-        v, comm = self.v, self.prob.mesh.comm
-        d = self.prob.nodal_shape_data()
-        h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
-        # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
-        dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
-        return self.delta + math.sqrt(h * h + dh2) - h
-
-    def step(self, dt, verbose=False):
-        """One wear step Δt at the prescribed force; returns the Newton reports.
-
-        The secant on δ starts from :meth:`predicted_position` and runs inside
-        :meth:`WearProblem.step` (after the explicit shape update), so a failed
-        step restores the flat together with the rest of the state at entry.
-        """
-        start = self.predicted_position(dt)
-        return self.prob.step(dt, verbose=verbose,
-                              solve=lambda vb: self.solve(vb, start=start))
-
-    def solve(self, verbose=False, start=None):
-        """Outer secant iteration on δ from ``start`` (default: the current δ); Newton reports."""
-        prob = self.prob
-        reports, trials = [], []
-        slope = self._slope()
-        d = self.delta if start is None else start
-        for _ in range(self.max_trials):
-            prob.obstacle.offset.value[2] = d
-            reports.append(prob.solver.solve(verbose=verbose))
-            f = float(prob.contact_force()[2])
-            trials.append((d, f))
-            if abs(f - self.target) <= self.rtol * self.target:
-                self.trials.append(len(trials))
-                return reports
-            if len(trials) >= 2 and trials[-1][1] != trials[-2][1]:
-                s = (trials[-1][1] - trials[-2][1]) / (trials[-1][0] - trials[-2][0])
-                slope = s if s > 0 else self._slope()
-            d = d + (self.target - f) / slope
-        raise NewtonDivergence(f"force control: F/2 = {self.target:g} N not reached in "
-                               f"{self.max_trials} trials (last {trials[-1][1]:.6g} N)")
-
-    def initial(self, verbose=False, max_ramp=4):
-        """Unworn contact under F from the Hertz approach a_H²/R; returns the Newton iterations.
-
-        If the full approach fails, the flat is brought up in 2, 4, … steps first.
-        """
-        v = self.v
-        delta = hertz(v["F"], v["R"], v["E"], v["nu"]).delta
-        saved = self.prob.state()
-        for level in range(max_ramp):
-            self.prob.restore(saved)
-            n = 2**level
-            its = 0
-            try:
-                for i in range(1, n):
-                    self.prob.obstacle.offset.value[2] = delta * i / n
-                    its += self.prob.solver.solve(verbose=verbose).iterations
-                self.prob.obstacle.offset.value[2] = delta
-                its += sum(r.iterations for r in self.solve(verbose))
-            except NewtonDivergence:
-                continue
-            self.prob.commit()
-            return its
-        raise NewtonDivergence("initial contact solve failed")
 
 
 class WearBallCase:
@@ -315,41 +120,62 @@ class WearBallCase:
         aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
         return aH / (2 * 2 ** v["mesh"]), v["R"] / 4, 1.25 * aT
 
-    @staticmethod
-    def settings(v, h):
-        """Steady (Eulerian) Coulomb sliding: the ball is at rest, the flat moves at V e_x."""
-        return ContactSettings(rho_n=v["E"] / h, friction=v["friction"], slip="eulerian",
-                               V=(0.0, 0.0, 0.0), V_master=(v["V"], 0.0, 0.0), dtau=1.0)
-
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, newton_kw=None):
-        """Mesh and :class:`WearProblem` of the case (not yet loaded); returns the problem."""
+    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
+        """Body, contact, wear, stepper and force control of the case (not yet loaded).
+
+        Returns the :class:`tribofx.stepper.Stepper`; its ``control`` positions the
+        flat so that the contact force of the half contact is F/2.
+        """
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
         msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
         mu, lmbda = lame_parameters(v["E"], v["nu"])
-
-        def factory(m, Vs):
-            return AnalyticObstacle(Vs.mesh, "plane", np.zeros(3), normal=np.array([0.0, 0, 1]))
-
-        prob = WearProblem(msh, ft, CONTACT, "3d", "neo-hookean", {"mu": mu, "lmbda": lmbda},
-                           factory, cls.settings(v, h_fine), k=v["k"], slip_speed=v["V"],
-                           scheme=v["scheme"], aux_E=v["E"])
+        # ball frame: the ball material is at rest, the flat moves at V e_x (eqs. 26–27)
+        body = Body(msh, ft, NAMES, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                    shape=True, aux=(v["E"], 0.3), velocity=np.zeros(3))
         # the mid-plane is the rigid holder: clamped in the ball frame, the flat moves
-        prob.add_dirichlet(LOADED, np.zeros(3))
-        prob.add_dirichlet(SYMMETRY_Y, 0.0, component=1)
-        prob.add_shape_dirichlet(SYMMETRY_Y, 1)
-        prob.add_shape_dirichlet(LOADED, 2)
-        prob.finalize(**(newton_kw or {}))
-        prob.h_fine = h_fine
-        return prob
+        body.add_dirichlet("loaded", np.zeros(3))
+        body.add_dirichlet("symmetry_y", 0.0, component=1)
+        body.add_shape_dirichlet("symmetry_y", 1)
+        body.add_shape_dirichlet("loaded", 2)
+        contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0, 1])),
+                          rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
+                          V_master=(v["V"], 0.0, 0.0), dtau=1.0)
+        wear = Wear(contact, k=v["k"], speed=v["V"],
+                    theta=1.0 if v["scheme"] == "implicit" else 0.0)
+        stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+                          checkpoint=checkpoint, name="wear_ball")
+        offset = contact.counterpart.offset
+        Es = composite_modulus(v["E"], v["nu"])
+        a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+
+        def predictor(dt):
+            # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
+            h = wear.max_depth()
+            dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
+            return float(offset.value[2]) + math.sqrt(h * h + dh2) - h
+
+        def stiffness(dt):
+            # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
+            # (implicit step) with the wear compliance k V Δt
+            a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
+            c_wear = v["k"] * v["V"] * dt if wear.theta == 1 else 0.0
+            return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
+
+        stepper.set_control(ResponseControl(
+            stepper.problem, ConstantParameter(offset, 2), lambda: float(contact.force()[2]),
+            MODEL_FRACTION * v["F"], predictor=predictor, slope=stiffness))
+        stepper.h_fine = h_fine
+        return stepper
 
     @staticmethod
-    def measures(prob, v):
+    def measures(stepper, v):
         """Contact radius, flat-scar radius, pressure ratio, max depth, full-ball worn volume."""
-        comm = prob.mesh.comm
-        d = prob.nodal_shape_data()
+        wear = stepper.wear
+        comm = wear.body.mesh.comm
+        d = wear.nodal_shape_data()
         area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
-        a_c = math.sqrt(2 * area / math.pi)
+        a_c = math.sqrt(area / (MODEL_FRACTION * math.pi))
         h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
         a_s = math.sqrt(max(2 * v["R"] * h - h * h, 0.0))
         r = np.linalg.norm(d["x"][:, :2], axis=1)
@@ -358,17 +184,17 @@ class WearBallCase:
         pmin = comm.allreduce(float(np.min(d["p"][inner], initial=np.inf)), op=MPI.MIN)
         return {"contact_radius": a_c, "scar_radius": a_s, "max_wear_depth": h,
                 "pressure_ratio": pmax / pmin if pmin > 0 else math.inf,
-                "wear_volume": prob.worn_volume() / MODEL_FRACTION,
-                "wear_rate_integral": prob.wear_rate_integral() / MODEL_FRACTION}
+                "wear_volume": wear.worn_volume() / MODEL_FRACTION,
+                "wear_rate_integral": wear.wear_rate_integral() / MODEL_FRACTION}
 
     @staticmethod
-    def symmetry_line(prob, v):
+    def symmetry_line(stepper, v):
         """Worn and deformed contact boundary along y = 0 near the contact, on rank 0 (else None).
 
         Returns a dict of arrays sorted by X̂_x: X_worn, x (deformed), p (pressure).
         """
-        d = prob.gather_shape()
-        if prob.mesh.comm.rank != 0:
+        d = stepper.wear.gather_shape()
+        if d is None:
             return None
         r_fine = WearBallCase.mesh_sizes(v)[2]
         sel = (np.abs(d["X_hat"][:, 1]) < 1e-9 * v["R"]) & (d["X_hat"][:, 2] < 0.5 * v["R"]) \
@@ -376,87 +202,69 @@ class WearBallCase:
         return {"X_worn": d["X_worn"][sel], "x": d["x"][sel], "p": d["p"][sel]}
 
     @staticmethod
-    def contact_plane(prob):
+    def contact_plane(stepper):
         """(x, y, p) of all contact-surface nodes within the active zone, on rank 0 (else None)."""
-        d = prob.gather_shape()
-        if prob.mesh.comm.rank != 0:
+        d = stepper.wear.gather_shape()
+        if d is None:
             return None
         a = d["active"]
         return np.column_stack([d["x"][a, 0], d["x"][a, 1], d["p"][a]])
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False, newton_kw=None, on_step=None,
-            comm=MPI.COMM_WORLD, t_stop=None):
+    def run(cls, v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
+            t_stop=None, checkpoint=None):
         """Integrate the wear of the ball from t = 0 to T; record per-step histories.
 
-        ``on_step(prob, t, reports)``, if given, is called after every accepted step;
-        ``t_stop`` < T ends the run early (on the mesh built for T).
+        ``on_step(stepper, report)``, if given, is called after every accepted step;
+        ``t_stop`` < T ends the run early (on the mesh built for T).  Returns the stepper.
         """
         t_wall = time.perf_counter()
-        prob = cls.build(v, comm=comm, newton_kw=newton_kw)
-        ctrl = ForceControl(prob, v)
-        record.data["num_dofs"] = prob.solver.num_dofs
-        if prob.shape_solver is not None:
-            record.data["num_dofs_shape"] = prob.shape_solver.num_dofs
-        record.result("shape_unknown_fraction", shape_unknown_fraction(prob), "-")
-        record.problem = prob
-        record.control = ctrl
-        comm = prob.mesh.comm
-        record.result("h_contact_zone", prob.h_fine, "mm")
+        stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
+        stepper.verbose = stepper.control.continuation.verbose = verbose
+        record.data["num_dofs"] = stepper.problem.num_dofs
+        if stepper.shape is not None:
+            record.data["num_dofs_shape"] = stepper.shape.num_dofs
+        record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
+        record.stepper = stepper
+        comm = stepper.comm
+        record.result("h_contact_zone", stepper.h_fine, "mm")
         keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
                 "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral")
         hist = {k: [] for k in keys}
         state = {"profiles": [], "initial_plane": None}
+        offset = stepper.wear.contact.counterpart.offset
 
         def log(t, its, dt):
-            m = cls.measures(prob, v)
-            hist["time"].append(t)
-            hist["dt"].append(dt)
-            hist["newton_iterations"].append(its)
-            hist["approach"].append(ctrl.delta)
-            for k in m:
-                hist[k].append(m[k])
+            m = cls.measures(stepper, v)
+            for key, val in (("time", t), ("dt", dt), ("newton_iterations", its),
+                             ("approach", float(offset.value[2])), *m.items()):
+                hist[key].append(val)
             record.data["newton_iterations"].append(its)
-            line = cls.symmetry_line(prob, v)
+            line = cls.symmetry_line(stepper, v)
             if comm.rank == 0:
                 state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
 
-        its0 = ctrl.initial(verbose)
-        state["initial_plane"] = cls.contact_plane(prob)
-        log(0.0, its0, 0.0)
-        t, T, dt = 0.0, v["T"] if t_stop is None else min(t_stop, v["T"]), v["dt"]
-        cuts = 0
+        def step_done(st, rep):
+            log(st.t, rep.iterations, rep.dt)
+            record.data.setdefault("newton_residuals", []).append(
+                [float(x) for x in rep.reports[-1].residuals])
+            record.data.setdefault("newton_residuals_all", []).append(
+                [[float(x) for x in r.residuals] for r in rep.reports])
+            if on_step is not None:
+                on_step(st, rep)
+
+        reports = stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+        state["initial_plane"] = cls.contact_plane(stepper)
+        log(0.0, int(sum(r.iterations for r in reports)), 0.0)
+        T = v["T"] if t_stop is None else min(t_stop, v["T"])
         try:
-            while t < T * (1 - 1e-12):
-                h = min(dt / 2**cuts, T - t)
-                try:
-                    reports = ctrl.step(h, verbose=verbose)
-                except NewtonDivergence:
-                    cuts += 1
-                    if cuts > v["max_cuts"]:
-                        raise
-                    continue
-                t += h
-                its = int(sum(r.iterations for r in reports))
-                log(t, its, h)
-                record.data.setdefault("newton_residuals", []).append(
-                    [float(x) for x in reports[-1].residuals])
-                record.data.setdefault("newton_residuals_all", []).append(
-                    [[float(x) for x in r.residuals] for r in reports])
-                if on_step is not None:
-                    on_step(prob, t, reports)
-                # substepping: double the step back once t is aligned with the coarser step
-                while cuts > 0 and abs(t / (dt / 2 ** (cuts - 1))
-                                       - round(t / (dt / 2 ** (cuts - 1)))) < 1e-9:
-                    cuts -= 1
-                if progress is not None:
-                    progress.update(1)
+            stepper.run(T, v["dt"], on_step=step_done, progress=progress)
         except NewtonDivergence as err:
-            err.problem = prob
+            err.problem = stepper
             raise
         finally:
-            cls._report(prob, v, record, hist, state, time.perf_counter() - t_wall)
-        return prob
+            cls._report(stepper, v, record, hist, state, time.perf_counter() - t_wall)
+        return stepper
 
     @staticmethod
     def late_time_exponent(time_s, radius, V, t_min):
@@ -469,7 +277,7 @@ class WearBallCase:
         return float(np.polyfit(np.log(V * t[sel]), np.log(a[sel]), 1)[0])
 
     @classmethod
-    def _report(cls, prob, v, record, hist, state, wall):
+    def _report(cls, stepper, v, record, hist, state, wall):
         units = {"time": "s", "dt": "s", "approach": "mm (flat position)",
                  "wear_volume": "mm^3 (full ball)",
                  "max_wear_depth": "mm", "contact_radius": "mm", "scar_radius": "mm",
@@ -477,20 +285,19 @@ class WearBallCase:
                  "wear_rate_integral": "mm^3/s (full ball)"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
-        comm = prob.mesh.comm
-        record.result("wall_time", comm.allreduce(wall, op=MPI.MAX), "s")
+        record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
         record.result("steps", len(hist["time"]) - 1, "-")
         s = v["V"] * np.asarray(hist["time"])
         record.result("rigid_cap_radius", rigid_cap_radius(v["k"], v["F"], v["R"], s).tolist(),
                       "mm")
         record.result("archard_volume", (v["k"] * v["F"] * s).tolist(), "mm^3 (k F V t)")
-        t_late = 0.4 * v["T"]
         for key in ("contact_radius", "scar_radius"):
             record.result(f"{key}_exponent_late",
-                          cls.late_time_exponent(hist["time"], hist[key], v["V"], t_late), "-")
-        line = cls.symmetry_line(prob, v)
-        plane = cls.contact_plane(prob)
-        if comm.rank == 0:
+                          cls.late_time_exponent(hist["time"], hist[key], v["V"], 0.4 * v["T"]),
+                          "-")
+        line = cls.symmetry_line(stepper, v)
+        plane = cls.contact_plane(stepper)
+        if line is not None:
             record.result("final_profile", line["X_worn"][:, [0, 2]].tolist(),
                           "mm ([x, z] of the worn boundary on y = 0)")
             record.result("final_profile_deformed", line["x"][:, [0, 2]].tolist(), "mm")
@@ -501,65 +308,14 @@ class WearBallCase:
                               "F": v["F"], "V": v["V"]}
 
     @staticmethod
-    def vtx_fields(prob):
+    def vtx_fields(stepper):
         """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        return {"displacement": [prob.u, prob.w], "contact": [prob.lam_n]}
+        wear = stepper.wear
+        return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
 
     @staticmethod
     def plot(profile, outdir):
-        """Plot ``pressure.png``, ``profiles.png`` and ``scar.png``.
+        """``pressure.png``, ``profiles.png`` and ``scar.png`` (:func:`tribofx.plots.wear`)."""
+        from ..plots.wear import plot_wear_ball
 
-        Initial/final pressure on the contact plane, worn profile along y = 0 at
-        every step, scar radius against the rigid-cap law.
-        """
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-        for ax, key, title in zip(axes, ("initial_plane", "final_plane"),
-                                  ("t = 0", f"t = {profile['time'][-1]:g} s")):
-            pts = np.asarray(profile[key])
-            if len(pts) >= 3:
-                # mirror the half model about y = 0
-                x = np.concatenate([pts[:, 0], pts[:, 0]])
-                y = np.concatenate([pts[:, 1], -pts[:, 1]])
-                p = np.concatenate([pts[:, 2], pts[:, 2]])
-                sc = ax.tricontourf(x, y, p, levels=20, cmap="viridis")
-                fig.colorbar(sc, ax=ax, label="contact pressure (MPa)")
-                ax.plot(pts[:, 0], pts[:, 1], "k.", ms=2)
-            ax.set_aspect("equal")
-            ax.set_xlabel("x (mm, sliding direction)")
-            ax.set_ylabel("y (mm)")
-            ax.set_title(f"contact pressure, {title}")
-        fig.tight_layout()
-        fig.savefig(outdir / "pressure.png", dpi=120)
-        plt.close(fig)
-
-        fig, ax = plt.subplots(figsize=(7, 3.5))
-        for t, pts in profile["profiles"]:
-            p = np.asarray(pts)
-            ax.plot(p[:, 0], p[:, 1] * 1e3, lw=1, label=f"t = {t:g} s")
-        ax.set_xlabel("x (mm)")
-        ax.set_ylabel("worn z (µm)")
-        ax.set_title(f"worn ball profile on y = 0, {profile['scheme']} scheme")
-        if len(profile["profiles"]) <= 14:
-            ax.legend(fontsize=6, ncol=2)
-        fig.tight_layout()
-        fig.savefig(outdir / "profiles.png", dpi=120)
-        plt.close(fig)
-
-        t = np.asarray(profile["time"])[1:]
-        s = profile["V"] * t
-        fig, ax = plt.subplots(figsize=(5, 4))
-        ax.loglog(s, np.asarray(profile["contact_radius"])[1:], "o", label="contact radius")
-        ax.loglog(s, np.asarray(profile["scar_radius"])[1:], "s", label="flat-scar radius")
-        ax.loglog(s, rigid_cap_radius(profile["k"], profile["F"], profile["R"], s), "k-",
-                  label="(4kFRs/π)^{1/4}")
-        ax.set_xlabel("sliding distance s (mm)")
-        ax.set_ylabel("radius (mm)")
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(outdir / "scar.png", dpi=120)
-        plt.close(fig)
+        plot_wear_ball(profile, outdir)

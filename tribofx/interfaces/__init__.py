@@ -6,5 +6,6 @@ and its outputs; it follows the component protocol of :mod:`tribofx.problem`.
 """
 
 from .contact import Contact
+from .wear import Wear
 
-__all__ = ["Contact"]
+__all__ = ["Contact", "Wear"]

@@ -2,5 +2,6 @@
 
 from .common import pyplot
 from .contact import plot_hertz_pressure
+from .wear import plot_dt_study, plot_wear_ball, plot_wear_pin
 
-__all__ = ["plot_hertz_pressure", "pyplot"]
+__all__ = ["plot_dt_study", "plot_hertz_pressure", "plot_wear_ball", "plot_wear_pin", "pyplot"]

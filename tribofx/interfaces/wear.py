@@ -1,0 +1,301 @@
+"""Finite wear on a contact interface: Archard law and the discrete shape evolution law (§3–§4).
+
+A :class:`Wear` interface sits on a :class:`tribofx.interfaces.Contact` whose
+slave body carries the ALE shape field (``Body(..., shape=True)``: w, its
+history w_n and the auxiliary elasticity rows, eqs. 19–20).  Everything lives
+on the initial mesh: x = X̂ + u, X = X̂ + w, the contact multipliers are
+tractions per unit *initial* area.
+
+Residual contributions (all built by :mod:`tribofx.forms`):
+
+* the shape row of w: ∫_Γ̂c ζ δw·a dŜ (:func:`tribofx.forms.ale.shape_multiplier_work`),
+  the reaction of the nodal constraint below on the auxiliary elasticity;
+* the row of the multiplier ζ (P1 on the contact submesh, vertex quadrature):
+  the discrete shape evolution law (28),
+
+      ∫_Γ̂c η [(w − w_n)·a + Δt Ẇ_{n+θ} j_w] dŜ = 0,
+
+  (:func:`tribofx.forms.wear.shape_update_residual`) with a the step average of
+  the Nanson vector cof(G) N̂ (:func:`tribofx.forms.ale.swept_nanson_vector`),
+  which makes (w − w_n)·a dŜ the exact volume swept by a boundary facet, so the
+  discrete worn volume equals the time integral of the wear rate.
+
+Wear rate per unit initial area Ẇ j_w (:func:`tribofx.forms.wear.slave_wear_rate`,
+eqs. 14–17): frictionless contact, the pressure form k V |λ_N| (V the sliding
+speed ``speed``); with friction (the contact has λ_T), the dissipation form
+(k/μ) T_T·v_T with the slip velocity v_T of the Eulerian steady slip (eqs.
+26–27).  Options: the spatial law (15)–(16), divided by J = det F relative to
+the worn configuration; a depth-graded coefficient k(d) = k max(1 + g d, 0),
+d = −w·N̂ (:func:`tribofx.forms.wear.depth_graded_coefficient`); both at t_{n+θ}.
+
+θ-scheme (eq. 28): ``theta=1`` (implicit) takes the rate at the unknown state
+(u, λ, w)_{n+1}, so the wear rows couple to the contact rows in one monolithic
+problem in (u, λ_N, [λ_T], w, ζ); ``theta=0`` (explicit) takes it at the known
+contact state and the known shape w_n, so the shape step (w, ζ) can be solved
+alone before the contact problem.  ``averaged=True`` drives (28) by the nodal
+field ``rate_bar`` instead (the cycle-averaged rate W̄̇ of eqs. 21–23, set by
+the slow-time stepper from the fast-time cycles, :mod:`tribofx.stepper`); then
+any θ in [0, 1] is allowed (the stepper iterates for θ > 0).
+
+The interface follows the component protocol of :mod:`tribofx.problem`; the
+slow-time stepper uses, in addition, ``dt`` (a Constant, s), ``theta``,
+``averaged``, :meth:`shape_unknowns`, :meth:`begin_step`, :meth:`end_step`,
+:meth:`min_volume_factor`, :meth:`nodal_increment` and ``rate_bar``.
+
+Two bodies.  Only the slave-surface rate (eq. 17) is implemented; nothing here
+assumes the counterpart is rigid (the rate uses the contact's tractions and
+relative slip only).  The master-surface rate (eq. 18), Ẇ⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾ Ḋ⁽¹⁾
+(:func:`tribofx.forms.wear.master_nominal_rate`), belongs to a second Wear
+interface with ``side="master"`` on the master Body's shape field; it comes
+with the two-body contact.  Units: mm, N, s, MPa.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..forms import ale
+from ..forms import contact as cf
+from ..forms import wear as wf
+from ..problem import BlockTolerance
+from .contact import node_to_dof
+
+__all__ = ["LAWS", "Wear"]
+
+LAWS = ("nominal", "spatial")
+
+
+class Wear:
+    """Archard wear of the slave surface of ``contact`` with the shape evolution law (28).
+
+    Args:
+        contact: the :class:`tribofx.interfaces.Contact`; its body must carry a
+            shape field (``Body(..., shape=True)``).
+        k: Archard coefficient k (mm³/(N·mm)); with friction K = k/μ.
+        speed: sliding speed V (mm/s) of the frictionless pressure form (with
+            friction the slip velocity of the contact is used).
+        law: "nominal" (eq. 14) or "spatial" (eqs. 15–16).
+        k_grad: relative depth gradient g (1/mm) of k(d) = k max(1 + g d, 0).
+        theta: θ of the scheme (28): 1 implicit, 0 explicit (any value in
+            [0, 1] with ``averaged``).
+        averaged: drive (28) by the nodal cycle-averaged rate ``rate_bar``.
+        side: "slave" (eq. 17); "master" (eq. 18) comes with the two-body contact.
+        name: name of the interface (reports).
+        rtol: relative size of the stopping tolerance of the ζ rows (× body size, mm);
+            the rows carry the wear increment of a step, orders of magnitude below
+            the body size, hence a default two decades below the contact gap's.
+    """
+
+    def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
+                 averaged=False, side="slave", name="wear", rtol=1e-12):
+        body = contact.body
+        if body.w is None or not getattr(body, "shape_is_unknown", True):
+            raise ValueError("wear needs a body with a shape field: Body(..., shape=True)")
+        if side != "slave":
+            raise NotImplementedError("the master-surface wear rate (eq. 18) comes with the "
+                                      "two-body contact")
+        if law not in LAWS:
+            raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
+        if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
+            raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
+        if contact.lam_t is not None and contact.slip_kind != "eulerian" and not averaged:
+            raise ValueError("Lagrangian (fast-time) friction needs averaged=True and the "
+                             "fast-time cycles of the slow-time stepper (tribofx.stepper)")
+        self.contact, self.body, self.name, self.rtol = contact, body, name, rtol
+        self.law, self.theta, self.averaged = law, float(theta), bool(averaged)
+        msh = body.mesh
+        self.zeta = fem.Function(contact.Q, name=f"{name}_shape_multiplier")
+        self.rate_bar = fem.Function(contact.Q, name=f"{name}_cycle_averaged_rate")
+        self.dt = fem.Constant(msh, 0.0)  # 0: a plain contact solve does not wear
+        self.k = fem.Constant(msh, float(k))
+        self.k_grad = fem.Constant(msh, float(k_grad))
+        self.speed = fem.Constant(msh, float(speed))
+        self.N_hat = ufl.FacetNormal(msh)
+        w, w_n = body.w, body.w_n
+        self.a = ale.swept_nanson_vector(w, w_n, self.N_hat)
+        if averaged:
+            self.rate_density = self.rate_bar
+        else:  # t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit the known state and w_n
+            self.rate_density = self.rate(w if theta == 1 else w_n)
+        # trace map of w: contact-submesh dof → dof of the shape space
+        gmap_w = node_to_dof(body.Vw)
+        node_of_bulk = np.full(len(gmap_w), -1, dtype=np.int64)
+        node_of_bulk[node_to_dof(body.V)] = np.arange(len(gmap_w))
+        self._bulk_dofs_w = gmap_w[node_of_bulk[contact.bulk_dofs]]
+        self._post = None
+
+    # -- the wear law ------------------------------------------------------------
+    def slip_velocity(self):
+        """Relative slip velocity v_T of the slave points (mm/s; Eulerian slip, eqs. 26–27)."""
+        c, b = self.contact, self.body
+        return cf.eulerian_slip(b.u, c.geometry, b.velocity, c.V_master, 1.0)
+
+    def rate(self, w, slip=None):
+        """Wear rate per unit initial area Ẇ j_w (mm/s) at shape ``w`` and the contact state.
+
+        ``slip``: a slip increment instead of the slip velocity (then the wear
+        increment K T_T·Δs in mm, for the fast-time cycles).
+        """
+        c = self.contact
+        k = wf.depth_graded_coefficient(self.k, self.k_grad, wf.wear_depth(w, self.N_hat))
+        J = None
+        if self.law == "spatial":
+            J = ufl.det(ale.deformation_gradient_worn(self.body.u, w, self.body.kind))
+        if c.lam_t is None:
+            return wf.slave_wear_rate(k, c.lam_n, slip_speed=self.speed, J=J)
+        _, t_t = c.tractions()
+        v_t = self.slip_velocity() if slip is None else slip
+        return wf.slave_wear_rate(k, c.lam_n, mu=c.friction, t_t=t_t, v_t=v_t, J=J)
+
+    # -- component protocol --------------------------------------------------------
+    def unknowns(self):
+        """Return the multiplier ζ of the shape constraint (w is the body's)."""
+        return [self.zeta]
+
+    def shape_unknowns(self):
+        """Unknowns of the shape step: w and ζ."""
+        return [self.body.w, self.zeta]
+
+    def contributions(self):
+        """ζ δw·a on the shape row, the discrete shape evolution law (28) on ζ's row."""
+        c = self.contact
+        dw = ufl.TestFunction(self.body.Vw)
+        eta = ufl.TestFunction(c.Q)
+        return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a, c.dsc)),
+                (self.zeta, wf.shape_update_residual(self.body.w, self.body.w_n, self.a,
+                                                     self.rate_density, self.dt, eta,
+                                                     c.dsc))]
+
+    def bcs(self):
+        """No Dirichlet conditions of its own (the body holds those of w)."""
+        return []
+
+    def bcs_by_unknown(self):
+        """Dirichlet conditions sorted by unknown (none)."""
+        return {}
+
+    def entity_maps(self):
+        """Return the contact submesh ↔ bulk entity map."""
+        return [self.contact.emap]
+
+    def refresh(self):
+        """Nothing computed outside UFL (the contact refreshes its counterpart)."""
+
+    def tolerances(self):
+        """ζ rows over their lumped measure: a normal shape change ≤ rtol·L (mm)."""
+        eta = ufl.TestFunction(self.contact.Q)
+        return {self.zeta: BlockTolerance(self.rtol * self.body.length, "mm",
+                                          eta * self.contact.dsc)}
+
+    def state_fields(self):
+        """ζ and the cycle-averaged rate (w, w_n are the body's)."""
+        return [self.zeta, self.rate_bar]
+
+    def commit(self):
+        """Nothing: the shape history moves on in :meth:`begin_step` of the slow time."""
+
+    # -- slow time -------------------------------------------------------------------
+    def begin_step(self, dt):
+        """Start a slow step of Δt (s): w_n ← w, Δt set."""
+        self.dt.value = float(dt)
+        self.body.w_n.x.array[:] = self.body.w.x.array
+
+    def end_step(self):
+        """End a slow step: Δt = 0, so that a later contact solve does not wear."""
+        self.dt.value = 0.0
+
+    # -- outputs ---------------------------------------------------------------------
+    def _forms(self):
+        if self._post is None:
+            c, b = self.contact, self.body
+            em = [c.emap]
+            G = ale.shape_gradient(b.w)
+            q = ufl.TestFunction(c.Q)
+            now = self.rate_bar if self.averaged else self.rate(b.w)
+            DG0 = fem.functionspace(b.mesh, ("DG", 0))
+            self._post = {
+                "volume": fem.form((1 - ufl.det(G)) * b.dx),
+                "rate": fem.form(now * c.dsc, entity_maps=em),
+                "normal": fem.form(ufl.dot(ufl.TestFunction(c.Vs), self.N_hat) * c.dsc,
+                                   entity_maps=em),
+                "lumped": fem.form(q * c.dsc, entity_maps=em),
+                "detG": fem.Function(DG0),
+                "detG_expr": fem.Expression(ufl.det(G), DG0.element.interpolation_points),
+            }
+            if c.lam_t is not None and c.slip_kind == "lagrangian":
+                self._post["increment"] = fem.form(self.rate(b.w, slip=c.slip) * q * c.dsc,
+                                                   entity_maps=em)
+            n = c.nodal(self._post["normal"]).reshape(-1, b.gdim)
+            self._N_nodal = n / np.linalg.norm(n, axis=1)[:, None]
+        return self._post
+
+    def _sum(self, form):
+        return self.body.mesh.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
+
+    def worn_volume(self):
+        """Worn volume ∫_Ω̂ (1 − det G) dV̂ (mm³; per unit thickness, mm², in plane strain)."""
+        return self._sum(self._forms()["volume"])
+
+    def wear_rate_integral(self):
+        """∫_Γc Ẇ dS = ∫_Γ̂c Ẇ j_w dŜ at the current state (mm³/s; mm²/s per mm in 2D).
+
+        With ``averaged``: the integral of ``rate_bar`` (the rate of the last step).
+        """
+        return self._sum(self._forms()["rate"])
+
+    def nodal_increment(self):
+        """Wear increment K T_T·Δs (mm) per unit initial area of the last fast sub-step.
+
+        Lagrangian friction only; call after the sub-step's solve and before the
+        commit (Δs is measured from the last committed projection point).
+        Returns the local array on the contact dofs (lumped nodal values).
+        """
+        f = self._forms()
+        if "increment" not in f:
+            raise ValueError("wear increments need Lagrangian friction on the contact")
+        num, den = self.contact.nodal(f["increment"]), self.contact.nodal(f["lumped"])
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def min_volume_factor(self):
+        """Smallest det(I + Grad w) over all cells (≤ 0: the worn mesh is inverted)."""
+        f = self._forms()
+        f["detG"].interpolate(f["detG_expr"])
+        n = f["detG"].function_space.dofmap.index_map.size_local
+        local = float(np.min(f["detG"].x.array[:n], initial=np.inf))
+        return self.body.mesh.comm.allreduce(local, op=MPI.MIN)
+
+    def nodal_shape_data(self):
+        """Per owned contact node: the contact's nodal data and X̂, X = X̂ + w, depth −w·N̂ (mm)."""
+        self._forms()
+        c, gdim = self.contact, self.body.gdim
+        d = c.nodal_data()
+        n_own = len(d["p"])
+        wb = self.body.w.x.array.reshape(-1, gdim)
+        ws = np.zeros_like(c.X_sub)
+        ws[c.sub_dofs] = wb[self._bulk_dofs_w]
+        d["X_hat"] = c.X_sub[:n_own]
+        d["X_worn"] = c.X_sub[:n_own] + ws[:n_own]
+        d["depth"] = -np.sum(ws[:n_own] * self._N_nodal[:n_own], axis=1)
+        return d
+
+    def max_depth(self):
+        """Largest wear depth over the contact nodes (mm, on every rank)."""
+        d = self.nodal_shape_data()
+        return self.body.mesh.comm.allreduce(float(np.max(d["depth"], initial=0.0)),
+                                             op=MPI.MAX)
+
+    def gather_shape(self, root_only=True):
+        """:meth:`nodal_shape_data` of all ranks, sorted by X̂[0], on rank 0 (None elsewhere).
+
+        ``root_only=False``: the same dict on every rank.
+        """
+        comm = self.body.mesh.comm
+        d = self.nodal_shape_data()
+        allp = comm.gather(d, root=0)
+        out = None
+        if comm.rank == 0:
+            out = {k: np.concatenate([a[k] for a in allp]) for k in d}
+            order = np.argsort(out["X_hat"][:, 0], kind="stable")
+            out = {k: v[order] for k, v in out.items()}
+        return out if root_only else comm.bcast(out, root=0)

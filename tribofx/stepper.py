@@ -1,0 +1,511 @@
+"""Slow time of finite wear: θ-scheme, fast-time cycles, step cutting, state and checkpoints.
+
+The stepper integrates the shape evolution law (28) of one or more evolving
+interfaces (:class:`tribofx.interfaces.Wear`) on the slow time t (chapter
+§4.4), with the deformation problem at each t solved as a standard contact
+problem (§4.2–4.3).  It knows nothing of the physics: it builds the Problems
+of the scheme from the components, moves the slow-time history on, solves,
+checks the worn mesh, cuts failed steps and writes a checkpoint every step.
+
+Schemes (chosen by the interface's ``theta`` and ``averaged``):
+
+* θ = 1, instantaneous rate: one monolithic :class:`tribofx.problem.Problem` in
+  all unknowns (deformation unknowns first, then the shape unknowns w, ζ);
+* θ = 0, instantaneous rate: the shape step (w, ζ) with the rate of the known
+  state, then the deformation problem (u, λ, ...) on the new shape;
+* averaged rate (time-scale separation, eqs. 21–23): per slow step one fast-time
+  loading cycle (:class:`ReciprocatingCycle`) at the fixed shape accumulates the
+  wear increment ΔW = Σ_j K T_T·Δs_j node by node (eq. 22); W̄̇ = ΔW/Δτ (eq. 23)
+  drives the shape step; θ > 0 by a fixed-point (Picard) iteration, each
+  iterate re-solving a cycle on the predicted shape.
+
+A *control* (:class:`ResponseControl`) replaces the plain Newton solve of the
+deformation problem by :meth:`tribofx.continuation.Continuation.reach` on a
+parameter (e.g. the countersurface position that carries a prescribed force),
+with a predictor evaluated at step entry.
+
+Step cutting (one policy): a step that fails (Newton divergence, a force not
+reached, or an inverted cell, :class:`MeshInversion`) restores the state at
+entry and is halved, up to ``max_cuts`` times; after a success the step is
+doubled back as soon as the time is aligned with the coarser step.
+
+State: :meth:`Stepper.state` holds the time, the nominal Δt, the cut level, the
+step count, every Function and Constant of the components (unknowns,
+histories, countersurface positions) and the extra ``parameters`` (e.g. load
+factors).  A :class:`Checkpoint` writes it after every accepted step: one NumPy
+``.npz`` of the local arrays per rank and a JSON file of the scalars; a restore
+needs the same mesh partition (the same number of ranks).  Units: s, mm.
+"""
+
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from mpi4py import MPI
+
+from .continuation import Continuation
+from .forms import wear as wf
+from .problem import NewtonDivergence, Problem
+
+__all__ = ["Checkpoint", "MeshInversion", "ReciprocatingCycle", "ResponseControl",
+           "StepReport", "Stepper", "bisect_critical_step"]
+
+
+class MeshInversion(NewtonDivergence):
+    """The shape update inverted a cell (det(I + Grad w) ≤ 0); the step must be cut."""
+
+
+@dataclass
+class StepReport:
+    """Outcome of one slow step.
+
+    Attributes:
+        dt: the step (s).
+        reports: Newton reports of the shape and deformation solves of the step.
+        iterations: all Newton iterations of the step (fast-time cycles included).
+        cycle_iterations: Newton iterations of the fast-time cycles and restarts.
+        picard: fixed-point iterations (θ > 0 with cycles).
+    """
+
+    dt: float
+    reports: list = field(default_factory=list)
+    iterations: int = 0
+    cycle_iterations: int = 0
+    picard: int = 0
+
+
+def _unique(items):
+    out = []
+    for it in items:
+        if not any(it is o for o in out):
+            out.append(it)
+    return out
+
+
+class ReciprocatingCycle:
+    """One fast-time reciprocating stroke cycle of a contact's countersurface (chapter §5.1).
+
+    At the start of every cycle the contact memory is erased (friction
+    multiplier 0) and the countersurface put at −A (A = stroke/2); a run-in
+    stage slides it to the centre (fully developed sliding), then the cycle
+    +A, −2A (to −A), +A (back to the centre) follows: sliding distance
+    2·stroke, Δτ = 2·stroke/V.
+
+    Args:
+        contact: the :class:`tribofx.interfaces.Contact` (Lagrangian friction).
+        stroke: peak-to-peak travel 2A (mm).
+        fast_steps: sub-steps per cycle (multiple of 4; the run-in uses a quarter).
+        V: sliding speed (mm/s).
+        axis: direction of the motion (component of the counterpart's ``offset``).
+    """
+
+    def __init__(self, contact, stroke, fast_steps, V, axis=0):
+        if fast_steps % 4 or fast_steps < 4:
+            raise ValueError(f"fast_steps = {fast_steps} must be a positive multiple of 4")
+        if stroke <= 0 or V <= 0:
+            raise ValueError("stroke and V must be positive")
+        if contact.lam_t is None or contact.slip_kind != "lagrangian":
+            raise ValueError("a fast-time cycle needs Lagrangian friction on the contact")
+        self.contact, self.stroke, self.fast_steps, self.V, self.axis = (
+            contact, stroke, fast_steps, V, axis)
+        A, m = stroke / 2, fast_steps // 4
+        self.run_in = -A + A * np.arange(1, m + 1) / m  # −A → 0
+        up = A * np.arange(1, m + 1) / m
+        self.positions = np.concatenate([up, A - A * np.arange(1, 2 * m + 1) / m, -A + up])
+
+    @property
+    def period(self):
+        """Δτ (s)."""
+        return 2 * self.stroke / self.V
+
+    @property
+    def distance(self):
+        """Sliding distance of the countersurface per cycle, 2·stroke (mm)."""
+        return 2 * self.stroke
+
+    def start(self):
+        """Erase the contact memory and put the countersurface at −A."""
+        self.contact.lam_t.x.array[:] = 0.0
+        self.move(-self.stroke / 2)
+
+    def move(self, position):
+        """Put the countersurface at ``position`` (mm) along the axis."""
+        self.contact.counterpart.offset.value[self.axis] = position
+
+
+class _Recorder:
+    """A problem whose Newton reports are kept (also of failed solves)."""
+
+    def __init__(self, problem):
+        self.problem, self.reports = problem, []
+
+    def solve(self, verbose=False):
+        try:
+            return self.problem.solve(verbose=verbose)
+        finally:
+            self.reports.append(self.problem.report)
+
+    def __getattr__(self, name):
+        return getattr(self.problem, name)
+
+
+class ResponseControl:
+    """Hold a measured response at ``target`` through every solve of the slow time.
+
+    Each solve of the deformation problem is a
+    :meth:`tribofx.continuation.Continuation.reach` on ``parameter``, started
+    from ``predictor(dt)`` (evaluated at step entry, before any shape update)
+    with the first update along ``slope(dt)`` (an estimate of d response / d
+    parameter); both optional.
+
+    Args:
+        problem: the problem solved at each trial (the stepper's ``problem``).
+        parameter: e.g. :class:`tribofx.continuation.ConstantParameter`.
+        response: callable → float.
+        target: the value the response is held at.
+        predictor, slope: callables of Δt (s), or None.
+        rtol, max_trials: of :meth:`Continuation.reach`.
+    """
+
+    def __init__(self, problem, parameter, response, target, predictor=None, slope=None,
+                 rtol=1e-8, max_trials=12, verbose=False):
+        self._rec = _Recorder(problem)
+        self.continuation = Continuation(self._rec, parameter, response=response,
+                                         verbose=verbose, rtol=rtol, max_trials=max_trials)
+        self.parameter, self.target = parameter, target
+        self.predictor, self.slope = predictor, slope
+        self._guess = self._slope = None
+
+    @property
+    def trials(self):
+        """Newton iteration counts of the trials of every converged reach."""
+        return self.continuation.record
+
+    def begin(self, dt):
+        """At step entry: the parameter's value is the converged one; predictor and slope for Δt."""
+        self.continuation.done = self.parameter.get()
+        self._guess = None if self.predictor is None else self.predictor(dt)
+        self._slope = None if self.slope is None else self.slope(dt)
+
+    def solve(self, guess=None, slope=None):
+        """Reach the target from ``guess`` (default: the step's predictor); Newton reports."""
+        n0 = len(self._rec.reports)
+        guess = self._guess if guess is None else guess
+        slope = self._slope if slope is None else slope
+        self._guess = self._slope = None
+        self.continuation.reach(self.target, guess=guess, slope=slope)
+        return self._rec.reports[n0:]
+
+
+class Checkpoint:
+    """The latest accepted state on disk: ``state_r<rank>.npz`` per rank and ``state.json``.
+
+    The JSON holds the scalars (time, Δt, cut level, step count, MPI size, the
+    names and shapes of the arrays); the npz the local arrays (ghosts
+    included) of every state field, in :meth:`Stepper.state` order.  Files are
+    written to a temporary name and renamed, so a crash leaves the previous
+    checkpoint.  The directory must be the same (shared) on all ranks.
+    """
+
+    def __init__(self, directory, comm):
+        self.dir, self.comm = Path(directory), comm
+
+    def write(self, state, names):
+        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields."""
+        self.dir.mkdir(parents=True, exist_ok=True)
+        npz = self.dir / f"state_r{self.comm.rank}.npz"
+        tmp = self.dir / f".state_r{self.comm.rank}.tmp.npz"
+        np.savez(tmp, **{f"field{i}": a for i, a in enumerate(state["fields"])})
+        os.replace(tmp, npz)
+        self.comm.barrier()
+        if self.comm.rank == 0:
+            meta = {k: state[k] for k in ("t", "dt", "cuts", "steps")}
+            meta.update(mpi_size=self.comm.size, fields=list(names),
+                        shapes=[list(np.shape(a)) for a in state["fields"]])
+            tmp = self.dir / ".state.tmp.json"
+            tmp.write_text(json.dumps(meta, indent=1))
+            os.replace(tmp, self.dir / "state.json")
+        self.comm.barrier()
+
+    def read(self):
+        """Return the state dict written last (one-line error for another partition)."""
+        meta = json.loads((self.dir / "state.json").read_text())
+        if meta["mpi_size"] != self.comm.size:
+            raise ValueError(f"checkpoint {self.dir} was written on {meta['mpi_size']} ranks, "
+                             f"not {self.comm.size}")
+        with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
+            fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
+        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields}
+
+
+class Stepper:
+    """Slow-time integration of the shape evolution of ``wear`` (see the module docstring).
+
+    Args:
+        components: bodies and interfaces of the problem (``wear`` among them).
+        wear: the evolving interface (e.g. :class:`tribofx.interfaces.Wear`).
+        cycle: a fast-time cycle (:class:`ReciprocatingCycle`) for time-scale
+            separation (needs ``wear.averaged``), or None.
+        parameters: further Constants of the state (e.g. load factors).
+        max_cuts: step halvings allowed per step.
+        checkpoint: directory of the checkpoint written every step (None: none).
+        picard_tol, max_picard: fixed-point iteration of θ > 0 with cycles
+            (relative change of the nodal shape increment, iterations).
+        name: options prefix of the Problems (``tribofx_<name>_``, ``..._shape_``).
+        verbose: print Newton histories.
+        problem_kw: further keyword arguments of the Problems.
+    """
+
+    def __init__(self, components, wear, cycle=None, parameters=(), max_cuts=6,
+                 checkpoint=None, picard_tol=1e-8, max_picard=20, name="wear", verbose=False,
+                 problem_kw=None):
+        if cycle is not None and not wear.averaged:
+            raise ValueError("fast-time cycles need a wear interface with averaged=True")
+        if wear.averaged and cycle is None:
+            raise ValueError("an averaged wear rate needs a fast-time cycle")
+        self.components, self.wear, self.cycle = list(components), wear, cycle
+        self.parameters = list(parameters)
+        self.max_cuts, self.verbose = int(max_cuts), verbose
+        self.picard_tol, self.max_picard = picard_tol, max_picard
+        kw = problem_kw or {}
+        shape = list(wear.shape_unknowns())
+        every = _unique([u for c in self.components for u in c.unknowns()])
+        deformation = [u for u in every if not any(u is s for s in shape)]
+        self.monolithic = wear.theta == 1 and not wear.averaged
+        if self.monolithic:
+            self.problem = Problem(self.components, deformation + shape, name=name, **kw)
+            self.shape = None
+        else:
+            self.problem = Problem(self.components, deformation, name=name, **kw)
+            self.shape = Problem(self.components, shape, name=f"{name}_shape", **kw)
+        self.control = None
+        self.comm = wear.body.mesh.comm
+        self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
+        self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
+        self.last_increment = None
+
+    # -- set-up ------------------------------------------------------------------
+    def set_control(self, control):
+        """Solve the deformation problem by ``control`` (a :class:`ResponseControl`)."""
+        self.control = control
+
+    def shape_unknown_fraction(self):
+        """Fraction of all unknowns that belong to the shape step (w and ζ)."""
+        def n(f):
+            im = f.function_space.dofmap.index_map
+            return im.size_global * f.function_space.dofmap.index_map_bs
+        shape = sum(n(f) for f in self.wear.shape_unknowns())
+        total = sum(n(f) for f in self.problem.u) + (0 if self.monolithic else shape)
+        return shape / total
+
+    # -- state -------------------------------------------------------------------
+    def _fields(self):
+        return self.problem.state_fields() + self.parameters
+
+    def field_names(self):
+        """Names of the state fields (Functions by name, Constants by position)."""
+        return [getattr(f, "name", None) or f"constant{i}" for i, f in enumerate(self._fields())]
+
+    def state(self):
+        """Copy of the full state: time, Δt, cut level, step count and every field."""
+        arrays = [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy()
+                  for f in self._fields()]
+        return {"t": self.t, "dt": self.dt, "cuts": self.cuts, "steps": self.steps,
+                "fields": arrays}
+
+    def restore(self, state):
+        """Restore a state from :meth:`state` (or :meth:`Checkpoint.read`)."""
+        fields = self._fields()
+        if len(fields) != len(state["fields"]):
+            raise ValueError("state does not match the stepper's fields")
+        for f, a in zip(fields, state["fields"]):
+            if hasattr(f, "x"):
+                if f.x.array.shape != np.shape(a):
+                    raise ValueError(f"state of {f.name!r} has shape {np.shape(a)}")
+                f.x.array[:] = a
+            else:
+                f.value = a
+        self.t, self.dt, self.cuts, self.steps = (state["t"], state["dt"], state["cuts"],
+                                                  state["steps"])
+        self.problem.refresh()
+
+    def load_checkpoint(self, directory=None):
+        """Restore the state of the checkpoint in ``directory`` (default: this stepper's)."""
+        ck = self.checkpoint if directory is None else Checkpoint(directory, self.comm)
+        self.restore(ck.read())
+
+    # -- one slow step -------------------------------------------------------------
+    def _check_mesh(self):
+        m = self.wear.min_volume_factor()
+        if not m > 0:
+            raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
+
+    def _deform(self):
+        """Solve the deformation problem (plainly or by the control); Newton reports."""
+        if self.control is not None:
+            return self.control.solve()
+        return [self.problem.solve(verbose=self.verbose)]
+
+    def step(self, dt):
+        """Advance by Δt (s) without cutting; returns a :class:`StepReport`.
+
+        On failure the state at entry is restored and :class:`NewtonDivergence`
+        (or :class:`MeshInversion`) raised.
+        """
+        saved = self.state()
+        out = StepReport(dt=dt)
+        self.wear.begin_step(dt)
+        if self.control is not None:
+            self.control.begin(dt)
+        try:
+            if self.cycle is not None:
+                self._cycle_step(dt, out)
+            elif self.monolithic:
+                out.reports += self._deform()
+                self._check_mesh()
+            else:
+                out.reports.append(self.shape.solve(verbose=self.verbose))
+                self._check_mesh()
+                # warm start: the deformed configuration x = X̂ + u is kept (gaps and
+                # active set stay), only the worn reference has changed
+                out.reports += self._deform()
+        except NewtonDivergence:
+            self.restore(saved)
+            raise
+        finally:
+            self.wear.end_step()
+        self.problem.commit()
+        self.t += dt
+        self.steps += 1
+        out.iterations += sum(r.iterations for r in out.reports)
+        return out
+
+    # -- fast-time cycles (time-scale separation) --------------------------------------
+    def start(self):
+        """Settle the deformation problem before the first step; returns Newton iterations.
+
+        With a fast-time cycle: erase the contact memory and slide the
+        countersurface to the centre (:meth:`restart`); else nothing.
+        """
+        return self.restart() if self.cycle is not None else 0
+
+    def restart(self):
+        """Erase the contact memory, start the cycle and run in (no wear); Newton iterations."""
+        P, cyc = self.problem, self.cycle
+        cyc.start()
+        P.commit()
+        its = P.solve(verbose=self.verbose).iterations
+        P.commit()
+        for pos in cyc.run_in:
+            cyc.move(pos)
+            its += P.solve(verbose=self.verbose).iterations
+            P.commit()
+        return its
+
+    def run_cycle(self):
+        """One loading cycle at the current shape; returns (ΔW nodal (mm), Newton iterations).
+
+        ΔW = Σ_j K T_T·Δs_j (eq. 22) over the cycle's sub-steps (not the run-in).
+        """
+        P, cyc = self.problem, self.cycle
+        its = self.restart()
+        dW = np.zeros_like(self.wear.rate_bar.x.array)
+        for pos in cyc.positions:
+            cyc.move(pos)
+            its += P.solve(verbose=self.verbose).iterations
+            dW += self.wear.nodal_increment()
+            P.commit()
+        return dW, its
+
+    def _shape_step(self, rate, w0, out):
+        """Shape step (28) from w0 with the nodal rate ``rate`` (mm/s)."""
+        w = self.wear.body.w
+        w.x.array[:] = w0
+        self.wear.rate_bar.x.array[:] = rate
+        out.reports.append(self.shape.solve(verbose=self.verbose))
+        self._check_mesh()
+        return w.x.array - w0
+
+    def _cycle_step(self, dt, out):
+        theta, tau = self.wear.theta, self.cycle.period
+        dW, its = self.run_cycle()
+        rate_n = wf.cycle_average_rate(dW, tau)  # eq. 23
+        w0 = self.wear.body.w.x.array.copy()
+        dw_prev = self._shape_step(rate_n, w0, out)
+        if theta > 0:
+            for it in range(1, self.max_picard + 1):
+                dW1, its1 = self.run_cycle()
+                its += its1
+                rate = (1 - theta) * rate_n + theta * wf.cycle_average_rate(dW1, tau)
+                dw = self._shape_step(rate, w0, out)
+                change = self.comm.allreduce(float(np.max(np.abs(dw - dw_prev), initial=0.0)),
+                                             op=MPI.MAX)
+                scale = self.comm.allreduce(float(np.max(np.abs(dw), initial=0.0)), op=MPI.MAX)
+                dw_prev = dw
+                out.picard = it
+                if change <= self.picard_tol * max(scale, 1e-300):
+                    break
+            else:
+                raise NewtonDivergence(f"Picard iteration of the θ-scheme did not converge in "
+                                       f"{self.max_picard} cycles")
+            dW = dW1
+        self.wear.body.w_n.x.array[:] = w0
+        # deformation on the new shape (at the centre, fully developed sliding)
+        its += self.restart()
+        out.iterations += its
+        out.cycle_iterations = its
+        self.last_increment = dW
+
+    # -- slow time -------------------------------------------------------------------
+    def run(self, T, dt, on_step=None, progress=None):
+        """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
+
+        ``on_step(stepper, report)`` is called after every accepted step (after
+        the checkpoint is written).  Raises the last failure when a step still
+        fails after ``max_cuts`` halvings (the state is the last accepted one).
+        """
+        self.dt = dt
+        while self.t < T * (1 - 1e-12):
+            h = min(dt / 2**self.cuts, T - self.t)
+            try:
+                report = self.step(h)
+            except NewtonDivergence:
+                self.cuts += 1
+                if self.cuts > self.max_cuts:
+                    self.cuts -= 1
+                    raise
+                continue
+            # double the step back once t is aligned with the coarser step
+            while self.cuts > 0 and _aligned(self.t, dt / 2 ** (self.cuts - 1)):
+                self.cuts -= 1
+            if self.checkpoint is not None:
+                self.checkpoint.write(self.state(), self.field_names())
+            if on_step is not None:
+                on_step(self, report)
+            if progress is not None:
+                progress.update(1)
+
+
+def _aligned(t, h):
+    return abs(t / h - round(t / h)) < 1e-9
+
+
+def bisect_critical_step(growth, lo, hi, iters, tol=1.0, probe=()):
+    """Critical step by bisection on log Δt: ``growth(Δt) <= tol`` is stable.
+
+    ``lo`` must be stable and ``hi`` unstable (both checked; ``probe``, the
+    evaluations so far, goes into the error message).  Returns √(lo·hi) after
+    ``iters`` halvings of the log-bracket.
+    """
+    if not growth(lo) <= tol or not growth(hi) > tol:
+        raise ValueError(f"[{lo}, {hi}] s does not bracket the critical step: {list(probe)}")
+    for _ in range(iters):
+        mid = math.sqrt(lo * hi)
+        if growth(mid) <= tol:
+            lo = mid
+        else:
+            hi = mid
+    return math.sqrt(lo * hi)
