@@ -69,7 +69,7 @@ from .newton import NewtonDivergence, NewtonReport
 from .obstacles import AnalyticObstacle
 from .params import InputError
 from .submesh import facet_submesh
-from .wear_problem import MeshInversion
+from .stepper import MeshInversion
 
 __all__ = ["GrooveProblem"]
 

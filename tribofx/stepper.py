@@ -29,6 +29,18 @@ reached, or an inverted cell, :class:`MeshInversion`) restores the state at
 entry and is halved, up to ``max_cuts`` times; after a success the step is
 doubled back as soon as the time is aligned with the coarser step.
 
+The evolving interface (``wear``) answers: ``theta`` and ``averaged``;
+``shape_unknowns()`` (the unknowns of the shape step, e.g. [w, ζ]);
+``begin_step(dt)`` (history w_n ← w and Δt set) and ``end_step()`` (Δt = 0);
+``min_volume_factor()`` (smallest det(I + Grad w), collective); ``body.mesh.comm``;
+and, for fast-time cycles, ``rate_bar`` (the nodal averaged rate it is driven
+by), ``nodal_increment()`` (the wear increment of the last sub-step) and
+``body.w``/``body.w_n``.  :class:`tribofx.interfaces.Wear` is such an interface;
+one whose shape unknowns live elsewhere (e.g. on a cross-section extruded along
+the sliding direction) needs only the same methods and, if its unknowns need
+a different assembly, a ``problem_class`` with the constructor of
+:class:`tribofx.problem.Problem`.
+
 State: :meth:`Stepper.state` holds the time, the nominal Δt, the cut level, the
 step count, every Function and Constant of the components (unknowns,
 histories, countersurface positions) and the extra ``parameters`` (e.g. load
@@ -257,11 +269,13 @@ class Stepper:
         name: options prefix of the Problems (``tribofx_<name>_``, ``..._shape_``).
         verbose: print Newton histories.
         problem_kw: further keyword arguments of the Problems.
+        problem_class: class of the Problems (default :class:`tribofx.problem.Problem`;
+            same constructor, e.g. :class:`tribofx.reduced.ReducedProblem`).
     """
 
     def __init__(self, components, wear, cycle=None, parameters=(), max_cuts=6,
                  checkpoint=None, picard_tol=1e-8, max_picard=20, name="wear", verbose=False,
-                 problem_kw=None):
+                 problem_kw=None, problem_class=Problem):
         if cycle is not None and not wear.averaged:
             raise ValueError("fast-time cycles need a wear interface with averaged=True")
         if wear.averaged and cycle is None:
@@ -276,11 +290,11 @@ class Stepper:
         deformation = [u for u in every if not any(u is s for s in shape)]
         self.monolithic = wear.theta == 1 and not wear.averaged
         if self.monolithic:
-            self.problem = Problem(self.components, deformation + shape, name=name, **kw)
+            self.problem = problem_class(self.components, deformation + shape, name=name, **kw)
             self.shape = None
         else:
-            self.problem = Problem(self.components, deformation, name=name, **kw)
-            self.shape = Problem(self.components, shape, name=f"{name}_shape", **kw)
+            self.problem = problem_class(self.components, deformation, name=name, **kw)
+            self.shape = problem_class(self.components, shape, name=f"{name}_shape", **kw)
         self.control = None
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
