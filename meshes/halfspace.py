@@ -17,10 +17,13 @@ BOTTOM, SYM, FAR.  Lengths in mm.
 import numpy as np
 from dolfinx import mesh as dmesh
 
-__all__ = ["BOTTOM", "ENDS", "FAR", "SYM", "TOP", "cross_section", "graded_grid", "halfspace_block",
-           "prolongation"]
+__all__ = ["BOTTOM", "ENDS", "FAR", "NAMES", "SECTION_NAMES", "SYM", "TOP", "cross_section",
+           "graded_grid", "halfspace_block", "prolongation"]
 
 TOP, BOTTOM, SYM, FAR, ENDS = 1, 2, 3, 4, 5
+#: boundary names of the block (:class:`tribofx.body.Body` ``names``) and of the cross-section
+NAMES = {"top": TOP, "bottom": BOTTOM, "sym": SYM, "far": FAR, "ends": ENDS}
+SECTION_NAMES = {"top": TOP, "bottom": BOTTOM, "sym": SYM, "far": FAR}
 
 
 def graded_grid(length, fine, h, n_coarse):

@@ -1,11 +1,13 @@
 """Checks of the wear groove of a rigid ball sliding on an elastic half-space (§5.3).
 
 References: Hertz contact of a rigid sphere (initial step), the discrete area
-balance of the shape update (28) with the path average (1/L) ∫ Ẇ dx, the
-geometry of a groove that conforms to the ball (b² = 2 R d) and the uniform
-path-integrated pressure of a groove sinking as a rigid body, quadratic
-convergence of the monolithic Newton, and equilibrium of every solved state (the
-vertical force of the solved contact multipliers against the prescribed bottom load).
+balance of the shape update (28) with the path average (1/L) ∫ Ẇ dx, Archard's
+global balance k F V / L, the geometry of a groove that conforms to the ball
+(b² = 2 R d) and the uniform path-integrated pressure of a groove sinking as a
+rigid body, quadratic convergence of the monolithic Newton, a Taylor test of the
+assembled Jacobian of the :class:`tribofx.reduced.ReducedProblem`, and
+equilibrium of every solved state (the vertical force of the solved contact
+multipliers against the prescribed bottom load).
 """
 
 import math
@@ -15,12 +17,12 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from petsc4py import PETSc
-from tribofx.meshes import halfspace as hs
+from taylor_problem import owned_arrays, taylor_orders
 
-from tribofx.cases.wear_groove import WearBallHalfspaceCase, hertz_sphere
-from tribofx.groove_problem import GrooveProblem
+from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh, surface_data
 from tribofx.params import resolve
+from tribofx.problem import convergence_orders
+from tribofx.references import hertz
 
 CASE = WearBallHalfspaceCase
 serial = pytest.mark.skipif(MPI.COMM_WORLD.size > 1, reason="serial-only case")
@@ -31,14 +33,12 @@ def _values(**over):
     return CASE.resolved(v)
 
 
-def _orders(res):
-    r = np.asarray(res)
-    r = r[r > 1e-13 * max(r)]  # below this the residual is at round-off
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+def _global(f):
+    im = f.function_space.dofmap.index_map
+    return im.size_global * f.function_space.dofmap.index_map_bs
 
 
-def _vertical_contact_force(prob, R):
+def _vertical_contact_force(contact, R):
     """Vertical push (N, > 0 downwards: λ < 0, n_z < 0) of the ball on the block, solved fields.
 
     Computed here, not by the library: the ball is the sphere of radius R about
@@ -47,31 +47,34 @@ def _vertical_contact_force(prob, R):
     the augmented traction T_N = min(λ + ρ_N g, 0), both with the nodal (vertex) rule
     of the contact terms.
     """
-    x = ufl.SpatialCoordinate(prob.mesh) + prob.u
+    body = contact.body
+    x = ufl.SpatialCoordinate(body.mesh) + body.u
     d = x - ufl.as_vector([0.0, 0.0, R])
     r = ufl.sqrt(ufl.dot(d, d))
     nz = d[2] / r
-    T = ufl.min_value(prob.lam_n + prob.settings.rho_n * (r - R), 0.0)
-    return tuple(MPI.COMM_WORLD.allreduce(fem.assemble_scalar(
-        fem.form(f * nz * prob.dsc, entity_maps=[prob.emap])), op=MPI.SUM)
-        for f in (prob.lam_n, T))
+    T = ufl.min_value(contact.lam_n + contact.rho_n * (r - R), 0.0)
+    comm = body.mesh.comm
+    return tuple(comm.allreduce(fem.assemble_scalar(
+        fem.form(f * nz * contact.dsc, entity_maps=[contact.emap])), op=MPI.SUM)
+        for f in (contact.lam_n, T))
 
 
-def _check_equilibrium(prob, v, forces, r_final):
+def _check_equilibrium(contact, v, forces, r_final):
     """Vertical equilibrium of a solved state against the bottom load F/2 of the half model.
 
     Σ over all z rows of the momentum residual (no z Dirichlet condition) is
-    ∫ P : Grad e_z (= 0) + ∫ T_N n_z dS − F/2, and the Newton iteration stopped at
-    ‖b‖ = r_final, so by Cauchy–Schwarz |F_T − F/2| ≤ √n_z r_final (n_z = n_u/3
-    rows).  The multiplier rows are (1/ρ_N)(λ − T_N) w, so F_λ differs from F_T
-    by at most ρ_N √n_λ r_final (ρ_N = E/h = 8·10⁶ MPa/mm makes this bound loose).
-    Assembly round-off: 100 ε per nodal force, n_λ nodes.
+    ∫ P : Grad e_z (= 0) + ∫ T_N n_z dS − F/2 (the bottom stays unworn, w = 0 there,
+    so its traction per unit worn area is per unit initial area), and the Newton
+    iteration stopped at ‖b‖ = r_final, so by Cauchy–Schwarz |F_T − F/2| ≤ √n_z r_final
+    (n_z = n_u/3 rows).  The multiplier rows are (1/ρ_N)(λ − T_N) w, so F_λ differs
+    from F_T by at most ρ_N √n_λ r_final (ρ_N = E/h = 8·10⁶ MPa/mm makes this bound
+    loose).  Assembly round-off: 100 ε per nodal force, n_λ nodes.
     """
-    sizes = prob.global_sizes()
+    n_u, n_l = _global(contact.body.u), _global(contact.lam_n)
     F_lam, F_T = forces
-    round_off = 100 * np.finfo(float).eps * sizes["l"] * 0.5 * v["F"]
-    d_T = math.sqrt(sizes["u"] / 3) * r_final + round_off
-    d_lam = d_T + prob.settings.rho_n * math.sqrt(sizes["l"]) * r_final
+    round_off = 100 * np.finfo(float).eps * n_l * 0.5 * v["F"]
+    d_T = math.sqrt(n_u / 3) * r_final + round_off
+    d_lam = d_T + contact.rho_n * math.sqrt(n_l) * r_final
     print(f"F/2 = {0.5 * v['F']}: F_T = {F_T!r} (bound {d_T:.2e}), F_λ = {F_lam!r} "
           f"(bound {d_lam:.2e}), residual {r_final:.2e}")
     assert abs(F_T - 0.5 * v["F"]) <= d_T
@@ -84,23 +87,25 @@ def implicit_run():
     if MPI.COMM_WORLD.size > 1:
         pytest.skip("serial-only case")
     v = _values()
-    prob, info = CASE.build(v)
-    rep0 = CASE.initial_contact(prob, info)
-    init = {"extent": prob.contact_extent(), "pmax": float(prob.surface_data()["p"].max()),
-            "vertical": _vertical_contact_force(prob, v["R"]), "X": prob.surface_data()["X"],
-            "active": prob.surface_data()["active"], "report": rep0}
+    stepper, info = CASE.build(v)
+    wear, contact = stepper.wear, stepper.wear.contact
+    rep0 = CASE.initial_contact(stepper, info)
+    d = surface_data(contact)
+    init = {"pmax": float(d["p"].max()), "X": d["X"], "active": d["active"], "report": rep0,
+            "vertical": _vertical_contact_force(contact, v["R"])}
     steps = []
     for _ in range(2):
-        a0 = prob.groove_area()
-        reps = prob.step(50.0)
-        steps.append({"dA": prob.groove_area() - a0, "rate": prob.averaged_rate_integral(),
-                      "vertical": _vertical_contact_force(prob, v["R"]), "reports": reps})
-    return prob, info, v, init, steps
+        a0 = wear.groove_area()
+        rep = stepper.step(50.0)
+        steps.append({"dA": wear.groove_area() - a0, "rate": wear.averaged_rate_integral(),
+                      "vertical": _vertical_contact_force(contact, v["R"]),
+                      "reports": rep.reports})
+    return stepper, info, v, init, steps
 
 
 @serial
 def test_initial_step_matches_hertz(implicit_run):
-    prob, info, v, init, _ = implicit_run
+    stepper, info, v, init, _ = implicit_run
     a, p0 = info["a"], info["p0"]
     X, act = init["X"], init["active"]
     # the Hertz radius lies between the last active node and the first inactive one
@@ -119,18 +124,26 @@ def test_initial_step_matches_hertz(implicit_run):
     assert init["pmax"] == pytest.approx(p0, rel=0.05)
     # equilibrium of the solved state: the contact carries the bottom load F/2 of
     # the half model (vertical force from the solved fields, Newton-tolerance bound)
-    _check_equilibrium(prob, v, init["vertical"], init["report"].residuals[-1])
+    _check_equilibrium(stepper.wear.contact, v, init["vertical"], init["report"].residuals[-1])
 
 
 @serial
 def test_groove_area_balance(implicit_run):
-    _, _, v, _, steps = implicit_run
+    stepper, _, v, _, steps = implicit_run
+    X2 = stepper.wear.V2.tabulate_dof_coordinates()
+    line, section = np.ptp(X2[:, 0]), np.ptp(X2[:, 0]) * np.ptp(X2[:, 1])  # mm, mm²
     # the groove cross-section area grows by Δt (1/L) ∫∫ k p ‖v_T‖ dA at t_{n+1}
-    # (implicit): the mid-step Nanson normal makes this a discrete identity,
-    # so it holds to the Newton tolerance
+    # (implicit): the mid-step Nanson normal makes Σ_j ∫ η_j (w − w_n)·a dŝ the exact
+    # swept area, so the balance holds up to Σ_j |r_j| ≤ max_j |r_j / w_j| ∫ dŝ of the
+    # final shape-update residual r (w_j = ∫ η_j dŝ), plus the round-off of
+    # ∫ (1 − det G) dÂ, ε per unit area of the section (100 ε |section|) — and, as
+    # before, to 1e-8 relative
     for s in steps:
-        print("dA", s["dA"], "Δt rate", 50.0 * s["rate"])
+        zeta = s["reports"][0].blocks[-1][3]  # ζ rows: max |r_j / w_j| (mm)
+        bound = zeta * line + 100 * np.finfo(float).eps * section
+        print("dA", s["dA"], "Δt rate", 50.0 * s["rate"], "bound", bound)
         assert s["dA"] > 0
+        assert abs(s["dA"] - 50.0 * s["rate"]) <= bound
         assert s["dA"] == pytest.approx(50.0 * s["rate"], rel=1e-8)
         # global Archard balance of the full groove: (2/L) ∫∫ k p ‖v_T‖ dA = k F V / L;
         # 1 % for ‖v_T‖ = |((I + Grad u) V)_T| ≠ V (surface strain ~ p/E < 1 %) and
@@ -142,111 +155,107 @@ def test_groove_area_balance(implicit_run):
 def test_monolithic_newton_quadratic(implicit_run):
     *_, steps = implicit_run
     for s in steps:
+        assert len(s["reports"]) == 1  # one monolithic solve per implicit step
         res = s["reports"][0].residuals
-        print("residuals", ["%.2e" % x for x in res], "orders", _orders(res))
         # exact tangent of (u, λ, w₂, ζ) incl. the extrusion couplings: once the active
         # set is settled the observed order is ≈ 2 (semismooth Newton; measured 2.6–2.8);
         # the last order above the solver floor is asserted (an early ratio can be large
         # before the set settles; residuals below 1e-8 of the first are at the
         # Newton tolerance, where the ratio measures round-off)
         r = np.asarray(res)
-        assert _orders(r[r > 1e-8 * r.max()])[-1] > 1.8
+        orders = convergence_orders(r[r > 1e-8 * r.max()])
+        print("residuals", ["%.2e" % x for x in res], "orders", orders)
+        assert orders[-1] > 1.8
 
 
 @serial
 def test_monolithic_tangent_taylor(implicit_run):
-    prob, *_ = implicit_run
-    saved = prob.state()
-    prob.dt = 50.0
+    """Taylor test of the assembled Jacobian of the monolithic ReducedProblem at Δt = 50 s."""
+    stepper, *_ = implicit_run
+    wear, problem = stepper.wear, stepper.problem
+    saved = stepper.state()
+    wear.begin_step(50.0)
     rng = np.random.default_rng(1)
-    scale = {"u": 1e-4, "l": 10.0, "w": 1e-4, "z": 1e3}  # mm, MPa, mm, multiplier units
-    blocks = ("u", "l", "w", "z")
-    x0 = np.concatenate([prob.fn[b].x.array for b in blocks])
-    bc = np.concatenate([prob._bc[b] for b in blocks])
+    scale = [1e-4, 10.0, 1e-4, 1e3]  # u (mm), λ (MPa), w₂ (mm), ζ (multiplier units)
     all_orders = []
     try:
-        R0 = prob.residual()
-        K = prob.jacobian()
+        base = owned_arrays(problem)
         # a direction in all unknowns, and one in the cross-section shape only
         # (exercises the extrusion couplings J_{u w₃} P and Pᵀ J_{r w₃} P alone)
         for only_w in (False, True):
-            d = np.concatenate([scale[b] * rng.standard_normal(len(prob.fn[b].x.array))
-                                * (1.0 if (b == "w" or not only_w) else 0.0) for b in blocks])
-            d[bc] = 0.0
-            Kd = K.createVecLeft()
-            K.mult(PETSc.Vec().createWithArray(d), Kd)
-            Kd = Kd.array.copy()
-            rem = []
-            for eps in (1e-3, 5e-4, 2.5e-4, 1.25e-4):
-                prob._set(blocks, x0 + eps * d)
-                rem.append(np.linalg.norm(prob.residual() - R0 - eps * Kd))
-            orders = np.log2(np.array(rem[:-1]) / np.array(rem[1:]))
-            print("Taylor remainders", rem, "orders", orders)
+            d = [s * rng.standard_normal(len(b)) * (1.0 if (ui is wear.w2 or not only_w)
+                                                     else 0.0)
+                 for s, b, ui in zip(scale, base, problem.u)]
+            orders, rel = taylor_orders(problem, d, eps0=1e-3)
+            print("Taylor orders", orders, "relative remainders", rel)
             all_orders.append(orders)
     finally:
-        prob.dt = 0.0
-        prob.restore(saved)
-    orders = np.concatenate(all_orders)
+        wear.end_step()
+        stepper.restore(saved)
     # exact derivative of (u, λ, w₂, ζ) incl. J_{u w₃} P and (Δt/L) Pᵀ J_r: the
     # remainder decays like ε² (an inexact coupling block would leave order 1)
-    assert np.all(orders > 1.8)
+    assert np.all(np.concatenate(all_orders) > 1.8)
 
 
 @serial
 def test_worn_state_equilibrium(implicit_run):
-    prob, _, v, _, steps = implicit_run
+    stepper, _, v, _, steps = implicit_run
+    wear = stepper.wear
     # the coupled (u, λ, w₂, ζ) solve of each implicit step: the worn block is in
     # vertical equilibrium with the bottom load (the residual norm of the monolithic
     # Newton bounds the u rows too)
     for s in steps:
-        _check_equilibrium(prob, v, s["vertical"], s["reports"][0].residuals[-1])
+        _check_equilibrium(wear.contact, v, s["vertical"], s["reports"][0].residuals[-1])
     # the shape unknowns (cross-section Ψ and its multiplier) are a small share
-    frac = (len(prob.w2.x.array) + len(prob.zeta.x.array)) / (
-        len(prob.u.x.array) + len(prob.lam_n.x.array) + len(prob.w2.x.array)
-        + len(prob.zeta.x.array))
+    n_shape = len(wear.w2.x.array) + len(wear.zeta.x.array)
+    frac = n_shape / (n_shape + _global(wear.body.u) + _global(wear.contact.lam_n))
     print("fraction of Ψ unknowns", frac)
     assert frac < 0.05
+    assert stepper.shape_unknown_fraction() == pytest.approx(frac, rel=1e-14)
 
 
 @serial
 def test_explicit_step_uses_the_old_rate():
     v = _values(scheme="explicit")
-    prob, info = CASE.build(v)
-    CASE.initial_contact(prob, info)
-    rate0 = prob.averaged_rate_integral()
-    a0 = prob.groove_area()
-    reports = prob.step(1.0)
+    stepper, info = CASE.build(v)
+    wear = stepper.wear
+    CASE.initial_contact(stepper, info)
+    rate0 = wear.averaged_rate_integral()
+    a0 = wear.groove_area()
+    rep = stepper.step(1.0)
     # forward Euler: ΔA = Δt (1/L) ∫ Ẇ dA of the converged state at t_n (discrete identity)
-    assert prob.groove_area() - a0 == pytest.approx(1.0 * rate0, rel=1e-8)
+    assert wear.groove_area() - a0 == pytest.approx(1.0 * rate0, rel=1e-8)
+    # the rate moved with the shape (the identity above is not the implicit one)
+    assert abs(wear.averaged_rate_integral() / rate0 - 1) > 1e-6
     # the contact problem was re-solved on the new shape: equilibrium with F/2 again,
     # from the solved fields (reports: shape update, then the contact solve)
-    _check_equilibrium(prob, v, _vertical_contact_force(prob, v["R"]),
-                       reports[-1].residuals[-1])
+    assert len(rep.reports) == 2
+    _check_equilibrium(wear.contact, v, _vertical_contact_force(wear.contact, v["R"]),
+                       rep.reports[-1].residuals[-1])
 
 
 def _small_run(comm):
     """Initial contact and one implicit step of 50 s on a coarse block (h = 0.9 a).
 
-    Returns (full groove area, max wear depth, worn top-line profile, contact force,
-    contact extent (x, y), Newton iterations) — identical on every rank.
+    Returns (full groove area, max wear depth, worn top-line profile, vertical contact
+    force, contact extent (x, y), Newton iterations) — identical on every rank.
     """
     v = _values()
-    a, _, delta = hertz_sphere(v["E"], v["nu"], v["R"], v["F"])
+    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
     h = 0.9 * a
-    gx, gy, gz = hs.grids(27 * a, 27 * a, 27 * a, h, 1.8 * a, 5.4 * a, 1.8 * a, (3, 3, 4),
-                          hx=h / 2)
-    msh, ft = hs.halfspace_block(comm, gx, gy, gz)
-    sec, sft = hs.cross_section(MPI.COMM_SELF, gy, gz)
-    prob = GrooveProblem(msh, ft, sec, sft, v["E"], v["nu"], v["R"], v["F"], v["V"], v["L"],
-                         v["k"], h)
-    rep0 = CASE.initial_contact(prob, {"delta": delta})
-    rep1 = prob.step(50.0)[0]
-    lp = prob.line_profile()
-    return {"area": 2 * prob.groove_area(), "depth": float(lp["depth"].max()),
-            "profile": lp["worn"], "force": prob.contact_force(),
-            "extent": np.array(prob.contact_extent()),
-            "iterations": (rep0.iterations, rep1.iterations),
-            "owned_u": prob.comm.allgather(prob._nown["u"])}
+    stepper, info = CASE.build(v, comm, h=h, mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
+    wear, contact = stepper.wear, stepper.wear.contact
+    rep0 = CASE.initial_contact(stepper, info)
+    rep1 = stepper.step(50.0)
+    lp = wear.line_profile()
+    d = surface_data(contact)
+    X = d["X"][d["active"]]
+    ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
+           for c in (np.abs(X[:, 0]), X[:, 1])]
+    return {"area": 2 * wear.groove_area(), "depth": float(lp["depth"].max()),
+            "profile": lp["worn"], "force": _vertical_contact_force(contact, v["R"])[0],
+            "extent": np.array(ext), "iterations": (rep0.iterations, rep1.iterations),
+            "owned_u": comm.allgather(wear.body.u.function_space.dofmap.index_map.size_local)}
 
 
 @pytest.mark.mpi
@@ -261,9 +270,9 @@ def test_two_ranks_match_serial():
     ref = MPI.COMM_WORLD.bcast(ref, root=0)
     print("2 ranks", par["area"], par["depth"], "serial", ref["area"], ref["depth"])
     assert par["area"] > 0 and par["depth"] > 0  # the step did wear the surface
-    # same discrete problem, different partition: both Newton solves stop at
-    # |R| <= 1e-9 |R0|, and the monolithic MUMPS solves differ only by round-off,
-    # so 1e-7 relative (measured agreement ~1e-12)
+    # same discrete problem, different partition: both Newton solves stop at the same
+    # per-block tolerances (nodal force 1e-10 F, gap 1e-10 G/ρ_N), and the monolithic
+    # MUMPS solves differ only by round-off, so 1e-7 relative (measured agreement ~1e-12)
     for key in ("area", "depth", "force"):
         assert par[key] == pytest.approx(ref[key], rel=1e-7)
     scale = np.abs(ref["profile"][:, 1]).max()
@@ -272,28 +281,14 @@ def test_two_ranks_match_serial():
     assert par["iterations"] == ref["iterations"]
 
 
-def test_hertz_reference():
-    a, p0, delta = hertz_sphere(2e5, 0.3, 5.0, 10.0)
-    # closed form, Johnson (1985) eqs. 4.22-4.23 with a rigid ball: F = 4 E* a³ / (3R)
-    Es = 2e5 / (1 - 0.09)
-    assert 4 * Es * a**3 / (3 * 5.0) == pytest.approx(10.0, rel=1e-12)
-    assert p0 * 2 * math.pi * a * a / 3 == pytest.approx(10.0, rel=1e-12)
-    assert delta == pytest.approx(a * a / 5.0)
-    # independent numbers: the chapter's §5.2 data (R = 5 mm, E = 100 GPa, ν = 0.3,
-    # F = 100 N) give a = 0.15 mm and p0 = 2.1 GPa (quoted to two digits there)
-    a, p0, _ = hertz_sphere(1e5, 0.3, 5.0, 100.0)
-    assert a == pytest.approx(0.15, abs=0.005)
-    assert p0 == pytest.approx(2100.0, abs=50.0)
-
-
 def _long(graded):
     """Implicit run to T = 1000 s with Δt = 100 s (the case default)."""
     v = _values(graded=str(graded), T=1000, dt=100)
-    prob, info = CASE.build(v)
-    CASE.initial_contact(prob, info)
-    for _ in range(10):
-        prob.step(100.0)
-    return prob, v
+    stepper, info = CASE.build(v)
+    CASE.initial_contact(stepper, info)
+    stepper.run(1000.0, 100.0)
+    assert stepper.steps == 10  # no step was cut
+    return stepper.wear, v
 
 
 @pytest.fixture(scope="module")
@@ -307,15 +302,15 @@ def long_homogeneous():
 @serial
 @pytest.mark.slow
 def test_long_time_groove_follows_the_ball(long_homogeneous):
-    prob, v = long_homogeneous
-    A = 2 * prob.groove_area()
-    d = float(prob.line_profile()["depth"].max())
+    wear, v = long_homogeneous
+    A = 2 * wear.groove_area()
+    d = float(wear.line_profile()["depth"].max())
     b = 3 * A / (4 * d)  # half-width of the parabolic groove z = y²/2R − d of area A = 4bd/3
     print("A", A, "d", d, "b", b, "sqrt(2Rd)", math.sqrt(2 * v["R"] * d))
     # a groove shaped by the rigid ball: b² = 2 R d; 15 % for the elastic edge
     # rounding and the 0.025 mm mesh across a 0.23 mm half-width
     assert b**2 == pytest.approx(2 * v["R"] * d, rel=0.15)
-    y, pint = prob.averaged_pressure()
+    y, pint = wear.averaged_pressure()
     inner = y < 0.6 * b
     ratio = pint[inner] / pint[0]
     print("∫p dx across the groove / centre", ratio)
@@ -336,12 +331,12 @@ def test_graded_layer_shifts_pressure_to_the_centre(long_homogeneous):
     """
     out = {}
     for graded in (False, True):
-        prob, v = _long(True) if graded else long_homogeneous
-        A = 2 * prob.groove_area()
-        lp = prob.line_profile()
+        wear, v = _long(True) if graded else long_homogeneous
+        A = 2 * wear.groove_area()
+        lp = wear.line_profile()
         d = float(lp["depth"].max())
         b = 3 * A / (4 * d)
-        y, pint = prob.averaged_pressure()
+        y, pint = wear.averaged_pressure()
         depth = np.interp(y, lp["worn"][:, 0], lp["depth"])
         kf = 1 + v["grade_alpha"] * np.maximum(1 - depth / v["grade_depth"], 0) * graded
         inner = y < 0.8 * b

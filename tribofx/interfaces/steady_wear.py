@@ -21,7 +21,12 @@ Residuals (all from :mod:`tribofx.forms`):
   Nanson vector of the line (exact swept area).
 
 The cross-section mesh is replicated on every rank (``COMM_SELF``); its
-unknowns are owned by rank 0 in the :class:`tribofx.reduced.ReducedProblem`.
+unknowns are owned by rank 0 in the :class:`tribofx.reduced.ReducedProblem`
+(``problem_class``, which the slow-time stepper :class:`tribofx.stepper.Stepper`
+builds for this interface).  Stepper protocol: ``theta`` (1 implicit, 0
+explicit: the rate of the known state, frozen by :meth:`begin_step`),
+``averaged = False``, :meth:`shape_unknowns`, :meth:`begin_step`,
+:meth:`end_step`, :meth:`min_volume_factor`, ``body``.
 Units: mm, N, s, MPa.
 """
 
@@ -36,7 +41,7 @@ from ..forms import hyperelastic as hf
 from ..forms import wear as wf
 from ..forms import wear_groove as gf
 from ..problem import BlockTolerance
-from ..reduced import AlgebraicRow, Reduction
+from ..reduced import AlgebraicRow, ReducedProblem, Reduction
 from ..submesh import facet_submesh
 
 __all__ = ["Extrusion", "SteadyWear"]
@@ -112,11 +117,19 @@ class SteadyWear:
         law: "nominal" (eq. 14) or "spatial" (eqs. 15–16).
         aux: (E, ν) of the auxiliary plane elasticity (MPa, -).
         fixed: {section boundary name: components with zero shape change}.
+        theta: θ of the scheme (28): 1 implicit (rate at the unknown state), 0
+            explicit (rate of the known state, frozen at :meth:`begin_step`).
         rtol: relative size of the stopping tolerances.
     """
 
+    problem_class = ReducedProblem  # the problem class the stepper builds
+    averaged = False  # no fast-time cycles: the rate is path-averaged in closed form
+
     def __init__(self, contact, section, section_tags, section_names, prolongation, k, V, L,
-                 law="nominal", aux=(1.0, 0.3), fixed=None, rtol=1e-10):
+                 law="nominal", aux=(1.0, 0.3), fixed=None, theta=1.0, rtol=1e-10):
+        if theta not in (0, 1):
+            raise ValueError(f"theta = {theta}: 0 (explicit) or 1 (implicit)")
+        self.theta = float(theta)
         body = contact.body
         if body.w is None or body.shape_is_unknown:
             raise ValueError("SteadyWear needs a body with an image shape field (shape='image')")
@@ -176,11 +189,13 @@ class SteadyWear:
         self._X2 = X2
         self._X_line = self.Q2.tabulate_dof_coordinates()[:, 0]
         self._rate_compiled = fem.form(self.rate_form, entity_maps=[contact.emap])
+        self._lumped = None
 
     # -- scheme controls ---------------------------------------------------------------
-    def begin_step(self, dt, freeze=False):
-        """Start a step of Δt (s): w₂ₙ ← w₂; ``freeze``: the rate of the current state (θ = 0)."""
+    def begin_step(self, dt, freeze=None):
+        """Start a step of Δt (s): w₂ₙ ← w₂; ``freeze`` (default: θ = 0) the current rate."""
         self.w2n.x.array[:] = self.w2.x.array
+        freeze = self.theta == 0 if freeze is None else freeze
         self._rate_fixed = self.rate_vector() if freeze else None
         self.dt.value = float(dt)
 
@@ -202,6 +217,10 @@ class SteadyWear:
                + ale.shape_multiplier_work(self.zeta, dw, self.a, self.dsl))
         R_z = wf.shape_update_residual(self.w2, self.w2n, self.a, 0.0, 0.0, eta, self.dsl)
         return [(self.w2, R_w), (self.zeta, R_z)]
+
+    def shape_unknowns(self):
+        """Return the unknowns of the shape step (28): w₂ and ζ."""
+        return [self.w2, self.zeta]
 
     def reductions(self):
         """Return the reduction: the body's shape field is the extruded section field."""
@@ -272,20 +291,20 @@ class SteadyWear:
         return {"Y_hat": X2[o, 0], "worn": (X2 + w)[o], "depth": -w[o, 1]}
 
     def averaged_pressure(self):
-        """Pressure integrated along the sliding path, ∫ p dx (N/mm), per line node.
+        """Nominal pressure integrated along the sliding path, ∫ p dx (N/mm), per line node.
 
-        Lumped: (P_cᵀ(p_i w_i))_j / ∫ φ_j dy.  Returns (y, ∫ p dx) sorted by y.
+        Lumped: (P_cᵀ(p_i w_i))_j / ∫ φ_j dy with p = −λ_N (nominal) and w_i = ∫ φ_i dŜ
+        the initial lumped area of the surface node i.  Returns (y, ∫ p dx) sorted by y.
         """
-        d = self.contact.nodal_data()
         comm = self.body.mesh.comm
         x = self.contact.X_sub[:, 0]
         xlen = comm.allreduce(float(x.max(initial=-np.inf)), op=MPI.MAX) \
             - comm.allreduce(float(x.min(initial=np.inf)), op=MPI.MIN)
-        n = len(d["p"])
-        pw = np.zeros(len(self.contact.lam_n.x.array))
-        ww = np.zeros_like(pw)
-        pw[:n], ww[:n] = np.maximum(d["p"], 0) * d["weight"], d["weight"]
+        if self._lumped is None:
+            self._lumped = fem.form(ufl.TestFunction(self.contact.Q) * self.contact.dsc,
+                                    entity_maps=[self.contact.emap])
+        ww = self.contact.nodal(self._lumped)
+        pw = np.maximum(-self.contact.lam_n.x.array, 0.0) * ww
         num, den = self.Pc.transpose(pw), self.Pc.transpose(ww)
         o = np.argsort(self._X_line)
         return self._X_line[o], (num / (den / xlen))[o]
-
