@@ -1,50 +1,51 @@
-# # Soft-EHL: elastic ball sliding against a rigid plane (3D)
-#
-# This demo illustrates the finite-deformation soft-EHL problem of the
-# chapter's §7 on the example of §8.3: a neo-Hookean ball (R = 12.7 mm,
-# E* = 1.49 MPa so that the Hertz radius is ≈ R/2 at 40 N) slides on a rigid
-# plane (ball-on-disc, pure sliding); a quarter of the ball is modelled
-# (lower hemisphere, half y ≥ 0, the sliding direction x in the symmetry plane):
-#
-# * the solid: virtual work (62) of the ball, mid-plane z = R moving as a rigid
-#   plane (here held, and the plane z = z_p moves), symmetry u_y = 0 on y = 0;
-# * the film: the steady Reynolds equation (49) on S = P(γ_l), the projection of
-#   the deformed lubricated cap onto the plane (y = x − (x_z − z_p) e_z, ν = e_z,
-#   h = x_z − z_p), pulled back to the reference cap Γ_l:
-#
-#       A = (I − e_z⊗e_z) F (I − N⊗N) + e_z⊗N,  ds_S = |det A| dS,
-#       grad_S p = A^{-T} Grad_Γ p,  v̄ = ½(0 + 2U e_x) = U e_x,
-#
-#   (ball frame: the ball is at rest, the plane slides at V = 2U), p = 0 on the
-#   cap boundary, zero flux on y = 0, penalty cavitation, SUPG;
-# * the traction (46) on the ball: −p n − (μ/h)(0 − V) − (h/2) grad_S p, with
-#   the tangential pressure gradient Grad_Γ p as a vector DG0 unknown on the cap;
-# * one monolithic Newton method with the exact tangent; the plane position is
-#   found for each load W by a secant iteration in ln W, each load predicted
-#   from the Hertz state (dry ball under the Hertz pressure, film of
-#   Hamrock–Dowson) and corrected by the secant, with step cutting.
-#
-# Units: mm, N, s, MPa.
-#
-# ## Changing a parameter
-#
-#     tribofx run ehl-ball --set W=10 --set steps=3               # load sweep
-#     tribofx run ehl-ball --set compare=all                      # full / no shear / linear
-#     tribofx run ehl-ball --set W=4 --set steps=1 --set speeds=3e4,1e5,3e5,1e6,3e6,1e7
-#     tribofx run ehl-ball --set W=4 --set steps=1 --set mesh=2   # ≈ 58k unknowns, ~2 min
-#
-#     tribofx run ehl-ball --set W=40 --set theta_l=55 --set U=3e5 --set mesh=0
-#
-# Loads of 20–40 N (a ≈ R/2, the chapter's Fig. 24–26) do not converge from the
-# Hertz state; above a = R/3 the case reaches each load by displacement control
-# (the plane lowered step by step, W an output) on a thick film (speed ×30) and
-# then continues down in speed at the fixed load.  On the coarse meshes used
-# here this works down to μU ≈ 1 N/m at 40 N; thinner films need finer meshes.
-#
-# Run this script as
-#
-#     python demos/demo_ehl_ball.py --out results/ehl-ball
+# ---
+# jupytext:
+#   text_representation:
+#     extension: .py
+#     format_name: light
+# ---
 
+# # Soft-EHL: an elastic ball sliding on a rigid plane (3D)
+#
+# This demo illustrates how to:
+#
+# * build a 3D hyperelastic **Body** (a quarter of a neo-Hookean ball, symmetry
+#   plane y = 0, mid-plane held) and a lubricating **Film** on its lower cap
+#   against a rigid plane that slides under it (``V_counter`` = 2U e_x, the ball at
+#   rest: pure sliding, v̄ = U e_x);
+# * start the coupled Newton iteration from the Hertz state (the dry ball under the
+#   Hertz pressure, ``Film.start_from_pressure``) and find the plane position that
+#   carries the load W with a **Continuation** (a step-limited secant on the
+#   measured film load that rejects films with h ≤ 0);
+# * check the film against Hamrock–Dowson (1978) and the solved state against
+#   global equilibrium.
+#
+# ## Equations
+#
+# The lubrication surface S = P(γ_l) is the plane: y = x − (x_z − z_p) e_z,
+# ν = e_z, h = x_z − z_p (36–37), A = (I − e_z⊗e_z) F (I − N⊗N) + e_z⊗N,
+# ds_S = |det A| dS, grad_S p = A⁻ᵀ Grad_Γ p, with N the outward normal of each
+# flat cap facet.  The Reynolds equation (49) on S (SUPG, penalty cavitation),
+# p = 0 on the cap's boundary circle and zero flux on y = 0; the traction (46)
+#
+# $$ \mathbf{T} = -p\,J\mathbf{F}^{-T}\mathbf{N}
+#    - j\Big(\frac{\mu}{h}(\mathbf{v}_{ball} - \mathbf{v}_{plane})
+#    + \frac{h}{2}\,\mathrm{grad}_S\, p\Big), \qquad j = J|\mathbf{F}^{-T}\mathbf{N}|, $$
+#
+# loads the ball in its virtual work (62); Grad_Γ p is a vector DG0 unknown on Γ_l.
+#
+# ## Changing it
+#
+#     tribofx run ehl-ball --set W=10 --set steps=3                  # load sweep
+#     tribofx run ehl-ball --set compare=all                         # full / no shear / linear
+#     tribofx run ehl-ball --set W=4 --set speeds=3e4,1e5,3e5        # friction vs μU (Fig. 27)
+#     tribofx run ehl-ball --set W=40 --set theta_l=55 --set U=3e5 --set mesh=0   # a ≈ R/2
+#
+# Loads with a > R/3 do not converge from the Hertz state; the case reaches them by
+# displacement control on a thick film (``Continuation.advance`` at 30 U) and a
+# march down in speed (the full run of this demo does W = 40 N).  Units: mm, N, s, MPa.
+
+# +
 import argparse
 import math
 import os
@@ -52,109 +53,164 @@ import os
 os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
+import numpy as np
+import ufl
+from dolfinx import fem
 from mpi4py import MPI
+from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
+from tribofx.meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
 
-from tribofx.runner import run_case
+from tribofx.body import Body
+from tribofx.cases.ehl_ball import EHLBallCase
+from tribofx.continuation import ConstantParameter, Continuation
+from tribofx.interfaces import Film
+from tribofx.obstacles import rigid_plane
+from tribofx.output import write_summary, write_vtx
+from tribofx.params import resolve
+from tribofx.plots import plot_ball_film
+from tribofx.problem import Problem
+from tribofx.references import composite_modulus, hamrock_dowson, hertz
 
 parser = argparse.ArgumentParser(description="soft-EHL ball-on-plane demo")
-parser.add_argument("--out", default="results/ehl-ball")
-args = parser.parse_args()
-rank0 = MPI.COMM_WORLD.rank == 0
+parser.add_argument("--quick", action="store_true", help="one load (CI)")
+parser.add_argument("--out", default=None, help="write summary.json, plots and VTX here")
+args, _ = parser.parse_known_args()
+comm = MPI.COMM_WORLD
+# -
 
-# ## Full model, no shear tractions, geometrically linear (Fig. 26)
+# ## The ball and its film
 #
-# ``compare=all``: the same load sweep W = 2, 4, 6 N for the three variants
-# (results ``full_*``, ``no-shear_*``, ``linear_*``; centre-line profiles of all
-# three in ``centerline.png``, film map of the full model in ``film_map.png``)
-s = run_case("ehl-ball", {"W": "6", "steps": "3", "mesh": "1", "compare": "all"},
-             f"{args.out}/compare",
-             progress=False)
-assert s["status"] == "ok", s["status"]
-allres = {k: v["value"] for k, v in s["results"].items()}
-res = {m: {k[len(m) + 1:]: x for k, x in allres.items() if k.startswith(m + "_")}
-       for m in ("full", "no-shear", "linear")}
-if rank0:
-    print(f"three variants: {s['wall_time_s']:.1f} s, {s['num_dofs']} unknowns, Newton "
-          f"iterations per secant trial {s['variant_newton_iterations']}")
-    print(f"Hamrock–Dowson at W = 6 N: h_c = {1e3 * allres['hamrock_dowson_h_c']:.2f} µm, "
-          f"h_min = {1e3 * allres['hamrock_dowson_h_min']:.2f} µm")
-    for name, r in res.items():
-        print(f"{name}:")
-        for k, W in enumerate(r["steps_W"]):
-            print(f"  W = {W:.2f} N: h_c = {1e3 * r['steps_h_central'][k]:.2f} µm, "
-                  f"h_min = {1e3 * r['steps_h_min'][k]:.2f} µm, "
-                  f"p_max = {r['steps_p_max'][k]:.4f} MPa, "
-                  f"friction = {r['steps_friction_coefficient'][k]:.4f} "
-                  f"(Couette {r['steps_couette_friction_coefficient'][k]:.4f})")
+# R = 12.7 mm, E = 1.19 MPa, ν = 0.45 (E* = 1.49 MPa: Hertz a ≈ R/2 at 40 N);
+# μ = 10 mPa·s, U = 10 m/s (μU = 0.1 N/m); W = 2 N; cap θ_l = 40°, elements a/8
+# within 1.6 a of the contact point (≈ 12k unknowns).
+
+# +
+R, E, nu, mu, U, W = 12.7, 1.19, 0.45, 1e-8, 1e4, 2.0
+hz = hertz(W, R, E, nu)                                   # a, p0, δ
+h_c, h_m = hamrock_dowson(W, mu, U, R, composite_modulus(E, nu))
+theta = math.radians(40.0)
+msh, _, facets = quarter_ball(R, theta, hz.a / 8, 4.0, 1.6 * hz.a, comm)
+lame = dict(zip(("mu", "lmbda"), lame_parameters(E, nu)))
+
+ball = Body(msh, facets, {"cap": LUBRICATED, "mid": MIDPLANE, "sym": SYMMETRY}, "3d",
+            ("neo-hookean", lame), name="ball")
+ball.add_dirichlet("mid", np.zeros(3))                    # the mid-plane is held ...
+ball.add_dirichlet("sym", 0.0, component=1)               # ... symmetry y = 0
+plane = rigid_plane(np.zeros(3), np.eye(3)[2])            # ... and the plane z = z_p moves
+film = Film(ball, "cap", plane, mu, V_counter=(2 * U, 0.0, 0.0), p_c=hz.p0,
+            eps=1e-4 * 12 * mu * hz.a**2 / h_c**3,         # penalty 1e-4 of 12μa²/h_c³
+            film_scale=h_c, speed_scale=U, quadrature_degree=2)
+film.add_pressure_bc(lambda X: np.abs(X[2] - cap_height(R, theta)) < 1e-6 * R)
+problem = Problem([ball, film], name="ball")
+
+
+def load():
+    """Load on the whole ball: twice the film force on the half model (N)."""
+    return 2 * film.force()[2]
+# -
+
+# ## Hertz start and load control
+#
+# The coupled solve from the undeformed ball does not converge (the film would
+# have to find the contact); from the Hertz state it does.  The secant on the
+# plane position z_p starts with the Hertz slope dW/dz_p = 1.5 W/δ, steps of at
+# most 0.1 δ, step cutting on failure.
+
+# +
+film.start_from_pressure(lambda x: hz.p0 * np.sqrt(np.maximum(
+    0.0, 1 - (x[0] ** 2 + x[1] ** 2) / hz.a**2)), h_c, np.zeros(3))
+position = Continuation(problem, ConstantParameter(film.counterpart.offset, 2), response=load,
+                        rtol=1e-4, max_step=0.1 * hz.delta,
+                        admissible=lambda: film.min_film() > 0)
+position.reach(W, slope=1.5 * W / hz.delta)
+
+prof = comm.bcast(film.profile(), root=0)
+axis = np.abs(prof["X"][:, 1]) < 1e-9 * R                 # the symmetry line y = 0
+order = np.argsort(prof["x"][axis, 0])
+h_central = float(np.interp(0.0, prof["x"][axis, 0][order], prof["h"][axis][order]))
+i_min = int(np.argmin(prof["h"]))
+F = film.force()
+
+# equilibrium of the solved state: the reaction of the held mid-plane (its rows of
+# the internal virtual work, −W) balances the film load (see tests/test_ehl_ball.py)
+w = fem.Function(ball.V)
+w.x.array[fem.locate_dofs_topological(ball.V.sub(2), 2, ball.facets("mid"))] = 1.0
+reaction = 2 * comm.allreduce(fem.assemble_scalar(fem.form(internal_virtual_work(
+    ball.u, w, "3d", "neo-hookean", lame, ufl.Measure("dx", msh)))), op=MPI.SUM)
+b, _ = problem.assemble()
+bound = 2 * math.sqrt(ball.V.dofmap.index_map.size_global) * b.norm() + 1e-12 * W
+result = {"W": load(), "h_central": h_central, "h_min": float(prof["h"][i_min]),
+          "x_h_min": float(prof["x"][i_min, 0]), "p_max": float(prof["p"].max()),
+          "friction": abs(F[0] / F[2]), "reaction": reaction, "hamrock_dowson": (h_c, h_m),
+          "unknowns": problem.num_dofs, "newton": position.record}
+if comm.rank == 0:
+    print(f"W = {result['W']:.5f} N ({problem.num_dofs} unknowns, Newton {position.record}): "
+          f"h_c = {1e3 * h_central:.2f} µm (HD {1e3 * h_c:.2f}), h_min = "
+          f"{1e3 * result['h_min']:.2f} µm (HD {1e3 * h_m:.2f}), p_max = "
+          f"{result['p_max']:.4f} MPa, friction {result['friction']:.4f}; "
+          f"mid-plane reaction {reaction:.6f} N")
+if args.out:
+    write_vtx(comm, f"{args.out}/displacement.bp", [ball.u])
+    write_vtx(comm, f"{args.out}/pressure.bp", [film.p])
+    if comm.rank == 0:
+        plot_ball_film({"full": {"label": "finite deformation", "xy": prof["x"][:, :2],
+                                 "h": prof["h"], "p": prof["p"],
+                                 "x_axis": prof["x"][axis, 0][order],
+                                 "h_axis": prof["h"][axis][order],
+                                 "p_axis": prof["p"][axis][order]}}, W, args.out)
+# -
+
+# ## Variants and large loads (full run only)
+#
+# The case ``ehl-ball`` holds the same configuration; its controllers run the
+# three models of Fig. 26 (full, no shear tractions, geometrically linear) over a
+# load sweep, and W = 40 N on the thick-film path.
+
+# +
+variants = {}
+if not args.quick:
+    for name, over in (("full", {}), ("no-shear", {"shear": "false"}),
+                       ("linear", {"model": "linear"})):
+        for W_v, extra in ((6.0, {"steps": "3", "mesh": "1"}),
+                           (40.0, {"steps": "1", "mesh": "0", "theta_l": "55", "U": "3e5"})):
+            v = resolve(EHLBallCase.params, {"W": str(W_v), **extra, **over})
+            run = EHLBallCase.build(v, comm)
+            steps = []
+            EHLBallCase.load_sweep(run, v, lambda W, its, run=run, v=v: steps.append(
+                EHLBallCase.measures(run, v)))
+            variants[name, W_v] = steps
+            if comm.rank == 0:
+                m = steps[-1]
+                print(f"{name}, W = {W_v:g} N: h_c = {1e3 * m['h_central']:.2f} µm, h_min = "
+                      f"{1e3 * m['h_min']:.2f} µm, p_max = {m['p_max']:.4f} MPa, friction "
+                      f"{m['friction_coefficient']:.4f}")
+if args.out:
+    write_summary(comm, f"{args.out}/summary.json", {"case": "demo_ehl_ball", **result})
+# -
 
 # ## Checks
 #
-# * the load is reached at every step (secant tolerance 1e-4);
-# * the film gets thinner and the peak pressure higher with the load;
-# * the central film is within 20 % of Hamrock–Dowson (their fit accuracy plus
-#   mesh and finite-strain effects);
-# * the shear tractions hardly change the film (chapter: "the effect of shear
-#   stresses is here negligible"): < 5 % on h_c and p_max;
-# * the friction coefficient falls with the load.
-for r in res.values():
-    assert all(abs(W / (2 * (k + 1)) - 1) < 2e-4 for k, W in enumerate(r["steps_W"]))
-    assert all(a > b for a, b in zip(r["steps_h_central"], r["steps_h_central"][1:]))
-    assert all(a < b for a, b in zip(r["steps_p_max"], r["steps_p_max"][1:]))
-    assert abs(r["h_central"] / allres["hamrock_dowson_h_c"] - 1) < 0.2
-full, nos = res["full"], res["no-shear"]
-for key in ("h_central", "p_max"):
-    assert abs(full[key] / nos[key] - 1) < 0.05, key
-f = full["steps_friction_coefficient"]
-assert all(a > b for a, b in zip(f, f[1:])), f
-# the Couette drag does not depend on whether it loads the ball, and the
-# geometrically linear model predicts nearly the same friction (chapter, Fig. 27)
-assert abs(full["couette_friction_coefficient"] / nos["couette_friction_coefficient"] - 1) < 0.05
-assert abs(full["friction_coefficient"] / res["linear"]["friction_coefficient"] - 1) < 0.1
+# * Equilibrium: the mid-plane reaction balances the film load, |reaction + W| ≤
+#   2√n‖R‖ (the Newton residual bound) — the solved state, not the controller's
+#   stopping test.
+# * Hamrock & Dowson fitted their half-space solutions within ±10–20 %; finite
+#   strain (a/R ≈ 0.18), ν = 0.45 and the penalty: 20 % on h_c, 25 % on h_min
+#   (elements a/8, as tests/test_ehl_ball.py); the minimum film lies downstream.
+# * Full run: the shear tractions change the film by < 5 % (the chapter: negligible);
+#   the geometrically linear model overpredicts p_max and underpredicts h_min at
+#   40 N (the chapter: 10–15 %), by more than at 6 N.
 
-# ## Large load: W = 40 N, contact radius ≈ R/2 (Fig. 26)
-#
-# Full, no-shear and geometrically linear models at W = 40 N, μU = 3 N/m on the
-# coarse mesh 0 (cap θ_l = 55° to hold the inlet).  The chapter: the linear
-# model overpredicts p_max and underpredicts h_min by 10–15 % at this load.
-s = run_case("ehl-ball", {"W": "40", "steps": "1", "mesh": "0", "theta_l": "55", "U": "3e5",
-                          "compare": "all"}, f"{args.out}/large_load", progress=False)
-assert s["status"] == "ok", s["status"]
-big = {k: v["value"] for k, v in s["results"].items()}
-if rank0:
-    print(f"W = 40 N: {s['wall_time_s']:.1f} s, Hertz a = {big['hertz_a']:.2f} mm")
-    for name in ("full", "no-shear", "linear"):
-        print(f"  {name}: h_c = {1e3 * big[name + '_h_central']:.1f} µm, "
-              f"h_min = {1e3 * big[name + '_h_min']:.1f} µm, "
-              f"p_max = {big[name + '_p_max']:.4f} MPa")
-for name in ("full", "no-shear", "linear"):
-    assert abs(big[name + "_W_reached"] / 40 - 1) < 2e-4
-assert big["linear_p_max"] > big["full_p_max"]
-assert big["linear_h_min"] < big["full_h_min"]
-
-# ## Friction coefficient against the entrainment speed (Fig. 27)
-#
-# Continuation in U at W = 4 N over three decades, μU = 0.1 N/m up to 100 N/m (each speed
-# predicted from the Hertz state with the Hamrock–Dowson film of that speed);
-# the friction coefficient (friction force / W, Couette dominated) grows with
-# μU, the film too.  Lower speeds (thinner films) need finer meshes (the
-# chapter's "severe conditions"), see ``mesh``.
-s = run_case("ehl-ball", {"W": "4", "steps": "1", "mesh": "1",
-                          "speeds": "3e4,1e5,3e5,1e6,3e6,1e7"},
-             f"{args.out}/speeds", progress=False)
-assert s["status"] == "ok", s["status"]
-r = {k: v["value"] for k, v in s["results"].items()}
-if rank0:
-    for muU, fc, hc in zip(r["speed_mu_U"], r["speed_friction_coefficient"],
-                           r["speed_h_central"]):
-        print(f"  μU = {1e3 * muU:.2f} N/m: friction coefficient {fc:.4f}, "
-              f"h_c = {1e3 * hc:.2f} µm")
-f, h = r["speed_friction_coefficient"], r["speed_h_central"]
-assert r["speed_mu_U"][-1] / r["speed_mu_U"][0] > 999          # three decades of μU
-# the film grows like U^0.64 (Hamrock–Dowson) in the EHL range: slope of the
-# first decade within ±0.1 of it
-slope = math.log(h[2] / h[0]) / math.log(r["speed_U"][2] / r["speed_U"][0])
-assert abs(slope - 0.64) < 0.1, slope
-assert all(a < b for a, b in zip(f, f[1:])), f
-assert all(a < b for a, b in zip(h, h[1:])), h
-if rank0:
+# +
+assert abs(reaction + result["W"]) <= bound, (reaction, result["W"], bound)
+assert abs(h_central / h_c - 1) < 0.20 and abs(result["h_min"] / h_m - 1) < 0.25, result
+assert result["x_h_min"] > 0 and result["h_min"] < h_central
+if variants:
+    for key in ("h_central", "p_max"):
+        assert abs(variants["full", 6.0][-1][key] / variants["no-shear", 6.0][-1][key] - 1) < 0.05
+    lin, fin = variants["linear", 40.0][-1], variants["full", 40.0][-1]
+    assert lin["p_max"] > fin["p_max"] and lin["h_min"] < fin["h_min"]
+    d6 = abs(variants["linear", 6.0][-1]["h_min"] / variants["full", 6.0][-1]["h_min"] - 1)
+    assert abs(lin["h_min"] / fin["h_min"] - 1) > d6
+if comm.rank == 0:
     print("demo_ehl_ball: all checks passed")
+# -

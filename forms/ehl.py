@@ -36,32 +36,32 @@ point X); the traction acts on the reference surface, T = −p N − (μ/h) v0_T
 (h/2) grad_S0 p.  Both models coincide for u → 0, so their difference is of
 higher order in the deformation.
 
-Meshed countersurface (``surface=`` of :func:`lubrication_kinematics`).  The
-cylinder may instead be a surface mesh, projected by the C++ kernel
-:func:`tribofx.lubrication_projection.lubrication_projection` at the nodes of
-Γ_l (expansion point x₀, nodal P1 data refreshed before every assembly); the
-data enter as Taylor expansions in d = x − x₀ (:func:`meshed_countersurface`):
+Any countersurface (``surface=`` of :func:`lubrication_kinematics`).  A
+countersurface given by its closest-point geometry x ↦ (g_N, n, x̄) — the
+analytic plane, cylinder and sphere of :mod:`forms.contact`, or a surface mesh
+through the data of the C++ kernel refreshed at the nodes of Γ_l before every
+assembly (:func:`forms.contact.meshed_countersurface`: second-order Taylor
+expansions about the expansion point x₀, so value, first and second derivative
+of h and value and first derivative of ν and y are those of the kernel at x₀)
+— gives the lubrication projection by :func:`countersurface_projection`:
 
-    h = h₀ + ν₀·d + ½ d·(∂ν/∂x) d,   ν = ν₀ + (∂ν/∂x) d,
-    ∂P/∂x = (∂P/∂x)₀ + (∂²P/∂x²)₀ d,   y = y₀ + (∂P/∂x)₀ d + ½ (∂²P/∂x²)₀[d, d],
+    h = g_N(x),  ν = n(x),  y = P(x) = x̄(x),  ∂P/∂x = ∂x̄/∂x      (36–37)
 
-so value, first and second derivative of h and value and first derivative of
-ν, ∂P/∂x (hence of A, ds_S, v̄) are those of the kernel at x₀.  Omitted: the
-second derivatives of ν and of ∂P/∂x (third derivatives of P), which matter
-only where d ≠ 0 at the quadrature points (P2 displacement: d = O(h_e²)).
+(∂P/∂x by ``ufl.diff`` of x̄, so the closed forms (R/|x − c|)(I − ν⊗ν) of the
+cylinder and I − ν⊗ν of the plane follow, and the Newton tangent stays exact).
 
 Three dimensions (the ball of §8.3).  The same expressions hold for gdim = 3
 with a 2D lubricated surface: A maps the tangent plane of Γ_l to that of S and
 N to ν, so |det A| is the area ratio ds_S/dS.  The countersurface may move: a
-rigid plane z = z_p (:func:`plane_countersurface`: y = x − (x_z − z_p) e_z,
-ν = e_z, h = x_z − z_p, ∂P/∂x = I − e_z⊗e_z) sliding with V_c gives
-v̄ = ½(v_layer + (I − ν⊗ν)V_c) (eq. 41) and the Couette traction
-−(μ/h)(v_layer − v_c) (eq. 46; ``V_counter`` of :func:`lubrication_kinematics`).
-The shear stretch is ds/dS = J|F⁻ᵀN|.  The reference normal N of the curved
-Γ_l varies: on the submesh it is the normal of each flat cell
-(:func:`oriented_cell_normal`), on the bulk side the facet normal (the same
-vector), and the tangential pressure gradient Grad_Γ p is a vector DG0 field
-(:func:`tangential_gradient_constraint` with :func:`tangential_gradient`).
+rigid plane z = z_p (y = x − (x_z − z_p) e_z, ν = e_z, h = x_z − z_p,
+∂P/∂x = I − e_z⊗e_z) sliding with V_c gives v̄ = ½(v_layer + (I − ν⊗ν)V_c)
+(eq. 41) and the Couette traction −(μ/h)(v_layer − v_c) (eq. 46; ``V_counter``
+of :func:`lubrication_kinematics`).  The shear stretch is ds/dS = J|F⁻ᵀN|.
+The reference normal N of a curved Γ_l varies: on the submesh it is the
+outward normal of each flat cell (a DG0 field), on the bulk side the facet
+normal (the same vector), and the tangential pressure gradient Grad_Γ p is a
+vector DG0 field (:func:`tangential_gradient_constraint` with
+:func:`tangential_gradient`).
 
 Integration.  DOLFINx 0.11 does not differentiate a facet-submesh function in
 an integral over facets of the bulk mesh, and does not evaluate bulk
@@ -84,14 +84,14 @@ __all__ = [
     "MODELS",
     "LubricationKinematics",
     "WeightedMeasure",
+    "countersurface_projection",
+    "couette_flux",
     "cylinder_countersurface",
+    "film_virtual_work",
     "fluid_traction",
     "intermediate_surface",
     "jfo_on_surface",
     "lubrication_kinematics",
-    "meshed_countersurface",
-    "oriented_cell_normal",
-    "plane_countersurface",
     "reynolds_on_surface",
     "tangential_gradient",
     "tangential_gradient_constraint",
@@ -162,34 +162,6 @@ def cylinder_countersurface(x, center, radius):
     return r - radius, nu, center + radius * nu, dP
 
 
-def plane_countersurface(x, offset, normal=None):
-    """Closed-form projection onto the rigid plane {y : y·n = offset}: (h, ν, y, ∂P/∂x).
-
-    ν = n (default e_z in 3D, e_y in 2D) points from the plane into the film, so
-
-        y = x − (x·n − offset) n,   h = x·n − offset,   ∂P/∂x = I − n⊗n      (36–37)
-
-    (§8.3: the ball above the plane z = z_p, h = x_z − z_p).
-    """
-    gdim = len(x)
-    if normal is None:
-        normal = ufl.as_vector([0.0] * (gdim - 1) + [1.0])
-    h = ufl.dot(x, normal) - offset
-    return h, normal, x - h * normal, ufl.Identity(gdim) - ufl.outer(normal, normal)
-
-
-def oriented_cell_normal(domain, center):
-    """Return the unit normal of the (affine) cells of a surface mesh, away from ``center``.
-
-    ``ufl.CellNormal`` of a manifold mesh has the orientation of the cell's
-    vertex numbering; the sign of its dot product with X − c makes it the outer
-    normal of a convex body around c (Γ_l of the ball, reference normal N).
-    """
-    n = ufl.CellNormal(domain)
-    X = ufl.SpatialCoordinate(domain)
-    return ufl.sign(ufl.dot(n, X - center)) * n
-
-
 def tangential_gradient(N):
     """Return f ↦ Grad_Γ f, the gradient projected with (I − N⊗N) (N: reference normal).
 
@@ -206,26 +178,17 @@ def tangential_gradient(N):
     return grad_gamma
 
 
-def meshed_countersurface(x, x0, h0, nu0, y0, dy0, dnu0, d2y0):
-    """Meshed countersurface through kernel data at the expansion point x0 (module doc).
+def countersurface_projection(geometry, x):
+    """Lubrication projection (h, ν, y, ∂P/∂x) at x of a countersurface, eqs. (36–37).
 
-    Args:
-        x: UFL position on Γ_l (mm).
-        x0: expansion point (nodal positions of Γ_l, mm).
-        h0: film thickness at x0 (mm).
-        nu0: unit normal ν at P(x0).
-        y0: projection P(x0) (mm).
-        dy0: ∂P/∂x at x0 (gdim × gdim).
-        dnu0: ∂ν/∂x at x0 (gdim × gdim, 1/mm).
-        d2y0: list of gdim tensors, ``d2y0[k][i, j] = ∂²P_i/∂x_j∂x_k`` at x0.
-
-    Returns:
-        (h, ν, y, ∂P/∂x) as UFL expressions of x.
+    ``geometry`` maps a UFL position to the closest-point geometry
+    (:class:`forms.contact.ContactGeometry`: gap g_N, normal n, projection x̄) of
+    the countersurface — analytic or meshed.  Then h = g_N = (x − y)·ν, ν = n,
+    y = x̄ and ∂P/∂x = ∂x̄/∂x (``ufl.diff`` with respect to x), all UFL of x.
     """
-    d = x - x0
-    D = sum(d2y0[k] * d[k] for k in range(len(d2y0)))
-    h = h0 + ufl.dot(nu0, d) + 0.5 * ufl.dot(d, dnu0 * d)
-    return h, nu0 + dnu0 * d, y0 + dy0 * d + 0.5 * D * d, dy0 + D
+    xv = ufl.variable(x)
+    g = geometry(xv)
+    return g.gap, g.normal, g.projection, ufl.diff(g.projection, xv)
 
 
 def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite",
@@ -237,15 +200,17 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         disp: displacement u at X (mm).
         grad_disp: displacement gradient whose action on tangents of Γ_l is exact
             (bulk Grad u, or the tangential gradient of the trace on the submesh).
-        N: unit outer normal of Γ_l (reference, constant vector).
+        N: unit outer normal of Γ_l (reference; a constant, a facet normal or a
+            cellwise constant field).
         center: cylinder centre c (mm).
         radius: cylinder radius R (mm).
         V: nominal sliding velocity of the layer in the cylinder frame (mm/s),
             tangent to Γ_l.
         model: "finite" (S = P(γ_l)) or "linear" (classical EHL, see module doc).
-        surface: None (analytic cylinder) or a callable x ↦ (h, ν, y, ∂P/∂x), e.g.
-            :func:`meshed_countersurface` bound to its data; for ``model="linear"``
-            its data must be expanded about the reference positions X.
+        surface: None (analytic cylinder ``center``, ``radius``) or a callable
+            x ↦ (h, ν, y, ∂P/∂x), e.g. :func:`countersurface_projection` of a
+            countersurface geometry (analytic or meshed); for ``model="linear"`` the
+            data of a meshed countersurface must be expanded about the reference X.
         alpha: None (S = P(γ_l), closed form) or a scalar (UFL constant) α ∈ [0, 1]:
             the intermediate surface S_α = (1 − α) P(γ_l) + α γ_l of Fig. 23
             (see :func:`intermediate_surface`; α = 0 gives S = P(γ_l) to round-off).
@@ -385,13 +350,33 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
         # They are added element by element, without interior-facet integrals:
         # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
         # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
-        tS = kin.A * T
-        w_t = (1 - lam_c) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
+        w_t = couette_flux(kin, lam_c, T)
         n = ufl.FacetNormal(ds_ends.ufl_domain())
         F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
         F += w_t * ufl.dot(T, n) * dp * ds_ends
     C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=q_ref / h_e)
     return F, C
+
+
+def couette_flux(kin, lam, T):
+    """Couette volume flux θ h v̄·t_S along S (mm²/s), θ = 1 − λ, gdim = 2 (eq. 40).
+
+    t_S = A T/|A T| is the unit tangent of S in the direction of the reference
+    tangent T of Γ_l; ``lam`` is the void fraction (0 without cavitation).
+    """
+    tS = kin.A * T
+    return (1 - lam) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
+
+
+def film_virtual_work(traction, v, ds, weight=1):
+    """Film term of the solid's virtual work (62): −∫_Γl T·δφ w dS.
+
+    ``traction`` is the nominal fluid traction T (:func:`fluid_traction`, MPa),
+    ``v`` the test function of the displacement, ``ds`` the measure of Γ_l and
+    ``weight`` w the reference measure factor (2πR for axisymmetry, else 1).
+    Equivalent to the spatial form (63) with t ds = T dS.
+    """
+    return -ufl.dot(traction, v) * weight * ds
 
 
 def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
@@ -400,19 +385,19 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
     Args:
         p: pressure (MPa).
         dpdT: tangential derivative Grad_Γ p · T of the pressure on Γ_l (MPa/mm), or
-            (vector, gdim = 3) the tangential gradient Grad_Γ p itself.
+            (vector) the tangential gradient Grad_Γ p itself.
         kin: :class:`LubricationKinematics` evaluated with the bulk displacement.
         F: deformation gradient (gdim × gdim) of the bulk.
         N: unit outer normal of Γ_l (reference).
-        T: unit tangent of Γ_l (reference), the direction of V (gdim = 2; unused
-            when ``dpdT`` is the gradient vector).
+        T: unit tangent of Γ_l (reference, gdim = 2: the shear stretch |F T| and,
+            for a scalar ``dpdT``, the direction of the gradient); None in 3D.
         mu: viscosity (MPa·s).
         model: "finite" (Nanson, current normal and stretch) or "linear" (reference surface).
         shear: include the Couette −(μ/h)(v_layer − v_counter) and Poiseuille
             −(h/2) grad_S p terms (v_counter = ``kin.v_counter``, 0 if None).
     """
     if len(ufl.shape(dpdT)) == 1:
-        grad_gamma_p = dpdT                       # Grad_Γ p (gdim = 3)
+        grad_gamma_p = dpdT                       # Grad_Γ p
     else:
         grad_gamma_p = dpdT * T                   # (Grad_Γ p·T) T (gdim = 2)
     v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
@@ -446,7 +431,7 @@ def trace_constraint(u_s, u, du_s, ds):
 def tangential_gradient_constraint(g, p, dg, T, dx, grad_gamma=None):
     """Residual ∫_Γl (g − Grad_Γ p·T) δg dS: g is the tangential pressure derivative.
 
-    Vector g (DG0, gdim = 3): ∫_Γl (g − Grad_Γ p)·δg dS with ``grad_gamma`` the
+    Vector g (DG0, any gdim): ∫_Γl (g − Grad_Γ p)·δg dS with ``grad_gamma`` the
     projected gradient (:func:`tangential_gradient`); exact for P1 p on affine cells.
     """
     if len(ufl.shape(g)) == 1:

@@ -1,5 +1,6 @@
-"""Soft-EHL (chapter §7, §8.2): exact tangent of the coupled residual, Newton rate,
-finite → linear limit at small load, rigid-cylinder limit of a stiff layer, serial = 2 ranks."""
+"""Soft-EHL (chapter §7, §8.2): exact tangent of the coupled residual (analytic and meshed
+cylinder, penalty and JFO), Newton rate, finite → linear limit at small load, rigid-cylinder
+limit of a stiff layer, serial = 2 ranks."""
 
 import json
 import os
@@ -11,11 +12,11 @@ import numpy as np
 import pytest
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import taylor_orders
+from taylor import problem_taylor_orders
 
 from tribofx.cases.ehl import EHLCylinderLayerCase as Case
-from tribofx.ehl_problem import LoadControl
 from tribofx.params import resolve
+from tribofx.problem import convergence_orders
 from tribofx.references import cylinder_references
 
 # coarse, fast settings (element size 0.04 mm on Γ_l, P1 displacement)
@@ -29,73 +30,105 @@ def values(**overrides):
 
 
 def _orders(res):
-    r = np.asarray(res)
-    r = r[r > 1e-13 * r[0]]  # below this the residual is at round-off
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+    # below 1e-13 of the first residual the residual is at round-off
+    return convergence_orders(res, floor=1e-13)
 
 
-def _sweep(v, targets):
-    prob = Case.build(v)
-    control = LoadControl(prob)
+def _sweep(v, targets, **build):
+    """Load the layer to each load of ``targets`` in turn (one load step each)."""
+    run = Case.build(v, **build)
     out = []
+    loads, inner = Case.load_control(run, v, lambda: out.append(Case.measures(run, v)))
+    for W in targets:
+        loads.march(W, 1, predictor=False)
+    return run, loads, inner, out
 
-    def on_step(W, its, final):
-        if final:
-            out.append(dict(prob.measures(), iterations=its))
 
-    control.sweep(targets, on_step)
-    return prob, control, out
+def _directions(problem, seed, scales):
+    """Random perturbations of the unknowns (``scales``: one factor per unknown)."""
+    rng = np.random.default_rng(seed + MPI.COMM_WORLD.rank)
+    dirs = []
+    for f, c in zip(problem.u, scales):
+        d = fem.Function(f.function_space)
+        d.x.array[:] = c * rng.uniform(-1, 1, d.x.array.shape)
+        d.x.scatter_forward()
+        dirs.append(d)
+    return dirs
 
 
 # ----------------------------------------------------------------------- exact tangent
 
 
+def _taylor_state(film, x_l):
+    """Nontrivial state: smooth displacement (film stays > 0), positive pressure bump."""
+    film.body.u.interpolate(lambda x: np.array([0.004 * np.sin(x[0]) * (1 + x[1] / 5),
+                                                -0.006 * np.exp(-x[0] ** 2) * (1 + x[1] / 5)]))
+    film.u_s.interpolate(lambda x: np.array([0.003 * np.cos(x[0]),
+                                             -0.005 * np.exp(-x[0] ** 2)]))
+    film.p.interpolate(lambda x: 0.05 * (1 - (x[0] / x_l) ** 2) * (1.2 + np.sin(3 * x[0])))
+    film.g.x.array[:] = 0.01
+
+
 @pytest.mark.mpi
-@pytest.mark.parametrize("model, alpha", [("finite", 0.0), ("linear", 0.0), ("finite", 0.6)])
-def test_coupled_residual_taylor(model, alpha):
+@pytest.mark.parametrize("model, alpha, countersurface", [
+    ("finite", 0.0, "analytic"), ("linear", 0.0, "analytic"), ("finite", 0.6, "analytic"),
+    ("finite", 0.0, "mesh"), ("linear", 0.0, "mesh")])
+def test_coupled_residual_taylor(model, alpha, countersurface):
     """Remainder of the first-order Taylor expansion of (R_u, R_us, R_p, R_g) is O(ε²).
 
     α = 0.6: the intermediate lubrication surface S_α (its normal, metric and
-    velocity projection depend on u) keeps the tangent exact.
+    velocity projection depend on u) keeps the tangent exact.  countersurface=mesh:
+    the data of the C++ lubrication projection, refreshed at every perturbed state,
+    give the exact tangent through their derivatives (P1 displacement: the
+    expansion point is the quadrature point's own position, so no neglected
+    higher derivative enters).
     """
-    v = values(model=model, W=0.1, steps=1, alpha=alpha)
-    prob = Case.build(v)
-    prob.s.value = 0.02
-    x_l = prob.x_l
-    # nontrivial state: smooth displacement (film stays > 0), positive pressure bump
-    prob.u.interpolate(lambda x: np.array([0.004 * np.sin(x[0]) * (1 + x[1] / 5),
-                                           -0.006 * np.exp(-x[0] ** 2) * (1 + x[1] / 5)]))
-    prob.u_s.interpolate(lambda x: np.array([0.003 * np.cos(x[0]), -0.005 * np.exp(-x[0] ** 2)]))
-    prob.p.interpolate(lambda x: 0.05 * (1 - (x[0] / x_l) ** 2) * (1.2 + np.sin(3 * x[0])))
-    prob.g.x.array[:] = 0.01
-    rng = np.random.default_rng(7 + MPI.COMM_WORLD.rank)
-    dirs = []
-    for f in prob.unknowns:
-        d = fem.Function(f.function_space)
-        d.x.array[:] = rng.uniform(-1, 1, d.x.array.shape)
-        d.x.scatter_forward()
-        dirs.append(d)
-    dirs[0].x.array[:] *= 1e-2  # mm
-    dirs[1].x.array[:] *= 1e-2
-    dirs[2].x.array[:] *= 1e-2  # MPa
+    v = values(model=model, W=0.1, steps=1, alpha=alpha, countersurface=countersurface)
+    layer, film, problem = Case.build(v)
+    film.counterpart.offset.value[1] = 0.02
+    _taylor_state(film, v["x_l"])
+    dirs = _directions(problem, 7, [1e-2, 1e-2, 1e-2, 1.0])  # mm, mm, MPa, MPa/mm
     # no pressure perturbation at the ends, where p = 0 sits on the kink of min(p, 0)
-    ends = fem.locate_dofs_geometrical(prob.Q, lambda y: np.isclose(np.abs(y[0]), x_l))
+    ends = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(np.abs(y[0]), v["x_l"]))
     dirs[2].x.array[ends] = 0.0
-    orders, rem = taylor_orders(prob.residuals, prob.unknowns, dirs,
-                                entity_maps=[prob.emap], eps0=1e-1)
-    print(model, orders, rem)
+    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-1)
+    print(model, alpha, countersurface, orders, rem)
     # an exact Jacobian gives order 2 up to round-off; a missing dependence
     # (e.g. of S, h, ν or A on u) gives order 1
+    assert orders.min() > 1.8
+
+
+@pytest.mark.mpi
+def test_jfo_residual_taylor():
+    """JFO (u, u_s, p, g, λ): the semismooth residual away from its kinks has an exact tangent.
+
+    State: full film (λ = 0, p > 0) upstream, cavitated (p < 0 small, λ > 0)
+    downstream, so that min(p/p_c, λ) and min(λ, 1) sit on smooth branches at
+    every node, and the perturbation (1e-3 of the scales) never crosses a kink.
+    """
+    v = values(W=0.1, steps=1, cavitation="jfo")
+    layer, film, problem = Case.build(v)
+    film.counterpart.offset.value[1] = 0.02
+    _taylor_state(film, v["x_l"])
+    p_c = float(film.p_c.value)
+    film.p.interpolate(lambda x: np.where(x[0] < 0.3, 0.05 * (1 - (x[0] / v["x_l"]) ** 2),
+                                          -0.3 * p_c))
+    film.lam.interpolate(lambda x: np.where(x[0] < 0.3, -0.3, 0.2 + 0.1 * np.sin(x[0])))
+    dirs = _directions(problem, 11, [1e-2, 1e-2, 1e-2, 1.0, 1e-2])
+    inlet = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(y[0], -v["x_l"]))
+    dirs[2].x.array[inlet] = 0.0
+    dirs[4].x.array[inlet] = 0.0
+    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-2)
+    print("jfo", orders, rem)
     assert orders.min() > 1.8
 
 
 def test_newton_quadratic():
     """Newton on the coupled problem at a fixed cylinder position converges quadratically."""
     v = values(W=0.3, steps=3)
-    prob, control, out = _sweep(v, [0.1, 0.2, 0.3])
-    prob.s.value = prob.s.value * 0.97  # 3 % closer: a new, nearby solution
-    report = prob.solve()
+    (_, film, problem), _, _, out = _sweep(v, [0.1, 0.2, 0.3])
+    film.counterpart.offset.value[1] *= 0.97  # 3 % closer: a new, nearby solution
+    report = problem.solve()
     orders = _orders(report.residuals)
     print("residuals", report.residuals, "orders", orders)
     assert report.iterations <= 6
@@ -111,7 +144,7 @@ def test_finite_and_linear_agree_as_load_vanishes():
     loads = [0.02, 0.1, 0.4]
     res = {}
     for model in ("finite", "linear"):
-        _, _, out = _sweep(values(model=model, W=loads[-1]), loads)
+        *_, out = _sweep(values(model=model, W=loads[-1]), loads)
         res[model] = out
     d_h = [abs(f["h_min"] / lin["h_min"] - 1) for f, lin in zip(res["finite"], res["linear"])]
     d_p = [abs(f["p_max"] / lin["p_max"] - 1) for f, lin in zip(res["finite"], res["linear"])]
@@ -131,7 +164,7 @@ def test_finite_and_linear_agree_as_load_vanishes():
 def test_stiff_layer_matches_rigid_cylinder():
     """E → ∞: the film is that of the rigid cylinder–plane problem at the same h0."""
     v = values(E=1e4, E_c=1e4, W=0.25, steps=2, mesh=1, shear=False)
-    prob, _, out = _sweep(v, [0.125, 0.25])
+    *_, out = _sweep(v, [0.125, 0.25])
     m = out[-1]
     h0 = m["h_min"]  # minimum film (the cylinder is 0.3 % closer to the undeformed layer)
     um = 0.5 * v["U"]
@@ -189,10 +222,10 @@ def test_meshed_countersurface_matches_analytic():
     res, trials, rates = {}, {}, {}
     for cs in ("analytic", "mesh"):
         v = values(W=0.3, steps=3, countersurface=cs)
-        prob, control, out = _sweep(v, loads)
-        res[cs], trials[cs] = out, control.trials
-        prob.s.value = prob.s.value * 0.97
-        rep = prob.solve()
+        (_, film, problem), control, _, out = _sweep(v, loads)
+        res[cs], trials[cs] = out, control.record
+        film.counterpart.offset.value[1] *= 0.97
+        rep = problem.solve()
         rates[cs] = (rep.iterations, _orders(rep.residuals)[-1])
     v = values(countersurface="mesh")
     R, h_e = v["R"], 0.04 / 2 ** v["mesh"]
@@ -224,12 +257,12 @@ def test_jfo_conserves_mass_and_matches_penalty():
     """cavitation=jfo: inflow = outflow on S; load/p_max as penalty (Swift–Stieber limit)."""
     res = {}
     for cav in ("penalty", "jfo"):
-        prob, control, out = _sweep(values(W=0.1, steps=1, cavitation=cav), [0.1])
-        res[cav] = (prob, out[-1])
-    prob, m = res["jfo"]
-    pen = res["penalty"][1]
-    q_in, q_out = prob.consistent_fluxes()
-    prof = MPI.COMM_WORLD.bcast(prob.profile(), root=0)
+        (_, film, problem), *_, out = _sweep(values(W=0.1, steps=1, cavitation=cav), [0.1])
+        res[cav] = (film, problem, out[-1])
+    film, problem, m = res["jfo"]
+    pen = res["penalty"][2]
+    q_in, q_out = film.consistent_fluxes()
+    prof = MPI.COMM_WORLD.bcast(film.profile(), root=0)
     print("penalty", pen, "\njfo    ", m, "\nfluxes", q_in, q_out, "lam max", prof["lam"].max())
     # mass balance of the discrete JFO problem (with the inter-element Couette jumps)
     assert q_in > 0 and abs(q_out - q_in) <= 1e-8 * q_in
@@ -240,7 +273,7 @@ def test_jfo_conserves_mass_and_matches_penalty():
     r = i + int(np.nonzero(prof["lam"][i:] > 1e-8)[0][0])
     h_r = 0.5 * (prof["h"][r - 1] + prof["h"][r])
     print("h_min", m["h_min"], "h_rupture", h_r)
-    assert q_in == pytest.approx(0.5 * prob.U * h_r, rel=2e-2)
+    assert q_in == pytest.approx(0.5 * values()["U"] * h_r, rel=2e-2)
     # a cavitated zone downstream (λ up to 1 − h_rupture/h_outlet), p ≥ 0 there
     assert prof["lam"].max() > 0.5 and prof["p"].min() > -1e-10 * m["p_max"]
     # flooded inlet: JFO ruptures with p = ∂p/∂m = 0 (58), the penalty converges to
@@ -250,8 +283,8 @@ def test_jfo_conserves_mass_and_matches_penalty():
         assert m[key] == pytest.approx(pen[key], rel=2e-3), key
     assert m["W"] == pytest.approx(pen["W"], rel=1e-5)
     # semismooth Newton on {u, u_s, p, g, λ}: a nearby solution (cylinder 3 % closer)
-    prob.s.value = prob.s.value * 0.97
-    report = prob.solve()
+    film.counterpart.offset.value[1] *= 0.97
+    report = problem.solve()
     orders = _orders(report.residuals)
     print("JFO residuals", report.residuals, "orders", orders)
     # measured: 4 residuals 1.9e-5, 2.7e-6, 3.4e-10, 2.5e-13 (round-off): superlinear,
@@ -268,9 +301,8 @@ def test_intermediate_lubrication_surface():
     res = {}
     for key, alpha, inter in (("default", 0.0, False), (0.0, 0.0, True), (0.5, 0.5, True),
                               (1.0, 1.0, True)):
-        prob = Case.build(values(W=W, steps=1, alpha=alpha), intermediate=inter)
-        LoadControl(prob).find_position(W)
-        res[key] = prob.measures()
+        *_, out = _sweep(values(W=W, steps=1, alpha=alpha), [W], intermediate=inter)
+        res[key] = out[-1]
     print({k: (r["h_min"], r["p_max"], r["friction_coefficient"]) for k, r in res.items()})
     h0 = res[0.0]["h_min"]
     thin = h0 / np.sqrt(2 * values()["R"] * h0)  # h/ℓ, ℓ = √(2Rh) ≈ 0.69 mm
@@ -298,16 +330,18 @@ def test_intermediate_lubrication_surface():
 def test_speed_continuation_friction_increases():
     """Sweep of μU at fixed load with step cutting: hydrodynamic friction grows with μU."""
     v = values(W=0.1, steps=1)
-    prob, control, out = _sweep(v, [0.1])
-    curve = [(v["mu"] * prob.U, out[-1]["friction_coefficient"], out[-1]["h_min"])]
+    run, _, inner, out = _sweep(v, [0.1])
+    curve = [(v["mu"] * v["U"], out[-1]["friction_coefficient"], out[-1]["h_min"])]
+    speeds = [3000.0, 9000.0]
 
-    def on_step(U, its, final):
-        if final:
-            m = prob.measures()
+    def on_speed():
+        m = Case.measures(run, v)
+        U = float(run[0].velocity.value[0])
+        if U in speeds:  # a speed of the list reached (not an intermediate, cut step)
             assert m["W"] == pytest.approx(0.1, rel=1e-5)
             curve.append((v["mu"] * U, m["friction_coefficient"], m["h_min"]))
 
-    control.speed_sweep([3000.0, 9000.0], lambda U: Case.speed_scales(v, U), on_step)
+    Case.speed_sweep(run, v, inner, 0.1, speeds, on_speed)
     print("muU, friction, h_min", curve)
     assert len(curve) == 3
     mu_f = [c[1] for c in curve]

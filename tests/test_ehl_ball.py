@@ -1,6 +1,6 @@
 """Soft-EHL ball on a rigid plane (chapter §8.3, 3D): Hamrock–Dowson film, finite → linear
-limit, quadratic Newton, tangential pressure gradient against the exact one on the sphere,
-serial = 2 ranks."""
+limit, exact coupled tangent (Taylor) and quadratic Newton, tangential pressure gradient
+against the exact one on the sphere, serial = 2 ranks."""
 
 import json
 import math
@@ -14,11 +14,13 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
+from taylor import problem_taylor_orders
+from tribofx.meshes.ball import cap_height
 
 from tribofx.cases.ehl_ball import EHLBallCase as Case
-from tribofx.ehl_ball_problem import hamrock_dowson
-from tribofx.newton import convergence_orders
 from tribofx.params import resolve
+from tribofx.problem import convergence_orders
+from tribofx.references import hamrock_dowson, hertz
 
 
 def values(**overrides):
@@ -28,22 +30,22 @@ def values(**overrides):
 
 
 def _solve(v):
-    prob = Case.build(v)
+    run = Case.build(v)
     out = []
 
-    def on_step(W, its, final):
-        out.append(dict(prob.measures(), iterations=its))
+    def on_step(W, its):
+        out.append(dict(Case.measures(run, v), iterations=its))
 
-    Case.load_sweep(prob, v, on_step)
-    return prob, out
+    Case.load_sweep(run, v, on_step)
+    return run, out
 
 
 @pytest.fixture(scope="module")
 def light_load():
     """W = 2 N (a ≈ 0.18 R), μU = 1e-4 N/mm, element size a/8 near the contact."""
     v = values(W=2.0, steps=1, mesh=1)
-    prob, out = _solve(v)
-    return v, prob, out[-1]
+    run, out = _solve(v)
+    return v, run, out[-1]
 
 
 @pytest.mark.mpi
@@ -54,18 +56,18 @@ def test_film_matches_hamrock_dowson(light_load):
     W = 4 N on meshes 0, 1, 2: 25.1, 30.4, 33.3 µm, observed order 0.9), so it
     is also extrapolated (Richardson, order 1) from meshes 0 and 1.
     """
-    v, prob, m = light_load
+    v, run, m = light_load
     hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], Case.e_star(v))
     m0 = _solve(dict(v, mesh=0))[1][-1]
     h_ext = 2 * m["h_central"] - m0["h_central"]
     d_c, d_m, d_x = m["h_central"] / hc - 1, m["h_min"] / hm - 1, h_ext / hc - 1
     print(f"h_c = {m['h_central']:.5g} mm (HD {hc:.5g}, {100 * d_c:+.1f} %), "
           f"h_min = {m['h_min']:.5g} mm (HD {hm:.5g}, {100 * d_m:+.1f} %), dofs "
-          f"{prob.solver.num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
+          f"{run[2].num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
           f"extrapolated h_c = {h_ext:.5g} mm ({100 * d_x:+.1f} %)")
     # equilibrium of the solved state (not the load controller's own stopping test): the
     # reaction of the held mid-plane, from the bulk stresses, balances the film force
-    reaction, bound = _mid_plane_reaction(prob, v), _equilibrium_bound(prob, m["W"])
+    reaction, bound = _mid_plane_reaction(run, v), _equilibrium_bound(run, m["W"])
     print(f"mid-plane reaction {reaction!r} N, film force {m['W']!r} N, bound {bound:.2e}")
     assert abs(reaction + m["W"]) <= bound
     # refinement thickens the central film (under-resolved inlet on coarse meshes)
@@ -83,16 +85,105 @@ def test_film_matches_hamrock_dowson(light_load):
 
 def test_newton_quadratic(light_load):
     """Coupled Newton at a nearby plane position (0.5 % of the approach) converges quadratically."""
-    v, prob, _ = light_load
-    saved = prob.state()
-    prob.s.value = prob.s.value * 1.005
-    report = prob.solve()
+    v, (_, film, problem), _ = light_load
+    saved = problem.state()
+    film.counterpart.offset.value[2] *= 1.005  # the plane 0.5 % of the approach higher
+    report = problem.solve()
     orders = convergence_orders(report.residuals)
-    prob.restore(saved)
+    problem.restore(saved)
     print("residuals", report.residuals, "orders", orders)
     assert report.iterations <= 8
     # exact UFL tangent: the last observed orders are ≈ 2 (> 1.6 leaves room for round-off)
     assert orders[-1] > 1.6
+
+
+@pytest.mark.mpi
+def test_coupled_tangent_taylor(light_load):
+    """Exact tangent of the ball EHL residual (u, u_s, p, g) at a solved state.
+
+    Remainder of the first-order Taylor expansion along a random direction is
+    O(ε²): S = P(γ_l) on the plane, A, ds_S, v̄ and h depend on u_s, the traction
+    (Nanson, j = J|F⁻ᵀN|, Couette (μ/h)·2U, Poiseuille (h/2) grad_S p) on u, p, g.
+    The pressure is made positive (|p| + 0.01 p0, 0 on the rim, which is not
+    perturbed) so that the penalty kink min(p, 0) is not crossed; perturbations
+    (1e-3 of the scales × ε ≤ 1e-2) keep h > 0.
+    """
+    v, (ball, film, problem), _ = light_load
+    saved = problem.state()
+    p0 = Case.scales(v)[1]
+    # positive pressure except on the rim (p = 0 there: the state satisfies its
+    # Dirichlet conditions, and the rim is not perturbed, p = 0 being the kink)
+    rim = fem.locate_dofs_geometrical(film.Q, lambda X: np.abs(
+        X[2] - cap_height(v["R"], math.radians(v["theta_l"]))) < 1e-6 * v["R"])
+    film.p.x.array[:] = np.abs(film.p.x.array) + 0.01 * p0
+    film.p.x.array[rim] = 0.0
+    rng = np.random.default_rng(3 + MPI.COMM_WORLD.rank)
+    dirs = []
+    for f, c in zip(problem.u, (1e-3, 1e-3, 1e-3 * p0, 1e-3 * p0 / v["R"])):
+        d = fem.Function(f.function_space)
+        d.x.array[:] = c * rng.uniform(-1, 1, d.x.array.shape)
+        d.x.scatter_forward()
+        dirs.append(d)
+    dirs[2].x.array[rim] = 0.0
+    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-2)
+    problem.restore(saved)
+    print("ball EHL Taylor orders", orders, "remainders", rem)
+    # exact Jacobian: order 2 up to round-off; a missing dependence gives 1
+    assert orders.min() > 1.8
+
+
+@pytest.mark.mpi
+def test_meshed_plane_tangent_taylor(light_load):
+    """Exact tangent with a meshed countersurface in 3D (C++ lubrication projection).
+
+    The same ball and state as :func:`test_coupled_tangent_taylor`, the plane a
+    gmsh triangulation projected at the nodes of Γ_l before every evaluation
+    (``Problem.residual_at`` refreshes the kernel data at each perturbed state):
+    the kernel's ∂P/∂x, ∂ν/∂x and ∂²P/∂x² must give an O(ε²) remainder.  The
+    residual itself equals the analytic plane's (flat facets are exact).
+    """
+    from tribofx.meshes.obstacles import plane_surface_mesh
+
+    from tribofx.body import Body
+    from tribofx.interfaces import Film
+    from tribofx.obstacles import rigid_surface_mesh
+    from tribofx.problem import Problem
+
+    v, (ball, film, problem), _ = light_load
+    twin = Body(ball.mesh, ball.facet_tags, ball.names, "3d", ball.materials[None],
+                name="twin")
+    twin.add_dirichlet("midplane", np.zeros(3))
+    twin.add_dirichlet("symmetry", 0.0, component=1)
+    R = v["R"]
+    meshed = Film(twin, "lubricated", rigid_surface_mesh(*plane_surface_mesh(3, (-R, R), R / 4)),
+                  v["mu"], V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
+                  eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
+                  quadrature_degree=2, name="meshed")
+    rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v["theta_l"]))) < 1e-6 * R  # noqa
+    meshed.add_pressure_bc(rim)
+    twin_problem = Problem([twin, meshed], name="meshed_taylor")
+    for a, b in zip(twin_problem.u, problem.u):   # same mesh, same spaces: the solved state
+        a.x.array[:] = b.x.array
+    meshed.counterpart.offset.value[:] = film.counterpart.offset.value
+    b_m, _ = twin_problem.assemble()
+    b_a, _ = problem.assemble()
+    # flat facets: the kernel reproduces the plane to round-off
+    assert abs(b_m.norm() - b_a.norm()) <= 1e-8 * b_a.norm() + 1e-14
+    p0 = Case.scales(v)[1]
+    rim_dofs = fem.locate_dofs_geometrical(meshed.Q, rim)
+    meshed.p.x.array[:] = np.abs(meshed.p.x.array) + 0.01 * p0
+    meshed.p.x.array[rim_dofs] = 0.0
+    rng = np.random.default_rng(5 + MPI.COMM_WORLD.rank)
+    dirs = []
+    for f, c in zip(twin_problem.u, (1e-3, 1e-3, 1e-3 * p0, 1e-3 * p0 / R)):
+        d = fem.Function(f.function_space)
+        d.x.array[:] = c * rng.uniform(-1, 1, d.x.array.shape)
+        d.x.scatter_forward()
+        dirs.append(d)
+    dirs[2].x.array[rim_dofs] = 0.0
+    orders, rem = problem_taylor_orders(twin_problem, dirs, eps0=1e-2)
+    print("meshed plane Taylor orders", orders, "remainders", rem)
+    assert orders.min() > 1.8
 
 
 @pytest.mark.mpi
@@ -119,7 +210,7 @@ def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
     """
     from tribofx.forms.ehl import tangential_gradient_constraint
 
-    v, prob, _ = light_load
+    v, (_, film, _), _ = light_load
     R = v["R"]
     Xc = np.array([0.0, 0.0, R])
     c = np.array([0.3, -0.7, 0.2])
@@ -129,15 +220,15 @@ def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
     def grad_f(y):  # (n, 3)
         return c[None, :] + y @ A
 
-    p = fem.Function(prob.Q)
+    p = fem.Function(film.Q)
     p.interpolate(lambda x: c @ x + 0.5 * np.einsum("in,ij,jn->n", x, A, x))
-    dg = ufl.TestFunction(prob.G)
+    dg = ufl.TestFunction(film.G)
     b = fem.assemble_vector(fem.form(tangential_gradient_constraint(
-        fem.Function(prob.G), p, dg, None, prob.dx_s, prob.grad_gamma)))
-    m = fem.assemble_vector(fem.form(ufl.dot(ufl.as_vector([1.0, 1.0, 1.0]), dg) * prob.dx_s))
-    sub = prob.sub
+        fem.Function(film.G), p, dg, None, film.dx, film.grad_gamma)))
+    m = fem.assemble_vector(fem.form(ufl.dot(ufl.as_vector([1.0, 1.0, 1.0]), dg) * film.dx))
+    sub = film.sub
     nc = sub.topology.index_map(sub.topology.dim).size_local
-    cell_dofs = prob.G.dofmap.list[:nc, 0]
+    cell_dofs = film.G.dofmap.list[:nc, 0]
     g = (-b.array.reshape(-1, 3) / m.array.reshape(-1, 3))[cell_dofs]
     X = sub.geometry.x[sub.geometry.dofmaps[0][:nc]]  # (cells, 3 vertices, 3)
     # precondition: the cap nodes lie on the sphere (round-off)
@@ -220,20 +311,21 @@ def test_serial_equals_two_processes(tmp_path):
         assert v2 == pytest.approx(v1, rel=1e-4)
 
 
-def _pressure_radius(prob):
+def _pressure_radius(run):
     """Pressure-weighted contact radius a_p = (5/2 ∫ p r² dS / ∫ p dS)^{1/2} (mm, all ranks).
 
     r = in-plane distance of the current cap point from the contact axis; for
     the Hertz pressure p0 (1 − r²/a²)^{1/2} on a flat disc a_p = a exactly.
     """
-    x = ufl.SpatialCoordinate(prob.sub) + prob.u_s
+    film = run[1]
+    x = ufl.SpatialCoordinate(film.sub) + film.u_s
     r2 = x[0] ** 2 + x[1] ** 2
-    num, den = (MPI.COMM_WORLD.allreduce(fem.assemble_scalar(fem.form(f * prob.dx_s)),
-                                         op=MPI.SUM) for f in (prob.p * r2, prob.p))
+    num, den = (MPI.COMM_WORLD.allreduce(fem.assemble_scalar(fem.form(f * film.dx)),
+                                         op=MPI.SUM) for f in (film.p * r2, film.p))
     return math.sqrt(2.5 * num / den)
 
 
-def _equilibrium_bound(prob, W):
+def _equilibrium_bound(run, W):
     """Bound (N) on |mid-plane reaction + film force W| of a solved state.
 
     The z rows of the momentum residual of the half ball sum to ∫ P : Grad e_z (= 0)
@@ -243,23 +335,25 @@ def _equilibrium_bound(prob, W):
     coupled Newton system at the solved state, n_z the number of z rows), plus
     assembly round-off (1e-12 W).
     """
-    b, _ = prob.solver.assemble()
-    n_z = prob.V.dofmap.index_map.size_global
+    ball, _, problem = run
+    b, _ = problem.assemble()
+    n_z = ball.V.dofmap.index_map.size_global
     return 2 * math.sqrt(n_z) * b.norm() + 1e-12 * abs(W)
 
 
-def _mid_plane_reaction(prob, v):
+def _mid_plane_reaction(run, v):
     """Vertical reaction (N, whole ball) of the held mid-plane: the weak residual at its dofs."""
     from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
     from tribofx.meshes.ball import MIDPLANE
 
+    ball = run[0]
     mu, lm = lame_parameters(v["E"], v["nu"])
-    w = fem.Function(prob.V)
-    dofs = fem.locate_dofs_topological(prob.V.sub(2), 2, prob.facet_tags.find(MIDPLANE))
+    w = fem.Function(ball.V)
+    dofs = fem.locate_dofs_topological(ball.V.sub(2), 2, ball.facet_tags.find(MIDPLANE))
     w.x.array[dofs] = 1.0
     mat = "linear" if v["model"] == "linear" else "neo-hookean"
-    form = internal_virtual_work(prob.u, w, "3d", mat, {"mu": mu, "lmbda": lm},
-                                 ufl.Measure("dx", prob.mesh))
+    form = internal_virtual_work(ball.u, w, "3d", mat, {"mu": mu, "lmbda": lm},
+                                 ufl.Measure("dx", ball.mesh))
     return 2.0 * MPI.COMM_WORLD.allreduce(fem.assemble_scalar(fem.form(form)), op=MPI.SUM)
 
 
@@ -271,23 +365,21 @@ def test_large_load_40N():
     equilibrium, contact radius against Hertz, and that the finite/linear
     difference is much larger than at 4 N (the chapter: 10–15 % at 40 N).
     """
-    from tribofx.ehl_ball_problem import hertz_ball
-
     res = {}
     for W in (4.0, 40.0):
         for model in ("finite", "linear"):
             v = values(W=W, steps=1, mesh=0, U=3e5, model=model,
                        theta_l=55.0 if W > 10 else 40.0)
-            prob, out = _solve(v)
+            run, out = _solve(v)
             m = out[-1]
-            m["a_p"] = _pressure_radius(prob)
-            m["reaction"] = _mid_plane_reaction(prob, v)
-            m["bound"] = _equilibrium_bound(prob, m["W"])
+            m["a_p"] = _pressure_radius(run)
+            m["reaction"] = _mid_plane_reaction(run, v)
+            m["bound"] = _equilibrium_bound(run, m["W"])
             res[W, model] = m
             print(W, model, {k: m[k] for k in ("W", "reaction", "h_central", "h_min", "p_max",
                                                "a_p", "friction_coefficient", "iterations")})
     v = values(W=40.0, theta_l=55.0)
-    a_h = hertz_ball(40.0, v["R"], Case.e_star(v))[0]
+    a_h = hertz(40.0, v["R"], v["E"], v["nu"]).a
     for model in ("finite", "linear"):
         m = res[40.0, model]
         # global equilibrium of the solved state: the mid-plane reaction balances the

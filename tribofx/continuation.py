@@ -24,29 +24,32 @@ import numpy as np
 
 from .problem import NewtonDivergence
 
-__all__ = ["ConstantParameter", "Continuation"]
+__all__ = ["ConstantParameter", "Continuation", "HeldResponse"]
 
 
 class ConstantParameter:
     """A scalar held by a ``dolfinx.fem.Constant`` (or one ``index`` of a vector Constant).
 
     ``on_set(value)``, if given, runs after each change (e.g. scales that depend on it).
+    ``scale``: the Constant holds ``scale``·value (e.g. a plane sliding at 2U driven by
+    the entrainment speed U).
     """
 
-    def __init__(self, constant, index=None, on_set=None):
+    def __init__(self, constant, index=None, on_set=None, scale=1.0):
         self.constant, self.index, self.on_set = constant, index, on_set
+        self.scale = float(scale)
 
     def get(self):
         """Return the current value."""
         v = self.constant.value
-        return float(v if self.index is None else v[self.index])
+        return float(v if self.index is None else v[self.index]) / self.scale
 
     def set(self, value):
         """Set the value (and run ``on_set``)."""
         if self.index is None:
-            self.constant.value = float(value)
+            self.constant.value = self.scale * float(value)
         else:
-            self.constant.value[self.index] = float(value)
+            self.constant.value[self.index] = self.scale * float(value)
         if self.on_set is not None:
             self.on_set(float(value))
 
@@ -62,12 +65,17 @@ class Continuation:
         rtol: relative tolerance of :meth:`reach` on the response.
         max_trials: secant trials of one :meth:`reach`, or cuts of one :meth:`march` step.
         record: list receiving the Newton iteration counts of each converged step.
+        admissible: callable → bool; a converged solve whose state it rejects (e.g. a
+            film with h ≤ 0) is treated as a failed one (restored, step cut).
+        max_step: largest parameter change of one trial of :meth:`reach` (None: any),
+            which then runs as a step-limited secant (see there).
     """
 
     def __init__(self, problem, parameter, response=None, verbose=False, rtol=1e-6,
-                 max_trials=25, record=None):
+                 max_trials=25, record=None, admissible=None, max_step=None):
         self.problem, self.parameter, self.response = problem, parameter, response
         self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
+        self.admissible, self.max_step = admissible, max_step
         self.record = record if record is not None else []
         self.done = parameter.get()
         self.history = []  # (parameter, response) of converged steps
@@ -76,7 +84,25 @@ class Continuation:
     # -- helpers -------------------------------------------------------------------
     def _solve_at(self, value):
         self.parameter.set(value)
-        return self.problem.solve(verbose=self.verbose).iterations
+        iterations = self.problem.solve(verbose=self.verbose).iterations
+        if self.admissible is not None and not self.admissible():
+            raise NewtonDivergence(f"converged to an inadmissible state at {value:g}")
+        return iterations
+
+    def _distinct(self, ra, rb):
+        """Two responses differ by more than the tolerance (a secant through them is sound)."""
+        return abs(rb - ra) > self.rtol * max(abs(ra), abs(rb))
+
+    def history_slope(self):
+        """Secant d(response)/d(parameter) of the last two converged steps (None if unknown).
+
+        None also when their responses agree to the tolerance (steps of another
+        parameter at a held response).
+        """
+        if len(self.history) < 2:
+            return None
+        (pa, ra), (pb, rb) = self.history[-2:]
+        return (rb - ra) / (pb - pa) if pb != pa and self._distinct(ra, rb) else None
 
     def _accept(self, iterations):
         self.problem.commit()
@@ -100,13 +126,16 @@ class Continuation:
             f.x.array[:] = x1 + s * (x1 - x0)
 
     # -- strategies ------------------------------------------------------------------
-    def march(self, target, steps=1, predictor=True, min_fraction=2.0**-10):
+    def march(self, target, steps=1, predictor=True, min_fraction=2.0**-10, geometric=False):
         """Natural-parameter continuation from the current value to ``target``.
 
         ``steps`` equal increments; a failed step is cut in half (down to
         ``min_fraction`` of the first increment).  Returns the responses (or None)
-        of the converged steps.
+        of the converged steps.  ``geometric``: equal ratios instead (a positive
+        parameter such as a speed; a failed ratio is replaced by its square root).
         """
+        if geometric:
+            return self._march_geometric(target, steps, predictor, min_fraction)
         start = self.parameter.get()
         step0 = (target - start) / steps
         step = step0
@@ -131,6 +160,67 @@ class Continuation:
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
         return out
 
+    def _march_geometric(self, target, steps, predictor, min_fraction):
+        if not (target > 0 and self.done > 0):
+            raise ValueError("a geometric march needs positive parameter values")
+        lstep0 = np.log(target / self.done) / steps
+        lstep, out = lstep0, []
+        while abs(np.log(target / self.done)) > 1e-12:
+            value = self.done * np.exp(lstep)
+            if (np.log(value / target)) * np.sign(lstep0) > 0:
+                value = target
+            saved = self.problem.state()
+            if predictor:
+                self._predict(value)
+            try:
+                its = self._solve_at(value)
+            except NewtonDivergence:
+                self.problem.restore(saved)
+                self.parameter.set(self.done)
+                lstep *= 0.5
+                if abs(lstep) < min_fraction * abs(lstep0):
+                    raise
+                continue
+            out.append(self._accept(its))
+            lstep = min(abs(lstep) * 2, abs(lstep0)) * np.sign(lstep0)
+        return out
+
+    def advance(self, target, step, growth=1.5, min_fraction=1e-4):
+        """Response-controlled march: move the parameter until the response passes ``target``.
+
+        Each step changes the parameter by ``step`` from the last converged state
+        (its unknowns are the initial iterate, no extrapolation); a step whose
+        solve fails, is inadmissible or does not move the response towards
+        ``target`` is restored and halved, a converged one lets the step grow by
+        ``growth`` (never beyond ``step``).  Once a step passes ``target`` it is hit
+        by :meth:`reach` (secant through the two bracketing converged states).
+        Displacement control: the response (e.g. a load) is an output of each
+        step.  Raises NewtonDivergence (state: last converged) when the step falls
+        below ``min_fraction``·``step``.  Returns the parameter reached.
+        """
+        r = self.response()
+        sign = np.sign(target - r)
+        h = float(step)
+        while (target - r) * sign > self.rtol * abs(target):
+            saved = self.problem.state()
+            try:
+                its = self._solve_at(self.done + h)
+                if (self.response() - r) * sign <= 0:
+                    raise NewtonDivergence("the response does not move towards the target")
+            except NewtonDivergence:
+                self.problem.restore(saved)
+                self.parameter.set(self.done)
+                h *= 0.5
+                if abs(h) < min_fraction * abs(step):
+                    raise NewtonDivergence(f"response-controlled march stalled at {r:g} "
+                                           f"(step {h:.2e})") from None
+                continue
+            r = self._accept(its)
+            h = np.sign(step) * min(abs(step), growth * abs(h))
+        if abs(r - target) <= self.rtol * abs(target):
+            return self.done
+        return self.reach(target, slope=self.history_slope())
+
     def reach(self, target, guess=None, slope=None):
         """Find the parameter at which the response equals ``target``; returns it.
 
@@ -140,12 +230,20 @@ class Continuation:
         through the origin of the loading); the later updates are secants.
         Raises NewtonDivergence (state restored) when ``max_trials`` trials do
         not reach the target.
+
+        With ``max_step`` (step-limited secant) a failed trial is restored to the
+        last successful trial (or the entry state) and the bound on the step is
+        halved; each success lets it grow by 1.5, up to ``max_step``.  Without it
+        a failed trial restores the entry state and moves the parameter halfway
+        back to the last converged value.
         """
         saved = self.problem.state()
         iterations = []
         d0, f0 = self.done, None
+        bound, base = self.max_step, (saved, self.parameter.get())
         if guess is None:
-            if len(self.history) >= 2 and self.history[-1][1] != self.history[-2][1]:
+            if len(self.history) >= 2 and self._distinct(self.history[-2][1],
+                                                         self.history[-1][1]):
                 (pa, ra), (pb, rb) = self.history[-2:]
                 guess = pb + (target - rb) * (pb - pa) / (rb - ra)
             else:
@@ -155,9 +253,17 @@ class Continuation:
             try:
                 iterations.append(self._solve_at(d1))
             except NewtonDivergence:
-                self.problem.restore(saved)
-                d1 = 0.5 * (self.done + d1)
+                if bound is None:
+                    self.problem.restore(saved)
+                    d1 = 0.5 * (self.done + d1)
+                else:
+                    self.problem.restore(base[0])
+                    bound = 0.5 * abs(d1 - base[1])
+                    d1 = base[1] + np.sign(d1 - base[1]) * bound
                 continue
+            if bound is not None:
+                base = (self.problem.state(), d1)
+                bound = min(self.max_step, 1.5 * bound)
             f1 = self.response()
             if abs(f1 - target) <= self.rtol * abs(target):
                 break
@@ -168,6 +274,8 @@ class Continuation:
                 d_new = d1 * (target / f1) ** 0.7 if f1 > 0 else 2 * d1
             else:
                 d_new = d1 - (f1 - target) * (d1 - d0) / (f1 - f0)
+            if bound is not None and abs(d_new - d1) > bound:
+                d_new = d1 + np.sign(d_new - d1) * bound
             d0, f0, d1 = d1, f1, d_new
         else:
             self.problem.restore(saved)
@@ -176,3 +284,87 @@ class Continuation:
                                    "trials")
         self._accept(iterations)
         return d1
+
+
+class HeldResponse:
+    """A problem whose every solve re-finds a parameter so that a response keeps a target.
+
+    Wraps a response-controlled :class:`Continuation` ``inner`` (its problem, its
+    parameter, e.g. the position of a countersurface, and its response, e.g. the
+    load): :meth:`solve` runs ``inner.reach(target)``.  It is a problem for an
+    outer :class:`Continuation`, in one of two ways:
+
+    * the held target is itself the outer parameter (``get``/``set``): the outer
+      :meth:`Continuation.march` then steps the load with step cutting, each step
+      found by the inner secant (load control by a position);
+    * another parameter (e.g. a speed) is marched with the response held.
+
+    Args:
+        inner: the response-controlled continuation.
+        target: the held response value.
+        slope: first-update estimate of d(response)/d(parameter) (a float or a
+            callable of the target; used until ``inner`` has a converged history).
+        guess: callable → first trial of the inner parameter (default: the inner
+            secant extrapolation).
+        predict: callable(target) setting a predicted state before the first trial;
+            if that solve fails, the inner search restarts from the converged state.
+        transform: the inner response is ``transform`` of the held quantity (e.g. 1/W,
+            nearly linear in the position of a rigid film); the target is held in the
+            quantity itself, the slope is of the transformed response.
+    """
+
+    def __init__(self, inner, target, slope=None, guess=None, predict=None, transform=None):
+        self.inner, self.target = inner, float(target)
+        self._slope, self.guess, self.predict = slope, guess, predict
+        self.transform = transform if transform is not None else (lambda value: value)
+
+    @property
+    def u(self):
+        """Unknowns of the inner problem (for predictors)."""
+        return self.inner.problem.u
+
+    # -- parameter protocol (the target) -----------------------------------------------
+    def get(self):
+        """Return the held target."""
+        return self.target
+
+    def set(self, value):
+        """Set the held target."""
+        self.target = float(value)
+
+    # -- problem protocol ----------------------------------------------------------------
+    def _reach(self):
+        slope = self.inner.history_slope()
+        if slope is None:
+            slope = self._slope(self.target) if callable(self._slope) else self._slope
+        target = self.transform(self.target)
+        guess = self.guess() if self.guess is not None else None
+        if guess is None and len(self.inner.history) == 1 and slope:
+            # one converged point: first trial along the estimated slope
+            guess = self.inner.done + (target - self.inner.history[-1][1]) / slope
+        self.inner.reach(target, guess=guess, slope=slope)
+        return self.inner.record[-1]
+
+    def solve(self, verbose=False):
+        """Reach the target; returns a report whose ``iterations`` lists the Newton trials."""
+        from .problem import NewtonReport
+
+        if self.predict is not None:
+            converged = self.inner.problem.state()
+            self.predict(self.target)
+            try:
+                return NewtonReport(iterations=self._reach())
+            except NewtonDivergence:
+                self.inner.problem.restore(converged)
+        return NewtonReport(iterations=self._reach())
+
+    def state(self):
+        """State of the inner problem (its parameter included)."""
+        return self.inner.problem.state()
+
+    def restore(self, state):
+        """Restore a :meth:`state`."""
+        self.inner.problem.restore(state)
+
+    def commit(self):
+        """Do nothing: the inner search has committed its converged step."""

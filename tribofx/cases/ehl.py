@@ -3,46 +3,32 @@
 A rigid cylinder of radius R slides at speed U over an elastic layer of
 thickness H bonded to a rigid substrate; the top t_c of the layer is a stiffer
 coating.  The lubricant film between them carries the load W per unit length.
-The problem is steady in the frame of the cylinder: the layer material flows
-through the deformed mesh with v = F V, V = (U, 0) (eq. 26), the cylinder is
-at rest.  The lubrication surface is S = P(γ_l), the projection of the deformed
-layer surface onto the cylinder (§7.2); the film thickness h, the mean velocity
-v̄ = ½(I − ν⊗ν)FV and the surface operators of S follow the deformation and
-enter the exact Newton tangent (forms/ehl.py).  Cavitation: ``penalty`` on
-p < 0 (Swift–Stieber/Reynolds conditions in the limit) or ``jfo`` (mass
-conserving, §6.5: void fraction λ, weak form (57) on S, nodal complementarity,
-flooded inlet).  ``alpha`` moves the lubrication surface to
-S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23).  The fluid traction (46) (pressure,
-optionally the Couette and Poiseuille shear) loads the layer.  ``speeds``
-continues the solution at the final load in the sliding speed (step cutting in
-log U) and records friction coefficient, h_min, p_max against μU
-(``speed_*`` results, ``friction_vs_speed.png``); the other results are those of
-the load sweep at ``U``.
+Configuration on the core: a :class:`~tribofx.body.Body` (the layer, moving
+through its mesh with v = F V, V = (U, 0), eq. 26: the frame of the cylinder), a
+:class:`~tribofx.interfaces.Film` on Γ_l against a rigid cylinder (closed form,
+or an interval3 arc projected by the C++ kernel, ``countersurface=mesh``), one
+:class:`~tribofx.problem.Problem` and :class:`~tribofx.continuation.Continuation`
+controllers: the cylinder's vertical position is found by a secant for each load
+(:class:`~tribofx.continuation.HeldResponse`), the loads W/steps, …, W are
+marched with step cutting, ``speeds`` continues the final load in U (geometric
+steps, cut on failure) and records friction coefficient, h_min, p_max against μU.
 
-Default data (in the spirit of the chapter; mm, N, s, MPa):
+Film options: ``cavitation`` penalty (Swift–Stieber limit) or jfo (void
+fraction λ, weak form (57), flooded inlet at X = −x_l); ``alpha`` moves the
+lubrication surface to S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23); ``shear`` the
+Couette and Poiseuille tractions; ``model=linear`` the classical EHL model (with
+a small-strain layer); ``compare=linear`` (Fig. 22) or ``alpha`` (Fig. 23) runs
+the load sweep per variant, results prefixed ``finite_``/``linear_`` or
+``alpha0_``/``alpha0.5_``/``alpha1_``; :func:`mesh_convergence` gives h_min,
+p_max on mesh levels 0, 1, 2 at one load.
 
-* cylinder R = 10 mm;  layer H = 5 mm, E = 10 MPa;  coating t_c = 0.1 mm,
-  E_c = 100 MPa;  ν = 0.45 both, compressible neo-Hookean;
-* viscosity μ = 1e-7 MPa·s (0.1 Pa·s), U = 1000 mm/s, so μU = 1e-4 N/mm
-  (= 0.1 N/m, Fig. 22 of the chapter);
-* load W from W/steps to W = 1 N/mm in ``steps`` = 10 increments;
-* lubricated zone |X| ≤ x_l = 3 mm of a layer of half width 3H.
+Defaults (mm, N, s, MPa): R = 10; H = 5, E = 10; t_c = 0.1, E_c = 100; ν = 0.45,
+neo-Hookean; μ = 1e-7 (0.1 Pa·s), U = 1000, μU = 1e-4 N/mm (0.1 N/m, Fig. 22);
+W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
 
-``model=linear`` is the classical (geometrically linear) EHL model for
-comparison (dashed lines of Fig. 22).  The load is controlled by the vertical
-position of the cylinder, found by a secant iteration per load step.
-
-``compare=linear`` runs the load sweep for both models in one run and
-``compare=alpha`` for α = 0, 0.5, 1 (finite model); the results of each variant
-carry its name as prefix (``finite_``, ``linear_``, ``alpha0_``, ``alpha0.5_``,
-``alpha1_``; listed in ``variants``), the profiles of all variants at every load
-share one plot (``profiles_finite_vs_linear.png``, ``profiles_alpha.png``, as
-the chapter's Figs. 22–23).  :func:`mesh_convergence` gives h_min, p_max on
-mesh levels 0, 1, 2 at one load.
-
-Results: minimum film h_min, central film h_central (below the cylinder axis),
-peak pressure p_max, friction coefficient (tangential film force on the layer /
-W), per load step; profiles p(x), h(x) (``profiles.png``); VTX of u and p.
+Results: h_min, h_central (below the cylinder axis), p_max, friction coefficient
+(tangential film force on the layer / W), clearance per load step; profiles
+(``profiles.png``), VTX of u and p.
 """
 
 import math
@@ -50,22 +36,27 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..ehl_problem import EHLProblem, LoadControl
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
+from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
-from ..newton import NewtonDivergence
+from ..obstacles import rigid_cylinder, rigid_surface_mesh
 from ..params import InputError, Param
+from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence"]
+
+NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
 
 
 def cylinder_arc(R, n, alpha):
     """Lower arc θ ∈ [−π/2 − α, −π/2 + α] of the circle of radius R about 0 (mm).
 
-    ``n`` interval3 facets (v0, v1, midpoint, nodes on the circle), numbered
-    counter-clockwise so that the facet normal (t_y, −t_x) points out of the
-    cylinder, into the film.  Returns (nodes, facets, "interval3").
+    ``n`` interval3 facets (v0, v1, midpoint), counter-clockwise so that the facet
+    normal (t_y, −t_x) points out of the cylinder, into the film.
+    Returns (nodes, facets, "interval3").
     """
     th = np.linspace(-0.5 * math.pi - alpha, -0.5 * math.pi + alpha, 2 * n + 1)
     nodes = R * np.c_[np.cos(th), np.sin(th)]
@@ -132,11 +123,12 @@ class EHLCylinderLayerCase:
                   ("alpha0.5", "α = 0.5", {"alpha": 0.5}),
                   ("alpha1", "α = 1 (S = γ_l)", {"alpha": 1.0})),
     }
-    #: plot file of each ``compare`` option
     COMPARE_PLOT = {"linear": "profiles_finite_vs_linear.png", "alpha": "profiles_alpha.png"}
+    UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
+             "friction_coefficient": "-", "clearance": "mm", "U": "mm/s", "mu_U": "N/mm"}
 
-    @staticmethod
-    def validate(v):
+    @classmethod
+    def validate(cls, v):
         """Geometric consistency of the layer and the lubricated zone."""
         if v["t_c"] >= v["H"]:
             raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than H = {v['H']} mm")
@@ -145,7 +137,7 @@ class EHLCylinderLayerCase:
         if v["x_l"] > 0.8 * v["R"]:
             raise InputError(f"x_l = {v['x_l']} mm must be < 0.8 R (film beyond the cylinder)")
         try:
-            speeds = EHLCylinderLayerCase.speed_list(v)
+            speeds = cls.speed_list(v)
         except ValueError as err:
             raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
         if any(not U > 0 for U in speeds):
@@ -163,47 +155,12 @@ class EHLCylinderLayerCase:
         return [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
 
     @staticmethod
-    def scales(v, W=None):
-        """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at load W."""
-        W = v["W"] if W is None else W
-        h_r = rigid_clearance(W, v["mu"], v["U"], v["R"])
+    def scales(v, W=None, U=None):
+        """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at W and U."""
+        W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
+        h_r = rigid_clearance(W, v["mu"], U, v["R"])
         ell = math.sqrt(2 * v["R"] * h_r)
-        p_s = 6 * v["mu"] * v["U"] * ell / h_r**2
-        eps = v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3
-        return h_r, p_s, eps
-
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False):
-        """Mesh and :class:`EHLProblem` (unloaded; the cylinder at the rigid clearance).
-
-        ``alpha = 0`` uses the closed-form S = P(γ_l) unless ``intermediate`` (then
-        the general S_α kinematics with α = 0, for checking that they coincide).
-        """
-        h_fine = 0.04 / 2 ** v["mesh"]
-        H = v["H"]
-        msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], h_fine, H / 5, comm)
-
-        def mat(E):
-            mu, lm = lame_parameters(E, v["nu"])
-            return ("neo-hookean", {"mu": mu, "lmbda": lm})
-
-        materials = {LAYER: mat(v["E"])}
-        if v["t_c"] > 0:
-            materials[COATING] = mat(v["E_c"])
-        cs = None
-        if v["countersurface"] == "mesh":
-            cs = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))
-        W1 = v["W"] / v["steps"]
-        h_r, p_s, eps = cls.scales(v, W1)
-        prob = EHLProblem(msh, ct, ft, materials, LUBRICATED, BOTTOM, v["R"], v["U"], v["mu"],
-                          model=v["model"], shear=v["shear"], supg=v["supg"],
-                          eps=eps if v["penalty"] > 0 else None, p_c=p_s, h_ref=h_r,
-                          degree=v["degree"], s0=h_r, countersurface=cs,
-                          cavitation=v["cavitation"],
-                          alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None)
-        if v["cavitation"] == "jfo":
-            prob.jfo_initial_guess()
-        return prob
+        return h_r, 6 * v["mu"] * U * ell / h_r**2, v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3
 
     @staticmethod
     def arc_half_angle(v):
@@ -211,256 +168,230 @@ class EHLCylinderLayerCase:
         return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Load sweep W/steps … W (per variant of ``compare``); records the film measures."""
-        if v["compare"] != "none":
-            return cls._run_compare(v, record, progress, verbose)
-        return cls._run_single(v, record, progress, verbose)
+    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False):
+        """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
-    @classmethod
-    def _run_compare(cls, v, record, progress, verbose):
-        """One load sweep per variant of ``compare``, results prefixed ``<variant>_``.
-
-        All variants share the mesh parameters and the loads; the profiles of
-        every variant go to one plot (:attr:`COMPARE_PLOT`).  The problem of the
-        first variant is returned (VTX output); a variant that fails ends the run
-        after recording what has converged.
+        ``alpha = 0`` uses S = P(γ_l) unless ``intermediate`` (then the general S_α
+        kinematics with α = 0, for checking that they coincide).
         """
-        targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
-        variants, first = {}, None
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
-        record.data["variant_newton_iterations"] = {}
-        for name, label, over in cls.COMPARE[v["compare"]]:
-            vv = dict(v, **over)
-            prob = cls.build(vv)
-            if first is None:
-                first = prob
-                record.data["num_dofs"] = prob.solver.num_dofs
-            steps = {k: [] for k in cls.STEP_KEYS}
-            profiles, its_all = [], []
-            record.data["variant_newton_iterations"][name] = its_all
+        H = v["H"]
+        msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"], H / 5,
+                                   comm)
+        law = "linear" if v["model"] == "linear" else "neo-hookean"
 
-            def on_step(W, its, final, prob=prob, vv=vv, steps=steps, profiles=profiles,
-                        its_all=its_all):
-                its_all.append(its)
-                record.data["newton_iterations"].append(its)
-                if not final:
-                    return
-                m = prob.measures()
-                for k in steps:
-                    steps[k].append(m[k])
-                prof = prob.profile()
-                if prob.mesh.comm.rank == 0:
-                    xx = prof["y"][:, 0] if vv["model"] == "finite" else prof["X"]
-                    profiles.append({"W": W, "x": xx, "p": prof["p"], "h": prof["h"]})
-                if progress is not None:
-                    progress.update(1)
+        def mat(E):
+            mu, lm = lame_parameters(E, v["nu"])
+            return (law, {"mu": mu, "lmbda": lm})
 
-            try:
-                LoadControl(prob, verbose=verbose).sweep(targets, on_step)
-            except NewtonDivergence as err:
-                err.problem = prob
-                raise
-            finally:
-                cls._report_steps(steps, record, prefix=f"{name}_")
-                variants[name] = {"label": label, "model": vv["model"], "alpha": vv["alpha"],
-                                  "steps": profiles}
-                if prob.mesh.comm.rank == 0:
-                    record.profile = {"compare": v["compare"], "variants": variants}
-        return first
-
-    STEP_KEYS = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
-    STEP_UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
-                  "friction_coefficient": "-", "clearance": "mm"}
+        materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0 else {})
+        layer = Body(msh, ft, NAMES, "plane_strain", materials, cell_tags=ct,
+                     degree=v["degree"], velocity=(v["U"], 0.0), name="layer")
+        layer.add_dirichlet("bottom", np.zeros(2))
+        if v["countersurface"] == "mesh":
+            nodes, facets, ctype = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))
+            cylinder = rigid_surface_mesh(nodes + [0.0, v["R"]], facets, ctype)
+        else:
+            cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
+        h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
+        film = Film(layer, "lubricated", cylinder, v["mu"], model=v["model"], shear=v["shear"],
+                    supg=v["supg"], cavitation=v["cavitation"],
+                    eps=eps if v["penalty"] > 0 else None, p_c=p_s,
+                    alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
+                    film_scale=h_r, speed_scale=v["U"])
+        if v["cavitation"] == "jfo":
+            film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
+        else:
+            film.add_pressure_bc()
+        problem = Problem([layer, film], name="ehl_cylinder", max_it=25)
+        film.counterpart.offset.value[1] = h_r
+        film.jfo_initial_guess()
+        return layer, film, problem
 
     @classmethod
-    def _report_steps(cls, steps, record, prefix=""):
-        """Final-load values and per-step lists ``<prefix>steps_<key>`` of a load sweep."""
-        if steps["W"]:
-            for k in ("h_min", "h_central", "p_max", "friction_coefficient"):
-                record.result(prefix + k, steps[k][-1], cls.STEP_UNITS[k])
-            record.result(prefix + "W_reached", steps["W"][-1], "N/mm")
-        for k, vals in steps.items():
-            record.result(f"{prefix}steps_{k}", list(vals), cls.STEP_UNITS[k])
+    def load_control(cls, run, v, on_step=None, verbose=False, record=None):
+        """Load control by the cylinder position: (outer load march, inner position search).
 
-    @classmethod
-    def _run_single(cls, v, record, progress=None, verbose=False):
-        """Load sweep of one model (``compare=none``), optionally continued in speed."""
-        prob = cls.build(v)
-        record.data["num_dofs"] = prob.solver.num_dofs
-        control = LoadControl(prob, verbose=verbose)
-        steps = {k: [] for k in ("W", "h_min", "h_central", "p_max", "friction_coefficient",
-                                 "clearance")}
-        profiles = []
+        The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
+        first update) finds the position s at which the film carries the held
+        load; the outer march steps
+        the load with step cutting.  ``on_step()`` runs at every converged load;
+        ``record`` receives the Newton iterations of the trials of each load.
+        """
+        _, film, problem = run
+        inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
+                             response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
+                             verbose=verbose)
+        held = HeldResponse(inner, 0.0, transform=lambda W: 1 / W, slope=cls.slope(run, v))
 
-        def on_step(W, its, final):
-            m = prob.measures()
-            for k in steps:
-                steps[k].append(m[k])
-            record.data["newton_iterations"].append(its)
-            if final:
-                prof = prob.profile()
-                if prob.mesh.comm.rank == 0:
-                    xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"]
-                    profiles.append({"W": W, "x": xx, "p": prof["p"], "h": prof["h"]})
-                if progress is not None:
-                    progress.update(1)
+        def response():
+            if on_step is not None:
+                on_step()
+            return held.target
 
-        targets = [v["W"] * (k + 1) / v["steps"] for k in range(v["steps"])]
-        speed = {k: [] for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max",
-                                 "clearance")}
-
-        def on_speed(U, its, final):
-            record.data["newton_iterations"].append(its)
-            if final:
-                m = prob.measures()
-                speed["U"].append(U)
-                speed["mu_U"].append(v["mu"] * U)
-                for k in ("friction_coefficient", "h_min", "p_max", "clearance"):
-                    speed[k].append(m[k])
-                if progress is not None:
-                    progress.update(1)
-
-        try:
-            control.sweep(targets, on_step)
-            speeds = cls.speed_list(v)
-            if speeds:
-                for k in ("friction_coefficient", "h_min", "p_max", "clearance"):
-                    speed[k].append(steps[k][-1])
-                speed["U"].append(v["U"])
-                speed["mu_U"].append(v["mu"] * v["U"])
-                control.speed_sweep(speeds, lambda U: cls.speed_scales(v, U), on_speed)
-        except NewtonDivergence as err:
-            err.problem = prob  # restored to the last converged load (or speed) step
-            raise
-        finally:
-            cls._report(prob, steps, profiles, v, record)
-            if len(speed["U"]) > 1:
-                units = {"U": "mm/s", "mu_U": "N/mm", "friction_coefficient": "-",
-                         "h_min": "mm", "p_max": "MPa", "clearance": "mm"}
-                for k, vals in speed.items():
-                    record.result(f"speed_{k}", list(vals), units[k])
-                if prob.mesh.comm.rank == 0 and record.profile is not None:
-                    record.profile["speed"] = {k: list(vals) for k, vals in speed.items()}
-        return prob
-
-    @classmethod
-    def speed_scales(cls, v, U):
-        """(p_c, ε, h_ref) of the problem at the final load W and speed U."""
-        h_r, p_s, eps = cls.scales(dict(v, U=U), v["W"])
-        return p_s, eps, h_r
-
-    @classmethod
-    def _report(cls, prob, steps, profiles, v, record):
-        cls._report_steps(steps, record)
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        if prob.mesh.comm.rank == 0 and profiles:
-            record.profile = {"model": v["model"], "steps": profiles}
+        return Continuation(held, held, response=response, record=record), inner
 
     @staticmethod
-    def vtx_fields(prob):
+    def slope(run, v):
+        """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
+        U = run[0].velocity.value
+        return lambda W: 1 / rigid_clearance(1.0, v["mu"], U[0], v["R"])
+
+    @classmethod
+    def measures(cls, run, v):
+        """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
+        layer, film, _ = run
+        prof = film.profile()
+        res = None
+        if layer.mesh.comm.rank == 0:
+            xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
+            res = {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
+                   "p_max": float(prof["p"].max()), "x_p_max": float(xx[np.argmax(prof["p"])]),
+                   "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}}
+        res = layer.mesh.comm.bcast(res, root=0)
+        f = film.force()
+        res.update(W=-float(f[1]), tangential_force=float(f[0]),
+                   friction_coefficient=abs(float(f[0])) / -float(f[1]) if f[1] < 0 else math.nan,
+                   clearance=float(film.counterpart.offset.value[1]))
+        return res
+
+    @classmethod
+    def sweep(cls, v, record, progress=None, verbose=False, prefix=""):
+        """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``."""
+        run = cls.build(v)
+        layer, film, problem = run
+        record.data["num_dofs"] = problem.num_dofs
+        steps, speed, profiles = [], [], []
+
+        def on_step():
+            m = cls.measures(run, v)
+            steps.append(m)
+            profiles.append(dict(m["profile"], W=m["W"]))
+            if progress is not None:
+                progress.update(1)
+
+        its = []
+        if prefix:
+            record.data.setdefault("variant_newton_iterations", {})[prefix[:-1]] = its
+        loads, inner = cls.load_control(run, v, on_step, verbose, its)
+        try:
+            loads.march(v["W"], v["steps"], predictor=False)
+            if cls.speed_list(v):
+                speed.append(dict(steps[-1], U=v["U"]))
+                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), lambda: speed.append(
+                    dict(cls.measures(run, v), U=layer.velocity.value[0])), its)
+        except NewtonDivergence as err:
+            err.problem = run  # restored to the last converged load (or speed) step
+            raise
+        finally:
+            record.data["newton_iterations"].extend(its)
+            cls._report(steps, speed, profiles, v, record, prefix)
+        return run
+
+    @classmethod
+    def speed_sweep(cls, run, v, inner, W, speeds, on_speed=None, record=None):
+        """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
+
+        Each speed of ``speeds`` (mm/s) is reached by a geometric march (a failed
+        step is cut in log U) with the load held by the cylinder position;
+        penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
+        every converged speed step.
+        """
+        layer, film, _ = run
+
+        def set_speed(U):
+            h_r, p_s, eps = cls.scales(v, U=U)
+            film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
+
+        held = HeldResponse(inner, W, transform=lambda W: 1 / W,
+                            slope=cls.slope(run, v))
+        sweep = Continuation(held, ConstantParameter(layer.velocity, 0, on_set=set_speed),
+                             response=on_speed, record=record)
+        for U in speeds:
+            sweep.march(U, predictor=False, geometric=True)
+
+    @classmethod
+    def _report(cls, steps, speed, profiles, v, record, prefix):
+        keys = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
+        if steps:
+            for k in keys[1:5]:
+                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
+            record.result(prefix + "W_reached", steps[-1]["W"], "N/mm")
+        for k in keys:
+            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
+        for m in speed:
+            m["mu_U"] = v["mu"] * m["U"]
+        if len(speed) > 1:
+            for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max", "clearance"):
+                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
+        if MPI.COMM_WORLD.rank == 0:
+            prof = record.profile or {"variants": {}}
+            prof["variants"][prefix[:-1] or v["model"]] = {
+                "label": prefix[:-1] or v["model"], "steps": profiles,
+                "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
+            record.profile = prof
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False):
+        """Load sweep W/steps … W (per variant of ``compare``); records the film measures."""
+        record.result("mu_U", v["mu"] * v["U"], "N/mm")
+        if v["compare"] == "none":
+            return cls.sweep(v, record, progress, verbose)
+        record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
+        first = None
+        for name, label, over in cls.COMPARE[v["compare"]]:
+            run = cls.sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_")
+            first = first or run
+            if MPI.COMM_WORLD.rank == 0:
+                record.profile["variants"][name]["label"] = label
+                record.profile["compare"] = v["compare"]
+        return first
+
+    @staticmethod
+    def vtx_fields(run):
         """Displacement (bulk) and film pressure (Γ_l submesh)."""
-        return {"displacement": [prob.u], "pressure": [prob.p]}
+        layer, film, _ = run
+        return {"displacement": [layer.u], "pressure": [film.p]}
 
     @classmethod
     def plot(cls, profile, outdir):
-        """Pressure and film-thickness profiles at every load step (``profiles.png``).
+        """``profiles.png`` (or the ``compare`` plot) and ``friction_vs_speed.png``."""
+        from ..plots import plot_film_profiles, plot_friction_vs_speed
 
-        With ``compare``: all variants on the same axes (:attr:`COMPARE_PLOT`).
-        """
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        if "variants" in profile:
-            cls._plot_compare(profile, outdir, plt)
+        variants = profile["variants"]
+        if "compare" in profile:
+            title = ("coated layer: finite deformation vs geometrically linear"
+                     if profile["compare"] == "linear" else "coated layer: lubrication surface S_α")
+            plot_film_profiles(None, outdir / cls.COMPARE_PLOT[profile["compare"]], title,
+                               variants)
             return
-
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
-        for k, st in enumerate(profile["steps"]):
-            c = plt.cm.viridis(k / max(1, len(profile["steps"]) - 1))
-            a1.plot(st["x"], st["p"], color=c, lw=1, label=f"W = {st['W']:.3g} N/mm")
-            a2.plot(st["x"], 1e3 * np.asarray(st["h"]), color=c, lw=1)
-        a1.set_ylabel("pressure p (MPa)")
-        a1.legend(fontsize=7, ncol=2)
-        a1.grid(alpha=0.3)
-        a1.set_title(f"coated layer, model = {profile['model']}")
-        a2.set_ylabel("film thickness h (µm)")
-        a2.set_yscale("log")
-        a2.set_xlabel("x (mm, cylinder frame)")
-        a2.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(outdir / "profiles.png", dpi=120)
-        plt.close(fig)
-        if "speed" in profile:
-            sp = profile["speed"]
-            fig, ax = plt.subplots(figsize=(5, 4))
-            ax.loglog(1e3 * np.asarray(sp["mu_U"]), sp["friction_coefficient"], "o-")
-            ax.set_xlabel("μU (N/m)")
-            ax.set_ylabel("friction coefficient")
-            ax.grid(alpha=0.3, which="both")
-            fig.tight_layout()
-            fig.savefig(outdir / "friction_vs_speed.png", dpi=120)
-            plt.close(fig)
-
-    @classmethod
-    def _plot_compare(cls, profile, outdir, plt):
-        """Figs. 22–23 of the chapter: p(x) and h(x) per load (colour) and variant (line)."""
-        from matplotlib.lines import Line2D
-
-        styles = ("-", "--", ":", "-.")
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
-        handles = []
-        for j, var in enumerate(profile["variants"].values()):
-            ls = styles[j % len(styles)]
-            n = len(var["steps"])
-            for k, st in enumerate(var["steps"]):
-                c = plt.cm.viridis(k / max(1, n - 1))
-                lab = f"W = {st['W']:.3g} N/mm" if j == 0 else None
-                a1.plot(st["x"], st["p"], color=c, ls=ls, lw=1, label=lab)
-                a2.plot(st["x"], 1e3 * np.asarray(st["h"]), color=c, ls=ls, lw=1)
-            handles.append(Line2D([], [], color="k", ls=ls, lw=1, label=var["label"]))
-        a1.set_ylabel("pressure p (MPa)")
-        a1.legend(fontsize=7, ncol=2)
-        a1.grid(alpha=0.3)
-        a1.set_title("coated layer: " + ("finite deformation vs geometrically linear"
-                                         if profile["compare"] == "linear"
-                                         else "lubrication surface S_α"))
-        a2.legend(handles=handles, fontsize=7)
-        a2.set_ylabel("film thickness h (µm)")
-        a2.set_yscale("log")
-        a2.set_xlabel("x (mm, cylinder frame)")
-        a2.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(outdir / cls.COMPARE_PLOT[profile["compare"]], dpi=120)
-        plt.close(fig)
+        (name, var), = variants.items()
+        plot_film_profiles(var["steps"], outdir / "profiles.png",
+                           f"coated layer, model = {name}")
+        if len(var["speed"][0]) > 1:
+            plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")
 
 
 def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORLD):
     """Film measures at one load W for the mesh levels ``levels`` (all else as in ``v``).
 
-    Each level is a separate problem (element size 0.04/2^level mm along Γ_l),
-    loaded in ``steps`` increments (default ``v["steps"]``) to W (default
-    ``v["W"]``).  Returns a list of dicts (level, h_fine, num_dofs, h_min,
-    h_central, p_max, newton_iterations) and, from the second level on, the
-    differences ``d_h_min``, ``d_p_max`` to the previous level (relative to the
-    finer value).
+    Each level (element size 0.04/2^level mm along Γ_l) is loaded in ``steps``
+    increments (default ``v["steps"]``) to W (default ``v["W"]``).  Returns a list
+    of dicts (level, h_fine, num_dofs, h_min, h_central, p_max, newton_iterations)
+    and, from the second level on, the differences ``d_h_min``, ``d_p_max`` to the
+    previous level (relative to the finer value).
     """
     W = v["W"] if W is None else W
     steps = v["steps"] if steps is None else steps
     rows = []
     for level in levels:
         vv = dict(v, mesh=int(level), W=W, steps=steps)
-        prob = EHLCylinderLayerCase.build(vv, comm)
-        control = LoadControl(prob)
-        control.sweep([W * (k + 1) / steps for k in range(steps)])
-        m = prob.measures()
+        run = EHLCylinderLayerCase.build(vv, comm)
+        loads, _ = EHLCylinderLayerCase.load_control(run, vv)
+        loads.march(W, steps, predictor=False)
+        m = EHLCylinderLayerCase.measures(run, vv)
         row = {"level": int(level), "h_fine": 0.04 / 2 ** int(level),
-               "num_dofs": prob.solver.num_dofs, "h_min": m["h_min"],
-               "h_central": m["h_central"], "p_max": m["p_max"],
-               "newton_iterations": [list(t) for t in control.trials]}
+               "num_dofs": run[2].num_dofs, "h_min": m["h_min"], "h_central": m["h_central"],
+               "p_max": m["p_max"], "newton_iterations": list(loads.record)}
         if rows:
             for k in ("h_min", "p_max"):
                 row[f"d_{k}"] = abs(row[k] - rows[-1][k]) / abs(row[k])

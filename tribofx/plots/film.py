@@ -1,0 +1,111 @@
+"""Plots of lubricating-film results: pressure/film profiles, film maps, friction against μU."""
+
+from pathlib import Path
+
+import numpy as np
+
+from .common import pyplot
+
+__all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed"]
+
+
+def plot_film_profiles(steps, path, title, variants=None):
+    """p(x) and h(x) per load step (colour), optionally per variant (line style).
+
+    ``steps``: list of {"W", "x", "p", "h"} of one model; ``variants``: instead a
+    dict {name: {"label", "steps"}} drawn on the same axes (the chapter's Figs. 22–23).
+    """
+    from matplotlib.lines import Line2D
+
+    plt = pyplot()
+    styles = ("-", "--", ":", "-.")
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5) if variants is None else (7, 7),
+                                 sharex=True)
+    groups = variants.values() if variants is not None else [{"label": None, "steps": steps}]
+    handles = []
+    for j, var in enumerate(groups):
+        ls = styles[j % len(styles)]
+        n = len(var["steps"])
+        for k, st in enumerate(var["steps"]):
+            c = plt.cm.viridis(k / max(1, n - 1))
+            lab = f"W = {st['W']:.3g} N/mm" if j == 0 else None
+            a1.plot(st["x"], st["p"], color=c, ls=ls, lw=1, label=lab)
+            a2.plot(st["x"], 1e3 * np.asarray(st["h"]), color=c, ls=ls, lw=1)
+        if var["label"] is not None:
+            handles.append(Line2D([], [], color="k", ls=ls, lw=1, label=var["label"]))
+    a1.set_ylabel("pressure p (MPa)")
+    a1.legend(fontsize=7, ncol=2)
+    a1.grid(alpha=0.3)
+    a1.set_title(title)
+    if handles:
+        a2.legend(handles=handles, fontsize=7)
+    a2.set_ylabel("film thickness h (µm)")
+    a2.set_yscale("log")
+    a2.set_xlabel("x (mm, cylinder frame)")
+    a2.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
+    plt.close(fig)
+
+
+def plot_friction_vs_speed(curves, path):
+    """Friction coefficient against μU (N/m), one curve per {label: (mu_U, friction)}."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(5, 4))
+    styles = ("-", "--", "-.")
+    for j, (label, (muU, f)) in enumerate(curves.items()):
+        order = np.argsort(muU)
+        ax.loglog(1e3 * np.asarray(muU)[order], np.asarray(f)[order], "o" + styles[j % 3],
+                  label=label)
+    ax.set_xlabel("μU (N/m)")
+    ax.set_ylabel("friction coefficient")
+    if len(curves) > 1 or next(iter(curves)) is not None:
+        ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
+    plt.close(fig)
+
+
+def plot_ball_film(variants, W, outdir):
+    """Ball-on-plane film: ``film_map.png`` and ``centerline.png`` in ``outdir``.
+
+    The map shows h over the (x, y) projection of the first variant (mirrored in
+    y), the centre line p and h on y = 0 of every variant.
+    """
+    import matplotlib.tri as mtri
+
+    plt = pyplot()
+    outdir = Path(outdir)
+    var = next(iter(variants.values()))
+    xy = np.asarray(var["xy"])
+    x, y = np.r_[xy[:, 0], xy[:, 0]], np.r_[xy[:, 1], -xy[:, 1]]
+    h = 1e3 * np.r_[var["h"], var["h"]]
+    fig, ax = plt.subplots(figsize=(6, 5))
+    cs = ax.tricontourf(mtri.Triangulation(x, y), np.minimum(h, 4 * float(np.min(h))),
+                        levels=30, cmap="viridis")
+    fig.colorbar(cs, ax=ax, label="film thickness h (µm, clipped)")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm, inlet on the left)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(f"{var['label']}: W = {W:g} N")
+    fig.tight_layout()
+    fig.savefig(outdir / "film_map.png", dpi=120)
+    plt.close(fig)
+
+    styles = ("-", "--", "-.")
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
+    for j, var in enumerate(variants.values()):
+        a1.plot(var["x_axis"], var["p_axis"], ls=styles[j % 3], label=var["label"])
+        a2.plot(var["x_axis"], 1e3 * np.asarray(var["h_axis"]), ls=styles[j % 3])
+    a1.set_ylabel("pressure p (MPa)")
+    a1.legend(fontsize=8)
+    a1.grid(alpha=0.3)
+    a1.set_title(f"symmetry line y = 0, W = {W:g} N")
+    a2.set_ylabel("film thickness h (µm)")
+    a2.set_yscale("log")
+    a2.set_xlabel("x (mm)")
+    a2.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(outdir / "centerline.png", dpi=120)
+    plt.close(fig)
