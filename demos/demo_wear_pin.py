@@ -1,86 +1,195 @@
-"""Pin-on-flat finite wear with the implicit (monolithic ALE) scheme — chapter §4.4.
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: light
+# ---
 
-What it illustrates
--------------------
-A neo-Hookean plane-strain pin (width W = 2 mm, height H = 2 mm, rounded tip of
-radius R_tip = 4 mm) is pressed by a uniform traction q = 2 MPa on its top face
-onto a rigid plane sliding at V = 10 mm/s.  Contact is frictionless, the lateral
-faces are constrained laterally.  Archard wear flattens the tip; the worn shape
-after t = 1000 s is obtained in 5 implicit steps of Δt = 200 s (Fig. 3, right).
+# # Finite wear of a hyperelastic pin: the implicit (monolithic ALE) scheme
+#
+# This demo illustrates how to:
+#
+# * give a hyperelastic **Body** a *shape field* w (``shape=True``): every unknown
+#   lives on the initial, never-moved mesh, the worn configuration is X = X̂ + w
+#   and the body's virtual work is written on it;
+# * add a **Contact** interface (frictionless, augmented Lagrangian, nodal
+#   multiplier λ_N on the contact facet submesh) and a **Wear** interface on top
+#   of it (Archard's law and the discrete shape evolution law with its
+#   multiplier ζ on the same submesh);
+# * integrate the slow time with the **Stepper**: the implicit θ-scheme (θ = 1)
+#   solves (u, λ_N, w, ζ) in one monolithic Newton problem with the exact UFL
+#   tangent, cuts a failed step and writes a checkpoint every step;
+# * load the pin by a **Continuation** of its load factor;
+# * check the worn area against Archard's law integrated over time.
+#
+# ## Equations (chapter §3–§4)
+#
+# A neo-Hookean plane-strain pin (width W, height H, rounded tip of radius R)
+# is pressed by a uniform traction q on its top face onto a rigid plane sliding
+# at speed V (chapter §4.4, Figs. 2–4).  With G = I + Grad w the deformation
+# relative to the worn body is F = (I + Grad u) G⁻¹ (eq. 19); volumes carry
+# det G and areas Nanson's vector cof(G) N̂.  The residuals are
+#
+# $$
+# \int_{\hat\Omega} P(F) : (\mathrm{Grad}\,\delta u\, G^{-1}) \det G \, d\hat V
+# - \int_{\hat\Gamma_t} T^*\!\cdot\delta u\, j_w\, d\hat S + G_c(u, \lambda_N) = 0,
+# $$
+#
+# the auxiliary elasticity of w with the reaction ∫ ζ δw·a dŜ, and the discrete
+# shape evolution law (28) with the nominal Archard rate (14) in pressure form,
+# Ẇ j_w = k V |λ_N|, imposed nodally on Γ̂_c:
+#
+# $$
+# (w_{n+1} - w_n)\cdot a = -\Delta t\, k V |\lambda_{N,n+\theta}|, \qquad
+# a = \int_0^1 \mathrm{cof}\,G(s)\,\hat N \, ds ,
+# $$
+#
+# the step average of the Nanson vector, so that (w − w_n)·a dŜ is the exact
+# area swept by a boundary facet.  Then the worn area ∫(1 − det G) dV̂ equals
+# Σ Δt ∫ k V |λ_N| dS, and by vertical equilibrium ∫ |λ_N| dS = qW (the sides
+# are held in x only, the top traction is dead): the worn area is k (qW) V t,
+# whatever the pressure distribution.
+#
+# ## Changing it
+#
+# ``theta=0.0`` in ``Wear`` gives the explicit scheme (stable only for
+# Δt < Δt_cr ∼ h/E, eq. 31); ``law="spatial"`` the spatial Archard law (16);
+# ``k_grad`` a depth-graded coefficient; ``friction`` in ``Contact`` (with
+# ``slip="eulerian"`` and a body velocity) the dissipation form (14).  The
+# same configuration is the case ``wear-pin`` (``tribofx run wear-pin``), whose
+# ``study=dt`` reproduces the error-versus-Δt study of Fig. 4.  Units: mm, N, s, MPa.
 
-Equations (all on the initial, never-moved mesh)
-------------------------------------------------
-Three configurations (eq. 19): X = X̂ + w (worn, shape mapping Ψ), x = X̂ + u.
-With G = I + Grad w the deformation relative to the worn body is
-F = (I + Grad u) G⁻¹, volumes carry det G and areas Nanson's cof(G) N̂.
-
-* Equilibrium of the worn body, pulled back:
-  ∫ P(F) : (Grad δu G⁻¹) det G dV̂ − ∫ T*·δu j_w dŜ + G_c(u, λ) = 0,
-  with frictionless Alart–Curnier contact on the plane (multiplier λ ≤ 0, the
-  nominal traction per unit initial area).
-* Archard law, nominal form (14) in pressure form: volume worn per unit
-  initial area and time Ẇ j_w = k V |λ|.
-* Shape evolution, θ-scheme (28) with θ = 1 (backward Euler), as a nodal
-  constraint on Γ̂_c: (w − w_n)·a = −Δt k V |λ_{n+1}|, a = cof(G_{n+½}) N̂;
-  the tangential component is free and the interior of w follows from an
-  auxiliary elasticity problem (zero normal motion on sides and top).
-* (u, λ, w, ζ) are solved together by one Newton method with the exact UFL
-  tangent (ζ: multiplier of the shape constraint).
-
-How to change a parameter
--------------------------
-Edit ``OVERRIDES`` below (keys as in ``tribofx list``), e.g.
-``{"scheme": "explicit", "dt": "5"}`` for the explicit scheme with 200 steps,
-``{"E": "20"}`` for the finite-deformation regime, ``{"mesh": "2"}`` for 40×40,
-``{"law": "spatial"}`` for the spatial Archard law (15)–(16), Ẇ = (k/J) p V,
-``{"k_grad": "-5"}`` for a wear coefficient graded with depth,
-k(d) = k max(1 + k_grad·d, 0) (k_grad in 1/mm; negative: k rises towards the
-surface as in the graded layer of §5.3).  The explicit scheme is stable only for
-Δt below Δt_cr ~ h/E (eq. 31; ≈ 3.8 s at E = 640 MPa on 20×20, see
-benchmarks/bench_wear.py).
-The same run from the command line:
-``tribofx run wear-pin --set dt=200 --out results/wear-pin``.
-The error-versus-Δt study of Figs. 3–4 (explicit and implicit, Δt = 200 … 5 s,
-implicit reference Δt = 0.78125 s; error_vs_dt.png, profiles.png and the
-``study_*`` results in summary.json):
-``tribofx run wear-pin --set study=dt --set study_meshes=1 --out results/wear-pin-study``
-(about 2 min on 20×20; all meshes and moduli: benchmarks/bench_wear_study.py).
-
-Checks at the end: the worn volume equals Archard's k F V t exactly (F = q W is
-the constant normal load), the tip is flattened (contact half-width → W/2) and
-Newton converged in every step.
-"""
-
+# +
+import argparse
 import os
 
 os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
-import dolfinx_solver  # noqa: F401  (before dolfinx/petsc4py)
+import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
+import numpy as np
+import ufl
+from dolfinx import fem
 from mpi4py import MPI
+from tribofx.forms.hyperelastic import lame_parameters
+from tribofx.meshes.pin import NAMES, pin_body
 
-from tribofx.runner import run_case
+from tribofx.body import Body
+from tribofx.continuation import ConstantParameter, Continuation
+from tribofx.interfaces import Contact, Wear
+from tribofx.obstacles import rigid_plane
+from tribofx.output import write_summary, write_vtx
+from tribofx.plots import plot_wear_pin
+from tribofx.references import hertz
+from tribofx.stepper import Stepper
 
-OVERRIDES = {"scheme": "implicit", "dt": "200", "T": "1000", "mesh": "1"}
-OUT = "results/demo_wear_pin"
+parser = argparse.ArgumentParser(description="pin-on-flat finite wear demo")
+parser.add_argument("--quick", action="store_true", help="10 x 10 mesh (CI)")
+parser.add_argument("--out", default=None, help="write summary.json, plots, VTX, checkpoint")
+args, _ = parser.parse_known_args()
+comm = MPI.COMM_WORLD
+# -
 
-summary = run_case("wear-pin", OVERRIDES, out=OUT, progress=False)
-r = {k: v["value"] for k, v in summary["results"].items()}
-p = {k: v["value"] for k, v in summary["parameters"].items()}
+# ## The configuration
+#
+# W = H = 2 mm, R = 4 mm (tip height 0.127 mm), q = 2 MPa, V = 10 mm/s,
+# k = 5·10⁻⁶ mm³/(N·mm), E = 640 MPa (small-deformation regime), ν = 0.3:
+# the nominal worn area k q W V T = 0.2 mm² per mm at T = 1000 s flattens the
+# tip.  Five implicit steps of Δt = 200 s (the chapter's Fig. 3, right) on the
+# 20 × 20 structured mesh (``--quick``: 10 × 10).
 
-if MPI.COMM_WORLD.rank == 0:
-    print(f"status: {summary['status']}, wall time {summary['wall_time_s']:.1f} s, "
-          f"{summary['num_dofs']} unknowns")
-    print(" t (s)   worn area (mm²/mm)  max depth (mm)  half-width (mm)  Newton its")
-    for row in zip(r["time"], r["wear_volume"], r["max_wear_depth"], r["contact_radius"],
-                   r["newton_iterations"]):
-        print(f"{row[0]:6.0f}   {row[1]:18.6f}  {row[2]:14.5f}  {row[3]:15.4f}  {row[4]:10d}")
-    print(f"plots and fields in {OUT}/ (profiles.png, wear.png, *.bp)")
+# +
+W, H, R, q, V, k, E, nu = 2.0, 2.0, 4.0, 2.0, 10.0, 5e-6, 640.0, 0.3
+T, dt = 1000.0, 200.0
+n = 10 if args.quick else 20
+msh, facet_tags = pin_body(W, H, R, n, comm)
 
-# --- checks ---------------------------------------------------------------------
-assert summary["status"] == "ok", summary["status"]
-archard = p["k"] * p["q"] * p["W"] * p["V"] * p["T"]  # k F V t, F = q W per unit thickness
-assert abs(r["wear_volume"][-1] - archard) < 1e-9 * archard, (r["wear_volume"][-1], archard)
-assert r["contact_radius"][-1] > 0.95 * p["W"] / 2, "the tip should be worn flat"
-assert r["max_wear_depth"][-1] > 0.1, "a visible fraction of the tip (0.127 mm high) is worn"
-if MPI.COMM_WORLD.rank == 0:
-    print(f"checks passed: worn area {r['wear_volume'][-1]:.6f} = k q W V T = {archard:.6f}")
+# the body with its shape field w and the auxiliary elasticity of w (E_a = E)
+mu, lmbda = lame_parameters(E, nu)
+body = Body(msh, facet_tags, NAMES, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+            shape=True, aux=(E, 0.3))
+load = fem.Constant(msh, 0.0)  # load factor of the dead top traction (per worn area)
+body.add_traction("top", load * ufl.as_vector([0.0, -q]))
+body.add_dirichlet("sides", 0.0, component=0)  # laterally constrained, free vertically
+body.add_shape_dirichlet("sides", 0)  # the worn shape keeps the sides ...
+body.add_shape_dirichlet("top", 1)  # ... and the top face
+
+# the interfaces: contact with the rigid plane y = 0, wear on that contact
+contact = Contact(body, "contact", rigid_plane(np.zeros(2), np.array([0.0, 1.0])),
+                  rho_n=E / (W / n))
+wear = Wear(contact, k=k, speed=V, theta=1.0)
+
+# the slow time: theta = 1 -> one monolithic Problem in (u, λ_N, w, ζ)
+checkpoint = f"{args.out}/checkpoint" if args.out else None
+stepper = Stepper([body, contact, wear], wear, parameters=[load], checkpoint=checkpoint,
+                  name="demo_pin")
+# -
+
+# ## Loading and wearing
+#
+# Newton starts from a rigid translation of the pin by the Hertz approach plus
+# the compression of the shank, so that the tip nodes start in contact; the
+# Continuation drives the load factor from 0 to 1 (halving on failure).  Then
+# the stepper advances the slow time, logging the worn area, the maximum wear
+# depth and the contact half-width after every step.
+
+# +
+a = hertz(q * W, R, E, nu, line=True).a
+body.u.x.array.reshape(-1, 2)[:, 1] = -(a * a / (2 * R) + q * H / E)
+Continuation(stepper.problem, ConstantParameter(load)).march(1.0, steps=1, predictor=False)
+
+history = []
+
+
+def log(st, report):
+    area, _ = contact.measures()
+    history.append({"t": st.t, "worn_area": wear.worn_volume(), "depth": wear.max_depth() + 0.0,
+                    "half_width": area / 2, "rate": wear.wear_rate_integral(),
+                    "newton": report.iterations if report else 0})
+
+
+log(stepper, None)
+stepper.run(T, dt, on_step=log)
+if comm.rank == 0:
+    share = 100 * stepper.shape_unknown_fraction()
+    print(f"{stepper.problem.num_dofs} unknowns, {share:.0f} % of them in Ψ (w and ζ)")
+    print(" t (s)   worn area (mm²/mm)  max depth (mm)  half-width (mm)  Newton")
+    for h in history:
+        print(f"{h['t']:6.0f}   {h['worn_area']:18.8f}  {h['depth']:14.5f}  "
+              f"{h['half_width']:15.4f}  {h['newton']:6d}")
+shape = wear.gather_shape()
+if args.out:
+    write_vtx(comm, f"{args.out}/displacement.bp", [body.u, body.w])
+    write_summary(comm, f"{args.out}/summary.json", {"case": "demo_wear_pin", "n": n,
+                                                     "history": history})
+    if comm.rank == 0:
+        plot_wear_pin({"time": [h["t"] for h in history], "times": [h["t"] for h in history],
+                       "wear_volume": [h["worn_area"] for h in history],
+                       "max_wear_depth": [h["depth"] for h in history],
+                       "profiles": [shape["X_worn"].tolist()], "scheme": "implicit", "dt": dt},
+                      args.out)
+# -
+
+# ## Checks
+#
+# * Worn area = k (qW) V t at every step.  The Newton residuals are at their
+#   stopping tolerances (momentum 1e-10 G L, gap 1e-10 L, shape rows 1e-12 L):
+#   summed over the ~n contact nodes, the balance holds to ~1e-9 relative.
+# * The implicit rate is that of t_{n+1}: worn area = Σ Δt ∫ Ẇ dS (the discrete
+#   geometric conservation law of the swept Nanson vector), to the same tolerance.
+# * The tip is worn flat: the contact covers the pin width to within one element
+#   (half-width > W/2 − h), and the maximum depth exceeds the tip height 0.127 mm.
+
+# +
+t = np.array([h["t"] for h in history])
+area = np.array([h["worn_area"] for h in history])
+archard = k * q * W * V * t
+assert np.allclose(area, archard, rtol=1e-9, atol=1e-12), (area, archard)
+integral = np.concatenate([[0.0], np.cumsum(np.diff(t) * [h["rate"] for h in history[1:]])])
+assert np.allclose(area, integral, rtol=1e-9, atol=1e-12), (area, integral)
+assert history[-1]["half_width"] > W / 2 - W / n, history[-1]
+assert history[-1]["depth"] > 0.127, history[-1]
+if comm.rank == 0:
+    print(f"worn area {area[-1]:.9f} = k q W V T = {archard[-1]:.9f} mm²/mm")
+    print("demo_wear_pin: all checks passed")
+# -
