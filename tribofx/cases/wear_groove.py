@@ -1,40 +1,27 @@
 """Rigid ball sliding against an elastic half-space: wear groove (chapter §5.3, Figs. 9–10).
 
-Case ``wear-ball-halfspace``.  A rigid ball of radius R under the normal load F
-slides at speed V over an elastic half-space (ball-on-disk test, curvature of
-the track neglected), described in an Eulerian frame attached to the ball
-(§4.3): the slip velocity is the tangential part of v = F V (eqs. 26–27).
-Contact is frictionless; Archard wear in the pressure form Ẇ = k p ‖v_T‖
-(eq. 14; ``law=spatial``: eqs. 15–16) is averaged along the sliding path of
-length L per cycle (disk-track circumference).  The groove is uniform along x,
-so its shape mapping Ψ lives on one cross-section (y, z), extruded to the block.
+Case ``wear-ball-halfspace``: a rigid ball (radius R, load F) slides at speed V over
+an elastic half-space, in the Eulerian frame of the ball (§4.3, slip velocity from
+v = F V, eqs. 26–27); frictionless contact, Archard wear Ẇ = k p ‖v_T‖ (eq. 14;
+``law=spatial``: eqs. 15–16) averaged along the track of length L per cycle.  The
+configuration: a :class:`tribofx.body.Body` (the 3D block; its shape field is an
+image Function, so the graded modulus can depend on the worn depth), a
+:class:`tribofx.interfaces.Contact` with a rigid sphere, a
+:class:`tribofx.interfaces.steady_wear.SteadyWear` (the groove's shape on one
+cross-section, extruded along x) and the :class:`tribofx.stepper.Stepper` (θ = 1:
+one monolithic Newton in (u, λ, w₂, ζ); θ = 0: shape step, then contact).  Half
+model (y ≥ 0), pushed against the ball by the bottom traction (F/2)/A e_z.
 
-Configuration: a :class:`tribofx.body.Body` (the 3D block, shape field an
-image :class:`dolfinx.fem.Function`, so that the graded layer's modulus can
-depend on the worn depth), a frictionless :class:`tribofx.interfaces.Contact`
-with a rigid sphere, a :class:`tribofx.interfaces.steady_wear.SteadyWear` on the
-cross-section, the slow time by :class:`tribofx.stepper.Stepper` (θ = 1: one
-monolithic Newton in (u, λ, w₂, ζ); θ = 0: the shape step, then the contact
-problem).  Half model (y ≥ 0); the block is pushed against the ball by the dead
-bottom traction (F/2)/A_bottom e_z, rollers on x = ±L_x and y = L_y.
-
-Material sets (``regime``; the chapter refers to Stupkiewicz 2013 for its
-values, these are chosen in its spirit):
-
-* ``small`` (default, Fig. 10): E = 200 GPa, ν = 0.3, R = 5 mm, F = 10 N → Hertz
-  a = 0.0555 mm, p₀ = 1.55 GPa; k = 10⁻⁷ mm³/(N·mm), V = 100 mm/s, L = 2π·10 mm,
-  T = 1000 s: final groove cross-section ≈ 1.6·10⁻³ mm² (half-width ≈ 0.23 mm).
-* ``finite`` (Fig. 9): E = 10 MPa → a = 1.5 mm (a/R = 0.3); k = 10⁻⁴ mm³/(N·mm).
-* ``graded``: functionally graded layer (Fig. 10b), E and k × (1 + α max(1 − d/h_L, 0))
-  with d the depth below the initial surface of the worn point
-  (:func:`tribofx.forms.wear_groove.graded_factor`).
-
-Mesh: block [−27a, 27a] × [0, 27a] × [−27a, 0], Q1 hexahedra of size
-h = 0.45 a / 2^mesh in y, z (y ≤ 5.4a, depth ≤ 1.35a) and h/2 along x
-(|x| ≤ 1.8a), geometric coarsening outside.  ``wear_volume`` is the full groove
-cross-section area (mm³/mm), ``contact_radius`` the contact half-width across
-the groove, ``contact_half_length`` along x.  Runs under mpiexec (the
-cross-section is replicated, its unknowns owned by rank 0).  Units: mm, N, s, MPa.
+``regime``: ``small`` (Fig. 10) E = 200 GPa, ν = 0.3, R = 5 mm, F = 10 N (Hertz
+a = 0.0555 mm, p₀ = 1.55 GPa), k = 10⁻⁷ mm³/(N·mm), V = 100 mm/s, L = 2π·10 mm,
+T = 1000 s (groove ≈ 1.6·10⁻³ mm², half-width ≈ 0.23 mm); ``finite`` (Fig. 9)
+E = 10 MPa (a/R = 0.3), k = 10⁻⁴.  ``graded`` (Fig. 10b): E and k × (1 + α max(1 −
+d/h_L, 0)), d the depth of the worn point below the initial surface.  Mesh: block
+[−27a, 27a] × [0, 27a] × [−27a, 0], Q1 hexahedra of size h = 0.45 a / 2^mesh in y, z
+near the contact and h/2 along x.  ``wear_volume`` is the full groove area (mm³/mm),
+``contact_radius`` the contact half-width across the groove, ``contact_half_length``
+along x.  Runs under mpiexec (the cross-section unknowns are owned by rank 0).
+Units: mm, N, s, MPa.
 """
 
 import math
@@ -217,12 +204,11 @@ class WearBallHalfspaceCase:
         stepper.verbose = verbose
         wear, contact = stepper.wear, stepper.wear.contact
         comm = wear.body.mesh.comm
-        sizes = {"u": wear.body.u, "lambda": contact.lam_n}
-        sizes = {k: f.function_space.dofmap.index_map.size_global
-                 * f.function_space.dofmap.index_map_bs for k, f in sizes.items()}
-        sizes.update(psi=len(wear.w2.x.array), zeta=len(wear.zeta.x.array))
-        record.data["num_dofs"] = sum(sizes.values())
-        record.result("dofs", sizes, "-")
+        n = {"u": wear.body.u, "lambda": contact.lam_n, "psi": wear.w2, "zeta": wear.zeta}
+        n = {key: f.function_space.dofmap.index_map.size_global
+             * f.function_space.dofmap.index_map_bs for key, f in n.items()}
+        record.data["num_dofs"] = sum(n.values())
+        record.result("dofs", n, "-")
         record.result("psi_fraction", stepper.shape_unknown_fraction(), "- (share of Ψ and ζ)")
         record.result("hertz", info, "mm, MPa")
         hist = {k: [] for k in ("time", "wear_volume", "max_wear_depth", "contact_radius",
