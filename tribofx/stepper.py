@@ -60,7 +60,7 @@ from mpi4py import MPI
 
 from .continuation import Continuation
 from .forms import wear as wf
-from .problem import NewtonDivergence, Problem
+from .problem import NewtonDivergence, Problem, _unique
 
 __all__ = ["Checkpoint", "MeshInversion", "ReciprocatingCycle", "ResponseControl",
            "StepReport", "Stepper", "bisect_critical_step"]
@@ -87,14 +87,6 @@ class StepReport:
     iterations: int = 0
     cycle_iterations: int = 0
     picard: int = 0
-
-
-def _unique(items):
-    out = []
-    for it in items:
-        if not any(it is o for o in out):
-            out.append(it)
-    return out
 
 
 class ReciprocatingCycle:
