@@ -92,6 +92,7 @@ __all__ = [
     "intermediate_surface",
     "jfo_on_surface",
     "lubrication_kinematics",
+    "planar_kinematics",
     "reynolds_on_surface",
     "tangential_gradient",
     "tangential_gradient_constraint",
@@ -251,6 +252,20 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
     return LubricationKinematics(h=h, nu=nu, y=y, A=A, stretch=abs(ufl.det(A)),
                                  vbar=0.5 * (v_layer + v_counter), v_layer=v_layer,
                                  v_counter=v_counter)
+
+
+def planar_kinematics(x, h, vbar):
+    """Kinematics of the traditional planar Reynolds equation (§6.6) between rigid surfaces.
+
+    The lubrication surface is the reference line (plane) itself: A = I,
+    ds_S = dS, grad_S = grad, div_S = div; ``h`` is the film thickness (UFL of the
+    position ``x``, mm) and ``vbar`` the mean velocity (UFL vector, mm/s).  With it
+    the Reynolds forms of this module (:func:`reynolds_on_surface`,
+    :func:`jfo_on_surface`) are those of :mod:`forms.reynolds` in the plane.
+    """
+    gdim = len(x)
+    return LubricationKinematics(h=h, nu=ufl.as_vector([0.0] * (gdim - 1) + [1.0]), y=x,
+                                 A=ufl.Identity(gdim), stretch=1, vbar=vbar, v_layer=vbar)
 
 
 def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):

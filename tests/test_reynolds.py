@@ -8,9 +8,9 @@ import pytest
 from mpi4py import MPI
 
 from tribofx.cases.reynolds import CylinderCase, SliderCase, cylinder_references
-from tribofx.newton import NewtonDivergence, convergence_orders
 from tribofx.output import RunRecord
 from tribofx.params import InputError, resolve
+from tribofx.problem import NewtonDivergence, convergence_orders
 
 
 def run_case(case, tmp_path, **overrides):
@@ -305,12 +305,12 @@ def test_serial_and_parallel_agree():
         v = resolve(CylinderCase.params, {"cavitation": "jfo", "mesh": "200"})
         prev = None
         for n in CylinderCase.levels(v["mesh"]):
-            prob = CylinderCase.build(dict(v, mesh=n), comm=comm)
+            film, problem = CylinderCase.build(dict(v, mesh=n), comm=comm)
             if prev is not None:
-                prob.set_from_profile(prev)
-            prob.solve()
-            prev = comm.bcast(prob.profile(), root=0)
-        out[name] = (prob.integral(prob.p), prob.consistent_fluxes(), prev["p"].max())
+                film.set_from_profile(prev)
+            problem.solve()
+            prev = comm.bcast(film.profile(), root=0)
+        out[name] = (film.integral(film.p), film.consistent_fluxes(), prev["p"].max())
     print(out)
     # identical discrete problem: agreement to the Newton tolerance
     assert out["world"][0] == pytest.approx(out["self"][0], rel=1e-9)

@@ -6,7 +6,7 @@ and its outputs; it follows the component protocol of :mod:`tribofx.problem`.
 """
 
 from .contact import Contact
-from .film import Film
+from .film import Film, RigidFilm
 from .wear import Wear
 
-__all__ = ["Contact", "Film", "Wear"]
+__all__ = ["Contact", "Film", "RigidFilm", "Wear"]

@@ -6,7 +6,8 @@ import numpy as np
 
 from .common import pyplot
 
-__all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed"]
+__all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed",
+           "plot_reynolds_cylinder", "plot_slider"]
 
 
 def plot_film_profiles(steps, path, title, variants=None):
@@ -108,4 +109,61 @@ def plot_ball_film(variants, W, outdir):
     a2.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(outdir / "centerline.png", dpi=120)
+    plt.close(fig)
+
+
+def plot_slider(profile, path):
+    """Slider pressure against the analytic solution, and the film thickness."""
+    from ..references import slider_reference
+
+    plt = pyplot()
+    pr = profile
+    ref = slider_reference(pr["K"], pr["L"], pr["h0"], pr["U"], pr["mu"])
+    xf = np.linspace(0, pr["L"], 400)
+    fig, (ax, axh) = plt.subplots(2, 1, figsize=(6, 5.5), sharex=True,
+                                  gridspec_kw={"height_ratios": [3, 1]})
+    ax.plot(xf, ref["pressure"](xf), "k-", label="analytic")
+    step = max(1, len(pr["x"]) // 60)
+    ax.plot(pr["x"][::step], pr["p"][::step], "o", ms=3, label="tribofx (nodal)")
+    ax.set_ylabel("pressure p (MPa)")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    axh.plot(pr["x"], 1e3 * pr["h"], "C1-")
+    axh.set_ylabel("h (µm)")
+    axh.set_xlabel("x (mm)")
+    axh.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
+    plt.close(fig)
+
+
+def plot_reynolds_cylinder(profile, path):
+    """Rigid cylinder: pressure vs half-Sommerfeld / Swift–Stieber, film, void fraction."""
+    plt = pyplot()
+    pr = profile
+    jfo = "lam" in pr
+    n = 3 if jfo else 2
+    fig, axes = plt.subplots(n, 1, figsize=(6.5, 2.2 + 2.0 * n), sharex=True,
+                             gridspec_kw={"height_ratios": [3] + [1] * (n - 1)})
+    ax = axes[0]
+    hs, ss = pr["refs"]["half_sommerfeld"], pr["refs"]["swift_stieber"]
+    ax.plot(hs["x"], hs["p"], "k--", lw=1, label="half-Sommerfeld")
+    ax.plot(ss["x"], ss["p"], "k-", lw=1, label="Swift–Stieber")
+    ax.plot(pr["x"], pr["p"], "C0.-", ms=2, lw=0.8,
+            label=f"tribofx (cavitation={pr['cavitation']})")
+    ax.axvline(ss["x_rupture"], color="0.6", lw=0.5)
+    ax.set_ylabel("pressure p (MPa)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    axes[1].plot(pr["x"], 1e3 * pr["h"], "C1-")
+    axes[1].set_ylabel("h (µm)")
+    axes[1].set_yscale("log")
+    axes[1].grid(alpha=0.3)
+    if jfo:
+        axes[2].plot(pr["x"], pr["lam"], "C2.-", ms=2, lw=0.8)
+        axes[2].set_ylabel("void fraction λ")
+        axes[2].grid(alpha=0.3)
+    axes[-1].set_xlabel("x (mm)")
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
     plt.close(fig)
