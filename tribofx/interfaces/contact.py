@@ -94,7 +94,7 @@ class Contact:
                                subdomain_id=body.tag(boundary),
                                metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
         self.geometry = self.counterpart.geometry(body.position())
-        self.friction, self.slip_kind = float(friction), slip
+        self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
         self.rho_n = rho_n
         self.rho_t = rho_t if rho_t is not None else rho_n
         self.lam_t = self.slip = None

@@ -56,7 +56,6 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import ale
-from ..forms import contact as cf
 from ..forms import wear as wf
 from ..problem import BlockTolerance
 from .contact import node_to_dof
@@ -127,9 +126,12 @@ class Wear:
 
     # -- the wear law ------------------------------------------------------------
     def slip_velocity(self):
-        """Relative slip velocity v_T of the slave points (mm/s; Eulerian slip, eqs. 26–27)."""
-        c, b = self.contact, self.body
-        return cf.eulerian_slip(b.u, c.geometry, b.velocity, c.V_master, 1.0)
+        """Relative slip velocity v_T of the slave points, the contact's slip / Δτ (mm/s).
+
+        For the Eulerian steady slip (eqs. 26–27) of the contact, v_T of the slave
+        point relative to the counterpart's surface, whatever the counterpart is.
+        """
+        return self.contact.slip / self.contact.dtau
 
     def rate(self, w, slip=None):
         """Wear rate per unit initial area Ẇ j_w (mm/s) at shape ``w`` and the contact state.
