@@ -18,8 +18,10 @@ In one run, for the case defaults (small-deformation set, mesh level 0):
    thousands of explicit steps to T is not done here);
 4. the share of the unknowns that belong to Ψ (w₂ and its multiplier ζ).
 
-Prints a table and writes benchmarks/results/wear_groove.json (run serially here;
-the case also runs under mpiexec).
+The two schemes share one configuration (body, contact, steady wear): the
+explicit :class:`tribofx.stepper.Stepper` is built on the same components with
+θ = 0.  Prints a table and writes benchmarks/results/wear_groove.json (run
+serially here; the case also runs under mpiexec).
 
     .venv/bin/python benchmarks/bench_wear_groove.py [--mesh 0] [--out FILE]
 """
@@ -37,8 +39,10 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 
 from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
-from tribofx.newton import NewtonDivergence
+from tribofx.cases.wear_groove import surface_data
 from tribofx.params import resolve
+from tribofx.problem import NewtonDivergence
+from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--mesh", type=int, default=0)
@@ -55,55 +59,65 @@ out = {"mesh": args.mesh, "T": args.T}
 
 # 1. implicit run to T ------------------------------------------------------------
 t0 = time.perf_counter()
-prob, info = Case.build(v)
+stepper, info = Case.build(v)
+wear = stepper.wear
 t_build = time.perf_counter() - t0
 t0 = time.perf_counter()
-its = Case.initial_contact(prob, info).iterations
-steps, t, probe_state = 0, 0.0, None
-while t < args.T - 1e-9:
-    h = min(args.dt, args.T - t)
-    its += sum(r.iterations for r in prob.step(h))
-    t += h
-    steps += 1
-    if probe_state is None and t >= args.t_probe - 1e-9:
-        probe_state = prob.state()
+its = Case.initial_contact(stepper, info).iterations
+probe_state = None
+
+
+def on_step(st, rep):
+    global its, probe_state
+    its += rep.iterations
+    if probe_state is None and st.t >= args.t_probe - 1e-9:
+        probe_state = st.state()
+
+
+stepper.run(args.T, args.dt, on_step=on_step)
 wall_imp = time.perf_counter() - t0
-n = {b: len(prob.fn[b].x.array) for b in ("u", "l", "w", "z")}
+n = {"u": wear.body.u.function_space.dofmap.index_map.size_global * 3,
+     "l": wear.contact.lam_n.function_space.dofmap.index_map.size_global,
+     "w": len(wear.w2.x.array), "z": len(wear.zeta.x.array)}
 out["dofs"] = n
 out["psi_fraction"] = (n["w"] + n["z"]) / sum(n.values())
-out["implicit"] = {"dt": args.dt, "steps": steps, "newton_iterations": int(its),
+out["implicit"] = {"dt": args.dt, "steps": stepper.steps, "newton_iterations": int(its),
                    "wall_time_s": wall_imp, "build_time_s": t_build,
-                   "groove_area": 2 * prob.groove_area(),
-                   "depth": float(prob.line_profile()["depth"].max())}
-print(f"implicit: {steps} steps, {its} Newton iterations, {wall_imp:.1f} s "
+                   "groove_area": 2 * wear.groove_area(),
+                   "depth": float(wear.line_profile()["depth"].max())}
+print(f"implicit: {stepper.steps} steps, {its} Newton iterations, {wall_imp:.1f} s "
       f"(+ {t_build:.1f} s build); {sum(n.values())} unknowns, Ψ share "
       f"{100 * out['psi_fraction']:.2f} %")
 
 # 2. explicit stability probe -----------------------------------------------------
-prob.restore(probe_state)
-prob.solve_contact()
-base = prob.state()
-_, ay = prob.contact_extent()
-lp = prob.line_profile()
+wear.theta = 0.0  # the same configuration, forward Euler
+explicit = Stepper(stepper.components, wear, name="groove_explicit",
+                   problem_class=wear.problem_class)
+explicit.restore(probe_state)
+explicit.problem.solve()
+base = explicit.state()
+d = surface_data(wear.contact)
+ay = float(d["X"][d["active"], 1].max())
+lp = wear.line_profile()
 contact_nodes = np.flatnonzero(lp["Y_hat"] < 0.6 * ay)
-line_dofs = prob._top2[np.argsort(prob.V2.tabulate_dof_coordinates()[prob._top2, 0])]
+X2 = wear.V2.tabulate_dof_coordinates()
+top = np.flatnonzero(np.abs(X2[:, 1]) < 1e-12)
+line_dofs = top[np.argsort(X2[top, 0])]
 alt = (-1.0) ** np.arange(len(contact_nodes))
 alt -= alt.mean()
 
 
 def amplitude(ref):
     """Alternating-mode amplitude (mm) of the depth difference to the unperturbed run ``ref``."""
-    d = prob.line_profile()["depth"][contact_nodes] - ref
-    return float((d - d.mean()) @ alt / (alt @ alt))
+    dd = wear.line_profile()["depth"][contact_nodes] - ref
+    return float((dd - dd.mean()) @ alt / (alt @ alt))
 
 
 eps = 1e-2 * float(lp["depth"].max())
-prob.w2.x.array.reshape(-1, 2)[line_dofs[contact_nodes], 1] -= eps * alt
-prob.sync()
-prob.solve_contact()
-seeded = prob.state()
+wear.w2.x.array.reshape(-1, 2)[line_dofs[contact_nodes], 1] -= eps * alt
+explicit.problem.solve()  # contact on the seeded shape (w₃ = P w₂ refreshed)
+seeded = explicit.state()
 a0 = amplitude(lp["depth"][contact_nodes])
-prob.scheme = "explicit"
 probe = []
 
 
@@ -111,13 +125,13 @@ def growth(dt):
     """|a_N / a_0| of the seeded mode after N explicit steps (unperturbed run subtracted)."""
     t0 = time.perf_counter()
     try:
-        prob.restore(base)
+        explicit.restore(base)
         for _ in range(args.probe_steps):
-            prob.step(dt)
-        ref = prob.line_profile()["depth"][contact_nodes]
-        prob.restore(seeded)
+            explicit.step(dt)
+        ref = wear.line_profile()["depth"][contact_nodes]
+        explicit.restore(seeded)
         for _ in range(args.probe_steps):
-            prob.step(dt)
+            explicit.step(dt)
     except NewtonDivergence:
         probe.append((dt, math.inf, time.perf_counter() - t0))
         print(f"  explicit Δt = {dt:8.4f} s: failed (Newton or inverted mesh)")
