@@ -3,6 +3,10 @@
 For a direction d, the remainder r(ε) = ‖R(x + ε d) − R(x) − ε J(x) d‖ of the
 problem's own residual and Jacobian (:meth:`Problem.assemble`,
 :meth:`Problem.residual_at`) must decay like ε² when J is the exact derivative.
+Unlike :func:`taylor.problem_taylor_orders` (directions as Functions, copied by
+``dolfinx.fem.petsc.assign``), the directions are the owned arrays of the
+problem's own layout, so a :class:`tribofx.reduced.ReducedProblem` with
+replicated unknowns (owned by rank 0) is tested on several ranks too.
 """
 
 import numpy as np

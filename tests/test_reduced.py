@@ -161,6 +161,7 @@ def _solve(comm):
     return section.s.x.array.copy(), rep, u_max
 
 
+@pytest.mark.mpi
 def test_reduced_solution_equals_the_2d_problem():
     s, rep, du = _solve(MPI.COMM_WORLD)
     ref = _reference_2d()
@@ -177,6 +178,7 @@ def test_reduced_solution_equals_the_2d_problem():
     assert orders[-1] > 1.8
 
 
+@pytest.mark.mpi
 def test_reduced_jacobian_taylor():
     """Taylor test of the assembled (block-merged) Jacobian at a random state.
 
