@@ -5,9 +5,9 @@ from pathlib import Path
 from mpi4py import MPI
 
 from .cases import get_case
-from .problem import NewtonDivergence
 from .output import RunRecord, write_vtx
 from .params import resolve
+from .problem import NewtonDivergence
 
 __all__ = ["run_case"]
 

@@ -46,8 +46,7 @@ Two bodies.  Only the slave-surface rate (eq. 17) is implemented; nothing here
 assumes the counterpart is rigid (the rate uses the contact's tractions and
 relative slip only).  The master-surface rate (eq. 18), Ẇ⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾ Ḋ⁽¹⁾
 (:func:`tribofx.forms.wear.master_nominal_rate`), belongs to a second Wear
-interface with ``side="master"`` on the master Body's shape field; it comes
-with the two-body contact.  Units: mm, N, s, MPa.
+interface on the master Body's shape field, added with the two-body contact.  Units: mm, N, s, MPa.
 """
 
 import numpy as np
@@ -79,7 +78,6 @@ class Wear:
         theta: θ of the scheme (28): 1 implicit, 0 explicit (any value in
             [0, 1] with ``averaged``).
         averaged: drive (28) by the nodal cycle-averaged rate ``rate_bar``.
-        side: "slave" (eq. 17); "master" (eq. 18) comes with the two-body contact.
         name: name of the interface (reports).
         rtol: relative size of the stopping tolerance of the ζ rows (× body size, mm);
             the rows carry the wear increment of a step, orders of magnitude below
@@ -87,13 +85,10 @@ class Wear:
     """
 
     def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
-                 averaged=False, side="slave", name="wear", rtol=1e-12):
+                 averaged=False, name="wear", rtol=1e-12):
         body = contact.body
         if body.w is None or not getattr(body, "shape_is_unknown", True):
             raise ValueError("wear needs a body with a shape field: Body(..., shape=True)")
-        if side != "slave":
-            raise NotImplementedError("the master-surface wear rate (eq. 18) comes with the "
-                                      "two-body contact")
         if law not in LAWS:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
