@@ -7,7 +7,7 @@ time-scale separation driver for reciprocating sliding (§4.2, eqs. 21–23).
 Also: Taylor tests of the implicit and explicit wear tangents, and a restart from the
 per-step checkpoint of the slow-time stepper.
 
-Small structured pin meshes (n × n squares) keep the whole file well under 2 min.
+Small structured pin meshes (n × n squares) keep the whole file at about 2–3 min serial.
 """
 
 import math

@@ -63,7 +63,7 @@ from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 
 __all__ = ["Checkpoint", "MeshInversion", "ReciprocatingCycle", "ResponseControl",
-           "StepReport", "Stepper", "bisect_critical_step"]
+           "StepReport", "Stepper", "bisect_critical_step", "growth_probe"]
 
 
 class MeshInversion(NewtonDivergence):
@@ -497,6 +497,31 @@ class Stepper:
 
 def _aligned(t, h):
     return abs(t / h - round(t / h)) < 1e-9
+
+
+def growth_probe(stepper, start, steps, measure, probe=None):
+    """Stability probe of the slow-time scheme: ``growth(Δt)`` for :func:`bisect_critical_step`.
+
+    ``growth(Δt)`` restores the state ``start`` (a :meth:`Stepper.state`), takes
+    ``steps`` steps of Δt without cutting and returns |``measure()``| (e.g. the
+    amplitude of a perturbation relative to its initial one); a failed step
+    (Newton divergence, inverted mesh) gives ∞.  Each (Δt, measure) is appended
+    to ``probe`` (a list).
+    """
+    def growth(dt):
+        stepper.restore(start)
+        try:
+            for _ in range(steps):
+                stepper.step(dt)
+        except NewtonDivergence:
+            g = math.inf
+        else:
+            g = measure()
+        if probe is not None:
+            probe.append((dt, g))
+        return abs(g)
+
+    return growth
 
 
 def bisect_critical_step(growth, lo, hi, iters, tol=1.0, probe=()):

@@ -20,7 +20,7 @@ from mpi4py import MPI
 from .cases.wear import WearPinCase
 from .cases.wear_ball import MODEL_FRACTION, WearBallCase
 from .problem import NewtonDivergence
-from .stepper import bisect_critical_step
+from .stepper import bisect_critical_step, growth_probe
 
 __all__ = ["OSCILLATION_TOL", "ball_critical_step", "checkerboard_amplitude",
            "oscillation_ratio", "pin_critical_step", "pressure_nonuniformity", "run_dt_study",
@@ -87,19 +87,8 @@ def pin_critical_step(v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     start = stepper.state()
     a0 = checkerboard_amplitude(stepper.wear)
     probe = []
-
-    def growth(dt):
-        stepper.restore(start)
-        try:
-            for _ in range(steps):
-                stepper.step(dt)
-        except NewtonDivergence:
-            probe.append((dt, math.inf))
-            return math.inf
-        g = checkerboard_amplitude(stepper.wear) / a0
-        probe.append((dt, g))
-        return abs(g)
-
+    growth = growth_probe(stepper, start, steps,
+                          lambda: checkerboard_amplitude(stepper.wear) / a0, probe)
     dt_cr = bisect_critical_step(growth, lo, hi, iters, probe=probe)
     stepper.restore(start)
     return dt_cr, probe
@@ -160,19 +149,8 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     if not np.array_equal(stepper.wear.body.mesh.geometry.x, implicit.wear.body.mesh.geometry.x):
         raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
     probe = []
-
-    def growth(dt):
-        stepper.restore(start)
-        try:
-            for _ in range(steps):
-                stepper.step(dt)
-        except NewtonDivergence:
-            probe.append((dt, math.inf))
-            return math.inf
-        g = pressure_nonuniformity(stepper.wear.contact) / s0
-        probe.append((dt, g))
-        return g
-
+    growth = growth_probe(stepper, start, steps,
+                          lambda: pressure_nonuniformity(stepper.wear.contact) / s0, probe)
     return bisect_critical_step(growth, lo, hi, iters, tol=growth_tol, probe=probe), probe
 
 
