@@ -134,16 +134,19 @@ class Continuation:
         of the converged steps.  ``geometric``: equal ratios instead (a positive
         parameter such as a speed; a failed ratio is replaced by its square root).
         """
-        if geometric:
-            return self._march_geometric(target, steps, predictor, min_fraction)
-        start = self.parameter.get()
-        step0 = (target - start) / steps
+        if geometric and not (target > 0 and self.done > 0):
+            raise ValueError("a geometric march needs positive parameter values")
+        # the march runs in t = log(parameter) for geometric steps
+        to, back = (np.log, np.exp) if geometric else (float, float)
+        t_target = to(target)
+        slack = 1e-12 * max(1.0, abs(t_target)) if geometric else 0.0  # exp(log(x)) ≠ x
+        step0 = (t_target - to(self.parameter.get())) / steps
         step = step0
         out = []
-        while abs(target - self.done) > 1e-14 * max(abs(target), abs(step0), 1e-300):
-            value = self.done + step
-            if (value - target) * np.sign(step0) > 0:
-                value = target
+        while abs(t_target - to(self.done)) > 1e-14 * max(abs(t_target), abs(step0), 1e-300):
+            t = to(self.done) + step
+            last = (t - t_target) * np.sign(step0) > -slack
+            value = target if last else back(t)
             saved = self.problem.state()
             if predictor:
                 self._predict(value)
@@ -158,31 +161,6 @@ class Continuation:
                 continue
             out.append(self._accept(its))
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
-        return out
-
-    def _march_geometric(self, target, steps, predictor, min_fraction):
-        if not (target > 0 and self.done > 0):
-            raise ValueError("a geometric march needs positive parameter values")
-        lstep0 = np.log(target / self.done) / steps
-        lstep, out = lstep0, []
-        while abs(np.log(target / self.done)) > 1e-12:
-            value = self.done * np.exp(lstep)
-            if (np.log(value / target)) * np.sign(lstep0) > 0:
-                value = target
-            saved = self.problem.state()
-            if predictor:
-                self._predict(value)
-            try:
-                its = self._solve_at(value)
-            except NewtonDivergence:
-                self.problem.restore(saved)
-                self.parameter.set(self.done)
-                lstep *= 0.5
-                if abs(lstep) < min_fraction * abs(lstep0):
-                    raise
-                continue
-            out.append(self._accept(its))
-            lstep = min(abs(lstep) * 2, abs(lstep0)) * np.sign(lstep0)
         return out
 
     def advance(self, target, step, growth=1.5, min_fraction=1e-4):

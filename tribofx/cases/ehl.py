@@ -46,9 +46,20 @@ from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 
-__all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence"]
+__all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence", "speed_list"]
 
 NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
+
+
+def speed_list(v):
+    """Return the positive speeds (mm/s) of the comma-separated parameter ``speeds``."""
+    try:
+        speeds = [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
+    except ValueError as err:
+        raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
+    if any(not U > 0 for U in speeds):
+        raise InputError("speeds must be positive (mm/s)")
+    return speeds
 
 
 def cylinder_arc(R, n, alpha):
@@ -136,12 +147,7 @@ class EHLCylinderLayerCase:
             raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
         if v["x_l"] > 0.8 * v["R"]:
             raise InputError(f"x_l = {v['x_l']} mm must be < 0.8 R (film beyond the cylinder)")
-        try:
-            speeds = cls.speed_list(v)
-        except ValueError as err:
-            raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
-        if any(not U > 0 for U in speeds):
-            raise InputError("speeds must be positive (mm/s)")
+        speeds = cls.speed_list(v)
         if v["cavitation"] == "jfo" and not v["U"] > 0:
             raise InputError("cavitation=jfo needs U > 0")
         if v["compare"] != "none" and speeds:
@@ -151,8 +157,8 @@ class EHLCylinderLayerCase:
 
     @staticmethod
     def speed_list(v):
-        """Return the continuation speeds (mm/s) of ``speeds``."""
-        return [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
+        """Return the continuation speeds (mm/s) of ``speeds`` (one-line error if bad)."""
+        return speed_list(v)
 
     @staticmethod
     def scales(v, W=None, U=None):
@@ -239,20 +245,14 @@ class EHLCylinderLayerCase:
     @classmethod
     def measures(cls, run, v):
         """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
-        layer, film, _ = run
-        prof = film.profile()
-        res = None
-        if layer.mesh.comm.rank == 0:
-            xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
-            res = {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
-                   "p_max": float(prof["p"].max()), "x_p_max": float(xx[np.argmax(prof["p"])]),
-                   "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}}
-        res = layer.mesh.comm.bcast(res, root=0)
-        f = film.force()
-        res.update(W=-float(f[1]), tangential_force=float(f[0]),
-                   friction_coefficient=abs(float(f[0])) / -float(f[1]) if f[1] < 0 else math.nan,
-                   clearance=float(film.counterpart.offset.value[1]))
-        return res
+        film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
+        xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
+        return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
+                "p_max": float(prof["p"].max()), "x_p_max": float(xx[np.argmax(prof["p"])]),
+                "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
+                "tangential_force": float(f[0]),
+                "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,
+                "clearance": float(film.counterpart.offset.value[1])}
 
     @classmethod
     def sweep(cls, v, record, progress=None, verbose=False, prefix=""):

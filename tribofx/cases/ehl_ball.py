@@ -64,6 +64,7 @@ from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
+from .ehl import speed_list
 
 __all__ = ["EHLBallCase"]
 
@@ -138,17 +139,12 @@ class EHLBallCase:
                              f"(Hertz a at W = {v['W']} N): increase theta_l")
         if not v["U"] > 0 or not v["mu"] > 0:
             raise InputError("U and mu must be positive (entrainment)")
-        try:
-            speeds = cls.speed_list(v)
-        except ValueError as err:
-            raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
-        if any(not U > 0 for U in speeds):
-            raise InputError("speeds must be positive (mm/s)")
+        speed_list(v)
 
     @staticmethod
     def speed_list(v):
-        """Return the continuation speeds (mm/s) of ``speeds``."""
-        return [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
+        """Return the continuation speeds (mm/s) of ``speeds`` (one-line error if bad)."""
+        return speed_list(v)
 
     @classmethod
     def scales(cls, v, W=None, U=None):
@@ -337,27 +333,23 @@ class EHLBallCase:
     @classmethod
     def measures(cls, run, v):
         """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
-        ball, film, _ = run
-        prof = film.profile()
-        res = None
-        if ball.mesh.comm.rank == 0:
-            xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
-            on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]
-            order = np.argsort(xy[on, 0])
-            xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
-            i = int(np.argmin(prof["h"]))
-            res = {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
-                   "x_h_min": float(xy[i, 0]), "y_h_min": float(xy[i, 1]),
-                   "p_max": float(prof["p"].max()),
-                   "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
-                               "h_axis": hh, "p_axis": pp}}
-        res = ball.mesh.comm.bcast(res, root=0)
-        f, fc = film.force(), film.couette_force()
-        res.update(W=2.0 * float(f[Z]), friction_force=2.0 * float(f[0]),
-                   friction_coefficient=abs(float(f[0])) / float(f[Z]) if f[Z] > 0 else math.nan,
-                   couette_friction_coefficient=abs(float(fc[0])) / float(f[Z]) if f[Z] > 0
-                   else math.nan, clearance=-float(film.counterpart.offset.value[Z]))
-        return res
+        film = run[1]
+        prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
+        xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
+        on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
+        order = np.argsort(xy[on, 0])
+        xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
+        i = int(np.argmin(prof["h"]))
+        per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
+        return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
+                "x_h_min": float(xy[i, 0]), "y_h_min": float(xy[i, 1]),
+                "p_max": float(prof["p"].max()),
+                "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
+                            "h_axis": hh, "p_axis": pp},
+                "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
+                "friction_coefficient": abs(float(f[0])) * per_load,
+                "couette_friction_coefficient": abs(float(fc[0])) * per_load,
+                "clearance": -float(film.counterpart.offset.value[Z])}
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):

@@ -352,6 +352,18 @@ class _ReynoldsFilm:
             out.append((self._at_dofs(w, dofs), R))
         return out[0][0] + out[0][1], out[1][0] - out[1][1]
 
+    def _gather(self, data, key, everywhere):
+        """Concatenate the ranks' nodal ``data`` on rank 0 (or everywhere), sorted by ``key``."""
+        comm = self.sub.comm
+        allp = comm.gather({k: np.asarray(v).copy() for k, v in data.items()}, root=0)
+        out = None
+        if comm.rank == 0:
+            out = {k: np.concatenate([a[k] for a in allp]) for k in data}
+            x = out[key] if out[key].ndim == 1 else out[key][:, 0]
+            order = np.argsort(x, kind="stable")
+            out = {k: v[order] for k, v in out.items()}
+        return comm.bcast(out, root=0) if everywhere else out
+
     def _sum(self, form):
         return self.sub.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
 
@@ -602,10 +614,11 @@ class Film(_ReynoldsFilm):
         return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
                                        op=MPI.MIN)
 
-    def profile(self):
-        """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l on rank 0, sorted by X₀.
+    def profile(self, everywhere=False):
+        """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.
 
-        x and y are P1 nodal values (the trace interpolated at the vertices).
+        On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
+        are P1 nodal values (the trace interpolated at the vertices).
         """
         self.refresh()
         gdim = self.body.gdim
@@ -617,12 +630,7 @@ class Film(_ReynoldsFilm):
              "h": self._film_thickness()[:n].copy(), "p": self.p.x.array[:n].copy()}
         if self.lam is not None:
             d["lam"] = self.lam.x.array[:n].copy()
-        allp = self.body.mesh.comm.gather(d, root=0)
-        if self.body.mesh.comm.rank != 0:
-            return None
-        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
-        order = np.argsort(out["X"][:, 0], kind="stable")
-        return {k: v[order] for k, v in out.items()}
+        return self._gather(d, "X", everywhere)
 
     # -- starting states -----------------------------------------------------------------
     def place_countersurface(self, h0, at):
@@ -836,19 +844,14 @@ class RigidFilm(_ReynoldsFilm):
         """Global integral of the UFL expression ``expr`` over the film (default ``dx``)."""
         return self._sum(fem.form(expr * (dx or self.dx)))
 
-    def profile(self):
-        """Nodal x, p, h (and λ) gathered and sorted on rank 0 (None elsewhere)."""
+    def profile(self, everywhere=False):
+        """Nodal x, p, h (and λ) sorted by x on rank 0 (None elsewhere) or ``everywhere``."""
         n = self.Q.dofmap.index_map.size_local
         d = {"x": self.Q.tabulate_dof_coordinates()[:n, 0], "p": self.p.x.array[:n],
              "h": self.h_fun.x.array[:n]}
         if self.lam is not None:
             d["lam"] = self.lam.x.array[:n]
-        allp = self.sub.comm.gather({k: np.asarray(v).copy() for k, v in d.items()}, root=0)
-        if self.sub.comm.rank != 0:
-            return None
-        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
-        order = np.argsort(out["x"], kind="stable")
-        return {k: v[order] for k, v in out.items()}
+        return self._gather(d, "x", everywhere)
 
     def set_from_profile(self, prof):
         """Set p (and λ) by interpolation of a (coarser) nodal profile (dict, all ranks)."""

@@ -10,6 +10,12 @@ __all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed",
            "plot_reynolds_cylinder", "plot_slider"]
 
 
+def _save(plt, fig, path):
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=120)
+    plt.close(fig)
+
+
 def plot_film_profiles(steps, path, title, variants=None):
     """p(x) and h(x) per load step (colour), optionally per variant (line style).
 
@@ -44,9 +50,7 @@ def plot_film_profiles(steps, path, title, variants=None):
     a2.set_yscale("log")
     a2.set_xlabel("x (mm, cylinder frame)")
     a2.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(Path(path), dpi=120)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_friction_vs_speed(curves, path):
@@ -63,9 +67,7 @@ def plot_friction_vs_speed(curves, path):
     if len(curves) > 1 or next(iter(curves)) is not None:
         ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
-    fig.tight_layout()
-    fig.savefig(Path(path), dpi=120)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_ball_film(variants, W, outdir):
@@ -90,9 +92,7 @@ def plot_ball_film(variants, W, outdir):
     ax.set_xlabel("x (mm, inlet on the left)")
     ax.set_ylabel("y (mm)")
     ax.set_title(f"{var['label']}: W = {W:g} N")
-    fig.tight_layout()
-    fig.savefig(outdir / "film_map.png", dpi=120)
-    plt.close(fig)
+    _save(plt, fig, outdir / "film_map.png")
 
     styles = ("-", "--", "-.")
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
@@ -107,9 +107,7 @@ def plot_ball_film(variants, W, outdir):
     a2.set_yscale("log")
     a2.set_xlabel("x (mm)")
     a2.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(outdir / "centerline.png", dpi=120)
-    plt.close(fig)
+    _save(plt, fig, outdir / "centerline.png")
 
 
 def plot_slider(profile, path):
@@ -132,9 +130,7 @@ def plot_slider(profile, path):
     axh.set_ylabel("h (µm)")
     axh.set_xlabel("x (mm)")
     axh.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(Path(path), dpi=120)
-    plt.close(fig)
+    _save(plt, fig, path)
 
 
 def plot_reynolds_cylinder(profile, path):
@@ -164,6 +160,4 @@ def plot_reynolds_cylinder(profile, path):
         axes[2].set_ylabel("void fraction λ")
         axes[2].grid(alpha=0.3)
     axes[-1].set_xlabel("x (mm)")
-    fig.tight_layout()
-    fig.savefig(Path(path), dpi=120)
-    plt.close(fig)
+    _save(plt, fig, path)
