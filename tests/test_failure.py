@@ -65,3 +65,37 @@ def test_secant_give_up_restores_obstacle_position(tmp_path, monkeypatch):
     # tolerance 1e-6): a stale obstacle position would change it at first order
     load = summary["results"]["normal_load_full_body"]["value"]
     assert load == pytest.approx(0.05 / 3, rel=1e-5)
+
+
+def test_solver_error_becomes_newton_divergence():
+    # an error raised inside a PETSc callback (as a failed MUMPS factorisation is)
+    # must reach the controllers as NewtonDivergence, with the unknowns restored,
+    # so that they can cut the step
+    import numpy as np
+    import ufl
+    from dolfinx import mesh
+    from mpi4py import MPI
+
+    from tribofx.body import Body
+
+    m = mesh.create_unit_square(MPI.COMM_WORLD, 4, 4)
+    f = mesh.locate_entities_boundary(m, 1, lambda x: np.isclose(x[1], 0))
+    ft = mesh.meshtags(m, 1, f, np.ones(len(f), dtype=np.int32))
+    body = Body(m, ft, {"bottom": 1}, "plane_strain", ("neo-hookean", {"mu": 1.0, "lmbda": 1.0}))
+    body.add_dirichlet("bottom", np.zeros(2))
+    body.add_body_force(ufl.as_vector([0.0, -0.01]))
+    calls = {"n": 0}
+
+    def refresh():
+        calls["n"] += 1
+        if calls["n"] == 2:  # fail at the first Newton trial, not at set-up
+            raise RuntimeError("injected solver failure")
+
+    body.refresh = refresh
+    problem = Problem([body], name="injected")
+    before = body.u.x.array.copy()
+    with pytest.raises(NewtonDivergence, match="PETSc error"):
+        problem.solve()
+    assert np.array_equal(body.u.x.array, before)
+    calls["n"] = 10  # no more failures: the same problem now converges
+    assert problem.solve().iterations > 0

@@ -362,15 +362,18 @@ class Problem:
         self._report = NewtonReport()
         self._verbose = verbose
         self._cache = None
+        failure = None
         try:
             self._get_unknowns(self._x)
             self.snes.solve(None, self._x)
             self._set_unknowns(self._x)
+        except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step
+            failure = f"PETSc error {err.ierr}"
         finally:
             if self._cache is not None:
                 self._cache[1].destroy()
             self._cache = None
-        reason = self.snes.getConvergedReason()
+        reason = -1 if failure else self.snes.getConvergedReason()
         report = self._report
         report.reason = int(reason)
         report.iterations = self.snes.getIterationNumber()
@@ -380,7 +383,7 @@ class Problem:
                 ui.x.array[:] = a
             self.refresh()
             raise NewtonDivergence(
-                f"Newton did not converge ({self._reason_name(reason)}) in "
+                f"Newton did not converge ({failure or self._reason_name(reason)}) in "
                 f"{report.iterations} iterations (residual history "
                 f"{['%.2e' % v for v in report.residuals]})")
         for ui in self.u:
