@@ -1,37 +1,65 @@
-"""Taylor tests of residuals against their assembled Jacobians.
+"""Taylor tests of assembled Jacobians (public DOLFINx/tribofx API only).
 
-For a direction d, the remainder r(ε) = ‖R(u + ε d) − R(u) − ε J(u) d‖ must decay
+For a direction d, the remainder r(ε) = ‖R(x + ε d) − R(x) − ε J(x) d‖ must decay
 like ε² when J is the exact derivative of R; the observed orders
 log₂(r(ε)/r(ε/2)) are returned with the remainders relative to the linear term
 ε₀‖J d‖.
 
-* :func:`problem_taylor_orders` — a :class:`tribofx.problem.Problem` at its
-  current unknowns, through its public ``assemble()`` and ``residual_at(x)``
-  (so every component's ``refresh`` — e.g. the kernel projection onto a meshed
-  countersurface — runs at each perturbed state, as in Newton's iteration);
-* :func:`taylor_orders` — bare residual forms (no components).
+* :func:`taylor_orders` — a :class:`tribofx.problem.Problem` at its current
+  unknowns, through its own ``assemble()`` and ``residual_at(x)`` (so every
+  component's ``refresh`` — e.g. the kernel projection onto a meshed
+  countersurface — runs at each perturbed state, as in Newton's iteration).
+  The directions are Functions or the owned arrays of the problem's own layout,
+  so a :class:`tribofx.reduced.ReducedProblem` with replicated unknowns (owned
+  by rank 0) is tested on several ranks too;
+* :func:`form_taylor_orders` — one bare residual form of one field.
 """
 
-import dolfinx.fem.petsc as fem_petsc
 import numpy as np
+from petsc4py import PETSc
 
-from tribofx.newton import BlockNewton
+__all__ = ["block_vector", "form_taylor_orders", "owned_arrays", "taylor_orders"]
 
 
-def problem_taylor_orders(problem, directions, eps0=1e-3, n=4):
-    """Observed orders and relative remainders of ``problem`` along ``directions``.
+def _replicated(problem, f):
+    return f.function_space.mesh.comm.size == 1 and problem.snes.comm.size > 1
 
-    ``directions``: one ``fem.Function`` per unknown of ``problem.u`` (same order).
-    The unknowns are restored afterwards.
+
+def owned_arrays(problem, functions=None):
+    """Owned entries of each unknown (a replicated unknown is owned by rank 0)."""
+    out = []
+    for ui, f in zip(problem.u, functions or problem.u):
+        V = ui.function_space
+        if _replicated(problem, ui):
+            n = len(f.x.array) if problem.snes.comm.rank == 0 else 0
+        else:
+            n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+        out.append(np.asarray(f.x.array[:n] if hasattr(f, "x") else f[:n]))
+    return out
+
+
+def block_vector(problem, arrays):
+    """PETSc vector of the problem's layout from the owned arrays of each unknown."""
+    x = problem.snes.getFunction()[0].duplicate()
+    x.setArray(np.concatenate(arrays))
+    return x
+
+
+def taylor_orders(problem, direction, eps0=1e-3, n=4):
+    """Orders log₂(r(ε)/r(ε/2)) at the current unknowns along ``direction``.
+
+    ``direction``: one entry per unknown of ``problem.u`` (same order), either
+    the owned arrays of :func:`owned_arrays` or ``fem.Function`` objects.
+    Returns (orders, remainders relative to ε₀‖J d‖); the unknowns are restored.
     """
-    base = [f.x.array.copy() for f in problem.u]
+    if all(hasattr(d, "x") for d in direction):
+        direction = owned_arrays(problem, direction)
+    saved = [ui.x.array.copy() for ui in problem.u]
     b0, A = problem.assemble()
     b0 = b0.copy()
-    x0 = b0.duplicate()
-    fem_petsc.assign(problem.u, x0)
-    d = b0.duplicate()
-    fem_petsc.assign(directions, d)
-    Ad = d.duplicate()
+    x0 = block_vector(problem, owned_arrays(problem))
+    d = block_vector(problem, direction)
+    Ad = A.createVecLeft()
     A.mult(d, Ad)
     rem = []
     for k in range(n):
@@ -41,40 +69,50 @@ def problem_taylor_orders(problem, directions, eps0=1e-3, n=4):
         r = problem.residual_at(x)
         r.axpy(-1.0, b0)
         r.axpy(-eps, Ad)
-        rem.append(r.norm())
-        r.destroy()
-        x.destroy()
-    for f, b in zip(problem.u, base):
-        f.x.array[:] = b
+        rem.append(r.norm(PETSc.NormType.NORM_2))
+        for v in (x, r):
+            v.destroy()
+    for ui, a in zip(problem.u, saved):
+        ui.x.array[:] = a
     problem.refresh()
     rem = np.array(rem)
     return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())
 
 
-def taylor_orders(F, u, directions, entity_maps=None, pre_evaluate=None,
-                  eps0=1e-3, n=4):
-    """Observed orders and relative remainders of the residual forms ``F`` in ``u``."""
-    solver = BlockNewton(F, u, entity_maps=entity_maps, pre_evaluate=pre_evaluate)
-    u = solver.u
-    base = [f.x.array.copy() for f in u]
-    b0, A = solver.assemble()
-    b0 = b0.copy()
-    d = solver.x.duplicate()
-    fem_petsc.assign(directions, d)
-    Ad = d.duplicate()
+def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
+    """Orders and relative remainders of one bare residual form ``R`` in ``u`` along ``du``.
+
+    J = ``ufl.derivative(R, u)``, both assembled by DOLFINx (no component, no
+    boundary condition); ``u`` is restored.
+    """
+    import ufl
+    from dolfinx import fem
+    from dolfinx.fem import petsc as fem_petsc
+
+    base = u.x.array.copy()
+    form_R = fem.form(R)
+    A = fem_petsc.assemble_matrix(fem.form(ufl.derivative(R, u)))
+    A.assemble()
+
+    def residual():
+        b = fem_petsc.assemble_vector(form_R)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        return b
+
+    b0 = residual()
+    d = fem_petsc.create_vector(du.function_space)
+    d.array[:] = du.x.array[:len(d.array)]
+    Ad = A.createVecLeft()
     A.mult(d, Ad)
     rem = []
     for k in range(n):
         eps = eps0 * 2.0**-k
-        for f, b, df in zip(u, base, directions):
-            f.x.array[:] = b + eps * df.x.array
-        fem_petsc.assign(u, solver.x)
-        solver._residual()
-        r = solver.b.copy()
+        u.x.array[:] = base + eps * du.x.array
+        r = residual()
         r.axpy(-1.0, b0)
         r.axpy(-eps, Ad)
         rem.append(r.norm())
-    for f, b in zip(u, base):
-        f.x.array[:] = b
+        r.destroy()
+    u.x.array[:] = base
     rem = np.array(rem)
     return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import problem_taylor_orders
+from taylor import taylor_orders
 
 from tribofx.cases.ehl import EHLCylinderLayerCase as Case
 from tribofx.params import resolve
@@ -91,7 +91,7 @@ def test_coupled_residual_taylor(model, alpha, countersurface):
     # no pressure perturbation at the ends, where p = 0 sits on the kink of min(p, 0)
     ends = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(np.abs(y[0]), v["x_l"]))
     dirs[2].x.array[ends] = 0.0
-    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-1)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-1)
     print(model, alpha, countersurface, orders, rem)
     # an exact Jacobian gives order 2 up to round-off; a missing dependence
     # (e.g. of S, h, ν or A on u) gives order 1
@@ -118,7 +118,7 @@ def test_jfo_residual_taylor():
     inlet = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(y[0], -v["x_l"]))
     dirs[2].x.array[inlet] = 0.0
     dirs[4].x.array[inlet] = 0.0
-    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-2)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-2)
     print("jfo", orders, rem)
     assert orders.min() > 1.8
 

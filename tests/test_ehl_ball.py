@@ -14,7 +14,7 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import problem_taylor_orders
+from taylor import taylor_orders
 from tribofx.meshes.ball import cap_height
 
 from tribofx.cases.ehl_ball import EHLBallCase as Case
@@ -125,7 +125,7 @@ def test_coupled_tangent_taylor(light_load):
         d.x.scatter_forward()
         dirs.append(d)
     dirs[2].x.array[rim] = 0.0
-    orders, rem = problem_taylor_orders(problem, dirs, eps0=1e-2)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-2)
     problem.restore(saved)
     print("ball EHL Taylor orders", orders, "remainders", rem)
     # exact Jacobian: order 2 up to round-off; a missing dependence gives 1
@@ -181,7 +181,7 @@ def test_meshed_plane_tangent_taylor(light_load):
         d.x.scatter_forward()
         dirs.append(d)
     dirs[2].x.array[rim_dofs] = 0.0
-    orders, rem = problem_taylor_orders(twin_problem, dirs, eps0=1e-2)
+    orders, rem = taylor_orders(twin_problem, dirs, eps0=1e-2)
     print("meshed plane Taylor orders", orders, "remainders", rem)
     assert orders.min() > 1.8
 

@@ -31,9 +31,20 @@ def values(**overrides):
 @pytest.fixture(scope="module")
 def solved():
     v = values()
-    prob = build(v, v["U"])
-    its = solve_to(prob, v, v["U"], [0.5])
-    return v, prob, its
+    seal = build(v, v["U"])
+    its = solve_to(seal, v, v["U"], [0.5])
+    return v, seal, its
+
+
+def momentum_bound(seal):
+    """Bound of |Σ_i R_i| over the momentum rows of one direction: n_u · atol_u.
+
+    The Newton stopping test of the momentum block is max_i |R_i| ≤ atol_u (N,
+    unweighted rows), so the sum over the ≤ n_u rows of a direction is at most
+    n_u atol_u (old code: √n · 2 atol ≈ 2e-3 N; this bound is ≈ 1e-5 N).
+    """
+    atol = seal.body.tolerances()[seal.body.u].atol
+    return seal.body.V.dofmap.index_map.size_global * atol
 
 
 def test_axial_equilibrium(solved):
@@ -42,12 +53,11 @@ def test_axial_equilibrium(solved):
     The virtual work of P for the uniform test field e_z vanishes identically
     (Grad e_z = 0, no hoop term), so the external forces assembled with their own
     2πR weights, Nanson normals and contact multipliers must balance.  Bound:
-    |Σ_i R_i| ≤ √n ‖R‖ ≤ √n · 2 atol (Newton stopping test, Cauchy–Schwarz).
+    |Σ_i R_i| ≤ n_u atol_u (Newton stopping test, :func:`momentum_bound`).
     """
-    _, prob, _ = solved
-    f = prob.forces()
-    bound = math.sqrt(prob.num_dofs) * 2 * prob.atol
-    assert axial_balance(prob) * abs(f["sealed"][1]) < bound
+    _, seal, _ = solved
+    f = seal.forces()
+    assert axial_balance(seal) * abs(f["sealed"][1]) < momentum_bound(seal)
 
 
 def test_sealed_force_divergence_theorem(solved):
@@ -59,9 +69,9 @@ def test_sealed_force_divergence_theorem(solved):
     points: an independent check of the hoop stretch and the 2πR weight (P1: the
     deformed arc is polygonal and the quadrature is exact, tolerance 1e-10).
     """
-    _, prob, _ = solved
-    r_a, r_b = prob.sealed_arc_radii()
-    fz = prob.forces()["sealed"][1]
+    _, seal, _ = solved
+    r_a, r_b = seal.sealed_arc_radii()
+    fz = seal.forces()["sealed"][1]
     expected = 0.5 * math.pi * abs(r_b**2 - r_a**2)
     assert fz > 0                      # p_s pushes the ring towards the air side
     assert abs(fz - expected) < 1e-10 * expected
@@ -72,20 +82,21 @@ def test_radial_equilibrium_hoop_force(solved):
 
     For the test field e_r the internal virtual work reduces to the hoop term
     ∫ P_θθ (1/R) 2πR dA, so the radial resultant of all boundary loads must equal
-    it (axisymmetric ring equilibrium), up to √n · 2 atol (Newton stopping test,
-    Cauchy–Schwarz).  The film carries the squeeze: positive radial load.
+    it (axisymmetric ring equilibrium), up to n_u atol_u (Newton stopping test,
+    :func:`momentum_bound`).  The film carries the squeeze: positive radial load.
     """
-    v, prob, _ = solved
+    v, seal, _ = solved
     mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
-    F = km.deformation_gradient(prob.u, "axisymmetric")
+    msh = seal.body.mesh
+    F = km.deformation_gradient(seal.body.u, "axisymmetric")
     P = hf.first_piola(F, "mooney-rivlin", mat)
-    dx = ufl.Measure("dx", prob.mesh, metadata={"quadrature_degree": 2 * v["degree"]})
-    hoop = prob.mesh.comm.allreduce(fem.assemble_scalar(fem.form(2 * ufl.pi * P[2, 2] * dx)),
-                                    op=MPI.SUM)
-    f = prob.forces()
+    dx = ufl.Measure("dx", msh, metadata={"quadrature_degree": 2 * v["degree"]})
+    hoop = msh.comm.allreduce(fem.assemble_scalar(fem.form(2 * ufl.pi * P[2, 2] * dx)),
+                              op=MPI.SUM)
+    f = seal.forces()
     radial = sum(val[0] for val in f.values())
     assert f["film"][0] > 0
-    assert abs(radial - hoop) < math.sqrt(prob.num_dofs) * 2 * prob.atol, (radial, hoop)
+    assert abs(radial - hoop) < momentum_bound(seal), (radial, hoop)
 
 
 def test_coupled_tangent_taylor(solved):
@@ -93,30 +104,42 @@ def test_coupled_tangent_taylor(solved):
 
     Directions small enough to keep the contact active sets and the film open.
     """
-    _, prob, _ = solved
+    _, seal, _ = solved
     rng = np.random.default_rng(1)
-    scales = [1e-6, 1e-6, 0.0, 1e-2, 1e-4, 1e-4]
+    film = seal.film
+    scales = {id(seal.body.u): 1e-6, id(film.u_s): 1e-6, id(film.p): 0.0, id(film.g): 1e-2,
+              id(seal.bottom.lam_n): 1e-4, id(seal.wall.lam_n): 1e-4}
+    assert len(seal.problem.u) == len(scales)
     dirs = []
-    for f, s in zip(prob.unknowns, scales):
+    for f in seal.problem.u:
         d = fem.Function(f.function_space)
-        d.x.array[:] = s * rng.standard_normal(len(d.x.array))
+        d.x.array[:] = scales[id(f)] * rng.standard_normal(len(d.x.array))
         dirs.append(d)
-    orders, _ = taylor_orders(prob.residuals, prob.unknowns, dirs,
-                              entity_maps=[prob.emap, prob.cmap], eps0=1.0, n=4)
+    orders, _ = taylor_orders(seal.problem, dirs, eps0=1.0, n=4)
     assert np.all(orders > 1.8), orders
 
 
 def test_newton_quadratic(solved):
-    """A small p_s increment converges with the last orders ≥ 1.8 (semismooth Newton)."""
-    _, prob, _ = solved
-    st = prob.state()
-    prob.set_pressure(0.52)
-    rep = prob.solve()
-    prob.restore(st)
-    rates = rep.rates(floor=1e-11)
-    assert rep.iterations <= 8 and len(rates) >= 1
-    assert rates[-1] > 1.8, rep.residuals
+    """A p_s increment converges quadratically: last order of the corrections ≥ 1.8.
 
+    Measured on the displacement correction max |Δu| (mm), which is the error of
+    the iterate once Newton converges.  The residual is not used: the Reynolds
+    rows of the thick-film flanks (h³ spans nine orders of magnitude over Γ_l)
+    make the Jacobian so ill-conditioned that the dominant rows of R change from
+    one iterate to the next (measured: residual orders 1.2–1.5 with the tangent
+    exact to Taylor order 2, the film rows reach their round-off floor of about
+    2e-8 mm²/s in the last iterate).  Corrections below 1e-10 of the first
+    (5e-13 mm, about 2000 ε|u|) are at round-off and dropped.
+    """
+    _, seal, _ = solved
+    st = seal.problem.state()
+    seal.set_pressure(0.52)
+    rep = seal.problem.solve()
+    seal.problem.restore(st)
+    seal.set_pressure(0.5)
+    orders = rep.increment_orders(seal.body.u.name, floor=1e-10)
+    assert rep.iterations <= 8 and len(orders) >= 1
+    assert orders[-1] > 1.8, rep.increments
 
 def test_bad_input():
     """Non-positive or decreasing p_s and U = 0 are rejected (exit 2)."""
@@ -132,9 +155,9 @@ def test_parallel_matches_serial():
     v = values(mesh=2)
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
-        prob = build(v, v["U"], comm=comm)
-        solve_to(prob, v, v["U"], [0.5])
-        m = prob.measures()
+        seal = build(v, v["U"], comm=comm)
+        solve_to(seal, v, v["U"], [0.5])
+        m = seal.measures()
         out.append(np.array([m["p_max"], m["h_min"], m["h_at_p_max"],
                              m["load_per_circumference"]]))
     assert np.allclose(out[0], out[1], rtol=1e-6, atol=0), out
@@ -151,10 +174,10 @@ def test_inverse_hydrodynamic_relations():
     oscillations of density 4 (measured: 3 %).
     """
     v = values(mesh=4)
-    prob = build(v, v["U"])
-    solve_to(prob, v, v["U"], [0.5])
-    pr, m = prob.profile(), prob.measures()
-    if prob.mesh.comm.rank != 0:
+    seal = build(v, v["U"])
+    solve_to(seal, v, v["U"], [0.5])
+    pr, m = seal.profile(), seal.measures()
+    if seal.body.mesh.comm.rank != 0:
         return
     z, p, h = pr["z"], pr["p"], pr["h"]
     gp = np.diff(p) / np.diff(z)
@@ -173,9 +196,9 @@ def test_mesh_convergence():
     v = values()
     hs, osc = [], []
     for n in (2, 4, 8):
-        prob = build(v, v["U"], mesh=n)
-        solve_to(prob, v, v["U"], [0.5])
-        m = prob.measures()
+        seal = build(v, v["U"], mesh=n)
+        solve_to(seal, v, v["U"], [0.5])
+        m = seal.measures()
         hs.append(m["h_mean"])
         osc.append(m["oscillation"])
     assert abs(hs[2] - hs[1]) < abs(hs[1] - hs[0]), hs

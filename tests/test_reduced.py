@@ -26,7 +26,7 @@ import pytest
 import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
-from taylor_problem import taylor_orders
+from taylor import taylor_orders
 from tribofx.meshes.halfspace import prolongation
 
 from tribofx.interfaces.steady_wear import Extrusion

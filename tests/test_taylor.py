@@ -5,7 +5,7 @@ import pytest
 import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
-from taylor import taylor_orders
+from taylor import form_taylor_orders, taylor_orders
 from tribofx.forms import hyperelastic as hf
 
 from tribofx.body import Body
@@ -51,7 +51,7 @@ def test_hyperelastic_jacobian(kind, material):
               else {"mu": 1.0, "lmbda": 2.0})
     R = hf.internal_virtual_work(u, ufl.TestFunction(V), kind, material, params,
                                  ufl.Measure("dx", msh, metadata={"quadrature_degree": 4}))
-    orders, rem = taylor_orders(R, u, [du])
+    orders, rem = form_taylor_orders(R, u, du)
     print(kind, material, orders, rem)
     assert_exact_jacobian(orders, rem)
 
@@ -134,8 +134,7 @@ def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
         d = fem.Function(f.function_space)
         _random(d, 1.0, 10 + k)
         dirs.append(d)
-    orders, rem = taylor_orders(problem.residual_forms, problem.u, dirs, problem.entity_maps,
-                                problem.refresh, eps0=1e-4)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-4)
     print(shape, friction, slip, gdim, orders, rem)
     assert_exact_jacobian(orders, rem)
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 from petsc4py import PETSc
-from taylor_problem import owned_arrays, taylor_orders
+from taylor import owned_arrays, taylor_orders
 
 from tribofx.cases.wear import WearPinCase
 from tribofx.output import RunRecord

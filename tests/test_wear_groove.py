@@ -17,7 +17,7 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from taylor_problem import owned_arrays, taylor_orders
+from taylor import owned_arrays, taylor_orders
 
 from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh, surface_data
 from tribofx.params import resolve

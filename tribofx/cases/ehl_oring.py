@@ -28,6 +28,17 @@ thicker film is easier); p_s is raised to the first target, the speed lowered
 geometrically to U, then the other p_s targets follow.  Each continuation
 step is cut on Newton failure (the last converged state is kept and written).
 
+Core configuration: a :class:`~tribofx.body.Body` (axisymmetric Mooney–Rivlin,
+follower pressure p_s on the sealed arc), two
+:class:`~tribofx.interfaces.Contact` on the housing arc (sealed ∪ housing facets)
+against :func:`~tribofx.obstacles.rigid_plane` (groove bottom, moved by its
+offset; air-side wall), a :class:`~tribofx.interfaces.Film` on Γ_l against the
+rod line r = r_rod moving with ``V_counter`` = U e_z, one
+:class:`~tribofx.problem.Problem` with the admissible line search (a trial step
+is accepted when it keeps the film open, h > 0, and R finite: ‖R‖ is a poor
+merit function with the thick-film flanks of Γ_l) and
+:class:`~tribofx.continuation.Continuation` in the groove offset, p_s and U.
+
 Default data (mm, N, s, MPa), after Stupkiewicz (2009) and Stupkiewicz &
 Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 
@@ -59,18 +70,26 @@ import math
 import time
 
 import numpy as np
+import ufl
+from dolfinx import fem
 from mpi4py import MPI
 
-from ..meshes.oring import oring_section
-from ..newton import NewtonDivergence
-from ..oring_problem import ORingProblem
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
+from ..forms import ehl_axisym as ax
+from ..interfaces import Contact, Film
+from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
+from ..obstacles import rigid_plane
 from ..params import InputError, Param
+from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
 
-__all__ = ["EHLORingCase", "axial_balance", "build", "solve_to"]
+__all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_indicator",
+           "solve_to"]
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
+NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING)}
 
 
 def _floats(text, name):
@@ -91,36 +110,219 @@ def geometry(v):
     return center, a, r_rod, r_rod + v["d"] * (1 - v["squeeze"]), a - 0.005
 
 
-def build(v, U, mesh=None, comm=MPI.COMM_WORLD, dry=False):
-    """ORingProblem of the values ``v`` at speed U (mm/s) and mesh density ``mesh``."""
-    center, a, r_rod, r_g, z_w = geometry(v)
-    msh, ct, ft = oring_section(*center, a, v["mesh"] if mesh is None else mesh, comm=comm)
-    mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
-    return ORingProblem(msh, ct, ft, center, a, r_rod, r_g, z_w, mat, v["mu"], U,
-                        min(P_MOUNT, _floats(v["p_s"], "p_s")[0]), inverse_film(v["mu"], U, W_REF),
-                        eps_rel=v["eps"], supg=v["supg"], degree=v["degree"], dry=dry)
+class ORingSeal:
+    """The configured seal: ``body``, ``film``, ``bottom``/``wall`` contacts, ``problem``.
+
+    ``p_s`` (Constant, MPa) loads the sealed arc and is mirrored into the film's
+    Dirichlet value at the sealed end; the groove bottom moves by the offset of
+    ``bottom.counterpart``; the rod speed is ``film.V_counter[1]`` (mm/s).
+    """
+
+    def __init__(self, v, U, mesh, comm):
+        center, a, r_rod, r_g, z_w = geometry(v)
+        self.center, self.a, self.r_rod = center, a, r_rod
+        msh, _, ft = oring_section(*center, a, mesh, comm=comm)
+        mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
+        E = 3 * (mat["mu1"] + mat["mu2"])
+        deg = v["degree"]
+        self.body = body = Body(msh, ft, NAMES, "axisymmetric", ("mooney-rivlin", mat),
+                                degree=deg, quadrature_degree=2 * deg, name="oring")
+        p0 = min(P_MOUNT, _floats(v["p_s"], "p_s")[0])
+        self.p_s = fem.Constant(msh, p0)
+        body.add_follower_pressure("sealed", self.p_s)
+        # the ring starts touching the groove bottom and the air-side wall
+        self.r_g0, self.r_g = center[0] + a - 1e-3 * a, r_g
+        self.bottom = Contact(body, "housing", rigid_plane([self.r_g0, 0.0], [-1.0, 0.0]),
+                              E / a, name="bottom")
+        self.wall = Contact(body, "housing", rigid_plane([0.0, z_w], [0.0, -1.0]), E / a,
+                            name="wall")
+        # film scales: h_ref of Blok's inverse theory at W_REF, ε relative to 12μℓ²/h_ref³
+        h_ref, ell = inverse_film(v["mu"], U, W_REF), 0.25 * a
+        self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
+                                v["mu"], V_counter=[0.0, U], supg=v["supg"],
+                                cavitation="penalty",
+                                eps=v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3,
+                                p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),
+                                rtol=1e-8, require_open=True)
+        # film rtol 1e-8: the Reynolds rows of the thick-film flanks (h up to 10³ times
+        # the film of the contact) have a round-off floor of ≈ 4e-8 mm/s (measured),
+        # above 1e-10 of the default
+        # p = p_s at the sealed-side end of Γ_l, p = 0 at the air-side end
+        zs = film.sub.geometry.x[:, 1]
+        z_lo = comm.allreduce(float(zs.min(initial=np.inf)), op=MPI.MIN)
+        z_hi = comm.allreduce(float(zs.max(initial=-np.inf)), op=MPI.MAX)
+        tol = 1e-8 * a
+        self.p_end = film.add_pressure_bc(lambda y: np.isclose(y[1], z_lo, atol=tol), p0)
+        film.add_pressure_bc(lambda y: np.isclose(y[1], z_hi, atol=tol), 0.0)
+        Xq = film.Q.tabulate_dof_coordinates()
+        film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
+        self.components = [body, film, self.bottom, self.wall]
+        self.problem = Problem(self.components, name="ehl_oring", max_it=40, max_backtracks=10,
+                               line_search="admissible")
+        self.iterations = []
+        self._post = None
+
+    # -- parameters and continuation ---------------------------------------------------
+    def set_pressure(self, p_s):
+        """Sealed pressure p_s (MPa) on the sealed arc and at the sealed end of the film."""
+        self.p_s.value = float(p_s)
+        self.p_end.value = float(p_s)
+
+    @property
+    def U(self):
+        """Rod speed (mm/s)."""
+        return float(self.film.V_counter.value[1])
+
+    def _march(self, parameter, target, steps, geometric=False):
+        Continuation(self.problem, parameter, record=self.iterations).march(
+            target, steps, predictor=False, geometric=geometric)
+
+    def mount(self, steps):
+        """Squeeze the ring: the groove bottom is moved to r_g in ``steps``.
+
+        The trace and then the Reynolds equation are first solved alone on the
+        initial geometry (the coupled Newton starts from a film pressure
+        consistent with the gap).
+        """
+        for sub in ([self.film.u_s], [self.film.p]):
+            Problem(self.components, unknowns=sub, name="oring_start").solve()
+        self.iterations.append(self.problem.solve().iterations)
+        self._march(ConstantParameter(self.bottom.counterpart.offset, 0),
+                    self.r_g - self.r_g0, steps)
+
+    def ramp(self, p_s, steps):
+        """Raise the sealed pressure to ``p_s`` (MPa) in ``steps``."""
+        self._march(ConstantParameter(self.p_s, None, on_set=self.set_pressure), p_s, steps)
+
+    def speed(self, U, steps):
+        """Move the rod speed geometrically to ``U`` (mm/s, same sign) in ``steps``."""
+        s = math.copysign(1.0, U)
+        self._march(ConstantParameter(self.film.V_counter, 1, scale=s), abs(U), steps,
+                    geometric=True)
+
+    # -- results -----------------------------------------------------------------------
+    def _forms(self):
+        if self._post is None:
+            body, film = self.body, self.film
+            t = ax.follower_pressure_traction(self.p_s, body.u, ufl.FacetNormal(body.mesh))
+            ds = body.ds(body.tag("sealed"))
+            Qc = fem.functionspace(film.sub, ("DG", 0))
+            xs = ufl.SpatialCoordinate(film.sub) + film.u_s
+            pts = Qc.element.interpolation_points
+            self._post = {
+                "sealed": [fem.form(t[i] * body.weight * ds) for i in range(2)],
+                "Qc": Qc,
+                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_c, film.grad_gamma),
+                                    pts),
+                "z": fem.Expression(xs[1], pts)}
+        return self._post
+
+    def forces(self):
+        """Return the r, z forces (N, whole circumference) on the ring: film, p_s, bottom, wall."""
+        comm = self.body.mesh.comm
+        sealed = np.array([comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
+                           for f in self._forms()["sealed"]])
+        return {"film": self.film.force(), "sealed": sealed, "bottom": self.bottom.force(),
+                "wall": self.wall.force()}
+
+    def profile(self):
+        """Film data on rank 0 (None elsewhere), sorted by the current axial position.
+
+        Nodal: z (current axial position = position on the rod, mm), h (mm), p (MPa);
+        cellwise: z_cell, q (flux per unit circumference, mm²/s).
+        """
+        pr = self.film.profile()
+        post = self._forms()
+        q, zc = fem.Function(post["Qc"]), fem.Function(post["Qc"])
+        q.interpolate(post["q"])
+        zc.interpolate(post["z"])
+        nc = post["Qc"].dofmap.index_map.size_local
+        cells = self.body.mesh.comm.gather((zc.x.array[:nc].copy(), q.x.array[:nc].copy()),
+                                           root=0)
+        if pr is None:
+            return None
+        z = pr["x"][:, 1]
+        o, zcell = np.argsort(z, kind="stable"), np.concatenate([c[0] for c in cells])
+        oc = np.argsort(zcell, kind="stable")
+        return {"z": z[o], "h": pr["h"][o], "p": pr["p"][o], "z_cell": zcell[oc],
+                "q": np.concatenate([c[1] for c in cells])[oc]}
+
+    def sealed_arc_radii(self):
+        """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc."""
+        V, u = self.body.V, self.body.u
+        n = V.dofmap.index_map.size_local
+        X = V.tabulate_dof_coordinates()
+        out = []
+        for t in (math.radians(-135), math.radians(-45)):
+            pt = np.array(self.center) + self.a * np.array([math.cos(t), math.sin(t)])
+            k = np.nonzero(np.linalg.norm(X[:n, :2] - pt, axis=1) < 1e-6 * self.a)[0]
+            val = float(X[k[0], 0] + u.x.array[2 * k[0]]) if len(k) else None
+            out.append(next(r for r in self.body.mesh.comm.allgather(val) if r is not None))
+        return out
+
+    def measures(self):
+        """Film measures on all ranks (see ``EHLORingCase.UNITS``)."""
+        prof = self.profile()
+        res = None
+        if self.body.mesh.comm.rank == 0:
+            z, h, p = prof["z"], prof["h"], prof["p"]
+            k, i = int(np.argmax(p)), int(np.argmin(h))
+            ps = float(self.p_s.value)
+            thr = ps + 0.5 * (p[k] - ps)      # loaded zone: half the rise above p_s
+            hot = z[p > thr]
+            qz = prof["q"][(prof["z_cell"] > hot.min()) & (prof["z_cell"] < hot.max())]
+            res = {"p_max": float(p[k]), "z_p_max": float(z[k]), "h_at_p_max": float(h[k]),
+                   "h_min": float(h[i]), "z_h_min": float(z[i]),
+                   "h_mean": float(np.mean(h[p > thr])), "flux": float(np.median(qz)),
+                   "flux_spread": float((qz.max() - qz.min()) / abs(np.median(qz))),
+                   "oscillation": oscillation_indicator(h, p, thr)}
+        res = self.body.mesh.comm.bcast(res, root=0)
+        f = self.film.force()
+        circ = 2 * math.pi * self.r_rod
+        res["load_per_circumference"] = float(f[0]) / circ
+        res["friction_force_per_circumference"] = float(f[1]) / circ
+        res["leakage"] = circ * res["flux"]
+        return res
 
 
-def solve_to(prob, v, U, p_s_targets, on_state=None, verbose=False):
+def oscillation_indicator(h, p, threshold):
+    """Spurious-oscillation (zigzag) amplitude of the film in the loaded zone p > threshold.
+
+    mean |h_{i+1} − 2h_i + h_{i−1}| / (4 mean h) over the nodes of the zone (sorted
+    by z): a nodal zigzag ±δ gives δ/h̄, a smooth film O((Δz)² h''/h̄) → 0 with
+    refinement.
+    """
+    hz = h[p > threshold]
+    if len(hz) < 3:
+        return 0.0
+    return float(np.mean(np.abs(np.diff(hz, 2))) / (4 * np.mean(hz)))
+
+
+def build(v, U, mesh=None, comm=MPI.COMM_WORLD):
+    """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``."""
+    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm)
+
+
+def solve_to(seal, v, U, p_s_targets, on_state=None):
     """Mount, raise p_s, go to speed U, then the other p_s; on_state(p_s) after each target.
 
     Returns the Newton iterations per continuation step.
     """
-    its = prob.mount(v["mount_steps"], verbose=verbose)
+    seal.mount(v["mount_steps"])
     first = True
     for p_s in p_s_targets:
-        its += prob.ramp(p_s, v["ramp_steps"], verbose=verbose)
-        if first and not prob.dry and prob.U != U:
-            its += prob.speed(U, v["speed_steps"], verbose=verbose)
+        seal.ramp(p_s, v["ramp_steps"])
+        if first and seal.U != U:
+            seal.speed(U, v["speed_steps"])
         first = False
         if on_state is not None:
             on_state(p_s)
-    return its
+    return list(seal.iterations)
 
 
-def axial_balance(prob):
+def axial_balance(seal):
     """Sum of the axial forces on the ring relative to the axial force of p_s (−)."""
-    f = prob.forces()
+    f = seal.forces()
     total = sum(val[1] for val in f.values())
     return abs(total) / abs(f["sealed"][1])
 
@@ -186,7 +388,7 @@ class EHLORingCase:
             tag = "out" if Us > 0 else "in"
             t0 = time.perf_counter()
             prob = build(v, math.copysign(max(abs(Us), 1000.0), Us))
-            record.data["num_dofs"] = prob.num_dofs
+            record.data["num_dofs"] = prob.problem.num_dofs
             states = []
 
             def on_state(p_s, prob=prob, tag=tag, states=states):
@@ -194,16 +396,14 @@ class EHLORingCase:
                 m["axial_balance"] = axial_balance(prob)
                 for k, unit in cls.UNITS.items():
                     record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
-                if prob.mesh.comm.rank == 0:
-                    pr = prob.profile()
+                pr = prob.profile()
+                if pr is not None:
                     states.append({"p_s": p_s, **{k: pr[k].tolist() for k in ("z", "h", "p")}})
-                else:
-                    prob.profile()
                 if progress is not None:
                     progress.update(1)
 
             try:
-                its = solve_to(prob, v, Us, _floats(v["p_s"], "p_s"), on_state, verbose)
+                its = solve_to(prob, v, Us, _floats(v["p_s"], "p_s"), on_state)
             except NewtonDivergence as err:
                 err.problem = prob
                 raise
@@ -229,26 +429,26 @@ class EHLORingCase:
         U = abs(v["U"])
         for n in [int(k) for k in _floats(v["mesh_levels"], "mesh_levels")]:
             t0 = time.perf_counter()
-            prob = build(v, max(U, 1000.0), mesh=n)
-            its = solve_to(prob, v, U, _floats(v["p_s"], "p_s")[:1])
-            m = prob.measures()
-            row = {"mesh": n, "num_dofs": prob.num_dofs, "h_at_p_max": m["h_at_p_max"],
+            seal = build(v, max(U, 1000.0), mesh=n)
+            its = solve_to(seal, v, U, _floats(v["p_s"], "p_s")[:1])
+            m = seal.measures()
+            row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
                    "h_mean": m["h_mean"],
                    "h_min": m["h_min"], "p_max": m["p_max"], "oscillation": m["oscillation"],
                    "newton_iterations": its, "wall_time": time.perf_counter() - t0}
             if rows:
                 row["d_h_mean"] = abs(row["h_mean"] - rows[-1]["h_mean"]) / row["h_mean"]
             rows.append(row)
-            pr = prob.profile()
+            pr = seal.profile()
             if pr is not None:
                 out.append({"mesh": n, **{k: pr[k].tolist() for k in ("z", "h", "p")}})
         record.result("mesh_study", rows)
         return out
 
     @staticmethod
-    def vtx_fields(prob):
+    def vtx_fields(seal):
         """Displacement (bulk) and film pressure (Γ_l submesh)."""
-        return {"displacement": [prob.u], "pressure": [prob.p]}
+        return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
 
     @staticmethod
     def _h_scale(groups):

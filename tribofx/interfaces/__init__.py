@@ -6,7 +6,10 @@ and its outputs; it follows the component protocol of :mod:`tribofx.problem`.
 """
 
 from .contact import Contact
-from .film import Film, RigidFilm
+from .film import Film
+from .prescribed_pressure import PrescribedPressure
+from .reynolds_film import ReynoldsFilm
+from .rigid_film import RigidFilm
 from .wear import Wear
 
-__all__ = ["Contact", "Film", "RigidFilm", "Wear"]
+__all__ = ["Contact", "Film", "PrescribedPressure", "ReynoldsFilm", "RigidFilm", "Wear"]

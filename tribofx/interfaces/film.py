@@ -43,13 +43,7 @@ Kinds: "plane_strain" (Γ_l a curve, T = (N_y, −N_x)), "3d" (Γ_l a surface) a
 surface of revolution S carries ds = 2π r_S dl with r_S the radius of the
 projection point, the traction the body's 2πR times the hoop stretch r/R).
 
-Stopping test (:class:`tribofx.problem.BlockTolerance`, lumped reference
-measures of Γ_l): Reynolds rows as a nodal volume flux imbalance (mm²/s per
-unit length on a curve, mm³/s on a surface) ≤ rtol·U·h_ref·b, b the width of
-the film (1, the diameter ℓ_l of Γ_l, or 2πr), i.e. rtol of the Couette flux
-through the film; trace rows as a displacement (mm) ≤ rtol·h_ref, g rows (MPa/mm)
-≤ rtol·p_c/ℓ_l, complementarity rows (dimensionless) ≤ rtol; U, h_ref and p_c are
-the speed, film and pressure scales of :meth:`Film.set_scales`.
+Stopping test: :mod:`tribofx.interfaces.reynolds_film`.
 
 Row scaling (``row_scaling=True``, the default).  The Newton line search of
 :class:`tribofx.problem.Problem` compares 2-norms of the whole residual; the
@@ -66,18 +60,18 @@ factorisation breaks down after a poor line-search step).
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
-
 import numpy as np
 import ufl
-from dolfinx import fem, la
-from dolfinx import mesh as dmesh
+from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import ehl as ef
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
+from .prescribed_pressure import PrescribedPressure
+from .reynolds_film import ReynoldsFilm
 
-__all__ = ["Film", "PrescribedPressure", "RigidFilm"]
+__all__ = ["Film"]
 
 
 def _outward_cell_normals(body, sub, emap, G):
@@ -108,267 +102,7 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
-class _ReynoldsFilm:
-    """Pressure rows, boundary conditions, scales and JFO tools shared by the films.
-
-    A subclass sets ``sub`` (the mesh of the film), ``Q``/``Ql`` and ``p``/``lam``,
-    the kinematics ``kin`` (:class:`tribofx.forms.ehl.LubricationKinematics`),
-    ``grad_gamma``, ``T`` (curve tangent), the measures ``dx``/``nodal_dx``, the
-    constants ``mu_c``, ``p_c``, ``eps``, ``_c_p``, ``_q_ref``, and ``w_film``,
-    ``_supg``, ``_jumps``, ``rtol``, ``h_ref``, ``U_ref``, ``length``, then calls
-    :meth:`_init_rows`.
-    """
-
-    def _init_rows(self):
-        self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
-        self._bfacets = None
-        self.set_scales()
-
-    # -- boundary conditions of the film ---------------------------------------------
-    def boundary_facets(self):
-        """Facets of the submesh on ∂Γ_l (vertices of a curve, edges of a surface), local.
-
-        A facet on ∂Γ_l has one adjacent cell of Γ_l in the whole mesh; the cells
-        per facet are counted in a space with one dof per facet (P1 on a curve,
-        Crouzeix–Raviart on a surface) and summed over the ranks, because the
-        facet submesh has no ghost cells (``exterior_facet_indices`` would also
-        return the facets on the partition boundary).
-        """
-        if self._bfacets is None:
-            sub = self.sub
-            tdim = sub.topology.dim
-            sub.topology.create_entities(tdim - 1)
-            sub.topology.create_connectivity(tdim, tdim - 1)
-            sub.topology.create_connectivity(tdim - 1, tdim)
-            space = fem.functionspace(sub, ("Lagrange" if tdim == 1 else "CR", 1))
-            count = fem.Function(space)
-            nc = sub.topology.index_map(tdim).size_local
-            cell_dofs = space.dofmap.list[:nc]
-            np.add.at(count.x.array, cell_dofs.ravel(), 1.0)
-            count.x.scatter_reverse(la.InsertMode.add)
-            count.x.scatter_forward()
-            c2f = sub.topology.connectivity(tdim, tdim - 1)
-            ncells = nc + sub.topology.index_map(tdim).num_ghosts
-            entities = np.array([c2f.links(c) for c in range(ncells)], dtype=np.int32)
-            dofs = space.dofmap.list[:ncells]
-            self._bfacets = np.unique(entities[np.isclose(count.x.array[dofs], 1.0)])
-        return self._bfacets
-
-    def _boundary_dofs(self, V, where):
-        if where is not None:
-            return fem.locate_dofs_geometrical(V, where)
-        return fem.locate_dofs_topological(V, self.sub.topology.dim - 1, self.boundary_facets())
-
-    def add_pressure_bc(self, where=None, value=0.0):
-        """Prescribe p = ``value`` (MPa) where the film opens to a reservoir; returns the Constant.
-
-        ``where``: callable of the reference coordinates (3, n) → bool, as for
-        ``fem.locate_dofs_geometrical``; None: the whole boundary ∂Γ_l (the ends
-        of a rigid 1D film).  The rest
-        of ∂Γ_l has zero flux (natural), e.g. a symmetry line.
-        """
-        c = fem.Constant(self.sub, float(value))
-        self._bcs.append(fem.dirichletbc(c, self._boundary_dofs(self.Q, where), self.Q))
-        return c
-
-    def add_inlet(self, where, void=0.0):
-        """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = 0 at ``where``.
-
-        The rest of ∂Γ_l is a natural outlet (no Poiseuille flux; p = 0 there by
-        complementarity in the cavitated zone).
-        """
-        if self.lam is None:
-            raise ValueError("an inlet needs cavitation='jfo'")
-        self._inlet, self._void_in = where, float(void)
-        self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
-                                         self._boundary_dofs(self.Ql, where), self.Ql))
-        if void == 0:
-            self.add_pressure_bc(where)
-
-    def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
-        """Change the SUPG/complementarity pressure scale, the penalty and the tolerance scales.
-
-        ``p_c`` (MPa) and ``eps`` (MPa·s/mm) change the discrete problem (SUPG
-        Péclet number, penalty); ``film_scale`` h_ref (mm) and ``speed_scale`` U
-        (mm/s) only the stopping tolerances (the row scales stay those of the
-        construction).
-        """
-        if p_c is not None:
-            self.p_c.value = float(p_c)
-        if eps is not None and self.eps is not None:
-            self.eps.value = float(eps)
-        if film_scale is not None:
-            self.h_ref = float(film_scale)
-        if speed_scale is not None:
-            self.U_ref = float(speed_scale)
-        atol = {"p": self.rtol * self.U_ref * self.h_ref * self._flux_width(),
-                "u_s": self.rtol * self.h_ref,
-                "g": self.rtol * float(self.p_c.value) / self.length, "lam": self.rtol}
-        for key, a in atol.items():
-            if key in self._tol:
-                self._tol[key].atol = a
-
-    def _reynolds(self, dp):
-        """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
-        dx = ef.WeightedMeasure(self.w_film, self.dx) if self.w_film != 1 else self.dx
-        nodal = (ef.WeightedMeasure(self.w_film, self.nodal_dx) if self.w_film != 1
-                 else self.nodal_dx)
-        h_e = ufl.CellDiameter(self.sub)
-        if self.lam is None:
-            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_c, dx, eps=self.eps,
-                                          supg=self._supg, p_c=self.p_c, h_e=h_e,
-                                          nodal_dx=nodal, grad_gamma=self.grad_gamma), None
-        return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
-                                 self.mu_c, dx, self.p_c, self._q_ref, h_e, nodal,
-                                 supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
-                                 ds_ends=self._ds_ends() if self._jumps else None)
-
-    def bcs(self):
-        """Pressure (and inlet void fraction) Dirichlet conditions."""
-        return list(self._bcs)
-
-    def _flux_width(self):
-        """Width (mm) across which the flux scale U·h_ref passes.
-
-        1 on a curve (fluxes per unit length), the diameter of a surface Γ_l,
-        2π r_max for an axisymmetric film.
-        """
-        if getattr(self, "body", None) is not None and self.body.kind == "axisymmetric":
-            r = self.sub.geometry.x[:, 0].max(initial=0.0)
-            return 2 * np.pi * self.sub.comm.allreduce(float(r), op=MPI.MAX)
-        return 1.0 if self.sub.topology.dim == 1 else self.length
-
-    def _pressure_tolerances(self):
-        """Tolerances of the Reynolds rows (a nodal flux) and complementarity rows (-).
-
-        The Reynolds rows are nodal volume fluxes (mm²/s on a curve, mm³/s on a
-        surface); a row scale c is divided out by the weight c·φ/m (m the lumped
-        vertex measure of the node, so that the vertex rule assembles exactly c).
-        """
-        weight = None
-        if not (isinstance(self._c_p, (int, float)) and self._c_p == 1):
-            q = ufl.TestFunction(self.Q)
-            m = fem.assemble_vector(fem.form(q * self.nodal_dx))
-            m.scatter_reverse(la.InsertMode.add)
-            m.scatter_forward()
-            inv = fem.Function(self.Q)
-            inv.x.array[:] = np.divide(1.0, m.array, out=np.zeros_like(m.array),
-                                       where=m.array > 0)
-            weight = self._c_p * q * inv * self.nodal_dx
-        unit = "mm²/s" if self.sub.topology.dim == 1 else "mm³/s"
-        self._tol["p"] = BlockTolerance(0.0, unit, weight)
-        out = {self.p: self._tol["p"]}
-        w = self.w_film
-        if self.lam is not None:
-            h_e = ufl.CellDiameter(self.sub)
-            self._tol["lam"] = BlockTolerance(0.0, "-", self._c_p * self._q_ref / h_e
-                                              * ufl.TestFunction(self.Ql) * w * self.nodal_dx)
-            out[self.lam] = self._tol["lam"]
-        return out
-
-    def _film_thickness(self):
-        """Nodal film thickness h (mm) at the P1 pressure nodes (local, with ghosts)."""
-        if self._h_expr is None:
-            self._h_expr = fem.Expression(self.kin.h, self.Q.element.interpolation_points)
-        h = fem.Function(self.Q)
-        h.interpolate(self._h_expr)
-        return h.x.array
-
-    # -- JFO -----------------------------------------------------------------------------
-    def _ds_ends(self):
-        """Measure of the end points of Γ_l (the submesh's true boundary, tagged explicitly).
-
-        In parallel the untagged ``ds`` of the facet submesh also contains the
-        vertices on the partition boundary.
-        """
-        sub = self.sub
-        ends = self.boundary_facets()
-        tags = dmesh.meshtags(sub, 0, ends, np.full(len(ends), 1, dtype=np.int32))
-        return ufl.Measure("ds", sub, subdomain_data=tags, subdomain_id=1,
-                           metadata=self.dx.metadata())
-
-    def _at_dofs(self, values, dofs):
-        """Value of a nodal array at the first of ``dofs`` owned by some rank (all ranks)."""
-        own = dofs[dofs < self.Q.dofmap.index_map.size_local]
-        val = float(values[own[0]]) if len(own) else None
-        return next(v for v in self.sub.comm.allgather(val) if v is not None)
-
-    def jfo_initial_guess(self, downstream=(1.0, 0.0)):
-        """Void fraction of a film that keeps its flux across the cavitated zones.
-
-        Downstream (along ``downstream``) of the minimum film h_m the film ruptures,
-        λ = max(0, 1 − h_m/h); upstream the film supplied at the inlet, (1 − λ_in)
-        h_in, is advected, λ = max(0, 1 − (1 − λ_in) h_in/h) (0 for a flooded inlet
-        of a converging gap); from the current film h, p left as it is.  The
-        semismooth Newton iteration then only moves the free boundaries.
-        """
-        if self.lam is None:
-            return
-        self.refresh()
-        h = self._film_thickness()
-        gdim = self.sub.geometry.dim
-        X = self.Q.tabulate_dof_coordinates()[:, :gdim] @ np.asarray(downstream)[:gdim]
-        n = self.Q.dofmap.index_map.size_local
-        loc = (float(h[:n].min(initial=np.inf)), float(X[np.argmin(h[:n])]) if n else 0.0)
-        h_m, X_m = min(self.sub.comm.allgather(loc))
-        supplied = 0.0
-        if self._inlet is not None:
-            supplied = (1 - self._void_in) * self._at_dofs(
-                h, self._boundary_dofs(self.Q, self._inlet))
-        # λ and p share the P1 layout of the same mesh
-        self.lam.x.array[:] = np.maximum(np.where(X > X_m, 1 - h_m / h, 1 - supplied / h), 0.0)
-        self.lam.x.scatter_forward()
-
-    def consistent_fluxes(self, inlet=None):
-        """Volume fluxes (mm²/s) into and out of the film from the discrete residual.
-
-        φ are the hat functions of the end nodes (``inlet``: where the flow enters,
-        default the JFO inlet), R(φ) the Reynolds rows tested by them.  JFO (57),
-        Couette part in divergence form, w = θ h v̄·t_S the Couette flux along S
-        (:func:`tribofx.forms.ehl.couette_flux`): q_in = w(inlet) + R(φ_in),
-        q_out = w(outlet) − R(φ_out); the weak form (49) carries the whole flux in
-        its rows: q_in = R(φ_in), q_out = −R(φ_out).  The hat functions sum to one,
-        so q_out − q_in is the sum of the interior rows: zero to solver tolerance
-        for a conservative model (the penalty is not).
-        """
-        inlet = self._inlet if inlet is None else inlet
-        if inlet is None:
-            raise ValueError("consistent fluxes need the inlet (add_inlet or inlet=)")
-        self.refresh()
-        ends, dofs_in = self._boundary_dofs(self.Q, None), self._boundary_dofs(self.Q, inlet)
-        w = np.zeros(len(self.p.x.array))
-        if self.lam is not None:
-            wf = fem.Function(self.Q)
-            wf.interpolate(fem.Expression(ef.couette_flux(
-                self.kin, ufl.min_value(self.lam, 1.0), self.T),
-                self.Q.element.interpolation_points))
-            w = wf.x.array
-        out = []
-        for dofs in (dofs_in, np.setdiff1d(ends, dofs_in)):
-            phi = fem.Function(self.Q)
-            phi.x.array[dofs] = 1.0
-            R = self._sum(fem.form(self._reynolds(phi)[0],
-                                   entity_maps=self.entity_maps() or None))
-            out.append((self._at_dofs(w, dofs), R))
-        return out[0][0] + out[0][1], out[1][0] - out[1][1]
-
-    def _gather(self, data, key, everywhere):
-        """Concatenate the ranks' nodal ``data`` on rank 0 (or everywhere), sorted by ``key``."""
-        comm = self.sub.comm
-        allp = comm.gather({k: np.asarray(v).copy() for k, v in data.items()}, root=0)
-        out = None
-        if comm.rank == 0:
-            out = {k: np.concatenate([a[k] for a in allp]) for k in data}
-            x = out[key] if out[key].ndim == 1 else out[key][:, 0]
-            order = np.argsort(x, kind="stable")
-            out = {k: v[order] for k, v in out.items()}
-        return comm.bcast(out, root=0) if everywhere else out
-
-    def _sum(self, form):
-        return self.sub.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
-
-
-class Film(_ReynoldsFilm):
+class Film(ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
     Args:
@@ -392,6 +126,9 @@ class Film(_ReynoldsFilm):
         row_scaling: physical row scales of the film rows (see the module docstring).
         name: name of the interface (unknown names, reports).
         rtol: relative size of the stopping tolerances (see the module docstring).
+        require_open: line-search trials must keep the film open, h > 0 at every
+            node of Γ_l (:meth:`admissible`; with ``Problem(line_search="admissible")``
+            the only test of a trial step).
     """
 
     CAVITATION = ("penalty", "jfo")
@@ -399,7 +136,7 @@ class Film(_ReynoldsFilm):
     def __init__(self, body, boundary, counterpart, mu, V_counter=None, model="finite",
                  shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
                  film_scale=1e-2, speed_scale=1.0, quadrature_degree=4, row_scaling=True,
-                 name="film", rtol=1e-10):
+                 name="film", rtol=1e-10, require_open=False):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
         if cavitation not in self.CAVITATION:
@@ -409,6 +146,7 @@ class Film(_ReynoldsFilm):
             raise ValueError("cavitation='jfo' and alpha are implemented for a curve Γ_l "
                              "(gdim = 2)")
         self.body, self.name, self.rtol = body, name, float(rtol)
+        self.require_open = bool(require_open)
         self.model, self.shear, self.cavitation, self._supg = model, shear, cavitation, supg
         self.mu = float(mu)
         msh = body.mesh
@@ -614,6 +352,10 @@ class Film(_ReynoldsFilm):
         return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
                                        op=MPI.MIN)
 
+    def admissible(self):
+        """Line-search test of a trial state: True, or with ``require_open`` whether h > 0."""
+        return not self.require_open or self.min_film() > 0
+
     def profile(self, everywhere=False):
         """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.
 
@@ -679,183 +421,3 @@ class Film(_ReynoldsFilm):
             self.g.x.array[:] = 0.0
         self.place_countersurface(h0, at)
         return report
-
-
-class PrescribedPressure:
-    """The lubricated boundary of a :class:`Film` under a prescribed pressure (no film).
-
-    Component of a dry problem ``Problem([body, PrescribedPressure(film)])``: the
-    pressure ``p`` (P1 on Γ_l, MPa) loads the body through the pressure part of
-    the fluid traction (46) (a follower load for ``model="finite"``), and the
-    film's trace u_s follows u (trace rows), so the film starts from the
-    deformed state.
-    """
-
-    def __init__(self, film):
-        self.film = film
-        self.p = fem.Function(film.Q, name=f"{film.name}_prescribed_pressure")
-        f, body = film, film.body
-        gdim = body.gdim
-        F = ufl.Identity(gdim) + ufl.grad(body.u)
-        self.traction = ef.fluid_traction(self.p, ufl.zero(gdim), f.kin_bulk, F,
-                                          ufl.FacetNormal(body.mesh), f.T_b, f.mu_c,
-                                          shear=False, model=f.model)
-
-    def unknowns(self):
-        """Return the film's trace u_s."""
-        return [self.film.u_s]
-
-    def contributions(self):
-        """Prescribed-pressure work on u, trace rows on u_s."""
-        f, body = self.film, self.film.body
-        return [(body.u, ef.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
-                (f.u_s, f._c_u * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
-                                                     f.ds))]
-
-    def bcs(self):
-        """Return no conditions."""
-        return []
-
-    def entity_maps(self):
-        """Return the film's entity map."""
-        return [self.film.emap]
-
-    def refresh(self):
-        """Nothing to refresh (the pressure part of the traction needs no countersurface)."""
-
-    def tolerances(self):
-        """Return the film's trace tolerance."""
-        return {self.film.u_s: self.film.tolerances()[self.film.u_s]}
-
-    def state_fields(self):
-        """Return the prescribed pressure and the trace."""
-        return [self.p, self.film.u_s]
-
-    def commit(self):
-        """Nothing to accept."""
-
-
-class RigidFilm(_ReynoldsFilm):
-    """A film between rigid surfaces: the Reynolds equation in the plane (§6.6), 1D or 2D.
-
-    The variant of :class:`Film` without a body: the lubrication surface is the
-    reference mesh itself (:func:`tribofx.forms.ehl.planar_kinematics`, A = I),
-    the film thickness h(x) and the mean velocity v̄ are given, and the rows are
-    the same Reynolds forms (49)/(57) with SUPG, penalty or JFO cavitation, the
-    same pressure and inlet conditions (:meth:`add_pressure_bc`,
-    :meth:`add_inlet`), tolerances and JFO tools (:meth:`jfo_initial_guess`,
-    :meth:`consistent_fluxes`).  All its rows are volume fluxes (mm²/s in 1D), so
-    it needs no row scales.
-
-    Args:
-        mesh: the mesh of the film (e.g. ``dolfinx.mesh.create_interval``), mm.
-        gap: callable x (UFL spatial coordinate) → h (UFL, mm).
-        vbar: mean velocity v̄ (mm/s): a number (1D) or a vector.
-        mu: viscosity (MPa·s).
-        degree: Lagrange degree of p (JFO and the nodal penalty: 1).
-        cavitation: "none", "penalty" or "jfo".
-        supg, eps, p_c: as for :class:`Film`.
-        film_scale, speed_scale: h_ref (mm), U (mm/s) of the tolerances; their
-            product is the flux scale of the JFO complementarity rows.
-        quadrature_degree: default 4·degree + 6 (h is not polynomial in general).
-        rtol: relative size of the stopping tolerances.
-    """
-
-    CAVITATION = ("none", "penalty", "jfo")
-
-    def __init__(self, mesh, gap, vbar, mu, degree=1, cavitation="none", supg=False, eps=None,
-                 p_c=1.0, film_scale=1e-2, speed_scale=1.0, quadrature_degree=None,
-                 name="film", rtol=1e-10):
-        if cavitation not in self.CAVITATION:
-            raise ValueError(f"unknown cavitation model {cavitation!r}")
-        if cavitation == "jfo" and degree != 1:
-            raise ValueError("cavitation='jfo' needs P1 pressure (nodal complementarity)")
-        self.sub, self.name, self.rtol, self.cavitation = mesh, name, float(rtol), cavitation
-        gdim = mesh.geometry.dim
-        self.Q = fem.functionspace(mesh, ("Lagrange", degree))
-        self.p = fem.Function(self.Q, name="pressure")
-        self.lam = None
-        if cavitation == "jfo":
-            # λ on its own (identical) space so that Dirichlet conditions find their block
-            self.Ql = fem.functionspace(mesh, ("Lagrange", 1))
-            self.lam = fem.Function(self.Ql, name="void_fraction")
-        x = ufl.SpatialCoordinate(mesh)
-        self.h = gap(x[0]) if gdim == 1 else gap(x)
-        self.vbar_c = fem.Constant(mesh, np.atleast_1d(np.asarray(vbar, dtype=float)))
-        self.kin = ef.planar_kinematics(x, self.h, self.vbar_c)
-        self.grad_gamma, self._supg, self._jumps = ufl.grad, supg, False
-        self.T = ufl.as_vector([1.0] + [0.0] * (gdim - 1))
-        self.mu_c, self.p_c = fem.Constant(mesh, float(mu)), fem.Constant(mesh, float(p_c))
-        self.eps = None
-        if cavitation == "penalty":
-            self.eps = fem.Constant(mesh, float(eps))
-        qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
-        self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})
-        self.nodal_dx = (ufl.Measure("dx", mesh, metadata={"quadrature_rule": "vertex",
-                                                           "quadrature_degree": 1})
-                         if degree == 1 else self.dx)
-        self.h_ref, self.U_ref = float(film_scale), float(speed_scale)
-        self._c_p = 1
-        self._q_ref = fem.Constant(mesh, self.h_ref * self.U_ref)
-        self.w_film = 1
-        lo = mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf)
-        hi = mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf)
-        mesh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
-        mesh.comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
-        self.length = float(np.linalg.norm(hi - lo))
-        self.h_fun = fem.Function(self.Q, name="film_thickness")
-        self.h_fun.interpolate(fem.Expression(self.h, self.Q.element.interpolation_points,
-                                              comm=mesh.comm))
-        self._init_rows()
-
-    # -- component protocol --------------------------------------------------------------
-    def unknowns(self):
-        """Return p (and λ)."""
-        return [self.p] + ([self.lam] if self.lam is not None else [])
-
-    def contributions(self):
-        """Reynolds (or JFO transport) rows on p, complementarity rows on λ."""
-        R_p, C = self._reynolds(ufl.TestFunction(self.Q))
-        return [(self.p, R_p)] + ([(self.lam, C)] if C is not None else [])
-
-    def entity_maps(self):
-        """Return no entity maps: the film lives on its own mesh."""
-        return []
-
-    def refresh(self):
-        """Nothing computed outside UFL."""
-
-    def tolerances(self):
-        """Reynolds rows (mm/s) and complementarity rows (-) over lumped measures."""
-        if not self._tol:
-            self._tol_out = self._pressure_tolerances()
-            self.set_scales()
-        return self._tol_out
-
-    def state_fields(self):
-        """Return p (and λ)."""
-        return self.unknowns()
-
-    def commit(self):
-        """Nothing to accept."""
-
-    # -- outputs -------------------------------------------------------------------------
-    def integral(self, expr, dx=None):
-        """Global integral of the UFL expression ``expr`` over the film (default ``dx``)."""
-        return self._sum(fem.form(expr * (dx or self.dx)))
-
-    def profile(self, everywhere=False):
-        """Nodal x, p, h (and λ) sorted by x on rank 0 (None elsewhere) or ``everywhere``."""
-        n = self.Q.dofmap.index_map.size_local
-        d = {"x": self.Q.tabulate_dof_coordinates()[:n, 0], "p": self.p.x.array[:n],
-             "h": self.h_fun.x.array[:n]}
-        if self.lam is not None:
-            d["lam"] = self.lam.x.array[:n]
-        return self._gather(d, "x", everywhere)
-
-    def set_from_profile(self, prof):
-        """Set p (and λ) by interpolation of a (coarser) nodal profile (dict, all ranks)."""
-        for fun, key in ((self.p, "p"), (self.lam, "lam")):
-            if fun is not None:
-                xs = fun.function_space.tabulate_dof_coordinates()[:, 0]
-                fun.x.array[:] = np.interp(xs, prof["x"], prof[key])

@@ -1,0 +1,62 @@
+"""A dry start for a film: the lubricated boundary under a prescribed pressure."""
+
+import ufl
+from dolfinx import fem
+
+from ..forms import ehl as ef
+
+__all__ = ["PrescribedPressure"]
+
+
+class PrescribedPressure:
+    """The lubricated boundary of a :class:`Film` under a prescribed pressure (no film).
+
+    Component of a dry problem ``Problem([body, PrescribedPressure(film)])``: the
+    pressure ``p`` (P1 on Γ_l, MPa) loads the body through the pressure part of
+    the fluid traction (46) (a follower load for ``model="finite"``), and the
+    film's trace u_s follows u (trace rows), so the film starts from the
+    deformed state.
+    """
+
+    def __init__(self, film):
+        self.film = film
+        self.p = fem.Function(film.Q, name=f"{film.name}_prescribed_pressure")
+        f, body = film, film.body
+        gdim = body.gdim
+        F = ufl.Identity(gdim) + ufl.grad(body.u)
+        self.traction = ef.fluid_traction(self.p, ufl.zero(gdim), f.kin_bulk, F,
+                                          ufl.FacetNormal(body.mesh), f.T_b, f.mu_c,
+                                          shear=False, model=f.model)
+
+    def unknowns(self):
+        """Return the film's trace u_s."""
+        return [self.film.u_s]
+
+    def contributions(self):
+        """Prescribed-pressure work on u, trace rows on u_s."""
+        f, body = self.film, self.film.body
+        return [(body.u, ef.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
+                (f.u_s, f._c_u * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
+                                                     f.ds))]
+
+    def bcs(self):
+        """Return no conditions."""
+        return []
+
+    def entity_maps(self):
+        """Return the film's entity map."""
+        return [self.film.emap]
+
+    def refresh(self):
+        """Nothing to refresh (the pressure part of the traction needs no countersurface)."""
+
+    def tolerances(self):
+        """Return the film's trace tolerance."""
+        return {self.film.u_s: self.film.tolerances()[self.film.u_s]}
+
+    def state_fields(self):
+        """Return the prescribed pressure and the trace."""
+        return [self.p, self.film.u_s]
+
+    def commit(self):
+        """Nothing to accept."""

@@ -1,0 +1,288 @@
+"""Reynolds rows of a lubricating film: pressure conditions, scales, tolerances, JFO tools.
+
+:class:`ReynoldsFilm` is the part shared by :class:`tribofx.interfaces.Film`
+(the film on a deformable body's boundary) and
+:class:`tribofx.interfaces.RigidFilm` (between rigid surfaces): the Reynolds
+(49) or JFO (57) rows of :mod:`tribofx.forms.ehl`, the pressure and inlet
+conditions on ∂Γ_l, the stopping tolerances, the JFO starting guess and the
+consistent end fluxes.
+
+Stopping test (:class:`tribofx.problem.BlockTolerance`, lumped reference
+measures of Γ_l): Reynolds rows as a nodal volume flux imbalance (mm²/s per
+unit length on a curve, mm³/s on a surface) ≤ rtol·U·h_ref·b, b the width of
+the film (1, the diameter ℓ_l of Γ_l, or 2πr), i.e. rtol of the Couette flux
+through the film; trace rows as a displacement (mm) ≤ rtol·h_ref, g rows (MPa/mm)
+≤ rtol·p_c/ℓ_l, complementarity rows (dimensionless) ≤ rtol; U, h_ref and p_c are
+the speed, film and pressure scales of :meth:`Film.set_scales`.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from dolfinx import mesh as dmesh
+from mpi4py import MPI
+
+from ..forms import ehl as ef
+from ..problem import BlockTolerance
+
+__all__ = ["ReynoldsFilm"]
+
+
+class ReynoldsFilm:
+    """Pressure rows, boundary conditions, scales and JFO tools shared by the films.
+
+    A subclass sets ``sub`` (the mesh of the film), ``Q``/``Ql`` and ``p``/``lam``,
+    the kinematics ``kin`` (:class:`tribofx.forms.ehl.LubricationKinematics`),
+    ``grad_gamma``, ``T`` (curve tangent), the measures ``dx``/``nodal_dx``, the
+    constants ``mu_c``, ``p_c``, ``eps``, ``_c_p``, ``_q_ref``, and ``w_film``,
+    ``_supg``, ``_jumps``, ``rtol``, ``h_ref``, ``U_ref``, ``length``, then calls
+    :meth:`_init_rows`.
+    """
+
+    def _init_rows(self):
+        self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
+        self._bfacets = None
+        self.set_scales()
+
+    # -- boundary conditions of the film ---------------------------------------------
+    def boundary_facets(self):
+        """Facets of the submesh on ∂Γ_l (vertices of a curve, edges of a surface), local.
+
+        A facet on ∂Γ_l has one adjacent cell of Γ_l in the whole mesh; the cells
+        per facet are counted in a space with one dof per facet (P1 on a curve,
+        Crouzeix–Raviart on a surface) and summed over the ranks, because the
+        facet submesh has no ghost cells (``exterior_facet_indices`` would also
+        return the facets on the partition boundary).
+        """
+        if self._bfacets is None:
+            sub = self.sub
+            tdim = sub.topology.dim
+            sub.topology.create_entities(tdim - 1)
+            sub.topology.create_connectivity(tdim, tdim - 1)
+            sub.topology.create_connectivity(tdim - 1, tdim)
+            space = fem.functionspace(sub, ("Lagrange" if tdim == 1 else "CR", 1))
+            count = fem.Function(space)
+            nc = sub.topology.index_map(tdim).size_local
+            cell_dofs = space.dofmap.list[:nc]
+            np.add.at(count.x.array, cell_dofs.ravel(), 1.0)
+            count.x.scatter_reverse(la.InsertMode.add)
+            count.x.scatter_forward()
+            c2f = sub.topology.connectivity(tdim, tdim - 1)
+            ncells = nc + sub.topology.index_map(tdim).num_ghosts
+            entities = np.array([c2f.links(c) for c in range(ncells)], dtype=np.int32)
+            dofs = space.dofmap.list[:ncells]
+            self._bfacets = np.unique(entities[np.isclose(count.x.array[dofs], 1.0)])
+        return self._bfacets
+
+    def _boundary_dofs(self, V, where):
+        if where is not None:
+            return fem.locate_dofs_geometrical(V, where)
+        return fem.locate_dofs_topological(V, self.sub.topology.dim - 1, self.boundary_facets())
+
+    def add_pressure_bc(self, where=None, value=0.0):
+        """Prescribe p = ``value`` (MPa) where the film opens to a reservoir; returns the Constant.
+
+        ``where``: callable of the reference coordinates (3, n) → bool, as for
+        ``fem.locate_dofs_geometrical``; None: the whole boundary ∂Γ_l (the ends
+        of a rigid 1D film).  The rest
+        of ∂Γ_l has zero flux (natural), e.g. a symmetry line.
+        """
+        c = fem.Constant(self.sub, float(value))
+        self._bcs.append(fem.dirichletbc(c, self._boundary_dofs(self.Q, where), self.Q))
+        return c
+
+    def add_inlet(self, where, void=0.0):
+        """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = 0 at ``where``.
+
+        The rest of ∂Γ_l is a natural outlet (no Poiseuille flux; p = 0 there by
+        complementarity in the cavitated zone).
+        """
+        if self.lam is None:
+            raise ValueError("an inlet needs cavitation='jfo'")
+        self._inlet, self._void_in = where, float(void)
+        self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
+                                         self._boundary_dofs(self.Ql, where), self.Ql))
+        if void == 0:
+            self.add_pressure_bc(where)
+
+    def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
+        """Change the SUPG/complementarity pressure scale, the penalty and the tolerance scales.
+
+        ``p_c`` (MPa) and ``eps`` (MPa·s/mm) change the discrete problem (SUPG
+        Péclet number, penalty); ``film_scale`` h_ref (mm) and ``speed_scale`` U
+        (mm/s) only the stopping tolerances (the row scales stay those of the
+        construction).
+        """
+        if p_c is not None:
+            self.p_c.value = float(p_c)
+        if eps is not None and self.eps is not None:
+            self.eps.value = float(eps)
+        if film_scale is not None:
+            self.h_ref = float(film_scale)
+        if speed_scale is not None:
+            self.U_ref = float(speed_scale)
+        atol = {"p": self.rtol * self.U_ref * self.h_ref * self._flux_width(),
+                "u_s": self.rtol * self.h_ref,
+                "g": self.rtol * float(self.p_c.value) / self.length, "lam": self.rtol}
+        for key, a in atol.items():
+            if key in self._tol:
+                self._tol[key].atol = a
+
+    def _reynolds(self, dp):
+        """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
+        dx = ef.WeightedMeasure(self.w_film, self.dx) if self.w_film != 1 else self.dx
+        nodal = (ef.WeightedMeasure(self.w_film, self.nodal_dx) if self.w_film != 1
+                 else self.nodal_dx)
+        h_e = ufl.CellDiameter(self.sub)
+        if self.lam is None:
+            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_c, dx, eps=self.eps,
+                                          supg=self._supg, p_c=self.p_c, h_e=h_e,
+                                          nodal_dx=nodal, grad_gamma=self.grad_gamma), None
+        return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
+                                 self.mu_c, dx, self.p_c, self._q_ref, h_e, nodal,
+                                 supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
+                                 ds_ends=self._ds_ends() if self._jumps else None)
+
+    def bcs(self):
+        """Pressure (and inlet void fraction) Dirichlet conditions."""
+        return list(self._bcs)
+
+    def _flux_width(self):
+        """Width (mm) across which the flux scale U·h_ref passes.
+
+        1 on a curve (fluxes per unit length), the diameter of a surface Γ_l,
+        2π r_max for an axisymmetric film.
+        """
+        if getattr(self, "body", None) is not None and self.body.kind == "axisymmetric":
+            r = self.sub.geometry.x[:, 0].max(initial=0.0)
+            return 2 * np.pi * self.sub.comm.allreduce(float(r), op=MPI.MAX)
+        return 1.0 if self.sub.topology.dim == 1 else self.length
+
+    def _pressure_tolerances(self):
+        """Tolerances of the Reynolds rows (a nodal flux) and complementarity rows (-).
+
+        The Reynolds rows are nodal volume fluxes (mm²/s on a curve, mm³/s on a
+        surface); a row scale c is divided out by the weight c·φ/m (m the lumped
+        vertex measure of the node, so that the vertex rule assembles exactly c).
+        """
+        weight = None
+        if not (isinstance(self._c_p, (int, float)) and self._c_p == 1):
+            q = ufl.TestFunction(self.Q)
+            m = fem.assemble_vector(fem.form(q * self.nodal_dx))
+            m.scatter_reverse(la.InsertMode.add)
+            m.scatter_forward()
+            inv = fem.Function(self.Q)
+            inv.x.array[:] = np.divide(1.0, m.array, out=np.zeros_like(m.array),
+                                       where=m.array > 0)
+            weight = self._c_p * q * inv * self.nodal_dx
+        unit = "mm²/s" if self.sub.topology.dim == 1 else "mm³/s"
+        self._tol["p"] = BlockTolerance(0.0, unit, weight)
+        out = {self.p: self._tol["p"]}
+        w = self.w_film
+        if self.lam is not None:
+            h_e = ufl.CellDiameter(self.sub)
+            self._tol["lam"] = BlockTolerance(0.0, "-", self._c_p * self._q_ref / h_e
+                                              * ufl.TestFunction(self.Ql) * w * self.nodal_dx)
+            out[self.lam] = self._tol["lam"]
+        return out
+
+    def _film_thickness(self):
+        """Nodal film thickness h (mm) at the P1 pressure nodes (local, with ghosts)."""
+        if self._h_expr is None:
+            self._h_expr = fem.Expression(self.kin.h, self.Q.element.interpolation_points)
+        h = fem.Function(self.Q)
+        h.interpolate(self._h_expr)
+        return h.x.array
+
+    # -- JFO -----------------------------------------------------------------------------
+    def _ds_ends(self):
+        """Measure of the end points of Γ_l (the submesh's true boundary, tagged explicitly).
+
+        In parallel the untagged ``ds`` of the facet submesh also contains the
+        vertices on the partition boundary.
+        """
+        sub = self.sub
+        ends = self.boundary_facets()
+        tags = dmesh.meshtags(sub, 0, ends, np.full(len(ends), 1, dtype=np.int32))
+        return ufl.Measure("ds", sub, subdomain_data=tags, subdomain_id=1,
+                           metadata=self.dx.metadata())
+
+    def _at_dofs(self, values, dofs):
+        """Value of a nodal array at the first of ``dofs`` owned by some rank (all ranks)."""
+        own = dofs[dofs < self.Q.dofmap.index_map.size_local]
+        val = float(values[own[0]]) if len(own) else None
+        return next(v for v in self.sub.comm.allgather(val) if v is not None)
+
+    def jfo_initial_guess(self, downstream=(1.0, 0.0)):
+        """Void fraction of a film that keeps its flux across the cavitated zones.
+
+        Downstream (along ``downstream``) of the minimum film h_m the film ruptures,
+        λ = max(0, 1 − h_m/h); upstream the film supplied at the inlet, (1 − λ_in)
+        h_in, is advected, λ = max(0, 1 − (1 − λ_in) h_in/h) (0 for a flooded inlet
+        of a converging gap); from the current film h, p left as it is.  The
+        semismooth Newton iteration then only moves the free boundaries.
+        """
+        if self.lam is None:
+            return
+        self.refresh()
+        h = self._film_thickness()
+        gdim = self.sub.geometry.dim
+        X = self.Q.tabulate_dof_coordinates()[:, :gdim] @ np.asarray(downstream)[:gdim]
+        n = self.Q.dofmap.index_map.size_local
+        loc = (float(h[:n].min(initial=np.inf)), float(X[np.argmin(h[:n])]) if n else 0.0)
+        h_m, X_m = min(self.sub.comm.allgather(loc))
+        supplied = 0.0
+        if self._inlet is not None:
+            supplied = (1 - self._void_in) * self._at_dofs(
+                h, self._boundary_dofs(self.Q, self._inlet))
+        # λ and p share the P1 layout of the same mesh
+        self.lam.x.array[:] = np.maximum(np.where(X > X_m, 1 - h_m / h, 1 - supplied / h), 0.0)
+        self.lam.x.scatter_forward()
+
+    def consistent_fluxes(self, inlet=None):
+        """Volume fluxes (mm²/s) into and out of the film from the discrete residual.
+
+        φ are the hat functions of the end nodes (``inlet``: where the flow enters,
+        default the JFO inlet), R(φ) the Reynolds rows tested by them.  JFO (57),
+        Couette part in divergence form, w = θ h v̄·t_S the Couette flux along S
+        (:func:`tribofx.forms.ehl.couette_flux`): q_in = w(inlet) + R(φ_in),
+        q_out = w(outlet) − R(φ_out); the weak form (49) carries the whole flux in
+        its rows: q_in = R(φ_in), q_out = −R(φ_out).  The hat functions sum to one,
+        so q_out − q_in is the sum of the interior rows: zero to solver tolerance
+        for a conservative model (the penalty is not).
+        """
+        inlet = self._inlet if inlet is None else inlet
+        if inlet is None:
+            raise ValueError("consistent fluxes need the inlet (add_inlet or inlet=)")
+        self.refresh()
+        ends, dofs_in = self._boundary_dofs(self.Q, None), self._boundary_dofs(self.Q, inlet)
+        w = np.zeros(len(self.p.x.array))
+        if self.lam is not None:
+            wf = fem.Function(self.Q)
+            wf.interpolate(fem.Expression(ef.couette_flux(
+                self.kin, ufl.min_value(self.lam, 1.0), self.T),
+                self.Q.element.interpolation_points))
+            w = wf.x.array
+        out = []
+        for dofs in (dofs_in, np.setdiff1d(ends, dofs_in)):
+            phi = fem.Function(self.Q)
+            phi.x.array[dofs] = 1.0
+            R = self._sum(fem.form(self._reynolds(phi)[0],
+                                   entity_maps=self.entity_maps() or None))
+            out.append((self._at_dofs(w, dofs), R))
+        return out[0][0] + out[0][1], out[1][0] - out[1][1]
+
+    def _gather(self, data, key, everywhere):
+        """Concatenate the ranks' nodal ``data`` on rank 0 (or everywhere), sorted by ``key``."""
+        comm = self.sub.comm
+        allp = comm.gather({k: np.asarray(v).copy() for k, v in data.items()}, root=0)
+        out = None
+        if comm.rank == 0:
+            out = {k: np.concatenate([a[k] for a in allp]) for k in data}
+            x = out[key] if out[key].ndim == 1 else out[key][:, 0]
+            order = np.argsort(x, kind="stable")
+            out = {k: v[order] for k, v in out.items()}
+        return comm.bcast(out, root=0) if everywhere else out
+
+    def _sum(self, form):
+        return self.sub.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
