@@ -34,6 +34,7 @@ contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
 every block is converged, never on one 2-norm over mixed units.
 """
 
+import weakref
 from dataclasses import dataclass, field
 
 import dolfinx.fem.petsc as fem_petsc
@@ -52,6 +53,7 @@ __all__ = [
     "NewtonReport",
     "Problem",
     "convergence_orders",
+    "weak_callback",
 ]
 
 
@@ -107,6 +109,23 @@ class NewtonReport:
         if isinstance(block, str):
             block = self.names.index(block)
         return convergence_orders([d[block] for d in self.increments], floor)
+
+
+def weak_callback(method):
+    """Wrap the bound ``method`` as a PETSc callback that does not keep its object alive.
+
+    SNES keeps its callbacks in C, out of sight of Python's garbage collector: a
+    bound method of the object that owns the SNES would make a cycle that is
+    never collected, and every mesh, form and PETSc object of the problem —
+    with the MPI communicators they duplicate — would leak (MPICH has 2048
+    context ids per process; the test suite ran out of them).
+    """
+    ref = weakref.WeakMethod(method)
+
+    def call(*args, **kwargs):
+        return ref()(*args, **kwargs)
+
+    return call
 
 
 def convergence_orders(residuals, floor=1e-13):
@@ -197,11 +216,11 @@ class Problem:
         self.snes.setOptionsPrefix(self.prefix)
         self.snes.setFromOptions()
         self.solver.configure(self)
-        self.snes.setConvergenceTest(self._converged)
+        self.snes.setConvergenceTest(weak_callback(self._converged))
         # the backtracking of _backtrack rides on the "basic" line search; another
         # type chosen on the command line (e.g. bt) replaces it
         if self.max_backtracks > 0 and self.snes.getLineSearch().getType() == "basic":
-            self.snes.setLineSearchPreCheck(self._backtrack)
+            self.snes.setLineSearchPreCheck(weak_callback(self._backtrack))
         self._tolerances = self._collect_tolerances(tolerances or {})
         self._cache = None
         self._report = None
@@ -219,7 +238,7 @@ class Problem:
         # wrap the residual callback: refresh the components' data at every iterate
         b, (fn, args, kargs) = self.snes.getFunction()
         self._assemble_residual = (fn, args, kargs)
-        self.snes.setFunction(self._residual, b)
+        self.snes.setFunction(weak_callback(self._residual), b)
 
     def _owned_size(self, ui):
         """Return the number of rows of ``ui`` owned by this rank."""

@@ -37,7 +37,7 @@ import ufl
 from dolfinx import fem, la
 from petsc4py import PETSc
 
-from .problem import Problem, _nonzero_or_none
+from .problem import Problem, _nonzero_or_none, weak_callback
 
 __all__ = ["AlgebraicRow", "ReducedProblem", "Reduction"]
 
@@ -110,8 +110,8 @@ class ReducedProblem(Problem):
         self._get_unknowns(self._x)
         self._A = self._jacobian_matrix()
         self.snes = PETSc.SNES().create(comm)
-        self.snes.setFunction(self._residual, b)
-        self.snes.setJacobian(self._jacobian, self._A)
+        self.snes.setFunction(weak_callback(self._residual), b)
+        self.snes.setJacobian(weak_callback(self._jacobian), self._A)
 
     def _add_jacobian(self, key, j, F, uj, by_image, kw):
         """Jacobian block of form F in unknown j: direct, and through uj's image."""
