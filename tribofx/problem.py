@@ -175,6 +175,7 @@ class Problem:
     """
 
     _names = {}
+    _assemblers = ()      # components with add_residual/add_jacobian (see _create_snes)
 
     def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
                  max_backtracks=6, petsc_options=None, tolerances=None, line_search="armijo"):
@@ -239,6 +240,15 @@ class Problem:
         b, (fn, args, kargs) = self.snes.getFunction()
         self._assemble_residual = (fn, args, kargs)
         self.snes.setFunction(weak_callback(self._residual), b)
+        # components that add assembled terms outside UFL (the two-body contact kernel)
+        self._assemblers = [c for c in self.components if hasattr(c, "add_residual")]
+        self._global = {}
+        if self._assemblers:
+            A, P, (fn, args, kargs) = self.snes.getJacobian()
+            self._assemble_jacobian = (fn, args, kargs)
+            # their couplings (slave-master pairs) may change: the pattern grows as needed
+            A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
+            self.snes.setJacobian(weak_callback(self._jacobian), A, P)
 
     def _owned_size(self, ui):
         """Return the number of rows of ``ui`` owned by this rank."""
@@ -306,6 +316,47 @@ class Problem:
                 return
         self._evaluate(snes, x, b)
 
+    def _jacobian(self, snes, x, A, P):
+        """Jacobian at ``x``: blocked UFL assembly, then the components' assembled terms."""
+        fn, args, kargs = self._assemble_jacobian
+        fn(snes, x, A, P, *args, **kargs)
+        for c in self._assemblers:
+            c.add_jacobian(A, self)
+        A.assemblyBegin()
+        A.assemblyEnd()
+
+    def global_rows(self, ui):
+        """Global rows of the block system of every local dof of ``ui`` (owned, then ghosts).
+
+        Blocked spaces are unrolled (dof k of block j at ``bs·j + k``); rows of
+        Dirichlet dofs are −1, so that PETSc ignores values added to them (their
+        columns are kept: the correction of a prescribed dof is known from its
+        own row, and coupling it in is the exact Newton system).  Returns
+        (rows of the unknowns, -1 for ``ui`` not solved for here; columns).
+        """
+        key = id(ui)
+        if key not in self._global:
+            k = next((i for i, uj in enumerate(self.u) if uj is ui), None)
+            V = ui.function_space
+            n = len(ui.x.array)
+            if k is None:
+                cols = np.full(n, -1, dtype=np.int64)
+                self._global[key] = (cols, cols)
+                return self._global[key]
+            start = self._x.getOwnershipRange()[0] + sum(
+                self._owned_size(uj) for uj in self.u[:k])
+            f = fem.Function(V)
+            n_own = self._owned_size(ui)
+            f.x.array[:n_own] = start + np.arange(n_own)
+            f.x.scatter_forward()
+            cols = np.rint(f.x.array).astype(np.int64)
+            rows = cols.copy()
+            for bc in self.bcs:
+                if V._cpp_object.contains(bc.function_space):
+                    rows[bc.dof_indices()[0]] = -1
+            self._global[key] = (rows, cols)
+        return self._global[key]
+
     def _set_unknowns(self, x):
         """Copy the block vector ``x`` into the unknowns (ghosts updated)."""
         x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
@@ -321,6 +372,11 @@ class Problem:
         self.refresh()
         fn, args, kargs = self._assemble_residual
         fn(snes, x, b, *args, **kargs)
+        if self._assemblers:
+            for c in self._assemblers:
+                c.add_residual(b, self)
+            b.assemblyBegin()
+            b.assemblyEnd()
 
     def _block_norms(self, b):
         arr = b.getArray(readonly=True)

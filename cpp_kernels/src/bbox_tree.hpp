@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <numeric>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -108,6 +109,39 @@ public:
   }
 
   std::size_t num_nodes() const { return _nodes.size(); }
+
+  /// New boxes of the same objects: the node boxes are recomputed bottom-up and
+  /// the tree topology is kept (children are stored after their parent).
+  void refit(std::span<const double> boxes)
+  {
+    if (boxes.size() != _num_objects * 2 * gdim)
+      throw std::invalid_argument("refit: the number of boxes changed");
+    for (std::size_t i = 0; i < _num_objects; ++i)
+      std::copy_n(boxes.data() + i * 2 * gdim, 2 * gdim, _boxes[i].begin());
+    for (auto id = static_cast<std::int64_t>(_nodes.size()) - 1; id >= 0; --id)
+    {
+      Node& node = _nodes[id];
+      auto merge = [&node](const Box& b)
+      {
+        for (int c = 0; c < gdim; ++c)
+        {
+          node.box[c] = std::min(node.box[c], b[c]);
+          node.box[gdim + c] = std::max(node.box[gdim + c], b[gdim + c]);
+        }
+      };
+      if (node.child[0] < 0)
+      {
+        node.box = _boxes[_order[node.begin]];
+        for (std::int32_t k = node.begin + 1; k < node.end; ++k)
+          merge(_boxes[_order[k]]);
+      }
+      else
+      {
+        node.box = _nodes[node.child[0]].box;
+        merge(_nodes[node.child[1]].box);
+      }
+    }
+  }
 
 private:
   struct Node

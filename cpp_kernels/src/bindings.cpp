@@ -5,11 +5,13 @@
 
 #include "lubrication.hpp"
 #include "projection.hpp"
+#include "two_body.hpp"
 
 #include <cstdint>
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -167,6 +169,75 @@ nb::dict lubrication_projection(const CArray2<double>& points, const CArray2<dou
   throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
 }
 
+namespace tb = tribofx::two_body;
+
+tb::MasterSurface make_master(const CArray2<double>& nodes,
+                              const CArray2<std::int32_t>& segments)
+{
+  if (nodes.shape(1) != 2 or segments.shape(1) != 2)
+    throw std::invalid_argument("master nodes and segments must have shape (., 2)");
+  if (segments.shape(0) == 0)
+    throw std::invalid_argument("the master surface has no segments");
+  const std::size_t nv = nodes.shape(0);
+  std::span<const std::int32_t> seg(segments.data(), 2 * segments.shape(0));
+  if (std::ranges::any_of(seg, [nv](std::int32_t i)
+                          { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
+    throw std::invalid_argument("segment node index out of range");
+  return tb::MasterSurface(std::span<const double>(nodes.data(), 2 * nv), seg);
+}
+
+nb::dict master_project(const tb::MasterSurface& master, const CArray2<double>& points)
+{
+  if (points.shape(1) != 2)
+    throw std::invalid_argument("points must have shape (., 2)");
+  const std::size_t np = points.shape(0);
+  std::vector<std::int32_t> facet(np);
+  std::vector<double> xi(np), distance(np);
+  {
+    nb::gil_scoped_release release;
+    master.project(std::span<const double>(points.data(), 2 * np), facet, xi, distance);
+  }
+  nb::dict out;
+  out["facet"] = to_numpy<std::int32_t>(std::move(facet), {np});
+  out["xi"] = to_numpy<double>(std::move(xi), {np});
+  out["distance"] = to_numpy<double>(std::move(distance), {np});
+  return out;
+}
+
+void master_refit(tb::MasterSurface& master, const CArray2<double>& nodes)
+{
+  if (nodes.shape(1) != 2)
+    throw std::invalid_argument("nodes must have shape (., 2)");
+  master.refit(std::span<const double>(nodes.data(), 2 * nodes.shape(0)));
+}
+
+using CArray1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
+two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w,
+               const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction)
+{
+  constexpr int N = tb::num_local;
+  const std::size_t n = q.shape(0);
+  if (q.shape(1) != N)
+    throw std::invalid_argument("q must have shape (., " + std::to_string(N) + ")");
+  if (xi_old.shape(0) != n or w.shape(0) != n or w_c.shape(0) != n)
+    throw std::invalid_argument("xi_old, w and w_c need one entry per row of q");
+  if (!(rho_n > 0) or (friction and !(rho_t > 0)) or mu < 0)
+    throw std::invalid_argument("rho_n, rho_t must be > 0 and mu >= 0");
+  std::vector<double> r(n * N), J(n * N * N);
+  {
+    nb::gil_scoped_release release;
+    const tb::Law law{rho_n, rho_t, mu, friction};
+    for (std::size_t i = 0; i < n; ++i)
+      tb::node_residual(q.data() + i * N, xi_old.data()[i], w.data()[i], w_c.data()[i], law,
+                        r.data() + i * N, J.data() + i * N * N);
+  }
+  return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
+          to_numpy<double>(std::move(J),
+                           {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
+}
+
 } // namespace
 
 NB_MODULE(_cpp, m)
@@ -182,4 +253,19 @@ NB_MODULE(_cpp, m)
         "Lubrication-surface projection with film thickness and derivatives (see "
         "tribofx.lubrication_projection.lubrication_projection). Returns a dict of "
         "arrays.");
+  nb::class_<tb::MasterSurface>(m, "MasterSurface",
+                                "Current 2D master polyline with a refitted box tree (see "
+                                "tribofx.two_body)")
+      .def("__init__",
+           [](tb::MasterSurface* self, const CArray2<double>& nodes,
+              const CArray2<std::int32_t>& segments)
+           { new (self) tb::MasterSurface(make_master(nodes, segments)); },
+           "nodes"_a.noconvert(), "segments"_a.noconvert())
+      .def("refit", &master_refit, "nodes"_a.noconvert())
+      .def("project", &master_project, "points"_a.noconvert())
+      .def_prop_ro("num_segments", &tb::MasterSurface::num_segments);
+  m.def("two_body_nodes", &two_body_nodes, "q"_a.noconvert(), "xi_old"_a.noconvert(),
+        "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
+        "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
+        "tribofx.two_body.node_residuals).");
 }

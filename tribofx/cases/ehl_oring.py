@@ -81,6 +81,7 @@ from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
+from ..plots import plot_oring
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
 
@@ -451,51 +452,6 @@ class EHLORingCase:
         return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
 
     @staticmethod
-    def _h_scale(groups):
-        """Largest film at the pressure peak over the plotted states (mm)."""
-        hs = [st["h"][int(np.argmax(st["p"]))] for states in groups for st in states]
-        return max(hs) if hs else 1e-3
-
-    @classmethod
-    def plot(cls, profile, outdir):
-        """``profiles.png`` (p, h vs z per p_s, out solid / in dashed), ``mesh_study.png``."""
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
-        for tag, ls in (("out", "-"), ("in", "--")):
-            states = profile["strokes"].get(tag, [])
-            for k, st in enumerate(states):
-                c = plt.cm.viridis(k / max(1, len(states) - 1))
-                a1.plot(st["z"], st["p"], ls=ls, color=c, lw=1,
-                        label=f"{tag}stroke, p_s = {st['p_s']:g} MPa")
-                a2.plot(st["z"], 1e3 * np.asarray(st["h"]), ls=ls, color=c, lw=1)
-        a1.set_ylabel("film pressure p (MPa)")
-        a1.legend(fontsize=7)
-        a1.grid(alpha=0.3)
-        a1.set_title(f"O-ring seal, |U| = {profile['U']:g} mm/s")
-        a2.set_ylabel("film thickness h (µm)")
-        a2.set_ylim(0, 4e3 * cls._h_scale(profile["strokes"].values()))
-        a2.set_xlabel("z (mm, position on the rod; air side > 0)")
-        a2.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(outdir / "profiles.png", dpi=120)
-        plt.close(fig)
-        if profile.get("mesh"):
-            fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
-            for st in profile["mesh"]:
-                a1.plot(st["z"], st["p"], lw=1, marker=".", ms=2, label=f"density {st['mesh']}")
-                a2.plot(st["z"], 1e3 * np.asarray(st["h"]), lw=1, marker=".", ms=2)
-            a1.set_ylabel("film pressure p (MPa)")
-            a1.legend(fontsize=7)
-            a1.grid(alpha=0.3)
-            a1.set_title("mesh-density study (outstroke)")
-            a2.set_ylabel("film thickness h (µm)")
-            a2.set_ylim(0, 4e3 * cls._h_scale([profile["mesh"]]))
-            a2.set_xlabel("z (mm)")
-            a2.grid(alpha=0.3)
-            fig.tight_layout()
-            fig.savefig(outdir / "mesh_study.png", dpi=120)
-            plt.close(fig)
+    def plot(profile, outdir):
+        """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19)."""
+        plot_oring(profile, outdir)

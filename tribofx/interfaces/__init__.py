@@ -10,6 +10,8 @@ from .film import Film
 from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .rigid_film import RigidFilm
+from .two_body_contact import TwoBodyContact
 from .wear import Wear
 
-__all__ = ["Contact", "Film", "PrescribedPressure", "ReynoldsFilm", "RigidFilm", "Wear"]
+__all__ = ["Contact", "Film", "PrescribedPressure", "ReynoldsFilm", "RigidFilm", "TwoBodyContact",
+           "Wear"]

@@ -6,6 +6,7 @@ from .film import (
     plot_ball_film,
     plot_film_profiles,
     plot_friction_vs_speed,
+    plot_oring,
     plot_reynolds_cylinder,
     plot_slider,
 )
@@ -13,7 +14,8 @@ from .groove import plot_groove, plot_pressure_across
 from .wear import plot_dt_study, plot_wear_ball, plot_wear_pin
 
 __all__ = [
-    "plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_reynolds_cylinder",
+    "plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
+    "plot_reynolds_cylinder",
     "plot_slider",
     "plot_dt_study", "plot_hertz_pressure", "plot_wear_ball", "plot_wear_pin", "pyplot"]
 __all__ += ["plot_groove", "plot_pressure_across"]

@@ -6,7 +6,7 @@ import numpy as np
 
 from .common import pyplot
 
-__all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed",
+__all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
            "plot_reynolds_cylinder", "plot_slider"]
 
 
@@ -161,3 +161,43 @@ def plot_reynolds_cylinder(profile, path):
         axes[2].grid(alpha=0.3)
     axes[-1].set_xlabel("x (mm)")
     _save(plt, fig, path)
+
+
+def _oring_axes(plt, groups, title):
+    """Plot p and h against z of the states of ``groups`` ({line style: [state]})."""
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
+    h_scale = 1e-3
+    for ls, (label, states) in groups.items():
+        for k, st in enumerate(states):
+            c = plt.cm.viridis(k / max(1, len(states) - 1))
+            a1.plot(st["z"], st["p"], ls=ls, color=c, lw=1, marker="." if ls == ":" else None,
+                    ms=2, label=label(st))
+            a2.plot(st["z"], 1e3 * np.asarray(st["h"]), ls=ls, color=c, lw=1)
+            h_scale = max(h_scale, st["h"][int(np.argmax(st["p"]))])
+    a1.set_ylabel("film pressure p (MPa)")
+    a1.legend(fontsize=7)
+    a1.grid(alpha=0.3)
+    a1.set_title(title)
+    a2.set_ylabel("film thickness h (µm)")
+    a2.set_ylim(0, 4e3 * h_scale)
+    a2.set_xlabel("z (mm, position on the rod; air side > 0)")
+    a2.grid(alpha=0.3)
+    return fig
+
+
+def plot_oring(profile, outdir):
+    """O-ring film: ``profiles.png`` (Fig. 17, outstroke solid, instroke dashed, per p_s).
+
+    ``profile``: {"U": |U|, "strokes": {"out"/"in": [{"p_s", "z", "h", "p"}]}, "mesh":
+    None or [{"mesh", "z", "h", "p"}]}; with a mesh study also ``mesh_study.png``
+    (Figs. 18–19).
+    """
+    plt = pyplot()
+    groups = {ls: (lambda st, tag=tag: f"{tag}stroke, p_s = {st['p_s']:g} MPa",
+                   profile["strokes"].get(tag, [])) for tag, ls in (("out", "-"), ("in", "--"))}
+    fig = _oring_axes(plt, groups, f"O-ring seal, |U| = {profile['U']:g} mm/s")
+    _save(plt, fig, Path(outdir) / "profiles.png")
+    if profile.get("mesh"):
+        fig = _oring_axes(plt, {":": (lambda st: f"density {st['mesh']}", profile["mesh"])},
+                          "mesh-density study (outstroke)")
+        _save(plt, fig, Path(outdir) / "mesh_study.png")

@@ -1,0 +1,300 @@
+"""Contact of two deformable bodies, master–slave closest point (chapter §2, eqs. 1–9), 2D.
+
+The slave boundary Γ_c of one :class:`tribofx.body.Body` carries the nominal
+multipliers λ_N (and λ_T with friction), P1 on its facet submesh, as for
+:class:`tribofx.interfaces.Contact`; each slave node is paired with its
+closest point on the *current* master boundary of another body (or of another
+part of the same body: one mesh with two cell tags works too).  Every residual
+evaluation
+
+1. gathers the current master polyline on every rank (a rank's slave nodes may
+   project onto master facets of another rank) and refits the C++ box tree;
+2. projects the owned slave nodes (:class:`tribofx.two_body.MasterSurface`);
+3. evaluates per slave node the Alart–Curnier residual and its exact tangent
+   with respect to the slave, the master and the multiplier dofs
+   (:func:`tribofx.two_body.node_residuals`, eqs. 2, 4–5, 8), and adds them to
+   the rows and columns of the block system (:meth:`Problem.global_rows`);
+   the matrix pattern grows by the new slave–master pairs.
+
+The linear part −∫ (1/ρ)λ·δλ dS of the constraint rows is UFL.  Vertex
+quadrature (the nodal scheme of the rigid case), Lagrangian slip: the master
+material point of the last converged projection is kept (segment and ξ̄), and
+the slip is the current projection minus that point's current position, so a
+slave node may change master segment between iterations and steps.  A master
+held fixed gives exactly the rigid countersurface of the same shape.
+Plane strain, P1 displacements, affine meshes.  Units: mm, N, MPa.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from dolfinx import mesh as dmesh
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from ..forms import kinematics as kin
+from ..problem import BlockTolerance
+from ..submesh import facet_submesh
+from ..two_body import MasterSurface, node_residuals
+from .contact import node_to_dof
+
+__all__ = ["TwoBodyContact"]
+
+
+def _vertex_dofs(body, facets):
+    """Per facet the two (P1 block) dofs of its vertices, local indices."""
+    msh = body.mesh
+    geo = dmesh.entities_to_geometry(msh, msh.topology.dim - 1, facets, False)
+    return node_to_dof(body.V)[geo]
+
+
+class TwoBodyContact:
+    """Frictional contact of ``slave`` on ``slave_boundary`` with ``master`` on ``master_boundary``.
+
+    Args:
+        slave, master: :class:`tribofx.body.Body` (plane strain, P1; may be the same).
+        slave_boundary, master_boundary: boundary names.
+        rho_n: normal augmentation (MPa/mm); rho_t: tangential (default rho_n).
+        friction: Coulomb coefficient μ.
+        name, rtol: as for :class:`tribofx.interfaces.Contact`.
+    """
+
+    def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
+                 rho_t=None, name="contact", rtol=1e-10):
+        for b in (slave, master):
+            if b.gdim != 2 or b.kind != "plane_strain":
+                raise ValueError("TwoBodyContact is implemented for plane strain")
+            if b.V.ufl_element().embedded_superdegree != 1:
+                raise ValueError("TwoBodyContact needs P1 displacements")
+        if friction < 0:
+            raise ValueError("friction coefficient must be >= 0")
+        self.slave, self.master, self.name, self.rtol = slave, master, name, rtol
+        self.rho_n, self.friction = float(rho_n), float(friction)
+        self.rho_t = float(rho_n if rho_t is None else rho_t)
+        msh = slave.mesh
+        self.sub, self.emap, gmap = facet_submesh(msh, slave.facet_tags,
+                                                  slave.tag(slave_boundary),
+                                                  f"{slave.name} {slave_boundary}")
+        self.Q = fem.functionspace(self.sub, ("Lagrange", 1))
+        self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (2,)))
+        self.lam_n = fem.Function(self.Q, name=f"{name}_pressure_nominal")
+        self.lam_t = (fem.Function(self.Vs, name=f"{name}_friction_traction_nominal")
+                      if self.friction > 0 else None)
+        self.dsc = ufl.Measure("ds", msh, subdomain_data=slave.facet_tags,
+                               subdomain_id=slave.tag(slave_boundary),
+                               metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
+        # owned slave nodes: λ dof q ↔ bulk block dof of the same vertex
+        nodes = np.arange(self.sub.geometry.x.shape[0])
+        q_of_node = node_to_dof(self.Q)[nodes]
+        bulk_of_node = node_to_dof(slave.V)[gmap[nodes]]
+        n_own = self.Q.dofmap.index_map.size_local
+        own = q_of_node < n_own
+        order = np.argsort(q_of_node[own])
+        self._q = q_of_node[own][order]
+        self._bulk = bulk_of_node[own][order]
+        self._X = slave.mesh.geometry.x[gmap[nodes][own][order], :2]
+        q = ufl.TestFunction(self.Q)
+        self._w_c = self._lumped(q * self.dsc)[self._q]
+        self._w = self._lumped(q * slave.weight * self.dsc)[self._q]
+        # master boundary: segments oriented with the outward normal (τ_y, −τ_x)/l
+        mfacets = master.facets(master_boundary)
+        seg = _vertex_dofs(master, mfacets)
+        if len(mfacets):
+            mm = master.mesh
+            tdim = mm.topology.dim
+            mm.topology.create_connectivity(tdim - 1, tdim)
+            f2c = mm.topology.connectivity(tdim - 1, tdim)
+            cells = np.array([f2c.links(f)[0] for f in mfacets])
+            xc = mm.geometry.x[dmesh.entities_to_geometry(mm, tdim, cells, False)].mean(axis=1)
+            Xd = master.V.tabulate_dof_coordinates()
+            a, b = Xd[seg[:, 0], :2], Xd[seg[:, 1], :2]
+            t = b - a
+            out = np.c_[t[:, 1], -t[:, 0]]
+            flip = np.sum(out * (0.5 * (a + b) - xc[:, :2]), axis=1) < 0
+            seg[flip] = seg[flip][:, ::-1]
+        self._mseg_local = seg
+        self._master = None
+        self._old = None
+        self._post = None
+
+    def _lumped(self, form):
+        vec = fem.assemble_vector(fem.form(form, entity_maps=[self.emap]))
+        vec.scatter_reverse(la.InsertMode.add)
+        return vec.array.copy()
+
+    # -- master polyline on every rank -------------------------------------------------
+    def _master_dofs(self):
+        """Local (P1 block) dofs of the master boundary and their global block indices."""
+        dofs = np.unique(self._mseg_local)
+        im = self.master.V.dofmap.index_map
+        return dofs, im.local_to_global(dofs.astype(np.int32))
+
+    def _gather(self, local):
+        """Concatenate per-node arrays of every rank's master dofs, one row per global node."""
+        dofs, keys = self._master_dofs()
+        parts = self.master.mesh.comm.allgather((keys, local(dofs)))
+        allk = np.concatenate([p[0] for p in parts])
+        uniq, first = np.unique(allk, return_index=True)
+        return uniq, np.concatenate([p[1] for p in parts])[first]
+
+    def _gather_master(self):
+        """Return current master positions (n_m, 2), global node keys, segments (all ranks)."""
+        m = self.master
+        X = m.V.tabulate_dof_coordinates()[:, :2]
+        u = m.u.x.array.reshape(-1, 2)
+        keys, x = self._gather(lambda d: X[d] + u[d])
+        dofs, local_keys = self._master_dofs()
+        seg_keys = local_keys[np.searchsorted(dofs, self._mseg_local)]
+        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, 2)))
+        seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # facets on two ranks: once
+        return x, keys, seg.astype(np.int32)
+
+    def _pairs(self):
+        """Return master data, slave positions and projections (box tree refitted)."""
+        xm, keys, seg = self._gather_master()
+        if self._master is None or self._segments.shape != seg.shape \
+                or not np.array_equal(self._segments, seg):
+            self._master, self._segments = MasterSurface(np.ascontiguousarray(xm), seg), seg
+        else:
+            self._master.refit(np.ascontiguousarray(xm))
+        xs = self._X + self.slave.u.x.array.reshape(-1, 2)[self._bulk]
+        return xm, keys, seg, xs, self._master.project(np.ascontiguousarray(xs))
+
+    # -- kernel evaluation -------------------------------------------------------------
+    def _local(self, problem):
+        """Local unknowns q (n, 13), ξ̄_old, rows and columns (n, 13) of the owned slave nodes."""
+        xm, keys, seg, xs, proj = self._pairs()
+        if self._old is None:
+            self.commit()
+        mrow, mcol = problem.global_rows(self.master.u)
+        _, rc = self._gather(lambda d: np.c_[mrow[2 * d], mrow[2 * d + 1],
+                                             mcol[2 * d], mcol[2 * d + 1]])
+        rm, cm = rc[:, 0:2], rc[:, 2:4]
+        n = len(self._q)
+        f = proj["facet"]
+        old_seg = np.searchsorted(keys, self._old[0])
+        srow, scol = problem.global_rows(self.slave.u)
+        nrow, ncol = problem.global_rows(self.lam_n)
+        qv = np.zeros((n, 13))
+        rows = np.full((n, 13), -1, dtype=np.int64)
+        cols = np.full((n, 13), -1, dtype=np.int64)
+        qv[:, 0:2] = xs
+        b2 = np.c_[2 * self._bulk, 2 * self._bulk + 1]
+        rows[:, 0:2], cols[:, 0:2] = srow[b2], scol[b2]
+        for j, nodes in ((2, seg[f, 0]), (4, seg[f, 1]), (6, old_seg[:, 0]), (8, old_seg[:, 1])):
+            qv[:, j:j + 2] = xm[nodes]
+            rows[:, j:j + 2], cols[:, j:j + 2] = rm[nodes], cm[nodes]
+        qv[:, 10] = self.lam_n.x.array[self._q]
+        rows[:, 10], cols[:, 10] = nrow[self._q], ncol[self._q]
+        if self.lam_t is not None:
+            trow, tcol = problem.global_rows(self.lam_t)
+            t2 = np.c_[2 * self._q, 2 * self._q + 1]
+            qv[:, 11:13] = self.lam_t.x.array.reshape(-1, 2)[self._q]
+            rows[:, 11:13], cols[:, 11:13] = trow[t2], tcol[t2]
+        return qv, self._old[1], rows, cols
+
+    def evaluate(self, problem):
+        """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
+        qv, xi_old, rows, cols = self._local(problem)
+        r, J = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
+                              self.friction)
+        return r, J, rows, cols
+
+    def add_residual(self, b, problem):
+        """Add the kernel residual of every owned slave node to ``b`` (global rows)."""
+        r, _, rows, _ = self.evaluate(problem)
+        keep = rows.ravel() >= 0
+        b.setValues(rows.ravel()[keep].astype(PETSc.IntType), r.ravel()[keep], addv=True)
+
+    def add_jacobian(self, A, problem):
+        """Add the kernel tangent blocks (slave, master and multiplier rows × columns) to ``A``."""
+        _, J, rows, cols = self.evaluate(problem)
+        for Ji, ri, ci in zip(J, rows, cols):
+            A.setValues(ri.astype(PETSc.IntType), ci.astype(PETSc.IntType), Ji, addv=True)
+
+    # -- component protocol --------------------------------------------------------------
+    def unknowns(self):
+        """λ_N (and λ_T)."""
+        return [self.lam_n] + ([self.lam_t] if self.lam_t is not None else [])
+
+    def contributions(self):
+        """Return the linear part −∫(1/ρ) λ·δλ dS of the constraint rows (rest: kernel)."""
+        out = [(self.lam_n, -(1 / self.rho_n) * self.lam_n * ufl.TestFunction(self.Q)
+                * self.dsc)]
+        if self.lam_t is not None:
+            out.append((self.lam_t, -(1 / self.rho_t) * ufl.dot(
+                self.lam_t, ufl.TestFunction(self.Vs)) * self.dsc))
+        return out
+
+    def bcs(self):
+        """Return no conditions."""
+        return []
+
+    def entity_maps(self):
+        """Return the submesh ↔ slave entity map."""
+        return [self.emap]
+
+    def refresh(self):
+        """Nothing to refresh: the kernel runs inside the assembly (it needs the layout)."""
+
+    def tolerances(self):
+        """Constraint rows over their lumped measure: a gap ≤ rtol·G/ρ_N mm (as Contact)."""
+        G = min(self.slave.stiffness, self.master.stiffness)
+        atol = max(self.rtol * G / self.rho_n,
+                   100 * np.finfo(float).eps * self.slave.length)
+        out = {self.lam_n: BlockTolerance(atol, "mm", ufl.TestFunction(self.Q) * self.dsc)}
+        if self.lam_t is not None:
+            ones = ufl.as_vector([1.0, 1.0])
+            out[self.lam_t] = BlockTolerance(
+                atol, "mm", ufl.dot(ufl.TestFunction(self.Vs), ones) * self.dsc)
+        return out
+
+    def state_fields(self):
+        """Return the multipliers (the slip history is committed data)."""
+        return self.unknowns()
+
+    def commit(self):
+        """Accept the converged step: the master material points of the projections."""
+        _, keys, seg, _, p = self._pairs()
+        self._old = (keys[seg[p["facet"]]], p["xi"].copy())
+
+    # -- outputs ---------------------------------------------------------------------
+    def nodal_data(self, problem):
+        """Per owned slave node: X, x, nominal T_N, Cauchy pressure p = −T_N/j, weight, active."""
+        qv, xi_old, _, _ = self._local(problem)
+        r, _ = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
+                              self.friction)
+        T_n = r[:, 10] * self.rho_n / np.where(self._w_c > 0, self._w_c, 1.0)
+        if self._post is None:
+            s = self.slave
+            j = kin.area_ratio(kin.deformation_gradient(s.u, s.kind), ufl.FacetNormal(s.mesh),
+                               s.kind)
+            self._post = fem.form(j * ufl.TestFunction(self.Q) * self.dsc,
+                                  entity_maps=[self.emap])
+        wj = self._lumped_form(self._post)[self._q]
+        j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
+        return {"X": self._X, "x": qv[:, 0:2], "T_n": T_n, "p": -T_n / j, "weight": wj,
+                "active": T_n < 0}
+
+    def _lumped_form(self, form):
+        vec = fem.assemble_vector(form)
+        vec.scatter_reverse(la.InsertMode.add)
+        return vec.array.copy()
+
+    def forces(self, problem):
+        """Total contact force on the slave and on the master (N/mm), all ranks."""
+        r, _, _, _ = self.evaluate(problem)
+        comm = self.slave.mesh.comm
+        on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
+        on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
+        return on_slave, on_master
+
+    def gather_profile(self, problem):
+        """All nodal data on rank 0 (None elsewhere), sorted by reference X[0]."""
+        d = self.nodal_data(problem)
+        allp = self.slave.mesh.comm.gather(d, root=0)
+        if self.slave.mesh.comm.rank != 0:
+            return None
+        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
+        order = np.argsort(out["X"][:, 0])
+        return {k: v[order] for k, v in out.items()}
