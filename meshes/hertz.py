@@ -25,20 +25,26 @@ NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_x": SYMMETRY_X,
          "symmetry_y": SYMMETRY_Y}
 
 
-def _build_2d(R, h_fine, h_coarse, r_fine):
+def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
     occ = gmsh.model.occ
-    disc = occ.addDisk(0, R, 0, R, R)
-    box = occ.addRectangle(0, 0, 0, R, R)
-    occ.intersect([(2, disc)], [(2, box)])
+    s = -1.0 if below else 1.0
+    y_load = s * R
+    if block is not None:   # a flat block [0, block] × [−block, 0] below the contact point
+        occ.addRectangle(0, -block, 0, block, block)
+        y_load, R = -block, block
+    else:
+        disc = occ.addDisk(0, s * R, 0, R, R)
+        box = occ.addRectangle(0, min(0.0, s * R), 0, R, R)
+        occ.intersect([(2, disc)], [(2, box)])
     occ.synchronize()
     contact, loaded, sym = [], [], []
     for dim, tag in gmsh.model.getEntities(1):
         x, y, _ = occ.getCenterOfMass(dim, tag)
         if abs(x) < 1e-8 * R:
             sym.append(tag)
-        elif abs(y - R) < 1e-8 * R:
+        elif abs(y - y_load) < 1e-8 * R:
             loaded.append(tag)
-        else:
+        elif block is None or abs(y) < 1e-8 * R:
             contact.append(tag)
     surf = [t for _, t in gmsh.model.getEntities(2)]
     gmsh.model.addPhysicalGroup(2, surf, 1)
@@ -81,7 +87,8 @@ def _build_3d(R, h_fine, h_coarse, r_fine):
     gmsh.model.mesh.generate(3)
 
 
-def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=False,
+               block=None):
     """Build the symmetry-reduced Hertz body and return ``(mesh, facet_tags)``.
 
     Args:
@@ -91,6 +98,10 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
         h_coarse: element size far from it (mm).
         r_fine: radius of the refined zone (mm); choose it above the contact size.
         comm: MPI communicator; the model is built on rank 0 and distributed.
+        below: 2D only: the cylinder under the contact point (centre (0, −R),
+            loaded face y = −R), the counterpart of a two-cylinder contact.
+        block: 2D only: instead a flat block [0, block] × [−block, 0] (contact
+            face y = 0, loaded face y = −block, the right side free).
     """
     if dim not in (2, 3):
         raise ValueError(f"dim must be 2 or 3, got {dim}")
@@ -100,7 +111,10 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add(f"hertz{dim}d")
     if comm.rank == 0:
-        (_build_2d if dim == 2 else _build_3d)(R, h_fine, h_coarse, r_fine)
+        if dim == 2:
+            _build_2d(R, h_fine, h_coarse, r_fine, below, block)
+        else:
+            _build_3d(R, h_fine, h_coarse, r_fine)
     data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=dim)
     gmsh.model.remove()
     if not initialized:

@@ -34,6 +34,7 @@ contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
 every block is converged, never on one 2-norm over mixed units.
 """
 
+import atexit
 import weakref
 from dataclasses import dataclass, field
 
@@ -126,6 +127,51 @@ def weak_callback(method):
         return ref()(*args, **kwargs)
 
     return call
+
+
+class _Lifetimes:
+    """Collective destruction of the DOLFINx problems held by :class:`Problem` objects.
+
+    ``dolfinx.fem.petsc.NonlinearProblem.__del__`` destroys its SNES and
+    matrices at once, and destroying a parallel factorisation is collective.  A
+    Problem caught in a reference cycle is freed by the cycle collector at a
+    moment that differs from rank to rank, so that destruction would deadlock.
+    On communicators of more than one rank the NonlinearProblem objects are
+    therefore kept here (numbered in creation order, the same on every rank);
+    a freed Problem only marks its number, and :meth:`release` — called by
+    every rank at the same points (each Problem construction and solve, and at
+    exit) — destroys those marked on all ranks, in creation order.  On one rank
+    the object goes with its Problem.
+    """
+
+    def __init__(self):
+        self.live, self.dead, self.count = {}, set(), 0
+
+    def keep(self, problem, nlp, comm):
+        """Hold ``nlp`` of ``problem`` until every rank has freed the problem."""
+        if comm.size == 1:
+            return nlp
+        key = self.count
+        self.count += 1
+        self.live[key] = nlp
+        weakref.finalize(problem, self.dead.add, key)
+        return None
+
+    def release(self, comm=MPI.COMM_WORLD, everything=False):
+        """Destroy, collectively, what every rank has freed (or ``everything``)."""
+        if comm.size == 1 or not self.live:
+            return
+        if everything:
+            keys = sorted(self.live)
+        else:
+            keys = sorted(set.intersection(*map(set, comm.allgather(sorted(self.dead)))))
+        for k in keys:
+            self.dead.discard(k)
+            del self.live[k]
+
+
+_LIFETIMES = _Lifetimes()
+atexit.register(lambda: _LIFETIMES.release(everything=True))
 
 
 def convergence_orders(residuals, floor=1e-13):
@@ -231,11 +277,15 @@ class Problem:
         """SNES of the blocked UFL system (public NonlinearProblem), residual wrapped."""
         J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
               for uj in self.u] for Fi in self.residual_forms]
-        self._nlp = fem_petsc.NonlinearProblem(
+        nlp = fem_petsc.NonlinearProblem(
             self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",
             petsc_options_prefix=self.prefix, entity_maps=self._emaps())
-        self.snes = self._nlp.solver
-        self._x, self._A = self._nlp.x, self._nlp.A
+        self.snes = nlp.solver
+        self._x, self._A = nlp.x, nlp.A
+        comm = self.snes.comm.tompi4py()
+        if comm.size > 1:
+            _LIFETIMES.release(comm)
+        self._nlp = _LIFETIMES.keep(self, nlp, comm)
         # wrap the residual callback: refresh the components' data at every iterate
         b, (fn, args, kargs) = self.snes.getFunction()
         self._assemble_residual = (fn, args, kargs)
@@ -458,6 +508,8 @@ class Problem:
         Raises :class:`NewtonDivergence` (the unknowns back at their entry
         values) when SNES does not converge.
         """
+        if self.snes.comm.size > 1:
+            _LIFETIMES.release(self.snes.comm.tompi4py())
         backup = [ui.x.array.copy() for ui in self.u]
         self._report = NewtonReport(names=[n for n, _, _, _ in self._tolerances])
         self._verbose = verbose

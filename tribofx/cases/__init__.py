@@ -5,6 +5,7 @@ from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
 from .hertz import HertzCase
 from .reynolds import CylinderCase, SliderCase
+from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
 from .wear_ball import WearBallCase
 from .wear_groove import WearBallHalfspaceCase
@@ -13,7 +14,7 @@ __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
-                                  EHLORingCase)}
+                                  EHLORingCase, TwoCylindersCase)}
 
 
 def get_case(name):

@@ -1,0 +1,159 @@
+"""Two elastic cylinders pressed together (plane strain), against Hertz.
+
+Two deformable bodies (chapter §2): the upper cylinder (radius R1, centre
+(0, R1)) is the slave, the lower one (radius R2, centre (0, −R2)) the master —
+or, with ``R2=0``, a flat elastic block [0, 2R1] × [−2R1, 0].  Both are
+symmetry-reduced (x ≥ 0), refined around the initial contact point (the
+origin) and carry finite-strain neo-Hookean laws with their own E and ν.  The
+slave's flat face is held, the master's flat (or bottom) face is pushed up by
+δ; :class:`~tribofx.continuation.Continuation` finds δ for each load
+increment from the contact force.  The contact is
+:class:`~tribofx.interfaces.TwoBodyContact` (the C++ closest-point kernel on
+the current master surface, exact tangent in slave and master dofs).
+
+Reference (:func:`tribofx.references.hertz`, line contact): 1/R* = 1/R1 +
+1/R2, 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2, a = (4PR*/(πE*))^½,
+p0 = 2P/(πa); P the load per unit length of the full cylinders.
+"""
+
+import math
+
+import numpy as np
+from mpi4py import MPI
+
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
+from ..forms.hyperelastic import lame_parameters
+from ..interfaces import TwoBodyContact
+from ..meshes.hertz import NAMES, hertz_body
+from ..params import InputError, Param
+from ..problem import NewtonDivergence, Problem
+from ..references import hertz
+
+__all__ = ["TwoCylindersCase"]
+
+
+class TwoCylindersCase:
+    """Case ``contact-two-cylinders``; see the module docstring."""
+
+    name = "contact-two-cylinders"
+    doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
+    params = (
+        Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),
+        Param("R2", float, 10.0, "mm", "radius of the lower (master) cylinder; 0: flat block",
+              lower=0, closed=True),
+        Param("E1", float, 10.0, "MPa", "Young's modulus of the upper cylinder", lower=0),
+        Param("E2", float, 10.0, "MPa", "Young's modulus of the lower body", lower=0),
+        Param("nu1", float, 0.3, "-", "Poisson's ratio of the upper cylinder", lower=-1,
+              upper=0.5),
+        Param("nu2", float, 0.3, "-", "Poisson's ratio of the lower body", lower=-1,
+              upper=0.5),
+        Param("load", float, 0.2, "N/mm", "normal load per unit length (full cylinders)",
+              lower=0),
+        Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0,
+              closed=True),
+        Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh)",
+              lower=0, upper=6, closed=True),
+        Param("steps", int, 2, "-", "load increments", lower=1, upper=100, closed=True),
+    )
+
+    @staticmethod
+    def reference(v):
+        """Hertz line contact of the two bodies (a flat for R2 = 0)."""
+        R2 = math.inf if v["R2"] == 0 else v["R2"]
+        return hertz(v["load"], v["R1"], v["E1"], v["nu1"], R2, v["E2"], v["nu2"], line=True)
+
+    @classmethod
+    def validate(cls, v):
+        """Reject loads with a/R* > 0.3 (no Hertz comparison) or a/R* < 1e-4."""
+        h = cls.reference(v)
+        if h.a > 0.3 * h.R_star:
+            raise InputError(f"load too large for a Hertz comparison: a/R* = "
+                             f"{h.a / h.R_star:.2f} > 0.3")
+        if h.a < 1e-4 * h.R_star:
+            raise InputError(f"load too small to resolve: a/R* = {h.a / h.R_star:.1e}")
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD):
+        """Upper body, lower body, contact and problem (unloaded)."""
+        h = cls.reference(v)
+        h_fine = h.a / (6 * 2 ** v["mesh"])
+        bodies = []
+        for k, (R, E, nu) in enumerate(((v["R1"], v["E1"], v["nu1"]),
+                                        (v["R2"], v["E2"], v["nu2"]))):
+            size = R if R > 0 else 2 * v["R1"]
+            msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
+                                 block=size if R == 0 else None)
+            mu, lmbda = lame_parameters(E, nu)
+            body = Body(msh, ft, NAMES, "plane_strain",
+                        ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                        name=("upper", "lower")[k])
+            body.add_dirichlet("symmetry_x", 0.0, component=0)
+            bodies.append(body)
+        upper, lower = bodies
+        upper.add_dirichlet("loaded", np.zeros(2))
+        push = lower.add_dirichlet("loaded", 0.0, component=1)
+        E_min = min(v["E1"], v["E2"])
+        contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / h_fine,
+                                 friction=v["friction"])
+        problem = Problem([upper, lower, contact], name="two_cylinders")
+        return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
+                "push": push}
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False):
+        """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
+        run = cls.build(v)
+        contact, problem = run["contact"], run["problem"]
+        record.data["num_dofs"] = problem.num_dofs
+        h = cls.reference(v)
+        control = Continuation(problem, ConstantParameter(run["push"]),
+                               response=lambda: contact.forces(problem)[0][1],
+                               verbose=verbose, record=record.data["newton_iterations"])
+        delta = 0.25 * h.a**2 / h.R_star
+        try:
+            for k in range(v["steps"]):
+                target = 0.5 * v["load"] * (k + 1) / v["steps"]   # half model
+                delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
+                if progress is not None:
+                    progress.update(1)
+        except NewtonDivergence as err:
+            err.problem = run
+            raise
+        finally:
+            cls.report(run, v, record, h)
+        return run
+
+    @staticmethod
+    def report(run, v, record, h):
+        """Contact half-width (sum of active lumped current lengths) and peak pressure."""
+        contact, problem = run["contact"], run["problem"]
+        d = contact.nodal_data(problem)
+        comm = contact.slave.mesh.comm
+        a = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
+        p_max = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
+        on_upper, on_lower = contact.forces(problem)
+        record.result("contact_half_width", a, "mm")
+        record.result("hertz_contact_half_width", h.a, "mm")
+        record.result("p_max", p_max, "MPa")
+        record.result("hertz_p_max", h.p0, "MPa")
+        record.result("contact_half_width_rel_error", a / h.a - 1)
+        record.result("p_max_rel_error", p_max / h.p0 - 1)
+        record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
+        record.result("action_reaction_error", float(np.abs(on_upper + on_lower).max()), "N/mm")
+        prof = contact.gather_profile(problem)
+        if comm.rank == 0:
+            record.profile = {"r": prof["x"][:, 0], "p": prof["p"], "a": h.a, "p0": h.p0,
+                              "dim": 2}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacements of both bodies (one file per mesh)."""
+        return {"upper": [run["upper"].u], "lower": [run["lower"].u]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Pressure profile against Hertz (``pressure.png``)."""
+        from ..plots import plot_hertz_pressure
+
+        plot_hertz_pressure(profile, outdir / "pressure.png")
