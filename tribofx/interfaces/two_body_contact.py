@@ -260,11 +260,13 @@ class TwoBodyContact:
 
     # -- outputs ---------------------------------------------------------------------
     def nodal_data(self, problem):
-        """Per owned slave node: X, x, nominal T_N, Cauchy pressure p = −T_N/j, weight, active."""
+        """Per owned slave node: X, x, nominal T_N and T_T, pressure p = −T_N/j, weight, active."""
         qv, xi_old, _, _ = self._local(problem)
         r, _ = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
                               self.friction)
-        T_n = r[:, 10] * self.rho_n / np.where(self._w_c > 0, self._w_c, 1.0)
+        wc = np.where(self._w_c > 0, self._w_c, 1.0)
+        T_n = r[:, 10] * self.rho_n / wc
+        T_t = r[:, 11:13] * self.rho_t / wc[:, None]
         if self._post is None:
             s = self.slave
             j = kin.area_ratio(kin.deformation_gradient(s.u, s.kind), ufl.FacetNormal(s.mesh),
@@ -273,8 +275,8 @@ class TwoBodyContact:
                                   entity_maps=[self.emap])
         wj = self._lumped_form(self._post)[self._q]
         j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
-        return {"X": self._X, "x": qv[:, 0:2], "T_n": T_n, "p": -T_n / j, "weight": wj,
-                "active": T_n < 0}
+        return {"X": self._X, "x": qv[:, 0:2], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
+                "weight": wj, "active": T_n < 0}
 
     def _lumped_form(self, form):
         vec = fem.assemble_vector(form)
