@@ -34,7 +34,7 @@ from ..forms import kinematics as kin
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
 
-__all__ = ["Contact", "node_to_dof"]
+__all__ = ["Contact", "gather_nodal", "node_to_dof"]
 
 
 def node_to_dof(V):
@@ -279,10 +279,14 @@ class Contact:
 
     def gather_profile(self):
         """All nodal contact data on rank 0 (None elsewhere), sorted by reference X[0]."""
-        d = self.nodal_data()
-        allp = self.body.mesh.comm.gather(d, root=0)
-        if self.body.mesh.comm.rank != 0:
-            return None
-        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
-        order = np.argsort(out["X"][:, 0])
-        return {k: v[order] for k, v in out.items()}
+        return gather_nodal(self.body.mesh.comm, self.nodal_data())
+
+
+def gather_nodal(comm, data):
+    """Concatenate the ranks' nodal ``data`` (dict of arrays) on rank 0, sorted by X[:, 0]."""
+    allp = comm.gather(data, root=0)
+    if comm.rank != 0:
+        return None
+    out = {k: np.concatenate([a[k] for a in allp]) for k in data}
+    order = np.argsort(out["X"][:, 0])
+    return {k: v[order] for k, v in out.items()}

@@ -36,7 +36,7 @@ from ..forms import kinematics as kin
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
 from ..two_body import MasterSurface, node_residuals
-from .contact import node_to_dof
+from .contact import gather_nodal, node_to_dof
 
 __all__ = ["TwoBodyContact"]
 
@@ -293,10 +293,4 @@ class TwoBodyContact:
 
     def gather_profile(self, problem):
         """All nodal data on rank 0 (None elsewhere), sorted by reference X[0]."""
-        d = self.nodal_data(problem)
-        allp = self.slave.mesh.comm.gather(d, root=0)
-        if self.slave.mesh.comm.rank != 0:
-            return None
-        out = {k: np.concatenate([a[k] for a in allp]) for k in d}
-        order = np.argsort(out["X"][:, 0])
-        return {k: v[order] for k, v in out.items()}
+        return gather_nodal(self.slave.mesh.comm, self.nodal_data(problem))
