@@ -1,5 +1,6 @@
 """Registry of runnable cases: ``tribofx run CASE``."""
 
+from .contact_patch import ContactPatchCase
 from .ehl import EHLCylinderLayerCase
 from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
@@ -14,7 +15,8 @@ __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
-                                  EHLORingCase, TwoCylindersCase)}
+                                  EHLORingCase, TwoCylindersCase,
+                                  ContactPatchCase)}
 
 
 def get_case(name):

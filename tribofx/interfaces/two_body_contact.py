@@ -59,6 +59,9 @@ class TwoBodyContact:
         name, rtol: as for :class:`tribofx.interfaces.Contact`.
     """
 
+    #: relative hysteresis of the master-segment choice (see :meth:`_pairs`)
+    STICKY = 0.05
+
     def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
                  rho_t=None, name="contact", rtol=1e-10):
         for b in (slave, master):
@@ -115,6 +118,7 @@ class TwoBodyContact:
         self._mseg_local = seg
         self._master = None
         self._old = None
+        self._facet_prev = None
         self._post = None
 
     def _lumped(self, form):
@@ -155,10 +159,29 @@ class TwoBodyContact:
         if self._master is None or self._segments.shape != seg.shape \
                 or not np.array_equal(self._segments, seg):
             self._master, self._segments = MasterSurface(np.ascontiguousarray(xm), seg), seg
+            self._facet_prev = None
         else:
             self._master.refit(np.ascontiguousarray(xm))
         xs = self._X + self.slave.u.x.array.reshape(-1, 2)[self._bulk]
-        return xm, keys, seg, xs, self._master.project(np.ascontiguousarray(xs))
+        proj = self._master.project(np.ascontiguousarray(xs))
+        prev = self._facet_prev
+        if prev is not None and len(prev) == len(xs):
+            # keep the segment of the previous evaluation while the node still projects
+            # onto it (ξ within STICKY of [0, 1]) at no more than the nearest distance
+            # plus STICKY of its length: at a kink of the deformed master the nearest
+            # segment jumps between the neighbours of a vertex and Newton cycles
+            a, b = xm[seg[prev, 0]], xm[seg[prev, 1]]
+            t = b - a
+            l2 = np.sum(t * t, axis=1)
+            d = xs - a
+            xi = np.sum(d * t, axis=1) / l2
+            dist = np.abs(t[:, 0] * d[:, 1] - t[:, 1] * d[:, 0]) / np.sqrt(l2)
+            keep = (xi > -self.STICKY) & (xi < 1 + self.STICKY) & \
+                (dist <= proj["distance"] + self.STICKY * np.sqrt(l2))
+            proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
+            proj["xi"] = np.where(keep, np.clip(xi, 0, 1), proj["xi"])
+        self._facet_prev = proj["facet"].copy()
+        return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
     def _local(self, problem):
@@ -260,7 +283,7 @@ class TwoBodyContact:
 
     # -- outputs ---------------------------------------------------------------------
     def nodal_data(self, problem):
-        """Per owned slave node: X, x, nominal T_N and T_T, pressure p = −T_N/j, weight, active."""
+        """Per owned slave node: X, x, nominal T_N, T_T, pressure −T_N/j, weights (current, ref)."""
         qv, xi_old, _, _ = self._local(problem)
         r, _ = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
                               self.friction)
@@ -276,7 +299,7 @@ class TwoBodyContact:
         wj = self._lumped_form(self._post)[self._q]
         j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
         return {"X": self._X, "x": qv[:, 0:2], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
-                "weight": wj, "active": T_n < 0}
+                "weight": wj, "weight_ref": self._w_c.copy(), "active": T_n < 0}
 
     def _lumped_form(self, form):
         vec = fem.assemble_vector(form)

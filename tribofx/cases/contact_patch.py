@@ -1,0 +1,130 @@
+"""Contact patch test: two elastic blocks, non-matching meshes, uniform pressure.
+
+The slave block [0, 1] × [0, 0.5] lies on the master block [0, 1] × [−0.5, 0]
+(the same neo-Hookean material); a dead nominal traction (0, −p) loads the
+slave's top, the master's bottom is on rollers (u_y = 0) and both left sides
+on rollers (u_x = 0).  The homogeneous deformation (nominal stress −p e_y⊗e_y,
+the same in both blocks: no relative slip) is the exact solution, so a
+formulation that passes the patch test transmits the nominal contact traction
+T_N = −p at every slave node.  ``mesh_ratio`` is the number of slave elements
+per master element along the interface (> 1: slave finer).
+
+Why the single-pass node-to-segment scheme (slave-node quadrature) passes or
+fails: the homogeneous state is a discrete solution iff the master nodal
+forces Σ_i w_i p N_a(ξ̄_i) equal the consistent loads p ∫ N_a dx.  The slave
+nodes integrate with the trapezoidal rule over the slave elements, which is
+exact for a master hat function N_a iff its kinks (the master nodes) are slave
+nodes: meshes nested with the slave finer (integer ``mesh_ratio``) pass the
+test to solver tolerance; a coarser slave (master nodes between slave nodes
+receive no force) or non-nested meshes do not.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import mesh
+from mpi4py import MPI
+
+from ..body import Body
+from ..forms.hyperelastic import lame_parameters
+from ..interfaces import TwoBodyContact
+from ..params import Param
+from ..problem import Problem
+
+__all__ = ["ContactPatchCase", "patch_block"]
+
+
+def patch_block(comm, y0, y1, n, name, material):
+    """Block [0, 1] × [y0, y1] with n × max(2, n/2) cells, boundaries bottom, top, left."""
+    msh = mesh.create_rectangle(comm, [[0.0, y0], [1.0, y1]], [n, max(2, n // 2)],
+                                diagonal=mesh.DiagonalType.left)
+    fdim = msh.topology.dim - 1
+    where = {1: lambda x: np.isclose(x[1], y0), 2: lambda x: np.isclose(x[1], y1),
+             3: lambda x: np.isclose(x[0], 0.0)}
+    ents = [mesh.locate_entities_boundary(msh, fdim, f) for f in where.values()]
+    e = np.concatenate(ents)
+    v = np.concatenate([np.full(len(x), t, np.int32) for t, x in zip(where, ents)])
+    e, first = np.unique(e, return_index=True)   # corner facets: the first tag
+    tags = mesh.meshtags(msh, fdim, e, v[first])
+    return Body(msh, tags, {"bottom": 1, "top": 2, "left": 3}, "plane_strain", material,
+                name=name)
+
+
+class ContactPatchCase:
+    """Case ``contact-patch``; see the module docstring."""
+
+    name = "contact-patch"
+    doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
+    params = (
+        Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",
+              lower=0.0, upper=16.0, closed=True),
+        Param("n_master", int, 8, "-", "master elements along the interface", lower=1,
+              upper=512, closed=True),
+        Param("E", float, 10.0, "MPa", "Young's modulus of both blocks", lower=0),
+        Param("nu", float, 0.3, "-", "Poisson's ratio of both blocks", lower=-1, upper=0.5),
+        Param("pressure", float, 0.1, "MPa", "nominal pressure on the slave's top", lower=0),
+    )
+
+    @staticmethod
+    def validate(v):
+        """Nothing beyond the parameter ranges."""
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD):
+        """Slave and master blocks, contact and problem."""
+        mu, lmbda = lame_parameters(v["E"], v["nu"])
+        mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
+        n_s = max(1, round(v["mesh_ratio"] * v["n_master"]))
+        slave = patch_block(comm, 0.0, 0.5, n_s, "slave", mat)
+        master = patch_block(comm, -0.5, 0.0, v["n_master"], "master", mat)
+        slave.add_traction("top", ufl.as_vector([0.0, -v["pressure"]]))
+        slave.add_dirichlet("left", 0.0, component=0)
+        master.add_dirichlet("left", 0.0, component=0)
+        master.add_dirichlet("bottom", 0.0, component=1)
+        h = 1.0 / max(n_s, v["n_master"])
+        contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v["E"] / h)
+        problem = Problem([slave, master, contact], name="contact_patch")
+        return {"slave": slave, "master": master, "contact": contact, "problem": problem}
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False):
+        """Solve once; record the mean and the largest relative deviation of the traction."""
+        run = cls.build(v)
+        contact, problem = run["contact"], run["problem"]
+        record.data["num_dofs"] = problem.num_dofs
+        record.data["newton_iterations"].append(problem.solve(verbose=verbose).iterations)
+        d = contact.nodal_data(problem)
+        comm = contact.slave.mesh.comm
+        w, t = d["weight_ref"], -d["T_n"]
+        mean = comm.allreduce(float(np.sum(w * t)), op=MPI.SUM) / \
+            comm.allreduce(float(np.sum(w)), op=MPI.SUM)
+        dev = comm.allreduce(float(np.max(np.abs(t - mean), initial=0.0)), op=MPI.MAX)
+        record.result("pressure_mean", mean, "MPa")
+        record.result("pressure_max_deviation", dev / mean)
+        record.result("nodes_in_contact", comm.allreduce(int(np.sum(d["active"])), op=MPI.SUM))
+        prof = contact.gather_profile(problem)
+        if comm.rank == 0:
+            record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v["pressure"]}
+        if progress is not None:
+            progress.update(1)
+        return run
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacements of both blocks."""
+        return {"slave": [run["slave"].u], "master": [run["master"].u]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Nominal contact pressure along the interface (``pressure.png``)."""
+        from ..plots import pyplot
+
+        plt = pyplot()
+        fig, ax = plt.subplots(figsize=(5.5, 3.5))
+        ax.plot(profile["x"], profile["p"], "o-", ms=3, label="slave nodes")
+        ax.axhline(profile["p_ref"], color="k", lw=0.8, label="applied pressure")
+        ax.set_xlabel("X (mm)")
+        ax.set_ylabel("nominal contact pressure (MPa)")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(outdir / "pressure.png", dpi=110)
+        plt.close(fig)
