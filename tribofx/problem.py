@@ -34,10 +34,6 @@ contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
 every block is converged, never on one 2-norm over mixed units.
 """
 
-import atexit
-import weakref
-from dataclasses import dataclass, field
-
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
@@ -46,6 +42,8 @@ from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
+from .lifetimes import LIFETIMES, weak_callback
+from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 from .solvers import DirectSolver
 
 __all__ = [
@@ -54,137 +52,7 @@ __all__ = [
     "NewtonReport",
     "Problem",
     "convergence_orders",
-    "weak_callback",
 ]
-
-
-class NewtonDivergence(RuntimeError):
-    """Raised when the Newton iteration does not converge (the unknowns are restored)."""
-
-
-@dataclass
-class BlockTolerance:
-    """Stopping tolerance of one block of rows, in the block's physical unit.
-
-    Attributes:
-        atol: tolerance on ``max |r / w|`` (in ``unit``).
-        unit: unit of ``r / w`` (for reports), e.g. "N", "mm".
-        weight: UFL linear form whose assembled vector is the lumped row measure
-            ``w`` (None: 1, the rows already carry the unit).
-    """
-
-    atol: float
-    unit: str = "-"
-    weight: object = None
-
-
-@dataclass
-class NewtonReport:
-    """Outcome of one Newton solve: iterations, residual 2-norms and per-block norms.
-
-    ``blocks[k]`` are the per-block stopping measures max |r/w| at iteration k,
-    ``increments[k]`` the per-block max |Δx| of the Newton correction that led to
-    iterate k + 1 (in the unknowns' units).
-    """
-
-    iterations: int = 0
-    residuals: list = field(default_factory=list)
-    blocks: list = field(default_factory=list)
-    increments: list = field(default_factory=list)
-    reason: int = 0
-    names: list = field(default_factory=list)
-
-    def rates(self, floor=1e-13):
-        """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""
-        return convergence_orders(self.residuals, floor)
-
-    def increment_orders(self, block=0, floor=1e-13):
-        """Observed orders of the corrections max |Δx| of one block (index or unknown name).
-
-        With an ill-conditioned Jacobian (film rows whose conductivity h³ spans
-        orders of magnitude) the residual is a poor measure of the error, its
-        dominant rows change from one iterate to the next; the correction
-        Δx_k ≈ x_k − x* is the error itself once Newton converges, so
-        |Δx_{k+1}| ≤ C |Δx_k|² shows quadratic convergence directly.
-        """
-        if isinstance(block, str):
-            block = self.names.index(block)
-        return convergence_orders([d[block] for d in self.increments], floor)
-
-
-def weak_callback(method):
-    """Wrap the bound ``method`` as a PETSc callback that does not keep its object alive.
-
-    SNES keeps its callbacks in C, out of sight of Python's garbage collector: a
-    bound method of the object that owns the SNES would make a cycle that is
-    never collected, and every mesh, form and PETSc object of the problem —
-    with the MPI communicators they duplicate — would leak (MPICH has 2048
-    context ids per process; the test suite ran out of them).
-    """
-    ref = weakref.WeakMethod(method)
-
-    def call(*args, **kwargs):
-        return ref()(*args, **kwargs)
-
-    return call
-
-
-class _Lifetimes:
-    """Collective destruction of the DOLFINx problems held by :class:`Problem` objects.
-
-    ``dolfinx.fem.petsc.NonlinearProblem.__del__`` destroys its SNES and
-    matrices at once, and destroying a parallel factorisation is collective.  A
-    Problem caught in a reference cycle is freed by the cycle collector at a
-    moment that differs from rank to rank, so that destruction would deadlock.
-    On communicators of more than one rank the NonlinearProblem objects are
-    therefore kept here (numbered in creation order, the same on every rank);
-    a freed Problem only marks its number, and :meth:`release` — called by
-    every rank at the same points (each Problem construction and solve, and at
-    exit) — destroys those marked on all ranks, in creation order.  On one rank
-    the object goes with its Problem.
-    """
-
-    def __init__(self):
-        self.live, self.dead, self.count = {}, set(), 0
-
-    def keep(self, problem, nlp, comm):
-        """Hold ``nlp`` of ``problem`` until every rank has freed the problem."""
-        if comm.size == 1:
-            return nlp
-        key = self.count
-        self.count += 1
-        self.live[key] = nlp
-        weakref.finalize(problem, self.dead.add, key)
-        return None
-
-    def release(self, comm=MPI.COMM_WORLD, everything=False):
-        """Destroy, collectively, what every rank has freed (or ``everything``)."""
-        if comm.size == 1 or not self.live:
-            return
-        if everything:
-            keys = sorted(self.live)
-        else:
-            keys = sorted(set.intersection(*map(set, comm.allgather(sorted(self.dead)))))
-        for k in keys:
-            self.dead.discard(k)
-            del self.live[k]
-
-
-_LIFETIMES = _Lifetimes()
-atexit.register(lambda: _LIFETIMES.release(everything=True))
-
-
-def convergence_orders(residuals, floor=1e-13):
-    """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of a residual history.
-
-    Residuals below ``floor`` × r₀ are at round-off and are dropped first.
-    """
-    r = np.asarray(residuals, dtype=float)
-    r = r[r > floor * r[0]] if len(r) else r
-    if len(r) < 3:
-        return np.array([])
-    lr = np.log(r)
-    return (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
 
 
 def _nonzero_or_none(a):
@@ -284,8 +152,8 @@ class Problem:
         self._x, self._A = nlp.x, nlp.A
         comm = self.snes.comm.tompi4py()
         if comm.size > 1:
-            _LIFETIMES.release(comm)
-        self._nlp = _LIFETIMES.keep(self, nlp, comm)
+            LIFETIMES.release(comm)
+        self._nlp = LIFETIMES.keep(self, nlp, comm)
         # wrap the residual callback: refresh the components' data at every iterate
         b, (fn, args, kargs) = self.snes.getFunction()
         self._assemble_residual = (fn, args, kargs)
@@ -509,7 +377,7 @@ class Problem:
         values) when SNES does not converge.
         """
         if self.snes.comm.size > 1:
-            _LIFETIMES.release(self.snes.comm.tompi4py())
+            LIFETIMES.release(self.snes.comm.tompi4py())
         backup = [ui.x.array.copy() for ui in self.u]
         self._report = NewtonReport(names=[n for n, _, _, _ in self._tolerances])
         self._verbose = verbose

@@ -37,7 +37,8 @@ import ufl
 from dolfinx import fem, la
 from petsc4py import PETSc
 
-from .problem import Problem, _nonzero_or_none, weak_callback
+from .lifetimes import weak_callback
+from .problem import Problem, _nonzero_or_none
 
 __all__ = ["AlgebraicRow", "ReducedProblem", "Reduction"]
 
