@@ -327,7 +327,21 @@ class Problem:
             return PETSc.SNES.ConvergedReason.CONVERGED_FNORM_ABS
         if it >= self.max_it:
             return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
+        if self._stalled(self._report.residuals):
+            return PETSc.SNES.ConvergedReason.DIVERGED_DTOL
         return PETSc.SNES.ConvergedReason.ITERATING
+
+    #: a Newton iteration whose best residual has not halved over this many
+    #: iterations has stalled (an over-long continuation step): it is stopped so
+    #: that the controller cuts the step instead of iterating to ``max_it``
+    STALL_WINDOW = 10
+
+    @classmethod
+    def _stalled(cls, residuals):
+        w = cls.STALL_WINDOW
+        if len(residuals) <= 2 * w:
+            return False
+        return min(residuals[-w:]) > 0.5 * min(residuals[:-w])
 
     def _backtrack(self, x, y):
         """Line search: the full Newton step unless it raises ‖R‖₂; then halve it.
