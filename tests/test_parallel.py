@@ -18,9 +18,9 @@ def _mpiexec():
     return exe
 
 
-def _case(tmp_path, nproc, name, *sets):
+def _case(tmp_path, nproc, name, *sets, case="hertz"):
     out = tmp_path / f"{name}-{nproc}"
-    cmd = [sys.executable, "-m", "tribofx.cli", "run", "hertz", "--out", str(out), "--quiet"]
+    cmd = [sys.executable, "-m", "tribofx.cli", "run", case, "--out", str(out), "--quiet"]
     for s in sets:
         cmd += ["--set", s]
     if nproc > 1:
@@ -46,3 +46,25 @@ def test_serial_equals_two_processes(tmp_path, sets):
         assert v2 == pytest.approx(v1, rel=1e-5)
     size = "contact_half_width" if "dim=2" in sets else "contact_radius"
     assert s2["results"][size]["value"] == pytest.approx(s1["results"][size]["value"], rel=1e-5)
+
+
+@pytest.mark.parametrize("case,sets", [
+    ("contact-two-cylinders", ("mesh=1", "friction=0.3", "E2=20")),
+    ("contact-patch", ("mesh_ratio=0.5",)),
+])
+def test_two_body_serial_equals_two_processes(tmp_path, case, sets):
+    """Two deformable bodies: a rank's slave nodes project onto master facets of the other.
+
+    Same discrete problem on 1 and 2 ranks; the contact-two-cylinders load
+    control stops at |P − P*| ≤ 1e-6 P*, so results may move by ~1e-6
+    relative; the patch test is one Newton solve to 1e-10 (rel 1e-8).
+    """
+    s1 = _case(tmp_path, 1, "a", *sets, case=case)
+    s2 = _case(tmp_path, 2, "b", *sets, case=case)
+    assert s2["mpi_size"] == 2 and s1["num_dofs"] == s2["num_dofs"]
+    rel = 1e-5 if case == "contact-two-cylinders" else 1e-8
+    keys = (("contact_half_width", "p_max", "normal_load_full_body")
+            if case == "contact-two-cylinders" else ("pressure_mean", "pressure_max_deviation"))
+    for key in keys:
+        v1, v2 = s1["results"][key]["value"], s2["results"][key]["value"]
+        assert v2 == pytest.approx(v1, rel=rel), (key, v1, v2)

@@ -164,7 +164,8 @@ def test_newton_quadratic():
 def test_sliding_blocks_tangential_force_is_mu_times_normal():
     """Large sliding (three master segments) on a deformable master: F_T = μ F_N.
 
-    Once every contact node slips the Coulomb cone holds node by node,
+    Then the Taylor test at that large-slip state.  Once every contact node
+    slips the Coulomb cone holds node by node,
     |T_T| = μ|T_N| in the local frame of the (tilted, deformed) master, so the
     total magnitudes follow it to the tolerance of the constraint rows (1e-10
     G/ρ_N of a gap, i.e. 1e-10 G of a traction against |T_N| ≈ 0.1 G: ≤ 1e-8
@@ -193,6 +194,15 @@ def test_sliding_blocks_tangential_force_is_mu_times_normal():
     assert abs(F_t - mu * F_n) <= 1e-8 * F_n
     assert np.allclose(on_slave, -on_master, rtol=0, atol=1e-13)
     assert on_slave[0] < 0            # friction opposes the sliding of the slave (+x)
+    # large slip (six steps across three segments): the tangent is still exact one
+    # step further (at a committed state the slip is zero and a slipping node sits
+    # on the Coulomb cone, |λ̂_T| = μ|T_N|: a kink of the law, order 1 there)
+    push.value[:] = [0.65, -0.02]
+    problem.solve()
+    rng = np.random.default_rng(11)
+    dirs = [1e-6 * rng.standard_normal(len(f.x.array)) for f in problem.u]
+    orders, rem = taylor_orders(problem, owned_arrays(problem, dirs), eps0=1.0, n=4)
+    assert np.all(orders > 1.8), (orders, rem)
 
 
 @pytest.mark.mpi
@@ -235,6 +245,23 @@ def test_hertz_two_cylinders(tmp_path):
         assert res["action_reaction_error"] < 1e-12
     assert all(e[0] < 0.03 and e[1] < 0.03 for e in errors), errors
     assert errors[1][0] < errors[0][0], errors
+
+
+def test_cylinder_on_elastic_block(tmp_path):
+    """R2 = 0: a cylinder on a flat elastic block [0, 20] × [−20, 0] mm against Hertz (R2 = ∞).
+
+    The block is 40 a wide and deep, so the half-plane assumption of Hertz holds
+    to O(a/L) (≈ 2.5 %, with a/R1 ≈ 0.05 of finite strain): within 3 % on
+    mesh 2 (elements a/24).
+    """
+    from tribofx.runner import run_case
+
+    s = run_case("contact-two-cylinders", {"mesh": "2", "R2": "0", "E2": "40"},
+                 out=MPI.COMM_WORLD.bcast(str(tmp_path / "block"), root=0), progress=False)
+    assert s["status"] == "ok", s["status"]
+    res = {k: x["value"] for k, x in s["results"].items()}
+    assert abs(res["contact_half_width_rel_error"]) < 0.03, res
+    assert abs(res["p_max_rel_error"]) < 0.03, res
 
 
 @pytest.mark.parametrize("ratio", [1.0, 2.0, 0.5, 1.5])
