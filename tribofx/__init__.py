@@ -1,4 +1,6 @@
 """tribofx: finite wear and soft-EHL of soft solids at finite deformation on FEniCSx."""
 
+import dolfinx_solver  # noqa: F401  (loads the MPI/PETSc libraries; before dolfinx/petsc4py)
+
 __all__ = ["__version__"]
 __version__ = "0.1.0"
