@@ -103,24 +103,24 @@ control.reach(0.5 * P, 0.25 * ref.a**2 / ref.R_star)
 d = contact.nodal_data(problem)
 a = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
 p_max = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
-on_upper, on_lower = contact.forces(problem)
+on_upper, _ = contact.forces(problem)
+support = upper.reaction("loaded", 1)                   # from the solid's own rows
 if comm.rank == 0:
     print(f"{problem.num_dofs} unknowns: a = {a:.4f} mm (Hertz {ref.a:.4f}), p_max = "
           f"{p_max:.4f} MPa (Hertz {ref.p0:.4f}); load {2 * on_upper[1]:.6f} N/mm, "
-          f"upper + lower force {np.abs(on_upper + on_lower).max():.1e} N/mm")
+          f"support of the upper face {support:.6f} N/mm")
 # -
 
 # ## Checks
 #
-# * action = reaction: the forces of the contact on the two bodies cancel
-#   (the master rows receive exactly the slave's reaction);
-# * the load reached is P to the controller's tolerance (1e-4 relative);
+# * equilibrium of the solved upper cylinder: the support of its held face,
+#   from the solid's own rows, balances the contact force (to n_u · atol_u);
 # * Hertz: the half-width is a nodal measure (error ≤ one element, h/a = 1/12
 #   here); p₀ within 3 % (half-space theory at a/R* ≈ 0.07 with finite strain).
 
 # +
-assert np.abs(on_upper + on_lower).max() < 1e-12
-assert abs(2 * on_upper[1] - P) < 1e-4 * P
+bound = upper.V.dofmap.index_map.size_global * 2 * upper.tolerances()[upper.u].atol
+assert abs(support + on_upper[1]) <= bound, (support, on_upper)
 assert abs(a - ref.a) <= 1.5 * h and abs(p_max / ref.p0 - 1) < 0.03, (a, p_max)
 if args.out:
     write_vtx(comm, f"{args.out}/upper.bp", [upper.u])

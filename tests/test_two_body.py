@@ -118,9 +118,8 @@ def test_fixed_master_is_the_rigid_plane(mu):
     scale = np.abs(rigid.u.x.array).max()
     assert rep.iterations == rep_rigid.iterations
     assert np.abs(slave.u.x.array - rigid.u.x.array).max() <= 1e-9 * scale
-    on_slave, on_master = contact.forces(problem)
+    on_slave, _ = contact.forces(problem)
     assert np.allclose(on_slave, plane.force(), rtol=1e-9, atol=1e-12)
-    assert np.allclose(on_slave, -on_master, rtol=0, atol=1e-14)
 
 
 def _taylor_state(mu):
@@ -170,7 +169,8 @@ def test_sliding_blocks_tangential_force_is_mu_times_normal():
     total magnitudes follow it to the tolerance of the constraint rows (1e-10
     G/ρ_N of a gap, i.e. 1e-10 G of a traction against |T_N| ≈ 0.1 G: ≤ 1e-8
     relative).  The x/y components of the force do not obey it exactly: the
-    master surface tilts under the load.  Action = reaction to round-off.
+    master surface tilts under the load.  The solved slave is in equilibrium:
+    the support reaction of its top balances the contact force.
     """
     mu = 0.3
     _, _, contact, problem, push = two_blocks(MPI.COMM_WORLD, mu, fixed_master=False,
@@ -181,7 +181,7 @@ def test_sliding_blocks_tangential_force_is_mu_times_normal():
         push.value[:] = [0.1 * k, -0.02]    # segments of the master are 0.18 mm long
         problem.solve()
         problem.commit()
-    on_slave, on_master = contact.forces(problem)
+    on_slave, _ = contact.forces(problem)
     d = contact.nodal_data(problem)
     act = d["active"]
     tn, tt = np.abs(d["T_n"][act]), np.linalg.norm(d["T_t"][act], axis=1)
@@ -192,7 +192,12 @@ def test_sliding_blocks_tangential_force_is_mu_times_normal():
     F_t = comm.allreduce(float(np.sum(d["weight"][act] * tt)), op=MPI.SUM)
     F_n = comm.allreduce(float(np.sum(d["weight"][act] * tn)), op=MPI.SUM)
     assert abs(F_t - mu * F_n) <= 1e-8 * F_n
-    assert np.allclose(on_slave, -on_master, rtol=0, atol=1e-13)
+    # equilibrium of the solved slave: the support of its top balances the contact
+    # force, to the momentum tolerance summed over the rows (n_u · atol_u)
+    slave = contact.slave
+    bound = slave.V.dofmap.index_map.size_global * 2 * slave.tolerances()[slave.u].atol
+    for c in (0, 1):
+        assert abs(slave.reaction("top", c) + on_slave[c]) <= bound
     assert on_slave[0] < 0            # friction opposes the sliding of the slave (+x)
     # large slip (six steps across three segments): the tangent is still exact one
     # step further (at a committed state the slip is zero and a slipping node sits
@@ -229,6 +234,8 @@ def test_hertz_two_cylinders(tmp_path):
     a/R* ≈ 0.07 with finite strain: model error O(a/R*) of a few per cent; the
     p0 error stays near 1 % under refinement), and the half-width error drops
     under refinement (a nodal measure: error ≤ one element a/(6·2^mesh)).
+    The solved upper cylinder is in equilibrium: the reaction of its held face
+    balances the contact force (bound: n_u · atol_u of the momentum rows).
     """
     from tribofx.runner import run_case
 
@@ -241,8 +248,7 @@ def test_hertz_two_cylinders(tmp_path):
         assert s["status"] == "ok", s["status"]
         res = {k: x["value"] for k, x in s["results"].items()}
         errors.append((abs(res["contact_half_width_rel_error"]), abs(res["p_max_rel_error"])))
-        assert abs(res["normal_load_full_body"] - 0.2) < 1e-6 * 0.2
-        assert res["action_reaction_error"] < 1e-12
+        assert res["equilibrium_error"] < res["equilibrium_bound"]
     assert all(e[0] < 0.03 and e[1] < 0.03 for e in errors), errors
     assert errors[1][0] < errors[0][0], errors
 
@@ -289,3 +295,25 @@ def test_patch_test(tmp_path, ratio):
         assert dev <= 1e-8 and abs(mean - 0.1) <= 1e-8 * 0.1, (dev, mean)
     else:
         assert dev > 1e-4, dev
+
+
+def test_ironing_slides_through_segment_changes(tmp_path):
+    """Ironing (case contact-ironing, coarse): a stiff die slid 1.5 mm over 5 of its segments.
+
+    Newton converges at every step while the slab's nodes pass from one die
+    segment to the next; the solved die is in equilibrium (its support reaction
+    balances the contact force, bound n_u · atol_u); once sliding, the die is
+    held back against its motion (F_x < 0) and pressed up (F_y > 0), with a
+    finite drag ratio 0 < |F_x|/F_y < 1 (weak bounds: friction plus ploughing).
+    """
+    from tribofx.runner import run_case
+
+    s = run_case("contact-ironing", {"n": "30", "depth": "0.3", "slide": "1.5",
+                                     "press_steps": "3", "slide_steps": "6"},
+                 out=MPI.COMM_WORLD.bcast(str(tmp_path / "iron"), root=0), progress=False)
+    assert s["status"] == "ok", s["status"]
+    res = {k: x["value"] for k, x in s["results"].items()}
+    assert max(res["equilibrium_error"]) <= res["equilibrium_bound"], res
+    F = np.array(res["reaction_force"])
+    assert np.all(F[3:, 0] < 0) and np.all(F[:, 1] > 0)
+    assert 0 < res["force_ratio_sliding"] < 1

@@ -236,6 +236,24 @@ class Body:
                                                    lmbda_a, self.dx)))
         return out
 
+    def reaction(self, name, component):
+        """Reaction force (N; N/mm in plane strain) of the supports on boundary ``name``.
+
+        The body's own rows (internal work minus its loads) tested with the unit
+        field of ``component`` on the dofs of ``name``: at a solved state the
+        force the support exerts on the body, from the solid alone — an
+        equilibrium check independent of any interface's force measure.
+        """
+        fdim = self.mesh.topology.dim - 1
+        Vc = self.V.sub(component)
+        w = fem.Function(self.V)
+        dofs = fem.locate_dofs_topological(Vc, fdim, self.facets(name))
+        w.x.array[dofs] = 1.0
+        w.x.scatter_forward()
+        R = ufl.replace(self.contributions()[0][1], {self.v: w})
+        # on a held dof nothing else acts: internal work = loads + support force
+        return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(R)), op=MPI.SUM)
+
     def bcs(self):
         """Dirichlet conditions of u (and w)."""
         return self._bcs + self._w_bcs

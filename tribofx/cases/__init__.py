@@ -5,6 +5,7 @@ from .ehl import EHLCylinderLayerCase
 from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
 from .hertz import HertzCase
+from .ironing import IroningCase
 from .reynolds import CylinderCase, SliderCase
 from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
@@ -16,7 +17,7 @@ __all__ = ["CASES", "get_case"]
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
                                   EHLORingCase, TwoCylindersCase,
-                                  ContactPatchCase)}
+                                  ContactPatchCase, IroningCase)}
 
 
 def get_case(name):

@@ -1,0 +1,59 @@
+"""gmsh model of the ironing die: a half disc below its centre (plane strain).
+
+The die of radius R is centred at (x_c, y_c); it occupies the half disc
+y ≤ y_c.  Facet tags: 1 the arc (contact), 2 the flat top y = y_c (loaded).
+Element size h along the arc, growing to R/4 at the top.  Lengths in mm.
+"""
+
+import gmsh
+from dolfinx.io import gmsh as gmshio
+from mpi4py import MPI
+
+__all__ = ["ARC", "TOP", "die_body"]
+
+ARC, TOP = 1, 2
+
+
+def _build(R, xc, yc, h):
+    occ = gmsh.model.occ
+    disc = occ.addDisk(xc, yc, 0, R, R)
+    box = occ.addRectangle(xc - R, yc - R, 0, 2 * R, R)
+    occ.intersect([(2, disc)], [(2, box)])
+    occ.synchronize()
+    arc, top = [], []
+    for dim, tag in gmsh.model.getEntities(1):
+        _, y, _ = occ.getCenterOfMass(dim, tag)
+        (top if abs(y - yc) < 1e-8 * R else arc).append(tag)
+    gmsh.model.addPhysicalGroup(2, [t for _, t in gmsh.model.getEntities(2)], 1)
+    gmsh.model.addPhysicalGroup(1, arc, ARC)
+    gmsh.model.addPhysicalGroup(1, top, TOP)
+    f = gmsh.model.mesh.field
+    d = f.add("Distance")
+    f.setNumbers(d, "CurvesList", arc)
+    t = f.add("Threshold")
+    f.setNumber(t, "InField", d)
+    f.setNumber(t, "SizeMin", h)
+    f.setNumber(t, "SizeMax", R / 4)
+    f.setNumber(t, "DistMin", 0.0)
+    f.setNumber(t, "DistMax", R)
+    f.setAsBackgroundMesh(t)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    gmsh.model.mesh.generate(2)
+
+
+def die_body(R, xc, yc, h, comm=MPI.COMM_WORLD):
+    """Build the die and return ``(mesh, facet_tags)`` (built on rank 0, distributed)."""
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("ironing_die")
+    if comm.rank == 0:
+        _build(R, xc, yc, h)
+    data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    return data.mesh, data.facet_tags

@@ -1,0 +1,174 @@
+"""Ironing: a stiff half-cylinder die pressed into and slid along a soft slab (2D).
+
+The benchmark of large-deformation frictional sliding of Yang, Laursen & Meng
+(IJNME 62, 2005): a neo-Hookean slab [0, L] × [0, H] (bottom held) and a die of
+radius R, centred above the slab at x = R/2 + 1 and touching its top, E_die =
+1000 E_slab.  The die's flat top is moved down by ``depth`` in ``press_steps``,
+then along the slab by ``slide`` in ``slide_steps``; Coulomb friction μ.  The
+slab's top is the slave (the finer, softer surface), the die's arc the master
+(:class:`~tribofx.interfaces.TwoBodyContact`: every slave node finds its
+segment on the current die surface, so nodes change segment while sliding).
+
+Results: the reaction force on the die (horizontal F_x, vertical F_y per unit
+thickness) at every step, their ratio in steady sliding (the second half of
+the sliding steps), a smoothness measure of that history, max |Δ²F| / max |F|
+(second differences of the per-step forces: a node-to-segment scheme shows a
+kink each time a slave node passes a master vertex), and the equilibrium of
+the solved die (its support reaction, from the die's own rows, against the
+contact force).
+"""
+
+import numpy as np
+from dolfinx import mesh
+from mpi4py import MPI
+
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
+from ..forms.hyperelastic import lame_parameters
+from ..interfaces import TwoBodyContact
+from ..meshes.ironing import ARC, TOP, die_body
+from ..params import Param
+from ..problem import NewtonDivergence, Problem
+
+__all__ = ["IroningCase"]
+
+
+def _slab(comm, L, H, nx, ny, material):
+    msh = mesh.create_rectangle(comm, [[0.0, 0.0], [L, H]], [nx, ny],
+                                diagonal=mesh.DiagonalType.crossed)
+    fdim = msh.topology.dim - 1
+    top = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], H))
+    bottom = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], 0.0))
+    e = np.concatenate([top, bottom])
+    v = np.concatenate([np.full(len(top), 1, np.int32), np.full(len(bottom), 2, np.int32)])
+    order = np.argsort(e)
+    tags = mesh.meshtags(msh, fdim, e[order], v[order])
+    return Body(msh, tags, {"top": 1, "bottom": 2}, "plane_strain", material, name="slab")
+
+
+class IroningCase:
+    """Case ``contact-ironing``; see the module docstring."""
+
+    name = "contact-ironing"
+    doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
+    params = (
+        Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
+        Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),
+        Param("friction", float, 0.3, "-", "Coulomb coefficient", lower=0, closed=True),
+        Param("R", float, 3.0, "mm", "die radius", lower=0),
+        Param("L", float, 9.0, "mm", "slab length", lower=0),
+        Param("H", float, 1.0, "mm", "slab height", lower=0),
+        Param("depth", float, 0.5, "mm", "indentation of the die", lower=0),
+        Param("slide", float, 4.0, "mm", "sliding distance of the die", lower=0),
+        Param("n", int, 60, "-", "slab elements along its length", lower=4, upper=2000),
+        Param("press_steps", int, 5, "-", "indentation steps", lower=1, upper=10000),
+        Param("slide_steps", int, 40, "-", "sliding steps", lower=1, upper=10000),
+    )
+
+    @staticmethod
+    def validate(v):
+        """Reject a die that would slide off the slab or indent through it."""
+        from ..params import InputError
+
+        if v["depth"] >= v["H"]:
+            raise InputError("depth must be below the slab height H")
+        if 0.5 * v["R"] + 1 + v["slide"] > v["L"]:
+            raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD):
+        """Slab (slave), die (master), contact, problem and the die's prescribed motion."""
+        mu, lmbda = lame_parameters(v["E"], v["nu"])
+        h = v["L"] / v["n"]
+        slab = _slab(comm, v["L"], v["H"], v["n"], max(2, round(v["H"] / h)),
+                     ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
+        slab.add_dirichlet("bottom", np.zeros(2))
+        xc = 0.5 * v["R"] + 1.0
+        dmsh, dtags = die_body(v["R"], xc, v["H"] + v["R"], h, comm)
+        mu_d, lmbda_d = lame_parameters(1000 * v["E"], v["nu"])
+        die = Body(dmsh, dtags, {"arc": ARC, "top": TOP}, "plane_strain",
+                   ("neo-hookean", {"mu": mu_d, "lmbda": lmbda_d}), name="die")
+        motion = die.add_dirichlet("top", np.zeros(2))
+        contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / h,
+                                 friction=v["friction"])
+        problem = Problem([slab, die, contact], name="ironing", max_it=40)
+        return {"slab": slab, "die": die, "contact": contact, "problem": problem,
+                "motion": motion}
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False):
+        """Press, then slide; the die's reaction force at every converged step."""
+        run = cls.build(v)
+        contact, problem, motion = run["contact"], run["problem"], run["motion"]
+        record.data["num_dofs"] = problem.num_dofs
+        history = []
+
+        def reaction():
+            on_die = contact.forces(problem)[1]
+            history.append([float(motion.value[0]), float(motion.value[1]),
+                            float(on_die[0]), float(on_die[1])])
+            if progress is not None:
+                progress.update(1)
+            return on_die
+
+        try:
+            for index, target, steps in ((1, -v["depth"], v["press_steps"]),
+                                         (0, v["slide"], v["slide_steps"])):
+                Continuation(problem, ConstantParameter(motion, index), response=reaction,
+                             verbose=verbose, record=record.data["newton_iterations"]).march(
+                    target, steps, predictor=False)
+        except NewtonDivergence as err:
+            err.problem = run
+            raise
+        finally:
+            cls.report(history, v, record)
+            on_die = contact.forces(problem)[1]
+            die = run["die"]
+            record.result("equilibrium_error", [abs(die.reaction("top", c) + float(on_die[c]))
+                                                for c in (0, 1)], "N/mm")
+            record.result("equilibrium_bound", die.V.dofmap.index_map.size_global * 2
+                          * die.tolerances()[die.u].atol, "N/mm")
+        return run
+
+    @staticmethod
+    def report(history, v, record):
+        """Force history, friction ratio and smoothness of the sliding phase."""
+        hist = np.array(history).reshape(-1, 4)
+        record.result("die_position", hist[:, :2].tolist(), "mm")
+        record.result("reaction_force", hist[:, 2:].tolist(), "N/mm")
+        sliding = hist[v["press_steps"]:]
+        steady = sliding[len(sliding) // 2:]     # past the transition to steady sliding
+        if len(steady) >= 3:
+            F = steady[:, 2:]
+            record.result("force_ratio_sliding",
+                          float(np.median(np.abs(F[:, 0] / F[:, 1]))), "-")
+            d2 = np.abs(np.diff(F, 2, axis=0)).max(axis=0) / np.abs(F).max(axis=0)
+            record.result("smoothness_Fx", float(d2[0]), "-")
+            record.result("smoothness_Fy", float(d2[1]), "-")
+        if MPI.COMM_WORLD.rank == 0:
+            record.profile = {"position": hist[:, :2], "force": hist[:, 2:],
+                              "press_steps": v["press_steps"]}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacements of slab and die."""
+        return {"slab": [run["slab"].u], "die": [run["die"].u]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Reaction force history of the die (``reaction.png``)."""
+        from ..plots import pyplot
+
+        plt = pyplot()
+        F = profile["force"]
+        k = np.arange(len(F))
+        fig, ax = plt.subplots(figsize=(6, 3.8))
+        ax.plot(k, F[:, 0], ".-", label="F_x (tangential)")
+        ax.plot(k, F[:, 1], ".-", label="F_y (normal)")
+        ax.axvline(profile["press_steps"] - 0.5, color="k", lw=0.6)
+        ax.set_xlabel("step (pressing, then sliding)")
+        ax.set_ylabel("reaction on the die (N/mm)")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(outdir / "reaction.png", dpi=110)
+        plt.close(fig)
