@@ -82,6 +82,10 @@ class Problem:
         max_backtracks: step halvings of the backtracking line search (0: full steps).
         petsc_options: further defaults under the prefix (the command line wins).
         tolerances: ``{unknown: BlockTolerance}`` overriding the components'.
+        stall_window: stop (DIVERGED_DTOL) when the best residual has not halved
+            over this many iterations, so that a controller cuts an over-long step
+            instead of iterating to ``max_it``; None (default): never (a
+            semismooth active-set search, e.g. JFO, may plateau and then converge).
         line_search: "armijo" (halve while ‖R‖₂ does not decrease) or "admissible"
             (halve only while a component's ``admissible()`` is False or R is not
             finite — for residuals whose 2-norm is a poor merit function, e.g. a
@@ -92,10 +96,12 @@ class Problem:
     _assemblers = ()      # components with add_residual/add_jacobian (see _create_snes)
 
     def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
-                 max_backtracks=6, petsc_options=None, tolerances=None, line_search="armijo"):
+                 max_backtracks=6, petsc_options=None, tolerances=None, line_search="armijo",
+                 stall_window=None):
         if line_search not in ("armijo", "admissible"):
             raise ValueError(f"unknown line search {line_search!r}")
         self.line_search = line_search
+        self.stall_window = stall_window
         self.components = list(components)
         every = _unique([u for c in self.components for u in c.unknowns()])
         self.u = every if unknowns is None else list(unknowns)
@@ -331,15 +337,10 @@ class Problem:
             return PETSc.SNES.ConvergedReason.DIVERGED_DTOL
         return PETSc.SNES.ConvergedReason.ITERATING
 
-    #: a Newton iteration whose best residual has not halved over this many
-    #: iterations has stalled (an over-long continuation step): it is stopped so
-    #: that the controller cuts the step instead of iterating to ``max_it``
-    STALL_WINDOW = 10
-
-    @classmethod
-    def _stalled(cls, residuals):
-        w = cls.STALL_WINDOW
-        if len(residuals) <= 2 * w:
+    def _stalled(self, residuals):
+        """Whether the best residual has not halved over the last ``stall_window`` iterations."""
+        w = self.stall_window
+        if w is None or len(residuals) <= 2 * w:
             return False
         return min(residuals[-w:]) > 0.5 * min(residuals[:-w])
 

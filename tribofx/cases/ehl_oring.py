@@ -158,8 +158,9 @@ class ORingSeal:
         Xq = film.Q.tabulate_dof_coordinates()
         film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
         self.components = [body, film, self.bottom, self.wall]
+        # stall_window: over-long mount steps stall far from the solution; cut them early
         self.problem = Problem(self.components, name="ehl_oring", max_it=40, max_backtracks=10,
-                               line_search="admissible")
+                               line_search="admissible", stall_window=10)
         self.iterations = []
         self._post = None
 
