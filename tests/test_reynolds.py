@@ -122,8 +122,10 @@ def test_cylinder_half_sommerfeld_and_penalty(tmp_path):
     assert abs(pen["p_max_rel_error"]) < 0.01
     # … with negative pressures of relative size ~ penalty (1e-6) times O(10)
     assert pen["p_min"] > -1e-4 * pen["p_max"]
-    # rupture point within two elements (Δx = 0.01 mm)
-    assert abs(pen["x_rupture"] - pen["swift_stieber_x_rupture"]) < 0.02
+    # rupture point, sub-element estimate (√p fitted over three nodes and extrapolated
+    # over ≤ 2Δx, Δx = 0.01 mm): O(Δx²/ℓ) with ℓ = √(2Rh₀) = 0.45 mm, i.e. ~0.1 % of
+    # x_r; 1 % (the node alone is off by up to one element, 5 %)
+    assert abs(pen["x_rupture"] / pen["swift_stieber_x_rupture"] - 1) < 0.01
     # … but it is not mass conserving: the penalty creates the fluid that the
     # widening gap carries out (outflow ≈ h(x_out) u_m, inflow ≈ h* u_m)
     assert pen["mass_balance_rel_defect"] > 10
@@ -136,7 +138,7 @@ def test_cylinder_jfo_swift_stieber_and_mass_balance(tmp_path):
     # flooded JFO with rupture only = Reynolds (Swift–Stieber) conditions: 1 %
     assert abs(res["load_per_length"] / res["swift_stieber_load_per_length"] - 1) < 0.01
     assert abs(res["p_max_rel_error"]) < 0.01
-    assert abs(res["x_rupture"] - res["swift_stieber_x_rupture"]) < 0.02  # two elements
+    assert abs(res["x_rupture"] / res["swift_stieber_x_rupture"] - 1) < 0.01  # sub-element
     # discrete mass conservation: consistent inflow = outflow to solver tolerance
     assert abs(res["flux_in"] - res["flux_out"]) < 1e-9 * abs(res["flux_in"])
     # and both equal h(x_r) u_m of Swift–Stieber to discretisation accuracy (0.1 %)

@@ -64,8 +64,13 @@ def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=F
 def _peak_and_rupture(prof, crossing):
     """Nodal peak (p_max, x_p_max) and rupture point downstream of the peak.
 
-    ``crossing``: linear zero crossing of p (no cavitation model); otherwise the
-    first node with p ≤ 1e-9 p_max (p vanishes in the cavitation zone).
+    ``crossing``: linear zero crossing of p (no cavitation model).  Otherwise a
+    sub-element estimate: at a Swift–Stieber rupture p = p' = 0, so p ≈ c (x_r − x)²
+    and √p is linear in x near x_r.  A straight line is fitted to √p at the three
+    positive nodes before the last positive one and extrapolated to zero; the last
+    positive node is left out because its element straddles the free boundary,
+    where the discrete law (nodal complementarity or penalty) is not the smooth
+    double root.  With fewer positive nodes: the first cavitated node.
     """
     x, p = prof["x"], prof["p"]
     i = int(np.argmax(p))
@@ -77,7 +82,16 @@ def _peak_and_rupture(prof, crossing):
         j = i + neg[0]
         return pm, float(x[i]), float(x[j - 1] - p[j - 1] * (x[j] - x[j - 1]) / (p[j] - p[j - 1]))
     zero = np.nonzero(p[i:] <= 1e-9 * pm)[0]
-    return pm, float(x[i]), float(x[i + zero[0]] if len(zero) else x[-1])
+    if not len(zero):
+        return pm, float(x[i]), float(x[-1])
+    j = i + zero[0]                      # first node of the cavitated zone
+    if j - i < 5:
+        return pm, float(x[i]), float(x[j])
+    k = slice(j - 4, j - 1)
+    slope, icpt = np.polyfit(x[k], np.sqrt(p[k]), 1)
+    if slope >= 0:                       # not decaying like a double root
+        return pm, float(x[i]), float(x[j])
+    return pm, float(x[i]), float(-icpt / slope)
 
 
 def _reformation(prof):
