@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Install everything tribofx needs on a fresh Debian 12 machine: the X/GL runtime
+# Install everything tribofx needs on a Debian 12 machine with Python 3.12 (on PATH,
+# under pyenv, or PYTHON=...): the X/GL runtime
 # libraries of the gmsh wheel (apt), a Python 3.12 virtual environment with the
 # DOLFINx 0.11 wheel (dolfinx-solver-real: PETSc, SLEPc, petsc4py, MPICH), the
 # Python tools, and the package with its C++ extension (scikit-build-core).
@@ -36,7 +37,7 @@ find_python() {
 }
 
 if [ ! -x "$VENV/bin/python" ]; then
-  PY=$(find_python) || { echo "setup: Python 3.12 not found (set PYTHON=/path/to/python3.12)" >&2; exit 1; }
+  PY=$(find_python) || { echo "setup: Python 3.12 not found: install it (Debian 12 ships 3.11: 'pyenv install 3.12' or deadsnakes), or set PYTHON=/path/to/python3.12" >&2; exit 1; }
   echo "setup: creating $VENV with $PY"
   "$PY" -m venv "$VENV"
 fi
