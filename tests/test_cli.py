@@ -60,3 +60,51 @@ def test_run_writes_outputs(tmp_path):
     assert s["newton_iterations"] and s["dolfinx_version"].startswith("0.11")
     assert (out / "pressure.png").stat().st_size > 0
     assert (out / "displacement.bp").is_dir() and (out / "contact.bp").is_dir()
+
+
+def test_run_file_repeats_a_run_exactly(tmp_path):
+    """A TOML run file gives the run of its --set twin; summary.json holds every parameter.
+
+    The parameters recorded by the first run, written back as a run file, repeat
+    it: the same results to the last digit (same code, same input, one process).
+    """
+    first = tmp_path / "first"
+    p = _run("run", "reynolds-slider", "--set", "K=2", "--set", "mesh=40", "--out", str(first),
+             "--quiet")
+    assert p.returncode == 0, p.stderr
+    s1 = json.loads((first / "summary.json").read_text())
+    lines = ['case = "reynolds-slider"', "[parameters]"]
+    for k, v in s1["parameters"].items():
+        val = v["value"]
+        lines.append(f"{k} = {json.dumps(val) if not isinstance(val, bool) else str(val).lower()}")
+    run_file = tmp_path / "slider.toml"
+    run_file.write_text("\n".join(lines) + "\n")
+    second = tmp_path / "second"
+    p = _run("run", str(run_file), "--out", str(second), "--quiet")
+    assert p.returncode == 0, p.stderr
+    s2 = json.loads((second / "summary.json").read_text())
+    assert s2["parameters"] == s1["parameters"]
+    assert {k: v["value"] for k, v in s2["results"].items()} == \
+        {k: v["value"] for k, v in s1["results"].items()}
+    # --set still overrides the file
+    p = _run("run", str(run_file), "--set", "K=1", "--out", str(tmp_path / "third"), "--quiet")
+    s3 = json.loads((tmp_path / "third" / "summary.json").read_text())
+    assert p.returncode == 0 and s3["parameters"]["K"]["value"] == 1.0
+
+
+@pytest.mark.parametrize("content,fragment", [
+    (None, "cannot read run file"),
+    ("case = \"hertz\"\n[parameters\n", "not valid TOML"),
+    ("[parameters]\nE = 5\n", "needs a line case"),
+    ("case = \"hertz\"\nfoo = 1\n", "only 'case' and a [parameters] table"),
+    ("case = \"hertz\"\n[parameters]\nE = -1\n", "'E' must be > 0"),
+])
+def test_bad_run_file(tmp_path, content, fragment):
+    path = tmp_path / "run.toml"
+    if content is not None:
+        path.write_text(content)
+    p = _run("run", str(path), "--out", str(tmp_path / "out"))
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and fragment in lines[0], p.stderr
+    assert not (tmp_path / "out").exists()

@@ -22,17 +22,49 @@ def _list():
             print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
 
 
+def _run_file(path):
+    """Case name and parameters {key: text} of a TOML run file."""
+    import tomllib
+
+    from .params import InputError
+
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as err:
+        raise InputError(f"cannot read run file {path!r}: {err.strerror}") from None
+    except tomllib.TOMLDecodeError as err:
+        raise InputError(f"run file {path!r} is not valid TOML: {err}") from None
+    case = data.get("case")
+    if not isinstance(case, str):
+        raise InputError(f"run file {path!r} needs a line case = \"<case name>\"")
+    params = data.get("parameters", {})
+    if not isinstance(params, dict) or set(data) - {"case", "parameters"}:
+        raise InputError(f"run file {path!r}: only 'case' and a [parameters] table are allowed")
+
+    def text(v):
+        if isinstance(v, bool):
+            return str(v).lower()
+        if isinstance(v, list):   # e.g. p_s = [1, 5]: the comma-separated form of --set
+            return ",".join(text(x) for x in v)
+        return str(v)
+
+    return case, {k: text(v) for k, v in params.items()}
+
+
 def main(argv=None):
     """Entry point of the ``tribofx`` command; returns the exit status."""
     parser = _Parser(prog="tribofx", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("list", help="list cases and their parameters")
     run = sub.add_parser("run", help="run a case")
-    run.add_argument("case")
+    run.add_argument("case", help="case name, or a run file FILE.toml (case = \"…\" and a "
+                     "[parameters] table; --set overrides it)")
     run.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     run.add_argument("--out", default=None)
     run.add_argument("--quiet", action="store_true", help="no progress bar")
-    run.add_argument("--verbose", action="store_true", help="print Newton residuals")
+    run.add_argument("-v", "--verbose", action="store_true",
+                     help="print the Newton residuals of every block")
     args = parser.parse_args(argv)
     if args.command == "list":
         _list()
@@ -40,6 +72,12 @@ def main(argv=None):
     from .params import InputError
 
     overrides = {}
+    if args.case.endswith(".toml"):
+        try:
+            args.case, overrides = _run_file(args.case)
+        except InputError as err:
+            sys.stderr.write(f"tribofx: error: {err}\n")
+            return 2
     for item in args.set:
         key, sep, value = item.partition("=")
         if not sep or not key:
