@@ -16,7 +16,7 @@ $(STAMP): $(SOURCES) .ci/setup.sh
 	touch $@
 
 demo: setup
-	$(PY) demos/demo_hertz.py --out results/hertz
+	$(PY) demos/demo_tour.py --out results
 
 # serial: the whole suite; then the tests marked `mpi` again on 2 processes
 test: setup
