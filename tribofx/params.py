@@ -7,7 +7,7 @@ it into exit status 2.
 import math
 from dataclasses import dataclass
 
-__all__ = ["InputError", "Param", "resolve"]
+__all__ = ["InputError", "Param", "number_list", "resolve"]
 
 
 class InputError(ValueError):
@@ -85,3 +85,20 @@ def resolve(params, overrides):
             raise InputError(f"unknown parameter {key!r}; known: {', '.join(table)}")
         values[key] = table[key].parse(text)
     return values
+
+
+def number_list(text, name, kind=float, allow_empty=False):
+    """Numbers of a comma- (or semicolon-) separated parameter text, e.g. ``"0.5,1"``.
+
+    Raises :class:`InputError` (one line, naming the parameter) for a malformed
+    entry, or for an empty list unless ``allow_empty``.
+    """
+    try:
+        vals = [kind(t) for t in str(text).replace(";", ",").split(",") if t.strip()]
+    except ValueError:
+        raise InputError(f"parameter {name!r} expects comma-separated numbers, "
+                         f"got {text!r}") from None
+    if not vals and not allow_empty:
+        raise InputError(f"parameter {name!r} is empty")
+    return vals
+

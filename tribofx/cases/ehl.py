@@ -42,7 +42,7 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
-from ..params import InputError, Param
+from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 
@@ -53,10 +53,7 @@ NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
 
 def speed_list(v):
     """Return the positive speeds (mm/s) of the comma-separated parameter ``speeds``."""
-    try:
-        speeds = [float(t) for t in v["speeds"].replace(";", ",").split(",") if t.strip()]
-    except ValueError as err:
-        raise InputError(f"speeds = {v['speeds']!r}: {err}") from None
+    speeds = number_list(v["speeds"], "speeds", allow_empty=True)
     if any(not U > 0 for U in speeds):
         raise InputError("speeds must be positive (mm/s)")
     return speeds

@@ -80,7 +80,7 @@ from ..forms import ehl_axisym as ax
 from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
+from ..params import InputError, Param, number_list
 from ..plots import plot_oring
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
@@ -91,16 +91,6 @@ __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_i
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
 NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING)}
-
-
-def _floats(text, name):
-    try:
-        vals = [float(t) for t in str(text).replace(";", ",").split(",") if t.strip()]
-    except ValueError:
-        raise InputError(f"parameter {name!r} expects comma-separated numbers") from None
-    if not vals:
-        raise InputError(f"parameter {name!r} is empty")
-    return vals
 
 
 def geometry(v):
@@ -128,7 +118,7 @@ class ORingSeal:
         deg = v["degree"]
         self.body = body = Body(msh, ft, NAMES, "axisymmetric", ("mooney-rivlin", mat),
                                 degree=deg, quadrature_degree=2 * deg, name="oring")
-        p0 = min(P_MOUNT, _floats(v["p_s"], "p_s")[0])
+        p0 = min(P_MOUNT, number_list(v["p_s"], "p_s")[0])
         self.p_s = fem.Constant(msh, p0)
         body.add_follower_pressure("sealed", self.p_s)
         # the ring starts touching the groove bottom and the air-side wall
@@ -365,14 +355,14 @@ class EHLORingCase:
     @staticmethod
     def validate(v):
         """Parse the lists and check the consistency of the values."""
-        ps = _floats(v["p_s"], "p_s")
+        ps = number_list(v["p_s"], "p_s")
         if any(p <= 0 for p in ps):
             raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")
         if ps != sorted(ps):
             raise InputError("p_s must be increasing")
         if v["U"] == 0:
             raise InputError("U must be nonzero (mm/s)")
-        levels = _floats(v["mesh_levels"], "mesh_levels")
+        levels = number_list(v["mesh_levels"], "mesh_levels")
         if any(k < 1 or k != int(k) for k in levels):
             raise InputError("mesh_levels must be positive integers")
         if v["gap0"] >= 0.5 * v["d"]:
@@ -405,7 +395,7 @@ class EHLORingCase:
                     progress.update(1)
 
             try:
-                its = solve_to(prob, v, Us, _floats(v["p_s"], "p_s"), on_state)
+                its = solve_to(prob, v, Us, number_list(v["p_s"], "p_s"), on_state)
             except NewtonDivergence as err:
                 err.problem = prob
                 raise
@@ -414,7 +404,7 @@ class EHLORingCase:
             profiles["strokes"][tag] = states
         if v["study"] == "mesh":
             profiles["mesh"] = cls.mesh_study(v, record)
-        record.result("p_s", _floats(v["p_s"], "p_s"), "MPa")
+        record.result("p_s", number_list(v["p_s"], "p_s"), "MPa")
         if comm.rank == 0:
             record.profile = profiles
         return prob
@@ -429,10 +419,10 @@ class EHLORingCase:
         """Outstroke at the first p_s on the densities ``levels``; returns the profiles."""
         rows, out = [], []
         U = abs(v["U"])
-        for n in [int(k) for k in _floats(v["mesh_levels"], "mesh_levels")]:
+        for n in [int(k) for k in number_list(v["mesh_levels"], "mesh_levels")]:
             t0 = time.perf_counter()
             seal = build(v, max(U, 1000.0), mesh=n)
-            its = solve_to(seal, v, U, _floats(v["p_s"], "p_s")[:1])
+            its = solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
             m = seal.measures()
             row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
                    "h_mean": m["h_mean"],

@@ -65,7 +65,7 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
+from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence
 from ..references import hertz
 from ..stepper import ReciprocatingCycle, Stepper
@@ -133,13 +133,8 @@ class WearPinCase:
     @staticmethod
     def study_lists(v):
         """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
-        def split(text):
-            return [t for t in text.replace(";", ",").split(",") if t.strip()]
-        try:
-            dts = [float(t) for t in split(v["study_dts"])]
-            levels = [int(t) for t in split(v["study_meshes"])] or [v["mesh"]]
-        except ValueError as err:
-            raise InputError(f"study lists: {err}") from None
+        dts = number_list(v["study_dts"], "study_dts", allow_empty=True)
+        levels = number_list(v["study_meshes"], "study_meshes", int, True) or [v["mesh"]]
         return dts, levels
 
     @staticmethod
