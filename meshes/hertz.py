@@ -13,9 +13,9 @@ Facet tags: 1 potential contact surface, 2 loaded flat face, 3 symmetry x = 0,
 """
 
 import gmsh
-from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
+from .model import distributed_model
 from .sizing import point_refinement
 
 __all__ = ["CONTACT", "LOADED", "NAMES", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
@@ -105,18 +105,11 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=Fals
     """
     if dim not in (2, 3):
         raise ValueError(f"dim must be 2 or 3, got {dim}")
-    initialized = gmsh.isInitialized()
-    if not initialized:
-        gmsh.initialize(interruptible=False)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add(f"hertz{dim}d")
-    if comm.rank == 0:
+    def build():
         if dim == 2:
             _build_2d(R, h_fine, h_coarse, r_fine, below, block)
         else:
             _build_3d(R, h_fine, h_coarse, r_fine)
-    data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=dim)
-    gmsh.model.remove()
-    if not initialized:
-        gmsh.finalize()
+
+    data = distributed_model(f"hertz{dim}d", build, comm, dim)
     return data.mesh, data.facet_tags

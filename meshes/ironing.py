@@ -6,8 +6,9 @@ Element size h along the arc, growing to R/4 at the top.  Lengths in mm.
 """
 
 import gmsh
-from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
+
+from .model import distributed_model
 
 __all__ = ["ARC", "TOP", "die_body"]
 
@@ -45,15 +46,5 @@ def _build(R, xc, yc, h):
 
 def die_body(R, xc, yc, h, comm=MPI.COMM_WORLD):
     """Build the die and return ``(mesh, facet_tags)`` (built on rank 0, distributed)."""
-    initialized = gmsh.isInitialized()
-    if not initialized:
-        gmsh.initialize(interruptible=False)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("ironing_die")
-    if comm.rank == 0:
-        _build(R, xc, yc, h)
-    data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
-    gmsh.model.remove()
-    if not initialized:
-        gmsh.finalize()
+    data = distributed_model("ironing_die", lambda: _build(R, xc, yc, h), comm, 2)
     return data.mesh, data.facet_tags
