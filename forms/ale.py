@@ -25,7 +25,7 @@ Lengths in mm.
 
 import ufl
 
-from .hyperelastic import first_piola
+from .hyperelastic import first_piola, strain_energy
 from .kinematics import grad3
 
 __all__ = [
@@ -36,6 +36,7 @@ __all__ = [
     "nanson_vector",
     "shape_gradient",
     "shape_multiplier_work",
+    "stored_energy_worn",
     "swept_nanson_vector",
     "traction_work_worn",
     "volume_factor",
@@ -109,6 +110,13 @@ def internal_virtual_work_worn(u, w, du, kind, material, params, dx):
     F = (ufl.Identity(3) + grad3(u, kind)) * Ginv
     P = first_piola(F, material, params)
     return ufl.inner(P, grad3(du, kind) * Ginv) * ufl.det(G) * dx
+
+
+def stored_energy_worn(u, w, kind, material, params, dx):
+    """Return the stored energy ∫_Ω ψ(F) dV pulled back to Ω̂: ∫ ψ(F) det G dV̂."""
+    G = _G3(w, kind)
+    F = (ufl.Identity(3) + grad3(u, kind)) * ufl.inv(G)
+    return strain_energy(F, material, params) * ufl.det(G) * dx
 
 
 def traction_work_worn(traction, w, du, N_hat, ds):

@@ -20,6 +20,7 @@ __all__ = [
     "linear_elastic",
     "mooney_rivlin",
     "neo_hookean",
+    "stored_energy",
     "strain_energy",
 ]
 
@@ -88,6 +89,13 @@ def internal_virtual_work(u, v, kind, material, params, dx):
     P = first_piola(F, material, params)
     w = reference_volume_factor(u.ufl_function_space().mesh, kind)
     return ufl.inner(P, grad3(v, kind)) * w * dx
+
+
+def stored_energy(u, kind, material, params, dx):
+    """Return the stored energy ∫ ψ(F) dV (2πR-weighted if axisym), the potential of eq. (7)."""
+    F = deformation_gradient(u, kind)
+    w = reference_volume_factor(u.ufl_function_space().mesh, kind)
+    return strain_energy(F, material, params) * w * dx
 
 
 def external_virtual_work(traction, v, kind, ds):

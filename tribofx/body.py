@@ -220,6 +220,17 @@ class Body:
                 R += hf.internal_virtual_work(self.u, self.v, self.kind, law, params, dx)
         return R
 
+    def strain_energy(self):
+        """Return the stored energy ∫ ψ(F) dV of the current state (N·mm; N·mm/mm in 2D)."""
+        E = 0
+        for tag, (law, params) in self.materials.items():
+            dx = self.dx if tag is None else self.dx(tag)
+            if self.w is not None:
+                E += ale.stored_energy_worn(self.u, self.w, self.kind, law, params, dx)
+            else:
+                E += hf.stored_energy(self.u, self.kind, law, params, dx)
+        return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(E)), op=MPI.SUM)
+
     def unknowns(self):
         """Return u, and w for a shaped body."""
         return [self.u] + ([self.w] if self.shape_is_unknown else [])

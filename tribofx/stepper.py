@@ -29,7 +29,9 @@ reached, or an inverted cell, :class:`MeshInversion`) restores the state at
 entry and is halved, up to ``max_cuts`` times; after a success the step is
 doubled back as soon as the time is aligned with the coarser step.
 
-The evolving interface (``wear``) answers: ``theta`` and ``averaged``;
+The evolving interface (``wear``; a list of them for the wear of several
+surfaces, e.g. both bodies of a two-body contact, advanced together with one
+shape Problem) answers: ``theta`` and ``averaged``;
 ``shape_unknowns()`` (the unknowns of the shape step, e.g. [w, ζ]);
 ``begin_step(dt)`` (history w_n ← w and Δt set) and ``end_step()`` (Δt = 0);
 ``min_volume_factor()`` (smallest det(I + Grad w), collective); ``body.mesh.comm``;
@@ -104,9 +106,19 @@ class ReciprocatingCycle:
         fast_steps: sub-steps per cycle (multiple of 4; the run-in uses a quarter).
         V: sliding speed (mm/s).
         axis: direction of the motion (component of the counterpart's ``offset``).
+        drive: callable ``drive(position)`` that moves the counterpart (mm), e.g. the
+            prescribed displacement of a deformable master body; default: the
+            rigid counterpart's ``offset`` along ``axis``.
+        force: callable → the force (N; N/mm in plane strain) the drive exerts on
+            the counterpart along ``axis`` at the solved state, or None.  With it
+            every cycle measures the drive's work ∮ F dx by the trapezoidal rule
+            (:attr:`work`), the bound ½ Σ |ΔF| |Δx| of that rule's error for a
+            force monotone within each sub-step (:attr:`work_bound`) and the
+            forces of the sub-steps (:attr:`forces`).  Over a closed cycle at
+            steady state the work equals the frictional dissipation.
     """
 
-    def __init__(self, contact, stroke, fast_steps, V, axis=0):
+    def __init__(self, contact, stroke, fast_steps, V, axis=0, drive=None, force=None):
         if fast_steps % 4 or fast_steps < 4:
             raise ValueError(f"fast_steps = {fast_steps} must be a positive multiple of 4")
         if stroke <= 0 or V <= 0:
@@ -115,6 +127,10 @@ class ReciprocatingCycle:
             raise ValueError("a fast-time cycle needs Lagrangian friction on the contact")
         self.contact, self.stroke, self.fast_steps, self.V, self.axis = (
             contact, stroke, fast_steps, V, axis)
+        self.drive, self.force = drive, force
+        self.position = None
+        self.work = self.work_bound = None
+        self.forces = []
         A, m = stroke / 2, fast_steps // 4
         self.run_in = -A + A * np.arange(1, m + 1) / m  # −A → 0
         up = A * np.arange(1, m + 1) / m
@@ -137,7 +153,33 @@ class ReciprocatingCycle:
 
     def move(self, position):
         """Put the countersurface at ``position`` (mm) along the axis."""
-        self.contact.counterpart.offset.value[self.axis] = position
+        if self.drive is not None:
+            self.drive(position)
+        else:
+            self.contact.counterpart.offset.value[self.axis] = position
+        self.position = float(position)
+
+    def begin_work(self):
+        """Start measuring the drive's work at the current (solved) state."""
+        if self.force is not None:
+            self.work, self.work_bound = 0.0, 0.0
+            self.forces = [(self.position, float(self.force()))]
+
+    def record_work(self):
+        """Add the sub-step just solved to the drive's work (trapezoidal rule)."""
+        if self.force is not None:
+            x0, f0 = self.forces[-1]
+            f1 = float(self.force())
+            dx = self.position - x0
+            self.work += 0.5 * (f0 + f1) * dx
+            self.work_bound += 0.5 * abs(f1 - f0) * abs(dx)
+            self.forces.append((self.position, f1))
+
+    def sliding_force_ratio(self, normal_force):
+        """Return max |F| of the last cycle over ``normal_force`` (μ in gross sliding)."""
+        if not self.forces:
+            return None
+        return max(abs(f) for _, f in self.forces) / normal_force
 
 
 class _Recorder:
@@ -268,6 +310,11 @@ class Stepper:
     def __init__(self, components, wear, cycle=None, parameters=(), max_cuts=6,
                  checkpoint=None, picard_tol=1e-8, max_picard=20, name="wear", verbose=False,
                  problem_kw=None, problem_class=Problem):
+        self.wears = list(wear) if isinstance(wear, (list, tuple)) else [wear]
+        wear = self.wears[0]
+        if any((w.theta, w.averaged) != (wear.theta, wear.averaged) for w in self.wears):
+            raise ValueError("the evolving interfaces of one stepper need the same scheme "
+                             "(theta, averaged)")
         if cycle is not None and not wear.averaged:
             raise ValueError("fast-time cycles need a wear interface with averaged=True")
         if wear.averaged and cycle is None:
@@ -277,7 +324,7 @@ class Stepper:
         self.max_cuts, self.verbose = int(max_cuts), verbose
         self.picard_tol, self.max_picard = picard_tol, max_picard
         kw = problem_kw or {}
-        shape = list(wear.shape_unknowns())
+        shape = [u for w in self.wears for u in w.shape_unknowns()]
         every = _unique([u for c in self.components for u in c.unknowns()])
         deformation = [u for u in every if not any(u is s for s in shape)]
         self.monolithic = wear.theta == 1 and not wear.averaged
@@ -292,6 +339,7 @@ class Stepper:
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
         self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
         self.last_increment = None
+        self.last_increments = None
 
     # -- set-up ------------------------------------------------------------------
     def set_control(self, control):
@@ -303,7 +351,7 @@ class Stepper:
         def n(f):
             im = f.function_space.dofmap.index_map
             return im.size_global * f.function_space.dofmap.index_map_bs
-        shape = sum(n(f) for f in self.wear.shape_unknowns())
+        shape = sum(n(f) for w in self.wears for f in w.shape_unknowns())
         total = sum(n(f) for f in self.problem.u) + (0 if self.monolithic else shape)
         return shape / total
 
@@ -345,7 +393,7 @@ class Stepper:
 
     # -- one slow step -------------------------------------------------------------
     def _check_mesh(self):
-        m = self.wear.min_volume_factor()
+        m = min(w.min_volume_factor() for w in self.wears)
         if not m > 0:
             raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
 
@@ -363,7 +411,8 @@ class Stepper:
         """
         saved = self.state()
         out = StepReport(dt=dt)
-        self.wear.begin_step(dt)
+        for w in self.wears:
+            w.begin_step(dt)
         if self.control is not None:
             self.control.begin(dt)
         try:
@@ -382,7 +431,8 @@ class Stepper:
             self.restore(saved)
             raise
         finally:
-            self.wear.end_step()
+            for w in self.wears:
+                w.end_step()
         self.problem.commit()
         self.t += dt
         self.steps += 1
@@ -412,44 +462,52 @@ class Stepper:
         return its
 
     def run_cycle(self):
-        """One loading cycle at the current shape; returns (ΔW nodal (mm), Newton iterations).
+        """One loading cycle at the current shape; returns (ΔW nodal (mm) per interface, its).
 
-        ΔW = Σ_j K T_T·Δs_j (eq. 22) over the cycle's sub-steps (not the run-in).
+        ΔW = Σ_j K T_T·Δs_j (eq. 22) over the cycle's sub-steps (not the run-in),
+        one array per evolving interface (:attr:`wears` order).
         """
         P, cyc = self.problem, self.cycle
         its = self.restart()
-        dW = np.zeros_like(self.wear.rate_bar.x.array)
+        cyc.begin_work()
+        dW = [np.zeros_like(w.rate_bar.x.array) for w in self.wears]
         for pos in cyc.positions:
             cyc.move(pos)
             its += P.solve(verbose=self.verbose).iterations
-            dW += self.wear.nodal_increment()
+            cyc.record_work()
+            for d, w in zip(dW, self.wears):
+                d += w.nodal_increment()
             P.commit()
         return dW, its
 
-    def _shape_step(self, rate, w0, out):
-        """Shape step (28) from w0 with the nodal rate ``rate`` (mm/s)."""
-        w = self.wear.body.w
-        w.x.array[:] = w0
-        self.wear.rate_bar.x.array[:] = rate
+    def _shape_step(self, rates, w0, out):
+        """Shape step (28) from w0 with the nodal rates (mm/s), one per interface."""
+        for w, r, a in zip(self.wears, rates, w0):
+            w.body.w.x.array[:] = a
+            w.rate_bar.x.array[:] = r
         out.reports.append(self.shape.solve(verbose=self.verbose))
         self._check_mesh()
-        return w.x.array - w0
+        return [w.body.w.x.array - a for w, a in zip(self.wears, w0)]
+
+    def _max(self, arrays):
+        return self.comm.allreduce(max((float(np.max(np.abs(a), initial=0.0)) for a in arrays),
+                                       default=0.0), op=MPI.MAX)
 
     def _cycle_step(self, dt, out):
         theta, tau = self.wear.theta, self.cycle.period
         dW, its = self.run_cycle()
-        rate_n = wf.cycle_average_rate(dW, tau)  # eq. 23
-        w0 = self.wear.body.w.x.array.copy()
+        rate_n = [wf.cycle_average_rate(d, tau) for d in dW]  # eq. 23
+        w0 = [w.body.w.x.array.copy() for w in self.wears]
         dw_prev = self._shape_step(rate_n, w0, out)
         if theta > 0:
             for it in range(1, self.max_picard + 1):
                 dW1, its1 = self.run_cycle()
                 its += its1
-                rate = (1 - theta) * rate_n + theta * wf.cycle_average_rate(dW1, tau)
+                rate = [(1 - theta) * r + theta * wf.cycle_average_rate(d, tau)
+                        for r, d in zip(rate_n, dW1)]
                 dw = self._shape_step(rate, w0, out)
-                change = self.comm.allreduce(float(np.max(np.abs(dw - dw_prev), initial=0.0)),
-                                             op=MPI.MAX)
-                scale = self.comm.allreduce(float(np.max(np.abs(dw), initial=0.0)), op=MPI.MAX)
+                change = self._max([a - b for a, b in zip(dw, dw_prev)])
+                scale = self._max(dw)
                 dw_prev = dw
                 out.picard = it
                 if change <= self.picard_tol * max(scale, 1e-300):
@@ -458,12 +516,14 @@ class Stepper:
                 raise NewtonDivergence(f"Picard iteration of the θ-scheme did not converge in "
                                        f"{self.max_picard} cycles")
             dW = dW1
-        self.wear.body.w_n.x.array[:] = w0
+        for w, a in zip(self.wears, w0):
+            w.body.w_n.x.array[:] = a
         # deformation on the new shape (at the centre, fully developed sliding)
         its += self.restart()
         out.iterations += its
         out.cycle_iterations = its
-        self.last_increment = dW
+        self.last_increments = dW
+        self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
     def run(self, T, dt, on_step=None, progress=None):

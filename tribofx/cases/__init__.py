@@ -11,13 +11,14 @@ from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
 from .wear_ball import WearBallCase
 from .wear_groove import WearBallHalfspaceCase
+from .wear_reciprocating import WearReciprocatingCase
 
 __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
                                   EHLORingCase, TwoCylindersCase,
-                                  ContactPatchCase, IroningCase)}
+                                  ContactPatchCase, IroningCase, WearReciprocatingCase)}
 
 
 def get_case(name):

@@ -19,13 +19,13 @@ contact force).
 """
 
 import numpy as np
-from dolfinx import mesh
 from mpi4py import MPI
 
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
+from ..meshes.block import NAMES, block_mesh
 from ..meshes.ironing import ARC, TOP, die_body
 from ..params import Param
 from ..problem import NewtonDivergence, Problem
@@ -34,16 +34,8 @@ __all__ = ["IroningCase"]
 
 
 def _slab(comm, L, H, nx, ny, material):
-    msh = mesh.create_rectangle(comm, [[0.0, 0.0], [L, H]], [nx, ny],
-                                diagonal=mesh.DiagonalType.crossed)
-    fdim = msh.topology.dim - 1
-    top = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], H))
-    bottom = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], 0.0))
-    e = np.concatenate([top, bottom])
-    v = np.concatenate([np.full(len(top), 1, np.int32), np.full(len(bottom), 2, np.int32)])
-    order = np.argsort(e)
-    tags = mesh.meshtags(msh, fdim, e[order], v[order])
-    return Body(msh, tags, {"top": 1, "bottom": 2}, "plane_strain", material, name="slab")
+    msh, tags = block_mesh(comm, (0.0, 0.0), (L, H), nx, ny)
+    return Body(msh, tags, NAMES, "plane_strain", material, name="slab")
 
 
 class IroningCase:

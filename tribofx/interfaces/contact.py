@@ -25,28 +25,15 @@ rigid.  Units: mm, N, MPa.
 
 import numpy as np
 import ufl
-from dolfinx import fem, la
-from dolfinx.cpp import mesh as _cpp_mesh
+from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import contact as cf
 from ..forms import kinematics as kin
 from ..problem import BlockTolerance
-from ..submesh import facet_submesh
+from .surface import Surface, node_to_dof
 
 __all__ = ["Contact", "gather_nodal", "node_to_dof"]
-
-
-def node_to_dof(V):
-    """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
-    msh = V.mesh
-    xdm = msh.geometry.dofmaps[0]
-    nv = _cpp_mesh.cell_num_vertices(msh.topology.cell_type)
-    if xdm.shape[1] != nv:
-        raise ValueError("contact requires an affine (P1) geometry of the contact body")
-    out = np.full(msh.geometry.x.shape[0], -1, dtype=np.int64)
-    out[xdm.ravel()] = V.dofmap.list[:, :nv].ravel()
-    return out
 
 
 class Contact:
@@ -75,24 +62,13 @@ class Contact:
             raise ValueError("friction coefficient must be >= 0")
         self.body, self.name, self.rtol = body, name, rtol
         msh, gdim = body.mesh, body.gdim
-        self.sub, self.emap, gmap = facet_submesh(msh, body.facet_tags, body.tag(boundary),
-                                                  f"{body.name} {boundary}")
-        self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (gdim,)))
-        self.Q = fem.functionspace(self.sub, ("Lagrange", 1))
+        self.surface = s = Surface(body, boundary)
+        self.sub, self.emap, self.Vs, self.Q, self.dsc = s.sub, s.emap, s.Vs, s.Q, s.dsc
+        self.sub_dofs, self.bulk_dofs, self.X_sub = s.sub_dofs, s.bulk_dofs, s.X_sub
         self.lam_n = fem.Function(self.Q, name="contact_pressure_nominal")
         self.u_sub = fem.Function(self.Vs, name="u_contact")
         self.xbar_n = fem.Function(self.Vs, name="projection_at_last_step")
-        bulk = node_to_dof(body.V)
-        subm = node_to_dof(self.Vs)
-        nsub = self.sub.geometry.x.shape[0]
-        self.sub_dofs = subm[np.arange(nsub)]
-        self.bulk_dofs = bulk[gmap[np.arange(nsub)]]
-        self.X_sub = np.zeros((len(self.u_sub.x.array) // gdim, gdim))
-        self.X_sub[self.sub_dofs] = self.sub.geometry.x[:, :gdim]
         self.counterpart = counterpart(self.Vs)
-        self.dsc = ufl.Measure("ds", msh, subdomain_data=body.facet_tags,
-                               subdomain_id=body.tag(boundary),
-                               metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
         self.geometry = self.counterpart.geometry(body.position())
         self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
         self.rho_n = rho_n
@@ -241,10 +217,7 @@ class Contact:
 
     def nodal(self, form):
         """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
-        vec = fem.assemble_vector(form)
-        vec.scatter_reverse(la.InsertMode.add)
-        vec.scatter_forward()
-        return vec.array.copy()
+        return self.surface.nodal(form)
 
     def force(self):
         """Total force exerted by the counterpart on the (modelled part of the) body (N)."""

@@ -27,18 +27,18 @@ Plane strain, P1 displacements, affine meshes.  Units: mm, N, MPa.
 
 import numpy as np
 import ufl
-from dolfinx import fem, la
+from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 from petsc4py import PETSc
 
 from ..forms import kinematics as kin
 from ..problem import BlockTolerance
-from ..submesh import facet_submesh
 from ..two_body import MasterSurface, node_residuals
-from .contact import gather_nodal, node_to_dof
+from .contact import gather_nodal
+from .surface import Surface, node_to_dof
 
-__all__ = ["TwoBodyContact"]
+__all__ = ["TwoBodyContact", "WearSurface"]
 
 
 def _vertex_dofs(body, facets):
@@ -61,6 +61,8 @@ class TwoBodyContact:
 
     #: relative hysteresis of the master-segment choice (see :meth:`_pairs`)
     STICKY = 0.05
+    #: the slip is the increment of the projection since the last commit
+    slip_kind = "lagrangian"
 
     def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
                  rho_t=None, name="contact", rtol=1e-10):
@@ -74,28 +76,18 @@ class TwoBodyContact:
         self.slave, self.master, self.name, self.rtol = slave, master, name, rtol
         self.rho_n, self.friction = float(rho_n), float(friction)
         self.rho_t = float(rho_n if rho_t is None else rho_t)
-        msh = slave.mesh
-        self.sub, self.emap, gmap = facet_submesh(msh, slave.facet_tags,
-                                                  slave.tag(slave_boundary),
-                                                  f"{slave.name} {slave_boundary}")
-        self.Q = fem.functionspace(self.sub, ("Lagrange", 1))
-        self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (2,)))
+        self.surface = sf = Surface(slave, slave_boundary)
+        self.sub, self.emap, self.Q, self.Vs, self.dsc = sf.sub, sf.emap, sf.Q, sf.Vs, sf.dsc
+        self.master_boundary = master_boundary
         self.lam_n = fem.Function(self.Q, name=f"{name}_pressure_nominal")
         self.lam_t = (fem.Function(self.Vs, name=f"{name}_friction_traction_nominal")
                       if self.friction > 0 else None)
-        self.dsc = ufl.Measure("ds", msh, subdomain_data=slave.facet_tags,
-                               subdomain_id=slave.tag(slave_boundary),
-                               metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
-        # owned slave nodes: λ dof q ↔ bulk block dof of the same vertex
-        nodes = np.arange(self.sub.geometry.x.shape[0])
-        q_of_node = node_to_dof(self.Q)[nodes]
-        bulk_of_node = node_to_dof(slave.V)[gmap[nodes]]
-        n_own = self.Q.dofmap.index_map.size_local
-        own = q_of_node < n_own
-        order = np.argsort(q_of_node[own])
-        self._q = q_of_node[own][order]
-        self._bulk = bulk_of_node[own][order]
-        self._X = slave.mesh.geometry.x[gmap[nodes][own][order], :2]
+        # owned slave nodes in λ-dof order: λ dof q ↔ bulk block dof of the same vertex
+        own = sf.sub_dofs < sf.n_own
+        order = np.argsort(sf.sub_dofs[own])
+        self._q = sf.sub_dofs[own][order]
+        self._bulk = sf.bulk_dofs[own][order]
+        self._X = sf.X_sub[self._q]
         q = ufl.TestFunction(self.Q)
         self._w_c = self._lumped(q * self.dsc)[self._q]
         self._w = self._lumped(q * slave.weight * self.dsc)[self._q]
@@ -123,12 +115,8 @@ class TwoBodyContact:
         self._post = None
 
     def _lumped(self, form):
-        """Assembled (reverse-scattered) vector of a linear form on the slave submesh."""
-        if not isinstance(form, fem.Form):
-            form = fem.form(form, entity_maps=[self.emap])
-        vec = fem.assemble_vector(form)
-        vec.scatter_reverse(la.InsertMode.add)
-        return vec.array.copy()
+        """Assembled (ghost-updated) vector of a linear form on the slave submesh."""
+        return self.surface.nodal(form)
 
     # -- master polyline on every rank -------------------------------------------------
     def _master_dofs(self):
@@ -188,57 +176,78 @@ class TwoBodyContact:
         return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
-    def _local(self, problem):
-        """Local unknowns q (n, 13), ξ̄_old, rows and columns (n, 13) of the owned slave nodes."""
-        xm, keys, seg, xs, proj = self._pairs()
+    def _state_key(self):
+        return [self.slave.u.x.array, self.master.u.x.array, self.lam_n.x.array] + \
+            ([self.lam_t.x.array] if self.lam_t is not None else []) + \
+            (list(self._old) if self._old is not None else [])
+
+    def _kernel(self):
+        """Kernel data of the owned slave nodes at the current state, computed once per state.
+
+        SNES asks for the residual and then the Jacobian at the same iterate, and
+        the outputs ask again after the solve: the unknowns and the slip history
+        are the key.  The evaluation is collective (the master is gathered), so
+        the cache hit is decided on all ranks.  Returns a dict: ``q`` (n, 13),
+        ``xi_old``, ``r``, ``J``, the pairing (``xm``, ``keys``, ``seg``,
+        ``facet``, ``xi``) and ``old_seg`` (master nodes of the committed points).
+        """
         if self._old is None:
             self.commit()
+        key = self._state_key()
+        c = self._cache
+        same = c is not None and len(c[0]) == len(key) and all(
+            a.shape == b.shape and np.array_equal(a, b) for a, b in zip(c[0], key))
+        if self.slave.mesh.comm.allreduce(same, op=MPI.LAND):
+            return c[1]
+        xm, keys, seg, xs, proj = self._pairs()
+        f = proj["facet"]
+        old_seg = np.searchsorted(keys, self._old[0])
+        n = len(self._q)
+        qv = np.zeros((n, 13))
+        qv[:, 0:2] = xs
+        for j, nodes in ((2, seg[f, 0]), (4, seg[f, 1]), (6, old_seg[:, 0]), (8, old_seg[:, 1])):
+            qv[:, j:j + 2] = xm[nodes]
+        qv[:, 10] = self.lam_n.x.array[self._q]
+        if self.lam_t is not None:
+            qv[:, 11:13] = self.lam_t.x.array.reshape(-1, 2)[self._q]
+        r, J = node_residuals(qv, self._old[1], self._w, self._w_c, self.rho_n, self.rho_t,
+                              self.friction)
+        data = {"q": qv, "xi_old": self._old[1], "r": r, "J": J, "xm": xm, "keys": keys,
+                "seg": seg, "facet": f, "xi": proj["xi"], "old_seg": old_seg, "rows": {}}
+        self._cache = ([a.copy() for a in key], data)
+        return data
+
+    def _rows(self, problem, k):
+        """Global rows and columns (n, 13) of the local unknowns of ``k`` in ``problem``."""
+        if id(problem) in k["rows"]:
+            return k["rows"][id(problem)]
         mrow, mcol = problem.global_rows(self.master.u)
         _, rc = self._gather(lambda d: np.c_[mrow[2 * d], mrow[2 * d + 1],
                                              mcol[2 * d], mcol[2 * d + 1]])
         rm, cm = rc[:, 0:2], rc[:, 2:4]
+        seg, f, old_seg = k["seg"], k["facet"], k["old_seg"]
         n = len(self._q)
-        f = proj["facet"]
-        old_seg = np.searchsorted(keys, self._old[0])
         srow, scol = problem.global_rows(self.slave.u)
         nrow, ncol = problem.global_rows(self.lam_n)
-        qv = np.zeros((n, 13))
         rows = np.full((n, 13), -1, dtype=np.int64)
         cols = np.full((n, 13), -1, dtype=np.int64)
-        qv[:, 0:2] = xs
         b2 = np.c_[2 * self._bulk, 2 * self._bulk + 1]
         rows[:, 0:2], cols[:, 0:2] = srow[b2], scol[b2]
         for j, nodes in ((2, seg[f, 0]), (4, seg[f, 1]), (6, old_seg[:, 0]), (8, old_seg[:, 1])):
-            qv[:, j:j + 2] = xm[nodes]
             rows[:, j:j + 2], cols[:, j:j + 2] = rm[nodes], cm[nodes]
-        qv[:, 10] = self.lam_n.x.array[self._q]
         rows[:, 10], cols[:, 10] = nrow[self._q], ncol[self._q]
         if self.lam_t is not None:
             trow, tcol = problem.global_rows(self.lam_t)
             t2 = np.c_[2 * self._q, 2 * self._q + 1]
-            qv[:, 11:13] = self.lam_t.x.array.reshape(-1, 2)[self._q]
             rows[:, 11:13], cols[:, 11:13] = trow[t2], tcol[t2]
-        return qv, self._old[1], rows, cols
+        k["rows"][id(problem)] = (rows, cols)
+        return rows, cols
 
     def evaluate(self, problem):
-        """Kernel residuals and tangents of the owned slave nodes, with their rows/columns.
-
-        SNES asks for the residual and then the Jacobian at the same iterate: the
-        kernel runs once per state (the unknowns and the slip history are the key).
-        """
-        key = [self.slave.u.x.array, self.master.u.x.array, self.lam_n.x.array] + \
-            ([self.lam_t.x.array] if self.lam_t is not None else []) + \
-            (list(self._old) if self._old is not None else [])
-        same = self._cache is not None and len(self._cache[0]) == len(key) and all(
-            a.shape == b.shape and np.array_equal(a, b) for a, b in zip(self._cache[0], key))
-        # the evaluation is collective (the master is gathered): decide on all ranks
-        if self.slave.mesh.comm.allreduce(same, op=MPI.LAND):
-            return self._cache[1]
-        qv, xi_old, rows, cols = self._local(problem)
-        r, J = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
-                              self.friction)
-        self._cache = ([a.copy() for a in key], (r, J, rows, cols))
-        return r, J, rows, cols
+        """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        return k["r"], k["J"], rows, cols
 
     def add_residual(self, b, problem):
         """Add the kernel residual of every owned slave node to ``b`` (global rows)."""
@@ -298,12 +307,67 @@ class TwoBodyContact:
         _, keys, seg, _, p = self._pairs()
         self._old = (keys[seg[p["facet"]]], p["xi"].copy())
 
+    # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
+    def dissipation_increment(self):
+        """Frictional dissipation per unit reference slave area since the last commit (N/mm).
+
+        ΔD⁽¹⁾ = T_T·Δs_T per owned slave node (λ-dof order): T_T the nominal
+        friction traction of the Alart–Curnier law, Δs_T the tangential part of
+        the slip x̄ − z (the current projection minus the current position of the
+        master material point of the last converged projection).  It is the
+        increment of eq. (17), Ḋ⁽¹⁾ = T_T·ξ̄̇ over the step; ≥ 0 (T_T is parallel
+        to the slip in sliding and the slip vanishes in stick).
+        """
+        if self.lam_t is None:
+            raise ValueError("wear by frictional dissipation needs friction > 0")
+        k = self._kernel()
+        q, r = k["q"], k["r"]
+        x, x1, x2, y1, y2 = q[:, 0:2], q[:, 2:4], q[:, 4:6], q[:, 6:8], q[:, 8:10]
+        t = x2 - x1
+        l2 = np.sum(t * t, axis=1)
+        n = np.c_[t[:, 1], -t[:, 0]] / np.sqrt(l2)[:, None]
+        xi = np.sum((x - x1) * t, axis=1) / l2
+        s = x1 + xi[:, None] * t - (y1 + k["xi_old"][:, None] * (y2 - y1))
+        s_t = s - np.sum(s * n, axis=1)[:, None] * n
+        wc = np.where(self._w_c > 0, self._w_c, 1.0)
+        T_t = r[:, 11:13] * self.rho_t / wc[:, None]
+        return np.sum(T_t * s_t, axis=1)
+
+    def master_transfer(self, volume):
+        """Distribute per-slave-node volumes onto the master nodes of their projections.
+
+        ``volume`` (n_owned_slave,) is split between the two nodes of the current
+        master segment of each slave node with the weights (1 − ξ, ξ) and summed
+        over all ranks; returns (global master node keys, volumes) on every rank.
+        This is eq. (18) in the lumped nodal scheme: Ẇ⁽²⁾ dS⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾
+        Ḋ⁽¹⁾ dS⁽²⁾ = K⁽²⁾ Ḋ⁽¹⁾ dS⁽¹⁾ (ds = j dS on both sides), so a slave node
+        passes its volume K⁽²⁾ ΔD⁽¹⁾ w_c to the master surface element it faces.
+        """
+        k = self._kernel()
+        out = np.zeros(len(k["keys"]))
+        seg, f, xi = k["seg"], k["facet"], k["xi"]
+        np.add.at(out, seg[f, 0], (1 - xi) * volume)
+        np.add.at(out, seg[f, 1], xi * volume)
+        self.slave.mesh.comm.Allreduce(MPI.IN_PLACE, out, op=MPI.SUM)
+        return k["keys"], out
+
+    def wear_surface(self, side):
+        """Return the ``"slave"`` or ``"master"`` side for a :class:`~tribofx.interfaces.Wear`."""
+        if side not in ("slave", "master"):
+            raise ValueError(f"side {side!r}: 'slave' or 'master'")
+        if self.lam_t is None:
+            raise ValueError("wear of a two-body contact is driven by the frictional "
+                             "dissipation (eqs. 17-18): friction > 0 needed")
+        return WearSurface(self, side)
+
     # -- outputs ---------------------------------------------------------------------
-    def nodal_data(self, problem):
-        """Per owned slave node: X, x, nominal T_N, T_T, pressure −T_N/j, weights (current, ref)."""
-        qv, xi_old, _, _ = self._local(problem)
-        r, _ = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
-                              self.friction)
+    def nodal_data(self, problem=None):
+        """Per owned slave node: X, x, nominal T_N, T_T, pressure −T_N/j, weights (current, ref).
+
+        (``problem`` is not needed; accepted for the interface of the other contacts.)
+        """
+        k = self._kernel()
+        r = k["r"]
         wc = np.where(self._w_c > 0, self._w_c, 1.0)
         T_n = r[:, 10] * self.rho_n / wc
         T_t = r[:, 11:13] * self.rho_t / wc[:, None]
@@ -315,17 +379,78 @@ class TwoBodyContact:
                                   entity_maps=[self.emap])
         wj = self._lumped(self._post)[self._q]
         j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
-        return {"X": self._X, "x": qv[:, 0:2], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
+        return {"X": self._X, "x": k["q"][:, 0:2], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
                 "weight": wj, "weight_ref": self._w_c.copy(), "active": T_n < 0}
 
-    def forces(self, problem):
+    def forces(self, problem=None):
         """Total contact force on the slave and on the master (N/mm), all ranks."""
-        r, _, _, _ = self.evaluate(problem)
+        r = self._kernel()["r"]
         comm = self.slave.mesh.comm
         on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
         on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
         return on_slave, on_master
 
-    def gather_profile(self, problem):
+    def gather_profile(self, problem=None):
         """All nodal data on rank 0 (None elsewhere), sorted by reference X[0]."""
-        return gather_nodal(self.slave.mesh.comm, self.nodal_data(problem))
+        return gather_nodal(self.slave.mesh.comm, self.nodal_data())
+
+
+class WearSurface:
+    """One side of a :class:`TwoBodyContact` as the home of a :class:`tribofx.interfaces.Wear`.
+
+    It carries the :class:`tribofx.interfaces.surface.Surface` attributes of its
+    boundary (on the slave: the contact's own) and answers
+    :meth:`wear_increment`: the nominal wear increment per unit reference area
+    of its own surface over the last fast sub-step, eq. (17) on the slave,
+    eq. (18) on the master (see :meth:`TwoBodyContact.master_transfer`).
+    """
+
+    def __init__(self, contact, side):
+        self.contact, self.side = contact, side
+        body = contact.slave if side == "slave" else contact.master
+        sf = contact.surface if side == "slave" else Surface(body, contact.master_boundary)
+        self.surface, self.body = sf, body
+        self.sub, self.emap, self.Q, self.Vs, self.dsc = sf.sub, sf.emap, sf.Q, sf.Vs, sf.dsc
+        self.sub_dofs, self.bulk_dofs, self.X_sub = sf.sub_dofs, sf.bulk_dofs, sf.X_sub
+        self.lam_t, self.friction = contact.lam_t, contact.friction
+        self.slip_kind = "lagrangian"
+        self._inc = fem.Function(self.Q)
+        if side == "master":
+            im = body.V.dofmap.index_map
+            key = np.zeros(len(self._inc.x.array), dtype=np.int64)
+            key[sf.sub_dofs] = im.local_to_global(sf.bulk_dofs.astype(np.int32))
+            self._key = key
+            self._weight = sf.nodal(ufl.TestFunction(self.Q) * self.dsc)
+
+    def nodal(self, form):
+        """Assembled (ghost-updated) vector of a linear form on this surface's dofs."""
+        return self.surface.nodal(form)
+
+    def wear_increment(self, K):
+        """ΔW per unit reference area of this surface, all local dofs (mm), coefficient K.
+
+        Slave: K ΔD⁽¹⁾ (eq. 17).  Master: the volumes K ΔD⁽¹⁾ w_c of the slave
+        nodes transferred to the master nodes (eq. 18) over the lumped master
+        weights.
+        """
+        dD = self.contact.dissipation_increment()
+        inc = self._inc.x.array
+        if self.side == "slave":
+            inc[:] = 0.0
+            inc[self.contact._q] = K * dD
+            self._inc.x.scatter_forward()
+            return inc.copy()
+        keys, vol = self.contact.master_transfer(K * dD * self.contact._w_c)
+        pos = np.searchsorted(keys, self._key)
+        if len(keys) and not np.array_equal(keys[np.minimum(pos, len(keys) - 1)], self._key):
+            raise RuntimeError("master surface nodes missing from the gathered polyline")
+        return np.divide(vol[pos], self._weight, out=np.zeros_like(self._weight),
+                         where=self._weight > 0)
+
+    def nodal_data(self):
+        """Per owned node: reference X and current x = X + u (mm)."""
+        n = self.surface.n_own
+        u = self.body.u.x.array.reshape(-1, 2)
+        x = self.X_sub.copy()
+        x[self.sub_dofs] += u[self.bulk_dofs]
+        return {"X": self.X_sub[:n], "x": x[:n]}

@@ -42,11 +42,15 @@ slow-time stepper uses, in addition, ``dt`` (a Constant, s), ``theta``,
 ``averaged``, :meth:`shape_unknowns`, :meth:`begin_step`, :meth:`end_step`,
 :meth:`min_volume_factor`, :meth:`nodal_increment` and ``rate_bar``.
 
-Two bodies.  Only the slave-surface rate (eq. 17) is implemented; nothing here
-assumes the counterpart is rigid (the rate uses the contact's tractions and
-relative slip only).  The master-surface rate (eq. 18), Ẇ⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾ Ḋ⁽¹⁾
-(:func:`tribofx.forms.wear.master_nominal_rate`), belongs to a second Wear
-interface on the master Body's shape field, added with the two-body contact.  Units: mm, N, s, MPa.
+Two bodies (:class:`tribofx.interfaces.TwoBodyContact`): a Wear sits on
+``contact.wear_surface("slave")`` or ``contact.wear_surface("master")`` (a
+:class:`tribofx.interfaces.two_body_contact.WearSurface`), one per body, each
+with its own coefficient K = k/μ and the body's own shape field.  The rate is
+the frictional dissipation of the fast-time cycles (``averaged=True``): the
+slave's nominal increment K⁽¹⁾ ΔD⁽¹⁾ (eq. 17), the master's K⁽²⁾ ΔD⁽¹⁾
+transferred to the master nodes it was dissipated against, which is eq. (18)
+with its area factors j⁽²⁾/j⁽¹⁾ (see :meth:`TwoBodyContact.master_transfer`).
+Units: mm, N, s, MPa.
 """
 
 import numpy as np
@@ -93,6 +97,9 @@ class Wear:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
             raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
+        if hasattr(contact, "wear_increment") and not averaged:
+            raise ValueError("two-body wear is driven by the dissipation of the fast-time "
+                             "cycles: averaged=True")
         if contact.lam_t is not None and contact.slip_kind != "eulerian" and not averaged:
             raise ValueError("Lagrangian (fast-time) friction needs averaged=True and the "
                              "fast-time cycles of the slow-time stepper (tribofx.stepper)")
@@ -220,7 +227,8 @@ class Wear:
                 "detG": fem.Function(DG0),
                 "detG_expr": fem.Expression(ufl.det(G), DG0.element.interpolation_points),
             }
-            if c.lam_t is not None and c.slip_kind == "lagrangian":
+            if c.lam_t is not None and c.slip_kind == "lagrangian" and \
+                    not hasattr(c, "wear_increment"):
                 self._post["increment"] = fem.form(self.rate(b.w, slip=c.slip) * q * c.dsc,
                                                    entity_maps=em)
             n = c.nodal(self._post["normal"]).reshape(-1, b.gdim)
@@ -249,6 +257,8 @@ class Wear:
         Returns the local array on the contact dofs (lumped nodal values).
         """
         f = self._forms()
+        if hasattr(self.contact, "wear_increment"):   # a side of a two-body contact
+            return self.contact.wear_increment(self.k.value / self.contact.friction)
         if "increment" not in f:
             raise ValueError("wear increments need Lagrangian friction on the contact")
         num, den = self.contact.nodal(f["increment"]), self.contact.nodal(f["lumped"])
@@ -267,7 +277,7 @@ class Wear:
         self._forms()
         c, gdim = self.contact, self.body.gdim
         d = c.nodal_data()
-        n_own = len(d["p"])
+        n_own = c.Q.dofmap.index_map.size_local
         wb = self.body.w.x.array.reshape(-1, gdim)
         ws = np.zeros_like(c.X_sub)
         ws[c.sub_dofs] = wb[self._bulk_dofs_w]

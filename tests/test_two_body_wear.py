@@ -1,0 +1,106 @@
+"""Wear of both bodies of a two-body contact (eqs. 17-18) and the §5.1 case ``wear-reciprocating``.
+
+References: the energy balance of a sliding step (work of the drive = change
+of the stored energy of both bodies + frictional dissipation), Archard's law
+(worn area = K × dissipated energy, for each body with its own K), eq. (18)
+(the master's worn volume is K⁽²⁾/K⁽¹⁾ times the slave's: both are driven by
+the slave's dissipation), and the time integral of each body's own rate.
+"""
+
+import json
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+from test_two_body import two_blocks
+
+from tribofx.runner import run_case
+
+COMM = MPI.COMM_WORLD
+
+
+def test_dissipation_balances_the_work_of_the_drive():
+    """Steady sliding of a block on a block: W_push = ΔE_stored + Σ ΔD⁽¹⁾ w_c.
+
+    The push moves the slave's top by 0.1 mm in 10 committed sub-steps; the
+    work of its support force is integrated by the trapezoidal rule, whose
+    error for a force monotone within a sub-step is at most ½ Σ |ΔF| |Δx|; the
+    dissipation increment of a sub-step, T_T(τ_{j+1})·Δs, is the right-point
+    rule of ∫ T_T·ds, off by at most Σ_nodes w_c |ΔT_T| |Δs|; the Newton
+    tolerance adds n_u·atol_u times the step length.  The sum of those bounds
+    is the tolerance.
+    """
+    mu = 0.3
+    slave, master, contact, problem, push = two_blocks(COMM, mu, fixed_master=False,
+                                                       top=(0.0, -0.02))
+    problem.solve()
+    problem.commit()
+    for k in range(1, 5):                 # into steady sliding
+        push.value[:] = [0.1 * k, -0.02]
+        problem.solve()
+        problem.commit()
+    energy0 = slave.strain_energy() + master.strain_energy()
+    F0 = slave.reaction("top", 0)
+    T0 = contact.nodal_data()["T_t"]
+    work = bound = dissipation = 0.0
+    x0 = 0.4
+    for j in range(1, 11):
+        x1 = 0.4 + 0.01 * j
+        push.value[:] = [x1, -0.02]
+        problem.solve()
+        dD = contact.dissipation_increment()
+        T1 = contact.nodal_data()["T_t"]
+        F1 = slave.reaction("top", 0)
+        assert COMM.allreduce(float(dD.min(initial=0.0)), op=MPI.MIN) >= -1e-12
+        w = contact._w_c
+        dissipation += COMM.allreduce(float(dD @ w), op=MPI.SUM)
+        slip = np.divide(dD, np.linalg.norm(T1, axis=1), out=np.zeros_like(dD),
+                         where=np.linalg.norm(T1, axis=1) > 0)
+        bound += COMM.allreduce(float(np.sum(w * np.linalg.norm(T1 - T0, axis=1) * slip)),
+                                op=MPI.SUM)
+        work += 0.5 * (F0 + F1) * (x1 - x0)
+        bound += 0.5 * abs(F1 - F0) * (x1 - x0)
+        problem.commit()
+        F0, T0, x0 = F1, T1, x1
+    bound += slave.V.dofmap.index_map.size_global * 2 * slave.tolerances()[slave.u].atol * 0.1
+    stored = slave.strain_energy() + master.strain_energy() - energy0
+    print(f"work {work:.6e} stored {stored:.3e} dissipation {dissipation:.6e} bound {bound:.2e}")
+    assert dissipation > 0.5 * work          # it is sliding, not storing
+    assert abs(work - stored - dissipation) <= bound
+
+
+def _run(tmp_path, name, *sets):
+    overrides = dict(s.split("=", 1) for s in ("mesh=0", "cycles=100", "dt=10",
+                                                "fast_steps=8") + sets)
+    out = tmp_path / name
+    run_case("wear-reciprocating", overrides, out=out, progress=False)
+    return json.loads((out / "summary.json").read_text())
+
+
+@pytest.mark.parametrize("scheme", ["explicit", "implicit"])
+def test_wear_reciprocating_both_bodies(tmp_path, scheme):
+    """Worn areas of pin and block against Archard, eq. (18) and their own rates.
+
+    Each shape step (28) sweeps exactly the volume Δt ∫ W̄̇ dŜ (the swept Nanson
+    vector), to the tolerance of the ζ rows (1e-12 × body size per unit length,
+    i.e. ~1e-11 mm² per mm of a surface of a few mm, against worn areas of
+    ~1e-3 mm²): relative 1e-7 is a safe bound.  Archard (14): worn area of the
+    pin = K_pin × its dissipated energy; eq. (18): the block's worn area =
+    K_block/K_pin × the pin's.  The block's drive over the last cycle did the
+    work of the dissipation, to the bound of its trapezoidal rule.
+    """
+    s = _run(tmp_path, scheme, f"scheme={scheme}", "K_block=3e-5")
+    assert s["status"] == "ok"
+    r = {k: v["value"] for k, v in s["results"].items()}
+    p = {k: v["value"] if isinstance(v, dict) else v for k, v in s["parameters"].items()}
+    a_pin, a_block = np.array(r["worn_area_pin"]), np.array(r["worn_area_block"])
+    dt = np.array(r["dt"])
+    assert len(a_pin) == 3 and a_pin[-1] > 1e-4
+    rel = 1e-7
+    assert a_block[-1] == pytest.approx(p["K_block"] / p["K_pin"] * a_pin[-1], rel=rel)
+    assert a_pin[-1] == pytest.approx(p["K_pin"] * r["dissipated_energy"][-1], rel=rel)
+    for a, rate in ((a_pin, r["rate_integral_pin"]), (a_block, r["rate_integral_block"])):
+        integral = np.cumsum(dt[1:] * np.array(rate[1:]))
+        assert np.allclose(a[1:], integral, rtol=rel, atol=0)
+    for W, D, B in zip(r["drive_work"][1:], r["cycle_dissipation"][1:], r["drive_work_bound"][1:]):
+        assert abs(W - D) <= B

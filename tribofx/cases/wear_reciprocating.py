@@ -1,0 +1,326 @@
+"""Reciprocating pin-on-flat, both bodies elastic and worn (§5.1, Fig. 5): ``wear-reciprocating``.
+
+An elastic plane-strain pin (width W, height H, rounded tip of radius R_tip) is
+pressed by a constant normal force F (a uniform traction F/W on its top face;
+its sides x = ±W/2 held laterally) onto an elastic block (length L, depth D,
+top y = 0) whose bottom is moved back and forth along x with amplitude A at
+speed V.  Both are neo-Hookean; Coulomb friction μ.  The pin's tip is the
+slave surface, the block's top the master
+(:class:`~tribofx.interfaces.TwoBodyContact`: every slave node is projected on
+the current block surface).
+
+Both surfaces wear (Archard in the dissipation form, eq. 14, nominal
+coefficients K_pin and K_block): a :class:`~tribofx.interfaces.Wear` on each
+side, the pin's driven by its own dissipation K⁽¹⁾ D⁽¹⁾ (eq. 17), the block's
+by K⁽²⁾ D⁽¹⁾ carried to the block nodes the pin rubbed against (eq. 18); both
+shape fields evolve (finite shape changes of both bodies, on their initial
+meshes).  Time-scale separation (eqs. 21–23): per slow step one fast loading
+cycle at the fixed worn shapes — the contact memory erased, the block at −A, a
+run-in to the centre, then +A, −2A, +A — accumulates the wear increment of
+every node; the average rate over the cycle (Δτ = 4A/V) drives the shape step,
+explicit (θ = 0, as in the chapter) or implicit (θ = 1 by a Picard iteration of
+cycles); :class:`~tribofx.stepper.Stepper`.  A slow step of Δt stands for
+Δt/Δτ cycles; the run covers ``cycles`` cycles, T = cycles·Δτ.
+
+Data: the chapter leaves them to Lengiewicz & Stupkiewicz (2012); chosen here
+so that both bodies deform finitely and both wear visibly: W = H = 2 mm,
+R_tip = 2 mm (a half-round tip), block 6 × 1.5 mm, E_pin = 20 MPa, E_block =
+10 MPa (rubber-like: Hertz half-width 0.59 mm and peak pressure 1.1 MPa, so
+strains of about 10 %), ν = 0.3, μ = 0.3, A = 0.5 mm, V = 10 mm/s, F = 1 N/mm,
+K_pin = 10⁻⁴ and K_block = 5·10⁻⁵ mm³/(N·mm), 2000 cycles: gross sliding would
+dissipate μF·4A = 0.6 N·mm/mm per cycle (the stick phases after each reversal
+take about 13 % off), so the pin loses about 0.1 mm² per mm, a flat of about
+1.5 mm on its tip, and the block half of that, a groove along the stroke.
+
+Results per slow step: ``time``, ``cycles_done``, ``worn_area_pin`` and
+``worn_area_block`` (∫ (1 − det G) dV̂, mm² per mm), ``dissipated_energy`` (the
+frictional dissipation of the cycles so far, N·mm per mm), ``drive_work`` and
+``drive_work_bound`` (the work of the block's drive over the last cycle, ∮ F_x dx
+by the trapezoidal rule, and the bound ½ Σ |ΔF_x||Δx| of that rule),
+``rate_integral_pin``/``_block`` (∫ W̄̇ dŜ of the step's averaged rate, mm²/(mm·s)),
+and the final worn profiles of both bodies; ``fig5.png`` (initial and worn, undeformed
+and deformed, both bodies, at −A, at the centre and at +A) and ``wear.png``.
+"""
+
+import math
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
+from ..forms.hyperelastic import lame_parameters
+from ..interfaces import TwoBodyContact, Wear
+from ..meshes.block import NAMES as BLOCK_NAMES
+from ..meshes.block import block_mesh
+from ..meshes.pin import NAMES as PIN_NAMES
+from ..meshes.pin import pin_body, tip_height
+from ..params import InputError, Param
+from ..problem import NewtonDivergence
+from ..references import hertz
+from ..stepper import ReciprocatingCycle, Stepper
+
+__all__ = ["WearReciprocatingCase", "cell_coordinates"]
+
+
+def cell_coordinates(body):
+    """Owned cells of ``body`` as (n, 3, 2) arrays of X̂, w and u at their vertices, on rank 0.
+
+    For pictures of the initial (X̂), worn (X̂ + w) and deformed (X̂ + w + u)
+    configurations; None on the other ranks.
+    """
+    msh = body.mesh
+    n = msh.topology.index_map(msh.topology.dim).size_local
+    geo = msh.geometry.dofmaps[0][:n]
+    dofs = body.V.dofmap.list[:n, :3]
+    X = msh.geometry.x[geo, :2]
+    u = body.u.x.array.reshape(-1, 2)[dofs]
+    w = body.w.x.array.reshape(-1, 2)[dofs]
+    parts = msh.comm.gather((X, w, u), root=0)
+    if msh.comm.rank != 0:
+        return None
+    return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
+
+
+class WearReciprocatingCase:
+    """Case ``wear-reciprocating``; see the module docstring."""
+
+    name = "wear-reciprocating"
+    doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
+    params = (
+        Param("scheme", str, "explicit", "-", "θ-scheme on the slow time: explicit (θ=0) "
+              "or implicit (θ=1, Picard iteration of cycles)", choices=("explicit", "implicit")),
+        Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
+        Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
+        Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
+        Param("friction", float, 0.3, "-", "Coulomb coefficient μ", lower=0.0),
+        Param("K_pin", float, 1e-4, "mm^3/(N*mm)", "nominal wear coefficient of the pin (eq. 14)",
+              lower=0.0),
+        Param("K_block", float, 5e-5, "mm^3/(N*mm)",
+              "nominal wear coefficient of the block (eq. 14)", lower=0.0, closed=True),
+        Param("A", float, 0.5, "mm", "amplitude of the reciprocating motion (stroke 2A)",
+              lower=0.0),
+        Param("V", float, 10.0, "mm/s", "sliding speed", lower=0.0),
+        Param("F", float, 1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0),
+        Param("cycles", float, 2000.0, "-", "loading cycles of the run (T = cycles·4A/V)",
+              lower=0.0),
+        Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step)",
+              lower=0.0),
+        Param("W", float, 2.0, "mm", "pin width", lower=0.0),
+        Param("H", float, 2.0, "mm", "pin height", lower=0.0),
+        Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
+        Param("L", float, 6.0, "mm", "block length", lower=0.0),
+        Param("D", float, 1.5, "mm", "block depth", lower=0.0),
+        Param("mesh", int, 1, "-", "refinement: pin n × n, n = 10·2^mesh; block at 4/3 the size",
+              lower=0, upper=4, closed=True),
+        Param("fast_steps", int, 16, "-", "fast sub-steps per cycle (multiple of 4)", lower=4,
+              upper=100000, closed=True),
+        Param("max_cuts", int, 4, "-", "step halvings allowed per step", lower=0, upper=20,
+              closed=True),
+    )
+
+    @staticmethod
+    def validate(v):
+        """Reject a stroke off the block, a tip lower than the pin and a step above T."""
+        if v["R_tip"] < v["W"] / 2:
+            raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
+        if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
+            raise InputError("the rounded tip must be lower than half the pin height")
+        if v["L"] < v["W"] + 2 * v["A"] + 1.0:
+            raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 mm")
+        if v["fast_steps"] % 4:
+            raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
+        if v["dt"] > WearReciprocatingCase.period(v) * v["cycles"]:
+            raise InputError(f"time step {v['dt']} s exceeds T = "
+                             f"{WearReciprocatingCase.period(v) * v['cycles']} s")
+
+    @staticmethod
+    def period(v):
+        """Δτ of one cycle, 4A/V (s)."""
+        return 4 * v["A"] / v["V"]
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
+        """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict)."""
+        n = 10 * 2 ** v["mesh"]
+        h = v["W"] / n
+        msh, ft = pin_body(v["W"], v["H"], v["R_tip"], n, comm)
+        mu, lmbda = lame_parameters(v["E_pin"], v["nu"])
+        pin = Body(msh, ft, PIN_NAMES, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                   shape=True, aux=(v["E_pin"], 0.3), name="pin")
+        load = fem.Constant(msh, 1.0)
+        pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / v["W"]]))
+        pin.add_dirichlet("sides", 0.0, component=0)
+        pin.add_shape_dirichlet("sides", 0)
+        pin.add_shape_dirichlet("top", 1)
+        hb = 4 * h / 3                       # the slave (pin) is the finer surface
+        bmsh, bft = block_mesh(comm, (-v["L"] / 2, -v["D"]), (v["L"] / 2, 0.0),
+                               round(v["L"] / hb), max(2, round(v["D"] / hb)))
+        mu, lmbda = lame_parameters(v["E_block"], v["nu"])
+        block = Body(bmsh, bft, BLOCK_NAMES, "plane_strain",
+                     ("neo-hookean", {"mu": mu, "lmbda": lmbda}), shape=True,
+                     aux=(v["E_block"], 0.3), name="block")
+        motion = block.add_dirichlet("bottom", np.zeros(2))
+        for name, c in (("bottom", 0), ("bottom", 1), ("sides", 0)):
+            block.add_shape_dirichlet(name, c)
+        contact = TwoBodyContact(pin, "contact", block, "top",
+                                 rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
+        theta = 1.0 if v["scheme"] == "implicit" else 0.0
+        mu_f = v["friction"]
+        wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f, theta=theta,
+                        averaged=True, name="wear_pin")
+        wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f, theta=theta,
+                          averaged=True, name="wear_block")
+
+        def drive(position):
+            """Move the block's bottom to ``position``; the block translated as predictor."""
+            block.u.x.array.reshape(-1, 2)[:, 0] += position - float(motion.value[0])
+            motion.value[0] = position
+
+        cycle = ReciprocatingCycle(contact, 2 * v["A"], v["fast_steps"], v["V"], drive=drive,
+                                   force=lambda: block.reaction("bottom", 0))
+        stepper = Stepper([pin, block, contact, wear_pin, wear_block], [wear_pin, wear_block],
+                          cycle=cycle, parameters=[load, motion], max_cuts=v["max_cuts"],
+                          checkpoint=checkpoint, name="wear_reciprocating",
+                          problem_kw={"max_it": 40})
+        return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
+                "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
+                "cycle": cycle}
+
+    @staticmethod
+    def load_up(run, v, verbose=False):
+        """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
+
+        Newton starts from the pin translated down by the Hertz approach a²/(2R)
+        of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin).
+        """
+        a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
+                      v["nu"], line=True).a, v["W"] / 2)
+        delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
+        run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
+        run["load"].value = 0.0
+        control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
+                               verbose=verbose)
+        control.march(1.0, steps=2, predictor=False)
+        return int(sum(control.record))
+
+    @staticmethod
+    def snapshot(run):
+        """Cells of both bodies (X̂, w, u) at −A, at the centre and at +A of a cycle (rank 0).
+
+        Runs the start of a cycle at the current shapes: memory erased, the
+        block at −A (a), the run-in to the centre (b), the first quarter to +A
+        (c); then restarts, so the state is that of a cycle start again.
+        """
+        st, cyc = run["stepper"], run["cycle"]
+        P = st.problem
+        shots = []
+        cyc.start()
+        P.commit()
+        P.solve()
+        P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        for pos in cyc.run_in:
+            cyc.move(pos)
+            P.solve()
+            P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        for pos in cyc.positions[:cyc.fast_steps // 4]:
+            cyc.move(pos)
+            P.solve()
+            P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        st.restart()
+        return shots
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None):
+        """Load, then integrate the wear of both bodies over ``cycles``; per-step histories."""
+        run = cls.build(v, checkpoint=checkpoint)
+        st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
+        wp, wb = run["wear_pin"], run["wear_block"]
+        st.verbose = verbose
+        record.data["num_dofs"] = st.problem.num_dofs
+        record.data["num_dofs_shape"] = st.shape.num_dofs
+        tau = cls.period(v)
+        hist = {k: [] for k in ("time", "cycles_done", "worn_area_pin", "worn_area_block",
+                                "dissipated_energy", "cycle_dissipation", "drive_work",
+                                "drive_work_bound", "friction_force_ratio", "rate_integral_pin",
+                                "rate_integral_block", "newton_iterations", "dt")}
+        energy = [0.0]
+        w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
+
+        def log(t, dt, its):
+            comm = contact.slave.mesh.comm
+            if st.last_increments is not None:   # dissipation of the step's (last) cycle
+                d_pin = st.last_increments[0]
+                n = contact.Q.dofmap.index_map.size_local
+                cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v["K_pin"]
+                energy[0] += cyc_d * dt / tau
+            else:
+                cyc_d = None
+            for key, val in (("time", t), ("cycles_done", t / tau),
+                             ("worn_area_pin", wp.worn_volume()),
+                             ("worn_area_block", wb.worn_volume()),
+                             ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
+                             ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
+                             ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
+                             ("rate_integral_pin", wp.wear_rate_integral()),
+                             ("rate_integral_block", wb.wear_rate_integral()),
+                             ("newton_iterations", its), ("dt", dt)):
+                hist[key].append(val)
+            record.data["newton_iterations"].append(its)
+            if progress is not None and dt > 0:
+                progress.update(1)
+
+        log(0.0, 0.0, cls.load_up(run, v, verbose))
+        shots = {"initial": cls.snapshot(run)}
+        try:
+            st.run(v["cycles"] * tau, v["dt"], on_step=lambda s, rep: log(s.t, rep.dt,
+                                                                         rep.iterations))
+            shots["worn"] = cls.snapshot(run)
+        except NewtonDivergence as err:
+            err.problem = run
+            raise
+        finally:
+            cls._report(run, record, hist, shots)
+            if record.profile is not None:
+                half = 0.5 * v["L"] + v["A"] + 0.1
+                record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * v["H"]))
+        return run
+
+    @staticmethod
+    def _report(run, record, hist, shots):
+        units = {"time": "s", "cycles_done": "-", "worn_area_pin": "mm^2/mm",
+                 "worn_area_block": "mm^2/mm", "dissipated_energy": "N*mm/mm",
+                 "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
+                 "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
+                 "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
+                 "newton_iterations": "-", "dt": "s"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        prof = {}
+        for key in ("wear_pin", "wear_block"):
+            d = run[key].gather_shape()
+            if d is not None:
+                prof[key] = {"X_hat": d["X_hat"], "X_worn": d["X_worn"], "x": d["x"],
+                             "depth": d["depth"]}
+                record.result(f"final_profile_{key[5:]}", d["X_worn"].tolist(),
+                              "mm (worn configuration)")
+                record.result(f"final_depth_{key[5:]}", d["depth"].tolist(), "mm")
+        if MPI.COMM_WORLD.rank == 0:
+            record.profile = {**hist, **prof, "shots": shots}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacement and shape change of both bodies (one file per mesh)."""
+        return {"pin": [run["pin"].u, run["pin"].w], "block": [run["block"].u, run["block"].w]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """``fig5.png`` (configurations, both bodies) and ``wear.png`` (histories, profiles)."""
+        from ..plots.two_body import plot_reciprocating
+
+        plot_reciprocating(profile, outdir)

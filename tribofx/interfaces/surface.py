@@ -1,0 +1,72 @@
+"""A body's potential contact surface Γ_c: its facet submesh, P1 spaces, nodal maps, measure.
+
+Every interface that lives on a boundary (a contact's multipliers, a wear
+interface's shape multiplier, either side of a two-body contact) needs the same
+things: the facet submesh of the boundary with its entity map, a scalar and a
+vector P1 space on it, the map from submesh dofs to the bulk displacement dofs
+of the same vertices, the reference positions of the submesh nodes, the
+vertex-quadrature measure of the nodal scheme, and lumped nodal assembly.
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from dolfinx.cpp import mesh as _cpp_mesh
+
+from ..submesh import facet_submesh
+
+__all__ = ["Surface", "node_to_dof"]
+
+
+def node_to_dof(V):
+    """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
+    msh = V.mesh
+    xdm = msh.geometry.dofmaps[0]
+    nv = _cpp_mesh.cell_num_vertices(msh.topology.cell_type)
+    if xdm.shape[1] != nv:
+        raise ValueError("contact requires an affine (P1) geometry of the contact body")
+    out = np.full(msh.geometry.x.shape[0], -1, dtype=np.int64)
+    out[xdm.ravel()] = V.dofmap.list[:, :nv].ravel()
+    return out
+
+
+class Surface:
+    """The boundary ``boundary`` of ``body`` as the home of interface fields.
+
+    Attributes:
+        body: the :class:`tribofx.body.Body`.
+        sub, emap: facet submesh and its entity map to the body's mesh.
+        Q, Vs: scalar and vector (gdim) P1 spaces on the submesh.
+        sub_dofs, bulk_dofs: per submesh node, its block dof in Vs (= dof in Q)
+            and the block dof of the same vertex in ``body.V``.
+        X_sub: (n_sub_dofs, gdim) reference positions in Vs block-dof order.
+        dsc: vertex-quadrature measure of the boundary on the body's mesh.
+        n_own: number of owned submesh dofs (they come first).
+    """
+
+    def __init__(self, body, boundary):
+        msh, gdim = body.mesh, body.gdim
+        self.body = body
+        self.sub, self.emap, gmap = facet_submesh(msh, body.facet_tags, body.tag(boundary),
+                                                  f"{body.name} {boundary}")
+        self.Vs = fem.functionspace(self.sub, ("Lagrange", 1, (gdim,)))
+        self.Q = fem.functionspace(self.sub, ("Lagrange", 1))
+        nsub = self.sub.geometry.x.shape[0]
+        self.sub_dofs = node_to_dof(self.Vs)[np.arange(nsub)]
+        self.bulk_dofs = node_to_dof(body.V)[gmap[np.arange(nsub)]]
+        self.X_sub = np.zeros((self.Vs.dofmap.index_map.size_local
+                               + self.Vs.dofmap.index_map.num_ghosts, gdim))
+        self.X_sub[self.sub_dofs] = self.sub.geometry.x[:, :gdim]
+        self.dsc = ufl.Measure("ds", msh, subdomain_data=body.facet_tags,
+                               subdomain_id=body.tag(boundary),
+                               metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
+        self.n_own = self.Q.dofmap.index_map.size_local
+
+    def nodal(self, form):
+        """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
+        if not isinstance(form, fem.Form):
+            form = fem.form(form, entity_maps=[self.emap])
+        vec = fem.assemble_vector(form)
+        vec.scatter_reverse(la.InsertMode.add)
+        vec.scatter_forward()
+        return vec.array.copy()
