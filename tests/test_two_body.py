@@ -317,3 +317,35 @@ def test_ironing_slides_through_segment_changes(tmp_path):
     F = np.array(res["reaction_force"])
     assert np.all(F[3:, 0] < 0) and np.all(F[:, 1] > 0)
     assert 0 < res["force_ratio_sliding"] < 1
+
+
+def test_petsc_block_insertion_matches_petsc4py():
+    """The C++ MatSetValues/VecSetValues loop equals one petsc4py setValues per block.
+
+    Random 13 × 13 blocks with unused (−1) slots, repeated indices across blocks
+    (ADD_VALUES sums them); exact equality (same additions in the same order).
+    """
+    from petsc4py import PETSc
+
+    from tribofx.petsc_insert import (add_matrix_blocks, add_matrix_blocks_ref,
+                                      add_vector_blocks, add_vector_blocks_ref)
+
+    rng = np.random.default_rng(5)
+    n, m = 40, 30
+    rows = rng.integers(-1, m, size=(n, 13))
+    cols = rng.integers(-1, m, size=(n, 13))
+    vals = rng.standard_normal((n, 13, 13))
+    out = []
+    for add_m, add_v in ((add_matrix_blocks, add_vector_blocks),
+                         (add_matrix_blocks_ref, add_vector_blocks_ref)):
+        A = PETSc.Mat().createAIJ([m, m], nnz=m, comm=PETSc.COMM_SELF)
+        b = PETSc.Vec().createSeq(m, comm=PETSc.COMM_SELF)
+        add_m(A, rows, cols, vals)
+        add_v(b, rows, vals[:, 0, :])
+        A.assemble()
+        b.assemble()
+        out.append((A.convert("dense").getDenseArray().copy(), b.getArray().copy()))
+        A.destroy()
+        b.destroy()
+    assert np.abs(out[0][0]).max() > 0
+    assert np.array_equal(out[0][0], out[1][0]) and np.array_equal(out[0][1], out[1][1])

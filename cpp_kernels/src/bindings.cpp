@@ -4,6 +4,7 @@
 // nanobind module tribofx._cpp
 
 #include "lubrication.hpp"
+#include "petsc_insert.hpp"
 #include "projection.hpp"
 #include "two_body.hpp"
 
@@ -238,6 +239,36 @@ two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w
                            {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
 }
 
+template <typename I>
+void add_matrix_blocks(std::uintptr_t fn, std::uintptr_t mat, const CArray2<I>& rows,
+                       const CArray2<I>& cols,
+                       const nb::ndarray<const double, nb::ndim<3>, nb::c_contig,
+                                         nb::device::cpu>& values)
+{
+  const std::size_t n = rows.shape(0), nr = rows.shape(1), nc = cols.shape(1);
+  if (cols.shape(0) != n or values.shape(0) != n or values.shape(1) != nr
+      or values.shape(2) != nc)
+    throw std::invalid_argument("rows (n, nr), cols (n, nc) and values (n, nr, nc) disagree");
+  nb::gil_scoped_release release;
+  tribofx::petsc::add_matrix_blocks<I>(
+      fn, mat, std::span<const I>(rows.data(), n * nr), std::span<const I>(cols.data(), n * nc),
+      std::span<const double>(values.data(), n * nr * nc), n, static_cast<int>(nr),
+      static_cast<int>(nc));
+}
+
+template <typename I>
+void add_vector_blocks(std::uintptr_t fn, std::uintptr_t vec, const CArray2<I>& rows,
+                       const CArray2<double>& values)
+{
+  const std::size_t n = rows.shape(0), nr = rows.shape(1);
+  if (values.shape(0) != n or values.shape(1) != nr)
+    throw std::invalid_argument("rows (n, nr) and values (n, nr) disagree");
+  nb::gil_scoped_release release;
+  tribofx::petsc::add_vector_blocks<I>(fn, vec, std::span<const I>(rows.data(), n * nr),
+                                       std::span<const double>(values.data(), n * nr), n,
+                                       static_cast<int>(nr));
+}
+
 } // namespace
 
 NB_MODULE(_cpp, m)
@@ -268,4 +299,14 @@ NB_MODULE(_cpp, m)
         "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
         "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
         "tribofx.two_body.node_residuals).");
+  m.def("add_matrix_blocks", &add_matrix_blocks<std::int32_t>, "fn"_a, "mat"_a,
+        "rows"_a.noconvert(), "cols"_a.noconvert(), "values"_a.noconvert());
+  m.def("add_matrix_blocks", &add_matrix_blocks<std::int64_t>, "fn"_a, "mat"_a,
+        "rows"_a.noconvert(), "cols"_a.noconvert(), "values"_a.noconvert(),
+        "Add dense blocks to a PETSc Mat through MatSetValues (see tribofx.petsc_insert).");
+  m.def("add_vector_blocks", &add_vector_blocks<std::int32_t>, "fn"_a, "vec"_a,
+        "rows"_a.noconvert(), "values"_a.noconvert());
+  m.def("add_vector_blocks", &add_vector_blocks<std::int64_t>, "fn"_a, "vec"_a,
+        "rows"_a.noconvert(), "values"_a.noconvert(),
+        "Add dense blocks to a PETSc Vec through VecSetValues (see tribofx.petsc_insert).");
 }

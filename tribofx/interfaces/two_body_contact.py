@@ -30,9 +30,9 @@ import ufl
 from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
-from petsc4py import PETSc
 
 from ..forms import kinematics as kin
+from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
 from ..two_body import MasterSurface, node_residuals
 from .contact import gather_nodal
@@ -250,16 +250,18 @@ class TwoBodyContact:
         return k["r"], k["J"], rows, cols
 
     def add_residual(self, b, problem):
-        """Add the kernel residual of every owned slave node to ``b`` (global rows)."""
+        """Add the kernel residual of every owned slave node to ``b`` (global rows, C++)."""
         r, _, rows, _ = self.evaluate(problem)
-        keep = rows.ravel() >= 0
-        b.setValues(rows.ravel()[keep].astype(PETSc.IntType), r.ravel()[keep], addv=True)
+        add_vector_blocks(b, rows, r)
 
     def add_jacobian(self, A, problem):
-        """Add the kernel tangent blocks (slave, master and multiplier rows × columns) to ``A``."""
+        """Add the kernel tangent blocks (slave, master and multiplier rows × columns) to ``A``.
+
+        One dense 13 × 13 block per slave node, inserted by the C++ loop of
+        :func:`tribofx.petsc_insert.add_matrix_blocks` (unused slots are −1).
+        """
         _, J, rows, cols = self.evaluate(problem)
-        for Ji, ri, ci in zip(J, rows, cols):
-            A.setValues(ri.astype(PETSc.IntType), ci.astype(PETSc.IntType), Ji, addv=True)
+        add_matrix_blocks(A, rows, cols, J)
 
     # -- component protocol --------------------------------------------------------------
     def unknowns(self):
