@@ -327,8 +327,12 @@ def test_petsc_block_insertion_matches_petsc4py():
     """
     from petsc4py import PETSc
 
-    from tribofx.petsc_insert import (add_matrix_blocks, add_matrix_blocks_ref,
-                                      add_vector_blocks, add_vector_blocks_ref)
+    from tribofx.petsc_insert import (
+        add_matrix_blocks,
+        add_matrix_blocks_ref,
+        add_vector_blocks,
+        add_vector_blocks_ref,
+    )
 
     rng = np.random.default_rng(5)
     n, m = 40, 30
