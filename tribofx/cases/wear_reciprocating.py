@@ -248,11 +248,12 @@ class WearReciprocatingCase:
         hist = {k: [] for k in ("time", "cycles_done", "worn_area_pin", "worn_area_block",
                                 "dissipated_energy", "cycle_dissipation", "drive_work",
                                 "drive_work_bound", "friction_force_ratio", "rate_integral_pin",
-                                "rate_integral_block", "newton_iterations", "dt")}
+                                "rate_integral_block", "newton_iterations", "picard_iterations",
+                                "dt")}
         energy = [0.0]
         w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
-        def log(t, dt, its):
+        def log(t, dt, its, picard=0):
             comm = contact.slave.mesh.comm
             if st.last_increments is not None:   # dissipation of the step's (last) cycle
                 d_pin = st.last_increments[0]
@@ -269,7 +270,8 @@ class WearReciprocatingCase:
                              ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
                              ("rate_integral_pin", wp.wear_rate_integral()),
                              ("rate_integral_block", wb.wear_rate_integral()),
-                             ("newton_iterations", its), ("dt", dt)):
+                             ("newton_iterations", its), ("picard_iterations", picard),
+                             ("dt", dt)):
                 hist[key].append(val)
             record.data["newton_iterations"].append(its)
             if progress is not None and dt > 0:
@@ -278,8 +280,8 @@ class WearReciprocatingCase:
         log(0.0, 0.0, cls.load_up(run, v, verbose))
         shots = {"initial": cls.snapshot(run)}
         try:
-            st.run(v["cycles"] * tau, v["dt"], on_step=lambda s, rep: log(s.t, rep.dt,
-                                                                         rep.iterations))
+            st.run(v["cycles"] * tau, v["dt"],
+                   on_step=lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard))
             shots["worn"] = cls.snapshot(run)
         except NewtonDivergence as err:
             err.problem = run
@@ -298,7 +300,7 @@ class WearReciprocatingCase:
                  "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
                  "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
                  "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
-                 "newton_iterations": "-", "dt": "s"}
+                 "newton_iterations": "-", "picard_iterations": "-", "dt": "s"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
         prof = {}
