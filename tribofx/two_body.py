@@ -1,4 +1,4 @@
-"""Two-body contact kernels in 2D (C++): master search and the nodal contact law.
+"""Two-body contact kernels in 2D and 3D (C++): master search and the nodal contact law.
 
 The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
 :mod:`tribofx.two_body_ref` is its plain NumPy twin, used by the tests.
@@ -10,6 +10,12 @@ The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
   rebuilt); ``project(points)`` (n, 2) returns the nearest segment ``facet``
   (n,) int32, its clamped coordinate ``xi`` ∈ [0, 1] (n,) and the ``distance``
   (n,); ties go to the lowest segment index.
+* :class:`MasterSurface3` — the same for a triangulated 3D master surface:
+  ``nodes`` (n_m, 3), ``triangles`` (m, 3) int32 oriented so that the outward
+  unit normal is t₁ × t₂/|t₁ × t₂| (t₁ = x₂ − x₁, t₂ = x₃ − x₁); ``project``
+  returns ``facet`` (n,), ``xi`` (n, 2), the coordinates of the nearest point
+  x₁ + ξ¹t₁ + ξ²t₂ of the triangle, and ``distance`` (n,)
+  (``cpp_kernels/src/two_body_3d.hpp``).
 * :func:`node_residuals` — per slave node the residual r (n, 13) and its exact
   tangent J (n, 13, 13) = ∂r/∂q of the Alart–Curnier law (see the header of
   ``two_body.hpp`` for the equations), packed over the local unknowns
@@ -19,34 +25,55 @@ The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
   (slave node, current master segment, master segment of the last converged
   projection, multipliers).  Rows 0–5 are the virtual work on the positions
   (weight ``w``), rows 6–9 are zero, rows 10–12 the (1/ρ) T parts of the
-  multiplier rows (weight ``w_c``).
+  multiplier rows (weight ``w_c``).  In 3D (q with 25 columns, ``xi_old``
+  (n, 2)) the packing is
+
+      q = [x (3), x₁, x₂, x₃ (9), y₁, y₂, y₃ (9), λ_N, λ_T (3)]
+
+  (rows 0–11 the virtual work, 12–20 zero, 21–24 the multiplier rows), r
+  (n, 25) and J (n, 25, 25); the equations are in the header of
+  ``two_body_3d.hpp``.
 """
 
 import numpy as np
 
 from . import _cpp
 
-__all__ = ["NUM_LOCAL", "MasterSurface", "node_residuals"]
+__all__ = ["NUM_LOCAL", "MasterSurface", "MasterSurface3", "node_residuals", "num_local"]
 
-#: Local unknowns per slave node.
+#: Local unknowns per slave node (2D).
 NUM_LOCAL = 13
 
 MasterSurface = _cpp.MasterSurface
+MasterSurface3 = _cpp.MasterSurface3
+
+
+def num_local(gdim):
+    """Local unknowns per slave node: x, the master facet's d nodes, the old facet's, λ."""
+    return gdim + 2 * gdim * gdim + 1 + gdim
 
 
 def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0):
     """Residuals (n, 13) and tangents (n, 13, 13) of n slave nodes (see the module docstring).
 
     Args:
-        q: (n, 13) local unknowns.
-        xi_old: (n,) coordinate of the last converged projection on (y₁, y₂).
+        q: (n, 13) local unknowns (3D: (n, 25)).
+        xi_old: (n,) coordinate of the last converged projection on (y₁, y₂)
+            (3D: (n, 2) on (y₁, y₂, y₃)).
         w: (n,) lumped reference weights of the virtual work.
         w_c: (n,) lumped reference weights of the constraint rows.
         rho_n: normal augmentation parameter (MPa/mm).
         rho_t: tangential augmentation parameter (MPa/mm); None: rho_n.
         mu: Coulomb coefficient (0: frictionless, rows 11–12 zero).
     """
-    q = np.ascontiguousarray(q, dtype=np.float64).reshape(-1, NUM_LOCAL)
-    vec = [np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (xi_old, w, w_c)]
+    q = np.ascontiguousarray(q, dtype=np.float64)
+    three = q.ndim == 2 and q.shape[1] == num_local(3)
+    q = q.reshape(-1, num_local(3) if three else NUM_LOCAL)
+    vec = [np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (w, w_c)]
     rho_t = rho_n if rho_t is None else rho_t
-    return _cpp.two_body_nodes(q, *vec, float(rho_n), float(rho_t), float(mu), mu > 0)
+    args = (float(rho_n), float(rho_t), float(mu), mu > 0)
+    if three:
+        xi = np.ascontiguousarray(xi_old, dtype=np.float64).reshape(-1, 2)
+        return _cpp.two_body_nodes_3d(q, xi, *vec, *args)
+    xi = np.ascontiguousarray(xi_old, dtype=np.float64).ravel()
+    return _cpp.two_body_nodes(q, xi, *vec, *args)

@@ -8,7 +8,7 @@ for a real-analytic branch and independent of the kernel's dual numbers.
 
 import numpy as np
 
-__all__ = ["node_residual", "node_residuals", "project"]
+__all__ = ["node_residual", "node_residual_3d", "node_residuals", "project", "project_3d"]
 
 
 def project(nodes, segments, points):
@@ -26,6 +26,76 @@ def project(nodes, segments, points):
         out["distance"].append(d[s])
     return {"facet": np.array(out["facet"], np.int32), "xi": np.array(out["xi"]),
             "distance": np.array(out["distance"])}
+
+
+def _closest_on_triangle(x, a, b, c):
+    """Nearest point of x on triangle (a, b, c) as (distance, ξ¹, ξ²): the plane
+    projection if inside, else the nearest of the three clamped edge points."""
+    t1, t2 = b - a, c - a
+    m = np.array([[t1 @ t1, t1 @ t2], [t1 @ t2, t2 @ t2]])
+    xi = np.linalg.solve(m, [(x - a) @ t1, (x - a) @ t2])
+    if xi[0] >= 0 and xi[1] >= 0 and xi.sum() <= 1:
+        return np.linalg.norm(x - a - xi[0] * t1 - xi[1] * t2), xi[0], xi[1]
+    best = None
+    for p, q, to_xi in ((a, b, lambda s: (s, 0.0)), (a, c, lambda s: (0.0, s)),
+                        (b, c, lambda s: (1 - s, s))):
+        e = q - p
+        s = float(np.clip((x - p) @ e / (e @ e), 0.0, 1.0))
+        d = np.linalg.norm(x - p - s * e)
+        if best is None or d < best[0]:
+            best = (d, *to_xi(s))
+    return best
+
+
+def project_3d(nodes, triangles, points):
+    """Nearest triangle of each point: dict of ``facet``, ``xi`` (n, 2), ``distance``."""
+    out = {"facet": [], "xi": [], "distance": []}
+    for x in np.asarray(points, float):
+        cand = [_closest_on_triangle(x, *nodes[t]) for t in triangles]
+        d = np.array([c[0] for c in cand])
+        k = int(np.argmin(d))
+        out["facet"].append(k)
+        out["xi"].append(cand[k][1:])
+        out["distance"].append(d[k])
+    return {"facet": np.array(out["facet"], np.int32), "xi": np.array(out["xi"]),
+            "distance": np.array(out["distance"])}
+
+
+def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu):
+    """Residual (25,) of one 3D slave node; q may be complex (complex-step tangent)."""
+    x, a, b, c = q[0:3], q[3:6], q[6:9], q[9:12]
+    ya, yb, yc = q[12:15], q[15:18], q[18:21]
+    lam_n, lam_t = q[21], q[22:25]
+    t1, t2 = b - a, c - a
+    m = np.array([[t1 @ t1, t1 @ t2], [t1 @ t2, t2 @ t2]])
+    minv = np.array([[m[1, 1], -m[0, 1]], [-m[0, 1], m[0, 0]]]) / (m[0, 0] * m[1, 1]
+                                                                    - m[0, 1] ** 2)
+    nr = np.array([t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2],
+                   t1[0] * t2[1] - t1[1] * t2[0]])
+    n = nr / np.sqrt(nr @ nr)
+    xi = minv @ np.array([(x - a) @ t1, (x - a) @ t2])
+    xb = a + xi[0] * t1 + xi[1] * t2
+    g = (x - xb) @ n
+    lhat = lam_n + rho_n * g
+    T_n = lhat if lhat.real < 0 else 0.0 * lhat
+    T_t = np.zeros(3, dtype=q.dtype)
+    if mu > 0:
+        s = xb - (ya + xi_old[0] * (yb - ya) + xi_old[1] * (yc - ya))
+        h = (lam_t - (lam_t @ n) * n) + rho_t * (s - (s @ n) * n)
+        radius = -mu * T_n
+        norm = np.sqrt(h @ h + 1e-24)
+        T_t = h if norm.real < radius.real else radius / norm * h
+    f = minv @ np.array([T_t @ t1, T_t @ t2])
+    F = T_n * n + f[0] * t1 + f[1] * t2
+    r = np.zeros(25, dtype=q.dtype)
+    r[0:3] = w * F
+    r[3:6] = w * (-(1 - xi[0] - xi[1]) * F - g * n * (f[0] + f[1]))
+    r[6:9] = w * (-xi[0] * F + g * n * f[0])
+    r[9:12] = w * (-xi[1] * F + g * n * f[1])
+    r[21] = w_c / rho_n * T_n
+    if mu > 0:
+        r[22:25] = w_c / rho_t * T_t
+    return r
 
 
 def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu):
@@ -59,16 +129,19 @@ def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu):
 
 
 def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, h=1e-30):
-    """Residuals (n, 13) and complex-step tangents (n, 13, 13), as the C++ kernel."""
+    """Residuals (n, L) and complex-step tangents (n, L, L), as the C++ kernel (L = 13 or 25)."""
     rho_t = rho_n if rho_t is None else rho_t
-    q = np.asarray(q, float).reshape(-1, 13)
+    q = np.asarray(q, float)
+    L = q.shape[-1]
+    q = q.reshape(-1, L)
+    one = node_residual_3d if L == 25 else node_residual
     r = np.zeros_like(q)
-    J = np.zeros((len(q), 13, 13))
+    J = np.zeros((len(q), L, L))
     for i, qi in enumerate(q):
         args = (xi_old[i], w[i], w_c[i], rho_n, rho_t, mu)
-        r[i] = node_residual(qi.astype(complex), *args).real
-        for k in range(13):
+        r[i] = one(qi.astype(complex), *args).real
+        for k in range(L):
             qc = qi.astype(complex)
             qc[k] += 1j * h
-            J[i, :, k] = node_residual(qc, *args).imag / h
+            J[i, :, k] = one(qc, *args).imag / h
     return r, J

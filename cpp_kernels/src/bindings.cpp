@@ -7,6 +7,7 @@
 #include "petsc_insert.hpp"
 #include "projection.hpp"
 #include "two_body.hpp"
+#include "two_body_3d.hpp"
 
 #include <cstdint>
 #include <nanobind/nanobind.h>
@@ -239,6 +240,64 @@ two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w
                            {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
 }
 
+tb::MasterSurface3 make_master_3d(const CArray2<double>& nodes,
+                                  const CArray2<std::int32_t>& triangles)
+{
+  if (nodes.shape(1) != 3 or triangles.shape(1) != 3)
+    throw std::invalid_argument("master nodes and triangles must have shape (., 3)");
+  if (triangles.shape(0) == 0)
+    throw std::invalid_argument("the master surface has no triangles");
+  const std::size_t nv = nodes.shape(0);
+  std::span<const std::int32_t> tri(triangles.data(), 3 * triangles.shape(0));
+  if (std::ranges::any_of(tri, [nv](std::int32_t i)
+                          { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
+    throw std::invalid_argument("triangle node index out of range");
+  return tb::MasterSurface3(std::span<const double>(nodes.data(), 3 * nv), tri);
+}
+
+nb::dict master_project_3d(const tb::MasterSurface3& master, const CArray2<double>& points)
+{
+  if (points.shape(1) != 3)
+    throw std::invalid_argument("points must have shape (., 3)");
+  const std::size_t np = points.shape(0);
+  std::vector<std::int32_t> facet(np);
+  std::vector<double> xi(2 * np), distance(np);
+  {
+    nb::gil_scoped_release release;
+    master.project(std::span<const double>(points.data(), 3 * np), facet, xi, distance);
+  }
+  nb::dict out;
+  out["facet"] = to_numpy<std::int32_t>(std::move(facet), {np});
+  out["xi"] = to_numpy<double>(std::move(xi), {np, 2});
+  out["distance"] = to_numpy<double>(std::move(distance), {np});
+  return out;
+}
+
+std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
+two_body_nodes_3d(const CArray2<double>& q, const CArray2<double>& xi_old, const CArray1& w,
+                  const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction)
+{
+  constexpr int N = tb::num_local_3d;
+  const std::size_t n = q.shape(0);
+  if (q.shape(1) != N)
+    throw std::invalid_argument("q must have shape (., " + std::to_string(N) + ")");
+  if (xi_old.shape(0) != n or xi_old.shape(1) != 2 or w.shape(0) != n or w_c.shape(0) != n)
+    throw std::invalid_argument("xi_old (n, 2), w and w_c (n) need one row per row of q");
+  if (!(rho_n > 0) or (friction and !(rho_t > 0)) or mu < 0)
+    throw std::invalid_argument("rho_n, rho_t must be > 0 and mu >= 0");
+  std::vector<double> r(n * N), J(n * N * N);
+  {
+    nb::gil_scoped_release release;
+    const tb::Law law{rho_n, rho_t, mu, friction};
+    for (std::size_t i = 0; i < n; ++i)
+      tb::node_residual_3d(q.data() + i * N, xi_old.data() + 2 * i, w.data()[i],
+                           w_c.data()[i], law, r.data() + i * N, J.data() + i * N * N);
+  }
+  return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
+          to_numpy<double>(std::move(J),
+                           {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
+}
+
 template <typename I>
 void add_matrix_blocks(std::uintptr_t fn, std::uintptr_t mat, const CArray2<I>& rows,
                        const CArray2<I>& cols,
@@ -298,6 +357,28 @@ NB_MODULE(_cpp, m)
   m.def("two_body_nodes", &two_body_nodes, "q"_a.noconvert(), "xi_old"_a.noconvert(),
         "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
         "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
+        "tribofx.two_body.node_residuals).");
+  nb::class_<tb::MasterSurface3>(m, "MasterSurface3",
+                                 "Current triangulated 3D master surface with a refitted box "
+                                 "tree (see tribofx.two_body)")
+      .def("__init__",
+           [](tb::MasterSurface3* self, const CArray2<double>& nodes,
+              const CArray2<std::int32_t>& triangles)
+           { new (self) tb::MasterSurface3(make_master_3d(nodes, triangles)); },
+           "nodes"_a.noconvert(), "triangles"_a.noconvert())
+      .def("refit",
+           [](tb::MasterSurface3& self, const CArray2<double>& nodes)
+           {
+             if (nodes.shape(1) != 3)
+               throw std::invalid_argument("nodes must have shape (., 3)");
+             self.refit(std::span<const double>(nodes.data(), 3 * nodes.shape(0)));
+           },
+           "nodes"_a.noconvert())
+      .def("project", &master_project_3d, "points"_a.noconvert())
+      .def_prop_ro("num_segments", &tb::MasterSurface3::num_triangles);
+  m.def("two_body_nodes_3d", &two_body_nodes_3d, "q"_a.noconvert(), "xi_old"_a.noconvert(),
+        "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
+        "Nodal 3D two-body contact residuals (n, 25) and tangents (n, 25, 25) (see "
         "tribofx.two_body.node_residuals).");
   m.def("add_matrix_blocks", &add_matrix_blocks<std::int32_t>, "fn"_a, "mat"_a,
         "rows"_a.noconvert(), "cols"_a.noconvert(), "values"_a.noconvert());
