@@ -428,7 +428,8 @@ def test_master_search_3d_refit_matches_brute_force():
     tris = []
     for j in range(12):
         for i in range(7):
-            p, r_, s, t = 8 * j + i, 8 * ((j + 1) % 12) + i, 8 * j + i + 1, 8 * ((j + 1) % 12) + i + 1
+            jn = 8 * ((j + 1) % 12)
+            p, r_, s, t = 8 * j + i, jn + i, 8 * j + i + 1, jn + i + 1
             tris += [[p, r_, t], [p, t, s]]
     tris = np.array(tris, np.int32)
     master = two_body.MasterSurface3(np.ascontiguousarray(nodes), tris)

@@ -29,8 +29,10 @@ def project(nodes, segments, points):
 
 
 def _closest_on_triangle(x, a, b, c):
-    """Nearest point of x on triangle (a, b, c) as (distance, ξ¹, ξ²): the plane
-    projection if inside, else the nearest of the three clamped edge points."""
+    """Nearest point of x on triangle (a, b, c) as (distance, ξ¹, ξ²).
+
+    The plane projection if inside, else the nearest of the three clamped edge points.
+    """
     t1, t2 = b - a, c - a
     m = np.array([[t1 @ t1, t1 @ t2], [t1 @ t2, t2 @ t2]])
     xi = np.linalg.solve(m, [(x - a) @ t1, (x - a) @ t2])

@@ -34,11 +34,47 @@ from mpi4py import MPI
 from ..forms import kinematics as kin
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
-from ..two_body import MasterSurface, node_residuals
+from ..two_body import MasterSurface, MasterSurface3, node_residuals, num_local
 from .contact import gather_nodal
 from .surface import Surface, node_to_dof
 
 __all__ = ["TwoBodyContact", "WearSurface"]
+
+
+def _shape_values(xi):
+    """P1 facet shape functions at ξ: (n,) in 2D → (n, 2); (n, 2) in 3D → (n, 3)."""
+    xi = np.asarray(xi).reshape(len(xi), -1)
+    return np.c_[1 - xi.sum(axis=1), xi]
+
+
+def _plane_coordinates(x, facet):
+    """Coordinates of points x (n, d) on their facets (n, d, d vertices), unclamped.
+
+    Returns ξ (n, d − 1) of the projection onto the facet's line/plane, the
+    distance to that line/plane (n,) and a facet size (n,): the length in 2D,
+    the square root of twice the area in 3D.
+    """
+    a = facet[:, 0]
+    t = facet[:, 1:] - a[:, None, :]                       # (n, d-1, d) edge vectors
+    m = np.einsum("nad,nbd->nab", t, t)
+    rhs = np.einsum("nad,nd->na", t, x - a)
+    xi = np.linalg.solve(m, rhs[..., None])[..., 0]
+    foot = a + np.einsum("na,nad->nd", xi, t)
+    if t.shape[1] == 1:
+        size = np.sqrt(m[:, 0, 0])                        # the segment's length
+    else:
+        size = np.abs(np.linalg.det(m)) ** 0.25           # √(2 area): det m = (2 area)²
+    return xi, np.linalg.norm(x - foot, axis=1), size
+
+
+def _normals(facet):
+    """Return the unit outward normals (n, d) of oriented facets (n, d, d), as the kernels."""
+    if facet.shape[1] == 2:
+        t = facet[:, 1] - facet[:, 0]
+        n = np.c_[t[:, 1], -t[:, 0]]
+    else:
+        n = np.cross(facet[:, 1] - facet[:, 0], facet[:, 2] - facet[:, 0])
+    return n / np.linalg.norm(n, axis=1)[:, None]
 
 
 def _vertex_dofs(body, facets):
@@ -67,8 +103,10 @@ class TwoBodyContact:
     def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
                  rho_t=None, name="contact", rtol=1e-10):
         for b in (slave, master):
-            if b.gdim != 2 or b.kind != "plane_strain":
-                raise ValueError("TwoBodyContact is implemented for plane strain")
+            if (b.gdim, b.kind) not in ((2, "plane_strain"), (3, "3d")):
+                raise ValueError("TwoBodyContact is implemented for plane strain and 3D")
+            if b.gdim != slave.gdim:
+                raise ValueError("slave and master must have the same dimension")
             if b.V.ufl_element().embedded_superdegree != 1:
                 raise ValueError("TwoBodyContact needs P1 displacements")
         if friction < 0:
@@ -76,6 +114,9 @@ class TwoBodyContact:
         self.slave, self.master, self.name, self.rtol = slave, master, name, rtol
         self.rho_n, self.friction = float(rho_n), float(friction)
         self.rho_t = float(rho_n if rho_t is None else rho_t)
+        self.gdim = d = slave.gdim
+        # local unknowns: x (d), current facet (d nodes), old facet (d nodes), λ_N, λ_T (d)
+        self._lam = d + 2 * d * d
         self.surface = sf = Surface(slave, slave_boundary)
         self.sub, self.emap, self.Q, self.Vs, self.dsc = sf.sub, sf.emap, sf.Q, sf.Vs, sf.dsc
         self.master_boundary = master_boundary
@@ -91,7 +132,8 @@ class TwoBodyContact:
         q = ufl.TestFunction(self.Q)
         self._w_c = self._lumped(q * self.dsc)[self._q]
         self._w = self._lumped(q * slave.weight * self.dsc)[self._q]
-        # master boundary: segments oriented with the outward normal (τ_y, −τ_x)/l
+        # master boundary facets oriented with the outward normal: (τ_y, −τ_x)/l in 2D,
+        # t₁ × t₂/|t₁ × t₂| in 3D (see tribofx.two_body)
         mfacets = master.facets(master_boundary)
         seg = _vertex_dofs(master, mfacets)
         if len(mfacets):
@@ -101,12 +143,15 @@ class TwoBodyContact:
             f2c = mm.topology.connectivity(tdim - 1, tdim)
             cells = np.array([f2c.links(f)[0] for f in mfacets])
             xc = mm.geometry.x[dmesh.entities_to_geometry(mm, tdim, cells, False)].mean(axis=1)
-            Xd = master.V.tabulate_dof_coordinates()
-            a, b = Xd[seg[:, 0], :2], Xd[seg[:, 1], :2]
-            t = b - a
-            out = np.c_[t[:, 1], -t[:, 0]]
-            flip = np.sum(out * (0.5 * (a + b) - xc[:, :2]), axis=1) < 0
-            seg[flip] = seg[flip][:, ::-1]
+            Xd = master.V.tabulate_dof_coordinates()[:, :d]
+            a, b = Xd[seg[:, 0]], Xd[seg[:, 1]]
+            if d == 2:
+                t = b - a
+                out = np.c_[t[:, 1], -t[:, 0]]
+            else:
+                out = np.cross(b - a, Xd[seg[:, 2]] - a)
+            flip = np.sum(out * (Xd[seg].mean(axis=1) - xc[:, :d]), axis=1) < 0
+            seg[flip] = seg[flip][:, ::-1] if d == 2 else seg[flip][:, [0, 2, 1]]
         self._mseg_local = seg
         self._master = None
         self._old = None
@@ -134,44 +179,45 @@ class TwoBodyContact:
         return uniq, np.concatenate([p[1] for p in parts])[first]
 
     def _gather_master(self):
-        """Return current master positions (n_m, 2), global node keys, segments (all ranks)."""
-        m = self.master
-        X = m.V.tabulate_dof_coordinates()[:, :2]
-        u = m.u.x.array.reshape(-1, 2)
+        """Return current master positions (n_m, d), global node keys, facets (all ranks)."""
+        m, d = self.master, self.gdim
+        X = m.V.tabulate_dof_coordinates()[:, :d]
+        u = m.u.x.array.reshape(-1, d)
         keys, x = self._gather(lambda d: X[d] + u[d])
         dofs, local_keys = self._master_dofs()
         seg_keys = local_keys[np.searchsorted(dofs, self._mseg_local)]
-        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, 2)))
+        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, d)))
         seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # facets on two ranks: once
         return x, keys, seg.astype(np.int32)
 
     def _pairs(self):
         """Return master data, slave positions and projections (box tree refitted)."""
         xm, keys, seg = self._gather_master()
+        d = self.gdim
         if self._master is None or self._segments.shape != seg.shape \
                 or not np.array_equal(self._segments, seg):
-            self._master, self._segments = MasterSurface(np.ascontiguousarray(xm), seg), seg
+            surface = MasterSurface if d == 2 else MasterSurface3
+            self._master, self._segments = surface(np.ascontiguousarray(xm), seg), seg
             self._facet_prev = None
         else:
             self._master.refit(np.ascontiguousarray(xm))
-        xs = self._X + self.slave.u.x.array.reshape(-1, 2)[self._bulk]
+        xs = self._X + self.slave.u.x.array.reshape(-1, d)[self._bulk]
         proj = self._master.project(np.ascontiguousarray(xs))
         prev = self._facet_prev
         if prev is not None and len(prev) == len(xs):
-            # keep the segment of the previous evaluation while the node still projects
-            # onto it (ξ within STICKY of [0, 1]) at no more than the nearest distance
-            # plus STICKY of its length: at a kink of the deformed master the nearest
-            # segment jumps between the neighbours of a vertex and Newton cycles
-            a, b = xm[seg[prev, 0]], xm[seg[prev, 1]]
-            t = b - a
-            l2 = np.sum(t * t, axis=1)
-            d = xs - a
-            xi = np.sum(d * t, axis=1) / l2
-            dist = np.abs(t[:, 0] * d[:, 1] - t[:, 1] * d[:, 0]) / np.sqrt(l2)
-            keep = (xi > -self.STICKY) & (xi < 1 + self.STICKY) & \
-                (dist <= proj["distance"] + self.STICKY * np.sqrt(l2))
+            # keep the facet of the previous evaluation while the node still projects
+            # onto it (its coordinates within STICKY of the facet) at no more than the
+            # nearest distance plus STICKY of its size: at a kink of the deformed master
+            # the nearest facet jumps between the neighbours of a vertex and Newton cycles
+            xi, dist, size = _plane_coordinates(xs, xm[seg[prev]])
+            bary = np.c_[1 - xi.sum(axis=1), xi]
+            keep = np.all(bary > -self.STICKY, axis=1) & \
+                (dist <= proj["distance"] + self.STICKY * size)
+            inside = np.clip(xi, 0.0, None)
+            inside /= np.maximum(inside.sum(axis=1), 1.0)[:, None]
             proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
-            proj["xi"] = np.where(keep, np.clip(xi, 0, 1), proj["xi"])
+            old = proj["xi"].reshape(len(xs), -1)
+            proj["xi"] = np.where(keep[:, None], inside, old).reshape(proj["xi"].shape)
         self._facet_prev = proj["facet"].copy()
         return xm, keys, seg, xs, proj
 
@@ -187,7 +233,7 @@ class TwoBodyContact:
         SNES asks for the residual and then the Jacobian at the same iterate, and
         the outputs ask again after the solve: the unknowns and the slip history
         are the key.  The evaluation is collective (the master is gathered), so
-        the cache hit is decided on all ranks.  Returns a dict: ``q`` (n, 13),
+        the cache hit is decided on all ranks.  Returns a dict: ``q`` (n, L),
         ``xi_old``, ``r``, ``J``, the pairing (``xm``, ``keys``, ``seg``,
         ``facet``, ``xi``) and ``old_seg`` (master nodes of the committed points).
         """
@@ -200,16 +246,17 @@ class TwoBodyContact:
         if self.slave.mesh.comm.allreduce(same, op=MPI.LAND):
             return c[1]
         xm, keys, seg, xs, proj = self._pairs()
-        f = proj["facet"]
+        f, d, il = proj["facet"], self.gdim, self._lam
         old_seg = np.searchsorted(keys, self._old[0])
         n = len(self._q)
-        qv = np.zeros((n, 13))
-        qv[:, 0:2] = xs
-        for j, nodes in ((2, seg[f, 0]), (4, seg[f, 1]), (6, old_seg[:, 0]), (8, old_seg[:, 1])):
-            qv[:, j:j + 2] = xm[nodes]
-        qv[:, 10] = self.lam_n.x.array[self._q]
+        qv = np.zeros((n, num_local(d)))
+        qv[:, 0:d] = xs
+        for k in range(d):
+            qv[:, d * (1 + k):d * (2 + k)] = xm[seg[f, k]]
+            qv[:, d * (1 + d + k):d * (2 + d + k)] = xm[old_seg[:, k]]
+        qv[:, il] = self.lam_n.x.array[self._q]
         if self.lam_t is not None:
-            qv[:, 11:13] = self.lam_t.x.array.reshape(-1, 2)[self._q]
+            qv[:, il + 1:] = self.lam_t.x.array.reshape(-1, d)[self._q]
         r, J = node_residuals(qv, self._old[1], self._w, self._w_c, self.rho_n, self.rho_t,
                               self.friction)
         data = {"q": qv, "xi_old": self._old[1], "r": r, "J": J, "xm": xm, "keys": keys,
@@ -218,28 +265,30 @@ class TwoBodyContact:
         return data
 
     def _rows(self, problem, k):
-        """Global rows and columns (n, 13) of the local unknowns of ``k`` in ``problem``."""
+        """Global rows and columns (n, L) of the local unknowns of ``k`` in ``problem``."""
         if id(problem) in k["rows"]:
             return k["rows"][id(problem)]
+        d, il = self.gdim, self._lam
         mrow, mcol = problem.global_rows(self.master.u)
-        _, rc = self._gather(lambda d: np.c_[mrow[2 * d], mrow[2 * d + 1],
-                                             mcol[2 * d], mcol[2 * d + 1]])
-        rm, cm = rc[:, 0:2], rc[:, 2:4]
+        _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
+                                              np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+        rm, cm = rc[:, :d], rc[:, d:]
         seg, f, old_seg = k["seg"], k["facet"], k["old_seg"]
-        n = len(self._q)
+        n, L = len(self._q), num_local(d)
         srow, scol = problem.global_rows(self.slave.u)
         nrow, ncol = problem.global_rows(self.lam_n)
-        rows = np.full((n, 13), -1, dtype=np.int64)
-        cols = np.full((n, 13), -1, dtype=np.int64)
-        b2 = np.c_[2 * self._bulk, 2 * self._bulk + 1]
-        rows[:, 0:2], cols[:, 0:2] = srow[b2], scol[b2]
-        for j, nodes in ((2, seg[f, 0]), (4, seg[f, 1]), (6, old_seg[:, 0]), (8, old_seg[:, 1])):
-            rows[:, j:j + 2], cols[:, j:j + 2] = rm[nodes], cm[nodes]
-        rows[:, 10], cols[:, 10] = nrow[self._q], ncol[self._q]
+        rows = np.full((n, L), -1, dtype=np.int64)
+        cols = np.full((n, L), -1, dtype=np.int64)
+        bd = d * self._bulk[:, None] + np.arange(d)
+        rows[:, 0:d], cols[:, 0:d] = srow[bd], scol[bd]
+        for k_ in range(d):
+            for j, nodes in ((d * (1 + k_), seg[f, k_]), (d * (1 + d + k_), old_seg[:, k_])):
+                rows[:, j:j + d], cols[:, j:j + d] = rm[nodes], cm[nodes]
+        rows[:, il], cols[:, il] = nrow[self._q], ncol[self._q]
         if self.lam_t is not None:
             trow, tcol = problem.global_rows(self.lam_t)
-            t2 = np.c_[2 * self._q, 2 * self._q + 1]
-            rows[:, 11:13], cols[:, 11:13] = trow[t2], tcol[t2]
+            td = d * self._q[:, None] + np.arange(d)
+            rows[:, il + 1:], cols[:, il + 1:] = trow[td], tcol[td]
         k["rows"][id(problem)] = (rows, cols)
         return rows, cols
 
@@ -257,7 +306,7 @@ class TwoBodyContact:
     def add_jacobian(self, A, problem):
         """Add the kernel tangent blocks (slave, master and multiplier rows × columns) to ``A``.
 
-        One dense 13 × 13 block per slave node, inserted by the C++ loop of
+        One dense L × L block per slave node (L = 13 in 2D, 25 in 3D), inserted by the C++ loop of
         :func:`tribofx.petsc_insert.add_matrix_blocks` (unused slots are −1).
         """
         _, J, rows, cols = self.evaluate(problem)
@@ -295,7 +344,7 @@ class TwoBodyContact:
                    100 * np.finfo(float).eps * self.slave.length)
         out = {self.lam_n: BlockTolerance(atol, "mm", ufl.TestFunction(self.Q) * self.dsc)}
         if self.lam_t is not None:
-            ones = ufl.as_vector([1.0, 1.0])
+            ones = ufl.as_vector([1.0] * self.gdim)
             out[self.lam_t] = BlockTolerance(
                 atol, "mm", ufl.dot(ufl.TestFunction(self.Vs), ones) * self.dsc)
         return out
@@ -305,9 +354,21 @@ class TwoBodyContact:
         return self.unknowns()
 
     def commit(self):
-        """Accept the converged step: the master material points of the projections."""
-        _, keys, seg, _, p = self._pairs()
-        self._old = (keys[seg[p["facet"]]], p["xi"].copy())
+        """Accept the converged step: the master material points of the projections.
+
+        The pairing is that of the converged state's kernel evaluation (not a new
+        search), so the committed state carries the tractions it was solved with.
+        """
+        if self._old is None:
+            _, keys, seg, _, p = self._pairs()
+            self._old = (keys[seg[p["facet"]]], p["xi"].copy())
+            return
+        k = self._kernel()
+        d = self.gdim
+        # the kernel's own (unclamped) coordinates: the material point is x̄ itself, so
+        # the slip restarts from zero also for a node slightly off its facet
+        xi, _, _ = _plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
+        self._old = (k["keys"][k["seg"][k["facet"]]], xi[:, 0] if d == 2 else xi)
 
     # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
     def dissipation_increment(self):
@@ -324,15 +385,18 @@ class TwoBodyContact:
             raise ValueError("wear by frictional dissipation needs friction > 0")
         k = self._kernel()
         q, r = k["q"], k["r"]
-        x, x1, x2, y1, y2 = q[:, 0:2], q[:, 2:4], q[:, 4:6], q[:, 6:8], q[:, 8:10]
-        t = x2 - x1
-        l2 = np.sum(t * t, axis=1)
-        n = np.c_[t[:, 1], -t[:, 0]] / np.sqrt(l2)[:, None]
-        xi = np.sum((x - x1) * t, axis=1) / l2
-        s = x1 + xi[:, None] * t - (y1 + k["xi_old"][:, None] * (y2 - y1))
+        d, il = self.gdim, self._lam
+        x = q[:, 0:d]
+        facet = q[:, d:d + d * d].reshape(-1, d, d)
+        old = q[:, d + d * d:il].reshape(-1, d, d)
+        xi, _, _ = _plane_coordinates(x, facet)
+        xbar = np.einsum("nk,nkd->nd", _shape_values(xi), facet)
+        z = np.einsum("nk,nkd->nd", _shape_values(k["xi_old"]), old)
+        n = _normals(facet)
+        s = xbar - z
         s_t = s - np.sum(s * n, axis=1)[:, None] * n
         wc = np.where(self._w_c > 0, self._w_c, 1.0)
-        T_t = r[:, 11:13] * self.rho_t / wc[:, None]
+        T_t = r[:, il + 1:] * self.rho_t / wc[:, None]
         return np.sum(T_t * s_t, axis=1)
 
     def master_transfer(self, volume):
@@ -347,9 +411,10 @@ class TwoBodyContact:
         """
         k = self._kernel()
         out = np.zeros(len(k["keys"]))
-        seg, f, xi = k["seg"], k["facet"], k["xi"]
-        np.add.at(out, seg[f, 0], (1 - xi) * volume)
-        np.add.at(out, seg[f, 1], xi * volume)
+        seg, f = k["seg"], k["facet"]
+        N = _shape_values(k["xi"])
+        for j in range(self.gdim):
+            np.add.at(out, seg[f, j], N[:, j] * volume)
         self.slave.mesh.comm.Allreduce(MPI.IN_PLACE, out, op=MPI.SUM)
         return k["keys"], out
 
@@ -371,8 +436,9 @@ class TwoBodyContact:
         k = self._kernel()
         r = k["r"]
         wc = np.where(self._w_c > 0, self._w_c, 1.0)
-        T_n = r[:, 10] * self.rho_n / wc
-        T_t = r[:, 11:13] * self.rho_t / wc[:, None]
+        il = self._lam
+        T_n = r[:, il] * self.rho_n / wc
+        T_t = r[:, il + 1:] * self.rho_t / wc[:, None]
         if self._post is None:
             s = self.slave
             j = kin.area_ratio(kin.deformation_gradient(s.u, s.kind), ufl.FacetNormal(s.mesh),
@@ -381,15 +447,17 @@ class TwoBodyContact:
                                   entity_maps=[self.emap])
         wj = self._lumped(self._post)[self._q]
         j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
-        return {"X": self._X, "x": k["q"][:, 0:2], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
+        return {"X": self._X, "x": k["q"][:, 0:self.gdim], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
                 "weight": wj, "weight_ref": self._w_c.copy(), "active": T_n < 0}
 
     def forces(self, problem=None):
         """Total contact force on the slave and on the master (N/mm), all ranks."""
         r = self._kernel()["r"]
         comm = self.slave.mesh.comm
-        on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
-        on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
+        d = self.gdim
+        on_slave = -comm.allreduce(r[:, 0:d].sum(axis=0), op=MPI.SUM)
+        on_master = -comm.allreduce(r[:, d:d + d * d].reshape(-1, d, d).sum(axis=(0, 1)),
+                                    op=MPI.SUM)
         return on_slave, on_master
 
     def gather_profile(self, problem=None):
@@ -452,7 +520,7 @@ class WearSurface:
     def nodal_data(self):
         """Per owned node: reference X and current x = X + u (mm)."""
         n = self.surface.n_own
-        u = self.body.u.x.array.reshape(-1, 2)
+        u = self.body.u.x.array.reshape(-1, self.body.gdim)
         x = self.X_sub.copy()
         x[self.sub_dofs] += u[self.bulk_dofs]
         return {"X": self.X_sub[:n], "x": x[:n]}
