@@ -42,6 +42,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
+from . import pattern
 from .lifetimes import LIFETIMES, weak_callback
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 from .solvers import DirectSolver
@@ -156,6 +157,7 @@ class Problem:
             petsc_options_prefix=self.prefix, entity_maps=self._emaps())
         self.snes = nlp.solver
         self._x, self._A = nlp.x, nlp.A
+        self._nlp_matrix = nlp.A
         comm = self.snes.comm.tompi4py()
         if comm.size > 1:
             LIFETIMES.release(comm)
@@ -172,7 +174,8 @@ class Problem:
             self._assemble_jacobian = (fn, args, kargs)
             # their couplings (slave-master pairs) may change: the pattern grows as needed
             A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
-            self.snes.setJacobian(weak_callback(self._jacobian), A, P)
+            self._jacobian_cb = weak_callback(self._jacobian)
+            self.snes.setJacobian(self._jacobian_cb, A, P)
 
     def _owned_size(self, ui):
         """Return the number of rows of ``ui`` owned by this rank."""
@@ -248,6 +251,25 @@ class Problem:
             c.add_jacobian(A, self)
         A.assemblyBegin()
         A.assemblyEnd()
+
+    def _grow_pattern(self):
+        """Preallocate the couplings the assemblers may add in this solve (:mod:`.pattern`)."""
+        blocks = [c.couplings(self) for c in self._assemblers if hasattr(c, "couplings")]
+        if not blocks:
+            return
+        A = self._A
+        if not A.isAssembled():      # the UFL pattern only (it is read, not used)
+            fn, args, kargs = self._assemble_jacobian
+            fn(self.snes, self._x, A, A, *args, **kargs)
+        for rows, cols in blocks:
+            M = pattern.grow(A, rows, cols)
+            if M is not None:
+                if A is not self._nlp_matrix:
+                    A.destroy()
+                A = M
+        if A is not self._A:
+            self._A = A
+            self.snes.setJacobian(self._jacobian_cb, A, A)
 
     def global_rows(self, ui):
         """Global rows of the block system of every local dof of ``ui`` (owned, then ghosts).
@@ -400,6 +422,7 @@ class Problem:
         failure = None
         try:
             self._get_unknowns(self._x)
+            self._grow_pattern()
             self.snes.solve(None, self._x)
             self._set_unknowns(self._x)
         except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step

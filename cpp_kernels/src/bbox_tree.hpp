@@ -33,6 +33,9 @@ public:
   /// Maximum number of objects in a leaf.
   static constexpr std::int32_t leaf_size = 4;
 
+  /// Capacity of the traversal stack of nearest_search.
+  static constexpr std::size_t max_stack = 256;
+
   explicit BoxTree(std::span<const double> boxes)
       : _num_objects(boxes.size() / (2 * gdim))
   {
@@ -70,13 +73,15 @@ public:
       return;
     constexpr double c = (1.0 - prune_rtol) * (1.0 - prune_rtol);
     auto pruned = [&dmin](double d2) { return d2 * c > dmin * dmin; };
-    std::vector<std::pair<std::int32_t, double>> stack;
-    stack.reserve(64);
-    stack.emplace_back(0, distance2(x, _nodes[0].box));
-    while (!stack.empty())
+    // Depth-first with the nearer child on top: the stack holds at most one
+    // entry per level plus one, so a fixed array (no allocation per query) does
+    // for any tree this size can build (depth <= 2 log2(objects)).
+    std::array<std::pair<std::int32_t, double>, max_stack> stack;
+    std::size_t top = 0;
+    stack[top++] = {0, distance2(x, _nodes[0].box)};
+    while (top > 0)
     {
-      const auto [id, d2] = stack.back();
-      stack.pop_back();
+      const auto [id, d2] = stack[--top];
       if (pruned(d2))
         continue;
       const Node& node = _nodes[id];
@@ -94,15 +99,17 @@ public:
         const double d0 = distance2(x, _nodes[node.child[0]].box);
         const double d1 = distance2(x, _nodes[node.child[1]].box);
         // Push the farther child first so the nearer one is searched first
+        if (top + 2 > max_stack)
+          throw std::runtime_error("box tree deeper than the search stack");
         if (d0 <= d1)
         {
-          stack.emplace_back(node.child[1], d1);
-          stack.emplace_back(node.child[0], d0);
+          stack[top++] = {node.child[1], d1};
+          stack[top++] = {node.child[0], d0};
         }
         else
         {
-          stack.emplace_back(node.child[0], d0);
-          stack.emplace_back(node.child[1], d1);
+          stack[top++] = {node.child[0], d0};
+          stack[top++] = {node.child[1], d1};
         }
       }
     }

@@ -122,6 +122,9 @@ public:
   {
   }
 
+  /// The three vertices of triangle t, contiguous (9 doubles).
+  const double* vertices(std::int32_t t) const { return &_xyz[9 * t]; }
+
   /// New current node positions (same number, same triangles): refit, not rebuild.
   void refit(std::span<const double> nodes)
   {
@@ -145,13 +148,23 @@ public:
       double dmin = std::numeric_limits<double>::infinity();
       std::int32_t best = -1;
       double bv = 0.0, bw = 0.0;
+      // warm start: the previous point's triangle bounds the search (slave nodes
+      // come in mesh order, so neighbours are near); the tie rule is unchanged
+      if (p > 0 and facet[p - 1] >= 0)
+      {
+        const std::int32_t t = facet[p - 1];
+        const double* X = vertices(t);
+        const auto [d2, v, w] = triangle_closest(x, X, X + 3, X + 6);
+        dmin = std::sqrt(d2);
+        best = t;
+        bv = v;
+        bw = w;
+      }
       _tree.nearest_search(x, dmin,
                            [&](std::int32_t t)
                            {
-                             const auto [d2, v, w]
-                                 = triangle_closest(x, &_nodes[3 * _tris[3 * t]],
-                                                    &_nodes[3 * _tris[3 * t + 1]],
-                                                    &_nodes[3 * _tris[3 * t + 2]]);
+                             const double* X = vertices(t);
+                             const auto [d2, v, w] = triangle_closest(x, X, X + 3, X + 6);
                              const double d = std::sqrt(d2);
                              if (d < dmin or (d == dmin and t < best))
                              {
@@ -169,9 +182,14 @@ public:
   }
 
 private:
-  std::vector<double> boxes() const
+  /// Boxes of the triangles; also refreshes the contiguous vertex copy _xyz.
+  std::vector<double> boxes()
   {
     const std::size_t nt = num_triangles();
+    _xyz.resize(9 * nt);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        std::copy_n(&_nodes[3 * _tris[3 * t + k]], 3, &_xyz[9 * t + 3 * k]);
     std::vector<double> b(6 * nt);
     for (std::size_t t = 0; t < nt; ++t)
     {
@@ -193,6 +211,7 @@ private:
 
   std::vector<std::int32_t> _tris;
   std::vector<double> _nodes;
+  std::vector<double> _xyz; // per triangle its 3 vertices (search locality)
   geometry::BoxTree<3> _tree;
 };
 

@@ -292,6 +292,40 @@ class TwoBodyContact:
         k["rows"][id(problem)] = (rows, cols)
         return rows, cols
 
+    def couplings(self, problem):
+        """Dense blocks (rows, cols) of the entries this contact may add in the next solve.
+
+        Per owned slave node: its position and multiplier rows, the nodes of its
+        committed master facet and of every master facet sharing a node with its
+        current one (a node sliding onto a neighbour facet during the iterations
+        stays inside the pattern), all against all (:mod:`tribofx.pattern`).
+        """
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        d, seg, f = self.gdim, k["seg"], k["facet"]
+        old = getattr(self, "_ring_seg", None)
+        if old is None or old.shape != seg.shape or not np.array_equal(old, seg):
+            node_facets = [[] for _ in range(len(k["keys"]))]
+            for i, s_ in enumerate(seg):
+                for v in s_:
+                    node_facets[v].append(i)
+            ring = []
+            for s_ in seg:
+                nodes = np.unique(seg[np.concatenate([node_facets[v] for v in s_])])
+                ring.append(nodes)
+            width = max(len(r) for r in ring)
+            self._ring = np.array([np.pad(r, (0, width - len(r)), constant_values=-1)
+                                   for r in ring])
+            self._ring_seg = seg
+        ring = self._ring[f]                                   # (n, width) master nodes
+        mrow, mcol = problem.global_rows(self.master.u)
+        _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
+                                              np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+        valid = ring >= 0
+        rr = np.where(valid[..., None], rc[np.maximum(ring, 0), :d], -1).reshape(len(f), -1)
+        cc = np.where(valid[..., None], rc[np.maximum(ring, 0), d:], -1).reshape(len(f), -1)
+        return np.c_[rows, rr], np.c_[cols, cc]
+
     def evaluate(self, problem):
         """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
         k = self._kernel()
