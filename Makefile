@@ -38,6 +38,7 @@ bench: setup
 	$(PY) benchmarks/bench_ehl_ball.py
 	$(PY) benchmarks/bench_wear_ball.py
 	$(PY) benchmarks/bench_wear_groove.py
+	$(PY) benchmarks/bench_two_body.py
 
 clean:
 	rm -rf build results $(VENV)

@@ -446,3 +446,75 @@ def test_master_search_3d_refit_matches_brute_force():
             return a + p["xi"][:, :1] * (b - a) + p["xi"][:, 1:] * (c - a)
 
         assert np.allclose(point(got), point(ref), atol=1e-12)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_kernel_eulerian_matches_numpy_twin(dim):
+    """Eulerian slip s = c^a t_a: C++ residuals and tangents = the NumPy twin."""
+    q, c, w, w_c = _node_states(50, 6) if dim == 2 else _node_states_3d(30, 6)
+    r, J = two_body.node_residuals(q, c, w, w_c, 10.0, 4.0, 0.3, eulerian=True)
+    r_ref, J_ref = two_body_ref.node_residuals(q, c, w, w_c, 10.0, 4.0, 0.3, eulerian=True)
+    assert np.abs(r - r_ref).max() <= 1e-12 * np.abs(r_ref).max()
+    assert np.abs(J - J_ref).max() <= 1e-12 * np.abs(J_ref).max()
+    L = q.shape[1]
+    d = 2 if L == 13 else 3
+    assert np.abs(J[:, :, d + d * d:L - 1 - d]).max() == 0      # the y slots are unused
+
+
+def test_eulerian_fixed_master_is_the_rigid_plane():
+    """Steady sliding (eq. 27) on a fixed master = the rigid plane moving at V (Eulerian).
+
+    With the master fixed, F⁽²⁾ = I and the slip −Δτ F⁽²⁾V is the rigid case's
+    v Δτ = (F V_body − V_plane) Δτ for a slave at rest: the same iterates.
+    """
+    comm = MPI.COMM_WORLD
+    V = np.array([3.0, 0.0])
+    slave = block(comm, 0.0, 1.0, 0.0, 0.5, 8, 4, "slave")
+    slave.add_dirichlet("top", np.array([0.0, -0.02]))
+    master = block(comm, -0.5, 1.5, -0.5, 0.0, 11, 3, "master")
+    master.add_dirichlet("bottom", np.zeros(2))
+    master.add_dirichlet("top", np.zeros(2))
+    contact = TwoBodyContact(slave, "bottom", master, "top", 10.0, friction=0.3,
+                             slip="eulerian", V_master=V, dtau=0.01)
+    problem = Problem([slave, master, contact], name="eulerian_blocks")
+    rep = problem.solve()
+    rigid = Body(slave.mesh, slave.facet_tags, {"bottom": 1, "top": 2}, "plane_strain",
+                 ("neo-hookean", LAME), name="rigid_slave", velocity=(0.0, 0.0))
+    rigid.add_dirichlet("top", np.array([0.0, -0.02]))
+    plane = Contact(rigid, "bottom", rigid_plane([0.0, 0.0], [0.0, 1.0]), 10.0, friction=0.3,
+                    slip="eulerian", V_master=V, dtau=0.01)
+    rep_rigid = Problem([rigid, plane], name="eulerian_plane").solve()
+    scale = np.abs(rigid.u.x.array).max()
+    assert rep.iterations == rep_rigid.iterations
+    assert np.abs(slave.u.x.array - rigid.u.x.array).max() <= 1e-9 * scale
+    assert np.allclose(contact.forces()[0], plane.force(), rtol=1e-9, atol=1e-12)
+    assert contact.forces()[0][0] > 0          # the moving master drags the slave along +x
+
+
+def test_eulerian_deformable_master_taylor_and_coulomb():
+    """Eulerian slip on a deformable master: exact tangent, every node on the Coulomb cone.
+
+    The slip −Δτ F⁽²⁾V depends on the current master facet (F⁽²⁾ maps the
+    reference edge onto the current one): the Taylor test covers those
+    columns.  In steady sliding |T_T| = μ|T_N| node by node (the constraint
+    tolerance, 1e-8 relative, as for Lagrangian sliding).
+    """
+    comm = MPI.COMM_WORLD
+    slave = block(comm, 0.0, 1.0, 0.0, 0.5, 8, 4, "slave")
+    slave.add_dirichlet("top", np.array([0.0, -0.02]))
+    master = block(comm, -0.5, 1.5, -0.5, 0.0, 11, 3, "master")
+    master.add_dirichlet("bottom", np.zeros(2))
+    contact = TwoBodyContact(slave, "bottom", master, "top", 10.0, friction=0.3,
+                             slip="eulerian", V_master=(3.0, 0.0), dtau=0.01)
+    problem = Problem([slave, master, contact], name="eulerian_deformable")
+    problem.solve()
+    d = contact.nodal_data()
+    act = d["active"]
+    tn, tt = np.abs(d["T_n"][act]), np.linalg.norm(d["T_t"][act], axis=1)
+    t_max = comm.allreduce(float(tn.max(initial=0.0)), op=MPI.MAX)
+    assert comm.allreduce(int(act.sum()), op=MPI.SUM) > 5
+    assert np.all(np.abs(tt - 0.3 * tn) <= 1e-8 * t_max)
+    rng = np.random.default_rng(9)
+    dirs = [1e-6 * rng.standard_normal(len(f.x.array)) for f in problem.u]
+    orders, rem = taylor_orders(problem, owned_arrays(problem, dirs), eps0=1.0, n=4)
+    assert np.all(orders > 1.8), (orders, rem)

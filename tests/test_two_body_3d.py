@@ -18,6 +18,9 @@ from tribofx.problem import Problem
 
 LAME = {"mu": 1.0, "lmbda": 1.5}
 COMM = MPI.COMM_WORLD
+# every check is rank-independent: the suite runs them again on 2 processes (a rank's
+# slave nodes project onto master facets owned by the other rank)
+pytestmark = pytest.mark.mpi
 
 
 def box(x0, x1, z0, z1, n, nz, name):
@@ -101,7 +104,9 @@ def test_newton_quadratic_and_coulomb_3d():
     slave, master, contact, problem, push = two_boxes(mu, fixed_master=False,
                                                       top=(0.0, 0.0, -0.02))
     rep = problem.solve()
-    orders = rep.increment_orders(slave.u.name, floor=1e-12)
+    # corrections below 1e-9 of the first (2e-11 mm) are round-off of the linear solve
+    # (condition number ~1e6 × ε × |u|), whose pivoting differs between 1 and 2 ranks
+    orders = rep.increment_orders(slave.u.name, floor=1e-9)
     assert len(orders) >= 1 and orders[-1] > 1.8, rep.increments
     problem.commit()
     for k in range(1, 7):

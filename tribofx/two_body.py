@@ -53,7 +53,7 @@ def num_local(gdim):
     return gdim + 2 * gdim * gdim + 1 + gdim
 
 
-def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0):
+def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False):
     """Residuals (n, 13) and tangents (n, 13, 13) of n slave nodes (see the module docstring).
 
     Args:
@@ -65,13 +65,15 @@ def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0):
         rho_n: normal augmentation parameter (MPa/mm).
         rho_t: tangential augmentation parameter (MPa/mm); None: rho_n.
         mu: Coulomb coefficient (0: frictionless, rows 11–12 zero).
+        eulerian: Eulerian slip (eq. 27): ``xi_old`` holds the constants c of the
+            slip s = c τ (2D) or c^a t_a (3D) instead; the y unknowns are unused.
     """
     q = np.ascontiguousarray(q, dtype=np.float64)
     three = q.ndim == 2 and q.shape[1] == num_local(3)
     q = q.reshape(-1, num_local(3) if three else NUM_LOCAL)
     vec = [np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (w, w_c)]
     rho_t = rho_n if rho_t is None else rho_t
-    args = (float(rho_n), float(rho_t), float(mu), mu > 0)
+    args = (float(rho_n), float(rho_t), float(mu), mu > 0, bool(eulerian))
     if three:
         xi = np.ascontiguousarray(xi_old, dtype=np.float64).reshape(-1, 2)
         return _cpp.two_body_nodes_3d(q, xi, *vec, *args)

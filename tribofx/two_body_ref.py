@@ -63,7 +63,7 @@ def project_3d(nodes, triangles, points):
             "distance": np.array(out["distance"])}
 
 
-def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu):
+def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
     """Residual (25,) of one 3D slave node; q may be complex (complex-step tangent)."""
     x, a, b, c = q[0:3], q[3:6], q[6:9], q[9:12]
     ya, yb, yc = q[12:15], q[15:18], q[18:21]
@@ -82,7 +82,8 @@ def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu):
     T_n = lhat if lhat.real < 0 else 0.0 * lhat
     T_t = np.zeros(3, dtype=q.dtype)
     if mu > 0:
-        s = xb - (ya + xi_old[0] * (yb - ya) + xi_old[1] * (yc - ya))
+        s = (xi_old[0] * t1 + xi_old[1] * t2 if eulerian
+             else xb - (ya + xi_old[0] * (yb - ya) + xi_old[1] * (yc - ya)))
         h = (lam_t - (lam_t @ n) * n) + rho_t * (s - (s @ n) * n)
         radius = -mu * T_n
         norm = np.sqrt(h @ h + 1e-24)
@@ -100,7 +101,7 @@ def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu):
     return r
 
 
-def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu):
+def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
     """Residual (13,) of one slave node; q may be complex (complex-step tangent)."""
     x, a, b, c, e = q[0:2], q[2:4], q[4:6], q[6:8], q[8:10]
     lam_n, lam_t = q[10], q[11:13]
@@ -114,7 +115,7 @@ def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu):
     T_n = lhat if lhat.real < 0 else 0.0 * lhat
     T_t = np.zeros(2, dtype=q.dtype)
     if mu > 0:
-        s = xb - (c + xi_old * (e - c))
+        s = xi_old * t if eulerian else xb - (c + xi_old * (e - c))
         h = (lam_t - (lam_t @ n) * n) + rho_t * (s - (s @ n) * n)
         radius = -mu * T_n
         norm = np.sqrt(h @ h + 1e-24)
@@ -130,7 +131,7 @@ def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu):
     return r
 
 
-def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, h=1e-30):
+def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False, h=1e-30):
     """Residuals (n, L) and complex-step tangents (n, L, L), as the C++ kernel (L = 13 or 25)."""
     rho_t = rho_n if rho_t is None else rho_t
     q = np.asarray(q, float)
@@ -140,7 +141,7 @@ def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, h=1e-30):
     r = np.zeros_like(q)
     J = np.zeros((len(q), L, L))
     for i, qi in enumerate(q):
-        args = (xi_old[i], w[i], w_c[i], rho_n, rho_t, mu)
+        args = (xi_old[i], w[i], w_c[i], rho_n, rho_t, mu, eulerian)
         r[i] = one(qi.astype(complex), *args).real
         for k in range(L):
             qc = qi.astype(complex)

@@ -217,7 +217,8 @@ using CArray1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device:
 
 std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
 two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w,
-               const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction)
+               const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction,
+               bool eulerian)
 {
   constexpr int N = tb::num_local;
   const std::size_t n = q.shape(0);
@@ -230,7 +231,7 @@ two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w
   std::vector<double> r(n * N), J(n * N * N);
   {
     nb::gil_scoped_release release;
-    const tb::Law law{rho_n, rho_t, mu, friction};
+    const tb::Law law{rho_n, rho_t, mu, friction, eulerian};
     for (std::size_t i = 0; i < n; ++i)
       tb::node_residual(q.data() + i * N, xi_old.data()[i], w.data()[i], w_c.data()[i], law,
                         r.data() + i * N, J.data() + i * N * N);
@@ -275,7 +276,8 @@ nb::dict master_project_3d(const tb::MasterSurface3& master, const CArray2<doubl
 
 std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
 two_body_nodes_3d(const CArray2<double>& q, const CArray2<double>& xi_old, const CArray1& w,
-                  const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction)
+                  const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction,
+                  bool eulerian)
 {
   constexpr int N = tb::num_local_3d;
   const std::size_t n = q.shape(0);
@@ -288,7 +290,7 @@ two_body_nodes_3d(const CArray2<double>& q, const CArray2<double>& xi_old, const
   std::vector<double> r(n * N), J(n * N * N);
   {
     nb::gil_scoped_release release;
-    const tb::Law law{rho_n, rho_t, mu, friction};
+    const tb::Law law{rho_n, rho_t, mu, friction, eulerian};
     for (std::size_t i = 0; i < n; ++i)
       tb::node_residual_3d(q.data() + i * N, xi_old.data() + 2 * i, w.data()[i],
                            w_c.data()[i], law, r.data() + i * N, J.data() + i * N * N);
@@ -356,6 +358,7 @@ NB_MODULE(_cpp, m)
       .def_prop_ro("num_segments", &tb::MasterSurface::num_segments);
   m.def("two_body_nodes", &two_body_nodes, "q"_a.noconvert(), "xi_old"_a.noconvert(),
         "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
+        "eulerian"_a = false,
         "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
         "tribofx.two_body.node_residuals).");
   nb::class_<tb::MasterSurface3>(m, "MasterSurface3",
@@ -378,6 +381,7 @@ NB_MODULE(_cpp, m)
       .def_prop_ro("num_segments", &tb::MasterSurface3::num_triangles);
   m.def("two_body_nodes_3d", &two_body_nodes_3d, "q"_a.noconvert(), "xi_old"_a.noconvert(),
         "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
+        "eulerian"_a = false,
         "Nodal 3D two-body contact residuals (n, 25) and tangents (n, 25, 25) (see "
         "tribofx.two_body.node_residuals).");
   m.def("add_matrix_blocks", &add_matrix_blocks<std::int32_t>, "fn"_a, "mat"_a,

@@ -18,7 +18,9 @@
 //   T_N = min(lam_N + rho_N g, 0),
 //   T_T = proj_{|.| <= -mu T_N}((I - n n) lam_T + rho_T (I - n n) s),
 //   s   = xbar - z,  z = y1 + xi_old (y2 - y1)  (the master material point of
-//         the last converged projection, now at z; Lagrangian slip),
+//         the last converged projection, now at z; Lagrangian slip), or in
+//         Eulerian mode (eq. 27) s = c tau with the constant c given in place of
+//         xi_old (c tau = -dtau F V of a master moving along its own surface),
 //
 // the residual is  w (T_N dg + (T_T.tau) dxi)  on the positions (eq. 8) and
 // w_c (1/rho) T  on the multiplier rows (the -(1/rho) lam part is linear and
@@ -249,6 +251,11 @@ struct Law
 {
   double rho_n, rho_t, mu;
   bool friction;
+  /// Eulerian slip (eq. 27, master moving along its own surface): the slip is
+  /// s = c^a t_a with the per-node constants c passed in place of xi_old (the
+  /// surface deformation gradient of the current facet applied to -V dtau),
+  /// and the old-facet unknowns y are not used.
+  bool eulerian = false;
 };
 
 /// Residual r (num_local) and tangent J (num_local x num_local, row-major) of
@@ -278,7 +285,8 @@ inline void node_residual(const double* q, double xi_old, double w, double w_c,
   if (law.friction)
   {
     const D z0 = c0 + xi_old * (e0 - c0), z1 = c1 + xi_old * (e1 - c1);
-    const D s0 = xb0 - z0, s1 = xb1 - z1;
+    const D s0 = law.eulerian ? xi_old * t0 : xb0 - z0;
+    const D s1 = law.eulerian ? xi_old * t1 : xb1 - z1;
     const D sn = s0 * n0 + s1 * n1;
     const D ln = lt0 * n0 + lt1 * n1;
     const D h0 = (lt0 - ln * n0) + law.rho_t * (s0 - sn * n0);

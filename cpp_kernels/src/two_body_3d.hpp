@@ -20,6 +20,7 @@
 //   T_N = min(lam_N + rho_N g, 0),
 //   T_T = proj_{|.| <= -mu T_N}((I - n n) lam_T + rho_T (I - n n) s),
 //   s   = xbar - z,  z = y1 + xi_old^1 (y2 - y1) + xi_old^2 (y3 - y1),
+//         or, Eulerian (eq. 27), s = c^a t_a with c given in place of xi_old,
 //
 // and the virtual work w (T_N dg + T_a dxi^a), T_a = T_T.t_a (eq. 8), with the
 // exact first variations of a flat facet, N = (1 - xi^1 - xi^2, xi^1, xi^2),
@@ -254,7 +255,9 @@ inline void node_residual_3d(const double* q, const double* xi_old, double w, do
   {
     V3 s;
     for (int k = 0; k < 3; ++k)
-      s[k] = xb[k] - (ya[k] + xi_old[0] * (yb[k] - ya[k]) + xi_old[1] * (yc[k] - ya[k]));
+      s[k] = law.eulerian
+                 ? xi_old[0] * t1[k] + xi_old[1] * t2[k]
+                 : xb[k] - (ya[k] + xi_old[0] * (yb[k] - ya[k]) + xi_old[1] * (yc[k] - ya[k]));
     const D sn = dot(s, n), lnn = dot(lt, n);
     V3 h;
     for (int k = 0; k < 3; ++k)

@@ -17,7 +17,9 @@ evaluation
    the matrix pattern grows by the new slave–master pairs.
 
 The linear part −∫ (1/ρ)λ·δλ dS of the constraint rows is UFL.  Vertex
-quadrature (the nodal scheme of the rigid case), Lagrangian slip: the master
+quadrature (the nodal scheme of the rigid case).  Eulerian slip (steady
+sliding, eq. 27): the master's material moves along its own surface, the slip
+is −Δτ F⁽²⁾V (:meth:`TwoBodyContact._eulerian_constants`).  Lagrangian slip: the master
 material point of the last converged projection is kept (segment and ξ̄), and
 the slip is the current projection minus that point's current position, so a
 slave node may change master segment between iterations and steps.  A master
@@ -43,7 +45,8 @@ __all__ = ["TwoBodyContact", "WearSurface"]
 
 def _shape_values(xi):
     """P1 facet shape functions at ξ: (n,) in 2D → (n, 2); (n, 2) in 3D → (n, 3)."""
-    xi = np.asarray(xi).reshape(len(xi), -1)
+    xi = np.asarray(xi)
+    xi = xi.reshape(len(xi), 1 if xi.ndim == 1 else xi.shape[1])
     return np.c_[1 - xi.sum(axis=1), xi]
 
 
@@ -93,15 +96,19 @@ class TwoBodyContact:
         rho_n: normal augmentation (MPa/mm); rho_t: tangential (default rho_n).
         friction: Coulomb coefficient μ.
         name, rtol: as for :class:`tribofx.interfaces.Contact`.
+        slip: "lagrangian" (the slip is the projection's increment since the last
+            commit) or "eulerian" (steady sliding, eq. 27: the master's material
+            moves with ``V_master`` (mm/s) along its own surface, the slave at
+            rest; slip = relative velocity × ``dtau`` (s), see
+            :meth:`_eulerian_constants`).
     """
 
     #: relative hysteresis of the master-segment choice (see :meth:`_pairs`)
     STICKY = 0.05
-    #: the slip is the increment of the projection since the last commit
-    slip_kind = "lagrangian"
 
     def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
-                 rho_t=None, name="contact", rtol=1e-10):
+                 rho_t=None, name="contact", rtol=1e-10, slip="lagrangian", V_master=None,
+                 dtau=1.0):
         for b in (slave, master):
             if (b.gdim, b.kind) not in ((2, "plane_strain"), (3, "3d")):
                 raise ValueError("TwoBodyContact is implemented for plane strain and 3D")
@@ -111,6 +118,12 @@ class TwoBodyContact:
                 raise ValueError("TwoBodyContact needs P1 displacements")
         if friction < 0:
             raise ValueError("friction coefficient must be >= 0")
+        if slip not in ("lagrangian", "eulerian"):
+            raise ValueError(f"unknown slip {slip!r}")
+        if slip == "eulerian" and V_master is None:
+            raise ValueError("eulerian slip needs V_master, the master's material velocity")
+        self.slip_kind, self.dtau = slip, float(dtau)
+        self.V_master = None if V_master is None else np.asarray(V_master, float)
         self.slave, self.master, self.name, self.rtol = slave, master, name, rtol
         self.rho_n, self.friction = float(rho_n), float(friction)
         self.rho_t = float(rho_n if rho_t is None else rho_t)
@@ -216,7 +229,7 @@ class TwoBodyContact:
             inside = np.clip(xi, 0.0, None)
             inside /= np.maximum(inside.sum(axis=1), 1.0)[:, None]
             proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
-            old = proj["xi"].reshape(len(xs), -1)
+            old = proj["xi"].reshape(len(xs), d - 1)
             proj["xi"] = np.where(keep[:, None], inside, old).reshape(proj["xi"].shape)
         self._facet_prev = proj["facet"].copy()
         return xm, keys, seg, xs, proj
@@ -247,7 +260,10 @@ class TwoBodyContact:
             return c[1]
         xm, keys, seg, xs, proj = self._pairs()
         f, d, il = proj["facet"], self.gdim, self._lam
-        old_seg = np.searchsorted(keys, self._old[0])
+        if self.slip_kind == "eulerian":     # no history: the old-facet slots repeat the facet
+            old_seg, xi_old = seg[f], self._eulerian_constants(keys, seg, f)
+        else:
+            old_seg, xi_old = np.searchsorted(keys, self._old[0]), self._old[1]
         n = len(self._q)
         qv = np.zeros((n, num_local(d)))
         qv[:, 0:d] = xs
@@ -257,12 +273,34 @@ class TwoBodyContact:
         qv[:, il] = self.lam_n.x.array[self._q]
         if self.lam_t is not None:
             qv[:, il + 1:] = self.lam_t.x.array.reshape(-1, d)[self._q]
-        r, J = node_residuals(qv, self._old[1], self._w, self._w_c, self.rho_n, self.rho_t,
-                              self.friction)
-        data = {"q": qv, "xi_old": self._old[1], "r": r, "J": J, "xm": xm, "keys": keys,
+        r, J = node_residuals(qv, xi_old, self._w, self._w_c, self.rho_n, self.rho_t,
+                              self.friction, eulerian=self.slip_kind == "eulerian")
+        data = {"q": qv, "xi_old": xi_old, "r": r, "J": J, "xm": xm, "keys": keys,
                 "seg": seg, "facet": f, "xi": proj["xi"], "old_seg": old_seg, "rows": {}}
         self._cache = ([a.copy() for a in key], data)
         return data
+
+    def _eulerian_constants(self, keys, seg, f):
+        """Per slave node the constants c of the Eulerian slip s = c^a t_a (eq. 27).
+
+        The master's material moves with the constant velocity V along its own
+        reference surface (e.g. a disc or a belt analysed in an Eulerian frame,
+        the slave at rest): the relative velocity of the master material at x̄ is
+        F⁽²⁾V, and on a P1 facet F⁽²⁾ maps the reference edge vectors T_a onto
+        the current t_a, so F⁽²⁾V = a^b t_b with a = [T_a·T_b]⁻¹[T_a·V]
+        (exact for V tangent to the facet; its normal part is removed by the
+        tangential projection of the law anyway).  The slip over the pseudo-time
+        Δτ is s = −Δτ F⁽²⁾V, so c = −Δτ a.
+        """
+        if getattr(self, "_Xref_keys", None) is None or not np.array_equal(self._Xref_keys, keys):
+            X = self.master.V.tabulate_dof_coordinates()[:, :self.gdim]
+            self._Xref_keys, self._Xref = self._gather(lambda nd: X[nd])
+        Xf = self._Xref[seg[f]]                                # (n, d, d) reference facet
+        T = Xf[:, 1:] - Xf[:, :1]
+        M = np.einsum("nad,nbd->nab", T, T)
+        a = np.linalg.solve(M, np.einsum("nad,d->na", T, self.V_master)[..., None])[..., 0]
+        c = -self.dtau * a
+        return c[:, 0] if self.gdim == 2 else c
 
     def _rows(self, problem, k):
         """Global rows and columns (n, L) of the local unknowns of ``k`` in ``problem``."""
@@ -322,8 +360,9 @@ class TwoBodyContact:
         _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
                                               np.stack([mcol[d * nd + c] for c in range(d)], 1)])
         valid = ring >= 0
-        rr = np.where(valid[..., None], rc[np.maximum(ring, 0), :d], -1).reshape(len(f), -1)
-        cc = np.where(valid[..., None], rc[np.maximum(ring, 0), d:], -1).reshape(len(f), -1)
+        width = d * ring.shape[1]
+        rr = np.where(valid[..., None], rc[np.maximum(ring, 0), :d], -1).reshape(len(f), width)
+        cc = np.where(valid[..., None], rc[np.maximum(ring, 0), d:], -1).reshape(len(f), width)
         return np.c_[rows, rr], np.c_[cols, cc]
 
     def evaluate(self, problem):
@@ -423,11 +462,15 @@ class TwoBodyContact:
         x = q[:, 0:d]
         facet = q[:, d:d + d * d].reshape(-1, d, d)
         old = q[:, d + d * d:il].reshape(-1, d, d)
-        xi, _, _ = _plane_coordinates(x, facet)
-        xbar = np.einsum("nk,nkd->nd", _shape_values(xi), facet)
-        z = np.einsum("nk,nkd->nd", _shape_values(k["xi_old"]), old)
         n = _normals(facet)
-        s = xbar - z
+        if self.slip_kind == "eulerian":                      # s = c^a t_a
+            c = np.asarray(k["xi_old"]).reshape(len(q), d - 1)
+            s = np.einsum("na,nad->nd", c, facet[:, 1:] - facet[:, :1])
+        else:
+            xi, _, _ = _plane_coordinates(x, facet)
+            xbar = np.einsum("nk,nkd->nd", _shape_values(xi), facet)
+            z = np.einsum("nk,nkd->nd", _shape_values(k["xi_old"]), old)
+            s = xbar - z
         s_t = s - np.sum(s * n, axis=1)[:, None] * n
         wc = np.where(self._w_c > 0, self._w_c, 1.0)
         T_t = r[:, il + 1:] * self.rho_t / wc[:, None]
@@ -517,7 +560,7 @@ class WearSurface:
         self.sub, self.emap, self.Q, self.Vs, self.dsc = sf.sub, sf.emap, sf.Q, sf.Vs, sf.dsc
         self.sub_dofs, self.bulk_dofs, self.X_sub = sf.sub_dofs, sf.bulk_dofs, sf.X_sub
         self.lam_t, self.friction = contact.lam_t, contact.friction
-        self.slip_kind = "lagrangian"
+        self.slip_kind = contact.slip_kind
         self._inc = fem.Function(self.Q)
         if side == "master":
             im = body.V.dofmap.index_map

@@ -42,7 +42,7 @@ def plot_reciprocating(profile, outdir):
         fig.suptitle("grey: undeformed (worn) configuration; lines: deformed (pin red, "
                      "block blue)", fontsize=8)
         fig.tight_layout()
-        fig.savefig(outdir / "fig5.png", dpi=130)
+        fig.savefig(outdir / "fig5.png", dpi=90)
         plt.close(fig)
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.6))
     c = np.asarray(profile["cycles_done"], float)
