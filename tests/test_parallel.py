@@ -53,6 +53,7 @@ TWO_BODY_KEYS = {
     "contact-patch": (("pressure_mean", "pressure_max_deviation"), 1e-8),
     "wear-reciprocating": (("worn_area_pin", "worn_area_block", "dissipated_energy",
                             "drive_work"), 1e-6),
+    "contact-ironing": (("reaction_force", "force_ratio_sliding"), 1e-6),
 }
 
 
@@ -60,6 +61,7 @@ TWO_BODY_KEYS = {
     ("contact-two-cylinders", ("mesh=1", "friction=0.3", "E2=20")),
     ("contact-patch", ("mesh_ratio=0.5",)),
     ("wear-reciprocating", ("mesh=0", "cycles=100", "dt=10", "fast_steps=8")),
+    ("contact-ironing", ("n=30", "press_steps=3", "slide_steps=8", "slide=1")),
 ])
 def test_two_body_serial_equals_two_processes(tmp_path, case, sets):
     """Two deformable bodies: a rank's slave nodes project onto master facets of the other.
@@ -68,7 +70,8 @@ def test_two_body_serial_equals_two_processes(tmp_path, case, sets):
     control stops at |P − P*| ≤ 1e-6 P*, so results may move by ~1e-6
     relative; the patch test is one Newton solve to 1e-10 (rel 1e-8); the
     wear of both bodies accumulates over ~200 solves whose contact rows stop
-    at 1e-10 G/ρ_N of a gap (traction errors ~1e-10 relative) each: 1e-6.
+    at 1e-10 G/ρ_N of a gap (traction errors ~1e-10 relative) each: 1e-6; the
+    ironing forces, 11 solves of the same tolerance: 1e-6.
     """
     s1 = _case(tmp_path, 1, "a", *sets, case=case)
     s2 = _case(tmp_path, 2, "b", *sets, case=case)
