@@ -37,47 +37,11 @@ from ..forms import kinematics as kin
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
 from ..two_body import MasterSurface, MasterSurface3, node_residuals, num_local
+from . import facets, two_body_wear
 from .contact import gather_nodal
 from .surface import Surface, node_to_dof
 
-__all__ = ["TwoBodyContact", "WearSurface"]
-
-
-def _shape_values(xi):
-    """P1 facet shape functions at ξ: (n,) in 2D → (n, 2); (n, 2) in 3D → (n, 3)."""
-    xi = np.asarray(xi)
-    xi = xi.reshape(len(xi), 1 if xi.ndim == 1 else xi.shape[1])
-    return np.c_[1 - xi.sum(axis=1), xi]
-
-
-def _plane_coordinates(x, facet):
-    """Coordinates of points x (n, d) on their facets (n, d, d vertices), unclamped.
-
-    Returns ξ (n, d − 1) of the projection onto the facet's line/plane, the
-    distance to that line/plane (n,) and a facet size (n,): the length in 2D,
-    the square root of twice the area in 3D.
-    """
-    a = facet[:, 0]
-    t = facet[:, 1:] - a[:, None, :]                       # (n, d-1, d) edge vectors
-    m = np.einsum("nad,nbd->nab", t, t)
-    rhs = np.einsum("nad,nd->na", t, x - a)
-    xi = np.linalg.solve(m, rhs[..., None])[..., 0]
-    foot = a + np.einsum("na,nad->nd", xi, t)
-    if t.shape[1] == 1:
-        size = np.sqrt(m[:, 0, 0])                        # the segment's length
-    else:
-        size = np.abs(np.linalg.det(m)) ** 0.25           # √(2 area): det m = (2 area)²
-    return xi, np.linalg.norm(x - foot, axis=1), size
-
-
-def _normals(facet):
-    """Return the unit outward normals (n, d) of oriented facets (n, d, d), as the kernels."""
-    if facet.shape[1] == 2:
-        t = facet[:, 1] - facet[:, 0]
-        n = np.c_[t[:, 1], -t[:, 0]]
-    else:
-        n = np.cross(facet[:, 1] - facet[:, 0], facet[:, 2] - facet[:, 0])
-    return n / np.linalg.norm(n, axis=1)[:, None]
+__all__ = ["TwoBodyContact"]
 
 
 def _vertex_dofs(body, facets):
@@ -222,7 +186,7 @@ class TwoBodyContact:
             # onto it (its coordinates within STICKY of the facet) at no more than the
             # nearest distance plus STICKY of its size: at a kink of the deformed master
             # the nearest facet jumps between the neighbours of a vertex and Newton cycles
-            xi, dist, size = _plane_coordinates(xs, xm[seg[prev]])
+            xi, dist, size = facets.plane_coordinates(xs, xm[seg[prev]])
             bary = np.c_[1 - xi.sum(axis=1), xi]
             keep = np.all(bary > -self.STICKY, axis=1) & \
                 (dist <= proj["distance"] + self.STICKY * size)
@@ -440,60 +404,20 @@ class TwoBodyContact:
         d = self.gdim
         # the kernel's own (unclamped) coordinates: the material point is x̄ itself, so
         # the slip restarts from zero also for a node slightly off its facet
-        xi, _, _ = _plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
+        xi, _, _ = facets.plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
         self._old = (k["keys"][k["seg"][k["facet"]]], xi[:, 0] if d == 2 else xi)
 
     # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
     def dissipation_increment(self):
         """Frictional dissipation per unit reference slave area since the last commit (N/mm).
 
-        ΔD⁽¹⁾ = T_T·Δs_T per owned slave node (λ-dof order): T_T the nominal
-        friction traction of the Alart–Curnier law, Δs_T the tangential part of
-        the slip x̄ − z (the current projection minus the current position of the
-        master material point of the last converged projection).  It is the
-        increment of eq. (17), Ḋ⁽¹⁾ = T_T·ξ̄̇ over the step; ≥ 0 (T_T is parallel
-        to the slip in sliding and the slip vanishes in stick).
+        See :func:`tribofx.interfaces.two_body_wear.dissipation_increment`.
         """
-        if self.lam_t is None:
-            raise ValueError("wear by frictional dissipation needs friction > 0")
-        k = self._kernel()
-        q, r = k["q"], k["r"]
-        d, il = self.gdim, self._lam
-        x = q[:, 0:d]
-        facet = q[:, d:d + d * d].reshape(-1, d, d)
-        old = q[:, d + d * d:il].reshape(-1, d, d)
-        n = _normals(facet)
-        if self.slip_kind == "eulerian":                      # s = c^a t_a
-            c = np.asarray(k["xi_old"]).reshape(len(q), d - 1)
-            s = np.einsum("na,nad->nd", c, facet[:, 1:] - facet[:, :1])
-        else:
-            xi, _, _ = _plane_coordinates(x, facet)
-            xbar = np.einsum("nk,nkd->nd", _shape_values(xi), facet)
-            z = np.einsum("nk,nkd->nd", _shape_values(k["xi_old"]), old)
-            s = xbar - z
-        s_t = s - np.sum(s * n, axis=1)[:, None] * n
-        wc = np.where(self._w_c > 0, self._w_c, 1.0)
-        T_t = r[:, il + 1:] * self.rho_t / wc[:, None]
-        return np.sum(T_t * s_t, axis=1)
+        return two_body_wear.dissipation_increment(self)
 
     def master_transfer(self, volume):
-        """Distribute per-slave-node volumes onto the master nodes of their projections.
-
-        ``volume`` (n_owned_slave,) is split between the two nodes of the current
-        master segment of each slave node with the weights (1 − ξ, ξ) and summed
-        over all ranks; returns (global master node keys, volumes) on every rank.
-        This is eq. (18) in the lumped nodal scheme: Ẇ⁽²⁾ dS⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾
-        Ḋ⁽¹⁾ dS⁽²⁾ = K⁽²⁾ Ḋ⁽¹⁾ dS⁽¹⁾ (ds = j dS on both sides), so a slave node
-        passes its volume K⁽²⁾ ΔD⁽¹⁾ w_c to the master surface element it faces.
-        """
-        k = self._kernel()
-        out = np.zeros(len(k["keys"]))
-        seg, f = k["seg"], k["facet"]
-        N = _shape_values(k["xi"])
-        for j in range(self.gdim):
-            np.add.at(out, seg[f, j], N[:, j] * volume)
-        self.slave.mesh.comm.Allreduce(MPI.IN_PLACE, out, op=MPI.SUM)
-        return k["keys"], out
+        """Per-slave-node volumes onto the master nodes (eq. 18); see :mod:`.two_body_wear`."""
+        return two_body_wear.master_transfer(self, volume)
 
     def wear_surface(self, side):
         """Return the ``"slave"`` or ``"master"`` side for a :class:`~tribofx.interfaces.Wear`."""
@@ -502,7 +426,7 @@ class TwoBodyContact:
         if self.lam_t is None:
             raise ValueError("wear of a two-body contact is driven by the frictional "
                              "dissipation (eqs. 17-18): friction > 0 needed")
-        return WearSurface(self, side)
+        return two_body_wear.WearSurface(self, side)
 
     # -- outputs ---------------------------------------------------------------------
     def nodal_data(self, problem=None):
@@ -540,64 +464,3 @@ class TwoBodyContact:
     def gather_profile(self, problem=None):
         """All nodal data on rank 0 (None elsewhere), sorted by reference X[0]."""
         return gather_nodal(self.slave.mesh.comm, self.nodal_data())
-
-
-class WearSurface:
-    """One side of a :class:`TwoBodyContact` as the home of a :class:`tribofx.interfaces.Wear`.
-
-    It carries the :class:`tribofx.interfaces.surface.Surface` attributes of its
-    boundary (on the slave: the contact's own) and answers
-    :meth:`wear_increment`: the nominal wear increment per unit reference area
-    of its own surface over the last fast sub-step, eq. (17) on the slave,
-    eq. (18) on the master (see :meth:`TwoBodyContact.master_transfer`).
-    """
-
-    def __init__(self, contact, side):
-        self.contact, self.side = contact, side
-        body = contact.slave if side == "slave" else contact.master
-        sf = contact.surface if side == "slave" else Surface(body, contact.master_boundary)
-        self.surface, self.body = sf, body
-        self.sub, self.emap, self.Q, self.Vs, self.dsc = sf.sub, sf.emap, sf.Q, sf.Vs, sf.dsc
-        self.sub_dofs, self.bulk_dofs, self.X_sub = sf.sub_dofs, sf.bulk_dofs, sf.X_sub
-        self.lam_t, self.friction = contact.lam_t, contact.friction
-        self.slip_kind = contact.slip_kind
-        self._inc = fem.Function(self.Q)
-        if side == "master":
-            im = body.V.dofmap.index_map
-            key = np.zeros(len(self._inc.x.array), dtype=np.int64)
-            key[sf.sub_dofs] = im.local_to_global(sf.bulk_dofs.astype(np.int32))
-            self._key = key
-            self._weight = sf.nodal(ufl.TestFunction(self.Q) * self.dsc)
-
-    def nodal(self, form):
-        """Assembled (ghost-updated) vector of a linear form on this surface's dofs."""
-        return self.surface.nodal(form)
-
-    def wear_increment(self, K):
-        """ΔW per unit reference area of this surface, all local dofs (mm), coefficient K.
-
-        Slave: K ΔD⁽¹⁾ (eq. 17).  Master: the volumes K ΔD⁽¹⁾ w_c of the slave
-        nodes transferred to the master nodes (eq. 18) over the lumped master
-        weights.
-        """
-        dD = self.contact.dissipation_increment()
-        inc = self._inc.x.array
-        if self.side == "slave":
-            inc[:] = 0.0
-            inc[self.contact._q] = K * dD
-            self._inc.x.scatter_forward()
-            return inc.copy()
-        keys, vol = self.contact.master_transfer(K * dD * self.contact._w_c)
-        pos = np.searchsorted(keys, self._key)
-        if len(keys) and not np.array_equal(keys[np.minimum(pos, len(keys) - 1)], self._key):
-            raise RuntimeError("master surface nodes missing from the gathered polyline")
-        return np.divide(vol[pos], self._weight, out=np.zeros_like(self._weight),
-                         where=self._weight > 0)
-
-    def nodal_data(self):
-        """Per owned node: reference X and current x = X + u (mm)."""
-        n = self.surface.n_own
-        u = self.body.u.x.array.reshape(-1, self.body.gdim)
-        x = self.X_sub.copy()
-        x[self.sub_dofs] += u[self.bulk_dofs]
-        return {"X": self.X_sub[:n], "x": x[:n]}
