@@ -14,6 +14,7 @@ import pytest
 from mpi4py import MPI
 from test_two_body import two_blocks
 
+from tribofx.output import bp4_steps
 from tribofx.runner import run_case
 
 COMM = MPI.COMM_WORLD
@@ -104,3 +105,6 @@ def test_wear_reciprocating_both_bodies(tmp_path, scheme):
         assert np.allclose(a[1:], integral, rtol=rel, atol=0)
     for W, D, B in zip(r["drive_work"][1:], r["cycle_dissipation"][1:], r["drive_work_bound"][1:]):
         assert abs(W - D) <= B
+    # the VTX time series holds the initial state and every slow step, for both bodies
+    for body in ("pin", "block"):
+        assert bp4_steps(tmp_path / scheme / f"{body}_series.bp") == len(a_pin)

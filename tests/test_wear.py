@@ -20,7 +20,7 @@ from petsc4py import PETSc
 from taylor import owned_arrays, taylor_orders
 
 from tribofx.cases.wear import WearPinCase
-from tribofx.output import RunRecord
+from tribofx.output import RunRecord, bp4_steps
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.stepper import MeshInversion
@@ -58,6 +58,9 @@ def test_flat_punch_archard(tmp_path, scheme):
     # only the Newton tolerance (1e-10 on residuals of size ~1) remains
     assert depth == pytest.approx(K * Q * V * t, rel=1e-9, abs=1e-12)
     assert vol == pytest.approx(K * Q * V * W * t, rel=1e-9, abs=1e-12)
+    # the VTX time series (written where rank 0 writes): the initial state and every step
+    if MPI.COMM_WORLD.rank == 0:
+        assert bp4_steps(tmp_path / "displacement_series.bp") == len(t)
     p = np.asarray(res["final_pressure"]) if MPI.COMM_WORLD.rank == 0 else np.array([Q])
     assert p == pytest.approx(Q, rel=1e-9)
     assert prob.wear.min_volume_factor() == pytest.approx(1 - depth[-1] / 2.0, rel=1e-9)

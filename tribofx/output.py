@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["RunRecord", "write_summary", "write_vtx"]
+__all__ = ["RunRecord", "VTXSeries", "bp4_steps", "write_summary", "write_vtx"]
 
 
 def _jsonable(obj):
@@ -74,3 +74,46 @@ def write_vtx(comm, path, functions, t=0.0):
 
     with VTXWriter(comm, str(path), functions, engine="BP4") as w:
         w.write(t)
+
+
+class VTXSeries:
+    """VTX time series for ParaView: one ``<stem>.bp`` per mesh, one write per step.
+
+    ``groups`` is {file stem: [Functions on one mesh]} (e.g. a case's
+    ``vtx_fields``).  Displacement-like vector fields (u, the shape change w)
+    are what ParaView's "Warp By Vector" takes: warping by w shows the worn
+    undeformed configuration X = X̂ + w, by u the deformed one x = X̂ + u.
+    Used as a context manager or closed by :meth:`close`.
+    """
+
+    def __init__(self, comm, outdir, groups):
+        from dolfinx.io import VTXWriter
+
+        outdir = Path(comm.bcast(str(outdir), root=0))   # one file for all ranks
+        if comm.rank == 0:
+            outdir.mkdir(parents=True, exist_ok=True)
+        comm.barrier()
+        self.writers = [VTXWriter(comm, str(outdir / f"{stem}.bp"), fns, engine="BP4")
+                        for stem, fns in groups.items()]
+
+    def write(self, t):
+        """Write every group at time ``t`` (collective)."""
+        for w in self.writers:
+            w.write(float(t))
+
+    def close(self):
+        """Close the files."""
+        for w in self.writers:
+            w.close()
+        self.writers = []
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def bp4_steps(path):
+    """Return the number of steps in the BP4 file ``path`` (index: 64 bytes + 64 per step)."""
+    return (Path(path, "md.idx").stat().st_size - 64) // 64

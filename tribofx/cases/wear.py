@@ -65,6 +65,7 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..obstacles import rigid_plane
+from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence
 from ..references import hertz
@@ -288,12 +289,22 @@ class WearPinCase:
                     [float(x) for x in rep.reports[-1].residuals])
 
         log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
+        # the worn shape and the deformation at every step (ParaView time series)
+        series = VTXSeries(comm, record.outdir,
+                           {"displacement_series": [wear.body.u, wear.body.w]})
+        series.write(0.0)
+
+        def on_step_series(st, rep):
+            on_step(st, rep)
+            series.write(st.t)
+
         try:
-            stepper.run(v["T"], cls.slow_step(v), on_step=on_step, progress=progress)
+            stepper.run(v["T"], cls.slow_step(v), on_step=on_step_series, progress=progress)
         except NewtonDivergence as err:
             err.problem = stepper
             raise
         finally:
+            series.close()
             cls._report(stepper, v, record, hist, profiles, ptimes)
         return stepper
 

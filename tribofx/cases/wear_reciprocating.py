@@ -38,7 +38,9 @@ frictional dissipation of the cycles so far, N·mm per mm), ``drive_work`` and
 ``drive_work_bound`` (the work of the block's drive over the last cycle, ∮ F_x dx
 by the trapezoidal rule, and the bound ½ Σ |ΔF_x||Δx| of that rule),
 ``rate_integral_pin``/``_block`` (∫ W̄̇ dŜ of the step's averaged rate, mm²/(mm·s)),
-and the final worn profiles of both bodies; ``fig5.png`` (initial and worn, undeformed
+and the final worn profiles of both bodies; ``pin_series.bp`` and
+``block_series.bp`` (VTX time series of u and w at every slow step: warp by w
+for the worn shape, by u for the deformed one); ``fig5.png`` (initial and worn, undeformed
 and deformed, both bodies, at −A, at the centre and at +A) and ``wear.png``.
 """
 
@@ -57,6 +59,7 @@ from ..meshes.block import NAMES as BLOCK_NAMES
 from ..meshes.block import block_mesh
 from ..meshes.pin import NAMES as PIN_NAMES
 from ..meshes.pin import pin_body, tip_height
+from ..output import VTXSeries
 from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz
@@ -279,14 +282,23 @@ class WearReciprocatingCase:
 
         log(0.0, 0.0, cls.load_up(run, v, verbose))
         shots = {"initial": cls.snapshot(run)}
+        # the worn shapes and the deformation at every slow step (ParaView time series)
+        series = VTXSeries(contact.slave.mesh.comm, record.outdir,
+                           {f"{k}_series": f for k, f in cls.vtx_fields(run).items()})
+        series.write(0.0)
+
+        def on_step(s, rep):
+            log(s.t, rep.dt, rep.iterations, rep.picard)
+            series.write(s.t)
+
         try:
-            st.run(v["cycles"] * tau, v["dt"],
-                   on_step=lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard))
+            st.run(v["cycles"] * tau, v["dt"], on_step=on_step)
             shots["worn"] = cls.snapshot(run)
         except NewtonDivergence as err:
             err.problem = run
             raise
         finally:
+            series.close()
             cls._report(run, record, hist, shots)
             if record.profile is not None:
                 half = 0.5 * v["L"] + v["A"] + 0.1
