@@ -83,12 +83,16 @@ class VTXSeries:
     ``vtx_fields``).  Displacement-like vector fields (u, the shape change w)
     are what ParaView's "Warp By Vector" takes: warping by w shows the worn
     undeformed configuration X = X̂ + w, by u the deformed one x = X̂ + u.
-    Used as a context manager or closed by :meth:`close`.
+    Used as a context manager or closed by :meth:`close`.  ``outdir`` None
+    (a sub-run of a study, which has no folder of its own): nothing is written.
     """
 
     def __init__(self, comm, outdir, groups):
         from dolfinx.io import VTXWriter
 
+        self.writers = []
+        if comm.bcast(outdir is None, root=0):
+            return
         outdir = Path(comm.bcast(str(outdir), root=0))   # one file for all ranks
         if comm.rank == 0:
             outdir.mkdir(parents=True, exist_ok=True)

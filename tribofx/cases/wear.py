@@ -290,7 +290,7 @@ class WearPinCase:
 
         log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
         # the worn shape and the deformation at every step (ParaView time series)
-        series = VTXSeries(comm, record.outdir,
+        series = VTXSeries(comm, getattr(record, "outdir", None),
                            {"displacement_series": [wear.body.u, wear.body.w]})
         series.write(0.0)
 

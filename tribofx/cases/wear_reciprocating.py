@@ -283,7 +283,7 @@ class WearReciprocatingCase:
         log(0.0, 0.0, cls.load_up(run, v, verbose))
         shots = {"initial": cls.snapshot(run)}
         # the worn shapes and the deformation at every slow step (ParaView time series)
-        series = VTXSeries(contact.slave.mesh.comm, record.outdir,
+        series = VTXSeries(contact.slave.mesh.comm, getattr(record, "outdir", None),
                            {f"{k}_series": f for k, f in cls.vtx_fields(run).items()})
         series.write(0.0)
 
