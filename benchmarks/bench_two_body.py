@@ -10,7 +10,8 @@ Part 2, the projection throughput of the kernel's search
 (:class:`tribofx.two_body.MasterSurface3`: build, refit, project) against
 libigl's AABB tree (``igl.AABB``, PyPI ``libigl``) on the same triangulated
 surface and the same points, in the same run, one core; the nearest
-distances are compared.  Goal: at least as fast per core as libigl.
+distances are compared.  Goal: at least as fast per core as libigl (the
+process is pinned to one CPU for this part: libigl threads its points).
 
 Usage: .venv/bin/python benchmarks/bench_two_body.py [results.json] [--quick]
 (libigl: ``.venv/bin/python -m pip install libigl``; without it part 2 reports
@@ -104,7 +105,20 @@ def surface(n, rng):
 
 
 def throughput(n, n_points, rng):
-    """Kernel search against igl.AABB on the same surface and points (one core)."""
+    """Kernel search against igl.AABB on the same surface and points, pinned to one core.
+
+    libigl's ``squared_distance`` runs its points on several threads; the
+    comparison is per core, so the process is pinned to one CPU for it.
+    """
+    cpus = os.sched_getaffinity(0)
+    os.sched_setaffinity(0, {min(cpus)})
+    try:
+        return _throughput(n, n_points, rng)
+    finally:
+        os.sched_setaffinity(0, cpus)
+
+
+def _throughput(n, n_points, rng):
     nodes, tris = surface(n, rng)
     xy = rng.uniform(0, 1, (n_points, 2))
     pts = np.c_[xy, 0.1 * np.sin(4 * xy[:, 0]) * np.cos(3 * xy[:, 1])

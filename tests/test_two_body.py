@@ -70,21 +70,25 @@ def test_master_search_refit_matches_brute_force():
         assert np.allclose(got["distance"], ref["distance"], atol=1e-14)
 
 
-def block(comm, x0, x1, y0, y1, nx, ny, name):
-    """Rectangle body with boundaries "bottom" (y = y0) and "top" (y = y1)."""
-    msh = mesh.create_rectangle(comm, [[x0, y0], [x1, y1]], [nx, ny],
-                                diagonal=mesh.DiagonalType.left)
-    fdim = msh.topology.dim - 1
+def tagged_body(msh, lo, hi, kind, name):
+    """Body on ``msh`` with boundaries "bottom" (last coordinate = lo) and "top" (= hi)."""
+    fdim, axis = msh.topology.dim - 1, msh.geometry.dim - 1
     ents, vals = [], []
-    for tag, y in ((1, y0), (2, y1)):
-        e = mesh.locate_entities_boundary(msh, fdim, lambda x, y=y: np.isclose(x[1], y))
+    for tag, c in ((1, lo), (2, hi)):
+        e = mesh.locate_entities_boundary(msh, fdim, lambda x, c=c: np.isclose(x[axis], c))
         ents.append(e)
         vals.append(np.full(len(e), tag, np.int32))
     e, v = np.concatenate(ents), np.concatenate(vals)
     order = np.argsort(e)
     tags = mesh.meshtags(msh, fdim, e[order], v[order])
-    return Body(msh, tags, {"bottom": 1, "top": 2}, "plane_strain", ("neo-hookean", LAME),
-                name=name)
+    return Body(msh, tags, {"bottom": 1, "top": 2}, kind, ("neo-hookean", LAME), name=name)
+
+
+def block(comm, x0, x1, y0, y1, nx, ny, name):
+    """Rectangle body with boundaries "bottom" (y = y0) and "top" (y = y1)."""
+    msh = mesh.create_rectangle(comm, [[x0, y0], [x1, y1]], [nx, ny],
+                                diagonal=mesh.DiagonalType.left)
+    return tagged_body(msh, y0, y1, "plane_strain", name)
 
 
 def two_blocks(comm, friction, fixed_master, top=(0.02, -0.02), nx=(8, 11)):

@@ -10,13 +10,12 @@ import pytest
 from dolfinx import mesh
 from mpi4py import MPI
 from taylor import owned_arrays, taylor_orders
+from test_two_body import tagged_body
 
-from tribofx.body import Body
 from tribofx.interfaces import Contact, TwoBodyContact
 from tribofx.obstacles import rigid_plane
 from tribofx.problem import Problem
 
-LAME = {"mu": 1.0, "lmbda": 1.5}
 COMM = MPI.COMM_WORLD
 # every check is rank-independent: the suite runs them again on 2 processes (a rank's
 # slave nodes project onto master facets owned by the other rank)
@@ -27,16 +26,7 @@ def box(x0, x1, z0, z1, n, nz, name):
     """Box [x0, x1]² × [z0, z1] with boundaries "bottom" (z = z0) and "top" (z = z1)."""
     msh = mesh.create_box(COMM, [[x0, x0, z0], [x1, x1, z1]], [n, n, nz],
                           mesh.CellType.tetrahedron)
-    fdim = msh.topology.dim - 1
-    ents, vals = [], []
-    for tag, z in ((1, z0), (2, z1)):
-        e = mesh.locate_entities_boundary(msh, fdim, lambda x, z=z: np.isclose(x[2], z))
-        ents.append(e)
-        vals.append(np.full(len(e), tag, np.int32))
-    e, v = np.concatenate(ents), np.concatenate(vals)
-    order = np.argsort(e)
-    tags = mesh.meshtags(msh, fdim, e[order], v[order])
-    return Body(msh, tags, {"bottom": 1, "top": 2}, "3d", ("neo-hookean", LAME), name=name)
+    return tagged_body(msh, z0, z1, "3d", name)
 
 
 def two_boxes(friction, fixed_master, top=(0.01, 0.0, -0.02)):

@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -173,59 +174,73 @@ nb::dict lubrication_projection(const CArray2<double>& points, const CArray2<dou
 
 namespace tb = tribofx::two_body;
 
-tb::MasterSurface make_master(const CArray2<double>& nodes,
-                              const CArray2<std::int32_t>& segments)
+/// The 2D (segments) or 3D (triangles) master surface of the two-body kernels.
+template <int d>
+using Master = std::conditional_t<d == 2, tb::MasterSurface, tb::MasterSurface3>;
+
+template <int d>
+Master<d> make_master(const CArray2<double>& nodes, const CArray2<std::int32_t>& facets)
 {
-  if (nodes.shape(1) != 2 or segments.shape(1) != 2)
-    throw std::invalid_argument("master nodes and segments must have shape (., 2)");
-  if (segments.shape(0) == 0)
-    throw std::invalid_argument("the master surface has no segments");
+  const std::string dim = std::to_string(d);
+  if (nodes.shape(1) != d or facets.shape(1) != d)
+    throw std::invalid_argument("master nodes and facets must have shape (., " + dim + ")");
+  if (facets.shape(0) == 0)
+    throw std::invalid_argument("the master surface has no facets");
   const std::size_t nv = nodes.shape(0);
-  std::span<const std::int32_t> seg(segments.data(), 2 * segments.shape(0));
-  if (std::ranges::any_of(seg, [nv](std::int32_t i)
+  std::span<const std::int32_t> fac(facets.data(), d * facets.shape(0));
+  if (std::ranges::any_of(fac, [nv](std::int32_t i)
                           { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
-    throw std::invalid_argument("segment node index out of range");
-  return tb::MasterSurface(std::span<const double>(nodes.data(), 2 * nv), seg);
+    throw std::invalid_argument("facet node index out of range");
+  return Master<d>(std::span<const double>(nodes.data(), d * nv), fac);
 }
 
-nb::dict master_project(const tb::MasterSurface& master, const CArray2<double>& points)
+template <int d>
+nb::dict master_project(const Master<d>& master, const CArray2<double>& points)
 {
-  if (points.shape(1) != 2)
-    throw std::invalid_argument("points must have shape (., 2)");
+  if (points.shape(1) != d)
+    throw std::invalid_argument("points must have shape (., " + std::to_string(d) + ")");
   const std::size_t np = points.shape(0);
   std::vector<std::int32_t> facet(np);
-  std::vector<double> xi(np), distance(np);
+  std::vector<double> xi((d - 1) * np), distance(np);
   {
     nb::gil_scoped_release release;
-    master.project(std::span<const double>(points.data(), 2 * np), facet, xi, distance);
+    master.project(std::span<const double>(points.data(), d * np), facet, xi, distance);
   }
   nb::dict out;
   out["facet"] = to_numpy<std::int32_t>(std::move(facet), {np});
-  out["xi"] = to_numpy<double>(std::move(xi), {np});
+  if constexpr (d == 2)
+    out["xi"] = to_numpy<double>(std::move(xi), {np});
+  else
+    out["xi"] = to_numpy<double>(std::move(xi), {np, 2});
   out["distance"] = to_numpy<double>(std::move(distance), {np});
   return out;
 }
 
-void master_refit(tb::MasterSurface& master, const CArray2<double>& nodes)
+template <int d>
+void master_refit(Master<d>& master, const CArray2<double>& nodes)
 {
-  if (nodes.shape(1) != 2)
-    throw std::invalid_argument("nodes must have shape (., 2)");
-  master.refit(std::span<const double>(nodes.data(), 2 * nodes.shape(0)));
+  if (nodes.shape(1) != d)
+    throw std::invalid_argument("nodes must have shape (., " + std::to_string(d) + ")");
+  master.refit(std::span<const double>(nodes.data(), d * nodes.shape(0)));
 }
 
 using CArray1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using CArrayN = nb::ndarray<const double, nb::c_contig, nb::device::cpu>;
 
+/// Nodal residuals and tangents of the 2D (13 unknowns) or 3D (25) kernel;
+/// xi_old holds d - 1 values per node.
+template <int d>
 std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
-two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w,
+two_body_nodes(const CArray2<double>& q, const CArrayN& xi_old, const CArray1& w,
                const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction,
                bool eulerian)
 {
-  constexpr int N = tb::num_local;
+  constexpr int N = d == 2 ? tb::num_local : tb::num_local_3d;
   const std::size_t n = q.shape(0);
   if (q.shape(1) != N)
     throw std::invalid_argument("q must have shape (., " + std::to_string(N) + ")");
-  if (xi_old.shape(0) != n or w.shape(0) != n or w_c.shape(0) != n)
-    throw std::invalid_argument("xi_old, w and w_c need one entry per row of q");
+  if (xi_old.size() != (d - 1) * n or w.shape(0) != n or w_c.shape(0) != n)
+    throw std::invalid_argument("xi_old (d - 1 per node), w and w_c need one row per row of q");
   if (!(rho_n > 0) or (friction and !(rho_t > 0)) or mu < 0)
     throw std::invalid_argument("rho_n, rho_t must be > 0 and mu >= 0");
   std::vector<double> r(n * N), J(n * N * N);
@@ -233,67 +248,14 @@ two_body_nodes(const CArray2<double>& q, const CArray1& xi_old, const CArray1& w
     nb::gil_scoped_release release;
     const tb::Law law{rho_n, rho_t, mu, friction, eulerian};
     for (std::size_t i = 0; i < n; ++i)
-      tb::node_residual(q.data() + i * N, xi_old.data()[i], w.data()[i], w_c.data()[i], law,
-                        r.data() + i * N, J.data() + i * N * N);
-  }
-  return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
-          to_numpy<double>(std::move(J),
-                           {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
-}
-
-tb::MasterSurface3 make_master_3d(const CArray2<double>& nodes,
-                                  const CArray2<std::int32_t>& triangles)
-{
-  if (nodes.shape(1) != 3 or triangles.shape(1) != 3)
-    throw std::invalid_argument("master nodes and triangles must have shape (., 3)");
-  if (triangles.shape(0) == 0)
-    throw std::invalid_argument("the master surface has no triangles");
-  const std::size_t nv = nodes.shape(0);
-  std::span<const std::int32_t> tri(triangles.data(), 3 * triangles.shape(0));
-  if (std::ranges::any_of(tri, [nv](std::int32_t i)
-                          { return i < 0 or static_cast<std::size_t>(i) >= nv; }))
-    throw std::invalid_argument("triangle node index out of range");
-  return tb::MasterSurface3(std::span<const double>(nodes.data(), 3 * nv), tri);
-}
-
-nb::dict master_project_3d(const tb::MasterSurface3& master, const CArray2<double>& points)
-{
-  if (points.shape(1) != 3)
-    throw std::invalid_argument("points must have shape (., 3)");
-  const std::size_t np = points.shape(0);
-  std::vector<std::int32_t> facet(np);
-  std::vector<double> xi(2 * np), distance(np);
-  {
-    nb::gil_scoped_release release;
-    master.project(std::span<const double>(points.data(), 3 * np), facet, xi, distance);
-  }
-  nb::dict out;
-  out["facet"] = to_numpy<std::int32_t>(std::move(facet), {np});
-  out["xi"] = to_numpy<double>(std::move(xi), {np, 2});
-  out["distance"] = to_numpy<double>(std::move(distance), {np});
-  return out;
-}
-
-std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
-two_body_nodes_3d(const CArray2<double>& q, const CArray2<double>& xi_old, const CArray1& w,
-                  const CArray1& w_c, double rho_n, double rho_t, double mu, bool friction,
-                  bool eulerian)
-{
-  constexpr int N = tb::num_local_3d;
-  const std::size_t n = q.shape(0);
-  if (q.shape(1) != N)
-    throw std::invalid_argument("q must have shape (., " + std::to_string(N) + ")");
-  if (xi_old.shape(0) != n or xi_old.shape(1) != 2 or w.shape(0) != n or w_c.shape(0) != n)
-    throw std::invalid_argument("xi_old (n, 2), w and w_c (n) need one row per row of q");
-  if (!(rho_n > 0) or (friction and !(rho_t > 0)) or mu < 0)
-    throw std::invalid_argument("rho_n, rho_t must be > 0 and mu >= 0");
-  std::vector<double> r(n * N), J(n * N * N);
-  {
-    nb::gil_scoped_release release;
-    const tb::Law law{rho_n, rho_t, mu, friction, eulerian};
-    for (std::size_t i = 0; i < n; ++i)
-      tb::node_residual_3d(q.data() + i * N, xi_old.data() + 2 * i, w.data()[i],
-                           w_c.data()[i], law, r.data() + i * N, J.data() + i * N * N);
+    {
+      if constexpr (d == 2)
+        tb::node_residual(q.data() + i * N, xi_old.data()[i], w.data()[i], w_c.data()[i], law,
+                          r.data() + i * N, J.data() + i * N * N);
+      else
+        tb::node_residual_3d(q.data() + i * N, xi_old.data() + 2 * i, w.data()[i],
+                             w_c.data()[i], law, r.data() + i * N, J.data() + i * N * N);
+    }
   }
   return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
           to_numpy<double>(std::move(J),
@@ -351,35 +313,28 @@ NB_MODULE(_cpp, m)
       .def("__init__",
            [](tb::MasterSurface* self, const CArray2<double>& nodes,
               const CArray2<std::int32_t>& segments)
-           { new (self) tb::MasterSurface(make_master(nodes, segments)); },
+           { new (self) tb::MasterSurface(make_master<2>(nodes, segments)); },
            "nodes"_a.noconvert(), "segments"_a.noconvert())
-      .def("refit", &master_refit, "nodes"_a.noconvert())
-      .def("project", &master_project, "points"_a.noconvert())
+      .def("refit", &master_refit<2>, "nodes"_a.noconvert())
+      .def("project", &master_project<2>, "points"_a.noconvert())
       .def_prop_ro("num_segments", &tb::MasterSurface::num_segments);
-  m.def("two_body_nodes", &two_body_nodes, "q"_a.noconvert(), "xi_old"_a.noconvert(),
-        "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
-        "eulerian"_a = false,
-        "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
-        "tribofx.two_body.node_residuals).");
   nb::class_<tb::MasterSurface3>(m, "MasterSurface3",
                                  "Current triangulated 3D master surface with a refitted box "
                                  "tree (see tribofx.two_body)")
       .def("__init__",
            [](tb::MasterSurface3* self, const CArray2<double>& nodes,
               const CArray2<std::int32_t>& triangles)
-           { new (self) tb::MasterSurface3(make_master_3d(nodes, triangles)); },
+           { new (self) tb::MasterSurface3(make_master<3>(nodes, triangles)); },
            "nodes"_a.noconvert(), "triangles"_a.noconvert())
-      .def("refit",
-           [](tb::MasterSurface3& self, const CArray2<double>& nodes)
-           {
-             if (nodes.shape(1) != 3)
-               throw std::invalid_argument("nodes must have shape (., 3)");
-             self.refit(std::span<const double>(nodes.data(), 3 * nodes.shape(0)));
-           },
-           "nodes"_a.noconvert())
-      .def("project", &master_project_3d, "points"_a.noconvert())
+      .def("refit", &master_refit<3>, "nodes"_a.noconvert())
+      .def("project", &master_project<3>, "points"_a.noconvert())
       .def_prop_ro("num_segments", &tb::MasterSurface3::num_triangles);
-  m.def("two_body_nodes_3d", &two_body_nodes_3d, "q"_a.noconvert(), "xi_old"_a.noconvert(),
+  m.def("two_body_nodes", &two_body_nodes<2>, "q"_a.noconvert(), "xi_old"_a.noconvert(),
+        "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
+        "eulerian"_a = false,
+        "Nodal two-body contact residuals (n, 13) and tangents (n, 13, 13) (see "
+        "tribofx.two_body.node_residuals).");
+  m.def("two_body_nodes_3d", &two_body_nodes<3>, "q"_a.noconvert(), "xi_old"_a.noconvert(),
         "w"_a.noconvert(), "w_c"_a.noconvert(), "rho_n"_a, "rho_t"_a, "mu"_a, "friction"_a,
         "eulerian"_a = false,
         "Nodal 3D two-body contact residuals (n, 25) and tangents (n, 25, 25) (see "

@@ -143,21 +143,51 @@ public:
                std::span<double> xi, std::span<double> distance) const
   {
     const std::size_t np = points.size() / 3;
+    // visit the points in a spatially coherent order (cells of a 64^3 grid over
+    // their bounding box, lexicographic), so that the previous point's triangle
+    // is a close bound for the next one (warm start) and the tree stays in cache
+    std::array<double, 3> lo, hi;
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
     for (std::size_t p = 0; p < np; ++p)
+      for (int c = 0; c < 3; ++c)
+      {
+        lo[c] = std::min(lo[c], points[3 * p + c]);
+        hi[c] = std::max(hi[c], points[3 * p + c]);
+      }
+    std::vector<std::uint32_t> key(np);
+    for (std::size_t p = 0; p < np; ++p)
+    {
+      std::uint32_t k = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double span = hi[c] - lo[c];
+        const auto cell = static_cast<std::uint32_t>(
+            span > 0 ? std::min(63.0, 64.0 * (points[3 * p + c] - lo[c]) / span) : 0.0);
+        k = 64 * k + cell;
+      }
+      key[p] = k;
+    }
+    std::vector<std::size_t> order(np);
+    for (std::size_t p = 0; p < np; ++p)
+      order[p] = p;
+    std::stable_sort(order.begin(), order.end(),
+                     [&key](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+    std::int32_t prev = -1;
+    for (const std::size_t p : order)
     {
       const double* x = points.data() + 3 * p;
       double dmin = std::numeric_limits<double>::infinity();
       std::int32_t best = -1;
       double bv = 0.0, bw = 0.0;
-      // warm start: the previous point's triangle bounds the search (slave nodes
-      // come in mesh order, so neighbours are near); the tie rule is unchanged
-      if (p > 0 and facet[p - 1] >= 0)
+      // warm start: the previous point's triangle bounds the search; the tie rule
+      // (lowest index) is unchanged, the pruning keeps ties
+      if (prev >= 0)
       {
-        const std::int32_t t = facet[p - 1];
-        const double* X = vertices(t);
+        const double* X = vertices(prev);
         const auto [d2, v, w] = triangle_closest(x, X, X + 3, X + 6);
         dmin = std::sqrt(d2);
-        best = t;
+        best = prev;
         bv = v;
         bw = w;
       }
@@ -179,6 +209,7 @@ public:
       xi[2 * p] = bv;
       xi[2 * p + 1] = bw;
       distance[p] = dmin;
+      prev = best;
     }
   }
 

@@ -274,6 +274,7 @@ class TwoBodyContact:
         mrow, mcol = problem.global_rows(self.master.u)
         _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
                                               np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+        k.setdefault("master_rows", {})[id(problem)] = rc
         rm, cm = rc[:, :d], rc[:, d:]
         seg, f, old_seg = k["seg"], k["facet"], k["old_seg"]
         n, L = len(self._q), num_local(d)
@@ -320,9 +321,7 @@ class TwoBodyContact:
                                    for r in ring])
             self._ring_seg = seg
         ring = self._ring[f]                                   # (n, width) master nodes
-        mrow, mcol = problem.global_rows(self.master.u)
-        _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
-                                              np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+        rc = k["master_rows"][id(problem)]                     # gathered by _rows
         valid = ring >= 0
         width = d * ring.shape[1]
         rr = np.where(valid[..., None], rc[np.maximum(ring, 0), :d], -1).reshape(len(f), width)
