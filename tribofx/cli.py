@@ -14,7 +14,12 @@ class _Parser(argparse.ArgumentParser):
 
 def _list():
     from .cases import CASES
+    from .runner import COMMON_PARAMS
 
+    print("every case:")
+    for p in COMMON_PARAMS:
+        extra = f" one of {list(p.choices)}" if p.choices else ""
+        print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
     for name, case in sorted(CASES.items()):
         print(f"{name}: {case.doc}")
         for p in case.params:
@@ -61,6 +66,10 @@ def main(argv=None):
     run.add_argument("case", help="case name, or a run file FILE.toml (case = \"…\" and a "
                      "[parameters] table; --set overrides it)")
     run.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    run.add_argument("--petsc-option", action="append", default=[], metavar="KEY[=VALUE]",
+                     help="PETSc option for every problem of the run (e.g. "
+                     "ksp_monitor, mat_mumps_icntl_35=1); a key starting with tribofx_ "
+                     "is set as given")
     run.add_argument("--out", default=None)
     run.add_argument("--quiet", action="store_true", help="no progress bar")
     run.add_argument("-v", "--verbose", action="store_true",
@@ -84,13 +93,23 @@ def main(argv=None):
             sys.stderr.write(f"tribofx: error: --set expects KEY=VALUE, got {item!r}\n")
             return 2
         overrides[key.strip()] = value.strip()
+    petsc = {}
+    for item in args.petsc_option:
+        key, sep, value = item.partition("=")
+        key = key.strip().lstrip("-")
+        if not key or (sep and not value.strip()) or any(c.isspace() for c in key):
+            sys.stderr.write(f"tribofx: error: --petsc-option expects KEY or KEY=VALUE, "
+                             f"got {item!r}\n")
+            return 2
+        petsc[key] = value.strip() if sep else None
     try:
         import dolfinx_solver  # noqa: F401  (must precede dolfinx/petsc4py)
 
         from .runner import run_case
 
         summary = run_case(args.case, overrides, args.out or f"results/{args.case}",
-                           progress=not args.quiet, verbose=args.verbose)
+                           progress=not args.quiet, verbose=args.verbose,
+                           petsc_options=petsc)
     except InputError as err:
         from mpi4py import MPI
 

@@ -42,10 +42,9 @@ from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
-from . import pattern
+from . import pattern, solvers
 from .lifetimes import LIFETIMES, weak_callback
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
-from .solvers import DirectSolver
 
 __all__ = [
     "BlockTolerance",
@@ -78,7 +77,7 @@ class Problem:
             all, in component order); the others enter as data.  A staggered
             scheme builds one Problem per subset.
         name: options prefix ``tribofx_<name>_`` of the SNES, KSP and PC.
-        solver: linear-solver strategy (default :class:`tribofx.solvers.DirectSolver`).
+        solver: linear-solver strategy (default: the run's, :func:`tribofx.solvers.choose`).
         max_it: maximum Newton iterations.
         max_backtracks: step halvings of the backtracking line search (0: full steps).
         petsc_options: further defaults under the prefix (the command line wins).
@@ -123,14 +122,15 @@ class Problem:
         self.name = name if count == 0 else f"{name}{count}"
         self.prefix = f"tribofx_{self.name}_"
         self.max_it, self.max_backtracks = int(max_it), int(max_backtracks)
-        self.solver = solver if solver is not None else DirectSolver()
         # DOLFINx sorts the conditions into blocks by space; those on unknowns that
         # are not solved for here are ignored
         self.bcs = [bc for c in self.components for bc in c.bcs()]
         self._create_snes()
+        self.solver = solver if solver is not None else solvers.choose(self)
         defaults = {"snes_type": "newtonls", "snes_linesearch_type": "basic",
                     "snes_max_it": self.max_it, "snes_max_fail": 1,
-                    **self.solver.options(), **(petsc_options or {})}
+                    **self.solver.options(), **(petsc_options or {}),
+                    **solvers.run_options()}
         opts = PETSc.Options()
         for key, value in defaults.items():
             if not opts.hasName(self.prefix + key):
@@ -181,6 +181,11 @@ class Problem:
         """Return the number of rows of ``ui`` owned by this rank."""
         V = ui.function_space
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
+
+    def block_start(self, k):
+        """Global row of the first owned dof of unknown ``k`` on this rank."""
+        return self._x.getOwnershipRange()[0] + sum(
+            self._owned_size(uj) for uj in self.u[:k])
 
     def _owned(self, vec, ui):
         """Owned part of an assembled, reverse-scattered DOLFINx vector of ``ui``'s space."""
@@ -289,8 +294,7 @@ class Problem:
                 cols = np.full(n, -1, dtype=np.int64)
                 self._global[key] = (cols, cols)
                 return self._global[key]
-            start = self._x.getOwnershipRange()[0] + sum(
-                self._owned_size(uj) for uj in self.u[:k])
+            start = self.block_start(k)
             f = fem.Function(V)
             n_own = self._owned_size(ui)
             f.x.array[:n_own] = start + np.arange(n_own)
@@ -335,6 +339,7 @@ class Problem:
 
     def _converged(self, snes, it, norms):
         fnorm = norms[2]
+        self._report.linear_iterations = snes.getLinearSolveIterations()
         b = snes.getFunction()[0]
         blocks = self._block_norms(b)
         self._report.residuals.append(fnorm)
@@ -423,6 +428,7 @@ class Problem:
         try:
             self._get_unknowns(self._x)
             self._grow_pattern()
+            self.solver.prepare(self)
             self.snes.solve(None, self._x)
             self._set_unknowns(self._x)
         except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step

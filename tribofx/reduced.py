@@ -145,6 +145,10 @@ class ReducedProblem(Problem):
     def _owned(self, vec, ui):
         return vec.array[:self._owned_size(ui)]
 
+    def block_start(self, k):
+        """Global row of the first owned dof of unknown ``k`` on this rank."""
+        return self._row0 + int(self._offsets()[1][self.comm.rank][k])
+
     def _offsets(self):
         """Local offset of each unknown's rows on every rank, and each rank's first row."""
         boff = [np.concatenate([[0], np.cumsum(s)])[:-1] for s in self._sizes]

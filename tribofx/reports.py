@@ -33,7 +33,8 @@ class NewtonReport:
 
     ``blocks[k]`` are the per-block stopping measures max |r/w| at iteration k,
     ``increments[k]`` the per-block max |Δx| of the Newton correction that led to
-    iterate k + 1 (in the unknowns' units).
+    iterate k + 1 (in the unknowns' units); ``linear_iterations`` the Krylov
+    iterations of the whole solve (1 per Newton step for a direct solve).
     """
 
     iterations: int = 0
@@ -41,6 +42,7 @@ class NewtonReport:
     blocks: list = field(default_factory=list)
     increments: list = field(default_factory=list)
     reason: int = 0
+    linear_iterations: int = 0
     names: list = field(default_factory=list)
 
     def rates(self, floor=1e-13):

@@ -4,12 +4,21 @@ from pathlib import Path
 
 from mpi4py import MPI
 
+from . import solvers
 from .cases import get_case
 from .output import RunRecord, write_vtx
-from .params import resolve
+from .params import Param, resolve
 from .problem import NewtonDivergence
 
-__all__ = ["run_case"]
+__all__ = ["COMMON_PARAMS", "run_case"]
+
+#: parameters every case accepts (``--set solver=iterative``)
+COMMON_PARAMS = (
+    Param("solver", str, "auto", "-",
+          "linear solver: direct (MUMPS LU), iterative (GMRES, AMG on the bulk, Schur "
+          f"complement of the interface unknowns), auto (iterative in 3D from "
+          f"{solvers.AUTO_THRESHOLD} unknowns)", choices=solvers.STRATEGIES),
+)
 
 
 def _progress_bar(total, name="run"):
@@ -19,8 +28,12 @@ def _progress_bar(total, name="run"):
 
 
 def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=True,
-             verbose=False):
+             verbose=False, petsc_options=None):
     """Run case ``name`` with ``overrides`` {key: text}; returns the summary dict.
+
+    ``petsc_options`` {key: value} go to every problem of the run
+    (:func:`tribofx.solvers.run_settings`); they and the linear solver each
+    problem used are recorded in the summary.
 
     Raises :class:`tribofx.params.InputError` for bad input.  A Newton failure
     that step cutting cannot cure ends the run with status "failed: …"; the last
@@ -36,17 +49,23 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     once per load/time step; the bar length is ``values["steps"]`` when present.
     """
     case = get_case(name)
-    values = resolve(case.params, overrides or {})
+    params = tuple(case.params) + COMMON_PARAMS
+    values = resolve(params, overrides or {})
     case.validate(values)
-    units = {p.name: p.unit for p in case.params}
+    units = {p.name: p.unit for p in params}
     out = Path(out)
     record = RunRecord(name, values, units, out, comm)
     record.profile = None
+    record.data["petsc_options"] = dict(petsc_options or {})
     bar = _progress_bar(values.get("steps", 1), name) if progress and comm.rank == 0 else None
     status = "ok"
     prob = None
     try:
-        prob = case.run(values, record, progress=bar, verbose=verbose)
+        with solvers.run_settings(values["solver"], petsc_options):
+            try:
+                prob = case.run(values, record, progress=bar, verbose=verbose)
+            finally:
+                record.data["linear_solver"] = dict(solvers.used)
     except NewtonDivergence as err:
         status = f"failed: {err}"
         prob = getattr(err, "problem", None)

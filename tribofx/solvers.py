@@ -3,9 +3,121 @@
 A strategy gives the PETSc options of the Newton system's KSP/PC (set under the
 problem's prefix unless the command line sets them) and may configure the KSP
 after SNES is set up (fieldsplit index sets, near-nullspaces).
+
+* :class:`DirectSolver` — MUMPS LU.  PETSc redoes only the numeric factorisation
+  while the matrix keeps its nonzero pattern (its ``nonzerostate``), so the
+  symbolic analysis is reused across Newton iterations and load/time steps; a
+  pattern that grows (new contact couplings) triggers one new analysis.  Block
+  low-rank compression (MUMPS ICNTL(35), dropping tolerance CNTL(7)) is an option.
+* :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
+  *bulk* field (vector unknowns on a mesh of full dimension: displacements,
+  shape mappings) is solved by one V-cycle of algebraic multigrid (GAMG with the
+  rigid-body near-nullspace of each bulk unknown, or hypre BoomerAMG); the
+  *interface* field (everything else: contact multipliers, Reynolds pressure,
+  void fraction, load and shape multipliers) enters by the Schur complement
+  S = A₁₁ − A₁₀ A₀₀⁻¹ A₀₁, preconditioned by LU of its "selfp" approximation
+  A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁.  The saddle-point rows of an active contact node
+  (zero diagonal in A₁₁) are regular in S, so the split holds through
+  active-set changes.
+* ``auto`` — direct below :data:`AUTO_THRESHOLD` unknowns or in 2D (where LU
+  fill is mild), iterative above it in 3D; the threshold is the crossover
+  measured by ``benchmarks/bench_solvers.py``.
+
+A run chooses its strategy and extra PETSc options with :func:`run_settings`
+(``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
+without the ``tribofx_`` prefix applies under every problem's prefix; a key
+with it is set as given.
 """
 
-__all__ = ["DirectSolver"]
+from contextlib import contextmanager
+
+import numpy as np
+from petsc4py import PETSc
+
+__all__ = [
+    "AUTO_THRESHOLD",
+    "STRATEGIES",
+    "DirectSolver",
+    "IterativeSolver",
+    "choose",
+    "rigid_body_modes",
+    "run_settings",
+    "used",
+]
+
+#: unknowns above which ``auto`` picks the iterative strategy in 3D
+AUTO_THRESHOLD = 150_000
+STRATEGIES = ("direct", "iterative", "auto")
+
+_run = {"strategy": "auto", "options": {}}
+#: ``{problem name: strategy description}`` of the problems built in this run
+used = {}
+
+
+@contextmanager
+def run_settings(strategy="auto", petsc_options=None):
+    """Strategy and extra PETSc options of the problems built inside the block.
+
+    Args:
+        strategy: "direct", "iterative" or "auto".
+        petsc_options: {key: value}; keys with the ``tribofx_`` prefix are put
+            into the options database as given, others under every problem's
+            prefix (as defaults the command line still overrides).
+    """
+    if strategy not in STRATEGIES:
+        raise ValueError(f"unknown solver strategy {strategy!r}")
+    saved = dict(_run)
+    opts = PETSc.Options()
+    options = dict(petsc_options or {})
+    verbatim = {k: v for k, v in options.items() if k.startswith("tribofx_")}
+    _run.update(strategy=strategy,
+                options={k: v for k, v in options.items() if k not in verbatim})
+    for k, v in verbatim.items():
+        opts[k] = v
+    used.clear()
+    try:
+        yield
+    finally:
+        _run.clear()
+        _run.update(saved)
+        for k in verbatim:
+            opts.delValue(k)
+
+
+def run_options():
+    """Extra PETSc options of the current run (without prefix)."""
+    return dict(_run["options"])
+
+
+def choose(problem):
+    """Return the run's strategy for ``problem`` (``auto``: by dimension and size)."""
+    strategy = _run["strategy"]
+    if strategy == "auto":
+        gdim = max(ui.function_space.mesh.geometry.dim for ui in problem.u)
+        big = gdim == 3 and problem.num_dofs >= AUTO_THRESHOLD
+        strategy = "iterative" if big and bulk_fields(problem)[0] else "direct"
+    solver = IterativeSolver() if strategy == "iterative" else DirectSolver()
+    used[problem.name] = solver.describe(problem)
+    return solver
+
+
+def bulk_fields(problem):
+    """Return the indices of the bulk unknowns, and of the rest.
+
+    Bulk: vector fields on a distributed mesh of the problem's full dimension
+    (displacements, shape mappings of a body); a field on a facet submesh, a
+    scalar, or a field on a smaller replicated mesh (a cross-section) is not.
+    """
+    gdim = max(ui.function_space.mesh.geometry.dim for ui in problem.u)
+    size = max(ui.function_space.mesh.comm.size for ui in problem.u)
+    bulk, rest = [], []
+    for k, ui in enumerate(problem.u):
+        V = ui.function_space
+        msh = V.mesh
+        full = msh.topology.dim == msh.geometry.dim == gdim and msh.comm.size == size
+        vector = V.dofmap.index_map_bs == gdim and len(V.value_shape) == 1
+        (bulk if full and vector else rest).append(k)
+    return bulk, rest
 
 
 class DirectSolver:
@@ -13,15 +125,190 @@ class DirectSolver:
 
     Args:
         package: factorisation package (``mumps``).
+        blr: MUMPS block low-rank factorisation with dropping tolerance ``blr``
+            (None: full-rank).  A compressed LU is inexact: Newton then converges
+            linearly at a rate ~``blr`` · cond; 1e-10 keeps it quadratic to the
+            stopping tolerances here.
     """
 
-    def __init__(self, package="mumps"):
+    name = "direct"
+
+    def __init__(self, package="mumps", blr=None):
         self.package = package
+        self.blr = blr
 
     def options(self):
         """PETSc options of the KSP and PC (without the problem's prefix)."""
-        return {"ksp_type": "preonly", "pc_type": "lu",
-                "pc_factor_mat_solver_type": self.package}
+        out = {"ksp_type": "preonly", "pc_type": "lu",
+               "pc_factor_mat_solver_type": self.package}
+        if self.blr is not None:
+            out.update({"mat_mumps_icntl_35": 1, "mat_mumps_cntl_7": self.blr})
+        return out
 
     def configure(self, problem):
         """Nothing beyond the options for a direct solve."""
+
+    def prepare(self, problem):
+        """Nothing to do before a solve."""
+
+    def describe(self, problem):
+        """One line naming the strategy (recorded in ``summary.json``)."""
+        blr = f", BLR {self.blr:g}" if self.blr is not None else ""
+        return f"direct ({self.package} LU{blr}, {problem.num_dofs} unknowns)"
+
+
+def rigid_body_modes(V, owned=True):
+    """Rigid-body modes of the vector space ``V`` (2D: 3, 3D: 6), on its owned dofs.
+
+    Returns an array (modes, owned dofs · bs) in the space's blocked layout:
+    translations e_i, rotations e_i × (x − x̄), with x the dof coordinates.
+    """
+    gdim = V.mesh.geometry.dim
+    n = V.dofmap.index_map.size_local
+    x = V.tabulate_dof_coordinates()[:n, :gdim]
+    comm = V.mesh.comm
+    centre = comm.allreduce(x.sum(axis=0)) / max(comm.allreduce(n), 1)
+    x = x - centre
+    modes = []
+    for i in range(gdim):
+        m = np.zeros((n, gdim))
+        m[:, i] = 1.0
+        modes.append(m)
+    pairs = [(0, 1)] if gdim == 2 else [(0, 1), (1, 2), (2, 0)]
+    for i, j in pairs:
+        m = np.zeros((n, gdim))
+        m[:, i], m[:, j] = -x[:, j], x[:, i]
+        modes.append(m)
+    return np.array([m.ravel() for m in modes])
+
+
+class IterativeSolver:
+    """GMRES with a bulk-AMG / interface-Schur fieldsplit (see the module docstring).
+
+    Args:
+        amg: "gamg" (smoothed aggregation with the rigid-body near-nullspace) or
+            "hypre" (BoomerAMG, nodal coarsening by blocks of gdim).
+        rtol: relative tolerance of GMRES (the Newton corrections are exact to it).
+        restart: GMRES restart length.
+    """
+
+    name = "iterative"
+
+    def __init__(self, amg="gamg", rtol=1e-10, restart=300, max_it=3000):
+        if amg not in ("gamg", "hypre"):
+            raise ValueError(f"unknown AMG {amg!r}")
+        self.amg, self.rtol, self.restart, self.max_it = amg, rtol, restart, max_it
+        self._split = None
+
+    def _amg_options(self, pre):
+        if self.amg == "hypre":
+            return {f"{pre}pc_type": "hypre", f"{pre}pc_hypre_type": "boomeramg",
+                    f"{pre}pc_hypre_boomeramg_strong_threshold": 0.5,
+                    f"{pre}pc_hypre_boomeramg_agg_nl": 1}
+        return {f"{pre}pc_type": "gamg", f"{pre}pc_gamg_type": "agg",
+                f"{pre}pc_gamg_threshold": 0.01,
+                f"{pre}mg_levels_ksp_type": "chebyshev",
+                f"{pre}mg_levels_pc_type": "jacobi",
+                f"{pre}mg_levels_ksp_max_it": 2}
+
+    def options(self):
+        """PETSc options of the KSP and PC (without the problem's prefix)."""
+        # right preconditioning: rtol bounds the true residual of the Newton system
+        out = {"ksp_type": "gmres", "ksp_gmres_restart": self.restart, "ksp_pc_side": "right",
+               "ksp_rtol": self.rtol, "ksp_atol": 0.0, "ksp_max_it": self.max_it,
+               "ksp_gmres_modifiedgramschmidt": None,
+               "ksp_error_if_not_converged": True}
+        out.update({"pc_type": "fieldsplit", "pc_fieldsplit_type": "schur",
+                    "pc_fieldsplit_schur_fact_type": "full",
+                    "pc_fieldsplit_schur_precondition": "selfp",
+                    "fieldsplit_bulk_ksp_type": "preonly",
+                    "fieldsplit_interface_ksp_type": "preonly",
+                    "fieldsplit_interface_pc_type": "lu",
+                    "fieldsplit_interface_pc_factor_mat_solver_type": "mumps"})
+        out.update(self._amg_options("fieldsplit_bulk_"))
+        return out
+
+    def single_field_options(self):
+        """Options when there is no interface field: AMG on the whole matrix."""
+        out = {k: v for k, v in self.options().items()
+               if k.startswith("ksp_")}
+        out.update(self._amg_options(""))
+        return out
+
+    def configure(self, problem):
+        """Index sets of the two fields and the near-nullspace of the bulk one."""
+        bulk, rest = bulk_fields(problem)
+        if not bulk:
+            raise ValueError(f"problem {problem.name!r} has no bulk field for AMG")
+        comm = problem.snes.comm
+        ksp = problem.snes.getKSP()
+        pc = ksp.getPC()
+
+        def index_set(ks, bs=1):
+            idx = [problem.block_start(k) + np.arange(problem._owned_size(problem.u[k]))
+                   for k in ks]
+            idx = np.concatenate(idx) if idx else np.zeros(0, dtype=np.int64)
+            iset = PETSc.IS().createGeneral(idx.astype(PETSc.IntType), comm=comm)
+            iset.setBlockSize(bs)    # AMG aggregates nodes (blocks of gdim), not dofs
+            return iset
+
+        nsp = self._near_nullspace(problem, bulk, comm) if self.amg == "gamg" else None
+        if rest:
+            gdim = problem.u[bulk[0]].function_space.mesh.geometry.dim
+            is0, is1 = index_set(bulk, gdim), index_set(rest)
+            if nsp is not None:
+                is0.compose("nearnullspace", nsp)
+            pc.setType("fieldsplit")
+            pc.setFieldSplitIS(("bulk", is0), ("interface", is1))
+            self._split = (is0, is1, nsp)
+        else:
+            opts = PETSc.Options()
+            for key, value in self.single_field_options().items():
+                if not opts.hasName(problem.prefix + key):
+                    opts[problem.prefix + key] = value
+            pc.setType(self.amg)
+            pc.setFromOptions()
+            self._split = (None, None, nsp)
+        ksp.setFromOptions()
+
+    def prepare(self, problem):
+        """Near-nullspace on the current matrix (a grown pattern is a new matrix)."""
+        nsp = self._split[2] if self._split else None
+        if nsp is not None and self._split[0] is None:
+            problem.A.setNearNullSpace(nsp)
+
+    def _near_nullspace(self, problem, bulk, comm):
+        """Rigid-body modes of each bulk unknown, in the bulk field's layout."""
+        sizes = [problem._owned_size(problem.u[k]) for k in bulk]
+        vecs = []
+        for j, k in enumerate(bulk):
+            for mode in rigid_body_modes(problem.u[k].function_space):
+                arr = np.zeros(sum(sizes))
+                s = sum(sizes[:j])
+                arr[s:s + sizes[j]] = mode
+                v = PETSc.Vec().createMPI((sum(sizes), PETSc.DECIDE), comm=comm)
+                v.setArray(arr)
+                vecs.append(v)
+        # MatNullSpaceCreate needs an orthonormal basis
+        basis = _orthonormalise(vecs)
+        return PETSc.NullSpace().create(vectors=basis, comm=comm)
+
+    def describe(self, problem):
+        """One line naming the strategy and its fields (recorded in ``summary.json``)."""
+        bulk, rest = bulk_fields(problem)
+        names = lambda ks: "+".join(problem.u[k].name for k in ks) or "-"  # noqa: E731
+        return (f"iterative (GMRES rtol {self.rtol:g}; bulk {names(bulk)}: {self.amg}; "
+                f"interface {names(rest)}: Schur selfp LU; {problem.num_dofs} unknowns)")
+
+
+def _orthonormalise(vecs):
+    """Orthonormalise PETSc vectors by modified Gram–Schmidt (dropping dependent ones)."""
+    out = []
+    for v in vecs:
+        for q in out:
+            v.axpy(-v.dot(q), q)
+        n = v.norm()
+        if n > 1e-12:
+            v.scale(1.0 / n)
+            out.append(v)
+    return out

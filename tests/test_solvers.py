@@ -1,0 +1,172 @@
+"""Linear-solver strategies (:mod:`tribofx.solvers`): the iterative fieldsplit gives the
+direct answer to solver tolerance, the direct one reuses its symbolic analysis.
+
+Tolerance of "same answer": both runs stop their Newton iterations by the same
+per-block test, and Newton converges quadratically (shown in test_taylor and
+test_hertz), so the error of a converged iterate is below its last correction
+|Δx_last| (e_{k+1} = O(e_k²) ≪ e_k ≈ |Δx_k|).  Two runs of the same problem then
+differ by at most the sum of their last corrections; GMRES adds its relative
+residual 1e-10 of a correction, far below that.  A floor of 1e-12 of the field's
+size covers round-off when both last corrections are at round-off themselves.
+"""
+
+import numpy as np
+import pytest
+import ufl
+from dolfinx import fem, mesh
+from mpi4py import MPI
+from petsc4py import PETSc
+
+from tribofx import solvers
+from tribofx.cases.hertz import HertzCase
+from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh
+from tribofx.continuation import ConstantParameter
+from tribofx.params import resolve
+from tribofx.references import hertz
+
+
+def _max(comm, a):
+    return comm.allreduce(float(np.max(np.abs(a), initial=0.0)), op=MPI.MAX)
+
+
+def _last_correction(report, name):
+    return report.increments[-1][report.names.index(name)] if report.increments else 0.0
+
+
+def _hertz_steps(strategy, offsets, friction=0.3):
+    """3D Hertz with friction at prescribed approaches δ (mm): states and reports per step."""
+    v = resolve(HertzCase.params, {"dim": "3", "mesh": "1", "friction": str(friction)})
+    HertzCase.validate(v)
+    with solvers.run_settings(strategy):
+        body, contact, problem = HertzCase.build(v)
+    delta = ConstantParameter(contact.counterpart.offset, 2)
+    out = []
+    for d in offsets:
+        delta.set(d)
+        rep = problem.solve()
+        problem.commit()
+        n_active = contact.body.mesh.comm.allreduce(
+            int(np.sum(contact.nodal_data()["active"])), op=MPI.SUM)
+        out.append({"u": body.u.x.array.copy(), "lam": contact.lam_n.x.array.copy(),
+                    "report": rep, "active": n_active})
+    return problem, body, contact, out
+
+
+@pytest.mark.mpi
+def test_iterative_matches_direct_through_active_set_changes():
+    """Frictional 3D Hertz loaded in three approach steps: the contact zone grows
+    (active set changes in every step, stick and slip nodes), fieldsplit = LU."""
+    v = resolve(HertzCase.params, {"dim": "3"})
+    HertzCase.validate(v)
+    a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
+    offsets = [0.3 * a**2 / v["R"], 0.6 * a**2 / v["R"], a**2 / v["R"]]
+    pd, bd, cd, direct = _hertz_steps("direct", offsets)
+    pi, bi, ci, iterative = _hertz_steps("iterative", offsets)
+    assert pd.solver.name == "direct" and pi.solver.name == "iterative"
+    assert pi.snes.getKSP().getPC().getType() == "fieldsplit"
+    comm = bd.mesh.comm
+    actives = [s["active"] for s in direct]
+    assert actives[0] < actives[1] < actives[2], actives   # the test exercises changes
+    for sd, si in zip(direct, iterative):
+        assert si["active"] == sd["active"]
+        for key, name in (("u", "displacement"), ("lam", "contact_pressure_nominal")):
+            tol = (_last_correction(sd["report"], name) + _last_correction(si["report"], name)
+                   + 1e-12 * _max(comm, sd[key]))
+            diff = _max(comm, si[key] - sd[key])
+            print(f"{key}: |iterative - direct| = {diff:.2e} <= {tol:.2e}")
+            assert diff <= tol
+        # more than one Krylov iteration per Newton step: really iterative
+        assert si["report"].linear_iterations > si["report"].iterations
+
+
+@pytest.mark.mpi
+def test_iterative_groove_reduced_problem():
+    """The monolithic wear step of §5.3 (ReducedProblem: displacement, multipliers, the
+    replicated cross-section shape Ψ and its multipliers ζ): one implicit step, fieldsplit
+    with Ψ and ζ in the Schur field, equals LU."""
+    case = WearBallHalfspaceCase
+    v = case.resolved(resolve(case.params, {}))
+    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    h = 0.9 * a
+    comm = MPI.COMM_WORLD
+    states = {}
+    for strategy in ("direct", "iterative"):
+        with solvers.run_settings(strategy):
+            stepper, info = case.build(v, comm, h=h,
+                                       mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
+        case.initial_contact(stepper, info)
+        rep = stepper.step(50.0).reports[-1]
+        wear = stepper.wear
+        states[strategy] = (wear.body.u.x.array.copy(), wear.w2.x.array.copy(), rep,
+                            stepper.problem)
+        assert stepper.problem.solver.name == strategy
+    (ud, wd, rd, _), (ui, wi, ri, pi) = states["direct"], states["iterative"]
+    assert [pi.u[k].name for k in solvers.bulk_fields(pi)[0]] == ["displacement"]
+    tol_u = (_last_correction(rd, "displacement") + _last_correction(ri, "displacement")
+             + 1e-12 * _max(comm, ud))
+    tol_w = (_last_correction(rd, "shape_change") + _last_correction(ri, "shape_change")
+             + 1e-12 * _max(comm, wd))
+    du, dw = _max(comm, ui - ud), _max(comm, wi - wd)
+    print(f"|du| = {du:.2e} <= {tol_u:.2e}, |dw| = {dw:.2e} <= {tol_w:.2e}")
+    assert du <= tol_u and dw <= tol_w
+
+
+@pytest.mark.mpi
+def test_direct_reuses_symbolic_factorisation():
+    """MUMPS analyses the pattern once; every Newton iteration of every load step
+    after it refactorises numerically only (PETSc event counts)."""
+    PETSc.Log.begin()
+    sym, num = PETSc.Log.Event("MatLUFactorSym"), PETSc.Log.Event("MatLUFactorNum")
+    before = sym.getPerfInfo()["count"], num.getPerfInfo()["count"]
+    v = resolve(HertzCase.params, {"dim": "3"})
+    HertzCase.validate(v)
+    a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
+    problem, _, _, steps = _hertz_steps("direct", [0.5 * a**2 / v["R"], a**2 / v["R"]])
+    newton = sum(s["report"].iterations for s in steps)
+    n_sym = sym.getPerfInfo()["count"] - before[0]
+    n_num = num.getPerfInfo()["count"] - before[1]
+    print(f"{newton} Newton iterations: {n_sym} symbolic, {n_num} numeric factorisations")
+    assert newton > 2
+    assert n_sym == 1 and n_num == newton
+
+
+def test_rigid_body_modes_are_the_kernel_of_elasticity():
+    """K r = 0 for the 3 (2D) or 6 (3D) modes, K assembled by UFL without conditions."""
+    comm = MPI.COMM_WORLD
+    for msh in (mesh.create_unit_square(comm, 4, 5), mesh.create_unit_cube(comm, 3, 2, 4)):
+        d = msh.geometry.dim
+        V = fem.functionspace(msh, ("Lagrange", 1, (d,)))
+        u, w = ufl.TrialFunction(V), ufl.TestFunction(V)
+        eps = ufl.sym(ufl.grad(u))
+        a = fem.form(ufl.inner(2 * eps + ufl.tr(eps) * ufl.Identity(d), ufl.grad(w)) * ufl.dx)
+        import dolfinx.fem.petsc as fp
+
+        K = fp.assemble_matrix(a)
+        K.assemble()
+        modes = solvers.rigid_body_modes(V)
+        assert modes.shape[0] == (3 if d == 2 else 6)
+        for m in modes:
+            r = K.createVecRight()
+            r.setArray(m)
+            y = K.createVecLeft()
+            K.mult(r, y)
+            # round-off: entries of K ~ 1, |r| ~ 1, 30 terms per row
+            assert y.norm(PETSc.NormType.INFINITY) <= 1e-12 * K.norm(PETSc.NormType.INFINITY)
+            assert r.norm() > 0.1
+
+
+def test_bulk_and_interface_fields():
+    """Displacements are the AMG field; facet and replicated unknowns go to the Schur field."""
+    v = resolve(HertzCase.params, {"dim": "3", "mesh": "0", "friction": "0.3"})
+    HertzCase.validate(v)
+    with solvers.run_settings("auto"):
+        _, _, problem = HertzCase.build(v)
+    bulk, rest = solvers.bulk_fields(problem)
+    assert [problem.u[k].name for k in bulk] == ["displacement"]
+    assert [problem.u[k].name for k in rest] == ["contact_pressure_nominal",
+                                                 "friction_traction_nominal"]
+    # auto: a small 3D problem is solved directly
+    assert problem.solver.name == "direct"
+    with pytest.raises(ValueError):
+        with solvers.run_settings("magic"):
+            pass
