@@ -12,7 +12,7 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
 * :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
   *bulk* field (vector unknowns on a mesh of full dimension: displacements,
   shape mappings) is solved by one V-cycle of algebraic multigrid (GAMG with the
-  rigid-body near-nullspace of each bulk unknown, or hypre BoomerAMG); the
+  rigid-body near-nullspace of each bulk unknown); the
   *interface* field (everything else: contact multipliers, Reynolds pressure,
   void fraction, load and shape multipliers) enters by the Schur complement
   S = A₁₁ − A₁₀ A₀₀⁻¹ A₀₁, preconditioned by LU of its "selfp" approximation
@@ -186,8 +186,8 @@ class IterativeSolver:
     """GMRES with a bulk-AMG / interface-Schur fieldsplit (see the module docstring).
 
     Args:
-        amg: "gamg" (smoothed aggregation with the rigid-body near-nullspace) or
-            "hypre" (BoomerAMG, nodal coarsening by blocks of gdim).
+        amg: "gamg" (smoothed aggregation with the rigid-body near-nullspace; the
+            PETSc of the DOLFINx wheel has no hypre).
         rtol: relative tolerance of GMRES (the Newton corrections are exact to it).
         restart: GMRES restart length.
     """
@@ -195,20 +195,19 @@ class IterativeSolver:
     name = "iterative"
 
     def __init__(self, amg="gamg", rtol=1e-10, restart=300, max_it=3000):
-        if amg not in ("gamg", "hypre"):
+        if amg != "gamg":
             raise ValueError(f"unknown AMG {amg!r}")
         self.amg, self.rtol, self.restart, self.max_it = amg, rtol, restart, max_it
         self._split = None
 
     def _amg_options(self, pre):
-        if self.amg == "hypre":
-            return {f"{pre}pc_type": "hypre", f"{pre}pc_hypre_type": "boomeramg",
-                    f"{pre}pc_hypre_boomeramg_strong_threshold": 0.5,
-                    f"{pre}pc_hypre_boomeramg_agg_nl": 1}
+        # Chebyshev on SOR sweeps: on the graded tensor grid of the groove (cell aspect
+        # ratios to ~24) it takes the GAMG-CG iterations of the elastic block from 118
+        # (Jacobi) to 37; on a uniform cube 18 -> 13 (benchmarks/bench_solvers.py notes)
         return {f"{pre}pc_type": "gamg", f"{pre}pc_gamg_type": "agg",
                 f"{pre}pc_gamg_threshold": 0.01,
                 f"{pre}mg_levels_ksp_type": "chebyshev",
-                f"{pre}mg_levels_pc_type": "jacobi",
+                f"{pre}mg_levels_pc_type": "sor",
                 f"{pre}mg_levels_ksp_max_it": 2}
 
     def options(self):
@@ -252,7 +251,7 @@ class IterativeSolver:
             iset.setBlockSize(bs)    # AMG aggregates nodes (blocks of gdim), not dofs
             return iset
 
-        nsp = self._near_nullspace(problem, bulk, comm) if self.amg == "gamg" else None
+        nsp = self._near_nullspace(problem, bulk, comm)
         if rest:
             gdim = problem.u[bulk[0]].function_space.mesh.geometry.dim
             is0, is1 = index_set(bulk, gdim), index_set(rest)
