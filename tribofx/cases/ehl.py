@@ -43,6 +43,7 @@ from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
 from ..params import InputError, Param, number_list
+from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 
@@ -245,7 +246,7 @@ class EHLCylinderLayerCase:
         film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
         xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
         return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
-                "p_max": float(prof["p"].max()), "x_p_max": float(xx[np.argmax(prof["p"])]),
+                "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
                 "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
                 "tangential_force": float(f[0]),
                 "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,

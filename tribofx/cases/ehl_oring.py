@@ -81,6 +81,7 @@ from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..obstacles import rigid_plane
 from ..params import InputError, Param, number_list
+from ..positions import parabolic_vertex
 from ..plots import plot_oring
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
@@ -263,8 +264,9 @@ class ORingSeal:
             thr = ps + 0.5 * (p[k] - ps)      # loaded zone: half the rise above p_s
             hot = z[p > thr]
             qz = prof["q"][(prof["z_cell"] > hot.min()) & (prof["z_cell"] < hot.max())]
-            res = {"p_max": float(p[k]), "z_p_max": float(z[k]), "h_at_p_max": float(h[k]),
-                   "h_min": float(h[i]), "z_h_min": float(z[i]),
+            res = {"p_max": float(p[k]), "z_p_max": parabolic_vertex(z, p),
+                   "h_at_p_max": float(h[k]),
+                   "h_min": float(h[i]), "z_h_min": parabolic_vertex(z, h, "min"),
                    "h_mean": float(np.mean(h[p > thr])), "flux": float(np.median(qz)),
                    "flux_spread": float((qz.max() - qz.min()) / abs(np.median(qz))),
                    "oscillation": oscillation_indicator(h, p, thr)}

@@ -33,6 +33,7 @@ from mpi4py import MPI
 
 from ..interfaces import RigidFilm
 from ..params import InputError, Param
+from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import cylinder_references, slider_pressure, slider_reference
 
@@ -62,7 +63,7 @@ def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=F
 
 
 def _peak_and_rupture(prof, crossing):
-    """Nodal peak (p_max, x_p_max) and rupture point downstream of the peak.
+    """Peak (nodal p_max, sub-element x_p_max) and rupture point downstream of the peak.
 
     ``crossing``: linear zero crossing of p (no cavitation model).  Otherwise a
     sub-element estimate: at a Swift–Stieber rupture p = p' = 0, so p ≈ c (x_r − x)²
@@ -74,24 +75,24 @@ def _peak_and_rupture(prof, crossing):
     """
     x, p = prof["x"], prof["p"]
     i = int(np.argmax(p))
-    pm = float(p[i])
+    pm, xm = float(p[i]), parabolic_vertex(x, p)
     if crossing:
         neg = np.nonzero(p[i:] < 0)[0]
         if not len(neg):
-            return pm, float(x[i]), float(x[-1])
+            return pm, xm, float(x[-1])
         j = i + neg[0]
-        return pm, float(x[i]), float(x[j - 1] - p[j - 1] * (x[j] - x[j - 1]) / (p[j] - p[j - 1]))
+        return pm, xm, float(x[j - 1] - p[j - 1] * (x[j] - x[j - 1]) / (p[j] - p[j - 1]))
     zero = np.nonzero(p[i:] <= 1e-9 * pm)[0]
     if not len(zero):
-        return pm, float(x[i]), float(x[-1])
+        return pm, xm, float(x[-1])
     j = i + zero[0]                      # first node of the cavitated zone
     if j - i < 5:
-        return pm, float(x[i]), float(x[j])
+        return pm, xm, float(x[j])
     k = slice(j - 4, j - 1)
     slope, icpt = np.polyfit(x[k], np.sqrt(p[k]), 1)
     if slope >= 0:                       # not decaying like a double root
-        return pm, float(x[i]), float(x[j])
-    return pm, float(x[i]), float(-icpt / slope)
+        return pm, xm, float(x[j])
+    return pm, xm, float(-icpt / slope)
 
 
 def _reformation(prof):
@@ -157,7 +158,7 @@ class SliderCase:
         peak = None
         if film.sub.comm.rank == 0:
             i = int(np.argmax(np.abs(prof["p"])))
-            peak = (float(prof["p"][i]), float(prof["x"][i]))
+            peak = (float(prof["p"][i]), parabolic_vertex(prof["x"], np.abs(prof["p"])))
             record.profile = {"x": prof["x"], "p": prof["p"], "h": prof["h"], "K": K, "L": L,
                               "h0": h0, "U": U, "mu": mu}
         pm, xm = film.sub.comm.bcast(peak, root=0)
