@@ -154,7 +154,8 @@ def main():
         if ranks == 2 and s:
             print(f"  2-rank speed-up {problem} level {level} {strategy}: "
                   f"{s['solve_s'] / r['solve_s']:.2f}, peak memory per rank "
-                  f"{max(r['peak_mb_per_rank']):.0f} MB vs serial {s['peak_mb_per_rank'][0]:.0f} MB")
+                  f"{max(r['peak_mb_per_rank']):.0f} MB vs serial "
+                  f"{s['peak_mb_per_rank'][0]:.0f} MB")
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps(rows, indent=1))
 

@@ -81,8 +81,8 @@ from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..obstacles import rigid_plane
 from ..params import InputError, Param, number_list
-from ..positions import parabolic_vertex
 from ..plots import plot_oring
+from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
 
