@@ -57,6 +57,7 @@ import math
 import numpy as np
 import ufl
 from dolfinx import fem
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -64,6 +65,7 @@ from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.pin import NAMES, pin_body, tip_height
+from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
 from ..output import VTXSeries
 from ..params import InputError, Param, number_list
@@ -129,6 +131,10 @@ class WearPinCase:
               "2 p(study_ref_dt) - p(2 study_ref_dt)", choices=("fine", "richardson")),
         Param("study_critical", bool, True, "-",
               "study=dt: also compute the explicit critical step of each mesh"),
+        Param("mesh_file", str, "", "-",
+              "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
+              "(loaded), sides (x fixed); replaces W, H, R_tip, mesh (lowest tip point "
+              "moved to y = 0)"),
     )
 
     @staticmethod
@@ -141,6 +147,8 @@ class WearPinCase:
     @staticmethod
     def validate(v):
         """Check cross-parameter consistency."""
+        if v["mesh_file"] and v["study"] != "none":
+            raise InputError("mesh_file works with study=none only")
         R = v["R_tip"]
         if R and R < v["W"] / 2:
             raise InputError(f"R_tip = {R} mm must be 0 (flat) or >= W/2 = {v['W'] / 2} mm")
@@ -192,10 +200,15 @@ class WearPinCase:
         n = cls.n_elements(v) if n is None else n
         W, E, mu = v["W"], v["E"], v["friction"]
         cyclic = v["mode"] == "cyclic"
-        msh, ft = pin_body(W, v["H"], v["R_tip"] if v["R_tip"] > 0 else math.inf, n, comm)
+        if v["mesh_file"]:
+            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(NAMES))
+            W, h = cls._user_pin(msh, ft, names)
+        else:
+            msh, ft = pin_body(W, v["H"], v["R_tip"] if v["R_tip"] > 0 else math.inf, n, comm)
+            names, h = NAMES, W / n
         lame_mu, lmbda = lame_parameters(E, v["nu"])
         # the pin is at rest; in steady sliding the plane moves at V e_x (v_T = −V e_x, eq. 26)
-        body = Body(msh, ft, NAMES, "plane_strain", ("neo-hookean", {"mu": lame_mu,
+        body = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": lame_mu,
                                                                      "lmbda": lmbda}),
                     shape=True, aux=(E, 0.3), velocity=(0.0, 0.0) if mu > 0 else None)
         load = fem.Constant(msh, 1.0)
@@ -204,7 +217,7 @@ class WearPinCase:
         body.add_shape_dirichlet("sides", 0)
         body.add_shape_dirichlet("top", 1)
         contact = Contact(body, "contact", rigid_plane(np.zeros(2), np.array([0.0, 1.0])),
-                          rho_n=E / (W / n), friction=mu,
+                          rho_n=E / h, friction=mu,
                           slip="lagrangian" if cyclic else "eulerian", V_master=(v["V"], 0.0))
         if setup is not None:
             setup(body, contact)
@@ -215,6 +228,27 @@ class WearPinCase:
         stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],
                           max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_pin")
         return stepper, load
+
+    @staticmethod
+    def _user_pin(msh, ft, names):
+        """Move a user's pin so that its lowest tip point is at y = 0; (width, tip element size).
+
+        The width is the x extent of the mesh, the element size the mean length of
+        the tip facets (the augmentation ρ_N = E/h).
+        """
+        comm = msh.comm
+        x = msh.geometry.x
+        tip = np.unique(dmesh.entities_to_geometry(
+            msh, 1, ft.find(names["contact"]), False).ravel())
+        y0 = comm.allreduce(float(np.min(x[tip, 1], initial=np.inf)), op=MPI.MIN)
+        x[:, 1] -= y0
+        lo = comm.allreduce(float(np.min(x[:, 0], initial=np.inf)), op=MPI.MIN)
+        hi = comm.allreduce(float(np.max(x[:, 0], initial=-np.inf)), op=MPI.MAX)
+        length = comm.allreduce(fem.assemble_scalar(fem.form(
+            1.0 * ufl.Measure("ds", msh, subdomain_data=ft)(names["contact"]))), op=MPI.SUM)
+        im = msh.topology.index_map(1)
+        nf = comm.allreduce(int(np.sum(ft.find(names["contact"]) < im.size_local)), op=MPI.SUM)
+        return hi - lo, length / nf
 
     @staticmethod
     def load_up(stepper, load, v, verbose=False):
@@ -228,11 +262,29 @@ class WearPinCase:
         R = v["R_tip"]
         a = min(hertz(v["q"] * v["W"], R, v["E"], 0.3, line=True).a, v["W"] / 2) if R else 0.0
         delta0 = (a * a / (2 * R) if a else 0.0) + v["q"] * v["H"] / v["E"]
+        if v["mesh_file"]:   # a user's tip: its middle half starts in contact
+            delta0 = WearPinCase._user_approach(stepper.wear.contact, v)
         stepper.wear.body.u.x.array.reshape(-1, 2)[:, 1] = -delta0
         load.value = 0.0
         control = Continuation(stepper.problem, ConstantParameter(load), verbose=verbose)
         control.march(1.0, steps=1, predictor=False)
         return int(sum(control.record))
+
+    @staticmethod
+    def _user_approach(contact, v):
+        """Initial approach of a user's pin: tip height at |x| = W/4, plus the compression qH/E."""
+        msh = contact.body.mesh
+        comm = msh.comm
+        x = msh.geometry.x
+        lo, hi = (comm.allreduce(f(x[:, 0]), op=o) for f, o in
+                  ((np.min, MPI.MIN), (np.max, MPI.MAX)))
+        H = comm.allreduce(float(np.max(x[:, 1])), op=MPI.MAX)
+        d = contact.nodal_data()
+        xs = d["X"]
+        quarter = 0.25 * (hi - lo)
+        near = np.abs(np.abs(xs[:, 0] - 0.5 * (lo + hi)) - quarter) <= 0.25 * quarter
+        rise = comm.allreduce(float(np.max(xs[near, 1], initial=0.0)), op=MPI.MAX)
+        return rise + v["q"] * H / v["E"]
 
     @staticmethod
     def vtx_fields(stepper):
