@@ -272,7 +272,7 @@ class WearPinCase:
 
     @staticmethod
     def _user_approach(contact, v):
-        """Initial approach of a user's pin: tip height at |x| = W/4, plus the compression qH/E."""
+        """Return the initial approach of a user's pin: tip height at |x| = W/4 plus qH/E."""
         msh = contact.body.mesh
         comm = msh.comm
         x = msh.geometry.x
