@@ -100,3 +100,22 @@ def test_bad_user_mesh(tmp_path, make, fragment):
     assert len(lines) == 1, p.stderr
     assert fragment in lines[0] and "Traceback" not in p.stderr
     assert not out.exists()   # nothing written
+
+
+def test_documented_example_mesh_is_accepted(tmp_path):
+    """demos/make_user_pin.py (the README's example) writes a mesh the reader accepts."""
+    from pathlib import Path
+
+    from mpi4py import MPI
+
+    from tribofx.meshes.pin import NAMES
+    from tribofx.meshes.user import read_user_mesh
+
+    script = Path(__file__).parents[1] / "demos" / "make_user_pin.py"
+    path = tmp_path / "user_pin.msh"
+    p = subprocess.run([sys.executable, str(script), str(path)], capture_output=True,
+                       text=True, env=ENV, timeout=300)
+    assert p.returncode == 0, p.stderr
+    msh, ft, names = read_user_mesh(path, MPI.COMM_SELF, 2, tuple(NAMES))
+    assert set(names) == set(NAMES)
+    assert msh.topology.index_map(2).size_global > 100
