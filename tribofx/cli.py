@@ -72,6 +72,8 @@ def main(argv=None):
                      "is set as given")
     run.add_argument("--out", default=None)
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--resume", action="store_true",
+                     help="continue a stopped run from the checkpoint in --out (wear cases)")
     run.add_argument("-v", "--verbose", action="store_true",
                      help="print the Newton residuals of every block")
     args = parser.parse_args(argv)
@@ -109,15 +111,23 @@ def main(argv=None):
 
         summary = run_case(args.case, overrides, args.out or f"results/{args.case}",
                            progress=not args.quiet, verbose=args.verbose,
-                           petsc_options=petsc)
+                           petsc_options=petsc, resume=args.resume)
     except InputError as err:
         from mpi4py import MPI
 
         if MPI.COMM_WORLD.rank == 0:  # every rank detects it; one line in all
             sys.stderr.write(f"tribofx: error: {err}\n")
         return 2
+    from mpi4py import MPI
+
+    root = MPI.COMM_WORLD.rank == 0
+    if summary["status"].startswith("interrupted"):
+        if root:
+            sys.stderr.write(f"tribofx: run {summary['status']}; continue it with --resume\n")
+        return 130
     if not summary["status"].startswith("ok"):
-        sys.stderr.write(f"tribofx: run {summary['status']}\n")
+        if root:
+            sys.stderr.write(f"tribofx: run {summary['status']}\n")
         return 1
     return 0
 

@@ -1,13 +1,14 @@
 """Run a named case: parameters → solve → ``summary.json``, plots and VTX in an output folder."""
 
+import inspect
 from pathlib import Path
 
 from mpi4py import MPI
 
-from . import solvers
+from . import interrupt, solvers
 from .cases import get_case
 from .output import RunRecord, write_vtx
-from .params import Param, resolve
+from .params import InputError, Param, resolve
 from .problem import NewtonDivergence
 
 __all__ = ["COMMON_PARAMS", "run_case"]
@@ -27,8 +28,13 @@ def _progress_bar(total, name="run"):
     return tqdm(total=total, desc=name, unit="step")
 
 
+def resumable(name):
+    """Whether case ``name`` writes a checkpoint each step and can be resumed."""
+    return "resume" in inspect.signature(get_case(name).run).parameters
+
+
 def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=True,
-             verbose=False, petsc_options=None):
+             verbose=False, petsc_options=None, resume=False):
     """Run case ``name`` with ``overrides`` {key: text}; returns the summary dict.
 
     ``petsc_options`` {key: value} go to every problem of the run
@@ -38,6 +44,12 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     Raises :class:`tribofx.params.InputError` for bad input.  A Newton failure
     that step cutting cannot cure ends the run with status "failed: …"; the last
     converged state is still written.
+
+    A resumable case (its ``run`` takes ``checkpoint`` and ``resume``) writes a
+    checkpoint into ``out/checkpoint`` after every step; ``resume=True``
+    continues from it.  SIGINT/SIGTERM stop such a run after the step in
+    progress with status "interrupted: …" and its state written
+    (:mod:`tribofx.interrupt`).
 
     A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple) and
     the static/class methods ``validate(values)``, ``run(values, record, progress,
@@ -49,11 +61,18 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     once per load/time step; the bar length is ``values["steps"]`` when present.
     """
     case = get_case(name)
+    if resume and not resumable(name):
+        raise InputError(f"case {name!r} cannot be resumed (no per-step checkpoint)")
     params = tuple(case.params) + COMMON_PARAMS
     values = resolve(params, overrides or {})
     case.validate(values)
     units = {p.name: p.unit for p in params}
     out = Path(out)
+    kwargs = {}
+    if resumable(name):
+        kwargs = {"checkpoint": out / "checkpoint", "resume": resume}
+        if resume and not (out / "checkpoint" / "state.json").is_file():
+            raise InputError(f"nothing to resume: no checkpoint in {out / 'checkpoint'}")
     record = RunRecord(name, values, units, out, comm)
     record.profile = None
     record.data["petsc_options"] = dict(petsc_options or {})
@@ -61,13 +80,16 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     status = "ok"
     prob = None
     try:
-        with solvers.run_settings(values["solver"], petsc_options):
+        with solvers.run_settings(values["solver"], petsc_options), interrupt.watch():
             try:
-                prob = case.run(values, record, progress=bar, verbose=verbose)
+                prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:
                 record.data["linear_solver"] = dict(solvers.used)
     except NewtonDivergence as err:
         status = f"failed: {err}"
+        prob = getattr(err, "problem", None)
+    except interrupt.Interrupted as err:
+        status = f"interrupted: {err}"
         prob = getattr(err, "problem", None)
     finally:
         if bar is not None:

@@ -60,6 +60,7 @@ from pathlib import Path
 import numpy as np
 from mpi4py import MPI
 
+from . import interrupt
 from .continuation import Continuation
 from .cycles import ReciprocatingCycle
 from .forms import wear as wf
@@ -169,8 +170,12 @@ class Checkpoint:
     def __init__(self, directory, comm):
         self.dir, self.comm = Path(directory), comm
 
-    def write(self, state, names):
-        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields."""
+    def write(self, state, names, history=None):
+        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields.
+
+        ``history``: a JSON-able dict of the run's records so far (the case's
+        time series), restored with the state on ``--resume``.
+        """
         self.dir.mkdir(parents=True, exist_ok=True)
         npz = self.dir / f"state_r{self.comm.rank}.npz"
         tmp = self.dir / f".state_r{self.comm.rank}.tmp.npz"
@@ -180,7 +185,8 @@ class Checkpoint:
         if self.comm.rank == 0:
             meta = {k: state[k] for k in ("t", "dt", "cuts", "steps")}
             meta.update(mpi_size=self.comm.size, fields=list(names),
-                        shapes=[list(np.shape(a)) for a in state["fields"]])
+                        shapes=[list(np.shape(a)) for a in state["fields"]],
+                        history=history or {})
             tmp = self.dir / ".state.tmp.json"
             tmp.write_text(json.dumps(meta, indent=1))
             os.replace(tmp, self.dir / "state.json")
@@ -194,7 +200,8 @@ class Checkpoint:
                              f"not {self.comm.size}")
         with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
             fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
-        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields}
+        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields,
+                "history": meta.get("history", {})}
 
 
 class Stepper:
@@ -248,6 +255,7 @@ class Stepper:
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
         self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
+        self.history = {}     # the case's JSON-able records, kept in the checkpoint
         self.last_increment = None
         self.last_increments = None
 
@@ -299,7 +307,9 @@ class Stepper:
     def load_checkpoint(self, directory=None):
         """Restore the state of the checkpoint in ``directory`` (default: this stepper's)."""
         ck = self.checkpoint if directory is None else Checkpoint(directory, self.comm)
-        self.restore(ck.read())
+        state = ck.read()
+        self.restore(state)
+        self.history = state["history"]
 
     # -- one slow step -------------------------------------------------------------
     def _check_mesh(self):
@@ -439,11 +449,14 @@ class Stepper:
     def run(self, T, dt, on_step=None, progress=None):
         """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
 
-        ``on_step(stepper, report)`` is called after every accepted step (after
-        the checkpoint is written).  Raises the last failure when a step still
-        fails after ``max_cuts`` halvings (the state is the last accepted one).
+        ``on_step(stepper, report)`` is called after every accepted step, then
+        the checkpoint is written (with :attr:`history`) and a SIGINT/SIGTERM
+        received meanwhile stops the run (:func:`tribofx.interrupt.check`).
+        Raises the last failure when a step still fails after ``max_cuts``
+        halvings (the state is the last accepted one).
         """
         self.dt = dt
+        interrupt.arm()
         while self.t < T * (1 - 1e-12):
             h = min(dt / 2**self.cuts, T - self.t)
             try:
@@ -457,12 +470,13 @@ class Stepper:
             # double the step back once t is aligned with the coarser step
             while self.cuts > 0 and _aligned(self.t, dt / 2 ** (self.cuts - 1)):
                 self.cuts -= 1
-            if self.checkpoint is not None:
-                self.checkpoint.write(self.state(), self.field_names())
             if on_step is not None:
                 on_step(self, report)
+            if self.checkpoint is not None:
+                self.checkpoint.write(self.state(), self.field_names(), self.history)
             if progress is not None:
                 progress.update(1)
+            interrupt.check(self.comm, self.t)
 
 
 def _aligned(t, h):

@@ -60,6 +60,7 @@ from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
@@ -302,8 +303,13 @@ class WearPinCase:
         return plot_wear_pin(profile, outdir)
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None):
-        """Integrate the wear of the pin from t = 0 to T; record per-step histories."""
+    def run(cls, v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
+            resume=False):
+        """Integrate the wear of the pin from t = 0 to T; record per-step histories.
+
+        ``checkpoint``: directory of the per-step checkpoint (state and the
+        histories so far); ``resume``: continue from it instead of t = 0.
+        """
         if v["study"] == "dt":
             from ..wear_study import run_dt_study
 
@@ -317,9 +323,19 @@ class WearPinCase:
         record.data["num_dofs"] = stepper.problem.num_dofs
         if stepper.shape is not None:
             record.data["num_dofs_shape"] = stepper.shape.num_dofs
-        hist = {k: [] for k in ("time", "wear_volume", "max_wear_depth", "contact_radius",
-                                "newton_iterations", "wear_rate_integral", "dt")}
-        profiles, ptimes = [], []
+        keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
+                "newton_iterations", "wear_rate_integral", "dt")
+        if resume:
+            stepper.load_checkpoint()
+            if progress is not None:
+                progress.update(stepper.steps)
+        # the records live in the stepper's history, so the checkpoint carries them
+        h = stepper.history
+        hist = h.setdefault("hist", {k: [] for k in keys})
+        profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
+        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
+        if stepper.cycle is None:
+            record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
         def log(t, its, dt):
             area, _ = contact.measures()
@@ -337,14 +353,17 @@ class WearPinCase:
         def on_step(st, rep):
             log(st.t, rep.iterations, rep.dt)
             if st.cycle is None:
-                record.data.setdefault("newton_residuals", []).append(
+                record.data["newton_residuals"].append(
                     [float(x) for x in rep.reports[-1].residuals])
 
-        log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
-        # the worn shape and the deformation at every step (ParaView time series)
+        if not resume:
+            log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
+        # the worn shape and the deformation at every step (ParaView time series; a
+        # resumed run writes its steps into a series of its own)
+        stem = "displacement_series" + (f"_from_t{stepper.t:g}" if resume else "")
         series = VTXSeries(comm, getattr(record, "outdir", None),
-                           {"displacement_series": [wear.body.u, wear.body.w]})
-        series.write(0.0)
+                           {stem: [wear.body.u, wear.body.w]})
+        series.write(stepper.t)
 
         def on_step_series(st, rep):
             on_step(st, rep)
@@ -352,7 +371,7 @@ class WearPinCase:
 
         try:
             stepper.run(v["T"], cls.slow_step(v), on_step=on_step_series, progress=progress)
-        except NewtonDivergence as err:
+        except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = stepper
             raise
         finally:

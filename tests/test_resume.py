@@ -1,0 +1,91 @@
+"""A wear run stopped by SIGINT/SIGTERM between steps and resumed gives the uninterrupted result.
+
+The run writes its state and histories into ``--out/checkpoint`` after every
+step; a signal stops it after the step in progress (exit status 130, summary
+"interrupted", the last converged state written); ``--resume`` continues from
+the checkpoint.  Reference: the same run without interruption.  Tolerance: the
+restored state is the checkpoint's arrays exactly, so the two runs can differ
+only by the Newton stopping tolerance of the steps after the restart (the wear
+rows' relative tolerance 1e-7); in practice they agree to the last digit.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ENV = dict(os.environ, UCX_TLS="self,sm,tcp", OMP_NUM_THREADS="1")
+ARGS = ["run", "wear-pin", "--set", "mesh=0", "--set", "dt=100", "--quiet"]
+
+
+def _cli(ranks):
+    cli = [sys.executable, "-m", "tribofx.cli"]
+    if ranks > 1:
+        return [str(Path(sys.executable).parent / "mpiexec"), "-n", str(ranks)] + cli
+    return cli
+
+
+def _steps(out):
+    try:
+        return json.loads((out / "checkpoint" / "state.json").read_text())["steps"]
+    except (OSError, ValueError, KeyError):
+        return 0
+
+
+def _interrupted_then_resumed(out, ranks, sig):
+    p = subprocess.Popen(_cli(ranks) + ARGS + ["--out", str(out)], env=ENV,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.time()
+    while _steps(out) < 3 and p.poll() is None and time.time() - t0 < 600:
+        time.sleep(0.05)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=600)
+    assert p.returncode == 130, err
+    assert "interrupted" in err and "--resume" in err
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"].startswith("interrupted")
+    t_stop = s["results"]["time"]["value"][-1]
+    assert 300 <= t_stop < 1000
+    assert (out / "displacement.bp").exists()    # the last converged state
+    r = subprocess.run(_cli(ranks) + ARGS + ["--out", str(out), "--resume"], env=ENV,
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    return json.loads((out / "summary.json").read_text()), t_stop
+
+
+# serial: SIGTERM (a batch system's kill); 2 ranks: SIGINT to mpiexec (Ctrl-C), which
+# hydra forwards to the ranks (it turns a SIGTERM of its own into a hard kill of the ranks)
+@pytest.mark.parametrize("ranks,sig", [(1, signal.SIGTERM), (2, signal.SIGINT)])
+def test_interrupted_run_resumes_to_the_same_result(tmp_path, ranks, sig):
+    if ranks > 1 and not (Path(sys.executable).parent / "mpiexec").exists():
+        pytest.skip("no mpiexec next to the interpreter")
+    full = subprocess.run(_cli(ranks) + ARGS + ["--out", str(tmp_path / "full")], env=ENV,
+                          capture_output=True, text=True, timeout=600)
+    assert full.returncode == 0, full.stderr
+    a = json.loads((tmp_path / "full" / "summary.json").read_text())
+    b, t_stop = _interrupted_then_resumed(tmp_path / "stopped", ranks, sig)
+    print(f"{ranks} rank(s): stopped at t = {t_stop} s by {sig.name}, resumed")
+    ra, rb = a["results"], b["results"]
+    assert rb["time"]["value"] == ra["time"]["value"]
+    for key in ("wear_volume", "max_wear_depth", "contact_radius", "wear_rate_integral"):
+        for x, y in zip(rb[key]["value"], ra[key]["value"]):
+            assert abs(x - y) <= 1e-7 * max(abs(y), 1e-12), key
+    for x, y in zip(rb["final_profile"]["value"], ra["final_profile"]["value"]):
+        assert max(abs(p - q) for p, q in zip(x, y)) <= 1e-7
+    assert b["newton_iterations"][:len(a["newton_iterations"])] == a["newton_iterations"]
+
+
+def test_resume_without_checkpoint_is_bad_input(tmp_path):
+    r = subprocess.run(_cli(1) + ARGS + ["--out", str(tmp_path / "none"), "--resume"],
+                       env=ENV, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "nothing to resume" in lines[0]
+    r = subprocess.run(_cli(1) + ["run", "hertz", "--resume", "--out", str(tmp_path / "h")],
+                       env=ENV, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 2 and "cannot be resumed" in r.stderr
