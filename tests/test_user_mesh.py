@@ -107,7 +107,6 @@ def test_documented_example_mesh_is_accepted(tmp_path):
     from pathlib import Path
 
     from mpi4py import MPI
-
     from tribofx.meshes.pin import NAMES
     from tribofx.meshes.user import read_user_mesh
 
