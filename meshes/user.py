@@ -9,8 +9,10 @@ dimension) and cells of dimension d.  Every problem is reported as a one-line
 * the file cannot be read or is not a gmsh mesh;
 * its mesh has the wrong dimension;
 * a required group is missing, has the wrong dimension or holds no facet;
+* the mesh has no cells of dimension d in a physical group;
 * a cell is inverted or degenerate (its Jacobian determinant at the midpoint has
-  the sign opposite to the other cells', or is below 1e-12 of their mean size).
+  the sign opposite to the other cells' of its group, or is below 1e-12 of
+  their mean size).
 """
 
 import os
@@ -73,6 +75,9 @@ def read_user_mesh(path, comm, gdim, required):
         msg, groups, dim = _open_on_root(path, comm, gdim)
         if msg is None and dim != gdim:
             msg = f"mesh file {path!r} is {dim}D, the case needs a {gdim}D mesh"
+        if msg is None and not any(d == gdim for d, _ in groups.values()):
+            msg = (f"mesh file {path!r} has no physical group of dimension {gdim} "
+                   "(the body's cells)")
         if msg is None:
             for name in required:
                 if name not in groups:
@@ -85,24 +90,35 @@ def read_user_mesh(path, comm, gdim, required):
                     break
         if msg is not None:
             raise _error(msg)
-        data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=gdim)
+        try:
+            data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=gdim)
+        except RuntimeError as err:   # e.g. cells outside every physical group
+            raise _error(f"mesh file {path!r}: {str(err).splitlines()[0]}") from None
     finally:
         if comm.rank == 0 and gmsh.isInitialized():
             gmsh.clear()
         if not initialized:
             gmsh.finalize()
     msh, ft = data.mesh, data.facet_tags
+    if msh.topology.dim != gdim or ft is None:
+        raise _error(f"mesh file {path!r} does not give {gdim}D cells with tagged boundaries")
     names = {name: groups[name][1] for name in required}
     for name, tag in names.items():
         n = comm.allreduce(int(np.sum(ft.values == tag)), op=MPI.SUM)
         if n == 0:
             raise _error(f"physical group {name!r} in {path!r} holds no boundary facet")
-    _check_cells(msh, path)
+    _check_cells(msh, data.cell_tags, path)
     return msh, ft, names
 
 
-def _check_cells(msh, path):
-    """Raise InputError if a cell is inverted or degenerate (see the module docstring)."""
+def _check_cells(msh, cell_tags, path):
+    """Raise InputError if a cell is inverted or degenerate (see the module docstring).
+
+    gmsh orients the elements of one entity consistently, so the sign of det J is
+    compared within each cell group (two surfaces of opposite orientation are
+    valid); a cell of the minority sign in its group, or with |det J| below 1e-12
+    of the mean, is reported.
+    """
     comm = msh.comm
     V0 = fem.functionspace(msh, ("DG", 0))
     detj = fem.Function(V0)
@@ -110,12 +126,20 @@ def _check_cells(msh, path):
                                     V0.element.interpolation_points))
     n = msh.topology.index_map(msh.topology.dim).size_local
     d = detj.x.array[:n]
-    pos = comm.allreduce(int(np.sum(d > 0)), op=MPI.SUM)
-    neg = comm.allreduce(int(np.sum(d < 0)), op=MPI.SUM)
+    group = np.zeros(n, dtype=np.int64)
+    if cell_tags is not None:
+        owned = cell_tags.indices < n
+        group[cell_tags.indices[owned]] = cell_tags.values[owned]
+    tags = sorted(set().union(*comm.allgather(set(np.unique(group).tolist()))))
     total = comm.allreduce(n, op=MPI.SUM)
-    sign = 1.0 if pos >= neg else -1.0
     mean = comm.allreduce(float(np.sum(np.abs(d))), op=MPI.SUM) / max(total, 1)
-    bad = comm.allreduce(int(np.sum(sign * d <= 1e-12 * mean)), op=MPI.SUM)
+    bad = 0
+    for tag in tags:
+        g = d[group == tag]
+        pos = comm.allreduce(int(np.sum(g > 0)), op=MPI.SUM)
+        neg = comm.allreduce(int(np.sum(g < 0)), op=MPI.SUM)
+        sign = 1.0 if pos >= neg else -1.0
+        bad += comm.allreduce(int(np.sum(sign * g <= 1e-12 * mean)), op=MPI.SUM)
     if bad:
         raise _error(f"mesh file {path!r} has {bad} inverted or degenerate cell(s) "
                      f"of {total}")

@@ -77,7 +77,8 @@ def test_interrupted_run_resumes_to_the_same_result(tmp_path, ranks, sig):
             assert abs(x - y) <= 1e-7 * max(abs(y), 1e-12), key
     for x, y in zip(rb["final_profile"]["value"], ra["final_profile"]["value"]):
         assert max(abs(p - q) for p, q in zip(x, y)) <= 1e-7
-    assert b["newton_iterations"][:len(a["newton_iterations"])] == a["newton_iterations"]
+    assert b["newton_iterations"] == a["newton_iterations"]
+    assert len(b["newton_residuals"]) == len(a["newton_residuals"])
 
 
 def test_resume_without_checkpoint_is_bad_input(tmp_path):

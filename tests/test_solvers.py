@@ -170,3 +170,60 @@ def test_bulk_and_interface_fields():
     with pytest.raises(ValueError):
         with solvers.run_settings("magic"):
             pass
+
+
+@pytest.mark.mpi
+def test_iterative_single_field_is_amg():
+    """A body alone (no interface unknowns): GMRES + GAMG on the whole matrix, equal to LU.
+
+    A neo-Hookean block clamped at x = 0 and pulled by a dead traction at x = 1
+    (finite strain, several Newton steps); tolerance as for the split problems.
+    """
+    from tribofx.forms.hyperelastic import lame_parameters
+
+    from tribofx.body import Body
+    from tribofx.problem import Problem
+
+    comm = MPI.COMM_WORLD
+    out = {}
+    for strategy in ("direct", "iterative"):
+        msh = mesh.create_box(comm, [np.zeros(3), np.ones(3)], [6, 4, 4],
+                              mesh.CellType.tetrahedron)
+        fdim = 2
+        msh.topology.create_connectivity(fdim, 3)
+        left = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[0], 0.0))
+        right = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[0], 1.0))
+        idx = np.concatenate([left, right]).astype(np.int32)
+        val = np.concatenate([np.full(len(left), 1), np.full(len(right), 2)]).astype(np.int32)
+        order = np.argsort(idx)
+        ft = mesh.meshtags(msh, fdim, idx[order], val[order])
+        mu, lmbda = lame_parameters(1.0, 0.3)
+        body = Body(msh, ft, {"left": 1, "right": 2}, "3d",
+                    ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
+        body.add_dirichlet("left", np.zeros(3))
+        body.add_traction("right", ufl.as_vector([0.3, 0.0, 0.05]))
+        with solvers.run_settings(strategy):
+            problem = Problem([body], name=f"block_{strategy}")
+        rep = problem.solve()
+        pc = problem.snes.getKSP().getPC()
+        out[strategy] = (body.u.x.array.copy(), rep, pc.getType())
+    (ud, rd, pcd), (ui, ri, pci) = out["direct"], out["iterative"]
+    assert pcd == "lu" and pci == "gamg"
+    assert ri.iterations == rd.iterations and ri.iterations >= 3
+    tol = (_last_correction(rd, "displacement") + _last_correction(ri, "displacement")
+           + 1e-12 * _max(comm, ud))
+    diff = _max(comm, ui - ud)
+    print(f"|iterative - direct| = {diff:.2e} <= {tol:.2e}")
+    assert diff <= tol
+
+
+def test_iterative_without_bulk_field_falls_back_to_direct():
+    """A film alone (reynolds-slider) has nothing for AMG: solver=iterative gives LU."""
+    from tribofx.cases.reynolds import SliderCase
+
+    v = resolve(SliderCase.params, {})
+    SliderCase.validate(v)
+    with solvers.run_settings("iterative"):
+        _, problem = SliderCase.build(v)
+        assert problem.solver.name == "direct"
+        assert "no bulk field" in solvers.used[problem.name]

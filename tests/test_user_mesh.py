@@ -22,7 +22,7 @@ CLI = [sys.executable, "-m", "tribofx.cli"]
 W, H = 2.0, 2.0
 
 
-def _pin(path, n=16, groups=("contact", "top", "sides"), dim=2, flip=False):
+def _pin(path, n=16, groups=("contact", "top", "sides"), dim=2, flip=False, body=True):
     """Write a pin mesh: flat middle half, shoulders y = 0.4 (|x| − W/4)², sides, top."""
     gmsh.initialize(interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)
@@ -40,7 +40,7 @@ def _pin(path, n=16, groups=("contact", "top", "sides"), dim=2, flip=False):
     occ.synchronize()
     if dim == 3:
         gmsh.model.addPhysicalGroup(3, [1], 1, "body")
-    else:
+    elif body:
         gmsh.model.addPhysicalGroup(2, [surf], 1, "body")
     named = {"contact": [curves[0]], "top": [curves[2]], "sides": [curves[1], curves[3]]}
     for tag, name in enumerate(groups, start=1):
@@ -90,6 +90,9 @@ def test_user_pin_wears_by_archard(tmp_path):
     (lambda d: _pin(d / "nosides.msh", groups=("contact", "top")),
      "no physical group 'sides'"),
     (lambda d: _pin(d / "flip.msh", flip=True), "inverted or degenerate cell"),
+    # gmsh saves only the elements of physical groups: without a surface group the
+    # file holds the boundary curves alone
+    (lambda d: _pin(d / "nobody.msh", body=False), "the case needs a 2D mesh"),
 ])
 def test_bad_user_mesh(tmp_path, make, fragment):
     mesh = make(tmp_path)

@@ -6,8 +6,10 @@ loop after each accepted step and its checkpoint, raises :class:`Interrupted`
 on every rank when any rank got a signal (one MPI reduction per step).  The
 runner then writes the summary and the VTX output of that state; the CLI exits
 with status 130, and ``tribofx run ... --resume`` continues from the checkpoint.
+A second signal stops the process at once (default action).
 """
 
+import os
 import signal
 from contextlib import contextmanager
 
@@ -24,6 +26,10 @@ class Interrupted(RuntimeError):
 
 
 def _handler(signum, frame):
+    if _flag["signal"]:          # a second signal: stop now, the default way
+        signal.signal(signum, signal.SIG_DFL)
+        os.kill(os.getpid(), signum)
+        return
     _flag["signal"] = signum
 
 

@@ -129,7 +129,7 @@ class Problem:
         self.solver = solver if solver is not None else solvers.choose(self)
         defaults = {"snes_type": "newtonls", "snes_linesearch_type": "basic",
                     "snes_max_it": self.max_it, "snes_max_fail": 1,
-                    **self.solver.options(), **(petsc_options or {}),
+                    **self.solver.options(self), **(petsc_options or {}),
                     **solvers.run_options()}
         opts = PETSc.Options()
         for key, value in defaults.items():

@@ -1,5 +1,6 @@
 """Run a named case: parameters → solve → ``summary.json``, plots and VTX in an output folder."""
 
+import contextlib
 import inspect
 from pathlib import Path
 
@@ -80,7 +81,8 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     status = "ok"
     prob = None
     try:
-        with solvers.run_settings(values["solver"], petsc_options), interrupt.watch():
+        watch = interrupt.watch() if kwargs else contextlib.nullcontext()
+        with solvers.run_settings(values["solver"], petsc_options), watch:
             try:
                 prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:

@@ -96,6 +96,10 @@ def choose(problem):
         gdim = max(ui.function_space.mesh.geometry.dim for ui in problem.u)
         big = gdim == 3 and problem.num_dofs >= AUTO_THRESHOLD
         strategy = "iterative" if big and bulk_fields(problem)[0] else "direct"
+    if strategy == "iterative" and not bulk_fields(problem)[0]:
+        solver = DirectSolver()       # nothing for AMG (a film or cross-section alone)
+        used[problem.name] = solver.describe(problem) + "; iterative asked, no bulk field"
+        return solver
     solver = IterativeSolver() if strategy == "iterative" else DirectSolver()
     used[problem.name] = solver.describe(problem)
     return solver
@@ -137,7 +141,7 @@ class DirectSolver:
         self.package = package
         self.blr = blr
 
-    def options(self):
+    def options(self, problem=None):
         """PETSc options of the KSP and PC (without the problem's prefix)."""
         out = {"ksp_type": "preonly", "pc_type": "lu",
                "pc_factor_mat_solver_type": self.package}
@@ -210,8 +214,13 @@ class IterativeSolver:
                 f"{pre}mg_levels_pc_type": "sor",
                 f"{pre}mg_levels_ksp_max_it": 2}
 
-    def options(self):
-        """PETSc options of the KSP and PC (without the problem's prefix)."""
+    def options(self, problem=None):
+        """PETSc options of the KSP and PC (without the problem's prefix).
+
+        With ``problem`` and no interface field: AMG on the whole matrix.
+        """
+        if problem is not None and not bulk_fields(problem)[1]:
+            return self.single_field_options()
         # right preconditioning: rtol bounds the true residual of the Newton system
         out = {"ksp_type": "gmres", "ksp_gmres_restart": self.restart, "ksp_pc_side": "right",
                "ksp_rtol": self.rtol, "ksp_atol": 0.0, "ksp_max_it": self.max_it,
@@ -229,8 +238,7 @@ class IterativeSolver:
 
     def single_field_options(self):
         """Options when there is no interface field: AMG on the whole matrix."""
-        out = {k: v for k, v in self.options().items()
-               if k.startswith("ksp_")}
+        out = {k: v for k, v in self.options().items() if k.startswith("ksp_")}
         out.update(self._amg_options(""))
         return out
 
@@ -260,13 +268,7 @@ class IterativeSolver:
             pc.setType("fieldsplit")
             pc.setFieldSplitIS(("bulk", is0), ("interface", is1))
             self._split = (is0, is1, nsp)
-        else:
-            opts = PETSc.Options()
-            for key, value in self.single_field_options().items():
-                if not opts.hasName(problem.prefix + key):
-                    opts[problem.prefix + key] = value
-            pc.setType(self.amg)
-            pc.setFromOptions()
+        else:     # the options (Problem) already made the PC an AMG on the whole matrix
             self._split = (None, None, nsp)
         ksp.setFromOptions()
 

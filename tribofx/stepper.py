@@ -163,8 +163,9 @@ class Checkpoint:
     The JSON holds the scalars (time, Δt, cut level, step count, MPI size, the
     names and shapes of the arrays); the npz the local arrays (ghosts
     included) of every state field, in :meth:`Stepper.state` order.  Files are
-    written to a temporary name and renamed, so a crash leaves the previous
-    checkpoint.  The directory must be the same (shared) on all ranks.
+    written to a temporary name and renamed; a kill between the arrays and the
+    JSON is detected on reading (each npz holds its step count).  The directory
+    must be the same (shared) on all ranks.
     """
 
     def __init__(self, directory, comm):
@@ -179,7 +180,8 @@ class Checkpoint:
         self.dir.mkdir(parents=True, exist_ok=True)
         npz = self.dir / f"state_r{self.comm.rank}.npz"
         tmp = self.dir / f".state_r{self.comm.rank}.tmp.npz"
-        np.savez(tmp, **{f"field{i}": a for i, a in enumerate(state["fields"])})
+        np.savez(tmp, steps=np.array(state["steps"]),
+                 **{f"field{i}": a for i, a in enumerate(state["fields"])})
         os.replace(tmp, npz)
         self.comm.barrier()
         if self.comm.rank == 0:
@@ -200,6 +202,11 @@ class Checkpoint:
                              f"not {self.comm.size}")
         with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
             fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
+            torn = "steps" in data and int(data["steps"]) != meta["steps"]
+        # a kill between the arrays and the JSON: the arrays are a step ahead
+        if self.comm.allreduce(torn, op=MPI.LOR):
+            raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "
+                             "restart the run without --resume")
         return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields,
                 "history": meta.get("history", {})}
 

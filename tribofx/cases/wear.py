@@ -52,6 +52,7 @@ reported).  Writes ``error_vs_dt.png``,
 ``profiles.png`` and the ``study_*`` results in summary.json.
 """
 
+import json
 import math
 
 import numpy as np
@@ -325,10 +326,18 @@ class WearPinCase:
             record.data["num_dofs_shape"] = stepper.shape.num_dofs
         keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
                 "newton_iterations", "wear_rate_integral", "dt")
+        params = {k: x for k, x in v.items() if k != "solver"}   # the physics, not the solver
         if resume:
-            stepper.load_checkpoint()
-            if progress is not None:
-                progress.update(stepper.steps)
+            try:
+                stepper.load_checkpoint()
+            except ValueError as err:
+                raise InputError(str(err)) from None
+            saved = stepper.history.get("parameters")
+            if saved is not None and saved != json.loads(json.dumps(params)):
+                diff = sorted(k for k in params if saved.get(k) != params[k])
+                raise InputError(f"--resume with other parameters than the checkpoint's "
+                                 f"({', '.join(diff)})")
+        stepper.history.setdefault("parameters", params)
         # the records live in the stepper's history, so the checkpoint carries them
         h = stepper.history
         hist = h.setdefault("hist", {k: [] for k in keys})
