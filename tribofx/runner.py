@@ -18,8 +18,8 @@ __all__ = ["COMMON_PARAMS", "run_case"]
 COMMON_PARAMS = (
     Param("solver", str, "auto", "-",
           "linear solver: direct (MUMPS LU), iterative (GMRES, AMG on the bulk, Schur "
-          f"complement of the interface unknowns), auto (iterative in 3D from "
-          f"{solvers.AUTO_THRESHOLD} unknowns)", choices=solvers.STRATEGIES),
+          f"complement of the interface unknowns), auto (iterative on 3D tetrahedral "
+          f"meshes from {solvers.AUTO_THRESHOLD} unknowns)", choices=solvers.STRATEGIES),
 )
 
 

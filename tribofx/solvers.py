@@ -19,9 +19,14 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁.  The saddle-point rows of an active contact node
   (zero diagonal in A₁₁) are regular in S, so the split holds through
   active-set changes.
-* ``auto`` — direct below :data:`AUTO_THRESHOLD` unknowns or in 2D (where LU
-  fill is mild), iterative above it in 3D; the threshold is the crossover
-  measured by ``benchmarks/bench_solvers.py``.
+* ``auto`` — iterative for 3D problems on tetrahedra from :data:`AUTO_THRESHOLD`
+  unknowns, direct otherwise (2D, where LU fill is mild; hexahedral tensor grids,
+  whose graded cells of aspect ratio up to ~24 make the AMG iteration counts
+  double per refinement).  Measured by ``benchmarks/bench_solvers.py`` (one run,
+  serial): frictional Hertz ball on tetrahedra, cost per Newton iteration
+  iterative/direct 1.8 (5.7k unknowns), 0.99 (24.5k), 0.54 (142k; memory 734 MB
+  against 3.1 GB), 21–26 GMRES iterations per Newton step at every size; the §5.3
+  groove on hexahedra 2.8 (14k), 3.5 (50k; 75 → 110 GMRES iterations).
 
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
@@ -32,6 +37,7 @@ with it is set as given.
 from contextlib import contextmanager
 
 import numpy as np
+from dolfinx.mesh import CellType
 from petsc4py import PETSc
 
 __all__ = [
@@ -45,8 +51,8 @@ __all__ = [
     "used",
 ]
 
-#: unknowns above which ``auto`` picks the iterative strategy in 3D
-AUTO_THRESHOLD = 150_000
+#: unknowns from which ``auto`` picks the iterative strategy (3D, tetrahedra)
+AUTO_THRESHOLD = 50_000
 STRATEGIES = ("direct", "iterative", "auto")
 
 _run = {"strategy": "auto", "options": {}}
@@ -93,9 +99,11 @@ def choose(problem):
     """Return the run's strategy for ``problem`` (``auto``: by dimension and size)."""
     strategy = _run["strategy"]
     if strategy == "auto":
-        gdim = max(ui.function_space.mesh.geometry.dim for ui in problem.u)
-        big = gdim == 3 and problem.num_dofs >= AUTO_THRESHOLD
-        strategy = "iterative" if big and bulk_fields(problem)[0] else "direct"
+        bulk = bulk_fields(problem)[0]
+        tets = bool(bulk) and all(
+            problem.u[k].function_space.mesh.topology.cell_type == CellType.tetrahedron
+            for k in bulk)
+        strategy = "iterative" if tets and problem.num_dofs >= AUTO_THRESHOLD else "direct"
     if strategy == "iterative" and not bulk_fields(problem)[0]:
         solver = DirectSolver()       # nothing for AMG (a film or cross-section alone)
         used[problem.name] = solver.describe(problem) + "; iterative asked, no bulk field"
