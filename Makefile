@@ -29,7 +29,8 @@ test-slow: setup
 lint: setup
 	$(VENV)/bin/ruff check .
 
-# the full Fig. 4 wear study (benchmarks/bench_wear_study.py) takes hours: run it by hand
+# the full Fig. 4 wear study (benchmarks/bench_wear_study.py) takes hours, and the
+# direct/iterative size sweep (benchmarks/bench_solvers.py --ranks2) about an hour: run them by hand
 bench: setup
 	$(PY) benchmarks/bench_projection.py
 	$(PY) benchmarks/bench_hertz.py
