@@ -169,7 +169,7 @@ class DirectSolver:
         return f"direct ({self.package} LU{blr}, {problem.num_dofs} unknowns)"
 
 
-def rigid_body_modes(V, owned=True):
+def rigid_body_modes(V):
     """Rigid-body modes of the vector space ``V`` (2D: 3, 3D: 6), on its owned dofs.
 
     Returns an array (modes, owned dofs · bs) in the space's blocked layout:
@@ -197,19 +197,20 @@ def rigid_body_modes(V, owned=True):
 class IterativeSolver:
     """GMRES with a bulk-AMG / interface-Schur fieldsplit (see the module docstring).
 
+    The AMG is GAMG (smoothed aggregation with the rigid-body near-nullspace; the
+    PETSc of the DOLFINx wheel has no hypre).
+
     Args:
-        amg: "gamg" (smoothed aggregation with the rigid-body near-nullspace; the
-            PETSc of the DOLFINx wheel has no hypre).
         rtol: relative tolerance of GMRES (the Newton corrections are exact to it).
         restart: GMRES restart length.
     """
 
     name = "iterative"
 
-    def __init__(self, amg="gamg", rtol=1e-10, restart=300, max_it=3000):
-        if amg != "gamg":
-            raise ValueError(f"unknown AMG {amg!r}")
-        self.amg, self.rtol, self.restart, self.max_it = amg, rtol, restart, max_it
+    amg = "gamg"
+
+    def __init__(self, rtol=1e-10, restart=300, max_it=3000):
+        self.rtol, self.restart, self.max_it = rtol, restart, max_it
         self._split = None
 
     def _amg_options(self, pre):
@@ -271,8 +272,7 @@ class IterativeSolver:
         if rest:
             gdim = problem.u[bulk[0]].function_space.mesh.geometry.dim
             is0, is1 = index_set(bulk, gdim), index_set(rest)
-            if nsp is not None:
-                is0.compose("nearnullspace", nsp)
+            is0.compose("nearnullspace", nsp)
             pc.setType("fieldsplit")
             pc.setFieldSplitIS(("bulk", is0), ("interface", is1))
             self._split = (is0, is1, nsp)
@@ -282,9 +282,8 @@ class IterativeSolver:
 
     def prepare(self, problem):
         """Near-nullspace on the current matrix (a grown pattern is a new matrix)."""
-        nsp = self._split[2] if self._split else None
-        if nsp is not None and self._split[0] is None:
-            problem.A.setNearNullSpace(nsp)
+        if self._split is not None and self._split[0] is None:
+            problem.A.setNearNullSpace(self._split[2])
 
     def _near_nullspace(self, problem, bulk, comm):
         """Rigid-body modes of each bulk unknown, in the bulk field's layout."""
