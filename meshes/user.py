@@ -24,7 +24,7 @@ from dolfinx import fem
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["read_user_mesh"]
+__all__ = ["boundary_facet_size", "read_user_mesh"]
 
 
 def _error(msg):
@@ -143,3 +143,21 @@ def _check_cells(msh, cell_tags, path):
     if bad:
         raise _error(f"mesh file {path!r} has {bad} inverted or degenerate cell(s) "
                      f"of {total}")
+
+
+def boundary_facet_size(msh, ft, tag):
+    """Mean length (2D) or mean square-root area (3D) of the facets tagged ``tag``.
+
+    The element size a case takes from a user's mesh where its own mesh has a
+    known size (e.g. the augmentation ρ_N = E/h of a contact boundary); the same
+    value on every rank.
+    """
+    comm = msh.comm
+    fdim = msh.topology.dim - 1
+    measure = comm.allreduce(fem.assemble_scalar(fem.form(
+        1.0 * ufl.Measure("ds", msh, subdomain_data=ft)(tag))), op=MPI.SUM)
+    im = msh.topology.index_map(fdim)
+    n = comm.allreduce(int(np.sum(ft.find(tag) < im.size_local)), op=MPI.SUM)
+    if n == 0:
+        raise _error("no facet with the boundary tag " + str(tag))
+    return (measure / n) ** (1.0 / fdim)

@@ -67,7 +67,7 @@ from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.pin import NAMES, pin_body, tip_height
-from ..meshes.user import read_user_mesh
+from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..obstacles import rigid_plane
 from ..output import VTXSeries
 from ..params import InputError, Param, number_list
@@ -246,11 +246,7 @@ class WearPinCase:
         x[:, 1] -= y0
         lo = comm.allreduce(float(np.min(x[:, 0], initial=np.inf)), op=MPI.MIN)
         hi = comm.allreduce(float(np.max(x[:, 0], initial=-np.inf)), op=MPI.MAX)
-        length = comm.allreduce(fem.assemble_scalar(fem.form(
-            1.0 * ufl.Measure("ds", msh, subdomain_data=ft)(names["contact"]))), op=MPI.SUM)
-        im = msh.topology.index_map(1)
-        nf = comm.allreduce(int(np.sum(ft.find(names["contact"]) < im.size_local)), op=MPI.SUM)
-        return hi - lo, length / nf
+        return hi - lo, boundary_facet_size(msh, ft, names["contact"])
 
     @staticmethod
     def load_up(stepper, load, v, verbose=False):
