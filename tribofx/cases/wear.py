@@ -52,7 +52,6 @@ reported).  Writes ``error_vs_dt.png``,
 ``profiles.png`` and the ``study_*`` results in summary.json.
 """
 
-import json
 import math
 
 import numpy as np
@@ -73,6 +72,7 @@ from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence
 from ..references import hertz
+from ..restart import open_history, series_stem
 from ..stepper import ReciprocatingCycle, Stepper
 
 __all__ = ["WearPinCase"]
@@ -322,20 +322,8 @@ class WearPinCase:
             record.data["num_dofs_shape"] = stepper.shape.num_dofs
         keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
                 "newton_iterations", "wear_rate_integral", "dt")
-        params = {k: x for k, x in v.items() if k != "solver"}   # the physics, not the solver
-        if resume:
-            try:
-                stepper.load_checkpoint()
-            except ValueError as err:
-                raise InputError(str(err)) from None
-            saved = stepper.history.get("parameters")
-            if saved is not None and saved != json.loads(json.dumps(params)):
-                diff = sorted(k for k in params if saved.get(k) != params[k])
-                raise InputError(f"--resume with other parameters than the checkpoint's "
-                                 f"({', '.join(diff)})")
-        stepper.history.setdefault("parameters", params)
         # the records live in the stepper's history, so the checkpoint carries them
-        h = stepper.history
+        h = open_history(stepper, v, resume)
         hist = h.setdefault("hist", {k: [] for k in keys})
         profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
         record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
@@ -365,9 +353,9 @@ class WearPinCase:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
         # the worn shape and the deformation at every step (ParaView time series; a
         # resumed run writes its steps into a series of its own)
-        stem = "displacement_series" + (f"_from_t{stepper.t:g}" if resume else "")
         series = VTXSeries(comm, getattr(record, "outdir", None),
-                           {stem: [wear.body.u, wear.body.w]})
+                           {series_stem("displacement_series", stepper, resume):
+                            [wear.body.u, wear.body.w]})
         series.write(stepper.t)
 
         def on_step_series(st, rep):

@@ -60,15 +60,18 @@ import time
 import numpy as np
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.wear_ball import NAMES, quarter_ball
 from ..obstacles import rigid_plane
+from ..output import VTXSeries
 from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
+from ..restart import open_history, series_stem
 from ..stepper import ResponseControl, Stepper
 
 __all__ = ["MODEL_FRACTION", "WearBallCase"]
@@ -143,9 +146,10 @@ class WearBallCase:
                           V_master=(v["V"], 0.0, 0.0), dtau=1.0)
         wear = Wear(contact, k=v["k"], speed=v["V"],
                     theta=1.0 if v["scheme"] == "implicit" else 0.0)
-        stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
-                          checkpoint=checkpoint, name="wear_ball")
         offset = contact.counterpart.offset
+        # the flat's position is part of the state (restored by a cut step and a resume)
+        stepper = Stepper([body, contact, wear], wear, parameters=[offset],
+                          max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_ball")
         Es = composite_modulus(v["E"], v["nu"])
         a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
 
@@ -212,11 +216,13 @@ class WearBallCase:
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
-            t_stop=None, checkpoint=None):
+            t_stop=None, checkpoint=None, resume=False):
         """Integrate the wear of the ball from t = 0 to T; record per-step histories.
 
         ``on_step(stepper, report)``, if given, is called after every accepted step;
-        ``t_stop`` < T ends the run early (on the mesh built for T).  Returns the stepper.
+        ``t_stop`` < T ends the run early (on the mesh built for T).  ``checkpoint``:
+        directory of the per-step checkpoint (state and histories); ``resume``:
+        continue from it (:mod:`tribofx.restart`).  Returns the stepper.
         """
         t_wall = time.perf_counter()
         stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
@@ -230,8 +236,15 @@ class WearBallCase:
         record.result("h_contact_zone", stepper.h_fine, "mm")
         keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
                 "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral")
-        hist = {k: [] for k in keys}
-        state = {"profiles": [], "initial_plane": None}
+        # the records live in the stepper's history, so the checkpoint carries them
+        h = open_history(stepper, v, resume)
+        hist = h.setdefault("hist", {k: [] for k in keys})
+        state = h.setdefault("state", {"profiles": [], "initial_plane": None})
+        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
+        residuals = h.setdefault("newton_residuals", [])
+        residuals_all = h.setdefault("newton_residuals_all", [])
+        record.data["newton_residuals"] = residuals
+        record.data["newton_residuals_all"] = residuals_all
         offset = stepper.wear.contact.counterpart.offset
 
         def log(t, its, dt):
@@ -246,23 +259,31 @@ class WearBallCase:
 
         def step_done(st, rep):
             log(st.t, rep.iterations, rep.dt)
-            record.data.setdefault("newton_residuals", []).append(
-                [float(x) for x in rep.reports[-1].residuals])
-            record.data.setdefault("newton_residuals_all", []).append(
-                [[float(x) for x in r.residuals] for r in rep.reports])
+            residuals.append([float(x) for x in rep.reports[-1].residuals])
+            residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
             if on_step is not None:
                 on_step(st, rep)
+            series.write(st.t)
 
-        reports = stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
-        state["initial_plane"] = cls.contact_plane(stepper)
-        log(0.0, int(sum(r.iterations for r in reports)), 0.0)
+        if not resume:
+            reports = stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+            plane = cls.contact_plane(stepper)
+            state["initial_plane"] = None if plane is None else plane.tolist()
+            log(0.0, int(sum(r.iterations for r in reports)), 0.0)
+        # the worn shape (warp by w), the deformation (by u) and the contact pressure at
+        # every step (ParaView time series)
+        series = VTXSeries(comm, getattr(record, "outdir", None),
+                           {series_stem(f"{k}_series", stepper, resume): f
+                            for k, f in cls.vtx_fields(stepper).items()})
+        series.write(stepper.t)
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
         try:
             stepper.run(T, v["dt"], on_step=step_done, progress=progress)
-        except NewtonDivergence as err:
+        except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = stepper
             raise
         finally:
+            series.close()
             cls._report(stepper, v, record, hist, state, time.perf_counter() - t_wall)
         return stepper
 
@@ -302,8 +323,10 @@ class WearBallCase:
                           "mm ([x, z] of the worn boundary on y = 0)")
             record.result("final_profile_deformed", line["x"][:, [0, 2]].tolist(), "mm")
             record.result("final_pressure_symmetry_line", line["p"].tolist(), "MPa")
+            initial = state["initial_plane"]
             record.profile = {**hist, "profiles": state["profiles"],
-                              "initial_plane": state["initial_plane"], "final_plane": plane,
+                              "initial_plane": None if initial is None else np.asarray(initial),
+                              "final_plane": plane,
                               "scheme": v["scheme"], "dt": v["dt"], "R": v["R"], "k": v["k"],
                               "F": v["F"], "V": v["V"]}
 

@@ -32,6 +32,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..forms import hyperelastic as hf
 from ..forms import wear_groove as gf
@@ -39,9 +40,11 @@ from ..interfaces import Contact
 from ..interfaces.steady_wear import SteadyWear
 from ..meshes import halfspace as hs
 from ..obstacles import rigid_sphere
+from ..output import VTXSeries
 from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz, rigid_groove_halfwidth
+from ..restart import open_history, series_stem
 from ..stepper import Stepper
 
 __all__ = ["WearBallHalfspaceCase", "groove_mesh", "surface_data"]
@@ -194,13 +197,17 @@ class WearBallHalfspaceCase:
         plot_groove(profile, outdir)
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Integrate the groove from t = 0 to T; record per-step histories."""
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Integrate the groove from t = 0 to T; record per-step histories.
+
+        ``checkpoint``: directory of the per-step checkpoint (state and histories);
+        ``resume``: continue from it (:mod:`tribofx.restart`).
+        """
         v = cls.resolved(v)
         for key in REGIMES[v["regime"]]:  # record the regime defaults actually used
             record.data["parameters"][key]["value"] = v[key]
         t_start = time.perf_counter()
-        stepper, info = cls.build(v)
+        stepper, info = cls.build(v, checkpoint=checkpoint)
         stepper.verbose = verbose
         wear, contact = stepper.wear, stepper.wear.contact
         comm = wear.body.mesh.comm
@@ -211,10 +218,14 @@ class WearBallHalfspaceCase:
         record.result("dofs", n, "-")
         record.result("psi_fraction", stepper.shape_unknown_fraction(), "- (share of Ψ and ζ)")
         record.result("hertz", info, "mm, MPa")
-        hist = {k: [] for k in ("time", "wear_volume", "max_wear_depth", "contact_radius",
-                                "contact_half_length", "newton_iterations", "averaged_rate",
-                                "max_pressure", "dt")}
-        prof = {"times": [], "profiles": [], "maps": []}
+        # the records live in the stepper's history, so the checkpoint carries them
+        h = open_history(stepper, v, resume)
+        hist = h.setdefault("hist", {k: [] for k in (
+            "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
+            "newton_iterations", "averaged_rate", "max_pressure", "dt")})
+        prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
+        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
+        residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
         def log(t, its, dt):
             d = surface_data(contact)
@@ -235,16 +246,24 @@ class WearBallHalfspaceCase:
 
         def on_step(st, rep):
             log(st.t, rep.iterations, rep.dt)
-            record.data.setdefault("newton_residuals", []).append(
-                [float(x) for x in rep.reports[0].residuals])
+            residuals.append([float(x) for x in rep.reports[0].residuals])
+            series.write(st.t)
 
-        log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
+        if not resume:
+            log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
+        # the groove (warp by w), the deformation (by u) and the contact pressure at every
+        # step (ParaView time series)
+        series = VTXSeries(comm, getattr(record, "outdir", None),
+                           {series_stem(f"{k}_series", stepper, resume): f
+                            for k, f in cls.vtx_fields(stepper).items()})
+        series.write(stepper.t)
         try:
             stepper.run(v["T"], v["dt"], on_step=on_step, progress=progress)
-        except NewtonDivergence as err:
+        except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = stepper
             raise
         finally:
+            series.close()
             cls._report(stepper, v, record, hist, prof, time.perf_counter() - t_start)
         return stepper
 

@@ -51,6 +51,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
@@ -63,6 +64,7 @@ from ..output import VTXSeries
 from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz
+from ..restart import open_history, series_stem
 from ..stepper import ReciprocatingCycle, Stepper
 
 __all__ = ["WearReciprocatingCase", "cell_coordinates"]
@@ -85,6 +87,20 @@ def cell_coordinates(body):
     if msh.comm.rank != 0:
         return None
     return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
+
+
+def _jsonable(shot):
+    """Return a :meth:`WearReciprocatingCase.snapshot` as nested lists (None off rank 0)."""
+    if shot is None or any(body is None for part in shot for body in part):
+        return None
+    return [[[np.asarray(a).tolist() for a in body] for body in part] for part in shot]
+
+
+def _arrays(shot):
+    """Return the arrays of a :func:`_jsonable` snapshot."""
+    if shot is None:
+        return None
+    return [[tuple(np.asarray(a) for a in body) for body in part] for part in shot]
 
 
 class WearReciprocatingCase:
@@ -239,8 +255,12 @@ class WearReciprocatingCase:
         return shots
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None):
-        """Load, then integrate the wear of both bodies over ``cycles``; per-step histories."""
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
+
+        ``checkpoint``: directory of the per-step checkpoint (state and histories);
+        ``resume``: continue from it (:mod:`tribofx.restart`).
+        """
         run = cls.build(v, checkpoint=checkpoint)
         st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
         wp, wb = run["wear_pin"], run["wear_block"]
@@ -248,12 +268,15 @@ class WearReciprocatingCase:
         record.data["num_dofs"] = st.problem.num_dofs
         record.data["num_dofs_shape"] = st.shape.num_dofs
         tau = cls.period(v)
-        hist = {k: [] for k in ("time", "cycles_done", "worn_area_pin", "worn_area_block",
-                                "dissipated_energy", "cycle_dissipation", "drive_work",
-                                "drive_work_bound", "friction_force_ratio", "rate_integral_pin",
-                                "rate_integral_block", "newton_iterations", "picard_iterations",
-                                "dt")}
-        energy = [0.0]
+        # the records live in the stepper's history, so the checkpoint carries them
+        h = open_history(st, v, resume)
+        hist = h.setdefault("hist", {k: [] for k in (
+            "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
+            "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
+            "rate_integral_pin", "rate_integral_block", "newton_iterations",
+            "picard_iterations", "dt")})
+        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
+        energy = [hist["dissipated_energy"][-1] if resume else 0.0]
         w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
         def log(t, dt, its, picard=0):
@@ -280,12 +303,15 @@ class WearReciprocatingCase:
             if progress is not None and dt > 0:
                 progress.update(1)
 
-        log(0.0, 0.0, cls.load_up(run, v, verbose))
-        shots = {"initial": cls.snapshot(run)}
+        if not resume:
+            log(0.0, 0.0, cls.load_up(run, v, verbose))
+            h["initial_shot"] = _jsonable(cls.snapshot(run))
+        shots = {"initial": _arrays(h["initial_shot"])}
         # the worn shapes and the deformation at every slow step (ParaView time series)
         series = VTXSeries(contact.slave.mesh.comm, getattr(record, "outdir", None),
-                           {f"{k}_series": f for k, f in cls.vtx_fields(run).items()})
-        series.write(0.0)
+                           {series_stem(f"{k}_series", st, resume): f
+                            for k, f in cls.vtx_fields(run).items()})
+        series.write(st.t)
 
         def on_step(s, rep):
             log(s.t, rep.dt, rep.iterations, rep.picard)
@@ -294,7 +320,7 @@ class WearReciprocatingCase:
         try:
             st.run(v["cycles"] * tau, v["dt"], on_step=on_step)
             shots["worn"] = cls.snapshot(run)
-        except NewtonDivergence as err:
+        except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = run
             raise
         finally:
