@@ -21,6 +21,8 @@ import gmsh
 import numpy as np
 import ufl
 from dolfinx import fem
+from dolfinx import mesh as dmesh
+from dolfinx.cpp import mesh as _cpp_mesh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
@@ -145,19 +147,36 @@ def _check_cells(msh, cell_tags, path):
                      f"of {total}")
 
 
-def boundary_facet_size(msh, ft, tag):
-    """Mean length (2D) or mean square-root area (3D) of the facets tagged ``tag``.
+def boundary_facet_size(msh, ft, tag, near=None):
+    """Mean longest edge of the facets tagged ``tag`` (2D: their mean length).
 
     The element size a case takes from a user's mesh where its own mesh has a
     known size (e.g. the augmentation ρ_N = E/h of a contact boundary); the same
-    value on every rank.
+    value on every rank.  ``near=(point, radius)``: only the facets whose
+    midpoint is within ``radius`` of ``point`` (e.g. the zone of first contact of
+    a graded mesh), or the nearest ones if none is that close.
     """
     comm = msh.comm
     fdim = msh.topology.dim - 1
-    measure = comm.allreduce(fem.assemble_scalar(fem.form(
-        1.0 * ufl.Measure("ds", msh, subdomain_data=ft)(tag))), op=MPI.SUM)
     im = msh.topology.index_map(fdim)
-    n = comm.allreduce(int(np.sum(ft.find(tag) < im.size_local)), op=MPI.SUM)
+    facets = ft.find(tag)
+    facets = facets[facets < im.size_local]
+    nv = _cpp_mesh.cell_num_vertices(msh.topology.entity_types[fdim][0])
+    geo = dmesh.entities_to_geometry(msh, fdim, facets, False)
+    x = msh.geometry.x[np.asarray(geo, dtype=np.int64).reshape(len(facets), -1)[:, :nv]]
+    x = x.reshape(len(facets), nv, 3)
+    # edges: segment 0-1; triangle 0-1, 1-2, 2-0; quadrilateral (vertex order 0 1 3 2)
+    pairs = {2: [(0, 1)], 3: [(0, 1), (1, 2), (2, 0)],
+             4: [(0, 1), (1, 3), (3, 2), (2, 0)]}[nv]
+    size = np.max([np.linalg.norm(x[:, i] - x[:, j], axis=1) for i, j in pairs], axis=0)
+    if near is not None:
+        point, radius = near
+        p = np.zeros(3)
+        p[:len(point)] = point
+        d = np.linalg.norm(x.mean(axis=1) - p, axis=1)
+        dmin = comm.allreduce(float(np.min(d, initial=np.inf)), op=MPI.MIN)
+        size = size[d <= max(radius, dmin)]
+    n = comm.allreduce(len(size), op=MPI.SUM)
     if n == 0:
         raise _error("no facet with the boundary tag " + str(tag))
-    return (measure / n) ** (1.0 / fdim)
+    return comm.allreduce(float(np.sum(size)), op=MPI.SUM) / n

@@ -121,3 +121,85 @@ def test_documented_example_mesh_is_accepted(tmp_path):
     msh, ft, names = read_user_mesh(path, MPI.COMM_SELF, 2, tuple(NAMES))
     assert set(names) == set(NAMES)
     assert msh.topology.index_map(2).size_global > 100
+
+
+def _half_ellipsoid(path, R=5.0, stretch=1.4, h_fine=0.1, h_coarse=1.5, r_fine=0.0,
+                    groups=("contact", "loaded", "symmetry_y"), shift_y=0.0):
+    """Write a half ball y ≥ 0 stretched along x (radii stretch R, R, R), centre (0, 0, R).
+
+    The case's own ball is a sphere with a point-refined gmsh mesh; this one has
+    other curvatures (an elliptic contact) and a size field by distance from the
+    lowest point.  ``shift_y`` moves the body off the symmetry plane (a bad mesh).
+    """
+    gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("user_ball")
+    occ = gmsh.model.occ
+    ball = occ.addSphere(0, 0, R, R)
+    occ.dilate([(3, ball)], 0, 0, R, stretch, 1.0, 1.0)
+    box = occ.addBox(-stretch * R, 0, 0, 2 * stretch * R, R, R)
+    occ.intersect([(3, ball)], [(3, box)])
+    if shift_y:
+        occ.translate(occ.getEntities(3), 0, shift_y, 0)
+    occ.synchronize()
+    named = {"contact": [], "loaded": [], "symmetry_y": []}
+    for d, tag in gmsh.model.getEntities(2):
+        _, y, z = occ.getCenterOfMass(d, tag)
+        key = "symmetry_y" if abs(y - shift_y) < 1e-8 else "loaded" if abs(z - R) < 1e-8 \
+            else "contact"
+        named[key].append(tag)
+    gmsh.model.addPhysicalGroup(3, [t for _, t in gmsh.model.getEntities(3)], 1, "body")
+    for tag, name in enumerate(groups, start=1):
+        gmsh.model.addPhysicalGroup(2, named[name], tag, name)
+
+    def size(dim, tag, x, y, z, lc):
+        r = (x * x + (y - shift_y) ** 2 + z * z) ** 0.5
+        return h_fine + (h_coarse - h_fine) * min(1.0, max(r - r_fine, 0.0) / R)
+
+    gmsh.model.mesh.setSizeCallback(size)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.model.mesh.generate(3)
+    gmsh.write(str(path))
+    gmsh.finalize()
+    return path
+
+
+def test_user_ball_wears_by_archard(tmp_path):
+    """wear-ball-flat on an elliptic half ball: worn volume = k F V t (Archard, global).
+
+    The flat is positioned every step so that the contact force is F to 1e-8
+    relative (the force control), and the worn volume is the integrated rate to
+    the Newton tolerance, so the volume is k F V t to ~1e-7 whatever the shape.
+    """
+    mesh = _half_ellipsoid(tmp_path / "ball.msh")
+    out = tmp_path / "run"
+    p = _run("run", "wear-ball-flat", "--set", f"mesh_file={mesh}", "--set", "T=200",
+             "--set", "dt=100", "--out", str(out), "--quiet")
+    assert p.returncode == 0, p.stderr
+    s = json.loads((out / "summary.json").read_text())
+    par = {k: v["value"] for k, v in s["parameters"].items()}
+    r = {k: v["value"] for k, v in s["results"].items()}
+    ref = par["k"] * par["F"] * par["V"] * par["T"]
+    print(f"worn volume {r['wear_volume'][-1]!r} against k F V T = {ref!r}; "
+          f"h at first contact {r['h_contact_zone']!r} mm")
+    assert abs(r["wear_volume"][-1] / ref - 1) < 1e-6
+    # the size the case takes from the mesh (the mean longest edge of the contact
+    # facets within a_H = 0.15 mm of the lowest point) is the size field there,
+    # 0.1 mm, at most 0.1 + (1.5 − 0.1) 0.15/5 = 0.142 mm, up to gmsh's edge-length
+    # adaptation (edges between 1/√2 and √2 of the field)
+    assert 0.1 / 2**0.5 <= r["h_contact_zone"] <= 0.142 * 2**0.5
+
+
+@pytest.mark.parametrize("kw,fragment", [
+    ({"groups": ("contact", "loaded")}, "no physical group 'symmetry_y'"),
+    ({"shift_y": 0.5}, "is not on the plane y = 0"),
+])
+def test_bad_user_ball(tmp_path, kw, fragment):
+    mesh = _half_ellipsoid(tmp_path / "bad.msh", h_fine=0.6, h_coarse=2.0, **kw)
+    out = tmp_path / "out"
+    p = _run("run", "wear-ball-flat", "--set", f"mesh_file={mesh}", "--out", str(out),
+             "--quiet")
+    assert p.returncode == 2, p.stderr
+    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and fragment in lines[0], p.stderr
+    assert not out.exists()

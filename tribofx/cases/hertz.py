@@ -8,11 +8,27 @@ normal contact force equals the prescribed ``load``; the load is applied in
 
 Hertz reference: :func:`tribofx.references.hertz_reference` (E* = E/(1 − ν²)
 against a rigid plane; 2D: load per unit length, half-width; 3D: radius).
+
+Your own body (``mesh_file``): a gmsh ``.msh`` of dimension ``dim`` with the
+physical groups ``contact``, ``loaded`` (the flat face, clamped),
+``symmetry_x`` and, in 3D, ``symmetry_y``, read and checked by
+:func:`tribofx.meshes.user.read_user_mesh` and placed by
+:func:`read_hertz_body`.  The Hertz comparison stays against R, E, ν and the
+load, so the mesh must be the symmetry-reduced cylinder (the x ≥ 0 half of
+its cross-section) or sphere (the x, y ≥ 0 quarter) of radius R whose lowest
+point touches the plane: it is moved so that its symmetry planes are x = 0
+(and y = 0) and its lowest contact node is on the plane y = 0 (2D) / z = 0
+(3D), and rejected (one-line error) if a symmetry group is not a plane, the
+body is not on the positive side of it, or the curvature of ``contact`` at the
+first-contact point is not 1/R to within 5 % (a forgotten ``R``).  ``mesh`` is
+then ignored; the augmentation ρ_N = E/h takes h from the user's contact
+facets near the first-contact point (see :func:`read_hertz_body`).
 """
 
 import math
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -20,13 +36,99 @@ from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact
 from ..meshes.hertz import NAMES, hertz_body
+from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..obstacles import rigid_plane, rigid_surface_mesh
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz_reference
 
 # hertz_reference is re-exported from tribofx.references
-__all__ = ["HertzCase", "hertz_reference"]
+__all__ = ["CURVATURE_TOL", "HertzCase", "hertz_reference", "read_hertz_body"]
+
+#: relative tolerance on the curvature of a user's body at its first-contact point
+#: (of 1/R*, the composite curvature of the Hertz reference): ±5 % moves the Hertz
+#: size a ∝ R*^½ (line) or R*^⅓ (point) by at most 2.5 %
+CURVATURE_TOL = 0.05
+
+
+def _gmin(comm, a):
+    return comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN)
+
+
+def _gmax(comm, a):
+    return comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX)
+
+
+def read_hertz_body(path, comm, dim, a, radius, tol, name="R", below=False):
+    """Read a user's symmetry-reduced Hertz body, place it and check its curvature.
+
+    The mesh (:func:`tribofx.meshes.user.read_user_mesh`, groups contact, loaded,
+    symmetry_x and in 3D symmetry_y) is translated so that symmetry_x lies on
+    x = 0 (symmetry_y on y = 0) and the first-contact point — the lowest node of
+    ``contact`` (``below``: the highest, a body under the contact plane) — on
+    the plane of the last coordinate = 0.  One-line :class:`InputError` if a
+    symmetry group is not a plane (spread above 1e-6 of the body's size), the
+    body is not on its positive side, or the curvature κ of ``contact`` at the
+    first-contact point differs from 1/``radius`` (0: a flat) by more than
+    ``tol`` (1/mm).
+
+    κ is the least-squares fit of the circle (sphere) tangent to the plane at
+    the origin, centred on the symmetry axis, r² + z² = 2z/κ (r the distance
+    from the axis, z the height above the plane), to the owned contact nodes
+    within r ≤ 2a of the axis (at least the 4 in 2D / 8 in 3D nearest nodes):
+    κ = Σ 2z q / Σ q², q = r² + z², exact for nodes on a circle or a plane, and
+    the local curvature of another profile.
+
+    Returns ``(mesh, facet_tags, names, h, R_mesh)``: h the mean longest edge of
+    the contact facets whose midpoint is within 1.5a of the first-contact point
+    (the refined zone of the case's own mesh, or the nearest facets if none is;
+    :func:`tribofx.meshes.user.boundary_facet_size`) — the element size gmsh
+    aims at, as ``h_fine`` of the built mesh (the mean over the whole group
+    would be dominated by the coarse far facets of a graded mesh); R_mesh = 1/κ
+    (inf for κ ≤ 0).
+    """
+    required = ("contact", "loaded", "symmetry_x") + (("symmetry_y",) if dim == 3 else ())
+    msh, ft, names = read_user_mesh(path, comm, dim, required)
+    fdim, v = dim - 1, dim - 1
+    x = msh.geometry.x
+
+    def nodes(group):
+        return np.unique(dmesh.entities_to_geometry(msh, fdim, ft.find(names[group]),
+                                                    False).ravel())
+
+    size = max(_gmax(comm, x[:, k]) - _gmin(comm, x[:, k]) for k in range(dim))
+    for k, group in enumerate(required[2:]):
+        axis = "xy"[k]
+        c = x[nodes(group), k]
+        lo, hi = _gmin(comm, c), _gmax(comm, c)
+        if hi - lo > 1e-6 * size:
+            raise InputError(f"physical group {group!r} in {path!r} is not a plane {axis} = "
+                             f"const ({axis} from {lo:.6g} to {hi:.6g} mm)")
+        x[:, k] -= lo
+        if _gmin(comm, x[:, k]) < -1e-6 * size:
+            raise InputError(f"the body in {path!r} must lie on the side {axis} >= 0 of its "
+                             f"plane {group!r}")
+    s = -1.0 if below else 1.0
+    contact = nodes("contact")
+    x[:, v] -= _gmax(comm, x[contact, v]) if below else _gmin(comm, x[contact, v])
+    # curvature at the first-contact point, from the owned contact nodes
+    own = contact[contact < msh.geometry.index_map().size_local]
+    r = np.concatenate(comm.allgather(np.linalg.norm(x[own, :v], axis=1)))
+    z = np.concatenate(comm.allgather(s * x[own, v]))
+    order = np.argsort(r, kind="stable")
+    n = max(int(np.sum(r <= 2 * a)), 4 if dim == 2 else 8)
+    q = r[order[:n]] ** 2 + z[order[:n]] ** 2
+    kappa = float(np.sum(2 * z[order[:n]] * q) / np.sum(q * q))
+    expected = 1.0 / radius if 0 < radius < math.inf else 0.0
+    if not abs(kappa - expected) <= tol:
+        got = f"radius {1 / kappa:.4g} mm" if kappa > 0 else f"curvature {kappa:.3g} 1/mm"
+        want = f"{name} = {radius:g} mm" if expected else f"{name} = {radius:g} (a flat)"
+        raise InputError(f"'contact' in {path!r} has the {got} at its first-contact point "
+                         f"(its {'highest' if below else 'lowest'} node, moved to the "
+                         f"origin), but {want}")
+    # element size of the contact zone (midpoints within 1.5a of the first-contact point)
+    h = boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(dim), 1.5 * a))
+    return msh, ft, names, h, (1 / kappa if kappa > 0 else math.inf)
 
 
 class HertzCase:
@@ -52,8 +154,17 @@ class HertzCase:
               choices=("neo-hookean", "linear")),
         Param("mesh", int, 2, "-",
               "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
-              "in 3D, a = Hertz contact size", lower=0, upper=7, closed=True),
+              "in 3D, a = Hertz contact size (ignored with mesh_file)", lower=0, upper=7,
+              closed=True),
         Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
+        Param("mesh_file", str, "", "-",
+              "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
+              "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
+              "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
+              "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
+              "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
+              "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
+              "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)"),
     )
 
     @staticmethod
@@ -76,10 +187,20 @@ class HertzCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
-        """Body, contact interface and :class:`Problem` of the case (not yet loaded)."""
+        """Body, contact interface and :class:`Problem` of the case (not yet loaded).
+
+        ``mesh_file``: the user's body (:func:`read_hertz_body`); ρ_N = E/h with h
+        its contact element size instead of ``h_fine``.
+        """
         dim, R = v["dim"], v["R"]
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
-        msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
+        if v["mesh_file"]:
+            a, _ = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
+            msh, ft, names, h_fine, _ = read_hertz_body(v["mesh_file"], comm, dim, a, R,
+                                                        CURVATURE_TOL / R)
+        else:
+            msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
+            names = NAMES
         normal = np.eye(dim)[dim - 1]
         if v["obstacle"] == "analytic":
             plane = rigid_plane(np.zeros(dim), normal)
@@ -89,7 +210,7 @@ class HertzCase:
             plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
                                                            4 * h_fine))
         mu, lmbda = lame_parameters(v["E"], v["nu"])
-        body = Body(msh, ft, NAMES, "plane_strain" if dim == 2 else "3d",
+        body = Body(msh, ft, names, "plane_strain" if dim == 2 else "3d",
                     (v["material"], {"mu": mu, "lmbda": lmbda}))
         body.add_dirichlet("loaded", np.zeros(dim))
         body.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -119,14 +240,16 @@ class HertzCase:
         return 0.5 if dim == 2 else 0.25
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
+    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
         """Load the body to ``load`` and record contact size and peak pressure.
 
         The plane's position δ is driven by :meth:`Continuation.reach` so that the
-        normal contact force equals each load increment.
+        normal contact force equals each load increment.  ``comm``: the
+        communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
+        test).
         """
         dim, R = v["dim"], v["R"]
-        body, contact, problem = run = cls.build(v)
+        body, contact, problem = run = cls.build(v, comm)
         frac = cls.model_fraction(dim)
         record.data["num_dofs"] = problem.num_dofs
         a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
@@ -161,6 +284,7 @@ class HertzCase:
         record.result("hertz_p_max", p_h, "MPa")
         record.result(f"{key}_rel_error", size / a_h - 1)
         record.result("p_max_rel_error", pmax / p_h - 1)
+        record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
         record.result("normal_load_full_body", float(force[dim - 1] / frac),
                       "N/mm" if dim == 2 else "N")
         record.result("tangential_force_modelled_part", [float(f) for f in force[: dim - 1]],

@@ -14,6 +14,20 @@ the current master surface, exact tangent in slave and master dofs).
 Reference (:func:`tribofx.references.hertz`, line contact): 1/R* = 1/R1 +
 1/R2, 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2, a = (4PR*/(πE*))^½,
 p0 = 2P/(πa); P the load per unit length of the full cylinders.
+
+Your own bodies: ``mesh_file`` (the upper cylinder, body 1) and ``mesh_file2``
+(the lower body, body 2), each a 2D gmsh ``.msh`` of the x ≥ 0 half of its
+body with the physical groups the case gives its own meshes — ``contact``,
+``loaded`` (the flat face: held on the upper body, pushed up on the lower one)
+and ``symmetry_x`` (x = 0) — one file per body, as the two bodies are two
+meshes here; either may be given alone (the other body is built).  The Hertz
+reference stays the one of R1, R2, E1, E2, ν1, ν2 and the load, so each mesh
+must be its body: it is moved (:func:`tribofx.cases.hertz.read_hertz_body`)
+so that symmetry_x is x = 0 and its first-contact point (the lowest contact
+node of the upper body, the highest of the lower one) is at the origin, and
+rejected if its curvature there is not 1/R1 (1/R2; 0 for R2 = 0, a flat)
+within 5 % of 1/R*.  ``mesh`` then refines only a body that is built; ρ_N =
+min(E1, E2)/h with h the smaller contact element size of the two bodies.
 """
 
 import math
@@ -29,6 +43,7 @@ from ..meshes.hertz import NAMES, hertz_body
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz
+from .hertz import CURVATURE_TOL, read_hertz_body
 
 __all__ = ["TwoCylindersCase"]
 
@@ -52,9 +67,18 @@ class TwoCylindersCase:
               lower=0),
         Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0,
               closed=True),
-        Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh)",
-              lower=0, upper=6, closed=True),
+        Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh) (of the "
+              "bodies not given by mesh_file, mesh_file2)", lower=0, upper=6, closed=True),
         Param("steps", int, 2, "-", "load increments", lower=1, upper=100, closed=True),
+        Param("mesh_file", str, "", "-",
+              "your own upper (slave) cylinder: a 2D gmsh .msh of its x >= 0 half, radius R1, "
+              "with physical groups contact, loaded (flat top face, held) and symmetry_x "
+              "(x = 0); moved so that symmetry_x is x = 0 and its lowest contact point is at "
+              "the origin; tip curvature 1/R1 within 5 % of 1/R*; replaces mesh for it"),
+        Param("mesh_file2", str, "", "-",
+              "your own lower (master) body: as mesh_file, radius R2 (R2 = 0: a flat block), "
+              "loaded = its bottom face (pushed up), its highest contact point moved to the "
+              "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*"),
     )
 
     @staticmethod
@@ -75,17 +99,30 @@ class TwoCylindersCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
-        """Upper body, lower body, contact and problem (unloaded)."""
+        """Upper body, lower body, contact and problem (unloaded).
+
+        A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
+        and placed by :func:`tribofx.cases.hertz.read_hertz_body`; ρ_N = E_min/h
+        with h the smaller contact element size of the two bodies.
+        """
         h = cls.reference(v)
         h_fine = h.a / (6 * 2 ** v["mesh"])
-        bodies = []
+        bodies, sizes = [], []
         for k, (R, E, nu) in enumerate(((v["R1"], v["E1"], v["nu1"]),
                                         (v["R2"], v["E2"], v["nu2"]))):
-            size = R if R > 0 else 2 * v["R1"]
-            msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
-                                 block=size if R == 0 else None)
+            path = v[("mesh_file", "mesh_file2")[k]]
+            if path:
+                msh, ft, names, h_k, _ = read_hertz_body(
+                    path, comm, 2, h.a, R, CURVATURE_TOL / h.R_star, name=f"R{k + 1}",
+                    below=k == 1)
+            else:
+                size = R if R > 0 else 2 * v["R1"]
+                msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
+                                     block=size if R == 0 else None)
+                names, h_k = NAMES, h_fine
+            sizes.append(h_k)
             mu, lmbda = lame_parameters(E, nu)
-            body = Body(msh, ft, NAMES, "plane_strain",
+            body = Body(msh, ft, names, "plane_strain",
                         ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
                         name=("upper", "lower")[k])
             body.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -94,7 +131,7 @@ class TwoCylindersCase:
         upper.add_dirichlet("loaded", np.zeros(2))
         push = lower.add_dirichlet("loaded", 0.0, component=1)
         E_min = min(v["E1"], v["E2"])
-        contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / h_fine,
+        contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / min(sizes),
                                  friction=v["friction"])
         problem = Problem([upper, lower, contact], name="two_cylinders")
         return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
@@ -139,6 +176,8 @@ class TwoCylindersCase:
         record.result("hertz_p_max", h.p0, "MPa")
         record.result("contact_half_width_rel_error", a / h.a - 1)
         record.result("p_max_rel_error", p_max / h.p0 - 1)
+        record.result("contact_element_size", min(v["E1"], v["E2"]) / contact.rho_n,
+                      "mm (h of rho_N = min(E1, E2)/h)")
         record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
         # equilibrium of the solved upper cylinder: its held face balances the contact
         upper = run["upper"]

@@ -58,6 +58,7 @@ import math
 import time
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from .. import interrupt
@@ -65,6 +66,7 @@ from ..body import Body
 from ..continuation import ConstantParameter
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
+from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..meshes.wear_ball import NAMES, quarter_ball
 from ..obstacles import rigid_plane
 from ..output import VTXSeries
@@ -102,6 +104,11 @@ class WearBallCase:
               closed=True),
         Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
+        Param("mesh_file", str, "", "-",
+              "your own ball: a 3D gmsh .msh of the half body y ≥ 0 with physical groups "
+              "contact (the surface the flat wears), loaded (the clamped mid-plane) and "
+              "symmetry_y (on y = 0); its lowest contact point is moved to the origin; "
+              "replaces mesh (R still sets the scar-radius measure and the mesh-size check)"),
     )
 
     @staticmethod
@@ -131,10 +138,15 @@ class WearBallCase:
         flat so that the contact force of the half contact is F/2.
         """
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
-        msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
+        if v["mesh_file"]:
+            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, tuple(NAMES))
+            h_fine = cls._user_ball(msh, ft, names, v)
+        else:
+            msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
+            names = NAMES
         mu, lmbda = lame_parameters(v["E"], v["nu"])
         # ball frame: the ball material is at rest, the flat moves at V e_x (eqs. 26–27)
-        body = Body(msh, ft, NAMES, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+        body = Body(msh, ft, names, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
                     shape=True, aux=(v["E"], 0.3), velocity=np.zeros(3))
         # the mid-plane is the rigid holder: clamped in the ball frame, the flat moves
         body.add_dirichlet("loaded", np.zeros(3))
@@ -171,6 +183,35 @@ class WearBallCase:
             MODEL_FRACTION * v["F"], predictor=predictor, slope=stiffness))
         stepper.h_fine = h_fine
         return stepper
+
+    @staticmethod
+    def _user_ball(msh, ft, names, v):
+        """Move a user's ball so that its lowest contact point is the origin; its h there.
+
+        The symmetry group must lie on y = 0 (one-line error otherwise).  The
+        returned element size is the mean size of the contact facets within the
+        Hertz radius a_H of that point (the augmentation ρ_N = E/h).
+        """
+        comm = msh.comm
+        x = msh.geometry.x
+        fdim = msh.topology.dim - 1
+        contact = np.unique(dmesh.entities_to_geometry(
+            msh, fdim, ft.find(names["contact"]), False).ravel())
+        z = x[contact, 2] if len(contact) else np.array([np.inf])
+        zmin = comm.allreduce(float(z.min()), op=MPI.MIN)
+        i = int(np.argmin(z))
+        lowest = x[contact[i]].copy() if len(contact) and z[i] == zmin else None
+        lowest = next(p for p in comm.allgather(lowest) if p is not None)
+        x[:, 0] -= lowest[0]
+        x[:, 2] -= zmin
+        sym = np.unique(dmesh.entities_to_geometry(
+            msh, fdim, ft.find(names["symmetry_y"]), False).ravel())
+        off = comm.allreduce(float(np.max(np.abs(x[sym, 1]), initial=0.0)), op=MPI.MAX)
+        if off > 1e-9 * v["R"]:
+            raise InputError(f"mesh file {v['mesh_file']!r}: group 'symmetry_y' is not on "
+                             f"the plane y = 0 (|y| up to {off:.3g} mm)")
+        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+        return boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(3), aH))
 
     @staticmethod
     def measures(stepper, v):
