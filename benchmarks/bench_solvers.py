@@ -16,7 +16,10 @@ the iterative/direct cost ratio per size (the crossover) and writes
 ``benchmarks/results/solvers.json``.
 
     .venv/bin/python benchmarks/bench_solvers.py [--groove 0 1 2] [--ball 2 3 4]
-        [--ranks2] [--out FILE]
+        [--ranks2] [--strategies direct iterative blr1e-8] [--out FILE]
+
+``blr<eps>``: MUMPS LU with block low-rank compression (ICNTL(35) = 1, dropping
+tolerance CNTL(7) = eps): its gain in time and memory against plain LU.
 """
 
 import argparse
@@ -46,7 +49,13 @@ def one(problem, level, strategy):
     comm = MPI.COMM_WORLD
     reports = []
     t_solve = 0.0
-    with solvers.run_settings(strategy):
+    if strategy.startswith("blr"):   # MUMPS LU with block low-rank compression, tolerance
+        eps = float(strategy[3:] or 1e-10)
+        settings = solvers.run_settings("direct", {"mat_mumps_icntl_35": 1,
+                                                   "mat_mumps_cntl_7": eps})
+    else:
+        settings = solvers.run_settings(strategy)
+    with settings:
         if problem == "groove":
             from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
 
@@ -72,6 +81,12 @@ def one(problem, level, strategy):
                 reports.append(prob.solve())
                 prob.commit()
             t_solve = time.perf_counter() - t0
+    factor = {}
+    if not strategy.startswith("iterative"):   # MUMPS: entries of the factors (all ranks)
+        F = prob.snes.getKSP().getPC().getFactorMatrix()
+        factor = {"blr": F.getMumpsIcntl(35), "factor_entries_full_rank": F.getMumpsInfog(9),
+                  "factor_entries_effective": F.getMumpsInfog(29),
+                  "factor_mb_total": F.getMumpsInfog(22)}
     newton = sum(r.iterations for r in reports)
     krylov = sum(r.linear_iterations for r in reports)
     rss = comm.gather(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, root=0)
@@ -81,7 +96,8 @@ def one(problem, level, strategy):
                           "ranks": comm.size, "unknowns": prob.num_dofs, "newton": newton,
                           "krylov": krylov, "solve_s": t_solve,
                           "s_per_newton": t_solve / max(newton, 1),
-                          "peak_mb_per_rank": [float(x) for x in np.round(rss, 1)]}))
+                          "peak_mb_per_rank": [float(x) for x in np.round(rss, 1)],
+                          **factor}))
 
 
 def launch(problem, level, strategy, ranks=1, timeout=7200):
@@ -111,7 +127,8 @@ def main():
     parser.add_argument("--one", nargs=3, metavar=("PROBLEM", "LEVEL", "STRATEGY"))
     parser.add_argument("--groove", type=int, nargs="*", default=[0, 1, 2])
     parser.add_argument("--ball", type=int, nargs="*", default=[2, 3, 4])
-    parser.add_argument("--strategies", nargs="*", default=["direct", "iterative"])
+    parser.add_argument("--strategies", nargs="*", default=["direct", "iterative"],
+                        help="direct, iterative, or blr<eps> (MUMPS BLR, e.g. blr1e-8)")
     parser.add_argument("--ranks2", action="store_true",
                         help="also run the largest size of each problem on 2 ranks")
     parser.add_argument("--out", default="benchmarks/results/solvers.json")
