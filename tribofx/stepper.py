@@ -46,27 +46,25 @@ a different assembly, a ``problem_class`` with the constructor of
 State: :meth:`Stepper.state` holds the time, the nominal Δt, the cut level, the
 step count, every Function and Constant of the components (unknowns,
 histories, countersurface positions) and the extra ``parameters`` (e.g. load
-factors).  A :class:`Checkpoint` writes it after every accepted step: one NumPy
+factors).  A :class:`tribofx.checkpoint.Checkpoint` writes it after every accepted step: one NumPy
 ``.npz`` of the local arrays per rank and a JSON file of the scalars; a restore
 needs the same mesh partition (the same number of ranks).  Units: s, mm.
 """
 
-import json
 import math
-import os
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 from mpi4py import MPI
 
 from . import interrupt
+from .checkpoint import Checkpoint
 from .continuation import Continuation
 from .cycles import ReciprocatingCycle
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 
-__all__ = ["Checkpoint", "MeshInversion", "ReciprocatingCycle", "ResponseControl",
+__all__ = ["MeshInversion", "ReciprocatingCycle", "ResponseControl",
            "StepReport", "Stepper", "bisect_critical_step", "growth_probe"]
 
 
@@ -155,60 +153,6 @@ class ResponseControl:
         self._guess = self._slope = None
         self.continuation.reach(self.target, guess=guess, slope=slope)
         return self._rec.reports[n0:]
-
-
-class Checkpoint:
-    """The latest accepted state on disk: ``state_r<rank>.npz`` per rank and ``state.json``.
-
-    The JSON holds the scalars (time, Δt, cut level, step count, MPI size, the
-    names and shapes of the arrays); the npz the local arrays (ghosts
-    included) of every state field, in :meth:`Stepper.state` order.  Files are
-    written to a temporary name and renamed; a kill between the arrays and the
-    JSON is detected on reading (each npz holds its step count).  The directory
-    must be the same (shared) on all ranks.
-    """
-
-    def __init__(self, directory, comm):
-        self.dir, self.comm = Path(directory), comm
-
-    def write(self, state, names, history=None):
-        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields.
-
-        ``history``: a JSON-able dict of the run's records so far (the case's
-        time series), restored with the state on ``--resume``.
-        """
-        self.dir.mkdir(parents=True, exist_ok=True)
-        npz = self.dir / f"state_r{self.comm.rank}.npz"
-        tmp = self.dir / f".state_r{self.comm.rank}.tmp.npz"
-        np.savez(tmp, steps=np.array(state["steps"]),
-                 **{f"field{i}": a for i, a in enumerate(state["fields"])})
-        os.replace(tmp, npz)
-        self.comm.barrier()
-        if self.comm.rank == 0:
-            meta = {k: state[k] for k in ("t", "dt", "cuts", "steps")}
-            meta.update(mpi_size=self.comm.size, fields=list(names),
-                        shapes=[list(np.shape(a)) for a in state["fields"]],
-                        history=history or {})
-            tmp = self.dir / ".state.tmp.json"
-            tmp.write_text(json.dumps(meta, indent=1))
-            os.replace(tmp, self.dir / "state.json")
-        self.comm.barrier()
-
-    def read(self):
-        """Return the state dict written last (one-line error for another partition)."""
-        meta = json.loads((self.dir / "state.json").read_text())
-        if meta["mpi_size"] != self.comm.size:
-            raise ValueError(f"checkpoint {self.dir} was written on {meta['mpi_size']} ranks, "
-                             f"not {self.comm.size}")
-        with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
-            fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
-            torn = "steps" in data and int(data["steps"]) != meta["steps"]
-        # a kill between the arrays and the JSON: the arrays are a step ahead
-        if self.comm.allreduce(torn, op=MPI.LOR):
-            raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "
-                             "restart the run without --resume")
-        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields,
-                "history": meta.get("history", {})}
 
 
 class Stepper:

@@ -1,0 +1,68 @@
+"""The latest accepted state of a slow-time run on disk (``--out/checkpoint``).
+
+Written by :meth:`tribofx.stepper.Stepper.run` after every accepted step and read
+back by ``--resume`` (:mod:`tribofx.restart`).
+"""
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+from mpi4py import MPI
+
+__all__ = ["Checkpoint"]
+
+
+class Checkpoint:
+    """The latest accepted state on disk: ``state_r<rank>.npz`` per rank and ``state.json``.
+
+    The JSON holds the scalars (time, Δt, cut level, step count, MPI size, the
+    names and shapes of the arrays); the npz the local arrays (ghosts
+    included) of every state field, in :meth:`Stepper.state` order.  Files are
+    written to a temporary name and renamed; a kill between the arrays and the
+    JSON is detected on reading (each npz holds its step count).  The directory
+    must be the same (shared) on all ranks.
+    """
+
+    def __init__(self, directory, comm):
+        self.dir, self.comm = Path(directory), comm
+
+    def write(self, state, names, history=None):
+        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields.
+
+        ``history``: a JSON-able dict of the run's records so far (the case's
+        time series), restored with the state on ``--resume``.
+        """
+        self.dir.mkdir(parents=True, exist_ok=True)
+        npz = self.dir / f"state_r{self.comm.rank}.npz"
+        tmp = self.dir / f".state_r{self.comm.rank}.tmp.npz"
+        np.savez(tmp, steps=np.array(state["steps"]),
+                 **{f"field{i}": a for i, a in enumerate(state["fields"])})
+        os.replace(tmp, npz)
+        self.comm.barrier()
+        if self.comm.rank == 0:
+            meta = {k: state[k] for k in ("t", "dt", "cuts", "steps")}
+            meta.update(mpi_size=self.comm.size, fields=list(names),
+                        shapes=[list(np.shape(a)) for a in state["fields"]],
+                        history=history or {})
+            tmp = self.dir / ".state.tmp.json"
+            tmp.write_text(json.dumps(meta, indent=1))
+            os.replace(tmp, self.dir / "state.json")
+        self.comm.barrier()
+
+    def read(self):
+        """Return the state dict written last (one-line error for another partition)."""
+        meta = json.loads((self.dir / "state.json").read_text())
+        if meta["mpi_size"] != self.comm.size:
+            raise ValueError(f"checkpoint {self.dir} was written on {meta['mpi_size']} ranks, "
+                             f"not {self.comm.size}")
+        with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
+            fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
+            torn = "steps" in data and int(data["steps"]) != meta["steps"]
+        # a kill between the arrays and the JSON: the arrays are a step ahead
+        if self.comm.allreduce(torn, op=MPI.LOR):
+            raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "
+                             "restart the run without --resume")
+        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields,
+                "history": meta.get("history", {})}
