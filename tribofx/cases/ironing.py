@@ -9,6 +9,23 @@ slab's top is the slave (the finer, softer surface), the die's arc the master
 (:class:`~tribofx.interfaces.TwoBodyContact`: every slave node finds its
 segment on the current die surface, so nodes change segment while sliding).
 
+Your own die (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
+``arc`` (its lower boundary, the master surface) and ``top`` (where the
+pressing and sliding motion is prescribed), read and checked by
+:func:`tribofx.meshes.user.read_user_mesh` and placed as the case places its
+own: the case's die spans R on either side of its axis x_c = R/2 + 1 and its
+lowest point touches the slab's top, so a user's die of half-width b (half its
+x extent) is moved so that its x extent is centred on x_c = b/2 + 1 and its
+lowest ``arc`` node is on y = H (:meth:`IroningCase._user_die`).  b replaces
+``R`` (R = b for the case's die; the slide-off check uses it) and is reported
+as ``die_half_width``; one-line error if part of the die lies below its
+lowest arc node or ``top`` reaches down to it (``arc`` is not its lower
+boundary).  The die's element size h_die is the mean length of its arc facets
+within b of (x_c, H) (the part of the arc the slab slides along; the case's
+own die has h = L/n on the whole arc), and ρ_N = E/min(L/n, h_die) (the finer
+of the two surfaces, as in ``contact-two-cylinders``); reported as
+``die_element_size``.
+
 Results: the reaction force on the die (horizontal F_x, vertical F_y per unit
 thickness) at every step, their ratio in steady sliding (the second half of
 the sliding steps), a smoothness measure of that history, max |Δ²F| / max |F|
@@ -19,6 +36,7 @@ contact force).
 """
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -27,7 +45,8 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
 from ..meshes.block import NAMES, block_mesh
 from ..meshes.ironing import ARC, TOP, die_body
-from ..params import Param
+from ..meshes.user import boundary_facet_size, read_user_mesh
+from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 
 __all__ = ["IroningCase"]
@@ -55,37 +74,103 @@ class IroningCase:
         Param("n", int, 60, "-", "slab elements along its length", lower=4, upper=2000),
         Param("press_steps", int, 5, "-", "indentation steps", lower=1, upper=10000),
         Param("slide_steps", int, 40, "-", "sliding steps", lower=1, upper=10000),
+        Param("mesh_file", str, "", "-",
+              "your own die: a 2D gmsh .msh with physical groups arc (its lower boundary, "
+              "in contact) and top (moved); its x extent centred on b/2 + 1 (b its "
+              "half-width, which replaces R) and its lowest arc point put on the slab top "
+              "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point"),
     )
 
     @staticmethod
     def validate(v):
-        """Reject a die that would slide off the slab or indent through it."""
-        from ..params import InputError
+        """Reject a die that would slide off the slab or indent through it.
 
+        With ``mesh_file`` the die's half-width is known only once the mesh is
+        read: :meth:`build` checks the slide then (:meth:`check_slide`).
+        """
         if v["depth"] >= v["H"]:
             raise InputError("depth must be below the slab height H")
-        if 0.5 * v["R"] + 1 + v["slide"] > v["L"]:
+        if not v["mesh_file"]:
+            IroningCase.check_slide(v, v["R"])
+
+    @staticmethod
+    def check_slide(v, b):
+        """Reject a slide that takes the axis of a die of half-width ``b`` off the slab."""
+        if 0.5 * b + 1 + v["slide"] > v["L"]:
+            if v["mesh_file"]:
+                raise InputError(f"the die would slide off the slab: slide > L − b/2 − 1 = "
+                                 f"{v['L'] - 0.5 * b - 1:.6g} mm (b = {b:.6g} mm: the "
+                                 f"half-width of the die in {v['mesh_file']!r})")
             raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
-        """Slab (slave), die (master), contact, problem and the die's prescribed motion."""
-        mu, lmbda = lame_parameters(v["E"], v["nu"])
+        """Slab (slave), die (master), contact, problem and the die's prescribed motion.
+
+        The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
+        and its arc element size ``h_die``.
+        """
         h = v["L"] / v["n"]
+        if v["mesh_file"]:
+            dmsh, dtags, names = read_user_mesh(v["mesh_file"], comm, 2, ("arc", "top"))
+            b, h_die = cls._user_die(dmsh, dtags, names, v)
+        else:
+            b, h_die, names = v["R"], h, {"arc": ARC, "top": TOP}
+            dmsh, dtags = die_body(v["R"], 0.5 * v["R"] + 1.0, v["H"] + v["R"], h, comm)
+        mu, lmbda = lame_parameters(v["E"], v["nu"])
         slab = _slab(comm, v["L"], v["H"], v["n"], max(2, round(v["H"] / h)),
                      ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
         slab.add_dirichlet("bottom", np.zeros(2))
-        xc = 0.5 * v["R"] + 1.0
-        dmsh, dtags = die_body(v["R"], xc, v["H"] + v["R"], h, comm)
         mu_d, lmbda_d = lame_parameters(1000 * v["E"], v["nu"])
-        die = Body(dmsh, dtags, {"arc": ARC, "top": TOP}, "plane_strain",
+        die = Body(dmsh, dtags, names, "plane_strain",
                    ("neo-hookean", {"mu": mu_d, "lmbda": lmbda_d}), name="die")
         motion = die.add_dirichlet("top", np.zeros(2))
-        contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / h,
+        contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / min(h, h_die),
                                  friction=v["friction"])
         problem = Problem([slab, die, contact], name="ironing", max_it=40)
         return {"slab": slab, "die": die, "contact": contact, "problem": problem,
-                "motion": motion}
+                "motion": motion, "b": b, "h_die": h_die}
+
+    @classmethod
+    def _user_die(cls, msh, ft, names, v):
+        """Place a user's die as the case places its own; return (half-width b, h_die).
+
+        The x extent is centred on x_c = b/2 + 1 and the lowest ``arc`` node put
+        on the slab's top y = H.  One-line :class:`InputError` if a node of the
+        die lies below that point, or a node of ``top`` as low as it, by more
+        than 1e-9 of the die's size (the arc is not its lower boundary: the die
+        would start inside the slab, or press it with a face that is not in
+        contact), or if the slide takes x_c off the slab (:meth:`check_slide`).
+        h_die is the mean length of the arc facets within b of (x_c, H)
+        (:func:`tribofx.meshes.user.boundary_facet_size`).
+        """
+        comm, x = msh.comm, msh.geometry.x
+
+        def extent(a):
+            return (comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN),
+                    comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX))
+
+        (lo, hi), (ylo, yhi) = extent(x[:, 0]), extent(x[:, 1])
+        b = 0.5 * (hi - lo)
+        cls.check_slide(v, b)
+
+        def nodes(name):
+            return np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(names[name]),
+                                                        False).ravel())
+
+        y0, tol = extent(x[nodes("arc"), 1])[0], 1e-9 * max(hi - lo, yhi - ylo)
+        y_top = extent(x[nodes("top"), 1])[0]
+        path = v["mesh_file"]
+        if ylo < y0 - tol:
+            raise InputError(f"the die in {path!r} reaches {y0 - ylo:.4g} mm below its "
+                             "lowest 'arc' node: 'arc' must be its lower boundary")
+        if y_top <= y0 + tol:
+            raise InputError(f"the die in {path!r} has 'top' as low as its lowest 'arc' "
+                             "node: 'arc' must be its lower boundary")
+        xc = 0.5 * b + 1.0
+        x[:, 0] += xc - 0.5 * (lo + hi)
+        x[:, 1] += v["H"] - y0
+        return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v["H"]), b))
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):
@@ -93,6 +178,8 @@ class IroningCase:
         run = cls.build(v)
         contact, problem, motion = run["contact"], run["problem"], run["motion"]
         record.data["num_dofs"] = problem.num_dofs
+        record.result("die_half_width", run["b"], "mm")
+        record.result("die_element_size", run["h_die"], "mm")
         history = []
 
         def reaction():

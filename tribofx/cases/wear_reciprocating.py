@@ -32,16 +32,40 @@ dissipate μF·4A = 0.6 N·mm/mm per cycle (the stick phases after each reversal
 take about 13 % off), so the pin loses about 0.1 mm² per mm, a flat of about
 1.5 mm on its tip, and the block half of that, a groove along the stroke.
 
+Your own pin (``mesh_file``): a 2D gmsh ``.msh`` whose physical groups are the
+case's own (:data:`tribofx.meshes.pin.NAMES`): ``contact`` (the tip, the slave
+surface), ``top`` (loaded) and ``sides`` (held laterally), read and checked by
+:func:`tribofx.meshes.user.read_user_mesh`.  It is moved as
+:meth:`tribofx.cases.wear.WearPinCase._user_pin` moves the pin of ``wear-pin``
+(its lowest tip point to y = 0, the block's top) and its x extent centred on
+x = 0 (the centre of the stroke); it replaces ``W``, ``H``, ``R_tip`` and the
+pin's mesh.  What the case takes from W, R_tip and n it then takes from the
+mesh: W is the mesh's x extent (the stroke check L ≥ W + 2A + 1 mm), the top
+traction is F/ℓ with ℓ the length of ``top`` (so that the pin carries F; ℓ = W
+for the case's pin), the element size h = W/n is the mean length of the tip
+facets (ρ_N = min(E_pin, E_block)/h and the block's element size 4h/3:
+``mesh`` then refines nothing), and Newton's start on load-up is the approach
+of :meth:`~tribofx.cases.wear.WearPinCase._user_approach` (the tip's height at
+|x| = W/4, so that its middle half starts in contact, plus the pin's
+compression F H/(ℓ E_pin)) instead of the Hertz approach of R_tip.  The checks
+R_tip ≥ W/2 and tip height < H/2 are those of the built circular tip and do
+not apply.  ``pin_width``, ``pin_height``, ``pin_top_length`` and
+``contact_element_size`` report what was used (the built pin's W, H, W, W/n
+without ``mesh_file``).
+
 Results per slow step: ``time``, ``cycles_done``, ``worn_area_pin`` and
 ``worn_area_block`` (∫ (1 − det G) dV̂, mm² per mm), ``dissipated_energy`` (the
 frictional dissipation of the cycles so far, N·mm per mm), ``drive_work`` and
 ``drive_work_bound`` (the work of the block's drive over the last cycle, ∮ F_x dx
 by the trapezoidal rule, and the bound ½ Σ |ΔF_x||Δx| of that rule),
 ``rate_integral_pin``/``_block`` (∫ W̄̇ dŜ of the step's averaged rate, mm²/(mm·s)),
-and the final worn profiles of both bodies; ``pin_series.bp`` and
-``block_series.bp`` (VTX time series of u and w at every slow step: warp by w
-for the worn shape, by u for the deformed one); ``fig5.png`` (initial and worn, undeformed
-and deformed, both bodies, at −A, at the centre and at +A) and ``wear.png``.
+``normal_force`` (the contact force on the pin along y at the solved state of
+the step: F, by the pin's vertical equilibrium, to ``normal_force_bound`` = n_u ·
+atol_u of the pin's momentum rows), and the final worn profiles of both bodies;
+``pin_series.bp`` and ``block_series.bp`` (VTX time series of u and w at every
+slow step: warp by w for the worn shape, by u for the deformed one); ``fig5.png``
+(initial and worn, undeformed and deformed, both bodies, at −A, at the centre
+and at +A) and ``wear.png``.
 """
 
 import math
@@ -60,12 +84,14 @@ from ..meshes.block import NAMES as BLOCK_NAMES
 from ..meshes.block import block_mesh
 from ..meshes.pin import NAMES as PIN_NAMES
 from ..meshes.pin import pin_body, tip_height
+from ..meshes.user import read_user_mesh
 from ..output import VTXSeries
 from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz
 from ..restart import open_history, series_stem
 from ..stepper import ReciprocatingCycle, Stepper
+from .wear import WearPinCase
 
 __all__ = ["WearReciprocatingCase", "cell_coordinates"]
 
@@ -87,6 +113,19 @@ def cell_coordinates(body):
     if msh.comm.rank != 0:
         return None
     return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
+
+
+def _centre_on_axis(msh):
+    """Translate a user's pin along x so that its x extent is centred on x = 0.
+
+    The case's own pin is symmetric about x = 0, the centre of the block and of
+    the stroke; a user's pin is put there by the midpoint of its extent (its
+    sides, held laterally, at x = ±W/2).
+    """
+    comm, x = msh.comm, msh.geometry.x
+    lo = comm.allreduce(float(np.min(x[:, 0], initial=np.inf)), op=MPI.MIN)
+    hi = comm.allreduce(float(np.max(x[:, 0], initial=-np.inf)), op=MPI.MAX)
+    x[:, 0] -= 0.5 * (lo + hi)
 
 
 def _jsonable(shot):
@@ -138,22 +177,46 @@ class WearReciprocatingCase:
               upper=100000, closed=True),
         Param("max_cuts", int, 4, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
+        Param("mesh_file", str, "", "-",
+              "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
+              "(loaded by F: traction F/l, l its length) and sides (held laterally); its "
+              "lowest tip point moved to y = 0 and its x extent centred on x = 0; replaces "
+              "W (its x extent: L >= W + 2A + 1), H, R_tip and the pin's mesh (h = mean tip "
+              "facet length: rho_N = min(E)/h, block elements 4h/3)"),
     )
 
     @staticmethod
     def validate(v):
-        """Reject a stroke off the block, a tip lower than the pin and a step above T."""
-        if v["R_tip"] < v["W"] / 2:
-            raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
-        if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
-            raise InputError("the rounded tip must be lower than half the pin height")
-        if v["L"] < v["W"] + 2 * v["A"] + 1.0:
-            raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 mm")
+        """Reject a stroke off the block, a tip lower than the pin and a step above T.
+
+        With ``mesh_file`` the pin's width is known only once the mesh is read:
+        :meth:`build` checks the stroke then (:meth:`check_stroke`); the tip
+        checks are those of the built circular tip.
+        """
+        if not v["mesh_file"]:
+            if v["R_tip"] < v["W"] / 2:
+                raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
+            if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
+                raise InputError("the rounded tip must be lower than half the pin height")
+            WearReciprocatingCase.check_stroke(v, v["W"])
         if v["fast_steps"] % 4:
             raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
         if v["dt"] > WearReciprocatingCase.period(v) * v["cycles"]:
             raise InputError(f"time step {v['dt']} s exceeds T = "
                              f"{WearReciprocatingCase.period(v) * v['cycles']} s")
+
+    @staticmethod
+    def check_stroke(v, W):
+        """Reject a block too short for a pin of width ``W`` (mm) and the stroke 2A.
+
+        The pin must stay on the block with 0.5 mm to spare at either end of the
+        stroke: L ≥ W + 2A + 1 mm.
+        """
+        if v["L"] < W + 2 * v["A"] + 1.0:
+            where = f" (W = {W:.6g} mm: the width of the pin in {v['mesh_file']!r})" \
+                if v["mesh_file"] else ""
+            raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 = "
+                             f"{W + 2 * v['A'] + 1.0:.6g} mm{where}")
 
     @staticmethod
     def period(v):
@@ -162,15 +225,33 @@ class WearReciprocatingCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
-        """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict)."""
-        n = 10 * 2 ** v["mesh"]
-        h = v["W"] / n
-        msh, ft = pin_body(v["W"], v["H"], v["R_tip"], n, comm)
+        """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
+
+        The dict also holds the pin's geometry as used: ``W`` (width), ``H``
+        (height above the lowest tip point), ``top_length`` (ℓ of the traction
+        F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
+        """
+        if v["mesh_file"]:
+            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(PIN_NAMES))
+            W, h = WearPinCase._user_pin(msh, ft, names)
+            cls.check_stroke(v, W)
+            _centre_on_axis(msh)
+            H = comm.allreduce(float(np.max(msh.geometry.x[:, 1], initial=-np.inf)),
+                               op=MPI.MAX)
+        else:
+            n = 10 * 2 ** v["mesh"]
+            W, H, h = v["W"], v["H"], v["W"] / n
+            msh, ft = pin_body(W, H, v["R_tip"], n, comm)
+            names = PIN_NAMES
         mu, lmbda = lame_parameters(v["E_pin"], v["nu"])
-        pin = Body(msh, ft, PIN_NAMES, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+        pin = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
                    shape=True, aux=(v["E_pin"], 0.3), name="pin")
+        # the top's length: the traction F/ℓ loads the pin with F whatever its top
+        top = comm.allreduce(fem.assemble_scalar(fem.form(
+            fem.Constant(msh, 1.0) * pin.ds(pin.tag("top")))), op=MPI.SUM) \
+            if v["mesh_file"] else W
         load = fem.Constant(msh, 1.0)
-        pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / v["W"]]))
+        pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / top]))
         pin.add_dirichlet("sides", 0.0, component=0)
         pin.add_shape_dirichlet("sides", 0)
         pin.add_shape_dirichlet("top", 1)
@@ -206,18 +287,25 @@ class WearReciprocatingCase:
                           problem_kw={"max_it": 40})
         return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
                 "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
-                "cycle": cycle}
+                "cycle": cycle, "W": W, "H": H, "top_length": top, "h": h}
 
     @staticmethod
     def load_up(run, v, verbose=False):
         """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
 
         Newton starts from the pin translated down by the Hertz approach a²/(2R)
-        of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin).
+        of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin); a
+        user's pin (``mesh_file``) by its tip height at |x| = W/4 plus F H/(ℓ E_pin)
+        (:meth:`tribofx.cases.wear.WearPinCase._user_approach` with the pin's
+        traction q = F/ℓ and modulus).
         """
-        a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
-                      v["nu"], line=True).a, v["W"] / 2)
-        delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
+        if v["mesh_file"]:
+            delta0 = WearPinCase._user_approach(
+                run["wear_pin"].contact, {"q": v["F"] / run["top_length"], "E": v["E_pin"]})
+        else:
+            a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
+                          v["nu"], line=True).a, v["W"] / 2)
+            delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
         run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
         run["load"].value = 0.0
         control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
@@ -267,13 +355,22 @@ class WearReciprocatingCase:
         st.verbose = verbose
         record.data["num_dofs"] = st.problem.num_dofs
         record.data["num_dofs_shape"] = st.shape.num_dofs
+        for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
+                               ("pin_top_length", run["top_length"], "mm"),
+                               ("contact_element_size", run["h"], "mm")):
+            record.result(key, val, unit)
+        pin = run["pin"]
+        # the pin's vertical equilibrium: Σ of its momentum rows along y (each below
+        # atol_u at a solved state) is F − (contact force along y)
+        record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
+                      * pin.tolerances()[pin.u].atol, "N/mm")
         tau = cls.period(v)
         # the records live in the stepper's history, so the checkpoint carries them
         h = open_history(st, v, resume)
         hist = h.setdefault("hist", {k: [] for k in (
             "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
             "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
-            "rate_integral_pin", "rate_integral_block", "newton_iterations",
+            "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
             "picard_iterations", "dt")})
         record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
         energy = [hist["dissipated_energy"][-1] if resume else 0.0]
@@ -296,6 +393,7 @@ class WearReciprocatingCase:
                              ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
                              ("rate_integral_pin", wp.wear_rate_integral()),
                              ("rate_integral_block", wb.wear_rate_integral()),
+                             ("normal_force", float(contact.forces()[0][1])),
                              ("newton_iterations", its), ("picard_iterations", picard),
                              ("dt", dt)):
                 hist[key].append(val)
@@ -328,7 +426,7 @@ class WearReciprocatingCase:
             cls._report(run, record, hist, shots)
             if record.profile is not None:
                 half = 0.5 * v["L"] + v["A"] + 0.1
-                record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * v["H"]))
+                record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
         return run
 
     @staticmethod
@@ -338,7 +436,8 @@ class WearReciprocatingCase:
                  "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
                  "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
                  "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
-                 "newton_iterations": "-", "picard_iterations": "-", "dt": "s"}
+                 "normal_force": "N/mm", "newton_iterations": "-", "picard_iterations": "-",
+                 "dt": "s"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
         prof = {}
