@@ -6,11 +6,16 @@ underlying smooth field lies between nodes.  It is estimated by the vertex of th
 parabola through the extreme node and its two neighbours (non-uniform spacing):
 for a smooth f with f'' ≠ 0 the error is O(h²) (|Δx| ≤ h² max|f'''| / (3|f''|)
 plus the nodal error ε of f shifted by ≲ 2ε/(|f''| h)), against O(h) for the node.
+
+On a surface (a film map f(x, y) at scattered nodes) the same idea takes the
+vertex of the quadratic f ≈ c₀ + g·ξ + ½ ξᵀHξ fitted by least squares to the
+extreme node's ``k`` nearest nodes (:func:`paraboloid_vertex`): exact for a
+quadratic field, O(h²) for a smooth one with a definite Hessian.
 """
 
 import numpy as np
 
-__all__ = ["parabolic_vertex"]
+__all__ = ["parabolic_vertex", "paraboloid_vertex"]
 
 
 def parabolic_vertex(x, f, kind="max"):
@@ -39,3 +44,36 @@ def parabolic_vertex(x, f, kind="max"):
     # Newton form f ≈ f0 + d01 (ξ − x0) + c (ξ − x0)(ξ − x1): f'(ξ) = d01 + c (2ξ − x0 − x1)
     xv = 0.5 * (x0 + x1) - d01 / (2 * c)
     return float(np.clip(xv, x0, x2))
+
+
+def paraboloid_vertex(xy, f, kind="min", k=12):
+    """Position (x, y) of the extreme of a field f given at scattered surface points xy.
+
+    Fits f ≈ c₀ + g·ξ + ½ ξᵀHξ (ξ = x − x_i, six coefficients) by least squares
+    to the ``k`` nodes nearest the extreme node i (i included) and returns the
+    stationary point −H⁻¹g, kept within the fitted patch (the disc of its
+    farthest node); the node itself when the patch has fewer than six nodes,
+    the fit is rank deficient or H is not definite in the sense of ``kind``
+    ("min": positive definite, "max": negative definite).
+    """
+    xy, f = np.asarray(xy, dtype=float)[:, :2], np.asarray(f, dtype=float)
+    if kind not in ("max", "min"):
+        raise ValueError(f"unknown kind {kind!r}")
+    s = 1.0 if kind == "min" else -1.0
+    i = int(np.argmin(s * f))
+    d = np.linalg.norm(xy - xy[i], axis=1)
+    near = np.argsort(d, kind="stable")[:k]
+    if len(near) < 6:
+        return tuple(float(c) for c in xy[i])
+    xi = xy[near] - xy[i]
+    A = np.column_stack([np.ones(len(near)), xi[:, 0], xi[:, 1], 0.5 * xi[:, 0] ** 2,
+                         xi[:, 0] * xi[:, 1], 0.5 * xi[:, 1] ** 2])
+    c, _, rank, _ = np.linalg.lstsq(A, s * f[near], rcond=None)
+    H = np.array([[c[3], c[4]], [c[4], c[5]]])
+    if rank < 6 or np.any(np.linalg.eigvalsh(H) <= 0):
+        return tuple(float(v) for v in xy[i])
+    step = -np.linalg.solve(H, c[1:3])
+    r = float(d[near].max())
+    if np.linalg.norm(step) > r:
+        step *= r / np.linalg.norm(step)
+    return tuple(float(v) for v in xy[i] + step)
