@@ -11,6 +11,11 @@ within ``r_fine`` of the contact point and grow to ``h_coarse``.
 
 Cell tag 1.  Facet tags: 1 lubricated cap Γ_l, 2 free spherical surface,
 3 mid-plane z = R (loaded), 4 symmetry plane y = 0.  Lengths in mm.
+
+The boundary groups carry the names of :data:`GROUP_NAMES` (lubricated, free,
+midplane, symmetry), the names the case ``ehl-ball`` reads from a user's mesh
+(``mesh_file``); :func:`write_quarter_ball` writes the built ball as such a
+mesh, a template for one's own.
 """
 
 import math
@@ -19,9 +24,13 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["FREE", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height", "quarter_ball"]
+__all__ = ["FREE", "GROUP_NAMES", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height",
+           "quarter_ball", "write_quarter_ball"]
 
 LUBRICATED, FREE, MIDPLANE, SYMMETRY = 1, 2, 3, 4
+#: names of the boundary groups (physical names in the gmsh model and a written .msh)
+GROUP_NAMES = {LUBRICATED: "lubricated", FREE: "free", MIDPLANE: "midplane",
+               SYMMETRY: "symmetry"}
 
 
 def cap_height(R, theta_l):
@@ -55,9 +64,9 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine):
         else:
             tags[FREE].append(tag)
     vols = [t for _, t in gmsh.model.getEntities(3)]
-    gmsh.model.addPhysicalGroup(3, vols, 1)
+    gmsh.model.addPhysicalGroup(3, vols, 1, name="ball")
     for k, v in tags.items():
-        gmsh.model.addPhysicalGroup(2, v, k)
+        gmsh.model.addPhysicalGroup(2, v, k, name=GROUP_NAMES[k])
     p0 = occ.addPoint(0, 0, 0)
     occ.synchronize()
     f = gmsh.model.mesh.field
@@ -103,3 +112,25 @@ def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
     if not initialized:
         gmsh.finalize()
     return data.mesh, data.cell_tags, data.facet_tags
+
+
+def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
+    """Write the quarter ball of :func:`quarter_ball` to the gmsh file ``path`` (one process).
+
+    The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid
+    ``mesh_file`` of the case ``ehl-ball``.  Arguments as for
+    :func:`quarter_ball`; returns ``path``.
+    """
+    if not 0 < theta_l < 0.5 * math.pi:
+        raise ValueError(f"cap angle must be in (0, π/2), got {theta_l}")
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("quarter_ball")
+    _build(R, theta_l, h_fine, h_coarse, r_fine)
+    gmsh.write(str(path))
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    return path

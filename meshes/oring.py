@@ -14,6 +14,11 @@ Mesh density ``n`` (1, 2, 4, 8, …): element size h_l/n on Γ_l and h_b/n far f
 it (a Distance/Threshold size field).  The boundary has vertices at
 φ = 0°, 90°, 180° (the first points touching groove bottom, air-side wall and
 rod).  Cell tag 1.  Lengths in mm.
+
+The boundary groups carry the names of :data:`GROUP_NAMES` (lubricated, sealed,
+housing), the names the case ``ehl-oring`` reads from a user's mesh
+(``mesh_file``); :func:`write_oring_section` writes the built section as such a
+mesh, a template for one's own.
 """
 
 import math
@@ -22,9 +27,12 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["HOUSING", "LUBRICATED", "SEALED", "oring_section"]
+__all__ = ["GROUP_NAMES", "HOUSING", "LUBRICATED", "SEALED", "oring_section",
+           "write_oring_section"]
 
 LUBRICATED, SEALED, HOUSING = 1, 2, 3
+#: names of the boundary groups (physical names in the gmsh model and a written .msh)
+GROUP_NAMES = {LUBRICATED: "lubricated", SEALED: "sealed", HOUSING: "housing"}
 
 
 def _build(r_c, z_c, a, h_l, h_b):
@@ -41,10 +49,9 @@ def _build(r_c, z_c, a, h_l, h_b):
     loop = geo.addCurveLoop([arcs[k] for k in order[:-1]])
     surf = geo.addPlaneSurface([loop])
     geo.synchronize()
-    gmsh.model.addPhysicalGroup(2, [surf], 1)
-    gmsh.model.addPhysicalGroup(1, lub, LUBRICATED)
-    gmsh.model.addPhysicalGroup(1, sealed, SEALED)
-    gmsh.model.addPhysicalGroup(1, housing, HOUSING)
+    gmsh.model.addPhysicalGroup(2, [surf], 1, name="ring")
+    for tag, curves in ((LUBRICATED, lub), (SEALED, sealed), (HOUSING, housing)):
+        gmsh.model.addPhysicalGroup(1, curves, tag, name=GROUP_NAMES[tag])
     f = gmsh.model.mesh.field
     d = f.add("Distance")
     f.setNumbers(d, "CurvesList", lub)
@@ -90,3 +97,25 @@ def oring_section(r_c, z_c, a, n=1, h_l=0.1, h_b=0.4, comm=MPI.COMM_WORLD):
     if not initialized:
         gmsh.finalize()
     return data.mesh, data.cell_tags, data.facet_tags
+
+
+def write_oring_section(path, r_c, z_c, a, n=1, h_l=0.1, h_b=0.4):
+    """Write the cross-section of :func:`oring_section` to the gmsh file ``path`` (one process).
+
+    The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid
+    ``mesh_file`` of the case ``ehl-oring`` (which moves it to the rod itself).
+    Arguments as for :func:`oring_section`; returns ``path``.
+    """
+    if not (a > 0 and n > 0):
+        raise ValueError("need a > 0 and n > 0")
+    initialized = gmsh.isInitialized()
+    if not initialized:
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("oring")
+    _build(r_c, z_c, a, h_l / n, h_b / n)
+    gmsh.write(str(path))
+    gmsh.model.remove()
+    if not initialized:
+        gmsh.finalize()
+    return path

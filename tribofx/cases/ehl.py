@@ -26,14 +26,31 @@ Defaults (mm, N, s, MPa): R = 10; H = 5, E = 10; t_c = 0.1, E_c = 100; ν = 0.45
 neo-Hookean; μ = 1e-7 (0.1 Pa·s), U = 1000, μU = 1e-4 N/mm (0.1 N/m, Fig. 22);
 W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
 
+Your own layer (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
+``lubricated`` (Γ_l, the face under the cylinder) and ``bottom`` (bonded: u = 0),
+read and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other
+boundary is traction free.  It replaces H, x_l (half the x extent of Γ_l), mesh,
+t_c and E_c: the whole mesh is one material (E, ν) — a coating needs the cell
+groups of two materials, which the reader does not return.  The mesh is moved
+so that Γ_l's highest node is at y = 0 and the middle of its x extent at x = 0,
+below the cylinder axis (the rigid film h_r(W/steps) of the start is measured
+from y = 0).  Γ_l must be one open curve ending at its two x extremes (checked):
+p = 0 at both ends, the JFO inlet at the left end X = −x_l.  Everything else
+applies as for the built layer (R, the cylinder; W, μ, U, the scales; the
+lubrication model); ``mesh`` only sets the built layer's element sizes (SUPG
+takes the cell size of Γ_l), so no size is needed from a user's mesh.
+
 Results: h_min, h_central (below the cylinder axis), p_max, friction coefficient
 (tangential film force on the layer / W), clearance per load step; profiles
-(``profiles.png``), VTX of u and p.
+(``profiles.png``), VTX of u and p at the end and as time series
+(``[variant_]displacement_series.bp``, ``..._pressure_series.bp``: one time index per
+converged load and speed, its (W, U) in ``series_points``).
 """
 
 import math
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -41,13 +58,16 @@ from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
+from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
+from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 
-__all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence", "speed_list"]
+__all__ = ["EHLCylinderLayerCase", "at_points", "cylinder_arc", "film_boundary",
+           "mesh_convergence", "speed_list"]
 
 NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
 
@@ -58,6 +78,45 @@ def speed_list(v):
     if any(not U > 0 for U in speeds):
         raise InputError("speeds must be positive (mm/s)")
     return speeds
+
+
+def film_boundary(film, keep=None):
+    """Return the reference coordinates (n, 3) of the vertices of ∂Γ_l, on every rank.
+
+    ∂Γ_l are the facets of the film submesh with one adjacent cell of Γ_l
+    (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.boundary_facets`): the
+    end points of a curve, the rim edges of a surface.  ``keep(X)``, X the
+    (k, vertices per facet, 3) coordinates of the local boundary facets, returns a
+    mask of the facets to keep (e.g. not the edges on a symmetry line).  A vertex
+    of two facets or on two ranks is listed once (its coordinates are identical).
+    """
+    sub = film.sub
+    facets = film.boundary_facets()
+    fdim = sub.topology.dim - 1
+    X = np.zeros((0, 1, 3))
+    if len(facets):
+        X = sub.geometry.x[dmesh.entities_to_geometry(sub, fdim, facets, False)]
+        if keep is not None:
+            X = X[np.asarray(keep(X), dtype=bool)]
+    pts = np.concatenate([x.reshape(-1, 3) for x in sub.comm.allgather(X)])
+    return np.unique(pts, axis=0)
+
+
+def at_points(points, tol):
+    """Locator (for ``add_pressure_bc``, ``fem.locate_dofs_geometrical``) of ``points``.
+
+    Returns ``where(X)``, X of shape (3, n): True at the columns within ``tol``
+    (mm) of one of the (k, 3) ``points``.
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+
+    def where(X):
+        if not len(points):
+            return np.zeros(X.shape[1], dtype=bool)
+        d = np.linalg.norm(X.T[:, None, :] - points[None, :, :], axis=2)
+        return d.min(axis=1) < tol
+
+    return where
 
 
 def cylinder_arc(R, n, alpha):
@@ -122,7 +181,15 @@ class EHLCylinderLayerCase:
               "one load sweep per variant in the same run: linear (model = finite and "
               "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
               "the variant", choices=("none", "linear", "alpha")),
+        Param("mesh_file", str, "", "-",
+              "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
+              "open curve under the cylinder) and bottom (u = 0); replaces H, x_l (half the "
+              "x extent of Γ_l), mesh, t_c and E_c (one material E, nu); moved so that Γ_l's "
+              "highest node is at y = 0, its x extent centred below the cylinder axis"),
     )
+
+    #: boundary names a user's layer must carry (``mesh_file``)
+    USER_GROUPS = ("lubricated", "bottom")
 
     #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
     COMPARE = {
@@ -138,13 +205,18 @@ class EHLCylinderLayerCase:
 
     @classmethod
     def validate(cls, v):
-        """Geometric consistency of the layer and the lubricated zone."""
-        if v["t_c"] >= v["H"]:
-            raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than H = {v['H']} mm")
-        if v["x_l"] >= 3 * v["H"]:
-            raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
-        if v["x_l"] > 0.8 * v["R"]:
-            raise InputError(f"x_l = {v['x_l']} mm must be < 0.8 R (film beyond the cylinder)")
+        """Geometric consistency of the layer and the lubricated zone.
+
+        With ``mesh_file`` H, t_c and x_l come from the mesh; x_l ≤ 0.8 R is then
+        checked when the mesh is read (:meth:`build`).
+        """
+        if not v["mesh_file"]:
+            if v["t_c"] >= v["H"]:
+                raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than "
+                                 f"H = {v['H']} mm")
+            if v["x_l"] >= 3 * v["H"]:
+                raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
+            cls.check_film_length(v["x_l"], v["R"])
         speeds = cls.speed_list(v)
         if v["cavitation"] == "jfo" and not v["U"] > 0:
             raise InputError("cavitation=jfo needs U > 0")
@@ -152,6 +224,12 @@ class EHLCylinderLayerCase:
             raise InputError("speeds (continuation in U) is not available with compare")
         if v["compare"] == "alpha" and v["model"] != "finite":
             raise InputError("compare=alpha is a study of the finite-deformation model")
+
+    @staticmethod
+    def check_film_length(x_l, R):
+        """Raise InputError unless the film zone |X| ≤ x_l lies below the cylinder (x_l ≤ 0.8 R)."""
+        if x_l > 0.8 * R:
+            raise InputError(f"x_l = {x_l:.6g} mm must be < 0.8 R (film beyond the cylinder)")
 
     @staticmethod
     def speed_list(v):
@@ -176,19 +254,28 @@ class EHLCylinderLayerCase:
         """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
         ``alpha = 0`` uses S = P(γ_l) unless ``intermediate`` (then the general S_α
-        kinematics with α = 0, for checking that they coincide).
+        kinematics with α = 0, for checking that they coincide).  ``mesh_file``:
+        the user's layer (see the module docstring), ``x_l`` taken from it.
         """
         H = v["H"]
-        msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"], H / 5,
-                                   comm)
         law = "linear" if v["model"] == "linear" else "neo-hookean"
 
         def mat(E):
             mu, lm = lame_parameters(E, v["nu"])
             return (law, {"mu": mu, "lmbda": lm})
 
-        materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0 else {})
-        layer = Body(msh, ft, NAMES, "plane_strain", materials, cell_tags=ct,
+        if v["mesh_file"]:
+            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, cls.USER_GROUPS)
+            v = dict(v, x_l=cls._user_layer(msh, ft, names["lubricated"]))
+            cls.check_film_length(v["x_l"], v["R"])
+            materials, ct = mat(v["E"]), None
+        else:
+            msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
+                                       H / 5, comm)
+            names = NAMES
+            materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0
+                                               else {})
+        layer = Body(msh, ft, names, "plane_strain", materials, cell_tags=ct,
                      degree=v["degree"], velocity=(v["U"], 0.0), name="layer")
         layer.add_dirichlet("bottom", np.zeros(2))
         if v["countersurface"] == "mesh":
@@ -202,6 +289,8 @@ class EHLCylinderLayerCase:
                     eps=eps if v["penalty"] > 0 else None, p_c=p_s,
                     alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
                     film_scale=h_r, speed_scale=v["U"])
+        if v["mesh_file"]:
+            cls._check_user_ends(film, v)
         if v["cavitation"] == "jfo":
             film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
         else:
@@ -210,6 +299,38 @@ class EHLCylinderLayerCase:
         film.counterpart.offset.value[1] = h_r
         film.jfo_initial_guess()
         return layer, film, problem
+
+    @staticmethod
+    def _user_layer(msh, ft, tag):
+        """Move a user's layer: Γ_l (facets ``tag``) highest at y = 0, x extent centred at 0.
+
+        Returns x_l, half the x extent of Γ_l (mm).
+        """
+        comm = msh.comm
+        msh.topology.create_connectivity(1, 2)
+        x = msh.geometry.x
+        nodes = np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(tag), False).ravel())
+        lo = comm.allreduce(float(np.min(x[nodes, 0], initial=np.inf)), op=MPI.MIN)
+        hi = comm.allreduce(float(np.max(x[nodes, 0], initial=-np.inf)), op=MPI.MAX)
+        top = comm.allreduce(float(np.max(x[nodes, 1], initial=-np.inf)), op=MPI.MAX)
+        x[:, 0] -= 0.5 * (lo + hi)
+        x[:, 1] -= top
+        return 0.5 * (hi - lo)
+
+    @staticmethod
+    def _check_user_ends(film, v):
+        """Raise InputError unless the user's Γ_l is one open curve ending at X = ±x_l.
+
+        The pressure conditions (p = 0 at both ends, the JFO inlet at X = −x_l)
+        need it; a closed or split curve has 0 or more than 2 end points.
+        """
+        ends = film_boundary(film)
+        x_l = v["x_l"]
+        if len(ends) != 2 or not np.allclose(np.sort(ends[:, 0]), [-x_l, x_l],
+                                             atol=1e-9 * x_l):
+            raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} must be one open "
+                             f"curve ending at its two x extremes (has {len(ends)} end "
+                             f"point(s) at x = {', '.join(f'{e:.4g}' for e in ends[:, 0])})")
 
     @classmethod
     def load_control(cls, run, v, on_step=None, verbose=False, record=None):
@@ -259,13 +380,29 @@ class EHLCylinderLayerCase:
         layer, film, problem = run
         record.data["num_dofs"] = problem.num_dofs
         steps, speed, profiles = [], [], []
+        # u and p at every converged load and speed (ParaView time series; the "time"
+        # is the index of the point, its (W, U) in series_points)
+        series = VTXSeries(layer.mesh.comm, getattr(record, "outdir", None),
+                           {f"{prefix}{k}_series": f for k, f in cls.vtx_fields(run).items()})
+        points = record.data.setdefault("series_points", {}).setdefault(
+            prefix[:-1] or v["model"], [])
+
+        def write(m):
+            points.append([m["W"], float(layer.velocity.value[0])])
+            series.write(len(points) - 1)
 
         def on_step():
             m = cls.measures(run, v)
             steps.append(m)
             profiles.append(dict(m["profile"], W=m["W"]))
+            write(m)
             if progress is not None:
                 progress.update(1)
+
+        def on_speed():
+            m = dict(cls.measures(run, v), U=layer.velocity.value[0])
+            speed.append(m)
+            write(m)
 
         its = []
         if prefix:
@@ -275,12 +412,12 @@ class EHLCylinderLayerCase:
             loads.march(v["W"], v["steps"], predictor=False)
             if cls.speed_list(v):
                 speed.append(dict(steps[-1], U=v["U"]))
-                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), lambda: speed.append(
-                    dict(cls.measures(run, v), U=layer.velocity.value[0])), its)
+                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its)
         except NewtonDivergence as err:
             err.problem = run  # restored to the last converged load (or speed) step
             raise
         finally:
+            series.close()
             record.data["newton_iterations"].extend(its)
             cls._report(steps, speed, profiles, v, record, prefix)
         return run
@@ -378,6 +515,8 @@ def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORL
     and, from the second level on, the differences ``d_h_min``, ``d_p_max`` to the
     previous level (relative to the finer value).
     """
+    if v.get("mesh_file"):
+        raise InputError("mesh_convergence refines the built layer: not with mesh_file")
     W = v["W"] if W is None else W
     steps = v["steps"] if steps is None else steps
     rows = []

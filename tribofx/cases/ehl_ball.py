@@ -40,6 +40,23 @@ Measured limits: W = 40 N (θ_l ≥ 49°, e.g. 55) runs on mesh 0 down to
 
     tribofx run ehl-ball --set W=40 --set theta_l=55 --set U=3e5 --set mesh=0
 
+Your own ball (``mesh_file``): a 3D gmsh ``.msh`` of the quarter ball with the
+physical groups ``lubricated`` (Γ_l, the cap around the contact point),
+``midplane`` (held, u = 0) and ``symmetry`` (a plane y = const, u_y = 0), read
+and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other boundary is
+traction free.  It replaces theta_l, mesh and h_coarse (the cap and the
+elements are the user's); R, E and ν still set the Hertz start, the scales
+(penalty, SUPG pressure, tolerances) and the references, so R must be the
+radius of the ball at the contact.  The mesh is moved so that the symmetry
+plane is y = 0 (checked flat to 10⁻⁹ R: the centre line y = 0 of the results
+is found by it), the middle of the cap's x extent is x = 0 and the cap's lowest
+node z = 0 (the Hertz start is centred at the origin).  p = 0 on the cap's rim
+(∂Γ_l off the symmetry line, any shape); the cap must reach 1.5 a(W) from the
+contact point (rim radius √(x² + y²) checked, as R sin θ_l for the built cap),
+and its curvature within a(W) of the contact point must be 1/R within 5 %
+(least-squares fit, checked).  The case uses no element size of its own (SUPG
+takes the cell size of Γ_l).
+
 ``compare=all``: full model, no shear tractions and geometrically linear in one
 run (Fig. 26; prefixes ``full_``, ``no-shear_``, ``linear_``); ``speeds`` (mm/s)
 continues every variant at the final load in U (friction coefficient against
@@ -47,12 +64,17 @@ continues every variant at the final load in U (friction coefficient against
 p_max, friction coefficient (x-force of the traction on the ball / W; without
 shear only its pressure part), the Couette friction coefficient (drag / W, for
 every variant), the clearance; Hertz and Hamrock–Dowson references; plots
-``film_map.png``, ``centerline.png``, ``friction_vs_speed.png``; VTX of u and p.
+``film_map.png``, ``centerline.png``, ``friction_vs_speed.png``; VTX of u and p at the
+end and as time series (``[variant_]displacement_series.bp``, ``..._pressure_series.bp``,
+one time index per converged load and speed, its (W, U) in ``series_points``).
+The position of h_min is the vertex of a quadratic fitted to the film nodes
+around the smallest nodal h (:func:`tribofx.positions.paraboloid_vertex`).
 """
 
 import math
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -60,15 +82,19 @@ from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
 from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
+from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
+from ..output import VTXSeries
 from ..params import InputError, Param
+from ..positions import paraboloid_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
-from .ehl import speed_list
+from .ehl import at_points, film_boundary, speed_list
 
 __all__ = ["EHLBallCase"]
 
 NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
+USER_GROUPS = ("lubricated", "midplane", "symmetry")   # the groups of a user's ball
 Z = 2  # the plane's normal direction, index of its offset
 
 
@@ -109,6 +135,12 @@ class EHLBallCase:
         Param("compare", str, "none", "-",
               "all: load sweep (and speeds) of the full model, without shear tractions and "
               "geometrically linear in one run", choices=("none", "all")),
+        Param("mesh_file", str, "", "-",
+              "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
+              "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
+              "replaces theta_l, mesh, h_coarse (R, E, nu: Hertz start and scales; cap "
+              "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
+              "lowest at z = 0"),
     )
 
     #: variants of ``compare=all``: (prefix, label, overrides)
@@ -116,6 +148,7 @@ class EHLBallCase:
                 ("no-shear", "finite, no shear tractions", {"model": "finite", "shear": False}),
                 ("linear", "geometrically linear", {"model": "linear", "shear": True}))
     UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
+             "x_h_min": "mm (sub-element)", "y_h_min": "mm (sub-element)",
              "friction_coefficient": "-", "couette_friction_coefficient": "-",
              "clearance": "mm", "U": "mm/s", "mu_U": "N/mm"}
 
@@ -131,10 +164,13 @@ class EHLBallCase:
 
     @classmethod
     def validate(cls, v):
-        """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W)."""
+        """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W).
+
+        With ``mesh_file`` the cap of the mesh is checked when it is read (:meth:`build`).
+        """
         a = cls.hertz_contact(v).a
         r_cap = v["R"] * math.sin(math.radians(v["theta_l"]))
-        if r_cap < 1.5 * a:
+        if r_cap < 1.5 * a and not v["mesh_file"]:
             raise InputError(f"cap radius R sin θ_l = {r_cap:.3g} mm < 1.5 a = {1.5 * a:.3g} mm "
                              f"(Hertz a at W = {v['W']} N): increase theta_l")
         if not v["U"] > 0 or not v["mu"] > 0:
@@ -162,15 +198,20 @@ class EHLBallCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
-        """Ball, film, problem and the entrainment speed U (a Constant), unloaded."""
+        """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring)."""
         a = cls.hertz_contact(v).a
         th = math.radians(v["theta_l"])
-        h_fine = a / (4 * 2 ** v["mesh"])
-        msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine), 1.6 * a,
-                                   comm)
+        if v["mesh_file"]:
+            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
+            cls._place_user_ball(msh, ft, names, v)
+        else:
+            h_fine = a / (4 * 2 ** v["mesh"])
+            msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
+                                       1.6 * a, comm)
+            names = NAMES
         mu, lm = lame_parameters(v["E"], v["nu"])
         law = "linear" if v["model"] == "linear" else "neo-hookean"
-        ball = Body(msh, ft, NAMES, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball")
+        ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball")
         ball.add_dirichlet("midplane", np.zeros(3))
         ball.add_dirichlet("symmetry", 0.0, component=1)
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
@@ -179,10 +220,90 @@ class EHLBallCase:
                     V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
                     speed_scale=v["U"], quadrature_degree=2)
-        z_cap = cap_height(v["R"], th)
-        film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
+        if v["mesh_file"]:
+            film.add_pressure_bc(at_points(cls._user_rim(film, v), 1e-8 * v["R"]))
+        else:
+            z_cap = cap_height(v["R"], th)
+            film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
         problem = Problem([ball, film], name="ehl_ball", max_it=25)
         return ball, film, problem
+
+    @staticmethod
+    def _group_nodes(msh, ft, tag):
+        """Return the local geometry nodes of the facets tagged ``tag``."""
+        msh.topology.create_connectivity(2, 3)
+        return np.unique(dmesh.entities_to_geometry(msh, 2, ft.find(tag), False).ravel())
+
+    @classmethod
+    def _place_user_ball(cls, msh, ft, names, v):
+        """Move a user's ball: symmetry plane to y = 0, cap centred at x = 0, lowest at z = 0.
+
+        Raises InputError if the symmetry group is not a plane y = const (to 10⁻⁹ R).
+        """
+        comm, x = msh.comm, msh.geometry.x
+
+        def extent(nodes, k):
+            return (comm.allreduce(float(np.min(x[nodes, k], initial=np.inf)), op=MPI.MIN),
+                    comm.allreduce(float(np.max(x[nodes, k], initial=-np.inf)), op=MPI.MAX))
+
+        y0, y1 = extent(cls._group_nodes(msh, ft, names["symmetry"]), 1)
+        if y1 - y0 > 1e-9 * v["R"]:
+            raise InputError(f"the group 'symmetry' of {v['mesh_file']!r} must be a plane "
+                             f"y = const (spans y = {y0:.6g} … {y1:.6g} mm)")
+        cap = cls._group_nodes(msh, ft, names["lubricated"])
+        x0, x1 = extent(cap, 0)
+        z0, _ = extent(cap, 2)
+        x -= np.array([0.5 * (x0 + x1), y0, z0])
+        cls._check_curvature(msh, cap, v)
+
+    @classmethod
+    def _check_curvature(cls, msh, cap, v):
+        """Raise InputError unless the cap's curvature at the contact is 1/R within 5 %.
+
+        Least squares z = c + k ρ²/2 over the cap's nodes within ρ = √(x² + y²) ≤ a
+        (Hertz a at W; owned nodes, summed over the ranks): R sets the Hertz start,
+        the scales and the references, so it must be the ball's radius where the
+        film forms.  A cap with fewer than 6 nodes there is too coarse to resolve
+        the contact.
+        """
+        comm = msh.comm
+        own = cap[cap < msh.geometry.index_map().size_local]
+        X = msh.geometry.x[own]
+        a = cls.hertz_contact(v).a
+        rho2 = X[:, 0] ** 2 + X[:, 1] ** 2
+        near = rho2 <= a * a
+        q, z = 0.5 * rho2[near], X[near, 2]
+        sums = comm.allreduce(np.array([len(q), q.sum(), (q * q).sum(), z.sum(),
+                                        (q * z).sum()]), op=MPI.SUM)
+        n, sq, sqq, sz, sqz = sums
+        det = n * sqq - sq * sq
+        if n < 6 or not det > 0:
+            raise InputError(f"the cap of {v['mesh_file']!r} has {int(n)} node(s) within the "
+                             f"Hertz radius a = {a:.3g} mm of the contact point (needs >= 6)")
+        k = (n * sqz - sq * sz) / det
+        if not abs(k * v["R"] - 1) <= 0.05:
+            raise InputError(f"the cap of {v['mesh_file']!r} has the radius of curvature "
+                             f"{1 / k if k else math.inf:.4g} mm at the contact: R = "
+                             f"{v['R']} mm must match it within 5 %")
+
+    @classmethod
+    def _user_rim(cls, film, v):
+        """Return the nodes (k, 3) of the rim of a user's cap: ∂Γ_l less the edges on y = 0.
+
+        Raises InputError if there is none, or if the cap does not reach 1.5 a(W)
+        from the contact point (the least rim radius √(x² + y²)).
+        """
+        tol = 1e-9 * v["R"]
+        rim = film_boundary(film, keep=lambda X: ~np.all(np.abs(X[:, :, 1]) < tol, axis=1))
+        if not len(rim):
+            raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} has no rim off "
+                             "the symmetry plane (p = 0 there)")
+        a = cls.hertz_contact(v).a
+        r_cap = float(np.min(np.hypot(rim[:, 0], rim[:, 1])))
+        if r_cap < 1.5 * a:
+            raise InputError(f"the cap of {v['mesh_file']!r} reaches r = {r_cap:.3g} mm < "
+                             f"1.5 a = {1.5 * a:.3g} mm (Hertz a at W = {v['W']} N)")
+        return rim
 
     @staticmethod
     def speed(run, on_set=None):
@@ -340,9 +461,11 @@ class EHLBallCase:
         order = np.argsort(xy[on, 0])
         xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
         i = int(np.argmin(prof["h"]))
+        # where h is least, between nodes (tribofx.positions); y ≥ 0 in the quarter model
+        x_min, y_min = paraboloid_vertex(xy, prof["h"], "min")
         per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
         return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
-                "x_h_min": float(xy[i, 0]), "y_h_min": float(xy[i, 1]),
+                "x_h_min": x_min, "y_h_min": max(y_min, 0.0),
                 "p_max": float(prof["p"].max()),
                 "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
                             "h_axis": hh, "p_axis": pp},
@@ -374,14 +497,28 @@ class EHLBallCase:
             var = {"label": label, "shear": vv["shear"]}
             record.profile["variants"][name or vv["model"]] = var
 
-            def on_step(W, its, run=run, vv=vv, steps=steps, its_all=its_all):
+            # u and p at every converged load and speed (ParaView time series; the
+            # "time" is the index of the point, its (W, U) in series_points)
+            series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
+                               {f"{name + '_' if name else ''}{k}_series": f
+                                for k, f in cls.vtx_fields(run).items()})
+            points = record.data.setdefault("series_points", {}).setdefault(
+                name or vv["model"], [])
+
+            def write(run=run, series=series, points=points):
+                points.append([cls.load(run), cls.speed(run).get()])
+                series.write(len(points) - 1)
+
+            def on_step(W, its, run=run, vv=vv, steps=steps, its_all=its_all, write=write):
                 its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
                 steps.append(cls.measures(run, vv))
+                write()
                 if progress is not None:
                     progress.update(1)
 
-            def on_speed(run=run, vv=vv, speed=speed):
+            def on_speed(run=run, vv=vv, speed=speed, write=write):
                 speed.append(dict(cls.measures(run, vv), U=cls.speed(run).get()))
+                write()
 
             try:
                 inner = cls.load_sweep(run, vv, on_step, verbose)
@@ -395,6 +532,7 @@ class EHLBallCase:
                 err.problem = run
                 raise
             finally:
+                series.close()
                 record.data["newton_iterations"].extend(its_all)
                 cls._report(steps, speed, vv, record, f"{name}_" if name else "")
                 var["speed"] = {k: [m[k] for m in speed] for k in (
@@ -408,7 +546,7 @@ class EHLBallCase:
 
     @classmethod
     def _report(cls, steps, speed, v, record, prefix):
-        keys = ("h_central", "h_min", "p_max", "friction_coefficient",
+        keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
                 "couette_friction_coefficient", "clearance")
         if steps:
             for k in keys:

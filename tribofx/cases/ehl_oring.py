@@ -57,13 +57,33 @@ Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 zigzag amplitude)
 and the change of the mean film h̄ of that zone from level to level.
 
+Your own cross-section (``mesh_file``): a 2D gmsh ``.msh`` in the meridian plane
+(r, z) with the physical groups ``lubricated`` (Γ_l, one open curve facing the
+rod), ``sealed`` (loaded by p_s) and ``housing`` (the rest of the boundary that
+may touch the groove bottom or the air-side wall; both housing contacts act on
+sealed ∪ housing, as on the built section), read and checked by
+:func:`tribofx.meshes.user.read_user_mesh`.  It replaces ``d`` (the radial
+extent of the mesh, also the groove depth of ``squeeze``) and ``mesh`` (the
+elements are the user's; ``study=mesh`` is rejected).  The section is moved so
+that its innermost node is at r = r_rod + gap0 and its z extent centred at
+z = 0; with a the radial half extent, the groove bottom starts 10⁻³ a inside
+its outermost node and the air-side wall 0.005 mm below its top, as for the
+built circle.  a also sets the penalty scale ℓ = a/4 and the augmentation
+ρ_N = E/a of the housing contacts: a geometric scale for the built section
+too (no element size is taken from either mesh; SUPG takes the cell size of
+Γ_l).  Γ_l must end at its two z extremes, each the only node of Γ_l at that
+height (checked): p = p_s at the lower (sealed-side) end, p = 0 at the upper
+one.  All other parameters apply as for the built section.
+
 Results per stroke and p_s (prefix ``out_``/``in_`` and ``ps<value>_``): p_max,
 h_min and its position, h at the pressure peak, mean film h_mean of the loaded
 zone, flux q = h v̄ − h³/(12μ) ∂p/∂z per circumference (median over the loaded
 zone), leakage 2π r_rod q, radial load and friction force per circumference,
 oscillation indicator, axial equilibrium error (sum of axial forces / axial
 force of p_s).  Plots ``profiles.png`` (Fig. 17, out vs in), ``mesh_study.png``
-(Figs. 18–19).
+(Figs. 18–19).  VTX of u and p at the end and as time series per stroke
+(``outstroke_displacement_series.bp``, ``outstroke_pressure_series.bp``, ``in…``:
+one time index per sealed pressure, its p_s in ``series_points``).
 """
 
 import math
@@ -79,12 +99,15 @@ from ..continuation import ConstantParameter, Continuation
 from ..forms import ehl_axisym as ax
 from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
+from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
+from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..plots import plot_oring
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
+from .ehl import film_boundary
 
 __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_indicator",
            "solve_to"]
@@ -92,14 +115,43 @@ __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_i
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
 NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING)}
+USER_GROUPS = ("lubricated", "sealed", "housing")   # the groups of a user's section
 
 
-def geometry(v):
-    """Centre, radius, rod radius, final groove bottom and air-side wall (mm)."""
-    a = 0.5 * v["d"]
+def geometry(v, extent=None):
+    """Centre, radius, rod radius, final groove bottom and air-side wall (mm).
+
+    ``extent``: the half extents (r, z) of a user's section (None: the built
+    circle, radius d/2); the centre is that of its bounding box, the radius a
+    the radial half extent, d = 2a.
+    """
+    a, b = extent if extent is not None else (0.5 * v["d"],) * 2
     r_rod = v["r_rod"]
     center = (r_rod + a + v["gap0"], 0.0)
-    return center, a, r_rod, r_rod + v["d"] * (1 - v["squeeze"]), a - 0.005
+    return center, a, r_rod, r_rod + 2 * a * (1 - v["squeeze"]), b - 0.005
+
+
+def _user_section(v, comm):
+    """Read a user's section, move it into place (see the module docstring).
+
+    Returns ``(mesh, facet_tags, names, (a, b))``, a and b the half extents in r
+    and z (mm).
+    """
+    msh, ft, tags = read_user_mesh(v["mesh_file"], comm, 2, USER_GROUPS)
+    x = msh.geometry.x
+    lo = np.array([comm.allreduce(float(np.min(x[:, k], initial=np.inf)), op=MPI.MIN)
+                   for k in range(2)])
+    hi = np.array([comm.allreduce(float(np.max(x[:, k], initial=-np.inf)), op=MPI.MAX)
+                   for k in range(2)])
+    a, b = 0.5 * (hi - lo)
+    if v["gap0"] >= a:
+        raise InputError(f"gap0 = {v['gap0']} mm must be below half the radial extent of "
+                         f"the section ({a:.4g} mm)")
+    x[:, 0] += v["r_rod"] + v["gap0"] - lo[0]
+    x[:, 1] -= 0.5 * (lo[1] + hi[1])
+    names = {"lubricated": tags["lubricated"], "sealed": tags["sealed"],
+             "housing": (tags["sealed"], tags["housing"])}
+    return msh, ft, names, (a, b)
 
 
 class ORingSeal:
@@ -111,13 +163,19 @@ class ORingSeal:
     """
 
     def __init__(self, v, U, mesh, comm):
-        center, a, r_rod, r_g, z_w = geometry(v)
+        self.user = bool(v["mesh_file"])
+        if self.user:
+            msh, ft, names, extent = _user_section(v, comm)
+        else:
+            extent, names = None, NAMES
+        center, a, r_rod, r_g, z_w = geometry(v, extent)
         self.center, self.a, self.r_rod = center, a, r_rod
-        msh, _, ft = oring_section(*center, a, mesh, comm=comm)
+        if not self.user:
+            msh, _, ft = oring_section(*center, a, mesh, comm=comm)
         mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
         E = 3 * (mat["mu1"] + mat["mu2"])
         deg = v["degree"]
-        self.body = body = Body(msh, ft, NAMES, "axisymmetric", ("mooney-rivlin", mat),
+        self.body = body = Body(msh, ft, names, "axisymmetric", ("mooney-rivlin", mat),
                                 degree=deg, quadrature_degree=2 * deg, name="oring")
         p0 = min(P_MOUNT, number_list(v["p_s"], "p_s")[0])
         self.p_s = fem.Constant(msh, p0)
@@ -144,6 +202,8 @@ class ORingSeal:
         z_lo = comm.allreduce(float(zs.min(initial=np.inf)), op=MPI.MIN)
         z_hi = comm.allreduce(float(zs.max(initial=-np.inf)), op=MPI.MAX)
         tol = 1e-8 * a
+        if self.user:
+            self._check_ends(film, z_lo, z_hi, tol, v["mesh_file"])
         self.p_end = film.add_pressure_bc(lambda y: np.isclose(y[1], z_lo, atol=tol), p0)
         film.add_pressure_bc(lambda y: np.isclose(y[1], z_hi, atol=tol), 0.0)
         Xq = film.Q.tabulate_dof_coordinates()
@@ -154,6 +214,25 @@ class ORingSeal:
                                line_search="admissible", stall_window=10)
         self.iterations = []
         self._post = None
+
+    @staticmethod
+    def _check_ends(film, z_lo, z_hi, tol, path):
+        """Raise InputError unless Γ_l is one open curve ending at its z extremes, alone there.
+
+        The end conditions p = p_s at z_lo and p = 0 at z_hi are located by the
+        height: each must find one node, the end of the curve.
+        """
+        ends = film_boundary(film)
+        n = film.Q.dofmap.index_map.size_local
+        z = film.Q.tabulate_dof_coordinates()[:n, 1]
+        comm = film.sub.comm
+        at = [comm.allreduce(int(np.sum(np.isclose(z, zk, atol=tol))), op=MPI.SUM)
+              for zk in (z_lo, z_hi)]
+        ok = len(ends) == 2 and np.allclose(np.sort(ends[:, 1]), [z_lo, z_hi], atol=tol)
+        if not ok or at != [1, 1]:
+            raise InputError(f"the group 'lubricated' of {path!r} must be one open curve "
+                             f"ending at its lowest and highest z, each the only node "
+                             f"there (has {len(ends)} end point(s))")
 
     # -- parameters and continuation ---------------------------------------------------
     def set_pressure(self, p_s):
@@ -241,7 +320,12 @@ class ORingSeal:
                 "q": np.concatenate([c[1] for c in cells])[oc]}
 
     def sealed_arc_radii(self):
-        """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc."""
+        """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc.
+
+        The built section only (a user's section need not have nodes there).
+        """
+        if self.user:
+            raise ValueError("sealed_arc_radii needs the built section (no mesh_file)")
         V, u = self.body.V, self.body.u
         n = V.dofmap.index_map.size_local
         X = V.tabulate_dof_coordinates()
@@ -352,6 +436,11 @@ class EHLORingCase:
         Param("study", str, "none", "-", "none or mesh (density study, Figs. 18–19)",
               choices=("none", "mesh")),
         Param("mesh_levels", str, "1,2,4", "-", "densities of study=mesh"),
+        Param("mesh_file", str, "", "-",
+              "your own cross-section: a 2D gmsh .msh in (r, z) with physical groups "
+              "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
+              "housing (touches groove bottom/wall); replaces d (its radial extent) and "
+              "mesh; moved to r_min = r_rod + gap0, z extent centred at 0"),
     )
 
     @staticmethod
@@ -367,7 +456,10 @@ class EHLORingCase:
         levels = number_list(v["mesh_levels"], "mesh_levels")
         if any(k < 1 or k != int(k) for k in levels):
             raise InputError("mesh_levels must be positive integers")
-        if v["gap0"] >= 0.5 * v["d"]:
+        if v["mesh_file"]:
+            if v["study"] != "none":
+                raise InputError("mesh_file works with study=none only")
+        elif v["gap0"] >= 0.5 * v["d"]:
             raise InputError("gap0 must be below the cross-section radius")
 
     @classmethod
@@ -384,8 +476,17 @@ class EHLORingCase:
             prob = build(v, math.copysign(max(abs(Us), 1000.0), Us))
             record.data["num_dofs"] = prob.problem.num_dofs
             states = []
+            # u and p at each sealed pressure of the stroke (ParaView time series; the
+            # "time" is the index of the state, its p_s in series_points)
+            series = VTXSeries(comm, getattr(record, "outdir", None),
+                               {f"{tag}stroke_{k}_series": f
+                                for k, f in cls.vtx_fields(prob).items()})
+            points = record.data.setdefault("series_points", {}).setdefault(tag, [])
 
-            def on_state(p_s, prob=prob, tag=tag, states=states):
+            def on_state(p_s, prob=prob, tag=tag, states=states, series=series,
+                         points=points):
+                points.append(p_s)
+                series.write(len(points) - 1)
                 m = prob.measures()
                 m["axial_balance"] = axial_balance(prob)
                 for k, unit in cls.UNITS.items():
@@ -401,6 +502,8 @@ class EHLORingCase:
             except NewtonDivergence as err:
                 err.problem = prob
                 raise
+            finally:
+                series.close()
             record.data["newton_iterations"].append({tag: its})
             record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
             profiles["strokes"][tag] = states
