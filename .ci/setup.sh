@@ -43,6 +43,6 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 "$VENV/bin/python" -m pip install -q --upgrade pip
 "$VENV/bin/python" -m pip install -q "dolfinx-solver-real==0.11.0.post0" gmsh meshio matplotlib \
-  tqdm pytest ruff nanobind scikit-build-core numpy cmake ninja
+  tqdm pytest pytest-xdist ruff nanobind scikit-build-core numpy cmake ninja
 "$VENV/bin/python" -m pip install -q --no-build-isolation -e .
 UCX_TLS=self,sm,tcp "$VENV/bin/python" -c "import dolfinx_solver, dolfinx, gmsh, tribofx._cpp; print('setup: dolfinx', dolfinx.__version__, 'gmsh', gmsh.__version__, 'tribofx ok')"
