@@ -18,14 +18,18 @@ $(STAMP): $(SOURCES) .ci/setup.sh
 demo: setup
 	$(PY) demos/demo_tour.py --out results
 
-# the whole suite on the 2 cores (pytest-xdist, one test file per worker so that a
-# file's module fixtures are built once); then the tests marked `mpi` again on 2 processes
+# the suite on the 2 cores (pytest-xdist, one test file per worker so that a file's
+# module fixtures are built once), except the tests that start mpiexec themselves,
+# which run next, alone; then the tests marked `mpi` again on 2 processes
+XDIST    := -n 2 --dist loadfile
 test: setup
-	$(PY) -m pytest -q -n 2 --dist loadfile $(PYTEST_ARGS)
+	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m mpiexec $(PYTEST_ARGS)
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
 test-slow: setup
-	$(PY) -m pytest -q -n 2 --dist loadfile --runslow $(PYTEST_ARGS)
+	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" --runslow $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m mpiexec --runslow $(PYTEST_ARGS)
 
 lint: setup
 	$(VENV)/bin/ruff check .

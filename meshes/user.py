@@ -163,8 +163,9 @@ def boundary_facet_size(msh, ft, tag, near=None):
     facets = facets[facets < im.size_local]
     nv = _cpp_mesh.cell_num_vertices(msh.topology.entity_types[fdim][0])
     geo = dmesh.entities_to_geometry(msh, fdim, facets, False)
-    x = msh.geometry.x[np.asarray(geo, dtype=np.int64).reshape(len(facets), -1)[:, :nv]]
-    x = x.reshape(len(facets), nv, 3)
+    geo = np.asarray(geo, dtype=np.int64).reshape(len(facets), -1)[:, :nv] if len(facets) \
+        else np.zeros((0, nv), dtype=np.int64)     # a rank without such facets: no rows
+    x = msh.geometry.x[geo].reshape(len(facets), nv, 3)
     # edges: segment 0-1; triangle 0-1, 1-2, 2-0; quadrilateral (vertex order 0 1 3 2)
     pairs = {2: [(0, 1)], 3: [(0, 1), (1, 2), (2, 0)],
              4: [(0, 1), (1, 3), (3, 2), (2, 0)]}[nv]

@@ -199,6 +199,7 @@ def _cli(tmp_path, nproc, *sets):
     return json.loads((out / "summary.json").read_text())
 
 
+@pytest.mark.mpiexec
 def test_serial_equals_two_processes(tmp_path):
     sets = ("mesh=0", "degree=1", "W=0.2", "steps=2")
     s1 = _cli(tmp_path, 1, *sets)

@@ -295,6 +295,7 @@ def _cli(tmp_path, nproc, *sets):
 
 
 @pytest.mark.mpi
+@pytest.mark.mpiexec
 def test_serial_equals_two_processes(tmp_path):
     if MPI.COMM_WORLD.size > 1:
         pytest.skip("spawns its own serial and 2-process runs")

@@ -8,6 +8,9 @@ import sys
 
 import pytest
 
+# every test here starts mpiexec itself: run outside pytest-xdist (see the Makefile)
+pytestmark = pytest.mark.mpiexec
+
 ENV = dict(os.environ, UCX_TLS="self,sm,tcp")
 
 

@@ -88,9 +88,14 @@ def _interrupted_then_resumed(out, ranks, sig, case):
 
 # serial: SIGTERM (a batch system's kill); 2 ranks: SIGINT to mpiexec (Ctrl-C), which
 # hydra forwards to the ranks (it turns a SIGTERM of its own into a hard kill of the ranks)
+MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdist
+
+
 @pytest.mark.parametrize("case,ranks,sig", [
-    ("wear-pin", 1, signal.SIGTERM), ("wear-pin", 2, signal.SIGINT),
-    ("wear-ball-flat", 1, signal.SIGTERM), ("wear-ball-halfspace", 2, signal.SIGINT),
+    ("wear-pin", 1, signal.SIGTERM),
+    pytest.param("wear-pin", 2, signal.SIGINT, marks=MPIEXEC),
+    ("wear-ball-flat", 1, signal.SIGTERM),
+    pytest.param("wear-ball-halfspace", 2, signal.SIGINT, marks=MPIEXEC),
     ("wear-reciprocating", 1, signal.SIGTERM)])
 def test_interrupted_run_resumes_to_the_same_result(tmp_path, case, ranks, sig):
     if ranks > 1 and not (Path(sys.executable).parent / "mpiexec").exists():

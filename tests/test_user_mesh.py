@@ -203,3 +203,28 @@ def test_bad_user_ball(tmp_path, kw, fragment):
     lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
     assert len(lines) == 1 and fragment in lines[0], p.stderr
     assert not out.exists()
+
+
+@pytest.mark.mpi
+def test_facet_size_with_the_boundary_on_one_rank():
+    """boundary_facet_size when a rank owns none of the tagged facets (2 ranks: one does).
+
+    Reference: one boundary facet of a uniform 8 × 8 square, of length 1/8 exactly
+    (2D: the mean longest edge is that length); the same value on every rank.
+    """
+    import numpy as np
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+    from tribofx.meshes.user import boundary_facet_size
+
+    comm = MPI.COMM_WORLD
+    msh = dmesh.create_unit_square(comm, 8, 8)
+    facets = dmesh.locate_entities_boundary(
+        msh, 1, lambda x: np.isclose(x[0], 0.0) & (x[1] < 0.125 + 1e-12))
+    ft = dmesh.meshtags(msh, 1, facets, np.full(len(facets), 7, dtype=np.int32))
+    owned = facets < msh.topology.index_map(1).size_local
+    assert comm.allreduce(int(owned.sum()), op=MPI.SUM) == 1
+    h = boundary_facet_size(msh, ft, 7)
+    h_near = boundary_facet_size(msh, ft, 7, near=((0.0, 0.0), 0.01))   # nearest facet
+    assert comm.allgather(h) == [h] * comm.size
+    assert h == pytest.approx(0.125, rel=1e-12) and h_near == pytest.approx(0.125, rel=1e-12)

@@ -53,13 +53,22 @@ class Checkpoint:
 
     def read(self):
         """Return the state dict written last (one-line error for another partition)."""
-        meta = json.loads((self.dir / "state.json").read_text())
-        if meta["mpi_size"] != self.comm.size:
-            raise ValueError(f"checkpoint {self.dir} was written on {meta['mpi_size']} ranks, "
-                             f"not {self.comm.size}")
-        with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
-            fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
-            torn = "steps" in data and int(data["steps"]) != meta["steps"]
+        error, meta, fields, torn = None, None, [], False
+        try:
+            meta = json.loads((self.dir / "state.json").read_text())
+            if meta["mpi_size"] != self.comm.size:
+                error = (f"checkpoint {self.dir} was written on {meta['mpi_size']} ranks, "
+                         f"not {self.comm.size}")
+            else:
+                with np.load(self.dir / f"state_r{self.comm.rank}.npz") as data:
+                    fields = [data[f"field{i}"] for i in range(len(meta["fields"]))]
+                    torn = "steps" in data and int(data["steps"]) != meta["steps"]
+        except Exception as err:   # unreadable on this rank (missing, truncated, not shared)
+            error = f"cannot read checkpoint {self.dir} on rank {self.comm.rank}: {err}"
+        # the same decision on every rank (a failure on one rank must not hang the others)
+        errors = [e for e in self.comm.allgather(error) if e is not None]
+        if errors:
+            raise ValueError(errors[0])
         # a kill between the arrays and the JSON: the arrays are a step ahead
         if self.comm.allreduce(torn, op=MPI.LOR):
             raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "

@@ -114,6 +114,16 @@ class Continuation:
         self._states = (self._states + [(self.done, [f.x.array.copy() for f in unknowns])])[-2:]
         return r
 
+    def remember(self):
+        """Take the current (converged) state as the first point of the secant predictor.
+
+        A new Continuation predicts from its third step on (two accepted states);
+        after ``remember()`` at a converged state it predicts from its second.
+        """
+        unknowns = getattr(self.problem, "u", [])
+        self._states = (self._states + [(self.parameter.get(),
+                                         [f.x.array.copy() for f in unknowns])])[-2:]
+
     def _predict(self, value):
         """Secant predictor of the unknowns at ``value`` from the last two converged states."""
         if len(self._states) < 2:

@@ -40,8 +40,9 @@ def open_history(stepper, v, resume):
         except (ValueError, OSError, KeyError) as err:
             raise InputError(f"cannot resume: {err}") from None
         saved = stepper.history.get("parameters")
-        if saved is not None and saved != json.loads(json.dumps(params)):
-            diff = sorted(k for k in params if saved.get(k) != params[k])
+        now = json.loads(json.dumps(params))     # as the checkpoint holds them
+        if saved is not None and saved != now:
+            diff = sorted(k for k in set(saved) | set(now) if saved.get(k) != now.get(k))
             raise InputError(f"--resume with other parameters than the checkpoint's "
                              f"({', '.join(diff)})")
     stepper.history.setdefault("parameters", params)

@@ -191,15 +191,18 @@ class IroningCase:
             return on_die
 
         try:
-            # secant predictor (from the second step of each phase): without it the
-            # first iterate of a step has zero slip increments, every node that slid
-            # in the last step sits exactly on the Coulomb cone, and round-off (which
-            # differs between partitions) picks stick or slip for its first tangent
+            # secant predictor from the second step of each phase (its start state
+            # remembered): without it the first iterate of a step has zero slip
+            # increments, every node that slid in the last step sits exactly on the
+            # Coulomb cone, and round-off (which differs between partitions) picks
+            # stick or slip for its first tangent
             for index, target, steps in ((1, -v["depth"], v["press_steps"]),
                                          (0, v["slide"], v["slide_steps"])):
-                Continuation(problem, ConstantParameter(motion, index), response=reaction,
-                             verbose=verbose, record=record.data["newton_iterations"]).march(
-                    target, steps)
+                phase = Continuation(problem, ConstantParameter(motion, index),
+                                     response=reaction, verbose=verbose,
+                                     record=record.data["newton_iterations"])
+                phase.remember()
+                phase.march(target, steps)
         except NewtonDivergence as err:
             err.problem = run
             raise

@@ -158,10 +158,11 @@ class WearBallCase:
                           V_master=(v["V"], 0.0, 0.0), dtau=1.0)
         wear = Wear(contact, k=v["k"], speed=v["V"],
                     theta=1.0 if v["scheme"] == "implicit" else 0.0)
+        # the flat's position is state of the contact (its counterpart's state fields):
+        # restored by a cut step and by a resume
+        stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+                          checkpoint=checkpoint, name="wear_ball")
         offset = contact.counterpart.offset
-        # the flat's position is part of the state (restored by a cut step and a resume)
-        stepper = Stepper([body, contact, wear], wear, parameters=[offset],
-                          max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_ball")
         Es = composite_modulus(v["E"], v["nu"])
         a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
 
