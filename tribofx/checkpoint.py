@@ -47,7 +47,7 @@ class Checkpoint:
                         shapes=[list(np.shape(a)) for a in state["fields"]],
                         history=history or {})
             tmp = self.dir / ".state.tmp.json"
-            tmp.write_text(json.dumps(meta, indent=1))
+            tmp.write_text(json.dumps(meta))   # no indent: histories may be long
             os.replace(tmp, self.dir / "state.json")
         self.comm.barrier()
 
