@@ -98,13 +98,7 @@ def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
         r_fine: radius of the refined zone (mm).
         comm: MPI communicator; the model is built on rank 0 and distributed.
     """
-    if not 0 < theta_l < 0.5 * math.pi:
-        raise ValueError(f"cap angle must be in (0, π/2), got {theta_l}")
-    initialized = gmsh.isInitialized()
-    if not initialized:
-        gmsh.initialize(interruptible=False)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("quarter_ball")
+    initialized = _start(theta_l)
     if comm.rank == 0:
         _build(R, theta_l, h_fine, h_coarse, r_fine)
     data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
@@ -114,13 +108,8 @@ def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
     return data.mesh, data.cell_tags, data.facet_tags
 
 
-def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
-    """Write the quarter ball of :func:`quarter_ball` to the gmsh file ``path`` (one process).
-
-    The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid
-    ``mesh_file`` of the case ``ehl-ball``.  Arguments as for
-    :func:`quarter_ball`; returns ``path``.
-    """
+def _start(theta_l):
+    """Check the cap angle, start gmsh (if needed) and a new model; whether it was running."""
     if not 0 < theta_l < 0.5 * math.pi:
         raise ValueError(f"cap angle must be in (0, π/2), got {theta_l}")
     initialized = gmsh.isInitialized()
@@ -128,6 +117,17 @@ def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
         gmsh.initialize(interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add("quarter_ball")
+    return initialized
+
+
+def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
+    """Write the quarter ball of :func:`quarter_ball` to the gmsh file ``path`` (one process).
+
+    The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid
+    ``mesh_file`` of the case ``ehl-ball``.  Arguments as for
+    :func:`quarter_ball`; returns ``path``.
+    """
+    initialized = _start(theta_l)
     _build(R, theta_l, h_fine, h_coarse, r_fine)
     gmsh.write(str(path))
     gmsh.model.remove()

@@ -35,6 +35,7 @@ import sys
 import gmsh
 import numpy as np
 import pytest
+from cli_checks import assert_one_line_error
 from mpi4py import MPI
 
 from tribofx.references import hertz, hertz_reference
@@ -240,11 +241,7 @@ def _bad(tmp_path, fragment, *sets, case="hertz"):
     out = tmp_path / "out"
     p = _run("run", case, *[a for s in sets for a in ("--set", s)], "--out", str(out),
              "--quiet")
-    assert p.returncode == 2, p.stderr
-    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
-    assert len(lines) == 1, p.stderr
-    assert fragment in lines[0] and "Traceback" not in p.stderr, lines[0]
-    assert not out.exists()   # nothing written
+    assert_one_line_error(p, fragment, out)
 
 
 @pytest.mark.parametrize("make,sets,fragment", [

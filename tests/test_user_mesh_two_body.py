@@ -19,6 +19,7 @@ import sys
 import gmsh
 import numpy as np
 import pytest
+from cli_checks import assert_one_line_error
 
 ENV = dict(os.environ, UCX_TLS="self,sm,tcp", OMP_NUM_THREADS="1")
 CLI = [sys.executable, "-m", "tribofx.cli"]
@@ -232,11 +233,7 @@ def test_user_die_irons_as_the_case_die(tmp_path):
 def _bad(tmp_path, case, fragment, path, *sets):
     out = tmp_path / "out"
     p = _run(case, out, f"mesh_file={path}", *sets)
-    assert p.returncode == 2, p.stderr
-    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
-    assert len(lines) == 1, p.stderr
-    assert fragment in lines[0] and "Traceback" not in p.stderr, lines[0]
-    assert not out.exists()   # nothing written
+    assert_one_line_error(p, fragment, out)
 
 
 @pytest.mark.parametrize("make,sets,fragment", [
