@@ -17,9 +17,11 @@ __all__ = ["Checkpoint"]
 class Checkpoint:
     """The latest accepted state on disk: ``state_r<rank>.npz`` per rank and ``state.json``.
 
-    The JSON holds the scalars (time, Δt, cut level, step count, MPI size, the
-    names and shapes of the arrays); the npz the local arrays (ghosts
-    included) of every state field, in :meth:`Stepper.state` order.  Files are
+    The JSON holds the scalars of the state (a stepper's time, Δt, cut level
+    and step count; a sweep's position, :mod:`tribofx.restart`), the MPI size
+    and the names and shapes of the arrays; the npz the local arrays (ghosts
+    included) of every state field, in the order given.  ``state["steps"]``
+    counts the writes (it detects a torn write).  Files are
     written to a temporary name and renamed; a kill between the arrays and the
     JSON is detected on reading (each npz holds its step count).  The directory
     must be the same (shared) on all ranks.
@@ -29,7 +31,7 @@ class Checkpoint:
         self.dir, self.comm = Path(directory), comm
 
     def write(self, state, names, history=None):
-        """Write ``state`` (a :meth:`Stepper.state` dict); ``names`` of its fields.
+        """Write ``state`` (``fields``: arrays, ``steps``: int, other JSON scalars); ``names``.
 
         ``history``: a JSON-able dict of the run's records so far (the case's
         time series), restored with the state on ``--resume``.
@@ -42,7 +44,7 @@ class Checkpoint:
         os.replace(tmp, npz)
         self.comm.barrier()
         if self.comm.rank == 0:
-            meta = {k: state[k] for k in ("t", "dt", "cuts", "steps")}
+            meta = {k: x for k, x in state.items() if k != "fields"}
             meta.update(mpi_size=self.comm.size, fields=list(names),
                         shapes=[list(np.shape(a)) for a in state["fields"]],
                         history=history or {})
@@ -73,5 +75,6 @@ class Checkpoint:
         if self.comm.allreduce(torn, op=MPI.LOR):
             raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "
                              "restart the run without --resume")
-        return {**{k: meta[k] for k in ("t", "dt", "cuts", "steps")}, "fields": fields,
+        own = ("mpi_size", "fields", "shapes", "history")
+        return {**{k: x for k, x in meta.items() if k not in own}, "fields": fields,
                 "history": meta.get("history", {})}

@@ -80,6 +80,7 @@ class Continuation:
         self.done = parameter.get()
         self.history = []  # (parameter, response) of converged steps
         self._states = []  # (parameter, unknown arrays) of the last two converged steps
+        self.increments = None  # (first, next) increment of the march in progress
 
     # -- helpers -------------------------------------------------------------------
     def _solve_at(self, value):
@@ -107,12 +108,26 @@ class Continuation:
     def _accept(self, iterations):
         self.problem.commit()
         self.done = self.parameter.get()
+        self.record.append(iterations)   # before the response: it may checkpoint the record
         r = self.response() if self.response is not None else None
         self.history.append((self.done, r))
-        self.record.append(iterations)
         unknowns = getattr(self.problem, "u", [])
         self._states = (self._states + [(self.done, [f.x.array.copy() for f in unknowns])])[-2:]
         return r
+
+    def resume_from(self, value):
+        """Take ``value`` as the converged parameter (a state restored from a checkpoint)."""
+        self.parameter.set(value)
+        self.done = self.parameter.get()
+
+    def secant_state(self):
+        """Return what a resumed search needs (JSON): ``done`` and the last two points."""
+        return {"done": self.done, "history": [list(h) for h in self.history[-2:]]}
+
+    def set_secant_state(self, saved):
+        """Restore a :meth:`secant_state` (the trials of a resumed search are then the same)."""
+        self.done = float(saved["done"])
+        self.history = [tuple(h) for h in saved["history"]]
 
     def remember(self):
         """Take the current (converged) state as the first point of the secant predictor.
@@ -136,13 +151,19 @@ class Continuation:
             f.x.array[:] = x1 + s * (x1 - x0)
 
     # -- strategies ------------------------------------------------------------------
-    def march(self, target, steps=1, predictor=True, min_fraction=2.0**-10, geometric=False):
+    def march(self, target, steps=1, predictor=True, min_fraction=2.0**-10, geometric=False,
+              increments=None):
         """Natural-parameter continuation from the current value to ``target``.
 
         ``steps`` equal increments; a failed step is cut in half (down to
         ``min_fraction`` of the first increment).  Returns the responses (or None)
         of the converged steps.  ``geometric``: equal ratios instead (a positive
         parameter such as a speed; a failed ratio is replaced by its square root).
+
+        During the march :attr:`increments` is (first increment, next
+        increment), in log(parameter) when geometric, as they stand after each
+        converged step (a checkpoint keeps them); ``increments=`` continues an
+        interrupted march on the same step sequence.
         """
         if geometric and not (target > 0 and self.done > 0):
             raise ValueError("a geometric march needs positive parameter values")
@@ -152,6 +173,8 @@ class Continuation:
         slack = 1e-12 * max(1.0, abs(t_target)) if geometric else 0.0  # exp(log(x)) ≠ x
         step0 = (t_target - to(self.parameter.get())) / steps
         step = step0
+        if increments is not None:
+            step0, step = (float(x) for x in increments)
         out = []
         while abs(t_target - to(self.done)) > 1e-14 * max(abs(t_target), abs(step0), 1e-300):
             t = to(self.done) + step
@@ -169,8 +192,9 @@ class Continuation:
                 if abs(step) < min_fraction * abs(step0):
                     raise
                 continue
-            out.append(self._accept(its))
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
+            self.increments = (step0, step)   # before _accept: its response may checkpoint
+            out.append(self._accept(its))
         return out
 
     def advance(self, target, step, growth=1.5, min_fraction=1e-4):

@@ -14,13 +14,26 @@ The case keeps every record it reports in the returned dict (JSON types
 only), so a resumed run reports the whole time series.  A resumed run writes
 its VTX series into files of their own (:func:`series_stem`), beside the
 series of the interrupted run.
+
+A continuation sweep (loads, then speeds or sealed pressures, for each
+variant of the model) has no time step; its cases use a
+:class:`SweepJournal`: after every recorded point of the sweep it writes the
+state of the variant's problem, the variant's records and its *position* (which
+leg of the sweep, the increments of the march in progress, the history of the
+inner position search) into ``DIR/<variant>/``, and a resumed run restores the
+state and continues from that position on the same step sequence.
 """
 
 import json
+from pathlib import Path
 
+import numpy as np
+
+from . import interrupt
+from .checkpoint import Checkpoint
 from .params import InputError
 
-__all__ = ["open_history", "series_stem"]
+__all__ = ["SweepJournal", "jsonable", "open_history", "series_stem"]
 
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver",)
@@ -52,3 +65,124 @@ def open_history(stepper, v, resume):
 def series_stem(stem, stepper, resume):
     """File stem of a VTX series: a resumed run's series starts at its restart time."""
     return stem + (f"_from_t{stepper.t:g}" if resume else "")
+
+
+def jsonable(x):
+    """``x`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types."""
+    if isinstance(x, dict):
+        return {str(k): jsonable(y) for k, y in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(y) for y in x]
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    if isinstance(x, np.generic):
+        return x.item()
+    return x
+
+
+class SweepJournal:
+    """The checkpoint of a continuation sweep, written after every recorded point.
+
+    Per variant ``name`` (a model of ``compare``, a stroke), ``DIR/<name>/`` holds
+    a :class:`tribofx.checkpoint.Checkpoint`: the arrays of the state objects
+    (Functions and Constants, :meth:`save`), and as its history the variant's
+    ``records`` (the case's lists of measures, JSON), its ``position`` (a dict
+    the case defines: the leg, the march increments, …) and the number of
+    further arrays saved after the objects.  ``DIR/state.json`` lists the variants written and the
+    parameters of the run.  Every :meth:`save` ends with
+    :func:`tribofx.interrupt.check` (a signal stops the run after the point
+    written).
+
+    Args:
+        directory: the checkpoint directory (None: nothing is written, no resume).
+        comm: the run's communicator.
+        v: the run's parameter values (a resume must have the same ones).
+        resume: read the checkpoint back.
+    """
+
+    def __init__(self, directory, comm, v, resume=False):
+        self.dir = None if directory is None else Path(directory)
+        self.comm = comm
+        self.params = jsonable({k: x for k, x in v.items() if k not in SOLVER_PARAMETERS})
+        self.saved, self.order, self.steps = {}, [], 0
+        if resume:
+            self._read()
+
+    def _read(self):
+        try:
+            top = json.loads((self.dir / "state.json").read_text())
+            order = list(top["variants"])
+            saved = {name: Checkpoint(self.dir / name, self.comm).read() for name in order}
+        except (ValueError, OSError, KeyError, TypeError) as err:
+            raise InputError(f"cannot resume: {err}") from None
+        if top.get("parameters") != self.params:
+            diff = sorted(k for k in set(top.get("parameters", {})) | set(self.params)
+                          if top.get("parameters", {}).get(k) != self.params.get(k))
+            raise InputError(f"--resume with other parameters than the checkpoint's "
+                             f"({', '.join(diff)})")
+        self.saved, self.order = saved, order
+        self.steps = max(int(s["steps"]) for s in saved.values()) if saved else 0
+
+    # -- reading ----------------------------------------------------------------------
+    def records(self, name, **empty):
+        """Return the variant's records: the saved ones on resume, else ``empty``."""
+        saved = self.saved.get(name)
+        return saved["history"]["records"] if saved is not None else dict(empty)
+
+    def position(self, name):
+        """Return the saved position of the variant (None: a fresh variant)."""
+        saved = self.saved.get(name)
+        return None if saved is None else saved["history"]["position"]
+
+    def restore(self, name, objects):
+        """Copy the saved arrays of the variant into ``objects`` (Functions, Constants).
+
+        Returns the further arrays saved with them (``arrays`` of :meth:`save`).
+        """
+        saved = self.saved[name]["fields"]
+        n = len(saved) - int(self.saved[name]["history"].get("arrays", 0))
+        arrays, extra = saved[:n], saved[n:]
+        bad = len(arrays) != len(objects) or any(
+            np.shape(a) != np.shape(o.x.array if hasattr(o, "x") else o.value)
+            for a, o in zip(arrays, objects))
+        if self.comm.allreduce(bad):
+            raise InputError(f"cannot resume: the checkpoint of {name!r} does not fit the "
+                             "problem (another mesh?)")
+        for o, a in zip(objects, arrays):
+            if hasattr(o, "x"):
+                o.x.array[:] = a
+            else:
+                o.value = a
+        return extra
+
+    # -- writing ----------------------------------------------------------------------
+    def save(self, name, objects, records, position, arrays=()):
+        """Write the variant's state, records and position; then stop on a signal.
+
+        ``objects``: the state (Functions, Constants) restored by :meth:`restore`;
+        ``records``: the variant's JSON-able records (NumPy arrays are converted);
+        ``position``: a JSON-able dict the case reads back by :meth:`position`;
+        ``arrays``: further local arrays (e.g. a second state the sweep returns
+        to), given back by :meth:`restore`.
+        """
+        if self.dir is not None:
+            self.steps += 1
+            extra = [np.asarray(a) for a in arrays]
+            fields = [(o.x.array if hasattr(o, "x") else np.asarray(o.value)).copy()
+                      for o in objects] + extra
+            names = [getattr(o, "name", None) or f"constant{i}" for i, o in enumerate(objects)]
+            names += [f"array{i}" for i in range(len(extra))]
+            history = {"records": jsonable(records), "position": jsonable(position),
+                       "arrays": len(extra)}
+            Checkpoint(self.dir / name, self.comm).write(
+                {"steps": self.steps, "fields": fields}, names, history)
+            if name not in self.order:
+                self.order.append(name)
+            if self.comm.rank == 0:
+                top = {"variants": self.order, "steps": self.steps,
+                       "parameters": self.params, "mpi_size": self.comm.size}
+                tmp = self.dir / ".state.tmp.json"
+                tmp.write_text(json.dumps(top))
+                tmp.replace(self.dir / "state.json")
+            self.comm.barrier()
+        interrupt.check(self.comm)

@@ -53,6 +53,7 @@ import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
@@ -65,6 +66,7 @@ from ..params import InputError, Param, number_list
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
+from ..restart import SweepJournal
 
 __all__ = ["EHLCylinderLayerCase", "at_points", "cylinder_arc", "film_boundary",
            "mesh_convergence", "speed_list"]
@@ -333,14 +335,15 @@ class EHLCylinderLayerCase:
                              f"point(s) at x = {', '.join(f'{e:.4g}' for e in ends[:, 0])})")
 
     @classmethod
-    def load_control(cls, run, v, on_step=None, verbose=False, record=None):
+    def load_control(cls, run, v, on_step=None, verbose=False, record=None, on_accept=None):
         """Load control by the cylinder position: (outer load march, inner position search).
 
         The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
         first update) finds the position s at which the film carries the held
         load; the outer march steps
-        the load with step cutting.  ``on_step()`` runs at every converged load;
-        ``record`` receives the Newton iterations of the trials of each load.
+        the load with step cutting.  ``on_step()`` runs at every converged load,
+        then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
+        iterations of the trials of each load.
         """
         _, film, problem = run
         inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
@@ -351,6 +354,8 @@ class EHLCylinderLayerCase:
         def response():
             if on_step is not None:
                 on_step()
+            if on_accept is not None:
+                on_accept()
             return held.target
 
         return Continuation(held, held, response=response, record=record), inner
@@ -374,22 +379,42 @@ class EHLCylinderLayerCase:
                 "clearance": float(film.counterpart.offset.value[1])}
 
     @classmethod
-    def sweep(cls, v, record, progress=None, verbose=False, prefix=""):
-        """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``."""
+    def sweep(cls, v, record, progress=None, verbose=False, prefix="", journal=None):
+        """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
+
+        ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
+        records and the position (leg 0: the loads, leg 1 + j: the march to the
+        j-th speed; its increments; the inner position search) are written after
+        every converged load and speed, and a resumed variant continues there.
+        """
         run = cls.build(v)
         layer, film, problem = run
+        name = prefix[:-1] or v["model"]
+        journal = journal or SweepJournal(None, layer.mesh.comm, v)
+        rec = journal.records(name, steps=[], speed=[], profiles=[], its=[], points=[])
+        steps, speed, profiles, its, points = (rec[k] for k in (
+            "steps", "speed", "profiles", "its", "points"))
+        pos = journal.position(name)
         record.data["num_dofs"] = problem.num_dofs
-        steps, speed, profiles = [], [], []
         # u and p at every converged load and speed (ParaView time series; the "time"
-        # is the index of the point, its (W, U) in series_points)
+        # is the index of the point, its (W, U) in series_points; a resumed run writes
+        # the points from its restart into series of their own)
+        resumed = "" if pos is None else f"_from_{len(points)}"
         series = VTXSeries(layer.mesh.comm, getattr(record, "outdir", None),
-                           {f"{prefix}{k}_series": f for k, f in cls.vtx_fields(run).items()})
-        points = record.data.setdefault("series_points", {}).setdefault(
-            prefix[:-1] or v["model"], [])
+                           {f"{prefix}{k}_series{resumed}": f
+                            for k, f in cls.vtx_fields(run).items()})
+        record.data.setdefault("series_points", {})[name] = points
+        state = problem.state_fields() + [layer.velocity]
 
         def write(m):
             points.append([m["W"], float(layer.velocity.value[0])])
             series.write(len(points) - 1)
+
+        def save(leg, march):
+            journal.save(name, state, rec, {"leg": leg, "increments": march.increments,
+                                            "W": loads.done if leg == 0 else v["W"],
+                                            "inner": inner.secant_state(),
+                                            "scales": film.scale_values()})
 
         def on_step():
             m = cls.measures(run, v)
@@ -404,16 +429,29 @@ class EHLCylinderLayerCase:
             speed.append(m)
             write(m)
 
-        its = []
         if prefix:
-            record.data.setdefault("variant_newton_iterations", {})[prefix[:-1]] = its
-        loads, inner = cls.load_control(run, v, on_step, verbose, its)
+            record.data.setdefault("variant_newton_iterations", {})[name] = its
+        loads, inner = cls.load_control(run, v, on_step, verbose, its,
+                                         on_accept=lambda: save(0, loads))
+        leg = 0 if pos is None else pos["leg"]
+        if pos is not None:
+            journal.restore(name, state)
+            film.set_scales(**pos["scales"])
+            problem.refresh()
+            loads.resume_from(pos["W"])
+            inner.set_secant_state(pos["inner"])
+        increments = None if pos is None else pos["increments"]
         try:
-            loads.march(v["W"], v["steps"], predictor=False)
+            if leg == 0:
+                loads.march(v["W"], v["steps"], predictor=False, increments=increments)
+                increments = None
             if cls.speed_list(v):
-                speed.append(dict(steps[-1], U=v["U"]))
-                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its)
-        except NewtonDivergence as err:
+                if leg == 0:
+                    speed.append(dict(steps[-1], U=v["U"]))
+                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its,
+                                start=max(leg - 1, 0), increments=increments,
+                                on_accept=lambda j, march: save(1 + j, march))
+        except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = run  # restored to the last converged load (or speed) step
             raise
         finally:
@@ -423,26 +461,43 @@ class EHLCylinderLayerCase:
         return run
 
     @classmethod
-    def speed_sweep(cls, run, v, inner, W, speeds, on_speed=None, record=None):
+    def set_speed(cls, run, v, U):
+        """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
+        layer, film, _ = run
+        layer.velocity.value[0] = U
+        h_r, p_s, eps = cls.scales(v, U=U)
+        film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
+
+    @classmethod
+    def speed_sweep(cls, run, v, inner, W, speeds, on_speed=None, record=None, start=0,
+                    increments=None, on_accept=None):
         """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
 
-        Each speed of ``speeds`` (mm/s) is reached by a geometric march (a failed
-        step is cut in log U) with the load held by the cylinder position;
+        Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
+        failed step is cut in log U) with the load held by the cylinder position;
         penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
-        every converged speed step.
+        every converged speed step, then ``on_accept(j, march)`` (j: the index of
+        the speed marched to).  ``increments``: those of an interrupted march to
+        ``speeds[start]`` (a resumed run).
         """
-        layer, film, _ = run
-
-        def set_speed(U):
-            h_r, p_s, eps = cls.scales(v, U=U)
-            film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
-
+        layer = run[0]
         held = HeldResponse(inner, W, transform=lambda W: 1 / W,
                             slope=cls.slope(run, v))
-        sweep = Continuation(held, ConstantParameter(layer.velocity, 0, on_set=set_speed),
-                             response=on_speed, record=record)
-        for U in speeds:
-            sweep.march(U, predictor=False, geometric=True)
+        at = {"j": start}
+
+        def response():
+            if on_speed is not None:
+                on_speed()
+            if on_accept is not None:
+                on_accept(at["j"], sweep)
+
+        sweep = Continuation(held, ConstantParameter(
+            layer.velocity, 0, on_set=lambda U: cls.set_speed(run, v, U)),
+            response=response, record=record)
+        for j in range(start, len(speeds)):
+            at["j"] = j
+            sweep.march(speeds[j], predictor=False, geometric=True,
+                        increments=increments if j == start else None)
 
     @classmethod
     def _report(cls, steps, speed, profiles, v, record, prefix):
@@ -466,15 +521,21 @@ class EHLCylinderLayerCase:
             record.profile = prof
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Load sweep W/steps … W (per variant of ``compare``); records the film measures."""
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
+
+        ``checkpoint``: directory of the sweep's checkpoint (written after every
+        converged load and speed); ``resume``: continue from it.
+        """
+        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
         record.result("mu_U", v["mu"] * v["U"], "N/mm")
         if v["compare"] == "none":
-            return cls.sweep(v, record, progress, verbose)
+            return cls.sweep(v, record, progress, verbose, journal=journal)
         record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
         first = None
         for name, label, over in cls.COMPARE[v["compare"]]:
-            run = cls.sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_")
+            run = cls.sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_",
+                            journal=journal)
             first = first or run
             if MPI.COMM_WORLD.rank == 0:
                 record.profile["variants"][name]["label"] = label

@@ -77,6 +77,7 @@ import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
@@ -89,6 +90,7 @@ from ..params import InputError, Param
 from ..positions import paraboloid_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
+from ..restart import SweepJournal
 from .ehl import at_points, film_boundary, speed_list
 
 __all__ = ["EHLBallCase"]
@@ -342,36 +344,45 @@ class EHLBallCase:
         return lambda W: 1.5 * W / cls.hertz_contact(v, W).delta
 
     @classmethod
-    def load_sweep(cls, run, v, on_step=None, verbose=False):
+    def load_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
         """Reach W/steps, …, W at the speed U; returns the position controller.
 
-        ``on_step(W, iterations)`` after each load (the Newton trials of the load).
+        ``on_step(W, iterations)`` after each load (the Newton trials of the
+        load), then ``on_accept(position, carrier)``: the JSON ``position`` a
+        resumed sweep starts from (``start=``, with the state of that load
+        restored) and the arrays of the state the next load starts from (or None).
         """
         if cls.large_load(v):
-            return cls.thick_film_sweep(run, v, on_step, verbose)
+            return cls.thick_film_sweep(run, v, on_step, verbose, start, on_accept)
         film, problem = run[1], run[2]
         W1 = v["W"] / v["steps"]
-        cls.hertz_start(run, v, W1, v["U"])
-        its0 = problem.solve(verbose=verbose).iterations
-        if not film.min_film() > 0:
-            raise NewtonDivergence(
-                f"the first load W = {W1:g} N converged to a film with h <= 0 (contact under-"
-                "resolved by the mesh): raise mesh or use fewer load steps")
         inner = cls.position_control(run, v, verbose)
         offset = film.counterpart.offset.value
         # each trial sequence starts at the current position: the converged first
         # state, then the Hertz state predicted for each further load
         held = HeldResponse(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
-        for k in range(v["steps"]):
+        if start is None:
+            cls.hertz_start(run, v, W1, v["U"])
+            its0 = problem.solve(verbose=verbose).iterations
+            if not film.min_film() > 0:
+                raise NewtonDivergence(
+                    f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
+                    "under-resolved by the mesh): raise mesh or use fewer load steps")
+        else:
+            inner.set_secant_state(start["inner"])
+        for k in range(0 if start is None else start["k"], v["steps"]):
+            if k > 0:
+                held.predict = lambda W: cls.hertz_start(run, v, W, v["U"])
             held.target = v["W"] * (k + 1) / v["steps"]
             its = held.solve(verbose).iterations
             if on_step is not None:
                 on_step(held.target, [its0, *its] if k == 0 else its)
-            held.predict = lambda W: cls.hertz_start(run, v, W, v["U"])
+            if on_accept is not None:
+                on_accept({"k": k + 1, "inner": inner.secant_state()}, None)
         return inner
 
     @classmethod
-    def thick_film_sweep(cls, run, v, on_step=None, verbose=False):
+    def thick_film_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
         """Large loads: displacement control on a thick film at U_s, then continue down to U.
 
         (i) At U_s = ``start_speed``·U the Hertz state at W_0 = min(W/steps, W/4)
@@ -380,34 +391,40 @@ class EHLBallCase:
         load (:meth:`Continuation.advance`, scales following the load reached);
         (iii) from that state U is marched down to U at fixed load
         (:meth:`speed_march`) and the load recorded; (iv) the next load continues
-        from the state at U_s.
+        from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
+        as for :meth:`load_sweep`, with the carrier state restored.
         """
         film, problem = run[1], run[2]
         U, speed = v["U"], cls.speed(run)
-        W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
-        for f in (1.0, 0.3, 3.0, 0.1, 10.0):
-            Us = max(U, f * v["start_speed"] * U)
-            speed.set(Us)
-            cls.set_scales(film, v, W0, Us)
-            cls.hertz_start(run, v, W0, Us)
-            try:
-                its = [problem.solve(verbose=verbose).iterations]
-            except NewtonDivergence:
-                continue
-            if film.min_film() > 0:
-                break
+        if start is None:
+            its, k0 = [], 0
+            W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
+            for f in (1.0, 0.3, 3.0, 0.1, 10.0):
+                Us = max(U, f * v["start_speed"] * U)
+                speed.set(Us)
+                cls.set_scales(film, v, W0, Us)
+                cls.hertz_start(run, v, W0, Us)
+                try:
+                    its = [problem.solve(verbose=verbose).iterations]
+                except NewtonDivergence:
+                    continue
+                if film.min_film() > 0:
+                    break
+            else:
+                raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
+                                       "start_speed or mesh")
+            W_start = cls.load(run)
         else:
-            raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
-                                   "start_speed or mesh")
-        W_start = cls.load(run)
-        for k in range(v["steps"]):
+            its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
+            inner = cls.follow_control(run, v, W_start, W_start, verbose, its)
+            inner.set_secant_state(start["inner"])
+            if k0 < v["steps"]:
+                problem.restore(start["carrier"])
+                speed.set(Us)
+                cls.set_scales(film, v, W_start, Us)
+        for k in range(k0, v["steps"]):
             Wk = v["W"] * (k + 1) / v["steps"]
-
-            def follow(z, Wk=Wk):  # scales of the load reached last (≤ Wk), current speed
-                W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
-                cls.set_scales(film, v, W_ref, speed.get())
-
-            inner = cls.position_control(run, v, verbose, on_set=follow, record=its)
+            inner = cls.follow_control(run, v, Wk, W_start, verbose, its)
             inner.advance(Wk, 0.05 * cls.hertz_contact(v).delta)
             cls.set_scales(film, v, Wk, Us)
             carrier = problem.state()
@@ -415,6 +432,9 @@ class EHLBallCase:
                 cls.speed_march(run, v, inner, Wk, U)
             if on_step is not None:
                 on_step(Wk, its)
+            if on_accept is not None:
+                on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
+                           "inner": inner.secant_state()}, carrier)
             its, W_start = [], Wk
             if k + 1 < v["steps"] and Us != U:
                 problem.restore(carrier)
@@ -423,13 +443,31 @@ class EHLBallCase:
         return inner
 
     @classmethod
-    def speed_march(cls, run, v, inner, W, U, restart=False, record=None, on_speed=None):
+    def follow_control(cls, run, v, Wk, W_start, verbose=False, record=None):
+        """Position control towards the load Wk whose scales follow the load reached.
+
+        Every trial position sets the scales of the load reached last (≤ Wk;
+        ``W_start`` before the first) at the current speed.
+        """
+        film, speed = run[1], cls.speed(run)
+
+        def follow(z):
+            W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
+            cls.set_scales(film, v, W_ref, speed.get())
+
+        inner = cls.position_control(run, v, verbose, on_set=follow, record=record)
+        return inner
+
+    @classmethod
+    def speed_march(cls, run, v, inner, W, U, restart=False, record=None, on_speed=None,
+                    increments=None):
         """Continue the converged state at load W in the entrainment speed to U (geometric).
 
         Each speed step re-finds the plane position for W (``inner``), starting
         from the Hertz state at the new speed (``restart``) or from the plane
         shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
-        A failed step is cut (six times at most).
+        A failed step is cut (six times at most).  ``on_speed(march)`` after every
+        converged step; ``increments``: those of an interrupted march (resumed).
         """
         film = run[1]
         offset = film.counterpart.offset.value
@@ -442,14 +480,15 @@ class EHLBallCase:
 
         def response():
             last["U"] = speed.get()
-            return on_speed() if on_speed is not None else None
+            return on_speed(march) if on_speed is not None else None
 
         held = HeldResponse(inner, W, slope=cls.hertz_slope(v),
                             guess=(lambda: float(offset[Z])) if restart else shifted,
                             predict=(lambda Wt: cls.hertz_start(run, v, Wt, speed.get()))
                             if restart else None)
-        Continuation(held, speed, response=response, record=record).march(
-            U, predictor=False, geometric=True, min_fraction=2.0**-6)
+        march = Continuation(held, speed, response=response, record=record)
+        march.march(U, predictor=False, geometric=True, min_fraction=2.0**-6,
+                    increments=increments)
 
     @classmethod
     def measures(cls, run, v):
@@ -475,9 +514,15 @@ class EHLBallCase:
                 "clearance": -float(film.counterpart.offset.value[Z])}
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Load sweep (and speed sweep) of each variant; results prefixed by the variant."""
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
+
+        ``checkpoint``: directory of the sweep's checkpoint, written after every
+        converged load and speed step (:class:`tribofx.restart.SweepJournal`);
+        ``resume``: continue from it.
+        """
         variants = cls.VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
+        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
         record.result("mu_U", v["mu"] * v["U"], "N/mm")
         a, p0, _, _ = cls.scales(v)
         hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], cls.e_star(v))
@@ -488,56 +533,105 @@ class EHLBallCase:
         record.profile = {"variants": {}, "W": v["W"]}
         first = None
         for name, label, over in variants:
-            vv = dict(v, **over)
-            run = cls.build(vv)
+            run = cls.sweep(dict(v, **over), name, label, record, journal, progress, verbose)
             first = first or run
-            record.data["num_dofs"] = run[2].num_dofs
-            steps, speed, its_all = [], [], []
-            record.data["variant_newton_iterations"][name or vv["model"]] = its_all
-            var = {"label": label, "shear": vv["shear"]}
-            record.profile["variants"][name or vv["model"]] = var
-
-            # u and p at every converged load and speed (ParaView time series; the
-            # "time" is the index of the point, its (W, U) in series_points)
-            series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
-                               {f"{name + '_' if name else ''}{k}_series": f
-                                for k, f in cls.vtx_fields(run).items()})
-            points = record.data.setdefault("series_points", {}).setdefault(
-                name or vv["model"], [])
-
-            def write(run=run, series=series, points=points):
-                points.append([cls.load(run), cls.speed(run).get()])
-                series.write(len(points) - 1)
-
-            def on_step(W, its, run=run, vv=vv, steps=steps, its_all=its_all, write=write):
-                its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
-                steps.append(cls.measures(run, vv))
-                write()
-                if progress is not None:
-                    progress.update(1)
-
-            def on_speed(run=run, vv=vv, speed=speed, write=write):
-                speed.append(dict(cls.measures(run, vv), U=cls.speed(run).get()))
-                write()
-
-            try:
-                inner = cls.load_sweep(run, vv, on_step, verbose)
-                var.update(steps[-1]["profile"])
-                if cls.speed_list(v):
-                    on_speed()
-                    for U in cls.speed_list(v):
-                        cls.speed_march(run, vv, inner, vv["W"], U, restart=not cls.large_load(vv),
-                                        record=its_all, on_speed=on_speed)
-            except NewtonDivergence as err:
-                err.problem = run
-                raise
-            finally:
-                series.close()
-                record.data["newton_iterations"].extend(its_all)
-                cls._report(steps, speed, vv, record, f"{name}_" if name else "")
-                var["speed"] = {k: [m[k] for m in speed] for k in (
-                    "mu_U", "friction_coefficient", "couette_friction_coefficient")}
         return first
+
+    @classmethod
+    def sweep(cls, vv, name, label, record, journal, progress=None, verbose=False):
+        """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
+
+        After every converged load and speed step the variant's state, records
+        and position are written to ``journal`` (position: ``leg`` 0 the loads,
+        1 + j the march to the j-th speed; the secant state of the position
+        search; the march increments; the film scales); a resumed variant
+        restores them and continues on the same sequence of steps.
+        """
+        key = name or vv["model"]
+        run = cls.build(vv)
+        interrupt.arm()   # gmsh resets the SIGTERM handler
+        film, problem = run[1], run[2]
+        record.data["num_dofs"] = problem.num_dofs
+        rec = journal.records(key, steps=[], speed=[], its=[], points=[])
+        steps, speed, its_all, points = (rec[k] for k in ("steps", "speed", "its", "points"))
+        pos = journal.position(key)
+        record.data["variant_newton_iterations"][key] = its_all
+        var = {"label": label, "shear": vv["shear"]}
+        record.profile["variants"][key] = var
+        state = problem.state_fields() + [film.V_counter, film.counterpart.offset]
+        at = {"leg": 0 if pos is None else pos["leg"]}
+
+        # u and p at every converged load and speed (ParaView time series; the "time"
+        # is the index of the point, its (W, U) in series_points; a resumed run writes
+        # the points from its restart into series of their own)
+        resumed = "" if pos is None else f"_from_{len(points)}"
+        series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
+                           {f"{name + '_' if name else ''}{k}_series{resumed}": f
+                            for k, f in cls.vtx_fields(run).items()})
+        record.data.setdefault("series_points", {})[key] = points
+
+        def write():
+            points.append([cls.load(run), cls.speed(run).get()])
+            series.write(len(points) - 1)
+
+        def save(position, arrays=None):
+            position = dict(position, leg=at["leg"], scales=film.scale_values())
+            journal.save(key, state, rec, position,
+                         arrays=[] if arrays is None else arrays)
+
+        def on_step(W, its):
+            its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
+            if steps:   # the film map is kept for the last load only (checkpoint size)
+                steps[-1].pop("profile", None)
+            steps.append(cls.measures(run, vv))
+            write()
+            if progress is not None:
+                progress.update(1)
+
+        def on_speed(march=None):
+            m = cls.measures(run, vv)
+            m.pop("profile")
+            speed.append(dict(m, U=cls.speed(run).get()))
+            write()
+            if march is not None:
+                save({"increments": march.increments, "inner": inner.secant_state()})
+
+        start = None
+        if pos is not None:
+            carrier = journal.restore(key, state)
+            film.set_scales(**pos["scales"])
+            problem.refresh()
+            start = dict(pos, carrier=carrier)
+        try:
+            if at["leg"] == 0:
+                inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
+                if cls.speed_list(vv):
+                    on_speed()
+            elif cls.large_load(vv):
+                inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
+                inner.set_secant_state(pos["inner"])
+            else:
+                inner = cls.position_control(run, vv, verbose)
+                inner.set_secant_state(pos["inner"])
+            for j, U in enumerate(cls.speed_list(vv)):
+                if j + 1 < at["leg"]:
+                    continue
+                increments = pos["increments"] if j + 1 == at["leg"] else None
+                at["leg"] = j + 1
+                cls.speed_march(run, vv, inner, vv["W"], U, restart=not cls.large_load(vv),
+                                record=its_all, on_speed=on_speed, increments=increments)
+        except (NewtonDivergence, interrupt.Interrupted) as err:
+            err.problem = run
+            raise
+        finally:
+            series.close()
+            record.data["newton_iterations"].extend(its_all)
+            if steps:
+                var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
+            cls._report(steps, speed, vv, record, f"{name}_" if name else "")
+            var["speed"] = {k: [m[k] for m in speed] for k in (
+                "mu_U", "friction_coefficient", "couette_friction_coefficient")}
+        return run
 
     @classmethod
     def large_load(cls, v):

@@ -94,6 +94,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms import ehl_axisym as ax
@@ -107,6 +108,7 @@ from ..plots import plot_oring
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
+from ..restart import SweepJournal
 from .ehl import film_boundary
 
 __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_indicator",
@@ -381,18 +383,20 @@ def build(v, U, mesh=None, comm=MPI.COMM_WORLD):
     return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm)
 
 
-def solve_to(seal, v, U, p_s_targets, on_state=None):
+def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
     """Mount, raise p_s, go to speed U, then the other p_s; on_state(p_s) after each target.
 
-    Returns the Newton iterations per continuation step.
+    ``done``: the number of targets already reached by the state of ``seal``
+    (restored from a checkpoint; the mount and those targets are skipped, the
+    next ramp starts from that state as in an uninterrupted run).  Returns the
+    Newton iterations per continuation step.
     """
-    seal.mount(v["mount_steps"])
-    first = True
-    for p_s in p_s_targets:
+    if done == 0:
+        seal.mount(v["mount_steps"])
+    for k, p_s in enumerate(p_s_targets[done:], start=done):
         seal.ramp(p_s, v["ramp_steps"])
-        if first and seal.U != U:
+        if k == 0 and seal.U != U:
             seal.speed(U, v["speed_steps"])
-        first = False
         if on_state is not None:
             on_state(p_s)
     return list(seal.iterations)
@@ -463,43 +467,67 @@ class EHLORingCase:
             raise InputError("gap0 must be below the cross-section radius")
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Mount, pressurise and solve each stroke; optionally the mesh study."""
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Mount, pressurise and solve each stroke; optionally the mesh study.
+
+        ``checkpoint``: directory of the sweep's checkpoint, written after every
+        sealed pressure of every stroke (:class:`tribofx.restart.SweepJournal`:
+        the seal's state, its records and the number of pressures reached);
+        ``resume``: continue from it (a stroke restarts at its next pressure,
+        ramped from the saved state; ``study=mesh`` is run again whole).
+        """
         comm = MPI.COMM_WORLD
         U = v["U"]
+        p_targets = number_list(v["p_s"], "p_s")
+        journal = SweepJournal(checkpoint, comm, v, resume)
         speeds = [U] if v["stroke"] == "single" else [abs(U), -abs(U)]
         profiles = {"strokes": {}, "mesh": None, "U": abs(U)}
         prob = None
         for Us in speeds:
             tag = "out" if Us > 0 else "in"
-            t0 = time.perf_counter()
+            rec = journal.records(tag, points=[], states=[], measures=[], its=[],
+                                  wall_time=0.0)
+            points, states, measures = rec["points"], rec["states"], rec["measures"]
+            done = len(points)
+            t0 = time.perf_counter() - rec["wall_time"]
             prob = build(v, math.copysign(max(abs(Us), 1000.0), Us))
+            interrupt.arm()   # gmsh resets the SIGTERM handler
             record.data["num_dofs"] = prob.problem.num_dofs
-            states = []
+            state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
+            if done:
+                journal.restore(tag, state)
+                prob.problem.refresh()
+                prob.iterations.extend(rec["its"])
+            for p_s, m in zip(points, measures):
+                cls._record(record, tag, p_s, m)
             # u and p at each sealed pressure of the stroke (ParaView time series; the
-            # "time" is the index of the state, its p_s in series_points)
+            # "time" is the index of the state, its p_s in series_points; a resumed
+            # stroke writes its states into series of their own)
+            resumed = f"_from_{done}" if done else ""
             series = VTXSeries(comm, getattr(record, "outdir", None),
-                               {f"{tag}stroke_{k}_series": f
+                               {f"{tag}stroke_{k}_series{resumed}": f
                                 for k, f in cls.vtx_fields(prob).items()})
-            points = record.data.setdefault("series_points", {}).setdefault(tag, [])
+            record.data.setdefault("series_points", {})[tag] = points
 
-            def on_state(p_s, prob=prob, tag=tag, states=states, series=series,
-                         points=points):
-                points.append(p_s)
-                series.write(len(points) - 1)
+            def on_state(p_s, prob=prob, tag=tag, rec=rec, series=series, state=state, t0=t0):
+                rec["points"].append(p_s)
+                series.write(len(rec["points"]) - 1)
                 m = prob.measures()
                 m["axial_balance"] = axial_balance(prob)
-                for k, unit in cls.UNITS.items():
-                    record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
+                rec["measures"].append(m)
+                cls._record(record, tag, p_s, m)
                 pr = prob.profile()
                 if pr is not None:
-                    states.append({"p_s": p_s, **{k: pr[k].tolist() for k in ("z", "h", "p")}})
+                    rec["states"].append({"p_s": p_s,
+                                          **{k: pr[k].tolist() for k in ("z", "h", "p")}})
                 if progress is not None:
                     progress.update(1)
+                rec["its"], rec["wall_time"] = list(prob.iterations), time.perf_counter() - t0
+                journal.save(tag, state, rec, {"reached": len(rec["points"])})
 
             try:
-                its = solve_to(prob, v, Us, number_list(v["p_s"], "p_s"), on_state)
-            except NewtonDivergence as err:
+                its = solve_to(prob, v, Us, p_targets, on_state, done=done)
+            except (NewtonDivergence, interrupt.Interrupted) as err:
                 err.problem = prob
                 raise
             finally:
@@ -509,10 +537,16 @@ class EHLORingCase:
             profiles["strokes"][tag] = states
         if v["study"] == "mesh":
             profiles["mesh"] = cls.mesh_study(v, record)
-        record.result("p_s", number_list(v["p_s"], "p_s"), "MPa")
+        record.result("p_s", p_targets, "MPa")
         if comm.rank == 0:
             record.profile = profiles
         return prob
+
+    @classmethod
+    def _record(cls, record, tag, p_s, m):
+        """Record the results of one sealed pressure of a stroke (``<tag>_ps<p_s>_…``)."""
+        for k, unit in cls.UNITS.items():
+            record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
 
     UNITS = {"p_max": "MPa", "z_p_max": "mm", "h_at_p_max": "mm", "h_mean": "mm", "h_min": "mm",
              "z_h_min": "mm", "flux": "mm^2/s", "leakage": "mm^3/s",

@@ -128,6 +128,12 @@ class ReynoldsFilm:
             if key in self._tol:
                 self._tol[key].atol = a
 
+    def scale_values(self):
+        """Return the current scales as keyword arguments of :meth:`set_scales`."""
+        return {"p_c": float(self.p_c.value),
+                "eps": None if self.eps is None else float(self.eps.value),
+                "film_scale": self.h_ref, "speed_scale": self.U_ref}
+
     def _reynolds(self, dp):
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
         dx = ef.WeightedMeasure(self.w_film, self.dx) if self.w_film != 1 else self.dx

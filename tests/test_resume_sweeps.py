@@ -1,0 +1,128 @@
+"""A continuation sweep stopped by a signal between points and resumed: the uninterrupted result.
+
+The EHL cases march loads, then speeds or sealed pressures, per variant of the
+model or stroke; after every recorded point they write the state, the records
+and the position in the sweep (leg, march increments, the inner secant's
+history, the film scales, and for the ball at large loads the thick-film state
+the next load starts from: :class:`tribofx.restart.SweepJournal`) into
+``--out/checkpoint``.  Reference: the same run without interruption.
+
+Tolerance: the restored state is the checkpoint's arrays exactly and the
+resumed sweep takes the same parameter values with the same first trials, so
+the runs can differ only through round-off of the linear solves after the
+restart (a fresh MUMPS factorisation), amplified at most to the stopping
+tolerances of what follows: the position secants stop at a relative 1e-6 of W
+(cylinder layer) and 1e-4 (ball), Newton far below.  We assert 1e-6 relative
+(1e-4 for the ball) of each quantity's largest magnitude; in practice the runs
+agree to the last digit and the Newton iteration counts are equal, which is
+asserted too.
+"""
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from test_resume import ENV, _cli
+
+# case: (arguments, n: the signal is sent once n points are written, so the run stops
+# after point n + 1 (the check follows each write); VTX stem of the resumed series;
+# tolerance)
+CASES = {
+    # a load march (10 loads), then two speeds: the stop falls in the load leg
+    "ehl-cylinder-layer": (["run", "ehl-cylinder-layer", "--set", "mesh=0", "--set",
+                            "speeds=2000,4000", "--quiet"], 4, "displacement", 1e-6),
+    # three loads from Hertz states, then two speed marches: stops after load 2
+    "ehl-ball": (["run", "ehl-ball", "--set", "W=3", "--set", "steps=3", "--set", "mesh=0",
+                  "--set", "speeds=2e4,4e4", "--quiet"], 1, "displacement", 1e-4),
+    # large load: thick-film displacement control at U_s, each load marched down to U
+    # and the next started from the saved thick-film state: stops after load 2 of 3
+    "ehl-ball-40N": (["run", "ehl-ball", "--set", "W=40", "--set", "theta_l=55", "--set",
+                      "U=3e5", "--set", "mesh=0", "--set", "steps=3", "--set", "speeds=6e5",
+                      "--quiet"], 1, "displacement", 1e-4),
+    # two strokes of three sealed pressures each: stops after the first of the instroke
+    # (the outstroke restored complete, the instroke ramped on from its first pressure)
+    "ehl-oring": (["run", "ehl-oring", "--set", "mesh=2", "--set", "U=1000", "--set",
+                   "p_s=0.5,0.75,1", "--set", "stroke=both", "--quiet"], 3,
+                  "stroke_displacement", 1e-6),
+}
+
+
+def _points(out):
+    try:
+        return json.loads((out / "checkpoint" / "state.json").read_text())["steps"]
+    except (OSError, ValueError, KeyError):
+        return 0
+
+
+def _stopped_then_resumed(out, ranks, sig, case):
+    args, n_stop = CASES[case][:2]
+    p = subprocess.Popen(_cli(ranks) + args + ["--out", str(out)], env=ENV,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.time()
+    while _points(out) < n_stop and p.poll() is None and time.time() - t0 < 600:
+        time.sleep(0.05)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=600)
+    assert p.returncode == 130, err
+    assert "interrupted" in err and "--resume" in err
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"].startswith("interrupted")
+    n = _points(out)
+    assert n == n_stop + 1
+    r = subprocess.run(_cli(ranks) + args + ["--out", str(out), "--resume"], env=ENV,
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    return json.loads((out / "summary.json").read_text()), n
+
+
+def _numbers(x):
+    """The numbers of a result (a number, or nested lists of numbers), flat."""
+    return np.asarray(x, dtype=float).ravel()
+
+
+MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdist
+
+
+@pytest.mark.parametrize("case,ranks,sig", [
+    ("ehl-cylinder-layer", 1, signal.SIGTERM),
+    ("ehl-ball", 1, signal.SIGTERM),
+    pytest.param("ehl-ball-40N", 2, signal.SIGINT, marks=MPIEXEC),
+    ("ehl-oring", 1, signal.SIGTERM),
+])
+def test_stopped_sweep_resumes_to_the_same_result(tmp_path, case, ranks, sig):
+    if ranks > 1 and not (Path(sys.executable).parent / "mpiexec").exists():
+        pytest.skip("no mpiexec next to the interpreter")
+    args, _, stem, tol = CASES[case]
+    full = subprocess.run(_cli(ranks) + args + ["--out", str(tmp_path / "full")], env=ENV,
+                          capture_output=True, text=True, timeout=900)
+    assert full.returncode == 0, full.stderr
+    a = json.loads((tmp_path / "full" / "summary.json").read_text())
+    b, n = _stopped_then_resumed(tmp_path / "stopped", ranks, sig, case)
+    total = sum(len(p) for p in a["series_points"].values())
+    print(f"{case}, {ranks} rank(s): stopped after point {n} of {total} by {sig.name}")
+    assert n < total          # the stop fell inside the sweep
+    assert b["status"] == "ok"
+    assert b["parameters"] == a["parameters"]
+    compared = [k for k in a["results"] if "wall_time" not in k]
+    assert b["results"].keys() == a["results"].keys()
+    for key in compared:
+        try:
+            y, x = _numbers(a["results"][key]["value"]), _numbers(b["results"][key]["value"])
+        except (TypeError, ValueError):   # names, not numbers
+            assert b["results"][key] == a["results"][key], key
+            continue
+        assert x.shape == y.shape, key
+        scale = np.max(np.abs(y[np.isfinite(y)]), initial=0.0)
+        np.testing.assert_allclose(x, y, rtol=0, atol=tol * scale, equal_nan=True,
+                                   err_msg=key)
+    assert b["series_points"].keys() == a["series_points"].keys()
+    for name, pts in a["series_points"].items():
+        np.testing.assert_allclose(b["series_points"][name], pts, rtol=tol, err_msg=name)
+    assert b["newton_iterations"] == a["newton_iterations"]
+    # the resumed run's VTX series holds the points from the restart on
+    assert list((tmp_path / "stopped").glob(f"*{stem}_series_from_*.bp"))
