@@ -12,7 +12,9 @@ dimension) and cells of dimension d.  Every problem is reported as a one-line
 * the mesh has no cells of dimension d in a physical group;
 * a cell is inverted or degenerate (its Jacobian determinant at the midpoint has
   the sign opposite to the other cells' of its group, or is below 1e-12 of
-  their mean size).
+  their mean size);
+* a cell group the case names (e.g. ``coating``, a material of its own) is
+  empty, or a cell lies outside the named cell groups the file has.
 """
 
 import os
@@ -54,7 +56,7 @@ def _open_on_root(path, comm, gdim):
     return comm.bcast((msg, groups, dim), root=0)
 
 
-def read_user_mesh(path, comm, gdim, required):
+def read_user_mesh(path, comm, gdim, required, cells=None):
     """Read a gmsh mesh for a case of dimension ``gdim`` with named boundaries ``required``.
 
     Args:
@@ -63,10 +65,17 @@ def read_user_mesh(path, comm, gdim, required):
         gdim: the case's dimension (2 or 3).
         required: boundary names every one of which must be a non-empty physical
             group of dimension gdim − 1.
+        cells: names of the cell groups (dimension gdim) the case gives materials
+            of their own, e.g. ``("layer", "coating")``.  Those of them the file
+            has must each hold cells, and then every cell must lie in one of them
+            (a cell of another group would get no material); a file with none of
+            them is one material.
 
     Returns:
         ``(mesh, facet_tags, names)`` with ``names`` {group name: facet tag value},
-        the form a :class:`tribofx.body.Body` takes.
+        the form a :class:`tribofx.body.Body` takes; with ``cells``,
+        ``(mesh, facet_tags, names, cell_tags, cell_names)``, ``cell_names``
+        {name: cell tag value} of the named cell groups in the file (may be empty).
     """
     path = os.fspath(path)
     initialized = gmsh.isInitialized()
@@ -110,7 +119,31 @@ def read_user_mesh(path, comm, gdim, required):
         if n == 0:
             raise _error(f"physical group {name!r} in {path!r} holds no boundary facet")
     _check_cells(msh, data.cell_tags, path)
-    return msh, ft, names
+    if cells is None:
+        return msh, ft, names
+    return (msh, ft, names, data.cell_tags,
+            _cell_groups(msh, data.cell_tags, groups, cells, gdim, path))
+
+
+def _cell_groups(msh, ct, groups, cells, gdim, path):
+    """{name: tag} of the cell groups ``cells`` in the file; InputError if one is empty or
+    some cell lies outside all of them (when any is present)."""
+    comm = msh.comm
+    present = {n: groups[n][1] for n in cells if n in groups and groups[n][0] == gdim}
+    if not present:
+        return present
+    n_local = msh.topology.index_map(gdim).size_local
+    owned = ct.indices < n_local
+    for name, tag in present.items():
+        if comm.allreduce(int(np.sum(ct.values[owned] == tag)), op=MPI.SUM) == 0:
+            raise _error(f"cell group {name!r} in {path!r} holds no cell")
+    tagged = np.zeros(n_local, dtype=bool)
+    tagged[ct.indices[owned][np.isin(ct.values[owned], list(present.values()))]] = True
+    outside = comm.allreduce(int(np.sum(~tagged)), op=MPI.SUM)
+    if outside:
+        raise _error(f"{outside} cell(s) of {path!r} lie outside the cell groups "
+                     f"{', '.join(present)} (every cell needs a material)")
+    return present
 
 
 def _check_cells(msh, cell_tags, path):

@@ -149,14 +149,17 @@ LAYER_H, LAYER_L, LAYER_XL = 5.0, 15.0, 3.0
 LAYER_FAST = {"W": 0.2, "steps": 1, "degree": 1, "t_c": 0.0}
 
 
-def _layer(path, groups=LAYER_GROUPS, dim=2, shift=(7.0, 2.5)):
-    """Write a homogeneous layer −L ≤ x ≤ L, −H ≤ y ≤ 0 (moved by ``shift``), Γ_l |x| ≤ x_l.
+def _layer(path, groups=LAYER_GROUPS, dim=2, shift=(7.0, 2.5), t_c=0.0, coating="coating"):
+    """Write a layer −L ≤ x ≤ L, −H ≤ y ≤ 0 (moved by ``shift``), Γ_l |x| ≤ x_l.
 
     Delaunay triangles (the case's own mesh: frontal-Delaunay); size 0.03 mm on
     Γ_l within 0.05 mm, growing linearly to 0.6 mm at 5 mm from Γ_l (the
     reference, level 1 with its bulk size halved: 0.02 mm within 0.04 mm, 0.5 mm
     at 5.5 mm), so that the size is at most 1.5 times the reference's everywhere.
-    ``dim=3``: the layer extruded by 1 mm (a wrong-dimension mesh).
+    ``dim=3``: the layer extruded by 1 mm (a wrong-dimension mesh).  ``t_c`` > 0:
+    a coating −t_c ≤ y ≤ 0, its cells in the group named ``coating``, the rest
+    in ``layer``; the fine size then holds within 2 t_c of Γ_l (the reference's
+    2 max(t_c, h)), so that the ratio 1.5 holds there too.
     """
     _start("user_layer")
     occ = gmsh.model.occ
@@ -168,22 +171,42 @@ def _layer(path, groups=LAYER_GROUPS, dim=2, shift=(7.0, 2.5)):
     surf = occ.addPlaneSurface([occ.addCurveLoop(lines)])
     if dim == 3:
         occ.extrude([(2, surf)], 0, 0, 1.0)
+    if t_c > 0:   # split by the interface y = −t_c: the surfaces below and above it
+        cut = occ.addLine(occ.addPoint(-L + x0, y0 - t_c, 0), occ.addPoint(L + x0, y0 - t_c, 0))
+        occ.fragment([(2, surf)], [(1, cut)])
     occ.synchronize()
     if dim == 3:
         gmsh.model.addPhysicalGroup(3, [1], name="layer")
         named = {"lubricated": (2, [5]), "bottom": (2, [2])}
     else:
-        gmsh.model.addPhysicalGroup(2, [surf], name="layer")
-        named = {"lubricated": (1, [lines[3]]), "bottom": (1, [lines[0]]),
-                 "free": (1, [lines[1], lines[2], lines[4], lines[5]])}
+        faces = sorted(gmsh.model.getEntities(2),
+                       key=lambda e: gmsh.model.occ.getCenterOfMass(*e)[1])
+        gmsh.model.addPhysicalGroup(2, [faces[0][1]], name="layer")
+        if t_c > 0:
+            gmsh.model.addPhysicalGroup(2, [faces[1][1]], name=coating)
+
+        def on(y, x_lo, x_hi):   # boundary curves on the line y between x_lo and x_hi
+            box = (x_lo + x0 - 1e-6, y + y0 - 1e-6, -1, x_hi + x0 + 1e-6, y + y0 + 1e-6, 1)
+            return [t for _, t in gmsh.model.getEntitiesInBoundingBox(*box, dim=1)]
+
+        gamma = on(0.0, -xl, xl)
+        free = [t for _, t in gmsh.model.getBoundary(faces, oriented=False)
+                if t not in gamma + on(-H, -L, L)]
+        named = {"lubricated": (1, gamma), "bottom": (1, on(-H, -L, L)), "free": (1, free)}
     _groups(named, groups)
-    _size_field(curves=[lines[3]], h_min=0.03, h_max=0.6, d_min=0.05, d_max=5.0)
+    if dim == 2:
+        _size_field(curves=named["lubricated"][1], h_min=0.03, h_max=0.6,
+                    d_min=max(0.05, 2 * t_c), d_max=5.0)
     gmsh.option.setNumber("Mesh.Algorithm", 5)
     return _finish(path, dim)
 
 
-def test_user_layer_matches_built_layer(tmp_path, monkeypatch):
-    """Homogeneous layer (t_c = 0), W = 0.2 N/mm, P1: a user's mesh against the built one.
+@pytest.mark.parametrize("t_c", [0.0, 0.1])
+def test_user_layer_matches_built_layer(tmp_path, monkeypatch, t_c):
+    """Homogeneous (t_c = 0) and coated (t_c = 0.1 mm, E_c = 10 E) layer, W = 0.2 N/mm, P1.
+
+    A user's mesh against the built one; the coated user mesh gives its two
+    materials by the cell groups ``layer`` and ``coating``.
 
     Reference: the built layer, level 0 (0.04 mm on Γ_l, H/5 in the bulk) and
     its uniform refinement (level 1, 0.02 mm, with the bulk size halved too,
@@ -194,21 +217,24 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch):
     9.2e-5, 2.8e-5 mm (order 1.7).  The user's sizes are at most r = 1.5 times
     the fine reference's, so the tolerance is 2.5 |d| (module docstring), plus
     1e-6 relative for the load controller (it stops at |W − W*| ≤ 1e-6 W*).
+    The coating is resolved alike in all three meshes (fine size within 2 t_c
+    of Γ_l, the interface a mesh line), so the same order bound p = 1 is taken.
     """
     from tribofx.meshes.layer import coated_layer
 
     from tribofx.cases import ehl
 
     Case = ehl.EHLCylinderLayerCase
-    mesh = _layer(tmp_path / "layer.msh")
-    res = _cli_results("ehl-cylinder-layer", mesh, LAYER_FAST, tmp_path / "run")
-    assert abs(res["W_reached"] / LAYER_FAST["W"] - 1) < 1e-5
+    values = dict(LAYER_FAST, t_c=t_c)
+    mesh = _layer(tmp_path / "layer.msh", t_c=t_c)
+    res = _cli_results("ehl-cylinder-layer", mesh, values, tmp_path / "run")
+    assert abs(res["W_reached"] / values["W"] - 1) < 1e-5
     res["clearance"] = res["steps_clearance"][-1]
     ref = []
     for level, bulk in ((0, 1), (1, 2)):
         monkeypatch.setattr(ehl, "coated_layer", lambda L, H, t, x, hf, hc, comm, b=bulk:
                             coated_layer(L, H, t, x, hf, hc / b, comm))
-        v = _values(Case, **LAYER_FAST, mesh=level)
+        v = _values(Case, **values, mesh=level)
         run = Case.build(v)
         Case.load_control(run, v)[0].march(v["W"], v["steps"], predictor=False)
         ref.append(Case.measures(run, v))
@@ -220,6 +246,9 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch):
     (lambda d: _layer(d / "nobottom.msh", groups=("lubricated",)),
      "no physical group 'bottom'"),
     (lambda d: _layer(d / "three.msh", dim=3), "is 3D, the case needs a 2D mesh"),
+    # a coated layer whose coating cells are in a group the case does not know
+    (lambda d: _layer(d / "unnamed_coat.msh", t_c=0.1, coating="top"),
+     "lie outside the cell groups layer (every cell needs a material)"),
 ])
 def test_bad_user_layer(tmp_path, make, fragment):
     _bad_input("ehl-cylinder-layer", make(tmp_path), fragment, tmp_path)

@@ -29,9 +29,10 @@ W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
 Your own layer (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
 ``lubricated`` (Γ_l, the face under the cylinder) and ``bottom`` (bonded: u = 0),
 read and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other
-boundary is traction free.  It replaces H, x_l (half the x extent of Γ_l), mesh,
-t_c and E_c: the whole mesh is one material (E, ν) — a coating needs the cell
-groups of two materials, which the reader does not return.  The mesh is moved
+boundary is traction free.  A coated layer carries the cell groups ``layer``
+(modulus E) and ``coating`` (E_c), every cell in one of them; a mesh without
+these groups is one material (E, ν).  It replaces H, x_l (half the x extent of
+Γ_l), mesh and t_c (the coating is the user's cells).  The mesh is moved
 so that Γ_l's highest node is at y = 0 and the middle of its x extent at x = 0,
 below the cylinder axis (the rigid film h_r(W/steps) of the start is measured
 from y = 0).  Γ_l must be one open curve ending at its two x extremes (checked):
@@ -185,13 +186,16 @@ class EHLCylinderLayerCase:
               "the variant", choices=("none", "linear", "alpha")),
         Param("mesh_file", str, "", "-",
               "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
-              "open curve under the cylinder) and bottom (u = 0); replaces H, x_l (half the "
-              "x extent of Γ_l), mesh, t_c and E_c (one material E, nu); moved so that Γ_l's "
-              "highest node is at y = 0, its x extent centred below the cylinder axis"),
+              "open curve under the cylinder) and bottom (u = 0), and optionally the cell "
+              "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
+              "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
+              "is at y = 0, its x extent centred below the cylinder axis"),
     )
 
     #: boundary names a user's layer must carry (``mesh_file``)
     USER_GROUPS = ("lubricated", "bottom")
+    #: cell groups of a user's coated layer: E and E_c (``mesh_file``; optional)
+    USER_CELLS = ("layer", "coating")
 
     #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
     COMPARE = {
@@ -267,10 +271,13 @@ class EHLCylinderLayerCase:
             return (law, {"mu": mu, "lmbda": lm})
 
         if v["mesh_file"]:
-            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, cls.USER_GROUPS)
+            msh, ft, names, ct, cells = read_user_mesh(v["mesh_file"], comm, 2,
+                                                       cls.USER_GROUPS, cells=cls.USER_CELLS)
             v = dict(v, x_l=cls._user_layer(msh, ft, names["lubricated"]))
             cls.check_film_length(v["x_l"], v["R"])
-            materials, ct = mat(v["E"]), None
+            moduli = {"layer": v["E"], "coating": v["E_c"]}
+            materials = ({tag: mat(moduli[name]) for name, tag in cells.items()} if cells
+                         else mat(v["E"]))
         else:
             msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
                                        H / 5, comm)
