@@ -126,8 +126,10 @@ def read_user_mesh(path, comm, gdim, required, cells=None):
 
 
 def _cell_groups(msh, ct, groups, cells, gdim, path):
-    """{name: tag} of the cell groups ``cells`` in the file; InputError if one is empty or
-    some cell lies outside all of them (when any is present).
+    """Return {name: tag} of the cell groups ``cells`` in the file.
+
+    InputError if one of them is empty, or (when any is present) a cell lies
+    outside all of them.
     """
     comm = msh.comm
     present = {n: groups[n][1] for n in cells if n in groups and groups[n][0] == gdim}
