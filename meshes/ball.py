@@ -7,7 +7,9 @@ y = 0, the load is applied at the horizontal mid-plane z = R.  The spherical
 surface is split at the height z_cap = R (1 − cos θ_l) into the lubricated
 cap (polar angle θ ≤ θ_l about the contact point, boundary on the circle
 z = z_cap, exactly) and the free surface.  Tetrahedra have size ``h_fine``
-within ``r_fine`` of the contact point and grow to ``h_coarse``.
+within ``r_fine`` of the contact point and grow to ``h_coarse``; optionally a
+finer band follows the edge of the contact zone (``ring``: the trailing-edge
+constriction and the side lobes of the film, chapter Figs. 24–25).
 
 Cell tag 1.  Facet tags: 1 lubricated cap Γ_l, 2 free spherical surface,
 3 mid-plane z = R (loaded), 4 symmetry plane y = 0.  Lengths in mm.
@@ -38,7 +40,7 @@ def cap_height(R, theta_l):
     return R * (1 - math.cos(theta_l))
 
 
-def _build(R, theta_l, h_fine, h_coarse, r_fine):
+def _build(R, theta_l, h_fine, h_coarse, r_fine, ring=None):
     occ = gmsh.model.occ
     z_cap = cap_height(R, theta_l)
     ball = occ.addSphere(0, 0, R, R)
@@ -78,6 +80,21 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine):
     f.setNumber(t, "SizeMax", h_coarse)
     f.setNumber(t, "DistMin", r_fine)
     f.setNumber(t, "DistMax", r_fine + 0.5 * R)
+    if ring is not None:
+        # a band along the circle of horizontal radius ρ on the sphere (the edge of the
+        # contact zone): size h_ring within w of the circle, growing linearly to h_fine at
+        # 2w; beyond 2w the band does not apply (StopAtDistMax), the other field rules
+        rho, h_ring, w = ring
+        zr = R - math.sqrt(R**2 - rho**2)
+        dist = f.add("MathEval")
+        f.setString(dist, "F", f"Sqrt((Sqrt(x*x + y*y) - {rho!r})^2 + (z - {zr!r})^2)")
+        band = f.add("Threshold")
+        f.setNumber(band, "InField", dist)
+        for k, val in (("SizeMin", h_ring), ("SizeMax", h_fine), ("DistMin", w),
+                       ("DistMax", 2 * w), ("StopAtDistMax", 1)):
+            f.setNumber(band, k, val)
+        t0, t = t, f.add("Min")
+        f.setNumbers(t, "FieldsList", [t0, band])
     f.setAsBackgroundMesh(t)
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
@@ -87,7 +104,7 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine):
     gmsh.model.mesh.generate(3)
 
 
-def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, ring=None):
     """Build the quarter ball and return ``(mesh, cell_tags, facet_tags)``.
 
     Args:
@@ -97,10 +114,13 @@ def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
         h_coarse: element size far from it (mm).
         r_fine: radius of the refined zone (mm).
         comm: MPI communicator; the model is built on rank 0 and distributed.
+        ring: None, or ``(ρ, h_ring, w)``: element size h_ring within w of the
+            circle of horizontal radius ρ on the sphere (the edge of a contact
+            zone of radius ρ), growing linearly to h_fine at 2w.
     """
     initialized = _start(theta_l)
     if comm.rank == 0:
-        _build(R, theta_l, h_fine, h_coarse, r_fine)
+        _build(R, theta_l, h_fine, h_coarse, r_fine, ring)
     data = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=3)
     gmsh.model.remove()
     if not initialized:
@@ -120,7 +140,7 @@ def _start(theta_l):
     return initialized
 
 
-def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
+def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine, ring=None):
     """Write the quarter ball of :func:`quarter_ball` to the gmsh file ``path`` (one process).
 
     The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid
@@ -128,7 +148,7 @@ def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine):
     :func:`quarter_ball`; returns ``path``.
     """
     initialized = _start(theta_l)
-    _build(R, theta_l, h_fine, h_coarse, r_fine)
+    _build(R, theta_l, h_fine, h_coarse, r_fine, ring)
     gmsh.write(str(path))
     gmsh.model.remove()
     if not initialized:

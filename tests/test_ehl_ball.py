@@ -406,3 +406,40 @@ def test_large_load_40N():
         assert rel(40.0, key) > rel(4.0, key)
     # chapter: 10–15 % at 40 N; here h_min by more than 5 %
     assert rel(40.0, "h_min") > 0.05
+
+
+def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
+    """``edge_refine=1``: cap triangles within 0.1 a of the contact circle have size h/2.
+
+    Reference: the size field asked of gmsh (h = a/4 near the contact at mesh 0,
+    h/2 in the band).  gmsh meets a size field to within its adaptation, about
+    ±25 % per edge on average over a band of many triangles (measured here on the
+    unrefined cap: the mean longest edge in the band and inside the contact agree
+    to that), so the ratio of the band's mean to the inner zone's must be 0.5
+    within a factor 1.3 either way, and near 1 without the band.
+    """
+    from dolfinx import mesh as dmesh
+
+    from tribofx.meshes.ball import LUBRICATED
+
+    ratios = {}
+    for level in (0, 1):
+        v = values(W=10.0, mesh=0, edge_refine=level)
+        a = Case.hertz_contact(v).a
+        ball = Case.build(v)[0]
+        msh, facets = ball.mesh, ball.facet_tags.find(LUBRICATED)
+        msh.topology.create_connectivity(2, 3)
+        nodes = dmesh.entities_to_geometry(msh, 2, facets, False)
+        x = msh.geometry.x[nodes]                                  # (facets, 3, 3)
+        longest = np.max(np.linalg.norm(x - np.roll(x, 1, axis=1), axis=2), axis=1)
+        rho = np.hypot(x[:, :, 0].mean(axis=1), x[:, :, 1].mean(axis=1))
+        comm = msh.comm
+
+        def mean(sel):
+            return (comm.allreduce(float(longest[sel].sum()), op=MPI.SUM)
+                    / comm.allreduce(int(sel.sum()), op=MPI.SUM))
+
+        ratios[level] = mean(np.abs(rho - a) < 0.08 * a) / mean((rho > 0.3 * a) & (rho < 0.7 * a))
+    print("band / inner mean longest edge:", ratios)
+    assert 1 / 1.3 < ratios[0] < 1.3
+    assert 0.5 / 1.3 < ratios[1] < 0.5 * 1.3

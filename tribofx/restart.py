@@ -33,7 +33,8 @@ from . import interrupt
 from .checkpoint import Checkpoint
 from .params import InputError
 
-__all__ = ["SweepJournal", "jsonable", "open_history", "series_stem"]
+__all__ = ["SweepJournal", "check_parameters", "jsonable", "open_history", "series_stem",
+           "sweep_stem"]
 
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver",)
@@ -53,18 +54,28 @@ def open_history(stepper, v, resume):
         except (ValueError, OSError, KeyError) as err:
             raise InputError(f"cannot resume: {err}") from None
         saved = stepper.history.get("parameters")
-        now = json.loads(json.dumps(params))     # as the checkpoint holds them
-        if saved is not None and saved != now:
-            diff = sorted(k for k in set(saved) | set(now) if saved.get(k) != now.get(k))
-            raise InputError(f"--resume with other parameters than the checkpoint's "
-                             f"({', '.join(diff)})")
+        if saved is not None:
+            check_parameters(saved, json.loads(json.dumps(params)))  # as the checkpoint holds them
     stepper.history.setdefault("parameters", params)
     return stepper.history
+
+
+def check_parameters(saved, now):
+    """Raise InputError (one line) unless the checkpoint's parameters ``saved`` are ``now``."""
+    if saved != now:
+        diff = sorted(k for k in set(saved) | set(now) if saved.get(k) != now.get(k))
+        raise InputError(f"--resume with other parameters than the checkpoint's "
+                         f"({', '.join(diff)})")
 
 
 def series_stem(stem, stepper, resume):
     """File stem of a VTX series: a resumed run's series starts at its restart time."""
     return stem + (f"_from_t{stepper.t:g}" if resume else "")
+
+
+def sweep_stem(stem, n):
+    """File stem of a sweep's VTX series: a sweep resumed after n points starts at n."""
+    return stem + (f"_from_{n}" if n else "")
 
 
 def jsonable(x):
@@ -109,17 +120,22 @@ class SweepJournal:
             self._read()
 
     def _read(self):
+        top, error = None, None
+        if self.comm.rank == 0:     # read once, decided on all ranks (no rank left waiting)
+            try:
+                top = json.loads((self.dir / "state.json").read_text())
+                top = {"variants": list(top["variants"]), "parameters": top["parameters"]}
+            except (ValueError, OSError, KeyError, TypeError) as err:
+                error = f"cannot resume: {err}"
+        top, error = self.comm.bcast((top, error), root=0)
+        if error is not None:
+            raise InputError(error)
+        check_parameters(top["parameters"], self.params)
+        order = top["variants"]
         try:
-            top = json.loads((self.dir / "state.json").read_text())
-            order = list(top["variants"])
             saved = {name: Checkpoint(self.dir / name, self.comm).read() for name in order}
-        except (ValueError, OSError, KeyError, TypeError) as err:
+        except ValueError as err:    # the same on all ranks (Checkpoint.read)
             raise InputError(f"cannot resume: {err}") from None
-        if top.get("parameters") != self.params:
-            diff = sorted(k for k in set(top.get("parameters", {})) | set(self.params)
-                          if top.get("parameters", {}).get(k) != self.params.get(k))
-            raise InputError(f"--resume with other parameters than the checkpoint's "
-                             f"({', '.join(diff)})")
         self.saved, self.order = saved, order
         self.steps = max(int(s["steps"]) for s in saved.values()) if saved else 0
 

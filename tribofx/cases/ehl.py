@@ -67,7 +67,7 @@ from ..params import InputError, Param, number_list
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
-from ..restart import SweepJournal
+from ..restart import SweepJournal, sweep_stem
 
 __all__ = ["EHLCylinderLayerCase", "at_points", "cylinder_arc", "film_boundary",
            "mesh_convergence", "speed_list"]
@@ -275,6 +275,9 @@ class EHLCylinderLayerCase:
                                                        cls.USER_GROUPS, cells=cls.USER_CELLS)
             v = dict(v, x_l=cls._user_layer(msh, ft, names["lubricated"]))
             cls.check_film_length(v["x_l"], v["R"])
+            if "coating" in cells and "layer" not in cells:
+                raise InputError(f"{v['mesh_file']!r} has the cell group 'coating' but no "
+                                 "'layer' (the layer's cells, modulus E)")
             moduli = {"layer": v["E"], "coating": v["E_c"]}
             materials = ({tag: mat(moduli[name]) for name, tag in cells.items()} if cells
                          else mat(v["E"]))
@@ -395,6 +398,7 @@ class EHLCylinderLayerCase:
         every converged load and speed, and a resumed variant continues there.
         """
         run = cls.build(v)
+        interrupt.arm()   # gmsh resets the SIGTERM handler
         layer, film, problem = run
         name = prefix[:-1] or v["model"]
         journal = journal or SweepJournal(None, layer.mesh.comm, v)
@@ -406,9 +410,8 @@ class EHLCylinderLayerCase:
         # u and p at every converged load and speed (ParaView time series; the "time"
         # is the index of the point, its (W, U) in series_points; a resumed run writes
         # the points from its restart into series of their own)
-        resumed = "" if pos is None else f"_from_{len(points)}"
         series = VTXSeries(layer.mesh.comm, getattr(record, "outdir", None),
-                           {f"{prefix}{k}_series{resumed}": f
+                           {sweep_stem(f"{prefix}{k}_series", len(points)): f
                             for k, f in cls.vtx_fields(run).items()})
         record.data.setdefault("series_points", {})[name] = points
         state = problem.state_fields() + [layer.velocity]
@@ -425,14 +428,16 @@ class EHLCylinderLayerCase:
 
         def on_step():
             m = cls.measures(run, v)
+            profiles.append(dict(m.pop("profile"), W=m["W"]))
             steps.append(m)
-            profiles.append(dict(m["profile"], W=m["W"]))
             write(m)
             if progress is not None:
                 progress.update(1)
 
         def on_speed():
-            m = dict(cls.measures(run, v), U=layer.velocity.value[0])
+            m = cls.measures(run, v)
+            m.pop("profile")
+            m["U"] = float(layer.velocity.value[0])
             speed.append(m)
             write(m)
 

@@ -44,7 +44,7 @@ Your own ball (``mesh_file``): a 3D gmsh ``.msh`` of the quarter ball with the
 physical groups ``lubricated`` (Γ_l, the cap around the contact point),
 ``midplane`` (held, u = 0) and ``symmetry`` (a plane y = const, u_y = 0), read
 and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other boundary is
-traction free.  It replaces theta_l, mesh and h_coarse (the cap and the
+traction free.  It replaces theta_l, mesh, h_coarse and edge_refine (the cap and the
 elements are the user's); R, E and ν still set the Hertz start, the scales
 (penalty, SUPG pressure, tolerances) and the references, so R must be the
 radius of the ball at the contact.  The mesh is moved so that the symmetry
@@ -90,7 +90,7 @@ from ..params import InputError, Param
 from ..positions import paraboloid_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
-from ..restart import SweepJournal
+from ..restart import SweepJournal, sweep_stem
 from .ehl import at_points, film_boundary, speed_list
 
 __all__ = ["EHLBallCase"]
@@ -127,6 +127,11 @@ class EHLBallCase:
         Param("mesh", int, 1, "-", "element size a/(4·2^mesh) near the contact", lower=0,
               upper=3, closed=True),
         Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
+        Param("edge_refine", int, 0, "-",
+              "refinement levels of a band along the edge of the Hertz contact zone "
+              "(radius a(W), the film's outlet ridge and side lobes): size h/2^level "
+              "within 0.1 a of it (h the size near the contact)", lower=0, upper=3,
+              closed=True),
         Param("start_speed", float, 30.0, "-",
               "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
               "displacement control (thick film), then U is continued down to U",
@@ -140,7 +145,7 @@ class EHLBallCase:
         Param("mesh_file", str, "", "-",
               "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
               "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
-              "replaces theta_l, mesh, h_coarse (R, E, nu: Hertz start and scales; cap "
+              "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
               "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
               "lowest at z = 0"),
     )
@@ -208,8 +213,10 @@ class EHLBallCase:
             cls._place_user_ball(msh, ft, names, v)
         else:
             h_fine = a / (4 * 2 ** v["mesh"])
+            ring = ((a, h_fine / 2 ** v["edge_refine"], 0.1 * a) if v["edge_refine"]
+                    else None)
             msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
-                                       1.6 * a, comm)
+                                       1.6 * a, comm, ring=ring)
             names = NAMES
         mu, lm = lame_parameters(v["E"], v["nu"])
         law = "linear" if v["model"] == "linear" else "neo-hookean"
@@ -416,12 +423,13 @@ class EHLBallCase:
             W_start = cls.load(run)
         else:
             its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
-            inner = cls.follow_control(run, v, W_start, W_start, verbose, its)
-            inner.set_secant_state(start["inner"])
-            if k0 < v["steps"]:
+            if k0 < v["steps"]:      # the next load starts from the thick-film state
                 problem.restore(start["carrier"])
                 speed.set(Us)
                 cls.set_scales(film, v, W_start, Us)
+            else:                    # all loads done: the last load's controller
+                inner = cls.follow_control(run, v, W_start, W_start, verbose, its)
+                inner.set_secant_state(start["inner"])
         for k in range(k0, v["steps"]):
             Wk = v["W"] * (k + 1) / v["steps"]
             inner = cls.follow_control(run, v, Wk, W_start, verbose, its)
@@ -558,15 +566,14 @@ class EHLBallCase:
         record.data["variant_newton_iterations"][key] = its_all
         var = {"label": label, "shear": vv["shear"]}
         record.profile["variants"][key] = var
-        state = problem.state_fields() + [film.V_counter, film.counterpart.offset]
+        state = problem.state_fields() + [film.V_counter]   # (the plane's offset is state)
         at = {"leg": 0 if pos is None else pos["leg"]}
 
         # u and p at every converged load and speed (ParaView time series; the "time"
         # is the index of the point, its (W, U) in series_points; a resumed run writes
         # the points from its restart into series of their own)
-        resumed = "" if pos is None else f"_from_{len(points)}"
         series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
-                           {f"{name + '_' if name else ''}{k}_series{resumed}": f
+                           {sweep_stem(f"{name + '_' if name else ''}{k}_series", len(points)): f
                             for k, f in cls.vtx_fields(run).items()})
         record.data.setdefault("series_points", {})[key] = points
 

@@ -108,7 +108,7 @@ from ..plots import plot_oring
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
-from ..restart import SweepJournal
+from ..restart import SweepJournal, sweep_stem
 from .ehl import film_boundary
 
 __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_indicator",
@@ -503,9 +503,10 @@ class EHLORingCase:
             # u and p at each sealed pressure of the stroke (ParaView time series; the
             # "time" is the index of the state, its p_s in series_points; a resumed
             # stroke writes its states into series of their own)
-            resumed = f"_from_{done}" if done else ""
-            series = VTXSeries(comm, getattr(record, "outdir", None),
-                               {f"{tag}stroke_{k}_series{resumed}": f
+            # (a stroke restored complete writes no series)
+            outdir = getattr(record, "outdir", None) if done < len(p_targets) else None
+            series = VTXSeries(comm, outdir,
+                               {sweep_stem(f"{tag}stroke_{k}_series", done): f
                                 for k, f in cls.vtx_fields(prob).items()})
             record.data.setdefault("series_points", {})[tag] = points
 
