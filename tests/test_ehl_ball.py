@@ -419,7 +419,6 @@ def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
     within a factor 1.3 either way, and near 1 without the band.
     """
     from dolfinx import mesh as dmesh
-
     from tribofx.meshes.ball import LUBRICATED
 
     ratios = {}
