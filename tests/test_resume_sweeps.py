@@ -105,7 +105,7 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
 @pytest.mark.parametrize("case,ranks,sig", [
     ("ehl-cylinder-layer", 1, signal.SIGTERM),
     ("ehl-ball", 1, signal.SIGTERM),
-    ("ehl-cylinder-layer-speeds", 1, signal.SIGTERM),
+    pytest.param("ehl-cylinder-layer-speeds", 1, signal.SIGTERM, marks=pytest.mark.slow),
     pytest.param("ehl-ball-40N", 2, signal.SIGINT, marks=MPIEXEC),
     ("ehl-oring", 1, signal.SIGTERM),
 ])
