@@ -57,33 +57,46 @@ def _cli(ranks):
     return cli
 
 
-def _steps(out):
+def checkpoint_steps(out):
+    """The number of steps (points) written into ``out/checkpoint`` so far (0: none)."""
     try:
         return json.loads((out / "checkpoint" / "state.json").read_text())["steps"]
     except (OSError, ValueError, KeyError):
         return 0
 
 
-def _interrupted_then_resumed(out, ranks, sig, case):
-    args, T, n_stop = CASES[case][:3]
+def stop_then_resume(out, ranks, sig, args, n_stop):
+    """Run ``args`` into ``out``, send ``sig`` once n_stop steps are checkpointed, resume.
+
+    Checks the stop (exit status 130, the message, the summary's status); returns
+    the interrupted run's summary, the resumed run's and the steps checkpointed
+    at the stop.
+    """
     p = subprocess.Popen(_cli(ranks) + args + ["--out", str(out)], env=ENV,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     t0 = time.time()
-    while _steps(out) < n_stop and p.poll() is None and time.time() - t0 < 600:
+    while checkpoint_steps(out) < n_stop and p.poll() is None and time.time() - t0 < 600:
         time.sleep(0.05)
     p.send_signal(sig)
     _, err = p.communicate(timeout=600)
     assert p.returncode == 130, err
     assert "interrupted" in err and "--resume" in err
-    s = json.loads((out / "summary.json").read_text())
-    assert s["status"].startswith("interrupted")
+    stopped = json.loads((out / "summary.json").read_text())
+    assert stopped["status"].startswith("interrupted")
+    steps = checkpoint_steps(out)
+    r = subprocess.run(_cli(ranks) + args + ["--out", str(out), "--resume"], env=ENV,
+                       capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0, r.stderr
+    return stopped, json.loads((out / "summary.json").read_text()), steps
+
+
+def _interrupted_then_resumed(out, ranks, sig, case):
+    args, T, n_stop = CASES[case][:3]
+    s, resumed, _ = stop_then_resume(out, ranks, sig, args, n_stop)
     t_stop = s["results"]["time"]["value"][-1]
     assert 0 < t_stop < T
     assert (out / f"{CASES[case][5]}.bp").exists()    # the last converged state
-    r = subprocess.run(_cli(ranks) + args + ["--out", str(out), "--resume"], env=ENV,
-                       capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0, r.stderr
-    return json.loads((out / "summary.json").read_text()), t_stop
+    return resumed, t_stop
 
 
 # serial: SIGTERM (a batch system's kill); 2 ranks: SIGINT to mpiexec (Ctrl-C), which

@@ -22,12 +22,11 @@ import json
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
-from test_resume import ENV, _cli
+from test_resume import ENV, _cli, stop_then_resume
 
 from tribofx.output import bp4_steps
 
@@ -57,32 +56,11 @@ CASES = {
 }
 
 
-def _points(out):
-    try:
-        return json.loads((out / "checkpoint" / "state.json").read_text())["steps"]
-    except (OSError, ValueError, KeyError):
-        return 0
-
-
 def _stopped_then_resumed(out, ranks, sig, case):
     args, n_stop = CASES[case][:2]
-    p = subprocess.Popen(_cli(ranks) + args + ["--out", str(out)], env=ENV,
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    t0 = time.time()
-    while _points(out) < n_stop and p.poll() is None and time.time() - t0 < 600:
-        time.sleep(0.05)
-    p.send_signal(sig)
-    _, err = p.communicate(timeout=600)
-    assert p.returncode == 130, err
-    assert "interrupted" in err and "--resume" in err
-    s = json.loads((out / "summary.json").read_text())
-    assert s["status"].startswith("interrupted")
-    n = _points(out)
+    _, resumed, n = stop_then_resume(out, ranks, sig, args, n_stop)
     assert n in (n_stop, n_stop + 1)
-    r = subprocess.run(_cli(ranks) + args + ["--out", str(out), "--resume"], env=ENV,
-                       capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0, r.stderr
-    return json.loads((out / "summary.json").read_text()), n
+    return resumed, n
 
 
 def _variant(name, keys):

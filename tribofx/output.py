@@ -6,16 +6,17 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["RunRecord", "VTXSeries", "bp4_steps", "write_summary", "write_vtx"]
+__all__ = ["RunRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary", "write_vtx"]
 
 
-def _jsonable(obj):
+def jsonable(obj):
+    """``obj`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types."""
     if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
+        return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
+        return [jsonable(v) for v in obj]
     if isinstance(obj, np.ndarray):
-        return _jsonable(obj.tolist())
+        return jsonable(obj.tolist())
     if isinstance(obj, (np.floating, np.integer, np.bool_)):
         return obj.item()
     return obj
@@ -65,7 +66,7 @@ def write_summary(comm, path, data):
     if comm.rank == 0:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(_jsonable(data), indent=2))
+        path.write_text(json.dumps(jsonable(data), indent=2))
 
 
 def write_vtx(comm, path, functions, t=0.0):

@@ -31,10 +31,10 @@ import numpy as np
 
 from . import interrupt
 from .checkpoint import Checkpoint
+from .output import jsonable
 from .params import InputError
 
-__all__ = ["SweepJournal", "check_parameters", "jsonable", "open_history", "series_stem",
-           "sweep_stem"]
+__all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "sweep_stem"]
 
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver",)
@@ -76,19 +76,6 @@ def series_stem(stem, stepper, resume):
 def sweep_stem(stem, n):
     """File stem of a sweep's VTX series: a sweep resumed after n points starts at n."""
     return stem + (f"_from_{n}" if n else "")
-
-
-def jsonable(x):
-    """``x`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types."""
-    if isinstance(x, dict):
-        return {str(k): jsonable(y) for k, y in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [jsonable(y) for y in x]
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, np.generic):
-        return x.item()
-    return x
 
 
 class SweepJournal:
