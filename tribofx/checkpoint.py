@@ -11,7 +11,26 @@ from pathlib import Path
 import numpy as np
 from mpi4py import MPI
 
-__all__ = ["Checkpoint"]
+__all__ = ["Checkpoint", "assign_fields", "field_arrays", "field_names"]
+
+
+def field_arrays(objects):
+    """Return copies of the values of ``objects`` (Functions: local arrays with ghosts)."""
+    return [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy() for f in objects]
+
+
+def assign_fields(objects, arrays):
+    """Set ``objects`` (Functions, Constants) to ``arrays`` (as from :func:`field_arrays`)."""
+    for f, a in zip(objects, arrays):
+        if hasattr(f, "x"):
+            f.x.array[:] = a
+        else:
+            f.value = a
+
+
+def field_names(objects):
+    """Return names of ``objects`` for a checkpoint (Functions by name, Constants by index)."""
+    return [getattr(f, "name", None) or f"constant{i}" for i, f in enumerate(objects)]
 
 
 class Checkpoint:

@@ -43,6 +43,7 @@ from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
 from . import pattern, solvers
+from .checkpoint import assign_fields, field_arrays
 from .lifetimes import LIFETIMES, weak_callback
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 
@@ -485,16 +486,11 @@ class Problem:
 
     def state(self):
         """Copy of the full state (unknowns, histories, positions, parameters)."""
-        return [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy()
-                for f in self.state_fields()]
+        return field_arrays(self.state_fields())
 
     def restore(self, state):
         """Restore a state from :meth:`state` and refresh the kernel data."""
-        for f, a in zip(self.state_fields(), state):
-            if hasattr(f, "x"):
-                f.x.array[:] = a
-            else:
-                f.value = a
+        assign_fields(self.state_fields(), state)
         self.refresh()
 
     def commit(self):

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from . import interrupt
-from .checkpoint import Checkpoint
+from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
 from .output import jsonable
 from .params import InputError
 
@@ -151,11 +151,7 @@ class SweepJournal:
         if self.comm.allreduce(bad):
             raise InputError(f"cannot resume: the checkpoint of {name!r} does not fit the "
                              "problem (another mesh?)")
-        for o, a in zip(objects, arrays):
-            if hasattr(o, "x"):
-                o.x.array[:] = a
-            else:
-                o.value = a
+        assign_fields(objects, arrays)
         return extra
 
     # -- writing ----------------------------------------------------------------------
@@ -171,10 +167,8 @@ class SweepJournal:
         if self.dir is not None:
             self.steps += 1
             extra = [np.asarray(a) for a in arrays]
-            fields = [(o.x.array if hasattr(o, "x") else np.asarray(o.value)).copy()
-                      for o in objects] + extra
-            names = [getattr(o, "name", None) or f"constant{i}" for i, o in enumerate(objects)]
-            names += [f"array{i}" for i in range(len(extra))]
+            fields = field_arrays(objects) + extra
+            names = field_names(objects) + [f"array{i}" for i in range(len(extra))]
             history = {"records": jsonable(records), "position": jsonable(position),
                        "arrays": len(extra)}
             Checkpoint(self.dir / name, self.comm).write(

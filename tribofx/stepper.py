@@ -58,7 +58,7 @@ import numpy as np
 from mpi4py import MPI
 
 from . import interrupt
-from .checkpoint import Checkpoint
+from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
 from .continuation import Continuation
 from .cycles import ReciprocatingCycle
 from .forms import wear as wf
@@ -230,14 +230,12 @@ class Stepper:
 
     def field_names(self):
         """Names of the state fields (Functions by name, Constants by position)."""
-        return [getattr(f, "name", None) or f"constant{i}" for i, f in enumerate(self._fields())]
+        return field_names(self._fields())
 
     def state(self):
         """Copy of the full state: time, Δt, cut level, step count and every field."""
-        arrays = [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy()
-                  for f in self._fields()]
         return {"t": self.t, "dt": self.dt, "cuts": self.cuts, "steps": self.steps,
-                "fields": arrays}
+                "fields": field_arrays(self._fields())}
 
     def restore(self, state):
         """Restore a state from :meth:`state` (or :meth:`Checkpoint.read`)."""
@@ -245,12 +243,9 @@ class Stepper:
         if len(fields) != len(state["fields"]):
             raise ValueError("state does not match the stepper's fields")
         for f, a in zip(fields, state["fields"]):
-            if hasattr(f, "x"):
-                if f.x.array.shape != np.shape(a):
-                    raise ValueError(f"state of {f.name!r} has shape {np.shape(a)}")
-                f.x.array[:] = a
-            else:
-                f.value = a
+            if hasattr(f, "x") and f.x.array.shape != np.shape(a):
+                raise ValueError(f"state of {f.name!r} has shape {np.shape(a)}")
+        assign_fields(fields, state["fields"])
         self.t, self.dt, self.cuts, self.steps = (state["t"], state["dt"], state["cuts"],
                                                   state["steps"])
         self.problem.refresh()
