@@ -68,7 +68,10 @@ class Continuation:
         admissible: callable → bool; a converged solve whose state it rejects (e.g. a
             film with h ≤ 0) is treated as a failed one (restored, step cut).
         max_step: largest parameter change of one trial of :meth:`reach` (None: any),
-            which then runs as a step-limited secant (see there).
+            which then runs as a step-limited secant (see there); it gives up
+            (NewtonDivergence) once the bound on the step falls below
+            ``min_bound``·``max_step`` (1e-4): every trial near the last successful
+            state fails, so more trials only repeat it.
     """
 
     def __init__(self, problem, parameter, response=None, verbose=False, rtol=1e-6,
@@ -76,6 +79,7 @@ class Continuation:
         self.problem, self.parameter, self.response = problem, parameter, response
         self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
         self.admissible, self.max_step = admissible, max_step
+        self.min_bound = 1e-4   # step-limited secant: give up below min_bound·max_step
         self.record = record if record is not None else []
         self.done = parameter.get()
         self.history = []  # (parameter, response) of converged steps
@@ -83,6 +87,13 @@ class Continuation:
         self.increments = None  # (first, next) increment of the march in progress
 
     # -- helpers -------------------------------------------------------------------
+
+    def _give_up(self, saved, message):
+        """Restore the entry state and parameter; raise NewtonDivergence(message)."""
+        self.problem.restore(saved)
+        self.parameter.set(self.done)
+        raise NewtonDivergence(message)
+
     def _solve_at(self, value):
         self.parameter.set(value)
         iterations = self.problem.solve(verbose=self.verbose).iterations
@@ -260,7 +271,7 @@ class Continuation:
                 guess = pb + (target - rb) * (pb - pa) / (rb - ra)
             else:
                 guess = self.done
-        d1 = guess
+        d1, stuck = guess, False
         for _ in range(self.max_trials):
             try:
                 iterations.append(self._solve_at(d1))
@@ -271,6 +282,9 @@ class Continuation:
                 else:
                     self.problem.restore(base[0])
                     bound = 0.5 * abs(d1 - base[1])
+                    if bound < self.min_bound * self.max_step:
+                        stuck = True   # the trials have shrunk onto the base state: it fails
+                        break
                     d1 = base[1] + np.sign(d1 - base[1]) * bound
                 continue
             if bound is not None:
@@ -290,10 +304,10 @@ class Continuation:
                 d_new = d1 + np.sign(d_new - d1) * bound
             d0, f0, d1 = d1, f1, d_new
         else:
-            self.problem.restore(saved)
-            self.parameter.set(self.done)
-            raise NewtonDivergence(f"response {target:g} not reached in {self.max_trials} "
-                                   "trials")
+            self._give_up(saved, f"response {target:g} not reached in {self.max_trials} trials")
+        if stuck:
+            self._give_up(saved, f"response {target:g} not reached: every trial within "
+                          f"{bound:.1e} of the last successful one fails")
         self._accept(iterations)
         return d1
 
