@@ -408,8 +408,40 @@ def test_large_load_40N():
     assert rel(40.0, "h_min") > 0.05
 
 
+
+@pytest.mark.slow
+def test_chapter_point_40N_muU_0078():
+    """The chapter's severe point: W = 40 N at μU = 0.078 N/m (Figs. 25–26), about 15 min.
+
+    Element size a/16 near the contact, a/32 in the band along the contact edge
+    (``mesh=2 edge_refine=1``, 64k unknowns, MUMPS), cap θ_l = 60°: 40 N reached
+    at 30U on the thick film, then U marched down in ratios ≤ 2.  Checks: the
+    load is reached; global equilibrium of the solved state (mid-plane reaction
+    against the film force, bound from the Newton residual); the chapter's
+    statement that at high load and low speed the minimum film lies in two side
+    lobes, off the symmetry axis (here |y_h_min| > a/2, the lobes sit at the
+    edge of the contact, |y| ≈ 0.9 a); the pressure radius against Hertz as in
+    :func:`test_large_load_40N`.
+    """
+    from tribofx import solvers
+
+    v = values(W=40.0, steps=1, U=7800.0, theta_l=60.0, mesh=2, edge_refine=1)
+    with solvers.run_settings("direct"):
+        run, out = _solve(v)
+    m = out[-1]
+    a_h = hertz(40.0, v["R"], v["E"], v["nu"]).a
+    m["a_p"], m["reaction"] = _pressure_radius(run), _mid_plane_reaction(run, v)
+    print({k: m[k] for k in ("W", "reaction", "h_central", "h_min", "x_h_min", "y_h_min",
+                             "p_max", "a_p", "friction_coefficient")})
+    # the load controller stops at rtol 1e-4 of the target
+    assert abs(m["W"] / 40.0 - 1) <= 1e-4
+    assert abs(m["reaction"] + m["W"]) <= _equilibrium_bound(run, m["W"])
+    assert m["h_min"] > 0
+    assert abs(m["y_h_min"]) > 0.5 * a_h
+    assert abs(m["a_p"] / a_h - 1) < 0.15
+
 def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
-    """``edge_refine=1``: cap triangles within 0.1 a of the contact circle have size h/2.
+    """``edge_refine=1``: cap triangles within 0.1 a of the circle ρ = 0.95 a have size h/2.
 
     Reference: the size field asked of gmsh (h = a/4 near the contact at mesh 0,
     h/2 in the band).  gmsh meets a size field to within its adaptation, about
@@ -438,7 +470,8 @@ def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
             return (comm.allreduce(float(longest[sel].sum()), op=MPI.SUM)
                     / comm.allreduce(int(sel.sum()), op=MPI.SUM))
 
-        ratios[level] = mean(np.abs(rho - a) < 0.08 * a) / mean((rho > 0.3 * a) & (rho < 0.7 * a))
+        band = np.abs(rho - 0.95 * a) < 0.08 * a
+        ratios[level] = mean(band) / mean((rho > 0.3 * a) & (rho < 0.7 * a))
     print("band / inner mean longest edge:", ratios)
     assert 1 / 1.3 < ratios[0] < 1.3
     assert 0.5 / 1.3 < ratios[1] < 0.5 * 1.3
