@@ -227,3 +227,63 @@ def test_iterative_without_bulk_field_falls_back_to_direct():
         _, problem = SliderCase.build(v)
         assert problem.solver.name == "direct"
         assert "no bulk field" in solvers.used[problem.name]
+
+
+def _delayed_pivot_matrix(n=400, m=200, seed=0):
+    """A KKT matrix [[εI, B], [Bᵀ, 0]] (ε = 1e-8): LU must delay almost every pivot."""
+    rng = np.random.default_rng(seed)
+    A = PETSc.Mat().createAIJ([n + m, n + m], nnz=40, comm=PETSc.COMM_SELF)
+    A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
+    A.setUp()
+    for i in range(n):
+        A.setValue(i, i, 1e-8)
+        for j in rng.integers(0, m, 3):
+            v = rng.normal()
+            A.setValue(i, n + j, v)
+            A.setValue(n + j, i, v)
+    A.assemble()
+    return A
+
+
+def test_mumps_workspace_grows_after_an_out_of_workspace_factorisation():
+    """MUMPS error −9 (workspace too small) is recovered by doubling ICNTL(14).
+
+    The delayed-pivot matrix needs more than the default 20 % of extra
+    workspace (measured: 320 % suffices, 160 % does not), so the first
+    factorisation fails with INFOG(1) = −9 and, on the same analysis, keeps
+    failing (PETSc skips the numeric factorisations after a failed one);
+    :func:`grow_workspace` doubles ICNTL(14) and resets the PC before each new
+    solve.  Reference: the solution's residual |Ax − b| against the
+    solve's accuracy (LU with threshold pivoting, backward error ~1e-14 |A||x|).
+    """
+    from tribofx.solvers import WORKSPACE_ERRORS, grow_workspace
+
+    A = _delayed_pivot_matrix()
+    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    ksp.setOptionsPrefix("test_workspace_")
+    ksp.setOperators(A)
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType("lu")
+    pc.setFactorSolverType("mumps")
+    assert grow_workspace(pc) is None            # no factor yet: nothing to do
+    b, x = A.createVecLeft(), A.createVecRight()
+    b.set(1.0)
+    ksp.solve(b, x)
+    F = pc.getFactorMatrix()
+    assert F.getMumpsInfog(1) in WORKSPACE_ERRORS and F.getMumpsIcntl(14) == 20
+    grown = []
+    while F.getMumpsInfog(1) in WORKSPACE_ERRORS and len(grown) < 8:
+        grown.append(grow_workspace(pc))
+        ksp.setOperators(A)                      # as SNES does at each Newton iteration
+        ksp.solve(b, x)
+        F = pc.getFactorMatrix()
+    print("ICNTL(14) grown to", grown)
+    assert F.getMumpsInfog(1) == 0 and ksp.getConvergedReason() > 0
+    assert grown == [40, 80, 160, 320]
+    r = A.createVecLeft()
+    A.mult(x, r)
+    r.axpy(-1.0, b)
+    assert r.norm() <= 1e-10 * b.norm() * max(1.0, x.norm())
+    assert grow_workspace(pc) is None            # a successful factorisation: nothing to do
+    del PETSc.Options()["test_workspace_mat_mumps_icntl_14"]

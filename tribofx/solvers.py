@@ -45,7 +45,9 @@ __all__ = [
     "STRATEGIES",
     "DirectSolver",
     "IterativeSolver",
+    "WORKSPACE_ERRORS",
     "choose",
+    "grow_workspace",
     "rigid_body_modes",
     "run_settings",
     "used",
@@ -148,6 +150,7 @@ class DirectSolver:
     def __init__(self, package="mumps", blr=None):
         self.package = package
         self.blr = blr
+        self.workspace_percent = None   # ICNTL(14) after a grown workspace (None: default)
 
     def options(self, problem=None):
         """PETSc options of the KSP and PC (without the problem's prefix)."""
@@ -161,12 +164,54 @@ class DirectSolver:
         """Nothing beyond the options for a direct solve."""
 
     def prepare(self, problem):
-        """Nothing to do before a solve."""
+        """Grow MUMPS's workspace if the last factorisation ran out of it."""
+        grown = grow_workspace(problem.snes.getKSP().getPC())
+        if grown is not None:
+            self.workspace_percent = grown
 
     def describe(self, problem):
         """One line naming the strategy (recorded in ``summary.json``)."""
         blr = f", BLR {self.blr:g}" if self.blr is not None else ""
         return f"direct ({self.package} LU{blr}, {problem.num_dofs} unknowns)"
+
+
+#: MUMPS INFOG(1) of a factorisation that ran out of its estimated workspace
+WORKSPACE_ERRORS = (-8, -9, -11, -12, -14, -15, -17, -20)
+
+
+def grow_workspace(pc, cap=10_000):
+    """Double MUMPS's extra workspace ICNTL(14) after a factorisation that ran out of it.
+
+    MUMPS sizes its workspace from the analysis, plus ICNTL(14) per cent (20 by
+    default) for the pivots delayed at factorisation; a matrix needing more
+    delayed pivots (near-singular diagonal blocks, e.g. the small-strain ball at
+    40 N) fails with INFOG(1) = −9, and PETSc then skips every later numeric
+    factorisation of that factor.  Called before each solve: when the last
+    factorisation of ``pc`` failed so (INFOG(1) in :data:`WORKSPACE_ERRORS`, the
+    same on all ranks), ICNTL(14) is doubled (up to ``cap``) in the options under
+    the PC's prefix and the PC is reset, so that the next solve analyses and
+    factorises anew.  Returns the new ICNTL(14), or None (no failed MUMPS factor).
+    """
+    from mpi4py import MPI
+
+    # a factor is queried only after a failed set-up (before the first factorisation
+    # MUMPS's data is not allocated); the failure is collective, the reason maybe not
+    if pc.getComm().tompi4py().allreduce(int(pc.getFailedReason()), op=MPI.MAX) == 0:
+        return None
+    try:
+        F = pc.getFactorMatrix()
+        if F.getType() != "mumps" or F.getMumpsInfog(1) not in WORKSPACE_ERRORS:
+            return None
+    except PETSc.Error:   # not a factorisation PC
+        return None
+    percent = min(cap, 2 * max(F.getMumpsIcntl(14), 10))
+    # PETSc skips every numeric factorisation after a failed one (it takes the
+    # failure for the analysis's): reset the PC, so that the next set-up analyses
+    # and factorises anew and reads ICNTL(14) from the options (the next Newton
+    # iteration sets the operators again)
+    PETSc.Options()[(pc.getOptionsPrefix() or "") + "mat_mumps_icntl_14"] = percent
+    pc.reset()
+    return percent
 
 
 def rigid_body_modes(V):
