@@ -3,6 +3,8 @@
 Runs ``tribofx run ehl-ball`` (under ``mpiexec -n RANKS``) at
 
 * ``fig26``: W = 40 N, μU = 0.078 N/m, ``compare=all`` (full, no-shear, linear);
+* ``fig25_W2_U078``: W = 2 N at μU = 0.78 N/m (light load, fast: the film's
+  minimum on the symmetry axis at the rear, as the chapter says);
 * ``fig25_W10_U078``, ``fig25_W10_U0078``: W = 10 N at μU = 0.78 and 0.078 N/m;
 * ``fig25_W40_U078``: W = 40 N at μU = 0.78 N/m,
 
@@ -12,7 +14,7 @@ all on ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge)
 ``--resume``; a finished one is not rerun).  Prints the results beside the
 Hamrock–Dowson film and writes
 ``OUT/chapter_ehl_ball.json``; ``--figures`` copies the centre line of
-``fig26`` and a montage of the four film maps into ``docs/figures``.
+``fig26`` and a montage of four film maps into ``docs/figures``.
 
     .venv/bin/python benchmarks/chapter_ehl_ball.py [--ranks 2] [--only fig26 ...]
         [--out results/chapter_ehl_ball] [--figures]
@@ -34,6 +36,7 @@ MU = 1e-8  # MPa·s (10 mPa·s): U = μU / μ
 COMMON = {"steps": 1, "theta_l": 60, "mesh": 2, "edge_refine": 1, "solver": "direct"}
 RUNS = {
     "fig26": {"W": 40, "U": 7800, "compare": "all"},
+    "fig25_W2_U078": {"W": 2, "U": 78000},
     "fig25_W10_U078": {"W": 10, "U": 78000},
     "fig25_W10_U0078": {"W": 10, "U": 7800},
     "fig25_W40_U078": {"W": 40, "U": 78000},
@@ -108,7 +111,7 @@ def main():
         fig = Path(__file__).resolve().parents[1] / "docs" / "figures"
         if (out / "fig26" / "centerline.png").exists():
             shutil.copy(out / "fig26" / "centerline.png", fig / "ehl_ball_fig26_W40.png")
-        maps = [n for n in ("fig25_W10_U078", "fig25_W10_U0078", "fig25_W40_U078", "fig26")
+        maps = [n for n in ("fig25_W2_U078", "fig25_W10_U0078", "fig25_W40_U078", "fig26")
                 if (out / n / "film_map.png").exists()]
         if maps:
             montage(out, maps, fig / "ehl_ball_fig25_maps.png")
