@@ -38,6 +38,7 @@ from contextlib import contextmanager
 
 import numpy as np
 from dolfinx.mesh import CellType
+from mpi4py import MPI
 from petsc4py import PETSc
 
 __all__ = [
@@ -150,7 +151,6 @@ class DirectSolver:
     def __init__(self, package="mumps", blr=None):
         self.package = package
         self.blr = blr
-        self.workspace_percent = None   # ICNTL(14) after a grown workspace (None: default)
 
     def options(self, problem=None):
         """PETSc options of the KSP and PC (without the problem's prefix)."""
@@ -165,9 +165,7 @@ class DirectSolver:
 
     def prepare(self, problem):
         """Grow MUMPS's workspace if the last factorisation ran out of it."""
-        grown = grow_workspace(problem.snes.getKSP().getPC())
-        if grown is not None:
-            self.workspace_percent = grown
+        grow_workspace(problem.snes.getKSP().getPC())
 
     def describe(self, problem):
         """One line naming the strategy (recorded in ``summary.json``)."""
@@ -192,8 +190,6 @@ def grow_workspace(pc, cap=10_000):
     the PC's prefix and the PC is reset, so that the next solve analyses and
     factorises anew.  Returns the new ICNTL(14), or None (no failed MUMPS factor).
     """
-    from mpi4py import MPI
-
     # a factor is queried only after a failed set-up (before the first factorisation
     # MUMPS's data is not allocated); the failure is collective, the reason maybe not
     if pc.getComm().tompi4py().allreduce(int(pc.getFailedReason()), op=MPI.MAX) == 0:
