@@ -86,31 +86,36 @@ class VTXSeries:
     undeformed configuration X = X̂ + w, by u the deformed one x = X̂ + u.
     Used as a context manager or closed by :meth:`close`.  ``outdir`` None
     (a sub-run of a study, which has no folder of its own): nothing is written.
+    The files are opened at the first :meth:`write`, so a series with no step
+    (a resumed sweep with nothing left to do) leaves no empty file.
     """
 
     def __init__(self, comm, outdir, groups):
+        self.comm, self.groups, self.writers = comm, groups, []
+        self.outdir = None if comm.bcast(outdir is None, root=0) else Path(
+            comm.bcast(str(outdir), root=0))   # one file for all ranks
+
+    def _open(self):
         from dolfinx.io import VTXWriter
 
-        self.writers = []
-        if comm.bcast(outdir is None, root=0):
-            return
-        outdir = Path(comm.bcast(str(outdir), root=0))   # one file for all ranks
-        if comm.rank == 0:
-            outdir.mkdir(parents=True, exist_ok=True)
-        comm.barrier()
-        self.writers = [VTXWriter(comm, str(outdir / f"{stem}.bp"), fns, engine="BP4")
-                        for stem, fns in groups.items()]
+        if self.comm.rank == 0:
+            self.outdir.mkdir(parents=True, exist_ok=True)
+        self.comm.barrier()
+        self.writers = [VTXWriter(self.comm, str(self.outdir / f"{stem}.bp"), fns, engine="BP4")
+                        for stem, fns in self.groups.items()]
 
     def write(self, t):
-        """Write every group at time ``t`` (collective)."""
+        """Write every group at time ``t`` (collective; the first write opens the files)."""
+        if self.outdir is not None and not self.writers:
+            self._open()
         for w in self.writers:
             w.write(float(t))
 
     def close(self):
-        """Close the files."""
+        """Close the files (no further write)."""
         for w in self.writers:
             w.close()
-        self.writers = []
+        self.writers, self.outdir = [], None
 
     def __enter__(self):
         return self

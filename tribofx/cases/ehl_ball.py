@@ -392,7 +392,8 @@ class EHLBallCase(BallPaths):
 
         # u and p at every converged load and speed (ParaView time series; the "time"
         # is the index of the point, its (W, U) in series_points; a resumed run writes
-        # the points from its restart into series of their own)
+        # the points from its restart into series of their own; one restored complete,
+        # none)
         series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
                            {sweep_stem(f"{name + '_' if name else ''}{k}_series", len(points)): f
                             for k, f in cls.vtx_fields(run).items()})

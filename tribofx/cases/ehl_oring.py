@@ -502,10 +502,9 @@ class EHLORingCase:
                 cls._record(record, tag, p_s, m)
             # u and p at each sealed pressure of the stroke (ParaView time series; the
             # "time" is the index of the state, its p_s in series_points; a resumed
-            # stroke writes its states into series of their own)
-            # (a stroke restored complete writes no series)
-            outdir = getattr(record, "outdir", None) if done < len(p_targets) else None
-            series = VTXSeries(comm, outdir,
+            # stroke writes its states into series of their own; one restored complete,
+            # none)
+            series = VTXSeries(comm, getattr(record, "outdir", None),
                                {sweep_stem(f"{tag}stroke_{k}_series", done): f
                                 for k, f in cls.vtx_fields(prob).items()})
             record.data.setdefault("series_points", {})[tag] = points
