@@ -63,11 +63,11 @@ from tribofx.forms.ehl_axisym import follower_pressure_traction
 from tribofx.meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 
 from tribofx.body import Body
-from tribofx.cases.ehl_oring import oscillation_indicator
 from tribofx.continuation import ConstantParameter, Continuation
 from tribofx.interfaces import Contact, Film
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
+from tribofx.positions import oscillation_indicator
 from tribofx.problem import Problem
 from tribofx.references import inverse_film
 

@@ -475,3 +475,25 @@ def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
     print("band / inner mean longest edge:", ratios)
     assert 1 / 1.3 < ratios[0] < 1.3
     assert 0.5 / 1.3 < ratios[1] < 0.5 * 1.3
+
+
+def test_film_oscillation_warns_above_its_tolerance(tmp_path):
+    """A centre-line film zig-zagging ±δ node to node has film_oscillation δ
+    (exact for a zig-zag about a constant, :func:`oscillation_indicator`); the run
+    warns for δ above ``FILM_OSCILLATION_TOL`` only.  A journal written before the
+    measure existed gets it from the profile it kept."""
+    from tribofx.output import RunRecord
+
+    x = np.linspace(-1.0, 1.0, 40)   # an even number of nodes where p > p_max/2
+    p = np.maximum(1 - x**2, 0.0)
+    for delta, warns in ((0.1, True), (0.02, False)):
+        h = 0.01 * (1 + delta * (-1.0) ** np.arange(x.size))
+        step = {k: 0.0 for k in Case.UNITS if k not in ("U", "mu_U", "film_oscillation")}
+        step["profile"] = {"h_axis": h, "p_axis": p}     # an older journal: no measure
+        record = RunRecord("ehl-ball", {}, {}, tmp_path, MPI.COMM_SELF)
+        Case._report([step], [], {"mu": 1e-8}, record, "full_")
+        osc = record.data["results"]["full_film_oscillation"]["value"]
+        assert osc == pytest.approx(delta, rel=1e-12)
+        assert bool(record.data.get("warnings")) == warns
+        if warns:
+            assert record.data["warnings"][0].startswith("full: film zig-zags")

@@ -7,12 +7,19 @@ exactly (∇f = 0 there, H = diag(2, 4) > 0): the fit error is O(h²) (the cubic
 remainder projected on the linear terms of a patch of radius ∝ h), against
 O(h) for the node, so halving h divides the mean error by about 4 — the test
 asks for an observed order above 1.5 (O(h) would give 1).
+
+The zig-zag indicator (:func:`tribofx.positions.oscillation_indicator`)
+against two profiles whose value is known in closed form: a nodal zig-zag
+h̄(1 + δ(−1)^i) (second differences 4δh̄, so δ exactly), and the parabola
+h = 1 + x² on a grid of spacing Δx (every second difference 2Δx², so
+Δx²/(2 mean h) exactly, which vanishes with refinement); only the loaded zone
+p > threshold counts.
 """
 
 import numpy as np
 import pytest
 
-from tribofx.positions import parabolic_vertex, paraboloid_vertex
+from tribofx.positions import oscillation_indicator, parabolic_vertex, paraboloid_vertex
 
 
 def _scattered(h, rng, extent=1.0):
@@ -67,3 +74,23 @@ def test_degenerate_patch_returns_the_node():
     f = (xy[:, 0] - 0.33) ** 2
     i = int(np.argmin(f))
     assert paraboloid_vertex(xy, f, "min") == (xy[i, 0], 0.0)
+
+
+@pytest.mark.parametrize("delta", [0.02, 0.3])
+def test_oscillation_indicator_of_a_zigzag_is_its_amplitude(delta):
+    i = np.arange(40)
+    h = 2e-3 * (1 + delta * (-1.0) ** i)
+    p = np.ones_like(h)
+    assert oscillation_indicator(h, p, 0.5) == pytest.approx(delta, rel=1e-12)
+
+
+def test_oscillation_indicator_of_a_smooth_film_vanishes_with_refinement():
+    for dx in (0.1, 0.05, 0.025):
+        x = np.arange(-1.0, 1.0 + dx / 2, dx)
+        h, p = 1 + x**2, 1 - x**2          # the zone p > 0.75: |x| < 1/2
+        zone = p > 0.75
+        expected = dx**2 / (2 * np.mean(h[zone]))
+        assert oscillation_indicator(h, p, 0.75) == pytest.approx(expected, rel=1e-9)
+    # a zone of fewer than three nodes has no second difference
+    assert oscillation_indicator(h, p, 0.9999) == 0.0
+

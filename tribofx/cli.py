@@ -121,6 +121,8 @@ def main(argv=None):
     from mpi4py import MPI
 
     root = MPI.COMM_WORLD.rank == 0
+    for message in summary.get("warnings", []) if root else []:
+        sys.stderr.write(f"tribofx: warning: {message}\n")
     if summary["status"].startswith("interrupted"):
         if root:
             sys.stderr.write(f"tribofx: run {summary['status']}; continue it with --resume\n")

@@ -27,7 +27,8 @@ class RunRecord:
 
     The summary holds: case name, status, parameters with units, results (a dict
     of value/unit pairs or plain values), Newton iterations per step, wall time,
-    number of unknowns, DOLFINx version and MPI size.
+    number of unknowns, DOLFINx version and MPI size; ``warnings`` if any
+    (:meth:`warn`).
     """
 
     def __init__(self, case, params, units, outdir, comm):
@@ -52,6 +53,10 @@ class RunRecord:
     def result(self, key, value, unit="-"):
         """Record a scalar or list result with its unit."""
         self.data["results"][key] = {"value": value, "unit": unit}
+
+    def warn(self, message):
+        """Record a warning (``warnings`` of the summary; the CLI prints them)."""
+        self.data.setdefault("warnings", []).append(message)
 
     def write(self, status):
         """Write ``summary.json`` with ``status`` ("ok" or "failed: …")."""

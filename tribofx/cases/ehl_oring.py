@@ -105,14 +105,13 @@ from ..obstacles import rigid_plane
 from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..plots import plot_oring
-from ..positions import parabolic_vertex
+from ..positions import oscillation_indicator, parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
 from ..restart import SweepJournal, sweep_stem
 from .ehl import film_boundary
 
-__all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "oscillation_indicator",
-           "solve_to"]
+__all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "solve_to"]
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
@@ -363,19 +362,6 @@ class ORingSeal:
         res["friction_force_per_circumference"] = float(f[1]) / circ
         res["leakage"] = circ * res["flux"]
         return res
-
-
-def oscillation_indicator(h, p, threshold):
-    """Spurious-oscillation (zigzag) amplitude of the film in the loaded zone p > threshold.
-
-    mean |h_{i+1} − 2h_i + h_{i−1}| / (4 mean h) over the nodes of the zone (sorted
-    by z): a nodal zigzag ±δ gives δ/h̄, a smooth film O((Δz)² h''/h̄) → 0 with
-    refinement.
-    """
-    hz = h[p > threshold]
-    if len(hz) < 3:
-        return 0.0
-    return float(np.mean(np.abs(np.diff(hz, 2))) / (4 * np.mean(hz)))
 
 
 def build(v, U, mesh=None, comm=MPI.COMM_WORLD):
