@@ -20,6 +20,8 @@ the iterative/direct cost ratio per size (the crossover) and writes
 
 ``blr<eps>``: MUMPS LU with block low-rank compression (ICNTL(35) = 1, dropping
 tolerance CNTL(7) = eps): its gain in time and memory against plain LU.
+``STRATEGY:key=value,...``: the strategy with extra PETSc options (no prefix),
+e.g. ``iterative:pc_fieldsplit_schur_fact_type=lower``.
 """
 
 import argparse
@@ -53,8 +55,10 @@ def one(problem, level, strategy):
         eps = float(strategy[3:] or 1e-10)
         settings = solvers.run_settings("direct", {"mat_mumps_icntl_35": 1,
                                                    "mat_mumps_cntl_7": eps})
-    else:
-        settings = solvers.run_settings(strategy)
+    else:   # "iterative:key=value,key=value": extra PETSc options (without prefix)
+        name, _, extra = strategy.partition(":")
+        settings = solvers.run_settings(name, dict(kv.split("=", 1)
+                                                   for kv in extra.split(",") if kv))
     with settings:
         if problem == "groove":
             from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case

@@ -1,4 +1,4 @@
-"""§8.3 at the chapter's own points: Figs. 25 (film maps) and 26 (centre line), one run each.
+"""§8.3 at the chapter's own points: Figs. 25 (film maps), 26 (centre line), 27 (friction).
 
 Runs ``tribofx run ehl-ball`` (under ``mpiexec -n RANKS``) at
 
@@ -6,7 +6,10 @@ Runs ``tribofx run ehl-ball`` (under ``mpiexec -n RANKS``) at
 * ``fig25_W2_U078``: W = 2 N at μU = 0.78 N/m (light load, fast: the film's
   minimum on the symmetry axis at the rear, as the chapter says);
 * ``fig25_W10_U078``, ``fig25_W10_U0078``: W = 10 N at μU = 0.78 and 0.078 N/m;
-* ``fig25_W40_U078``: W = 40 N at μU = 0.78 N/m,
+* ``fig25_W40_U078``: W = 40 N at μU = 0.78 N/m;
+* ``fig27_W40_finite``, ``fig27_W40_linear``: W = 40 N reached at μU = 0.078 N/m,
+  then continued in speed to μU = 39 N/m (2.7 decades, the chapter's "nearly
+  three orders of magnitude"), the full and the geometrically linear model,
 
 all on ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge),
 θ_l = 60°, one load step, MUMPS.  Each run writes its own ``--out`` under
@@ -14,7 +17,8 @@ all on ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge)
 ``--resume``; a finished one is not rerun).  Prints the results beside the
 Hamrock–Dowson film and writes
 ``OUT/chapter_ehl_ball.json``; ``--figures`` copies the centre line of
-``fig26`` and a montage of four film maps into ``docs/figures``.
+``fig26``, a montage of four film maps and the friction coefficient against μU
+of both Fig. 27 runs into ``docs/figures``.
 
     .venv/bin/python benchmarks/chapter_ehl_ball.py [--ranks 2] [--only fig26 ...]
         [--out results/chapter_ehl_ball] [--figures]
@@ -34,12 +38,16 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 MU = 1e-8  # MPa·s (10 mPa·s): U = μU / μ
 COMMON = {"steps": 1, "theta_l": 60, "mesh": 2, "edge_refine": 1, "solver": "direct"}
+# mm/s: μU = 0.078 (the start) … 39 N/m at μ = 1e-8 MPa·s
+FIG27_SPEEDS = "15600,39000,78000,156000,390000,780000,1560000,3900000"
 RUNS = {
     "fig26": {"W": 40, "U": 7800, "compare": "all"},
     "fig25_W2_U078": {"W": 2, "U": 78000},
     "fig25_W10_U078": {"W": 10, "U": 78000},
     "fig25_W10_U0078": {"W": 10, "U": 7800},
     "fig25_W40_U078": {"W": 40, "U": 78000},
+    "fig27_W40_finite": {"W": 40, "U": 7800, "speeds": FIG27_SPEEDS},
+    "fig27_W40_linear": {"W": 40, "U": 7800, "speeds": FIG27_SPEEDS, "model": "linear"},
 }
 KEYS = ("W_reached", "h_central", "h_min", "x_h_min", "y_h_min", "p_max",
         "friction_coefficient", "hamrock_dowson_h_c", "hamrock_dowson_h_min", "hertz_a")
@@ -115,6 +123,15 @@ def main():
                 if (out / n / "film_map.png").exists()]
         if maps:
             montage(out, maps, fig / "ehl_ball_fig25_maps.png")
+        fig27 = {f"{model} (W = 40 N)": (rows[n]["results"]["speed_mu_U"],
+                                         rows[n]["results"]["speed_friction_coefficient"])
+                 for model, n in (("finite deformation", "fig27_W40_finite"),
+                                  ("geometrically linear", "fig27_W40_linear"))
+                 if "speed_mu_U" in rows.get(n, {}).get("results", {})}
+        if fig27:
+            from tribofx.plots.film import plot_friction_vs_speed
+
+            plot_friction_vs_speed(fig27, fig / "ehl_ball_fig27_W40.png")
 
 
 if __name__ == "__main__":

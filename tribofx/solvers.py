@@ -16,17 +16,19 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   *interface* field (everything else: contact multipliers, Reynolds pressure,
   void fraction, load and shape multipliers) enters by the Schur complement
   S = A₁₁ − A₁₀ A₀₀⁻¹ A₀₁, preconditioned by LU of its "selfp" approximation
-  A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁.  The saddle-point rows of an active contact node
+  A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁, in the upper-triangular factorisation (one
+  V-cycle per GMRES iteration).  The saddle-point rows of an active contact node
   (zero diagonal in A₁₁) are regular in S, so the split holds through
   active-set changes.
 * ``auto`` — iterative for 3D problems on tetrahedra from :data:`AUTO_THRESHOLD`
   unknowns, direct otherwise (2D, where LU fill is mild; hexahedral tensor grids,
   whose graded cells of aspect ratio up to ~24 make the AMG iteration counts
   double per refinement).  Measured by ``benchmarks/bench_solvers.py`` (one run,
-  serial): frictional Hertz ball on tetrahedra, cost per Newton iteration
-  iterative/direct 1.8 (5.7k unknowns), 0.99 (24.5k), 0.54 (142k; memory 734 MB
-  against 3.1 GB), 21–26 GMRES iterations per Newton step at every size; the §5.3
-  groove on hexahedra 2.8 (14k), 3.5 (50k; 75 → 110 GMRES iterations).
+  serial, before the upper factorisation): frictional Hertz ball on tetrahedra,
+  cost per Newton iteration iterative/direct 1.86 (5.7k unknowns), 1.34 (24.5k),
+  0.86 (142k; memory 731 MB against 3.1 GB), 21–26 GMRES iterations per Newton
+  step at every size; the §5.3 groove on hexahedra 2.0 (14k), 2.1 (50k; 59 → 110
+  GMRES iterations per Newton step).
 
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
@@ -277,7 +279,10 @@ class IterativeSolver:
                "ksp_gmres_modifiedgramschmidt": None,
                "ksp_error_if_not_converged": True}
         out.update({"pc_type": "fieldsplit", "pc_fieldsplit_type": "schur",
-                    "pc_fieldsplit_schur_fact_type": "full",
+                    # upper: S solve, then one bulk V-cycle per GMRES iteration ("full"
+                    # applies the V-cycle twice): ball 24.5k 22 % and groove 14k 31 %
+                    # less time per Newton step, GMRES iterations +6 % and +4 %
+                    "pc_fieldsplit_schur_fact_type": "upper",
                     "pc_fieldsplit_schur_precondition": "selfp",
                     "fieldsplit_bulk_ksp_type": "preonly",
                     "fieldsplit_interface_ksp_type": "preonly",
