@@ -89,7 +89,8 @@ def oscillation_indicator(h, p, threshold):
 
     ``h``, ``p``: nodal film thickness and pressure along a line, sorted by
     position.  Returns mean |h_{i+1} − 2h_i + h_{i−1}| / (4 mean h) over the
-    nodes of the zone: a nodal zig-zag ±δ h̄ gives δ, a smooth film
+    nodes of the zone: a nodal zig-zag ±δ h̄ gives δ (exactly on an even
+    number of nodes; δ/(1 ± δ/n) on an odd number n), a smooth film
     O((Δx)² |h''| / h̄), which vanishes with refinement.
     """
     hz = np.asarray(h, dtype=float)[np.asarray(p) > threshold]

@@ -106,8 +106,8 @@ from ..positions import oscillation_indicator, paraboloid_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal, sweep_stem
-from .ehl import at_points, film_boundary, speed_list
 from .ehl_ball_paths import BallPaths, Z
+from .film_setup import at_points, film_boundary, speed_list
 
 __all__ = ["EHLBallCase"]
 

@@ -109,7 +109,7 @@ from ..positions import oscillation_indicator, parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import inverse_film
 from ..restart import SweepJournal, sweep_stem
-from .ehl import film_boundary
+from .film_setup import film_boundary
 
 __all__ = ["EHLORingCase", "ORingSeal", "axial_balance", "build", "solve_to"]
 

@@ -1,0 +1,59 @@
+"""Film set-up shared by the EHL cases.
+
+The rim ∂Γ_l of the lubricated surface, point locators for pressure conditions,
+and the ``speeds`` parameter of a speed continuation.
+"""
+
+import numpy as np
+from dolfinx import mesh as dmesh
+
+from ..params import InputError, number_list
+
+__all__ = ["at_points", "film_boundary", "speed_list"]
+
+
+def speed_list(v):
+    """Return the positive speeds (mm/s) of the comma-separated parameter ``speeds``."""
+    speeds = number_list(v["speeds"], "speeds", allow_empty=True)
+    if any(not U > 0 for U in speeds):
+        raise InputError("speeds must be positive (mm/s)")
+    return speeds
+
+
+def film_boundary(film, keep=None):
+    """Return the reference coordinates (n, 3) of the vertices of ∂Γ_l, on every rank.
+
+    ∂Γ_l are the facets of the film submesh with one adjacent cell of Γ_l
+    (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.boundary_facets`): the
+    end points of a curve, the rim edges of a surface.  ``keep(X)``, X the
+    (k, vertices per facet, 3) coordinates of the local boundary facets, returns a
+    mask of the facets to keep (e.g. not the edges on a symmetry line).  A vertex
+    of two facets or on two ranks is listed once (its coordinates are identical).
+    """
+    sub = film.sub
+    facets = film.boundary_facets()
+    fdim = sub.topology.dim - 1
+    X = np.zeros((0, 1, 3))
+    if len(facets):
+        X = sub.geometry.x[dmesh.entities_to_geometry(sub, fdim, facets, False)]
+        if keep is not None:
+            X = X[np.asarray(keep(X), dtype=bool)]
+    pts = np.concatenate([x.reshape(-1, 3) for x in sub.comm.allgather(X)])
+    return np.unique(pts, axis=0)
+
+
+def at_points(points, tol):
+    """Locator (for ``add_pressure_bc``, ``fem.locate_dofs_geometrical``) of ``points``.
+
+    Returns ``where(X)``, X of shape (3, n): True at the columns within ``tol``
+    (mm) of one of the (k, 3) ``points``.
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+
+    def where(X):
+        if not len(points):
+            return np.zeros(X.shape[1], dtype=bool)
+        d = np.linalg.norm(X.T[:, None, :] - points[None, :, :], axis=2)
+        return d.min(axis=1) < tol
+
+    return where
