@@ -9,7 +9,8 @@ Runs ``tribofx run ehl-ball`` (under ``mpiexec -n RANKS``) at
 * ``fig25_W40_U078``: W = 40 N at μU = 0.78 N/m;
 * ``fig27_W40_finite``, ``fig27_W40_linear``: W = 40 N reached at μU = 0.078 N/m,
   then continued in speed to μU = 39 N/m (2.7 decades, the chapter's "nearly
-  three orders of magnitude"), the full and the geometrically linear model,
+  three orders of magnitude"), the full and the geometrically linear model
+  (friction coefficients of the film force on the ball and on the plane),
 
 all on ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge),
 θ_l = 60°, one load step, MUMPS.  Each run writes its own ``--out`` under
@@ -50,7 +51,8 @@ RUNS = {
     "fig27_W40_linear": {"W": 40, "U": 7800, "speeds": FIG27_SPEEDS, "model": "linear"},
 }
 KEYS = ("W_reached", "h_central", "h_min", "x_h_min", "y_h_min", "p_max",
-        "friction_coefficient", "hamrock_dowson_h_c", "hamrock_dowson_h_min", "hertz_a")
+        "friction_coefficient", "plane_friction_coefficient", "hamrock_dowson_h_c",
+        "hamrock_dowson_h_min", "hertz_a")
 
 
 def run(name, out, ranks):
@@ -123,11 +125,16 @@ def main():
                 if (out / n / "film_map.png").exists()]
         if maps:
             montage(out, maps, fig / "ehl_ball_fig25_maps.png")
-        fig27 = {f"{model} (W = 40 N)": (rows[n]["results"]["speed_mu_U"],
-                                         rows[n]["results"]["speed_friction_coefficient"])
-                 for model, n in (("finite deformation", "fig27_W40_finite"),
-                                  ("geometrically linear", "fig27_W40_linear"))
-                 if "speed_mu_U" in rows.get(n, {}).get("results", {})}
+        # the friction force on the plane (what a rig measures on the counterpart) and
+        # on the ball (they differ by the linear model's pressure along the reference
+        # normal)
+        fig27 = {f"{model}, on the {where}": (rows[n]["results"]["speed_mu_U"],
+                                              rows[n]["results"][key])
+                 for where, key in (("plane", "speed_plane_friction_coefficient"),
+                                    ("ball", "speed_friction_coefficient"))
+                 for model, n in (("finite", "fig27_W40_finite"),
+                                  ("linear", "fig27_W40_linear"))
+                 if key in rows.get(n, {}).get("results", {})}
         if fig27:
             from tribofx.plots.film import plot_friction_vs_speed
 

@@ -262,6 +262,58 @@ def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
     assert np.all(gn <= 100 * np.finfo(float).eps * kappa * np.linalg.norm(gf, axis=1))
 
 
+def _film_imbalance(film, model):
+    """The x-force the film's thin-film equilibrium does not balance, two parts (N).
+
+    flank: −∫ [(μ/h) v_rel + (h/2) grad_S p]_x (j − ds_S/dS) dS, the shear where the
+    layer's area differs from that of S (the cap's steep flanks; j = 1 in the linear
+    model); slope (linear model only): ∫ p ∂_x(ν·u) ds_S, the pressure on the slope
+    of the displacement, which the linear model's traction −pN leaves out.
+    """
+    kb, u, msh = film.kin_bulk, film.body.u, film.body.mesh
+    Id, N = ufl.Identity(3), ufl.FacetNormal(msh)
+    nJ = ufl.det(Id + ufl.grad(u)) * ufl.inv(Id + ufl.grad(u)).T * N
+    j = ufl.sqrt(ufl.dot(nJ, nJ)) if model == "finite" else 1
+    shear = ((fem.Constant(msh, film.mu) / kb.h) * (kb.v_layer - kb.v_counter)
+             + (kb.h / 2) * ufl.inv(kb.A).T * film.g)
+    terms = [-shear[0] * (j - kb.stretch) * film.ds]
+    if model == "linear":
+        grad_gamma = (Id - ufl.outer(N, N)) * ufl.grad(u).T * kb.nu    # Grad_Γ(ν·u)
+        terms.append(film.p * (ufl.inv(kb.A).T * grad_gamma)[0] * kb.stretch * film.ds)
+    return [msh.comm.allreduce(fem.assemble_scalar(fem.form(t, entity_maps=[film.emap])),
+                               op=MPI.SUM) for t in terms]
+
+
+@pytest.mark.mpi
+def test_film_force_on_ball_and_plane_balance():
+    """Friction on the ball and on the plane: the film's x-force balance, both models.
+
+    The film's momentum balance integrated over the contact (Reynolds' velocity
+    profile: the shear at the two walls differs by h grad_S p, and ∫ h grad_S p
+    ds_S = −∫ p grad_S h ds_S with p = 0 on the rim and no x-normal on the symmetry
+    line): F_ball,x + F_plane,x equals the flank shear, plus in the linear model
+    the pressure on the displacement slope (:func:`_film_imbalance`).  On the
+    discrete solution this is the divergence theorem for p h (P1 times the
+    displacement's trace, continuous) under a quadrature exact for the
+    polynomial integrands (degree 4: p × cofactor of F); what remains are the
+    trace and gradient constraints, solved to Newton's tolerance (≤ 1e-10 of
+    their scales): 1e-8 of the force.  Checks Film.counter_force (signs of the
+    Couette and Poiseuille parts at the other wall, the area of S) against
+    Film.force.
+    """
+    for model in ("finite", "linear"):
+        v = values(W=3.0, steps=1, mesh=0, model=model)
+        run = Case.build(v)
+        Case.load_sweep(run, v, lambda W, its: None)
+        film = run[1]
+        f_ball, f_plane = film.force()[0], film.counter_force()[0]
+        parts = _film_imbalance(film, model)
+        print(model, "x-force on the ball", f_ball, "on the plane", f_plane, "flank, slope",
+              parts)
+        assert f_ball > 0 > f_plane      # the plane (moving in +x) drags the ball along
+        assert abs(f_ball + f_plane - sum(parts)) <= 1e-8 * abs(f_ball)
+
+
 def test_finite_and_linear_agree_as_load_vanishes():
     """Relative difference of h_c (finite vs linear) shrinks with the load."""
     loads = (0.5, 4.0)

@@ -39,8 +39,9 @@ def test_hertz_2d_refinement(tmp_path):
     assert errs[-1][0] < 0.03 and errs[-1][2] < 0.03
 
 
-@pytest.mark.mpi
 def test_hertz_3d_refinement(tmp_path):
+    # serial only: the 3D Hertz problem on 2 ranks is test_parallel.py's (mesh 1, equal
+    # to serial to solver tolerance)
     errs = []
     for level in (1, 2, 3):
         res, _ = run_hertz(tmp_path, dim=3, load=LOAD_3D, mesh=level, steps=1)

@@ -33,13 +33,13 @@ from tribofx.output import bp4_steps
 # case: (arguments, n: the signal is sent once n points are written, so the run stops
 # after point n or n + 1 (the stop check follows each write, the file is seen first);
 # tolerance)
-LAYER = ["run", "ehl-cylinder-layer", "--set", "mesh=0", "--set", "speeds=2000,4000",
-         "--quiet"]
+LAYER = ["run", "ehl-cylinder-layer", "--set", "mesh=0", "--set", "W=0.5", "--set", "steps=5",
+         "--set", "speeds=2000,4000", "--quiet"]
 CASES = {
-    # a load march (10 loads), then two speeds: the stop falls in the load leg ...
-    "ehl-cylinder-layer": (LAYER, 4, 1e-6),
+    # a load march (5 loads to 0.5 N/mm), then two speeds: the stop falls in the load leg ...
+    "ehl-cylinder-layer": (LAYER, 3, 1e-6),
     # ... or after the last load or the first speed (the speed legs resumed)
-    "ehl-cylinder-layer-speeds": (LAYER, 10, 1e-6),
+    "ehl-cylinder-layer-speeds": (LAYER, 5, 1e-6),
     # three loads from Hertz states, then two speed marches: stops after the last load
     # or the first speed
     "ehl-ball": (["run", "ehl-ball", "--set", "W=3", "--set", "steps=3", "--set", "mesh=0",
@@ -53,10 +53,10 @@ CASES = {
     # variant, which the resumed run restores complete (nothing left to solve)
     "ehl-ball-compare": (["run", "ehl-ball", "--set", "W=3", "--set", "steps=1", "--set",
                           "mesh=0", "--set", "compare=all", "--quiet"], 1, 1e-4),
-    # two strokes of three sealed pressures each: stops at the end of the outstroke or
+    # two strokes of two sealed pressures each: stops at the end of the outstroke or
     # after the first pressure of the instroke (the outstroke restored complete)
     "ehl-oring": (["run", "ehl-oring", "--set", "mesh=2", "--set", "U=1000", "--set",
-                   "p_s=0.5,0.75,1", "--set", "stroke=both", "--quiet"], 3, 1e-6),
+                   "p_s=0.5,1", "--set", "stroke=both", "--quiet"], 2, 1e-6),
 }
 
 

@@ -68,7 +68,10 @@ continues every variant at the final load in U (friction coefficient against
 μU, Fig. 27).  Results: h_central (on the axis at x = 0), h_min (and where),
 p_max, friction coefficient (x-force of the traction on the ball / W; without
 shear only its pressure part), the Couette friction coefficient (drag / W, for
-every variant), the clearance; Hertz and Hamrock–Dowson references; plots
+every variant), the plane's friction coefficient (x-force of the film on the
+plane / W, :meth:`tribofx.interfaces.Film.counter_force`: the shear stress of
+the film at the plane, every variant; see below), the clearance; Hertz and
+Hamrock–Dowson references; plots
 ``film_map.png``, ``centerline.png``, ``friction_vs_speed.png``; VTX of u and p at the
 end and as time series (``[variant_]displacement_series.bp``, ``..._pressure_series.bp``,
 one time index per converged load and speed, its (W, U) in ``series_points``).
@@ -85,6 +88,18 @@ edge_refine=1`` (64k) 0.062 (full), 0.063 (no shear), 0.057 (linear) — the
 zig-zag visible in Fig. 26 (``docs/figures/ehl_ball_fig26_W40.png``), so the
 variants' differences there are known to about ±6 %; coarser still, the spurious
 dip described above.
+
+Friction on the ball and on the plane.  The film is in equilibrium, so in the
+finite model the x-force of the film on the plane is minus that on the ball
+up to the thin-film approximation where the film is not thin against its
+slope: the shear on the cap's steep flanks, ∫ (shear)(j − ds_S/dS) dS, exactly
+the difference of the two forces on the discrete solution (tested).  The
+geometrically linear model applies the pressure along the undeformed sphere's
+normal, whose x-component ≈ x/R in the contact (a/R = 0.5 at 40 N) gives the
+ball a pressure force the plane does not feel.  The plane's friction
+coefficient is what a rig measures on the counterpart and what the classical
+EHL friction computes (the shear stress of the film at a flat wall), so models
+are compared by it.
 """
 
 import math
@@ -173,7 +188,8 @@ class EHLBallCase(BallPaths):
     UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
              "x_h_min": "mm (sub-element)", "y_h_min": "mm (sub-element)",
              "friction_coefficient": "-", "couette_friction_coefficient": "-",
-             "clearance": "mm", "U": "mm/s", "mu_U": "N/mm", "film_oscillation": "-"}
+             "plane_friction_coefficient": "-", "clearance": "mm", "U": "mm/s",
+             "mu_U": "N/mm", "film_oscillation": "-"}
     #: film_oscillation above which the run warns (a zig-zag of ±5 % of the film)
     FILM_OSCILLATION_TOL = 0.05
 
@@ -343,6 +359,7 @@ class EHLBallCase(BallPaths):
         """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
         film = run[1]
         prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
+        f_plane = film.counter_force()
         xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
         on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
         order = np.argsort(xy[on, 0])
@@ -360,6 +377,7 @@ class EHLBallCase(BallPaths):
                 "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
                 "friction_coefficient": abs(float(f[0])) * per_load,
                 "couette_friction_coefficient": abs(float(fc[0])) * per_load,
+                "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
                 "clearance": -float(film.counterpart.offset.value[Z])}
 
     @classmethod
@@ -479,18 +497,22 @@ class EHLBallCase(BallPaths):
                 var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
             cls._report(steps, speed, vv, record, f"{name}_" if name else "")
             var["speed"] = {k: [m[k] for m in speed] for k in (
-                "mu_U", "friction_coefficient", "couette_friction_coefficient")}
+                "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                "plane_friction_coefficient")}
         return run
 
     @classmethod
     def _report(cls, steps, speed, v, record, prefix):
         keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
-                "couette_friction_coefficient", "clearance", "film_oscillation")
+                "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
+                "film_oscillation")
         for m in steps:  # a journal written before film_oscillation was measured
             if "film_oscillation" not in m:
                 m["film_oscillation"] = (cls.film_oscillation(m["profile"]["h_axis"],
                                                               m["profile"]["p_axis"])
                                          if "profile" in m else math.nan)
+        for m in steps + speed:   # ... or before the force on the plane was
+            m.setdefault("plane_friction_coefficient", math.nan)
         if steps:
             for k in keys:
                 record.result(prefix + k, steps[-1][k], cls.UNITS[k])
@@ -507,7 +529,7 @@ class EHLBallCase(BallPaths):
             m["mu_U"] = v["mu"] * m["U"]
         if len(speed) > 1:
             for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                      "h_central", "h_min", "p_max"):
+                      "plane_friction_coefficient", "h_central", "h_min", "p_max"):
                 record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
 
     @staticmethod
@@ -530,6 +552,10 @@ class EHLBallCase(BallPaths):
             var["speed"]["mu_U"], var["speed"]["friction_coefficient" if var["shear"]
                                                else "couette_friction_coefficient"])
             for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1}
+        curves.update({var["label"] + " (on the plane)": (
+            var["speed"]["mu_U"], var["speed"]["plane_friction_coefficient"])
+            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1
+            and np.isfinite(var["speed"]["plane_friction_coefficient"]).all()})
         if curves:
             plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
 

@@ -57,11 +57,11 @@ def plot_friction_vs_speed(curves, path):
     """Friction coefficient against μU (N/m), one curve per {label: (mu_U, friction)}."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(5, 4))
-    styles = ("-", "--", "-.")
+    styles = ("-", "--", "-.", ":")
     for j, (label, (muU, f)) in enumerate(curves.items()):
         order = np.argsort(muU)
-        ax.loglog(1e3 * np.asarray(muU)[order], np.asarray(f)[order], "o" + styles[j % 3],
-                  label=label)
+        ax.loglog(1e3 * np.asarray(muU)[order], np.asarray(f)[order],
+                  "os^v"[j // 2 % 4] + styles[j % 4], label=label)
     ax.set_xlabel("μU (N/m)")
     ax.set_ylabel("friction coefficient")
     if len(curves) > 1 or next(iter(curves)) is not None:
@@ -94,7 +94,7 @@ def plot_ball_film(variants, W, outdir):
     ax.set_title(f"{var['label']}: W = {W:g} N")
     _save(plt, fig, outdir / "film_map.png")
 
-    styles = ("-", "--", "-.")
+    styles = ("-", "--", "-.", ":")
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
     for j, var in enumerate(variants.values()):
         a1.plot(var["x_axis"], var["p_axis"], ls=styles[j % 3], label=var["label"])
