@@ -86,6 +86,7 @@ __all__ = [
     "WeightedMeasure",
     "countersurface_projection",
     "couette_flux",
+    "countersurface_traction",
     "cylinder_countersurface",
     "film_virtual_work",
     "fluid_traction",
@@ -433,6 +434,23 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
         grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
         Tn = Tn - j * ((mu / kin.h) * v_rel + (kin.h / 2) * grad_S_p)
     return Tn
+
+
+def countersurface_traction(p, grad_gamma_p, kin, mu):
+    """Film traction on the countersurface per unit area of S (MPa): (46) at the other wall.
+
+    −p ν + (μ/h)(v_layer − v_counter) − (h/2) grad_S p: the pressure along the
+    countersurface's normal ν (into the film) and the wall shear stress of
+    Reynolds' velocity profile at the countersurface (its Couette part
+    reverses, its Poiseuille part keeps its sign against (46) on the layer).
+    ``grad_gamma_p`` is Grad_Γ p on Γ_l, ``kin`` the :class:`LubricationKinematics`
+    of S (the reference surface for the linear model); integrate with ds_S =
+    ``kin.stretch`` dS.  The film's force on a rigid counterpart: the friction a
+    rig measures on it.
+    """
+    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
+    grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
+    return -p * kin.nu + (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
 
 
 def trace_constraint(u_s, u, du_s, ds):

@@ -321,13 +321,15 @@ class Film(ReynoldsFilm):
         if self._post is None:
             em = [self.emap]
             gdim = self.body.gdim
+            counter = ef.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
+                                                 self.mu_c)
             self._post = {
                 "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
                           for i in range(gdim)],
                 "couette": [fem.form(self._couette[i] * self.w_solid * self.ds, entity_maps=em)
                             for i in range(gdim)],
-                "counter": [fem.form(self._counter_traction()[i] * self.kin.stretch
-                                     * self.w_film * self.dx) for i in range(gdim)],
+                "counter": [fem.form(counter[i] * self.kin.stretch * self.w_film * self.dx)
+                            for i in range(gdim)],
                 "y": fem.Expression(self.kin.y, self.V1.element.interpolation_points),
             }
         return self._post
@@ -342,31 +344,16 @@ class Film(ReynoldsFilm):
         self.refresh()
         return np.array([self._sum(f) for f in self._forms()["force"]])
 
-    def _counter_traction(self):
-        """Traction of the film on the countersurface per unit area of S (MPa, UFL).
-
-        −p ν + (μ/h)(v_layer − v_counter) − (h/2) grad_S p: the pressure along
-        the countersurface's normal ν (into the film) and the wall shear stress of
-        the Reynolds velocity profile at the countersurface, eq. (46) taken at
-        the other wall (the Poiseuille part changes sign, the Couette part
-        reverses).  Evaluated on the submesh with the film's kinematics of S
-        (the reference surface for ``model="linear"``), whatever ``shear``.
-        """
-        kin = self.kin
-        v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
-        return (-self.p * kin.nu + (self.mu_c / kin.h) * v_rel
-                - (kin.h / 2) * kin.grad(self.p, self.grad_gamma))
-
     def counter_force(self):
         """Force (N; N/mm in plane strain) of the film on the countersurface.
 
-        ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part:
-        what a friction rig measures on the rigid counterpart.  In the finite
-        model the film is in equilibrium, so this is −:meth:`force` up to terms of
-        the order of the film slope squared (|grad_S h|²/2 of the shear); the
-        geometrically linear model applies the pressure on the reference normal,
-        so its two forces differ by ∫ p (N − n) (the horizontal pressure force of
-        the undeformed surface).
+        ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
+        (:func:`forms.ehl.countersurface_traction`): what a friction rig measures
+        on the rigid counterpart.  The film's momentum balance makes this
+        −:meth:`force` up to the shear where the layer's area differs from S's,
+        ∫ shear (j − ds_S/dS) dS (steep flanks of a thick film); the
+        geometrically linear model's traction −pN also leaves out the pressure on
+        the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
         """
         self.refresh()
         return np.array([self._sum(f) for f in self._forms()["counter"]])

@@ -94,7 +94,7 @@ def plot_ball_film(variants, W, outdir):
     ax.set_title(f"{var['label']}: W = {W:g} N")
     _save(plt, fig, outdir / "film_map.png")
 
-    styles = ("-", "--", "-.", ":")
+    styles = ("-", "--", "-.")
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
     for j, var in enumerate(variants.values()):
         a1.plot(var["x_axis"], var["p_axis"], ls=styles[j % 3], label=var["label"])
