@@ -126,8 +126,8 @@ def main():
         if maps:
             montage(out, maps, fig / "ehl_ball_fig25_maps.png")
         # the friction force on the plane (what a rig measures on the counterpart) and
-        # on the ball (they differ by the linear model's pressure along the reference
-        # normal)
+        # on the ball (the linear model's differ by the pressure on the displacement's
+        # slope and its shear on the reference area: see the ehl_ball module docstring)
         fig27 = {f"{model}, on the {where}": (rows[n]["results"]["speed_mu_U"],
                                               rows[n]["results"][key])
                  for where, key in (("plane", "speed_plane_friction_coefficient"),

@@ -339,10 +339,14 @@ class Film(ReynoldsFilm):
         f.interpolate(self._forms()[key])
         return f.x.array
 
+    def _vector_integral(self, key):
+        """Refresh the kernel data; the components of the post-processing form ``key``."""
+        self.refresh()
+        return np.array([self._sum(f) for f in self._forms()[key]])
+
     def force(self):
         """Force (N; N/mm in plane strain) of the film on the modelled part of the body."""
-        self.refresh()
-        return np.array([self._sum(f) for f in self._forms()["force"]])
+        return self._vector_integral("force")
 
     def counter_force(self):
         """Force (N; N/mm in plane strain) of the film on the countersurface.
@@ -355,13 +359,11 @@ class Film(ReynoldsFilm):
         geometrically linear model's traction −pN also leaves out the pressure on
         the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
         """
-        self.refresh()
-        return np.array([self._sum(f) for f in self._forms()["counter"]])
+        return self._vector_integral("counter")
 
     def couette_force(self):
         """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""
-        self.refresh()
-        return np.array([self._sum(f) for f in self._forms()["couette"]])
+        return self._vector_integral("couette")
 
     def min_film(self):
         """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
