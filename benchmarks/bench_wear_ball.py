@@ -59,17 +59,23 @@ parser.add_argument("--ref-dt", type=float, default=10.0,
 parser.add_argument("--accuracy-dts", default="",
                     help="only an accuracy study: explicit runs with these comma-separated Δt "
                          "(s) to --t-explicit, against the reference, next to implicit 100 s")
+parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="case parameter (repeatable), e.g. --set k=1e-7 --set V=100")
+parser.add_argument("--dt-cr-range", default="3,30",
+                    help="bisection bracket of the critical step, 'lo,hi' (s; lo stable)")
 parser.add_argument("--out", default="benchmarks/results/wear_ball.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
 units = {p.name: p.unit for p in WearBallCase.params}
-v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh)})
+sets = dict(kv.split("=", 1) for kv in args.set)
+v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh), **sets})
+WearBallCase.validate(v0)
 T = v0["T"]
 
 
 def run(tmp, t_stop=None, on_step=None, **over):
     """One run; returns (results, record, wall time)."""
-    values = resolve(WearBallCase.params, {"mesh": str(args.mesh),
+    values = resolve(WearBallCase.params, {"mesh": str(args.mesh), **sets,
                                            **{k: str(x) for k, x in over.items()}})
     WearBallCase.validate(values)
     rec = RunRecord("wear-ball-flat", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
@@ -119,7 +125,8 @@ if args.accuracy_dts:
     raise SystemExit(0)
 with tempfile.TemporaryDirectory() as tmp:
     t0 = time.perf_counter()
-    dt_cr, probe = ball_critical_step(v0, 0.3 * T, 3.0, 30.0, steps=5, iters=3)
+    lo, hi = (float(x) for x in args.dt_cr_range.split(","))
+    dt_cr, probe = ball_critical_step(v0, 0.3 * T, lo, hi, steps=5, iters=3)
     out["critical_step"] = {"dt_cr": dt_cr, "probe": probe,
                             "largest_stable": max(d for d, g in probe if g <= 2.0),
                             "wall_time_s": time.perf_counter() - t0}
@@ -141,9 +148,25 @@ with tempfile.TemporaryDirectory() as tmp:
     stable = out["critical_step"]["largest_stable"]
     n_e = math.ceil(t_e / stable)
     dt_e = t_e / n_e
-    exp, rec_e, wall_e = run(tmp, t_stop=t_e, scheme="explicit", dt=dt_e, max_cuts=0)
-    # the implicit state at t_e (a multiple of 100 s, kept by ``keep``) for comparison
-    i_te = int(np.argmin(np.abs(np.asarray(imp["time"]) - t_e)))
+    failed_dts = []   # the late-time Δt_cr may be unstable in the early Hertzian stage
+    while True:
+        try:
+            exp, rec_e, wall_e = run(tmp, t_stop=t_e, scheme="explicit", dt=dt_e, max_cuts=0)
+            break
+        except NewtonDivergence:
+            if len(failed_dts) == 3:
+                raise
+            failed_dts.append(dt_e)
+            n_e *= 2
+            dt_e = t_e / n_e
+    # the implicit state at t_e for comparison: kept by ``keep`` if t_e is a multiple of
+    # 100 s, else an implicit run to t_e with Δt = t_e (one step) or 100 s
+    imp_te = imp
+    if "profile" not in snap:
+        imp_te, rec_te, _ = run(tmp, t_stop=t_e, scheme="implicit",
+                                dt=t_e if t_e < 100 else 100)
+        snap["profile"] = profile_at(rec_te)
+    i_te = int(np.argmin(np.abs(np.asarray(imp_te["time"]) - t_e)))
     p_exp = profile_at(rec_e)
     ref, rec_r, wall_r = run(tmp, t_stop=t_e, scheme="implicit", dt=args.ref_dt)
     p_ref = profile_at(rec_r)
@@ -153,7 +176,8 @@ with tempfile.TemporaryDirectory() as tmp:
 
     diff = float(np.max(np.linalg.norm(p_exp - snap["profile"], axis=1)))
     scale = T / t_e
-    out["explicit"] = {"dt": dt_e, "horizon": t_e, "wall_time_s": wall_e, "steps": exp["steps"],
+    out["explicit"] = {"dt": dt_e, "failed_larger_dts": failed_dts, "horizon": t_e,
+                       "wall_time_s": wall_e, "steps": exp["steps"],
                        "newton_iterations": int(sum(exp["newton_iterations"][1:])),
                        "num_dofs_deformation": rec_e.data["num_dofs"],
                        "num_dofs_shape": rec_e.data.get("num_dofs_shape"),
@@ -163,9 +187,10 @@ with tempfile.TemporaryDirectory() as tmp:
                        "scar_radius_horizon": exp["scar_radius"][-1],
                        "max_depth_horizon": exp["max_wear_depth"][-1]}
     out["comparison_at_horizon"] = {
-        "time": t_e, "implicit_scar_radius": imp["scar_radius"][i_te],
+        "time": t_e, "implicit_dt": imp_te["dt"][i_te],
+        "implicit_scar_radius": imp_te["scar_radius"][i_te],
         "explicit_scar_radius": exp["scar_radius"][-1],
-        "implicit_max_depth": imp["max_wear_depth"][i_te],
+        "implicit_max_depth": imp_te["max_wear_depth"][i_te],
         "explicit_max_depth": exp["max_wear_depth"][-1],
         "rigid_cap_radius": float(rigid_cap_radius(v0["k"], v0["F"], v0["R"], v0["V"] * t_e)),
         "max_nodal_distance_worn_profiles_mm": diff,
@@ -194,7 +219,8 @@ if comm.rank == 0:
           f"{e['newton_iterations']} Newton its, {e['wall_time_s']:.1f} s wall; to T{lab}: "
           f"{e['steps_T']} steps, {e['newton_iterations_T']} its, {e['wall_time_T_s']:.0f} s")
     cmp = out["comparison_at_horizon"]
-    print(f"at t = {cmp['time']:g} s: scar radius implicit {cmp['implicit_scar_radius']:.4f}, "
+    print(f"at t = {cmp['time']:g} s: scar radius implicit (Δt = {cmp['implicit_dt']:g} s) "
+          f"{cmp['implicit_scar_radius']:.4f}, "
           f"explicit {cmp['explicit_scar_radius']:.4f}, rigid cap {cmp['rigid_cap_radius']:.4f} "
           f"mm; worn profiles differ by ≤ {cmp['max_nodal_distance_worn_profiles_mm']:.2e} mm")
     print(f"  reference ({cmp['reference']}): scar radius {cmp['reference_scar_radius']:.4f} mm,"

@@ -17,7 +17,7 @@ doubled back as soon as the time is aligned with the coarser step.
 
 Model: quarter ball (the lower hemisphere cut by the symmetry plane y = 0 that
 contains the sliding direction), :func:`tribofx.meshes.wear_ball.quarter_ball`,
-P1 tetrahedra of size h = a_H/(2·2^mesh) within r_fine = 1.25 a_T (a_T the
+P1 tetrahedra of size h = a_H/(2·2^mesh) (or ``h_contact``) within r_fine = 1.25 a_T (a_T the
 rigid-cap scar radius at T, at least 2 a_H) of the initial contact point, R/4
 far away.  Loading (chapter: at the mid-plane, which moves vertically as a
 rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
@@ -102,6 +102,9 @@ class WearBallCase:
         Param("mesh", int, 0, "-",
               "refinement level: contact-zone element size a_H/(2·2^mesh)", lower=0, upper=3,
               closed=True),
+        Param("h_contact", float, 0.0, "mm",
+              "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
+              lower=0.0, closed=True),
         Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
         Param("mesh_file", str, "", "-",
@@ -116,6 +119,8 @@ class WearBallCase:
         """Check cross-parameter consistency."""
         if v["dt"] > v["T"]:
             raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
+        if v["mesh_file"] and v["h_contact"]:
+            raise InputError("h_contact sets the built mesh: not with mesh_file")
         aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         if aH > 0.2 * v["R"]:
             raise InputError(f"load too large for small strains: a_H/R = {aH / v['R']:.2f}")
@@ -128,7 +133,8 @@ class WearBallCase:
         """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
         aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
-        return aH / (2 * 2 ** v["mesh"]), v["R"] / 4, 1.25 * aT
+        h = v["h_contact"] or aH / (2 * 2 ** v["mesh"])
+        return h, v["R"] / 4, 1.25 * aT
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
