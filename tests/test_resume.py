@@ -65,12 +65,13 @@ def checkpoint_steps(out):
         return 0
 
 
-def stop_then_resume(out, ranks, sig, args, n_stop):
+def stop_then_resume(out, ranks, sig, args, n_stop, log=None):
     """Run ``args`` into ``out``, send ``sig`` once n_stop steps are checkpointed, resume.
 
     Checks the stop (exit status 130, the message, the summary's status); returns
     the interrupted run's summary, the resumed run's and the steps checkpointed
-    at the stop.
+    at the stop.  ``log``: a list; the resumed run then runs without ``--quiet``
+    and its standard error (the progress bar) is appended to it.
     """
     p = subprocess.Popen(_cli(ranks) + args + ["--out", str(out)], env=ENV,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -84,9 +85,12 @@ def stop_then_resume(out, ranks, sig, args, n_stop):
     stopped = json.loads((out / "summary.json").read_text())
     assert stopped["status"].startswith("interrupted")
     steps = checkpoint_steps(out)
-    r = subprocess.run(_cli(ranks) + args + ["--out", str(out), "--resume"], env=ENV,
+    again = args if log is None else [a for a in args if a != "--quiet"]
+    r = subprocess.run(_cli(ranks) + again + ["--out", str(out), "--resume"], env=ENV,
                        capture_output=True, text=True, timeout=900)
     assert r.returncode == 0, r.stderr
+    if log is not None:
+        log.append(r.stderr)
     return stopped, json.loads((out / "summary.json").read_text()), steps
 
 

@@ -77,7 +77,9 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     record = RunRecord(name, values, units, out, comm)
     record.profile = None
     record.data["petsc_options"] = dict(petsc_options or {})
-    bar = _progress_bar(values.get("steps", 1), name) if progress and comm.rank == 0 else None
+    total = case.progress_total(values) if hasattr(case, "progress_total") else values.get(
+        "steps", 1)
+    bar = _progress_bar(total, name) if progress and comm.rank == 0 else None
     status = "ok"
     prob = None
     try:

@@ -30,6 +30,18 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   step at every size; the §5.3 groove on hexahedra 2.0 (14k), 2.1 (50k; 59 → 110
   GMRES iterations per Newton step).
 
+Memory on 2 ranks (the ball at 142k, iterative, first two Newton iterations;
+``/proc`` VmHWM per phase and PETSc ``-log_view_memory``): every process holds
+a fixed 107 MB (Python, DOLFINx, PETSc) before any mesh; building the problem
+adds 388 MB serially and 240/253 MB per rank; the Newton solves add 229 MB
+serially but 245/255 MB per rank.  The solve's share is GAMG's parallel
+Galerkin product: PETSc's default MPIAIJ PtAP ("scalable") keeps its
+intermediate data, 291 MB over the two ranks against 40 MB serially.  Peak per
+rank 592/615 MB against 724 MB serially (0.85).  ``PETSC_OPTIONS="-matptap_via
+allatonce"`` (read at start; GAMG's coarse products carry no options prefix, so
+``--petsc-option`` cannot reach them) lowers it to 487/506 MB (0.70) but makes
+the PtAP 10× slower (Newton solves 110 s against 38 s); not the default.
+
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
 without the ``tribofx_`` prefix applies under every problem's prefix; a key

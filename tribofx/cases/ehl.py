@@ -359,6 +359,8 @@ class EHLCylinderLayerCase:
         steps, speed, profiles, its, points = (rec[k] for k in (
             "steps", "speed", "profiles", "its", "points"))
         pos = journal.position(name)
+        if progress is not None and steps:   # the loads restored by a resume
+            progress.update(len(steps))
         record.data["num_dofs"] = problem.num_dofs
         # u and p at every converged load and speed (ParaView time series; the "time"
         # is the index of the point, its (W, U) in series_points; a resumed run writes
@@ -484,6 +486,11 @@ class EHLCylinderLayerCase:
                 "label": prefix[:-1] or v["model"], "steps": profiles,
                 "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
             record.profile = prof
+
+    @classmethod
+    def progress_total(cls, v):
+        """Points the progress bar counts: the loads of every variant."""
+        return v["steps"] * (1 if v["compare"] == "none" else len(cls.COMPARE[v["compare"]]))
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):

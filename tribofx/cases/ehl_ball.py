@@ -384,6 +384,11 @@ class EHLBallCase(BallPaths):
                 "clearance": -float(film.counterpart.offset.value[Z])}
 
     @classmethod
+    def progress_total(cls, v):
+        """Points the progress bar counts: the loads of every variant."""
+        return v["steps"] * (len(cls.VARIANTS) if v["compare"] == "all" else 1)
+
+    @classmethod
     def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
 
@@ -425,6 +430,8 @@ class EHLBallCase(BallPaths):
         rec = journal.records(key, steps=[], speed=[], its=[], points=[])
         steps, speed, its_all, points = (rec[k] for k in ("steps", "speed", "its", "points"))
         pos = journal.position(key)
+        if progress is not None and steps:   # the loads restored by a resume
+            progress.update(len(steps))
         record.data["variant_newton_iterations"][key] = its_all
         var = {"label": label, "shear": vv["shear"]}
         record.profile["variants"][key] = var

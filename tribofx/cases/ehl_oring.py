@@ -452,6 +452,11 @@ class EHLORingCase:
         elif v["gap0"] >= 0.5 * v["d"]:
             raise InputError("gap0 must be below the cross-section radius")
 
+    @staticmethod
+    def progress_total(v):
+        """Points the progress bar counts: the sealed pressures of every stroke."""
+        return len(number_list(v["p_s"], "p_s")) * (1 if v["stroke"] == "single" else 2)
+
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         """Mount, pressurise and solve each stroke; optionally the mesh study.
@@ -484,6 +489,8 @@ class EHLORingCase:
                 journal.restore(tag, state)
                 prob.problem.refresh()
                 prob.iterations.extend(rec["its"])
+                if progress is not None:   # the states restored by a resume
+                    progress.update(done)
             for p_s, m in zip(points, measures):
                 cls._record(record, tag, p_s, m)
             # u and p at each sealed pressure of the stroke (ParaView time series; the
