@@ -14,7 +14,7 @@ from tribofx.forms import hyperelastic as hf
 from tribofx.forms import kinematics as km
 
 from tribofx.cases.ehl_oring import EHLORingCase as Case
-from tribofx.cases.ehl_oring import axial_balance, build, solve_to
+from tribofx.cases.oring_seal import axial_balance, build, solve_to
 from tribofx.params import InputError, resolve
 from tribofx.references import inverse_film
 

@@ -319,7 +319,7 @@ def test_user_oring_is_placed_with_its_end_conditions(tmp_path):
     z = ∓ a sin 45° exactly (vertices).  No solve.
     """
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.ehl_oring import build
+    from tribofx.cases.oring_seal import build
 
     mesh = _oring(tmp_path / "ring.msh")
     v = _values(Case, **ORING_FAST, mesh_file=mesh)
@@ -351,7 +351,7 @@ def test_built_section_as_user_mesh_gives_the_built_problem(tmp_path):
     from tribofx.meshes.oring import write_oring_section
 
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.ehl_oring import build, geometry
+    from tribofx.cases.oring_seal import build, geometry
 
     v = _values(Case, **ORING_FAST, mesh=2)
     center, a, *_ = geometry(v)
@@ -384,7 +384,7 @@ def test_user_oring_matches_built_section(tmp_path):
     user's ring holds to the Newton tolerance (measured ≈ 1e-12; bound 1e-6).
     """
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.ehl_oring import build, solve_to
+    from tribofx.cases.oring_seal import build, solve_to
 
     mesh = _oring(tmp_path / "ring.msh", h_l=0.018, h_b=0.07, d_min=0.18, d_max=1.4,
                   center=(3.0, -1.0))

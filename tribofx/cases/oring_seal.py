@@ -1,0 +1,314 @@
+"""The O-ring seal of ``ehl-oring`` (chapter §8.1) as a configured object, and its continuation.
+
+:class:`ORingSeal` builds the axisymmetric Mooney–Rivlin ring, the film on
+the rod (:class:`tribofx.interfaces.Film`, penalty cavitation, SUPG) and the
+frictionless contacts with the groove bottom and the air-side wall, in one
+monolithic :class:`tribofx.problem.Problem`; it mounts the ring, ramps the
+sealed pressure and the rod speed, and reports the film measures.
+:func:`solve_to` is the continuation of one stroke, :func:`axial_balance` the
+equilibrium check.  The case (parameters, strokes, checkpoints, plots) is
+:mod:`tribofx.cases.ehl_oring`.
+"""
+
+import math
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..body import Body
+from ..continuation import ConstantParameter, Continuation
+from ..forms import ehl_axisym as ax
+from ..interfaces import Contact, Film
+from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
+from ..meshes.user import read_user_mesh
+from ..obstacles import rigid_plane
+from ..params import InputError, number_list
+from ..positions import oscillation_indicator, parabolic_vertex
+from ..problem import Problem
+from ..references import inverse_film
+from .film_setup import film_boundary
+
+__all__ = ["NAMES", "USER_GROUPS", "ORingSeal", "axial_balance", "build", "geometry", "solve_to"]
+
+P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
+W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
+NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING)}
+USER_GROUPS = ("lubricated", "sealed", "housing")   # the groups of a user's section
+
+
+def geometry(v, extent=None):
+    """Centre, radius, rod radius, final groove bottom and air-side wall (mm).
+
+    ``extent``: the half extents (r, z) of a user's section (None: the built
+    circle, radius d/2); the centre is that of its bounding box, the radius a
+    the radial half extent, d = 2a.
+    """
+    a, b = extent if extent is not None else (0.5 * v["d"],) * 2
+    r_rod = v["r_rod"]
+    center = (r_rod + a + v["gap0"], 0.0)
+    return center, a, r_rod, r_rod + 2 * a * (1 - v["squeeze"]), b - 0.005
+
+
+def _user_section(v, comm):
+    """Read a user's section, move it into place (see the module docstring).
+
+    Returns ``(mesh, facet_tags, names, (a, b))``, a and b the half extents in r
+    and z (mm).
+    """
+    msh, ft, tags = read_user_mesh(v["mesh_file"], comm, 2, USER_GROUPS)
+    x = msh.geometry.x
+    lo = np.array([comm.allreduce(float(np.min(x[:, k], initial=np.inf)), op=MPI.MIN)
+                   for k in range(2)])
+    hi = np.array([comm.allreduce(float(np.max(x[:, k], initial=-np.inf)), op=MPI.MAX)
+                   for k in range(2)])
+    a, b = 0.5 * (hi - lo)
+    if v["gap0"] >= a:
+        raise InputError(f"gap0 = {v['gap0']} mm must be below half the radial extent of "
+                         f"the section ({a:.4g} mm)")
+    x[:, 0] += v["r_rod"] + v["gap0"] - lo[0]
+    x[:, 1] -= 0.5 * (lo[1] + hi[1])
+    names = {"lubricated": tags["lubricated"], "sealed": tags["sealed"],
+             "housing": (tags["sealed"], tags["housing"])}
+    return msh, ft, names, (a, b)
+
+
+class ORingSeal:
+    """The configured seal: ``body``, ``film``, ``bottom``/``wall`` contacts, ``problem``.
+
+    ``p_s`` (Constant, MPa) loads the sealed arc and is mirrored into the film's
+    Dirichlet value at the sealed end; the groove bottom moves by the offset of
+    ``bottom.counterpart``; the rod speed is ``film.V_counter[1]`` (mm/s).
+    """
+
+    def __init__(self, v, U, mesh, comm):
+        self.user = bool(v["mesh_file"])
+        if self.user:
+            msh, ft, names, extent = _user_section(v, comm)
+        else:
+            extent, names = None, NAMES
+        center, a, r_rod, r_g, z_w = geometry(v, extent)
+        self.center, self.a, self.r_rod = center, a, r_rod
+        if not self.user:
+            msh, _, ft = oring_section(*center, a, mesh, comm=comm)
+        mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
+        E = 3 * (mat["mu1"] + mat["mu2"])
+        deg = v["degree"]
+        self.body = body = Body(msh, ft, names, "axisymmetric", ("mooney-rivlin", mat),
+                                degree=deg, quadrature_degree=2 * deg, name="oring")
+        p0 = min(P_MOUNT, number_list(v["p_s"], "p_s")[0])
+        self.p_s = fem.Constant(msh, p0)
+        body.add_follower_pressure("sealed", self.p_s)
+        # the ring starts touching the groove bottom and the air-side wall
+        self.r_g0, self.r_g = center[0] + a - 1e-3 * a, r_g
+        self.bottom = Contact(body, "housing", rigid_plane([self.r_g0, 0.0], [-1.0, 0.0]),
+                              E / a, name="bottom")
+        self.wall = Contact(body, "housing", rigid_plane([0.0, z_w], [0.0, -1.0]), E / a,
+                            name="wall")
+        # film scales: h_ref of Blok's inverse theory at W_REF, ε relative to 12μℓ²/h_ref³
+        h_ref, ell = inverse_film(v["mu"], U, W_REF), 0.25 * a
+        self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
+                                v["mu"], V_counter=[0.0, U], supg=v["supg"],
+                                cavitation="penalty",
+                                eps=v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3,
+                                p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),
+                                rtol=1e-8, require_open=True)
+        # film rtol 1e-8: the Reynolds rows of the thick-film flanks (h up to 10³ times
+        # the film of the contact) have a round-off floor of ≈ 4e-8 mm/s (measured),
+        # above 1e-10 of the default
+        # p = p_s at the sealed-side end of Γ_l, p = 0 at the air-side end
+        zs = film.sub.geometry.x[:, 1]
+        z_lo = comm.allreduce(float(zs.min(initial=np.inf)), op=MPI.MIN)
+        z_hi = comm.allreduce(float(zs.max(initial=-np.inf)), op=MPI.MAX)
+        tol = 1e-8 * a
+        if self.user:
+            self._check_ends(film, z_lo, z_hi, tol, v["mesh_file"])
+        self.p_end = film.add_pressure_bc(lambda y: np.isclose(y[1], z_lo, atol=tol), p0)
+        film.add_pressure_bc(lambda y: np.isclose(y[1], z_hi, atol=tol), 0.0)
+        Xq = film.Q.tabulate_dof_coordinates()
+        film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
+        self.components = [body, film, self.bottom, self.wall]
+        # stall_window: over-long mount steps stall far from the solution; cut them early
+        self.problem = Problem(self.components, name="ehl_oring", max_it=40, max_backtracks=10,
+                               line_search="admissible", stall_window=10)
+        self.iterations = []
+        self._post = None
+
+    @staticmethod
+    def _check_ends(film, z_lo, z_hi, tol, path):
+        """Raise InputError unless Γ_l is one open curve ending at its z extremes, alone there.
+
+        The end conditions p = p_s at z_lo and p = 0 at z_hi are located by the
+        height: each must find one node, the end of the curve.
+        """
+        ends = film_boundary(film)
+        n = film.Q.dofmap.index_map.size_local
+        z = film.Q.tabulate_dof_coordinates()[:n, 1]
+        comm = film.sub.comm
+        at = [comm.allreduce(int(np.sum(np.isclose(z, zk, atol=tol))), op=MPI.SUM)
+              for zk in (z_lo, z_hi)]
+        ok = len(ends) == 2 and np.allclose(np.sort(ends[:, 1]), [z_lo, z_hi], atol=tol)
+        if not ok or at != [1, 1]:
+            raise InputError(f"the group 'lubricated' of {path!r} must be one open curve "
+                             f"ending at its lowest and highest z, each the only node "
+                             f"there (has {len(ends)} end point(s))")
+
+    # -- parameters and continuation ---------------------------------------------------
+    def set_pressure(self, p_s):
+        """Sealed pressure p_s (MPa) on the sealed arc and at the sealed end of the film."""
+        self.p_s.value = float(p_s)
+        self.p_end.value = float(p_s)
+
+    @property
+    def U(self):
+        """Rod speed (mm/s)."""
+        return float(self.film.V_counter.value[1])
+
+    def _march(self, parameter, target, steps, geometric=False):
+        Continuation(self.problem, parameter, record=self.iterations).march(
+            target, steps, predictor=False, geometric=geometric)
+
+    def mount(self, steps):
+        """Squeeze the ring: the groove bottom is moved to r_g in ``steps``.
+
+        The trace and then the Reynolds equation are first solved alone on the
+        initial geometry (the coupled Newton starts from a film pressure
+        consistent with the gap).
+        """
+        for sub in ([self.film.u_s], [self.film.p]):
+            Problem(self.components, unknowns=sub, name="oring_start").solve()
+        self.iterations.append(self.problem.solve().iterations)
+        self._march(ConstantParameter(self.bottom.counterpart.offset, 0),
+                    self.r_g - self.r_g0, steps)
+
+    def ramp(self, p_s, steps):
+        """Raise the sealed pressure to ``p_s`` (MPa) in ``steps``."""
+        self._march(ConstantParameter(self.p_s, None, on_set=self.set_pressure), p_s, steps)
+
+    def speed(self, U, steps):
+        """Move the rod speed geometrically to ``U`` (mm/s, same sign) in ``steps``."""
+        s = math.copysign(1.0, U)
+        self._march(ConstantParameter(self.film.V_counter, 1, scale=s), abs(U), steps,
+                    geometric=True)
+
+    # -- results -----------------------------------------------------------------------
+    def _forms(self):
+        if self._post is None:
+            body, film = self.body, self.film
+            t = ax.follower_pressure_traction(self.p_s, body.u, ufl.FacetNormal(body.mesh))
+            ds = body.ds(body.tag("sealed"))
+            Qc = fem.functionspace(film.sub, ("DG", 0))
+            xs = ufl.SpatialCoordinate(film.sub) + film.u_s
+            pts = Qc.element.interpolation_points
+            self._post = {
+                "sealed": [fem.form(t[i] * body.weight * ds) for i in range(2)],
+                "Qc": Qc,
+                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_c, film.grad_gamma),
+                                    pts),
+                "z": fem.Expression(xs[1], pts)}
+        return self._post
+
+    def forces(self):
+        """Return the r, z forces (N, whole circumference) on the ring: film, p_s, bottom, wall."""
+        comm = self.body.mesh.comm
+        sealed = np.array([comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
+                           for f in self._forms()["sealed"]])
+        return {"film": self.film.force(), "sealed": sealed, "bottom": self.bottom.force(),
+                "wall": self.wall.force()}
+
+    def profile(self):
+        """Film data on rank 0 (None elsewhere), sorted by the current axial position.
+
+        Nodal: z (current axial position = position on the rod, mm), h (mm), p (MPa);
+        cellwise: z_cell, q (flux per unit circumference, mm²/s).
+        """
+        pr = self.film.profile()
+        post = self._forms()
+        q, zc = fem.Function(post["Qc"]), fem.Function(post["Qc"])
+        q.interpolate(post["q"])
+        zc.interpolate(post["z"])
+        nc = post["Qc"].dofmap.index_map.size_local
+        cells = self.body.mesh.comm.gather((zc.x.array[:nc].copy(), q.x.array[:nc].copy()),
+                                           root=0)
+        if pr is None:
+            return None
+        z = pr["x"][:, 1]
+        o, zcell = np.argsort(z, kind="stable"), np.concatenate([c[0] for c in cells])
+        oc = np.argsort(zcell, kind="stable")
+        return {"z": z[o], "h": pr["h"][o], "p": pr["p"][o], "z_cell": zcell[oc],
+                "q": np.concatenate([c[1] for c in cells])[oc]}
+
+    def sealed_arc_radii(self):
+        """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc.
+
+        The built section only (a user's section need not have nodes there).
+        """
+        if self.user:
+            raise ValueError("sealed_arc_radii needs the built section (no mesh_file)")
+        V, u = self.body.V, self.body.u
+        n = V.dofmap.index_map.size_local
+        X = V.tabulate_dof_coordinates()
+        out = []
+        for t in (math.radians(-135), math.radians(-45)):
+            pt = np.array(self.center) + self.a * np.array([math.cos(t), math.sin(t)])
+            k = np.nonzero(np.linalg.norm(X[:n, :2] - pt, axis=1) < 1e-6 * self.a)[0]
+            val = float(X[k[0], 0] + u.x.array[2 * k[0]]) if len(k) else None
+            out.append(next(r for r in self.body.mesh.comm.allgather(val) if r is not None))
+        return out
+
+    def measures(self):
+        """Film measures on all ranks (see ``EHLORingCase.UNITS``)."""
+        prof = self.profile()
+        res = None
+        if self.body.mesh.comm.rank == 0:
+            z, h, p = prof["z"], prof["h"], prof["p"]
+            k, i = int(np.argmax(p)), int(np.argmin(h))
+            ps = float(self.p_s.value)
+            thr = ps + 0.5 * (p[k] - ps)      # loaded zone: half the rise above p_s
+            hot = z[p > thr]
+            qz = prof["q"][(prof["z_cell"] > hot.min()) & (prof["z_cell"] < hot.max())]
+            res = {"p_max": float(p[k]), "z_p_max": parabolic_vertex(z, p),
+                   "h_at_p_max": float(h[k]),
+                   "h_min": float(h[i]), "z_h_min": parabolic_vertex(z, h, "min"),
+                   "h_mean": float(np.mean(h[p > thr])), "flux": float(np.median(qz)),
+                   "flux_spread": float((qz.max() - qz.min()) / abs(np.median(qz))),
+                   "oscillation": oscillation_indicator(h, p, thr)}
+        res = self.body.mesh.comm.bcast(res, root=0)
+        f = self.film.force()
+        circ = 2 * math.pi * self.r_rod
+        res["load_per_circumference"] = float(f[0]) / circ
+        res["friction_force_per_circumference"] = float(f[1]) / circ
+        res["leakage"] = circ * res["flux"]
+        return res
+
+
+def build(v, U, mesh=None, comm=MPI.COMM_WORLD):
+    """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``."""
+    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm)
+
+
+def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
+    """Mount, raise p_s, go to speed U, then the other p_s; on_state(p_s) after each target.
+
+    ``done``: the number of targets already reached by the state of ``seal``
+    (restored from a checkpoint; the mount and those targets are skipped, the
+    next ramp starts from that state as in an uninterrupted run).  Returns the
+    Newton iterations per continuation step.
+    """
+    if done == 0:
+        seal.mount(v["mount_steps"])
+    for k, p_s in enumerate(p_s_targets[done:], start=done):
+        seal.ramp(p_s, v["ramp_steps"])
+        if k == 0 and seal.U != U:
+            seal.speed(U, v["speed_steps"])
+        if on_state is not None:
+            on_state(p_s)
+    return list(seal.iterations)
+
+
+def axial_balance(seal):
+    """Sum of the axial forces on the ring relative to the axial force of p_s (−)."""
+    f = seal.forces()
+    total = sum(val[1] for val in f.values())
+    return abs(total) / abs(f["sealed"][1])
