@@ -30,7 +30,6 @@ from pathlib import Path
 os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401
-import numpy as np
 from mpi4py import MPI
 
 from tribofx.runner import run_case
@@ -55,6 +54,7 @@ out = Path(args.out)
 def plot_fig4_left(runs, path):
     """Fig. 4 left: error of the worn profile against Δt, one curve per E (one mesh)."""
     from tribofx.plots.common import pyplot
+    from tribofx.plots.wear import error_curve
 
     plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
@@ -63,16 +63,9 @@ def plot_fig4_left(runs, path):
     for ax, scheme in zip(axes, ("explicit", "implicit")):
         for i, c in enumerate(sweep):
             (mesh, err), = c[f"study_error_{scheme}"].items()
-            dts = np.asarray(c["study_dt"], dtype=float)
-            err = np.array([np.nan if e is None else e for e in err])
-            bad = np.asarray(c[f"study_unstable_{scheme}"][mesh])
-            ax.loglog(dts, err, "o-", color=f"C{i}", label=f"E = {c['E_MPa']:g} MPa")
-            if bad.any():
-                ax.loglog(dts[bad], np.where(np.isfinite(err[bad]), err[bad], np.nanmax(err)),
-                          "x", color="red", ms=9, mew=2)
-            dt_cr = (c["study_dt_cr"] or {}).get(mesh)
-            if scheme == "explicit" and dt_cr:
-                ax.axvline(dt_cr, color=f"C{i}", ls=":", lw=1)
+            dt_cr = (c["study_dt_cr"] or {}).get(mesh) if scheme == "explicit" else None
+            error_curve(ax, c["study_dt"], err, c[f"study_unstable_{scheme}"][mesh], f"C{i}",
+                        f"E = {c['E_MPa']:g} MPa", dt_cr)
         ax.set_xlabel("Δt (s)")
         ax.set_title(f"{scheme}" + (" (× unstable, ⋮ Δt_cr)" if scheme == "explicit" else ""))
         ax.legend(fontsize=7)

@@ -7,7 +7,7 @@ import numpy as np
 from ..references import rigid_cap_radius
 from .common import pyplot
 
-__all__ = ["plot_dt_study", "plot_wear_ball", "plot_wear_pin"]
+__all__ = ["error_curve", "plot_dt_study", "plot_wear_ball", "plot_wear_pin"]
 
 
 def plot_wear_pin(profile, outdir):
@@ -35,6 +35,24 @@ def plot_wear_pin(profile, outdir):
     plt.close(fig)
 
 
+def error_curve(ax, dts, errors, unstable, color, label, dt_cr=None):
+    """One error-versus-Δt curve (log-log) of a Fig. 4 panel.
+
+    ``errors``: per Δt, None for a failed run; ``unstable``: per Δt, drawn as red
+    crosses (at the largest error where the run failed); ``dt_cr`` dotted.
+    """
+    dts = np.asarray(dts, dtype=float)
+    err = np.array([np.nan if e is None else e for e in errors])
+    bad = np.asarray(unstable, dtype=bool)
+    ax.loglog(dts, err, "o-", color=color, label=label)
+    if bad.any():
+        top = np.nanmax(err) if np.isfinite(err).any() else 1.0
+        ax.loglog(dts[bad], np.where(np.isfinite(err[bad]), err[bad], top), "x",
+                  color="red", ms=10, mew=2)
+    if dt_cr:
+        ax.axvline(dt_cr, color=color, ls=":", lw=1)
+
+
 def plot_dt_study(study, outdir):
     """Plot ``study=dt``: ``error_vs_dt.png`` and ``profiles.png``.
 
@@ -49,16 +67,8 @@ def plot_dt_study(study, outdir):
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, scheme in zip(axes, ("explicit", "implicit")):
         for i, (key, m) in enumerate(study["meshes"].items()):
-            color = f"C{i}"
-            err = np.array([np.nan if e is None else e for e in m[f"error_{scheme}"]])
-            bad = np.asarray(m[f"unstable_{scheme}"])
-            ax.loglog(dts, err, "o-", color=color, label=f"{key}, {scheme}")
-            if bad.any():
-                top = np.nanmax(err) if np.isfinite(err).any() else 1.0
-                ax.loglog(dts[bad], np.where(np.isfinite(err[bad]), err[bad], top), "x",
-                          color="red", ms=10, mew=2)
-            if scheme == "explicit" and m["dt_cr"]:
-                ax.axvline(m["dt_cr"], color=color, ls=":", lw=1)
+            error_curve(ax, dts, m[f"error_{scheme}"], m[f"unstable_{scheme}"], f"C{i}",
+                        f"{key}, {scheme}", m["dt_cr"] if scheme == "explicit" else None)
         ok = [e for m in study["meshes"].values() for e in m[f"error_{scheme}"] if e]
         if ok:  # slope-1 guide
             x = np.array([dts.min(), dts.max()])
