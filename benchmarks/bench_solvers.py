@@ -91,6 +91,7 @@ def one(problem, level, strategy):
         factor = {"blr": F.getMumpsIcntl(35), "factor_entries_full_rank": F.getMumpsInfog(9),
                   "factor_entries_effective": F.getMumpsInfog(29),
                   "factor_mb_total": F.getMumpsInfog(22)}
+    factor["factorisations"] = getattr(prob.solver, "factorisations", None)
     newton = sum(r.iterations for r in reports)
     krylov = sum(r.linear_iterations for r in reports)
     rss = comm.gather(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, root=0)

@@ -80,35 +80,45 @@ def test_iterative_matches_direct_through_active_set_changes():
 
 
 @pytest.mark.mpi
-def test_iterative_groove_reduced_problem():
+def test_iterative_and_lagged_groove_reduced_problem():
     """The monolithic wear step of §5.3 (ReducedProblem: displacement, multipliers, the
-    replicated cross-section shape Ψ and its multipliers ζ): one implicit step, fieldsplit
-    with Ψ and ζ in the Schur field, equals LU."""
+    replicated cross-section shape Ψ and its multipliers ζ): the unworn contact and one
+    implicit step.  The fieldsplit (Ψ and ζ in the Schur field) and the lagged LU equal
+    LU; the lagged LU factorises less often than Newton iterates, and its Newton
+    iterations are those of LU (the same exact Newton, GMRES to 1e-10)."""
     case = WearBallHalfspaceCase
     v = case.resolved(resolve(case.params, {}))
     a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
     h = 0.9 * a
     comm = MPI.COMM_WORLD
     states = {}
-    for strategy in ("direct", "iterative"):
+    for strategy in ("direct", "iterative", "lagged"):
         with solvers.run_settings(strategy):
             stepper, info = case.build(v, comm, h=h,
                                        mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
-        case.initial_contact(stepper, info)
-        rep = stepper.step(50.0).reports[-1]
+        reps = [case.initial_contact(stepper, info)] + stepper.step(50.0).reports
         wear = stepper.wear
-        states[strategy] = (wear.body.u.x.array.copy(), wear.w2.x.array.copy(), rep,
-                            stepper.problem)
+        states[strategy] = (wear.body.u.x.array.copy(), wear.w2.x.array.copy(), reps[-1],
+                            stepper.problem, [r.iterations for r in reps])
         assert stepper.problem.solver.name == strategy
-    (ud, wd, rd, _), (ui, wi, ri, pi) = states["direct"], states["iterative"]
+    ud, wd, rd, _, itd = states["direct"]
+    for strategy in ("iterative", "lagged"):
+        ui, wi, ri, pi, its = states[strategy]
+        tol_u = (_last_correction(rd, "displacement") + _last_correction(ri, "displacement")
+                 + 1e-12 * _max(comm, ud))
+        tol_w = (_last_correction(rd, "shape_change") + _last_correction(ri, "shape_change")
+                 + 1e-12 * _max(comm, wd))
+        du, dw = _max(comm, ui - ud), _max(comm, wi - wd)
+        print(f"{strategy}: |du| = {du:.2e} <= {tol_u:.2e}, |dw| = {dw:.2e} <= {tol_w:.2e}, "
+              f"Newton {its} (direct {itd})")
+        assert du <= tol_u and dw <= tol_w
+    pi = states["iterative"][3]
     assert [pi.u[k].name for k in solvers.bulk_fields(pi)[0]] == ["displacement"]
-    tol_u = (_last_correction(rd, "displacement") + _last_correction(ri, "displacement")
-             + 1e-12 * _max(comm, ud))
-    tol_w = (_last_correction(rd, "shape_change") + _last_correction(ri, "shape_change")
-             + 1e-12 * _max(comm, wd))
-    du, dw = _max(comm, ui - ud), _max(comm, wi - wd)
-    print(f"|du| = {du:.2e} <= {tol_u:.2e}, |dw| = {dw:.2e} <= {tol_w:.2e}")
-    assert du <= tol_u and dw <= tol_w
+    pl, itl = states["lagged"][3:]
+    assert itl == itd
+    print(f"lagged: {pl.solver.factorisations} factorisations for {sum(itl)} Newton iterations")
+    assert 1 <= pl.solver.factorisations < sum(itl)
+    assert pl.snes.getKSP().getType() == "gmres"
 
 
 @pytest.mark.mpi
@@ -170,6 +180,29 @@ def test_bulk_and_interface_fields():
     with pytest.raises(ValueError):
         with solvers.run_settings("magic"):
             pass
+
+
+@pytest.mark.parametrize("cell,expected", [("tetrahedron", "iterative"),
+                                           ("hexahedron", "lagged")])
+def test_auto_above_threshold(monkeypatch, cell, expected):
+    """``auto`` above the size threshold: AMG on tetrahedra, the lagged LU on hexahedra
+    (where GAMG's iterations double per refinement); a block clamped at x = 0."""
+    from tribofx.forms.hyperelastic import lame_parameters
+
+    from tribofx.body import Body
+    from tribofx.problem import Problem
+
+    msh = mesh.create_box(MPI.COMM_WORLD, [np.zeros(3), np.ones(3)], [3, 2, 2],
+                          getattr(mesh.CellType, cell))
+    left = mesh.locate_entities_boundary(msh, 2, lambda x: np.isclose(x[0], 0.0))
+    ft = mesh.meshtags(msh, 2, np.sort(left).astype(np.int32), np.ones(len(left), np.int32))
+    mu, lmbda = lame_parameters(1.0, 0.3)
+    body = Body(msh, ft, {"left": 1}, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
+    body.add_dirichlet("left", np.zeros(3))
+    monkeypatch.setattr(solvers, "AUTO_THRESHOLD", 10)
+    with solvers.run_settings("auto"):
+        problem = Problem([body], name=f"auto_{cell}")
+    assert problem.solver.name == expected
 
 
 @pytest.mark.mpi

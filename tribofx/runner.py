@@ -17,9 +17,11 @@ __all__ = ["COMMON_PARAMS", "run_case"]
 #: parameters every case accepts (``--set solver=iterative``)
 COMMON_PARAMS = (
     Param("solver", str, "auto", "-",
-          "linear solver: direct (MUMPS LU), iterative (GMRES, AMG on the bulk, Schur "
-          f"complement of the interface unknowns), auto (iterative on 3D tetrahedral "
-          f"meshes from {solvers.AUTO_THRESHOLD} unknowns)", choices=solvers.STRATEGIES),
+          "linear solver: direct (MUMPS LU), lagged (GMRES on the LU of an earlier "
+          "Newton matrix), iterative (GMRES, AMG on the bulk, Schur complement of the "
+          f"interface unknowns), auto (from {solvers.AUTO_THRESHOLD} unknowns: iterative "
+          "on 3D tetrahedral meshes, lagged on others; direct below)",
+          choices=solvers.STRATEGIES),
 )
 
 

@@ -9,6 +9,10 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   symbolic analysis is reused across Newton iterations and load/time steps; a
   pattern that grows (new contact couplings) triggers one new analysis.  Block
   low-rank compression (MUMPS ICNTL(35), dropping tolerance CNTL(7)) is an option.
+* :class:`LaggedSolver` — GMRES preconditioned by the MUMPS LU of an earlier
+  Newton matrix, refactorised only when GMRES needs many iterations: the Newton
+  iteration stays exact (GMRES to 1e-10), the factorisations drop from one per
+  Newton iteration to a few per run.
 * :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
   *bulk* field (vector unknowns on a mesh of full dimension: displacements,
   shape mappings) is solved by one V-cycle of algebraic multigrid (GAMG with the
@@ -20,11 +24,12 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   V-cycle per GMRES iteration).  The saddle-point rows of an active contact node
   (zero diagonal in A₁₁) are regular in S, so the split holds through
   active-set changes.
-* ``auto`` — iterative for 3D problems on tetrahedra from :data:`AUTO_THRESHOLD`
-  unknowns, direct otherwise (2D, where LU fill is mild; hexahedral tensor grids,
-  whose graded cells of aspect ratio up to ~24 make the AMG iteration counts
-  double per refinement).  Measured by ``benchmarks/bench_solvers.py`` (one run,
-  serial, before the upper factorisation): frictional Hertz ball on tetrahedra,
+* ``auto`` — for 3D problems from :data:`AUTO_THRESHOLD` unknowns: iterative on
+  tetrahedra, lagged on hexahedral tensor grids (whose graded cells of aspect
+  ratio up to ~24 make the AMG iteration counts double per refinement); direct
+  otherwise (2D, where LU fill is mild, and small problems).  Measured by
+  ``benchmarks/bench_solvers.py`` (one run, serial, before the upper
+  factorisation and the lagged strategy): frictional Hertz ball on tetrahedra,
   cost per Newton iteration iterative/direct 1.86 (5.7k unknowns), 1.34 (24.5k),
   0.86 (142k; memory 731 MB against 3.1 GB), 21–26 GMRES iterations per Newton
   step at every size; the §5.3 groove on hexahedra 2.0 (14k), 2.1 (50k; 59 → 110
@@ -60,6 +65,7 @@ __all__ = [
     "STRATEGIES",
     "DirectSolver",
     "IterativeSolver",
+    "LaggedSolver",
     "WORKSPACE_ERRORS",
     "choose",
     "grow_workspace",
@@ -70,7 +76,7 @@ __all__ = [
 
 #: unknowns from which ``auto`` picks the iterative strategy (3D, tetrahedra)
 AUTO_THRESHOLD = 50_000
-STRATEGIES = ("direct", "iterative", "auto")
+STRATEGIES = ("direct", "lagged", "iterative", "auto")
 
 _run = {"strategy": "auto", "options": {}}
 #: ``{problem name: strategy description}`` of the problems built in this run
@@ -120,12 +126,14 @@ def choose(problem):
         tets = bool(bulk) and all(
             problem.u[k].function_space.mesh.topology.cell_type == CellType.tetrahedron
             for k in bulk)
-        strategy = "iterative" if tets and problem.num_dofs >= AUTO_THRESHOLD else "direct"
+        solid = bool(bulk) and problem.u[bulk[0]].function_space.mesh.topology.dim == 3
+        strategy = ("direct" if problem.num_dofs < AUTO_THRESHOLD or not solid
+                    else "iterative" if tets else "lagged")
     if strategy == "iterative" and not bulk_fields(problem)[0]:
         solver = DirectSolver()       # nothing for AMG (a film or cross-section alone)
         used[problem.name] = solver.describe(problem) + "; iterative asked, no bulk field"
         return solver
-    solver = IterativeSolver() if strategy == "iterative" else DirectSolver()
+    solver = {"iterative": IterativeSolver, "lagged": LaggedSolver}.get(strategy, DirectSolver)()
     used[problem.name] = solver.describe(problem)
     return solver
 
@@ -249,6 +257,82 @@ def rigid_body_modes(V):
     return np.array([m.ravel() for m in modes])
 
 
+class LaggedSolver(DirectSolver):
+    """GMRES preconditioned by the MUMPS LU of an earlier Newton matrix.
+
+    The Newton systems are solved to GMRES relative residual ``rtol`` (right
+    preconditioning: the true residual), so the Newton iteration is the exact one
+    and keeps its quadratic rate; only the preconditioner lags.  The matrix is
+    factorised at the first Newton iteration of a run, and again at the next
+    iteration after a linear solve that needed more than ``refactor_its`` GMRES
+    iterations (an active-set change, a large shape update) or after the matrix
+    got a new nonzero pattern; otherwise the factor is kept across Newton
+    iterations and steps.  A numeric LU costs ~N² on a 3D mesh and its two
+    triangular solves ~N^(4/3), so the trade grows with N: on the §5.3 groove at
+    50k unknowns one implicit step took 14 → 2 factorisations and 19 GMRES
+    iterations per Newton step, 28 % less time (``benchmarks/bench_solvers.py``).
+
+    Args:
+        refactor_its: GMRES iterations of one solve above which the next Newton
+            iteration refactorises.
+        rtol, restart, max_it: GMRES relative tolerance, restart length, iteration cap.
+    """
+
+    name = "lagged"
+
+    def __init__(self, package="mumps", blr=None, refactor_its=30, rtol=1e-10, restart=200,
+                 max_it=1000):
+        super().__init__(package, blr)
+        self.refactor_its, self.rtol, self.restart, self.max_it = (refactor_its, rtol,
+                                                                   restart, max_it)
+        self.factorisations = 0
+        self._pattern = None
+
+    def options(self, problem=None):
+        """PETSc options of the KSP and PC (without the problem's prefix)."""
+        out = super().options(problem)
+        out.update({"ksp_type": "gmres", "ksp_gmres_restart": self.restart,
+                    "ksp_pc_side": "right", "ksp_rtol": self.rtol, "ksp_atol": 0.0,
+                    "ksp_max_it": self.max_it, "ksp_gmres_modifiedgramschmidt": None,
+                    "ksp_error_if_not_converged": True,
+                    # the lag (set in configure) holds across Newton solves
+                    "snes_lag_preconditioner_persists": True})
+        return out
+
+    def configure(self, problem):
+        """Keep the factor across Newton solves; a monitor decides when to refactorise."""
+        snes = problem.snes
+        _lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
+
+        def monitor(snes, it, fnorm):
+            # SNES turns a lag of -2 into -1 when it factorises at its next Jacobian
+            if self._lag == -2 and _lag_preconditioner(snes) == -1:
+                self.factorisations += 1
+            if it > 0 and snes.getKSP().getIterationNumber() > self.refactor_its:
+                _lag_preconditioner(snes, -2)
+            self._lag = _lag_preconditioner(snes)
+
+        self._lag = -2
+        snes.setMonitor(monitor)
+
+    def prepare(self, problem):
+        """Refactorise after a failed solve or factorisation, or on a new matrix."""
+        snes = problem.snes
+        ksp = snes.getKSP()
+        if (grow_workspace(ksp.getPC()) is not None or problem.A is not self._pattern
+                or ksp.getConvergedReason() < 0):
+            self._pattern = problem.A
+            _lag_preconditioner(snes, -2)
+        self._lag = _lag_preconditioner(snes)
+
+    def describe(self, problem):
+        """One line naming the strategy (recorded in ``summary.json``)."""
+        blr = f", BLR {self.blr:g}" if self.blr is not None else ""
+        return (f"lagged (GMRES rtol {self.rtol:g}, {self.package} LU{blr} of an earlier "
+                f"matrix, refactorised after {self.refactor_its} GMRES iterations; "
+                f"{problem.num_dofs} unknowns)")
+
+
 class IterativeSolver:
     """GMRES with a bulk-AMG / interface-Schur fieldsplit (see the module docstring).
 
@@ -365,6 +449,33 @@ class IterativeSolver:
         names = lambda ks: "+".join(problem.u[k].name for k in ks) or "-"  # noqa: E731
         return (f"iterative (GMRES rtol {self.rtol:g}; bulk {names(bulk)}: {self.amg}; "
                 f"interface {names(rest)}: Schur selfp LU; {problem.num_dofs} unknowns)")
+
+
+def _lag_preconditioner(snes, lag=None):
+    """Set (``lag`` given) and return SNES's preconditioner lag.
+
+    −1: keep the preconditioner; −2: rebuild it at the next Jacobian, then −1.
+    petsc4py 3.25 has no binding of SNESSet/GetLagPreconditioner: they are called
+    from the PETSc library petsc4py loaded (PetscInt is ``PETSc.IntType``).
+    """
+    import ctypes
+
+    global _libpetsc
+    if _libpetsc is None:
+        with open("/proc/self/maps") as f:
+            path = next(ln.split()[-1] for ln in f if "/libpetsc.so" in ln)
+        _libpetsc = ctypes.CDLL(path)
+    cint = ctypes.c_int64 if np.dtype(PETSc.IntType).itemsize == 8 else ctypes.c_int32
+    handle = ctypes.c_void_p(snes.handle)
+    if lag is not None and _libpetsc.SNESSetLagPreconditioner(handle, cint(lag)) != 0:
+        raise RuntimeError("SNESSetLagPreconditioner failed")
+    out = cint()
+    if _libpetsc.SNESGetLagPreconditioner(handle, ctypes.byref(out)) != 0:
+        raise RuntimeError("SNESGetLagPreconditioner failed")
+    return out.value
+
+
+_libpetsc = None
 
 
 def _orthonormalise(vecs):

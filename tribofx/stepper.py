@@ -429,24 +429,32 @@ def _aligned(t, h):
     return abs(t / h - round(t / h)) < 1e-9
 
 
-def growth_probe(stepper, start, steps, measure, probe=None):
+def growth_probe(stepper, start, steps, measure, probe=None, settle=0):
     """Stability probe of the slow-time scheme: ``growth(Δt)`` for :func:`bisect_critical_step`.
 
     ``growth(Δt)`` restores the state ``start`` (a :meth:`Stepper.state`), takes
     ``steps`` steps of Δt without cutting and returns |``measure()``| (e.g. the
     amplitude of a perturbation relative to its initial one); a failed step
-    (Newton divergence, inverted mesh) gives ∞.  Each (Δt, measure) is appended
+    (Newton divergence, inverted mesh) gives ∞.  With ``settle`` > 0, ``settle``
+    steps are taken first and the result is ``measure()`` after the ``steps``
+    further steps divided by its value after the first ``settle`` (the growth
+    from a state the scheme has already restarted from: a start that is not on
+    the scheme's own path, e.g. an implicit state restored into the explicit
+    scheme, jumps in its first step whatever Δt).  Each (Δt, growth) is appended
     to ``probe`` (a list).
     """
     def growth(dt):
         stepper.restore(start)
         try:
+            for _ in range(settle):
+                stepper.step(dt)
+            m0 = measure() if settle else 1.0
             for _ in range(steps):
                 stepper.step(dt)
         except NewtonDivergence:
             g = math.inf
         else:
-            g = measure()
+            g = measure() / m0 if m0 > 0 else math.inf
         if probe is not None:
             probe.append((dt, g))
         return abs(g)
