@@ -20,10 +20,12 @@ In one run, for the case defaults (small-deformation set, mesh level 0):
 
 The two schemes share one configuration (body, contact, steady wear): the
 explicit :class:`tribofx.stepper.Stepper` is built on the same components with
-θ = 0.  Prints a table and writes benchmarks/results/wear_groove.json (run
-serially here; the case also runs under mpiexec).
+θ = 0.  Prints a table and writes benchmarks/results/wear_groove.json; runs
+serially or under mpiexec (the linear solver is the run's ``auto``: the lagged
+LU from 50k unknowns).
 
-    .venv/bin/python benchmarks/bench_wear_groove.py [--mesh 0] [--out FILE]
+    .venv/bin/python benchmarks/bench_wear_groove.py [--mesh 0] [--bisections 3] [--out FILE]
+    .venv/bin/mpiexec -n 2 .venv/bin/python benchmarks/bench_wear_groove.py --mesh 2
 """
 
 import argparse
@@ -37,7 +39,9 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401
 import numpy as np
+from mpi4py import MPI
 
+from tribofx import solvers
 from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
 from tribofx.cases.wear_groove import surface_data
 from tribofx.params import resolve
@@ -53,6 +57,13 @@ parser.add_argument("--probe-steps", type=int, default=4)
 parser.add_argument("--bisections", type=int, default=3)
 parser.add_argument("--out", default="benchmarks/results/wear_groove.json")
 args = parser.parse_args()
+comm = MPI.COMM_WORLD
+
+
+def say(*a, **k):
+    if comm.rank == 0:
+        print(*a, **k, flush=True)
+
 
 v = Case.resolved(resolve(Case.params, {"mesh": str(args.mesh)}))
 out = {"mesh": args.mesh, "T": args.T}
@@ -67,9 +78,15 @@ its = Case.initial_contact(stepper, info).iterations
 probe_state = None
 
 
+per_step = []
+
+
 def on_step(st, rep):
     global its, probe_state
     its += rep.iterations
+    per_step.append(int(rep.iterations))
+    say(f"  t = {st.t:7.1f} s: {rep.iterations} Newton iterations, "
+        f"{time.perf_counter() - t0:.0f} s")
     if probe_state is None and st.t >= args.t_probe - 1e-9:
         probe_state = st.state()
 
@@ -81,11 +98,13 @@ n = {"u": wear.body.u.function_space.dofmap.index_map.size_global * 3,
      "w": len(wear.w2.x.array), "z": len(wear.zeta.x.array)}
 out["dofs"] = n
 out["psi_fraction"] = (n["w"] + n["z"]) / sum(n.values())
+out["linear_solver"] = dict(solvers.used)
 out["implicit"] = {"dt": args.dt, "steps": stepper.steps, "newton_iterations": int(its),
+                   "newton_per_step": per_step,
                    "wall_time_s": wall_imp, "build_time_s": t_build,
                    "groove_area": 2 * wear.groove_area(),
                    "depth": float(wear.line_profile()["depth"].max())}
-print(f"implicit: {stepper.steps} steps, {its} Newton iterations, {wall_imp:.1f} s "
+say(f"implicit: {stepper.steps} steps, {its} Newton iterations, {wall_imp:.1f} s "
       f"(+ {t_build:.1f} s build); {sum(n.values())} unknowns, Ψ share "
       f"{100 * out['psi_fraction']:.2f} %")
 
@@ -96,8 +115,8 @@ explicit = Stepper(stepper.components, wear, name="groove_explicit",
 explicit.restore(probe_state)
 explicit.problem.solve()
 base = explicit.state()
-d = surface_data(wear.contact)
-ay = float(d["X"][d["active"], 1].max())
+d = surface_data(wear.contact, root=0)
+ay = comm.bcast(float(d["X"][d["active"], 1].max()) if comm.rank == 0 else None, root=0)
 lp = wear.line_profile()
 contact_nodes = np.flatnonzero(lp["Y_hat"] < 0.6 * ay)
 X2 = wear.V2.tabulate_dof_coordinates()
@@ -134,11 +153,11 @@ def growth(dt):
             explicit.step(dt)
     except NewtonDivergence:
         probe.append((dt, math.inf, time.perf_counter() - t0))
-        print(f"  explicit Δt = {dt:8.4f} s: failed (Newton or inverted mesh)")
+        say(f"  explicit Δt = {dt:8.4f} s: failed (Newton or inverted mesh)")
         return math.inf
     g = amplitude(ref) / a0
     probe.append((dt, g, (time.perf_counter() - t0) / 2))
-    print(f"  explicit Δt = {dt:8.4f} s: seeded alternating mode × {g:+.3e} after "
+    say(f"  explicit Δt = {dt:8.4f} s: seeded alternating mode × {g:+.3e} after "
           f"{args.probe_steps} steps")
     return abs(g)
 
@@ -167,11 +186,13 @@ if lo is not None:
     n_exp = math.ceil(args.T / lo)
     out["explicit"] = {"dt": lo, "wall_time_per_step_s": per_step, "steps_to_T": n_exp,
                        "wall_time_to_T_estimate_s": per_step * n_exp}
-    print(f"explicit: stable Δt = {lo:.3g} s (unstable at {hi:.3g} s), {per_step:.2f} s/step, "
+    say(f"explicit: stable Δt = {lo:.3g} s (unstable at {hi:.3g} s), {per_step:.2f} s/step, "
           f"{n_exp} steps to T → ≈ {per_step * n_exp:.0f} s (estimate) vs implicit "
           f"{wall_imp:.0f} s: ratio {per_step * n_exp / wall_imp:.0f}")
 
-Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-with open(args.out, "w") as f:
-    json.dump(out, f, indent=2)
-print(f"written {args.out}")
+out["ranks"] = comm.size
+if comm.rank == 0:
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    with open(args.out, "w") as f:
+        json.dump(out, f, indent=2)
+say(f"written {args.out}")

@@ -35,6 +35,7 @@ import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
 from dolfinx import fem, la
+from mpi4py import MPI
 from petsc4py import PETSc
 
 from .lifetimes import weak_callback
@@ -245,7 +246,9 @@ class ReducedProblem(Problem):
             out.append(A.matMult(v[1].mat))
         return out, made
 
-    def _jacobian_matrix(self):
+    def _jacobian_coo(self):
+        """The Jacobian as COO triplets (global rows, columns, values; duplicates summed
+        by PETSc), the Dirichlet rows replaced by identity rows."""
         rank = self.comm.rank
         roff, boff = self._offsets()
         my0 = roff[rank]
@@ -280,6 +283,8 @@ class ReducedProblem(Problem):
                         B.scale(float(a.scale()))
                         made.append(B)
                         add(i, j, B, False)
+        for m in made:
+            m.destroy()
         ri = np.concatenate(ri) if ri else np.zeros(0, np.int64)
         ci = np.concatenate(ci) if ci else np.zeros(0, np.int64)
         vals = np.concatenate(vals) if vals else np.zeros(0)
@@ -292,26 +297,36 @@ class ReducedProblem(Problem):
                 bc[boff[rank][i] + idx] = True
         keep = ~bc[ri - my0]
         rbc = my0 + np.flatnonzero(bc)
-        ri = np.concatenate([ri[keep], rbc])
-        ci = np.concatenate([ci[keep], rbc])
+        ri = np.concatenate([ri[keep], rbc]).astype(PETSc.IntType)
+        ci = np.concatenate([ci[keep], rbc]).astype(PETSc.IntType)
         vals = np.concatenate([vals[keep], np.ones(len(rbc))])
-        N = self._N
-        key, inv = np.unique((ri - my0) * N + ci, return_inverse=True)
-        vals = np.bincount(inv.ravel(), weights=vals, minlength=len(key))
-        ri, ci = key // N, key % N
-        indptr = np.zeros(nloc + 1, dtype=PETSc.IntType)
-        np.add.at(indptr, ri + 1, 1)
-        indptr = np.cumsum(indptr).astype(PETSc.IntType)
-        K = PETSc.Mat().createAIJ(size=((nloc, N), (nloc, N)),
-                                  csr=(indptr, ci.astype(PETSc.IntType), vals), comm=self.comm)
-        K.assemble()
-        for m in made:
-            m.destroy()
-        return K
+        return ri, ci, vals
+
+    def _jacobian_matrix(self, A=None):
+        """Assemble the Jacobian into ``A`` (None: a new MPIAIJ matrix); returns it.
+
+        The matrix is preallocated from the COO pattern (PETSc sums duplicate
+        entries); while the pattern is the one of the last call, only the values
+        are set, so the matrix keeps its nonzero state (an LU keeps its analysis).
+        """
+        ri, ci, vals = self._jacobian_coo()
+        pattern = getattr(self, "_coo", None)
+        same = (A is not None and pattern is not None and len(pattern[0]) == len(ri)
+                and np.array_equal(pattern[0], ri) and np.array_equal(pattern[1], ci))
+        same = self.comm.allreduce(same, op=MPI.LAND)   # the preallocation is collective
+        if A is None:
+            nloc = sum(self._sizes[self.comm.rank])
+            A = PETSc.Mat().create(comm=self.comm)
+            A.setSizes(((nloc, self._N), (nloc, self._N)))
+            A.setType(PETSc.Mat.Type.AIJ)
+        if not same:
+            A.setPreallocationCOO(ri, ci)
+            self._coo = (ri, ci)
+        A.setValuesCOO(vals, addv=PETSc.InsertMode.INSERT_VALUES)
+        A.assemble()
+        return A
 
     def _jacobian(self, snes, x, A, P):
         self._set_unknowns(x)
         self.refresh()
-        K = self._jacobian_matrix()
-        K.copy(A, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
-        K.destroy()
+        self._jacobian_matrix(A)
