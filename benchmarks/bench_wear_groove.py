@@ -85,7 +85,9 @@ def on_step(st, rep):
     global its, probe_state
     its += rep.iterations
     per_step.append(int(rep.iterations))
-    say(f"  t = {st.t:7.1f} s: {rep.iterations} Newton iterations, "
+    krylov = sum(r.linear_iterations for r in rep.reports)
+    say(f"  t = {st.t:7.1f} s: {rep.iterations} Newton iterations, {krylov} Krylov, "
+        f"{getattr(st.problem.solver, 'factorisations', '-')} factorisations so far, "
         f"{time.perf_counter() - t0:.0f} s")
     if probe_state is None and st.t >= args.t_probe - 1e-9:
         probe_state = st.state()
@@ -101,6 +103,7 @@ out["psi_fraction"] = (n["w"] + n["z"]) / sum(n.values())
 out["linear_solver"] = dict(solvers.used)
 out["implicit"] = {"dt": args.dt, "steps": stepper.steps, "newton_iterations": int(its),
                    "newton_per_step": per_step,
+                   "factorisations": getattr(stepper.problem.solver, "factorisations", None),
                    "wall_time_s": wall_imp, "build_time_s": t_build,
                    "groove_area": 2 * wear.groove_area(),
                    "depth": float(wear.line_profile()["depth"].max())}

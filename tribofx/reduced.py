@@ -247,8 +247,10 @@ class ReducedProblem(Problem):
         return out, made
 
     def _jacobian_coo(self):
-        """The Jacobian as COO triplets (global rows, columns, values; duplicates summed
-        by PETSc), the Dirichlet rows replaced by identity rows."""
+        """Return the Jacobian as COO triplets (global rows, columns, values).
+
+        Duplicates are summed by PETSc; the Dirichlet rows are identity rows.
+        """
         rank = self.comm.rank
         roff, boff = self._offsets()
         my0 = roff[rank]
