@@ -110,6 +110,7 @@ class ReducedProblem(Problem):
         b = self._x.duplicate()
         self._set_maps()
         self._get_unknowns(self._x)
+        self._coo = None          # the COO pattern the Jacobian is preallocated with
         self._A = self._jacobian_matrix()
         self.snes = PETSc.SNES().create(comm)
         self.snes.setFunction(weak_callback(self._residual), b)
@@ -312,7 +313,7 @@ class ReducedProblem(Problem):
         are set, so the matrix keeps its nonzero state (an LU keeps its analysis).
         """
         ri, ci, vals = self._jacobian_coo()
-        pattern = getattr(self, "_coo", None)
+        pattern = self._coo
         same = (A is not None and pattern is not None and len(pattern[0]) == len(ri)
                 and np.array_equal(pattern[0], ri) and np.array_equal(pattern[1], ci))
         same = self.comm.allreduce(same, op=MPI.LAND)   # the preallocation is collective

@@ -138,7 +138,7 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     on the explicit scheme's path, and its first step jumps to that path's
     nonuniformity whatever Δt (on a scar the implicit scheme has made very even,
     e.g. 7.5e-4 with the chapter's §5.2 element size, the jump alone is a factor
-    20).  Δt counts as stable iff the nonuniformity after the ``steps`` steps is
+    of about 25).  Δt counts as stable iff the nonuniformity after the ``steps`` steps is
     at most ``growth_tol`` times the one after the first and no step fails
     (Newton divergence, force not reached, inverted mesh).  Bisection on log Δt
     in [lo, hi] (lo stable, hi unstable, both checked).  Returns ``(dt_cr,
