@@ -10,8 +10,8 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   pattern that grows (new contact couplings) triggers one new analysis.  Block
   low-rank compression (MUMPS ICNTL(35), dropping tolerance CNTL(7)) is an option.
 * :class:`LaggedSolver` — GMRES preconditioned by the MUMPS LU of an earlier
-  Newton matrix, refactorised once keeping it has cost more GMRES time than a
-  factorisation: the Newton iteration stays exact (GMRES to 1e-10), the
+  Newton matrix, refactorised when a solve needs more than 30 GMRES
+  iterations: the Newton iteration stays exact (GMRES to 1e-10), the
   factorisations drop from one per Newton iteration to a few per run.
 * :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
   *bulk* field (vector unknowns on a mesh of full dimension: displacements,
@@ -263,29 +263,24 @@ class LaggedSolver(DirectSolver):
     The Newton systems are solved to GMRES relative residual ``rtol`` (right
     preconditioning: the true residual), so the Newton iteration is the exact one
     and keeps its quadratic rate; only the preconditioner lags.  The matrix is
-    factorised at the first Newton iteration of a run and kept across Newton
-    iterations and steps until keeping it costs more than renewing it: after
-    each solve, the GMRES time spent since the last factorisation beyond what
-    as many solves on a fresh factor take (the fastest of them, the first after
-    the factorisation) is compared with the time of that factorisation, and
-    once it is larger the next Newton iteration refactorises (the rent-or-buy
-    rule: at most about twice the cost of the best schedule in hindsight).
-    Times are PETSc's logged events (MatLUFactorNum, KSPSolve; logging is turned
-    on), the maximum over ranks, so every rank decides alike.  A failed solve, a
-    failed factorisation or a matrix with a new nonzero pattern also
-    refactorises.  A numeric LU costs ~N² on a 3D mesh and its two triangular
-    solves ~N^(4/3), so the trade grows with N.
+    factorised at the first Newton iteration of a run, and again at the next
+    iteration after a linear solve that needed more than ``refactor_its`` GMRES
+    iterations (an active-set change, a large shape update), a failed solve or
+    factorisation, or on a new matrix; otherwise the factor is kept across Newton
+    iterations and steps.  A numeric LU costs ~N² on a 3D mesh and its two
+    triangular solves ~N^(4/3), so the trade grows with N (measurements, and a
+    cost-based rule that was tried and not kept: ``docs/architecture.md``).
 
     Args:
+        refactor_its: GMRES iterations of one solve above which the next Newton
+            iteration refactorises.
         rtol, restart, max_it: GMRES relative tolerance, restart length, iteration cap.
-        refactor_its: also refactorise after a solve of more GMRES iterations
-            than this (None: by cost only).
     """
 
     name = "lagged"
 
-    def __init__(self, package="mumps", blr=None, rtol=1e-10, restart=200, max_it=1000,
-                 refactor_its=None):
+    def __init__(self, package="mumps", blr=None, refactor_its=30, rtol=1e-10, restart=200,
+                 max_it=1000):
         super().__init__(package, blr)
         self.refactor_its, self.rtol, self.restart, self.max_it = (refactor_its, rtol,
                                                                    restart, max_it)
@@ -307,35 +302,16 @@ class LaggedSolver(DirectSolver):
         """Keep the factor across Newton solves; a monitor decides when to refactorise."""
         snes = problem.snes
         _lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
-        PETSc.Log.begin()
-        events = [PETSc.Log.Event(e) for e in ("MatLUFactorNum", "KSPSolve")]
-        comm = snes.comm.tompi4py()
-
-        def clock():
-            out = np.empty(2)
-            comm.Allreduce(np.array([e.getPerfInfo()["time"] for e in events]), out,
-                           op=MPI.MAX)
-            return out
 
         def monitor(snes, it, fnorm):
-            now = clock()
-            last = now if self._last is None else self._last
             # SNES turns a lag of -2 into -1 when it factorises at its next Jacobian
             if self._lag == -2 and _lag_preconditioner(snes) == -1:
                 self.factorisations += 1
-                self._t_factor = now[0] - last[0]
-                self._solves = []
-            if it > 0:
-                self._solves.append(now[1] - last[1])
-                excess = sum(self._solves) - len(self._solves) * min(self._solves)
-                its = snes.getKSP().getIterationNumber()
-                if excess > self._t_factor or (self.refactor_its is not None
-                                               and its > self.refactor_its):
-                    _lag_preconditioner(snes, -2)
-            self._last = now
+            if it > 0 and snes.getKSP().getIterationNumber() > self.refactor_its:
+                _lag_preconditioner(snes, -2)
             self._lag = _lag_preconditioner(snes)
 
-        self._lag, self._last, self._t_factor, self._solves = -2, None, 0.0, []
+        self._lag = -2
         snes.setMonitor(monitor)
 
     def prepare(self, problem):
@@ -352,7 +328,7 @@ class LaggedSolver(DirectSolver):
         """One line naming the strategy (recorded in ``summary.json``)."""
         blr = f", BLR {self.blr:g}" if self.blr is not None else ""
         return (f"lagged (GMRES rtol {self.rtol:g}, {self.package} LU{blr} of an earlier "
-                f"matrix, renewed when its extra GMRES time exceeds a factorisation; "
+                f"matrix, refactorised after {self.refactor_its} GMRES iterations; "
                 f"{problem.num_dofs} unknowns)")
 
 
