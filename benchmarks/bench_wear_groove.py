@@ -78,15 +78,13 @@ t_build = time.perf_counter() - t0
 t0 = time.perf_counter()
 its = Case.initial_contact(stepper, info).iterations
 probe_state = None
-
-
-per_step = []
+newton_per_step = []
 
 
 def on_step(st, rep):
     global its, probe_state
     its += rep.iterations
-    per_step.append(int(rep.iterations))
+    newton_per_step.append(int(rep.iterations))
     krylov = sum(r.linear_iterations for r in rep.reports)
     say(f"  t = {st.t:7.1f} s: {rep.iterations} Newton iterations, {krylov} Krylov, "
         f"{getattr(st.problem.solver, 'factorisations', '-')} factorisations so far, "
@@ -104,15 +102,14 @@ out["dofs"] = n
 out["psi_fraction"] = (n["w"] + n["z"]) / sum(n.values())
 out["linear_solver"] = dict(solvers.used)
 out["implicit"] = {"dt": args.dt, "steps": stepper.steps, "newton_iterations": int(its),
-                   "newton_per_step": per_step,
+                   "newton_per_step": newton_per_step,
                    "factorisations": getattr(stepper.problem.solver, "factorisations", None),
                    "wall_time_s": wall_imp, "build_time_s": t_build,
                    "groove_area": 2 * wear.groove_area(),
                    "depth": float(wear.line_profile()["depth"].max())}
 say(f"implicit: {stepper.steps} steps, {its} Newton iterations, {wall_imp:.1f} s "
-      f"(+ {t_build:.1f} s build); {sum(n.values())} unknowns, Ψ share "
-      f"{100 * out['psi_fraction']:.2f} %")
-
+    f"(+ {t_build:.1f} s build); {sum(n.values())} unknowns, Ψ share "
+    f"{100 * out['psi_fraction']:.2f} %")
 
 
 def write_out():
@@ -178,7 +175,7 @@ def growth(dt):
     g = amplitude(ref) / a0
     probe.append((dt, g, (time.perf_counter() - t0) / 2))
     say(f"  explicit Δt = {dt:8.4f} s: seeded alternating mode × {g:+.3e} after "
-          f"{args.probe_steps} steps")
+        f"{args.probe_steps} steps")
     return abs(g)
 
 
@@ -207,7 +204,7 @@ if lo is not None:
     out["explicit"] = {"dt": lo, "wall_time_per_step_s": per_step, "steps_to_T": n_exp,
                        "wall_time_to_T_estimate_s": per_step * n_exp}
     say(f"explicit: stable Δt = {lo:.3g} s (unstable at {hi:.3g} s), {per_step:.2f} s/step, "
-          f"{n_exp} steps to T → ≈ {per_step * n_exp:.0f} s (estimate) vs implicit "
-          f"{wall_imp:.0f} s: ratio {per_step * n_exp / wall_imp:.0f}")
+        f"{n_exp} steps to T → ≈ {per_step * n_exp:.0f} s (estimate) vs implicit "
+        f"{wall_imp:.0f} s: ratio {per_step * n_exp / wall_imp:.0f}")
 
 write_out()

@@ -74,7 +74,7 @@ __all__ = [
     "used",
 ]
 
-#: unknowns from which ``auto`` picks the iterative strategy (3D, tetrahedra)
+#: unknowns from which ``auto`` leaves LU on 3D problems (iterative on tetrahedra, else lagged)
 AUTO_THRESHOLD = 50_000
 STRATEGIES = ("direct", "lagged", "iterative", "auto")
 
