@@ -58,6 +58,7 @@ parser.add_argument("--t-probe", type=float, default=100.0)
 parser.add_argument("--probe-steps", type=int, default=4)
 parser.add_argument("--bisections", type=int, default=3)
 parser.add_argument("--out", default="benchmarks/results/wear_groove.json")
+parser.add_argument("--verbose", action="store_true", help="print the Newton histories")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
 
@@ -73,10 +74,11 @@ out = {"mesh": args.mesh, "T": args.T}
 # 1. implicit run to T ------------------------------------------------------------
 t0 = time.perf_counter()
 stepper, info = Case.build(v)
+stepper.verbose = args.verbose
 wear = stepper.wear
 t_build = time.perf_counter() - t0
 t0 = time.perf_counter()
-its = Case.initial_contact(stepper, info).iterations
+its = Case.initial_contact(stepper, info, args.verbose).iterations
 probe_state = None
 newton_per_step = []
 

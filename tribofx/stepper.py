@@ -402,6 +402,8 @@ class Stepper:
         halvings (the state is the last accepted one).
         """
         self.dt = dt
+        if progress is not None and getattr(progress, "n", None) == 0 and self.steps:
+            progress.update(self.steps)    # resumed from a checkpoint: the bar goes on
         interrupt.arm()
         while self.t < T * (1 - 1e-12):
             h = min(dt / 2**self.cuts, T - self.t)

@@ -177,6 +177,14 @@ class WearPinCase:
             if r > v["T"] or r >= min(dts):
                 raise InputError("study_ref_dt must be below the study time steps")
 
+    @classmethod
+    def progress_total(cls, v):
+        """Steps the progress bar counts: slow steps to T, or the runs of a Δt study."""
+        if v["study"] == "dt":
+            dts, levels = cls.study_lists(v)
+            return 2 * len(dts) * len(levels)
+        return math.ceil(v["T"] / cls.slow_step(v) - 1e-9)
+
     @staticmethod
     def slow_step(v):
         """Slow time step Δt (s): ``dt``, or cycles_per_step · 2 stroke / V in cyclic mode."""

@@ -115,6 +115,11 @@ class WearBallCase:
     )
 
     @staticmethod
+    def progress_total(v):
+        """Steps the progress bar counts: nominal steps to T (a cut step counts twice)."""
+        return math.ceil(v["T"] / v["dt"] - 1e-9)
+
+    @staticmethod
     def validate(v):
         """Check cross-parameter consistency."""
         if v["dt"] > v["T"]:

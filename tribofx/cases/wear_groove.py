@@ -119,6 +119,11 @@ class WearBallHalfspaceCase:
                 v[key] = val
         return v
 
+    @staticmethod
+    def progress_total(v):
+        """Steps the progress bar counts: nominal steps to T (a cut step counts twice)."""
+        return math.ceil(v["T"] / v["dt"] - 1e-9)
+
     @classmethod
     def validate(cls, v):
         """Check cross-parameter consistency."""

@@ -185,6 +185,11 @@ class WearReciprocatingCase:
               "facet length: rho_N = min(E)/h, block elements 4h/3)"),
     )
 
+    @classmethod
+    def progress_total(cls, v):
+        """Slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
+        return math.ceil(v["cycles"] * cls.period(v) / v["dt"] - 1e-9)
+
     @staticmethod
     def validate(v):
         """Reject a stroke off the block, a tip lower than the pin and a step above T.
@@ -398,8 +403,6 @@ class WearReciprocatingCase:
                              ("dt", dt)):
                 hist[key].append(val)
             record.data["newton_iterations"].append(its)
-            if progress is not None and dt > 0:
-                progress.update(1)
 
         if not resume:
             log(0.0, 0.0, cls.load_up(run, v, verbose))
@@ -416,7 +419,7 @@ class WearReciprocatingCase:
             series.write(s.t)
 
         try:
-            st.run(v["cycles"] * tau, v["dt"], on_step=on_step)
+            st.run(v["cycles"] * tau, v["dt"], on_step=on_step, progress=progress)
             shots["worn"] = cls.snapshot(run)
         except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = run
