@@ -108,7 +108,6 @@ linear differ by 1.4–5.3 % on the plane, 19–26 % on the ball (Fig. 27,
 import math
 
 import numpy as np
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from .. import interrupt
@@ -125,12 +124,12 @@ from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal, sweep_stem
 from .ehl_ball_paths import BallPaths, Z
-from .film_setup import at_points, film_boundary, speed_list
+from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
+from .film_setup import at_points, speed_list
 
 __all__ = ["EHLBallCase"]
 
 NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
-USER_GROUPS = ("lubricated", "midplane", "symmetry")   # the groups of a user's ball
 
 
 class EHLBallCase(BallPaths):
@@ -247,7 +246,7 @@ class EHLBallCase(BallPaths):
         th = math.radians(v["theta_l"])
         if v["mesh_file"]:
             msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
-            cls._place_user_ball(msh, ft, names, v)
+            place_user_ball(msh, ft, names, v, a)
         else:
             h_fine = a / (4 * 2 ** v["mesh"])
             ring = ((0.95 * a, h_fine / 2 ** v["edge_refine"], 0.1 * a) if v["edge_refine"]
@@ -267,89 +266,12 @@ class EHLBallCase(BallPaths):
                     eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
                     speed_scale=v["U"], quadrature_degree=2)
         if v["mesh_file"]:
-            film.add_pressure_bc(at_points(cls._user_rim(film, v), 1e-8 * v["R"]))
+            film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v["R"]))
         else:
             z_cap = cap_height(v["R"], th)
             film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
         problem = Problem([ball, film], name="ehl_ball", max_it=25)
         return ball, film, problem
-
-    @staticmethod
-    def _group_nodes(msh, ft, tag):
-        """Return the local geometry nodes of the facets tagged ``tag``."""
-        msh.topology.create_connectivity(2, 3)
-        return np.unique(dmesh.entities_to_geometry(msh, 2, ft.find(tag), False).ravel())
-
-    @classmethod
-    def _place_user_ball(cls, msh, ft, names, v):
-        """Move a user's ball: symmetry plane to y = 0, cap centred at x = 0, lowest at z = 0.
-
-        Raises InputError if the symmetry group is not a plane y = const (to 10⁻⁹ R).
-        """
-        comm, x = msh.comm, msh.geometry.x
-
-        def extent(nodes, k):
-            return (comm.allreduce(float(np.min(x[nodes, k], initial=np.inf)), op=MPI.MIN),
-                    comm.allreduce(float(np.max(x[nodes, k], initial=-np.inf)), op=MPI.MAX))
-
-        y0, y1 = extent(cls._group_nodes(msh, ft, names["symmetry"]), 1)
-        if y1 - y0 > 1e-9 * v["R"]:
-            raise InputError(f"the group 'symmetry' of {v['mesh_file']!r} must be a plane "
-                             f"y = const (spans y = {y0:.6g} … {y1:.6g} mm)")
-        cap = cls._group_nodes(msh, ft, names["lubricated"])
-        x0, x1 = extent(cap, 0)
-        z0, _ = extent(cap, 2)
-        x -= np.array([0.5 * (x0 + x1), y0, z0])
-        cls._check_curvature(msh, cap, v)
-
-    @classmethod
-    def _check_curvature(cls, msh, cap, v):
-        """Raise InputError unless the cap's curvature at the contact is 1/R within 5 %.
-
-        Least squares z = c + k ρ²/2 over the cap's nodes within ρ = √(x² + y²) ≤ a
-        (Hertz a at W; owned nodes, summed over the ranks): R sets the Hertz start,
-        the scales and the references, so it must be the ball's radius where the
-        film forms.  A cap with fewer than 6 nodes there is too coarse to resolve
-        the contact.
-        """
-        comm = msh.comm
-        own = cap[cap < msh.geometry.index_map().size_local]
-        X = msh.geometry.x[own]
-        a = cls.hertz_contact(v).a
-        rho2 = X[:, 0] ** 2 + X[:, 1] ** 2
-        near = rho2 <= a * a
-        q, z = 0.5 * rho2[near], X[near, 2]
-        sums = comm.allreduce(np.array([len(q), q.sum(), (q * q).sum(), z.sum(),
-                                        (q * z).sum()]), op=MPI.SUM)
-        n, sq, sqq, sz, sqz = sums
-        det = n * sqq - sq * sq
-        if n < 6 or not det > 0:
-            raise InputError(f"the cap of {v['mesh_file']!r} has {int(n)} node(s) within the "
-                             f"Hertz radius a = {a:.3g} mm of the contact point (needs >= 6)")
-        k = (n * sqz - sq * sz) / det
-        if not abs(k * v["R"] - 1) <= 0.05:
-            raise InputError(f"the cap of {v['mesh_file']!r} has the radius of curvature "
-                             f"{1 / k if k else math.inf:.4g} mm at the contact: R = "
-                             f"{v['R']} mm must match it within 5 %")
-
-    @classmethod
-    def _user_rim(cls, film, v):
-        """Return the nodes (k, 3) of the rim of a user's cap: ∂Γ_l less the edges on y = 0.
-
-        Raises InputError if there is none, or if the cap does not reach 1.5 a(W)
-        from the contact point (the least rim radius √(x² + y²)).
-        """
-        tol = 1e-9 * v["R"]
-        rim = film_boundary(film, keep=lambda X: ~np.all(np.abs(X[:, :, 1]) < tol, axis=1))
-        if not len(rim):
-            raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} has no rim off "
-                             "the symmetry plane (p = 0 there)")
-        a = cls.hertz_contact(v).a
-        r_cap = float(np.min(np.hypot(rim[:, 0], rim[:, 1])))
-        if r_cap < 1.5 * a:
-            raise InputError(f"the cap of {v['mesh_file']!r} reaches r = {r_cap:.3g} mm < "
-                             f"1.5 a = {1.5 * a:.3g} mm (Hertz a at W = {v['W']} N)")
-        return rim
 
     @staticmethod
     def film_oscillation(h_axis, p_axis):

@@ -179,7 +179,7 @@ class WearPinCase:
 
     @classmethod
     def progress_total(cls, v):
-        """Steps the progress bar counts: slow steps to T, or the runs of a Δt study."""
+        """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
         if v["study"] == "dt":
             dts, levels = cls.study_lists(v)
             return 2 * len(dts) * len(levels)

@@ -116,7 +116,7 @@ class WearBallCase:
 
     @staticmethod
     def progress_total(v):
-        """Steps the progress bar counts: nominal steps to T (a cut step counts twice)."""
+        """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
         return math.ceil(v["T"] / v["dt"] - 1e-9)
 
     @staticmethod

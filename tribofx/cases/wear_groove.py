@@ -121,7 +121,7 @@ class WearBallHalfspaceCase:
 
     @staticmethod
     def progress_total(v):
-        """Steps the progress bar counts: nominal steps to T (a cut step counts twice)."""
+        """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
         return math.ceil(v["T"] / v["dt"] - 1e-9)
 
     @classmethod

@@ -187,7 +187,7 @@ class WearReciprocatingCase:
 
     @classmethod
     def progress_total(cls, v):
-        """Slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
+        """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
         return math.ceil(v["cycles"] * cls.period(v) / v["dt"] - 1e-9)
 
     @staticmethod
