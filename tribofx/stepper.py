@@ -65,7 +65,7 @@ from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 
 __all__ = ["MeshInversion", "ReciprocatingCycle", "ResponseControl",
-           "StepReport", "Stepper", "bisect_critical_step", "growth_probe"]
+           "StepReport", "Stepper", "bisect_critical_step", "growth_probe", "nominal_steps"]
 
 
 class MeshInversion(NewtonDivergence):
@@ -425,6 +425,11 @@ class Stepper:
             if progress is not None:
                 progress.update(1)
             interrupt.check(self.comm, self.t)
+
+
+def nominal_steps(T, dt):
+    """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""
+    return math.ceil(T / dt - 1e-9)
 
 
 def _aligned(t, h):

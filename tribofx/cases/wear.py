@@ -73,7 +73,7 @@ from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence
 from ..references import hertz
 from ..restart import open_history, series_stem
-from ..stepper import ReciprocatingCycle, Stepper
+from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 
 __all__ = ["WearPinCase"]
 
@@ -183,7 +183,7 @@ class WearPinCase:
         if v["study"] == "dt":
             dts, levels = cls.study_lists(v)
             return 2 * len(dts) * len(levels)
-        return math.ceil(v["T"] / cls.slow_step(v) - 1e-9)
+        return nominal_steps(v["T"], cls.slow_step(v))
 
     @staticmethod
     def slow_step(v):

@@ -74,7 +74,7 @@ from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
 from ..restart import open_history, series_stem
-from ..stepper import ResponseControl, Stepper
+from ..stepper import ResponseControl, Stepper, nominal_steps
 
 __all__ = ["MODEL_FRACTION", "WearBallCase"]
 
@@ -117,7 +117,7 @@ class WearBallCase:
     @staticmethod
     def progress_total(v):
         """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
-        return math.ceil(v["T"] / v["dt"] - 1e-9)
+        return nominal_steps(v["T"], v["dt"])
 
     @staticmethod
     def validate(v):

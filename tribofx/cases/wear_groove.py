@@ -45,7 +45,7 @@ from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz, rigid_groove_halfwidth
 from ..restart import open_history, series_stem
-from ..stepper import Stepper
+from ..stepper import Stepper, nominal_steps
 
 __all__ = ["WearBallHalfspaceCase", "groove_mesh", "surface_data"]
 
@@ -122,7 +122,7 @@ class WearBallHalfspaceCase:
     @staticmethod
     def progress_total(v):
         """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
-        return math.ceil(v["T"] / v["dt"] - 1e-9)
+        return nominal_steps(v["T"], v["dt"])
 
     @classmethod
     def validate(cls, v):

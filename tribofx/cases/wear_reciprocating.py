@@ -90,7 +90,7 @@ from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import hertz
 from ..restart import open_history, series_stem
-from ..stepper import ReciprocatingCycle, Stepper
+from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from .wear import WearPinCase
 
 __all__ = ["WearReciprocatingCase", "cell_coordinates"]
@@ -188,7 +188,7 @@ class WearReciprocatingCase:
     @classmethod
     def progress_total(cls, v):
         """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
-        return math.ceil(v["cycles"] * cls.period(v) / v["dt"] - 1e-9)
+        return nominal_steps(v["cycles"] * cls.period(v), v["dt"])
 
     @staticmethod
     def validate(v):
