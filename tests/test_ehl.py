@@ -415,7 +415,7 @@ def test_mesh_convergence_h_min_p_max():
     the cavitation boundary can lower this, so the test asks for an observed
     order > 1.3 (ratio > 2.5) and a finest difference below 0.2 %.
     """
-    from tribofx.cases.ehl import mesh_convergence
+    from tribofx.cases.ehl_convergence import mesh_convergence
 
     rows = mesh_convergence(values(W=0.2, steps=1), levels=(0, 1, 2))
     for r in rows:

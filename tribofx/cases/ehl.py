@@ -19,8 +19,8 @@ lubrication surface to S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23); ``shear`` 
 Couette and Poiseuille tractions; ``model=linear`` the classical EHL model (with
 a small-strain layer); ``compare=linear`` (Fig. 22) or ``alpha`` (Fig. 23) runs
 the load sweep per variant, results prefixed ``finite_``/``linear_`` or
-``alpha0_``/``alpha0.5_``/``alpha1_``; :func:`mesh_convergence` gives h_min,
-p_max on mesh levels 0, 1, 2 at one load.
+``alpha0_``/``alpha0.5_``/``alpha1_``.  h_min and p_max on mesh levels 0, 1, 2
+at one load: :func:`tribofx.cases.ehl_convergence.mesh_convergence`.
 
 Defaults (mm, N, s, MPa): R = 10; H = 5, E = 10; t_c = 0.1, E_c = 100; ν = 0.45,
 neo-Hookean; μ = 1e-7 (0.1 Pa·s), U = 1000, μU = 1e-4 N/mm (0.1 N/m, Fig. 22);
@@ -28,7 +28,7 @@ W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
 
 Your own layer (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
 ``lubricated`` (Γ_l, the face under the cylinder) and ``bottom`` (bonded: u = 0),
-read and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other
+read, placed and checked by :mod:`tribofx.cases.ehl_user`; any other
 boundary is traction free.  A coated layer carries the cell groups ``layer``
 (modulus E) and ``coating`` (E_c), every cell in one of them; a mesh without
 these groups is one material (E, ν).  It replaces H, x_l (half the x extent of
@@ -51,7 +51,6 @@ converged load and speed, its (W, U) in ``series_points``).
 import math
 
 import numpy as np
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from .. import interrupt
@@ -60,7 +59,6 @@ from ..continuation import ConstantParameter, Continuation, HeldResponse
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
-from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
 from ..output import VTXSeries
 from ..params import InputError, Param
@@ -68,9 +66,10 @@ from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
 from ..references import rigid_clearance
 from ..restart import SweepJournal, sweep_stem
-from .film_setup import film_boundary, speed_list
+from .ehl_user import check_user_ends, read_user_layer
+from .film_setup import speed_list
 
-__all__ = ["EHLCylinderLayerCase", "cylinder_arc", "mesh_convergence"]
+__all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
 
 NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
 
@@ -144,11 +143,6 @@ class EHLCylinderLayerCase:
               "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
               "is at y = 0, its x extent centred below the cylinder axis"),
     )
-
-    #: boundary names a user's layer must carry (``mesh_file``)
-    USER_GROUPS = ("lubricated", "bottom")
-    #: cell groups of a user's coated layer: E and E_c (``mesh_file``; optional)
-    USER_CELLS = ("layer", "coating")
 
     #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
     COMPARE = {
@@ -224,16 +218,9 @@ class EHLCylinderLayerCase:
             return (law, {"mu": mu, "lmbda": lm})
 
         if v["mesh_file"]:
-            msh, ft, names, ct, cells = read_user_mesh(v["mesh_file"], comm, 2,
-                                                       cls.USER_GROUPS, cells=cls.USER_CELLS)
-            v = dict(v, x_l=cls._user_layer(msh, ft, names["lubricated"]))
-            cls.check_film_length(v["x_l"], v["R"])
-            if "coating" in cells and "layer" not in cells:
-                raise InputError(f"{v['mesh_file']!r} has the cell group 'coating' but no "
-                                 "'layer' (the layer's cells, modulus E)")
-            moduli = {"layer": v["E"], "coating": v["E_c"]}
-            materials = ({tag: mat(moduli[name]) for name, tag in cells.items()} if cells
-                         else mat(v["E"]))
+            msh, ct, ft, names, materials, x_l = read_user_layer(v, comm, mat)
+            v = dict(v, x_l=x_l)
+            cls.check_film_length(x_l, v["R"])
         else:
             msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
                                        H / 5, comm)
@@ -255,7 +242,7 @@ class EHLCylinderLayerCase:
                     alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
                     film_scale=h_r, speed_scale=v["U"])
         if v["mesh_file"]:
-            cls._check_user_ends(film, v)
+            check_user_ends(film, v)
         if v["cavitation"] == "jfo":
             film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
         else:
@@ -264,38 +251,6 @@ class EHLCylinderLayerCase:
         film.counterpart.offset.value[1] = h_r
         film.jfo_initial_guess()
         return layer, film, problem
-
-    @staticmethod
-    def _user_layer(msh, ft, tag):
-        """Move a user's layer: Γ_l (facets ``tag``) highest at y = 0, x extent centred at 0.
-
-        Returns x_l, half the x extent of Γ_l (mm).
-        """
-        comm = msh.comm
-        msh.topology.create_connectivity(1, 2)
-        x = msh.geometry.x
-        nodes = np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(tag), False).ravel())
-        lo = comm.allreduce(float(np.min(x[nodes, 0], initial=np.inf)), op=MPI.MIN)
-        hi = comm.allreduce(float(np.max(x[nodes, 0], initial=-np.inf)), op=MPI.MAX)
-        top = comm.allreduce(float(np.max(x[nodes, 1], initial=-np.inf)), op=MPI.MAX)
-        x[:, 0] -= 0.5 * (lo + hi)
-        x[:, 1] -= top
-        return 0.5 * (hi - lo)
-
-    @staticmethod
-    def _check_user_ends(film, v):
-        """Raise InputError unless the user's Γ_l is one open curve ending at X = ±x_l.
-
-        The pressure conditions (p = 0 at both ends, the JFO inlet at X = −x_l)
-        need it; a closed or split curve has 0 or more than 2 end points.
-        """
-        ends = film_boundary(film)
-        x_l = v["x_l"]
-        if len(ends) != 2 or not np.allclose(np.sort(ends[:, 0]), [-x_l, x_l],
-                                             atol=1e-9 * x_l):
-            raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} must be one open "
-                             f"curve ending at its two x extremes (has {len(ends)} end "
-                             f"point(s) at x = {', '.join(f'{e:.4g}' for e in ends[:, 0])})")
 
     @classmethod
     def load_control(cls, run, v, on_step=None, verbose=False, record=None, on_accept=None):
@@ -537,33 +492,3 @@ class EHLCylinderLayerCase:
                            f"coated layer, model = {name}")
         if len(var["speed"][0]) > 1:
             plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")
-
-
-def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORLD):
-    """Film measures at one load W for the mesh levels ``levels`` (all else as in ``v``).
-
-    Each level (element size 0.04/2^level mm along Γ_l) is loaded in ``steps``
-    increments (default ``v["steps"]``) to W (default ``v["W"]``).  Returns a list
-    of dicts (level, h_fine, num_dofs, h_min, h_central, p_max, newton_iterations)
-    and, from the second level on, the differences ``d_h_min``, ``d_p_max`` to the
-    previous level (relative to the finer value).
-    """
-    if v.get("mesh_file"):
-        raise InputError("mesh_convergence refines the built layer: not with mesh_file")
-    W = v["W"] if W is None else W
-    steps = v["steps"] if steps is None else steps
-    rows = []
-    for level in levels:
-        vv = dict(v, mesh=int(level), W=W, steps=steps)
-        run = EHLCylinderLayerCase.build(vv, comm)
-        loads, _ = EHLCylinderLayerCase.load_control(run, vv)
-        loads.march(W, steps, predictor=False)
-        m = EHLCylinderLayerCase.measures(run, vv)
-        row = {"level": int(level), "h_fine": 0.04 / 2 ** int(level),
-               "num_dofs": run[2].num_dofs, "h_min": m["h_min"], "h_central": m["h_central"],
-               "p_max": m["p_max"], "newton_iterations": list(loads.record)}
-        if rows:
-            for k in ("h_min", "p_max"):
-                row[f"d_{k}"] = abs(row[k] - rows[-1][k]) / abs(row[k])
-        rows.append(row)
-    return rows
