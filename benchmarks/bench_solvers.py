@@ -10,7 +10,8 @@ Two 3D problems of the chapter:
 
 Each (problem, mesh level, strategy) runs in its own process, so that its peak
 resident memory (``ru_maxrss``) is its own; the timings are the Newton solves
-only (assembly, kernels and linear solves), per Newton iteration.  The largest
+only (assembly, kernels and linear solves), per Newton iteration, with the
+time of their parts (PETSc events: ``EVENTS``) in the JSON.  The largest
 size is also run on 2 ranks (per-rank peak memory, speed-up).  Prints a table,
 the iterative/direct cost ratio per size (the crossover) and writes
 ``benchmarks/results/solvers.json``.
@@ -36,6 +37,12 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 
+#: PETSc events whose time (s, the largest rank's) a run reports: assembly of the
+#: Newton matrix, the linear solves and, within them, the preconditioner's set-up
+#: (AMG hierarchy, factorisations) and application, and the matrix-vector products
+EVENTS = ("SNESJacobianEval", "KSPSolve", "PCSetUp", "PCApply", "MatMult")
+
+
 def one(problem, level, strategy):
     """Run one configuration in this process; print one JSON line (rank 0)."""
     import resource
@@ -43,11 +50,13 @@ def one(problem, level, strategy):
     import dolfinx_solver  # noqa: F401
     import numpy as np
     from mpi4py import MPI
+    from petsc4py import PETSc
 
     from tribofx import solvers
     from tribofx.params import resolve
     from tribofx.references import hertz
 
+    PETSc.Log.begin()   # the time of the solve's parts (PETSc events, summed over the run)
     comm = MPI.COMM_WORLD
     reports = []
     t_solve = 0.0
@@ -92,6 +101,8 @@ def one(problem, level, strategy):
                   "factor_entries_effective": F.getMumpsInfog(29),
                   "factor_mb_total": F.getMumpsInfog(22)}
     factor["factorisations"] = getattr(prob.solver, "factorisations", None)
+    events = {name: round(comm.allreduce(PETSc.Log.Event(name).getPerfInfo()["time"],
+                                         op=MPI.MAX), 2) for name in EVENTS}
     newton = sum(r.iterations for r in reports)
     krylov = sum(r.linear_iterations for r in reports)
     rss = comm.gather(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, root=0)
@@ -102,6 +113,7 @@ def one(problem, level, strategy):
                           "krylov": krylov, "solve_s": t_solve,
                           "s_per_newton": t_solve / max(newton, 1),
                           "peak_mb_per_rank": [float(x) for x in np.round(rss, 1)],
+                          "events_s": events,
                           **factor}))
 
 

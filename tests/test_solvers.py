@@ -119,6 +119,12 @@ def test_iterative_and_lagged_groove_reduced_problem():
     print(f"lagged: {pl.solver.factorisations} factorisations for {sum(itl)} Newton iterations")
     assert 1 <= pl.solver.factorisations < sum(itl)
     assert pl.snes.getKSP().getType() == "gmres"
+    # the factor MUMPS made is the compressed one: BLR factors (ICNTL(35)) at the
+    # dropping tolerance CNTL(7) and BLR contribution blocks (ICNTL(37)), set under
+    # the problem's options prefix
+    F = pl.snes.getKSP().getPC().getFactorMatrix()
+    assert F.getMumpsIcntl(35) == 1 and F.getMumpsIcntl(37) == 1
+    assert F.getMumpsCntl(7) == pl.solver.blr
 
 
 @pytest.mark.mpi

@@ -10,7 +10,8 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   pattern that grows (new contact couplings) triggers one new analysis.  Block
   low-rank compression (MUMPS ICNTL(35), dropping tolerance CNTL(7)) is an option.
 * :class:`LaggedSolver` — GMRES preconditioned by the MUMPS LU (block low-rank,
-  dropping 1e-5) of an earlier Newton matrix, refactorised when a solve needs
+  dropping 1e-5, with BLR-compressed contribution blocks) of an earlier Newton
+  matrix, refactorised when a solve needs
   more than 30 GMRES iterations: the Newton iteration stays exact (GMRES to
   1e-10), the factorisations drop from one per Newton iteration to a few per run.
 * :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
@@ -35,17 +36,8 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   step at every size; the §5.3 groove on hexahedra 2.0 (14k), 2.1 (50k; 59 → 110
   GMRES iterations per Newton step).
 
-Memory on 2 ranks (the ball at 142k, iterative, first two Newton iterations;
-``/proc`` VmHWM per phase and PETSc ``-log_view_memory``): every process holds
-a fixed 107 MB (Python, DOLFINx, PETSc) before any mesh; building the problem
-adds 388 MB serially and 240/253 MB per rank; the Newton solves add 229 MB
-serially but 245/255 MB per rank.  The solve's share is GAMG's parallel
-Galerkin product: PETSc's default MPIAIJ PtAP ("scalable") keeps its
-intermediate data, 291 MB over the two ranks against 40 MB serially.  Peak per
-rank 592/615 MB against 724 MB serially (0.85).  ``PETSC_OPTIONS="-matptap_via
-allatonce"`` (read at start; GAMG's coarse products carry no options prefix, so
-``--petsc-option`` cannot reach them) lowers it to 487/506 MB (0.70) but makes
-the PtAP 10× slower (Newton solves 110 s against 38 s); not the default.
+Memory per rank on 2 ranks against one (both paths, measured by phase):
+``docs/architecture.md``, "Linear solvers".
 
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
@@ -163,9 +155,11 @@ class DirectSolver:
     Args:
         package: factorisation package (``mumps``).
         blr: MUMPS block low-rank factorisation with dropping tolerance ``blr``
-            (None: full-rank).  A compressed LU is inexact: Newton then converges
-            linearly at a rate ~``blr`` · cond; 1e-10 keeps it quadratic to the
-            stopping tolerances here.
+            (None: full-rank), the contribution blocks compressed too
+            (ICNTL(37) = 1: less memory, ``docs/architecture.md``).  A
+            compressed LU is inexact: Newton then converges linearly at a rate
+            ~``blr`` · cond; 1e-10 keeps it quadratic to the stopping
+            tolerances here.
     """
 
     name = "direct"
@@ -178,8 +172,9 @@ class DirectSolver:
         """PETSc options of the KSP and PC (without the problem's prefix)."""
         out = {"ksp_type": "preonly", "pc_type": "lu",
                "pc_factor_mat_solver_type": self.package}
-        if self.blr is not None:
-            out.update({"mat_mumps_icntl_35": 1, "mat_mumps_cntl_7": self.blr})
+        if self.blr is not None:   # BLR factors, and BLR-compressed contribution blocks
+            out.update({"mat_mumps_icntl_35": 1, "mat_mumps_cntl_7": self.blr,
+                        "mat_mumps_icntl_37": 1})
         return out
 
     def configure(self, problem):
@@ -274,7 +269,9 @@ class LaggedSolver(DirectSolver):
     The factor is a MUMPS block low-rank (BLR) LU with dropping tolerance ``blr``
     (default 1e-5): as a preconditioner it need not be exact, and the compressed
     factorisation and its triangular solves are cheaper; GMRES still solves to
-    ``rtol``.  Measured on 2 ranks (the §5.3 groove, initial contact and one
+    ``rtol``.  Compressing the contribution blocks as well cuts the peak memory
+    (the §5.3 groove at 230k: by 17 % serially, 26 % on 2 ranks) at no cost in
+    time.  Measured on 2 ranks (the §5.3 groove, initial contact and one
     implicit step, 14 Newton iterations each): 50k unknowns 51 s against 60–63 s
     full-rank; to T at 230k: ``docs/architecture.md``.
 
