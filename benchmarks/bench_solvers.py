@@ -20,7 +20,9 @@ the iterative/direct cost ratio per size (the crossover) and writes
         [--ranks2] [--strategies direct iterative blr1e-8] [--out FILE]
 
 ``blr<eps>``: MUMPS LU with block low-rank compression (ICNTL(35) = 1, dropping
-tolerance CNTL(7) = eps): its gain in time and memory against plain LU.
+tolerance CNTL(7) = eps, compressed contribution blocks ICNTL(37) = 1; the
+settings of ``DirectSolver(blr=eps)``): its gain in time and memory against
+plain LU.
 ``STRATEGY:key=value,...``: the strategy with extra PETSc options (no prefix),
 e.g. ``iterative:pc_fieldsplit_schur_fact_type=lower``.
 """
@@ -62,8 +64,9 @@ def one(problem, level, strategy):
     t_solve = 0.0
     if strategy.startswith("blr"):   # MUMPS LU with block low-rank compression, tolerance
         eps = float(strategy[3:] or 1e-10)
-        settings = solvers.run_settings("direct", {"mat_mumps_icntl_35": 1,
-                                                   "mat_mumps_cntl_7": eps})
+        blr = solvers.DirectSolver(blr=eps).options()   # the solver's own BLR settings
+        settings = solvers.run_settings("direct", {k: v for k, v in blr.items()
+                                                   if k.startswith("mat_mumps_")})
     else:   # "iterative:key=value,key=value": extra PETSc options (without prefix)
         name, _, extra = strategy.partition(":")
         settings = solvers.run_settings(name, dict(kv.split("=", 1)

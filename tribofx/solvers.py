@@ -11,9 +11,9 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   low-rank compression (MUMPS ICNTL(35), dropping tolerance CNTL(7)) is an option.
 * :class:`LaggedSolver` — GMRES preconditioned by the MUMPS LU (block low-rank,
   dropping 1e-5, with BLR-compressed contribution blocks) of an earlier Newton
-  matrix, refactorised when a solve needs
-  more than 30 GMRES iterations: the Newton iteration stays exact (GMRES to
-  1e-10), the factorisations drop from one per Newton iteration to a few per run.
+  matrix, refactorised when a solve needs more than 30 GMRES iterations: the
+  Newton iteration stays exact (GMRES to 1e-10), the factorisations drop from
+  one per Newton iteration to a few per run.
 * :class:`IterativeSolver` — GMRES preconditioned by a PETSc fieldsplit.  The
   *bulk* field (vector unknowns on a mesh of full dimension: displacements,
   shape mappings) is solved by one V-cycle of algebraic multigrid (GAMG with the
