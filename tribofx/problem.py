@@ -27,17 +27,14 @@ backtracking of :meth:`Problem._backtrack`, the linear-solver strategy of
 so ``-tribofx_<name>_snes_monitor`` or ``-tribofx_<name>_pc_type`` on the
 command line override them.
 
-Stopping test (per block, physical units): block ``i`` is converged when
-``max_k |r_k / w_k| ≤ atol_i``, with ``w`` the block's lumped row measure (or 1):
-nodal forces in N (N/mm in plane strain) for momentum rows, a gap in mm for
-contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
-every block is converged, never on one 2-norm over mixed units.
+The stopping test per block in physical units and the backtracking line search
+are :class:`tribofx.newton_control.NewtonControl`'s, which :class:`Problem` extends.
 """
 
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
-from dolfinx import fem, la
+from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
@@ -45,6 +42,7 @@ from ufl.algorithms import expand_derivatives
 from . import pattern, solvers
 from .checkpoint import assign_fields, field_arrays
 from .lifetimes import LIFETIMES, weak_callback
+from .newton_control import NewtonControl
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 
 __all__ = [
@@ -69,7 +67,7 @@ def _unique(items):
     return out
 
 
-class Problem:
+class Problem(NewtonControl):
     """Monolithic Newton problem of ``components`` (bodies and interfaces).
 
     Args:
@@ -192,30 +190,6 @@ class Problem:
         """Owned part of an assembled, reverse-scattered DOLFINx vector of ``ui``'s space."""
         return vec.array[:self._owned_size(ui)]
 
-    # -- set-up --------------------------------------------------------------
-    def _collect_tolerances(self, overrides):
-        tol = {}
-        for c in self.components:
-            for ui, t in c.tolerances().items():
-                tol.setdefault(id(ui), t)
-        for ui, t in overrides.items():
-            tol[id(ui)] = t
-        blocks, start = [], 0
-        for ui in self.u:
-            n = self._owned_size(ui)
-            t = tol.get(id(ui))
-            if t is None:
-                raise ValueError(f"no stopping tolerance for unknown {ui.name!r}")
-            w = None
-            if t.weight is not None:
-                vec = fem.assemble_vector(fem.form(t.weight, entity_maps=self._emaps()))
-                vec.scatter_reverse(la.InsertMode.add)
-                w = self._owned(vec, ui).copy()
-                w[w <= 0] = 1.0
-            blocks.append((ui.name, slice(start, start + n), t, w))
-            start += n
-        return blocks
-
     def _emaps(self):
         return _unique([m for c in self.components for m in c.entity_maps()]) or None
 
@@ -328,89 +302,6 @@ class Problem:
                 c.add_residual(b, self)
             b.assemblyBegin()
             b.assemblyEnd()
-
-    def _block_norms(self, b):
-        arr = b.getArray(readonly=True)
-        comm = b.comm.tompi4py()
-        out = []
-        for _, sl, _, w in self._tolerances:
-            r = arr[sl] if w is None else arr[sl] / w
-            out.append(comm.allreduce(float(np.max(np.abs(r), initial=0.0)), op=MPI.MAX))
-        return out
-
-    def _converged(self, snes, it, norms):
-        fnorm = norms[2]
-        self._report.linear_iterations = snes.getLinearSolveIterations()
-        b = snes.getFunction()[0]
-        blocks = self._block_norms(b)
-        self._report.residuals.append(fnorm)
-        self._report.blocks.append(blocks)
-        if it > 0:
-            dx = snes.getSolutionUpdate().getArray(readonly=True)
-            comm = b.comm.tompi4py()
-            self._report.increments.append(
-                [comm.allreduce(float(np.max(np.abs(dx[sl]), initial=0.0)), op=MPI.MAX)
-                 for _, sl, _, _ in self._tolerances])
-        if self._verbose and snes.comm.rank == 0:
-            parts = "  ".join(f"{n} {v:.2e} {t.unit}" for (n, _, t, _), v in
-                              zip(self._tolerances, blocks))
-            print(f"  {self.name} newton {it:2d}: |R| = {fnorm:.3e}   {parts}")
-        if not np.isfinite(fnorm):
-            return PETSc.SNES.ConvergedReason.DIVERGED_FNORM_NAN
-        if all(v <= t.atol for v, (_, _, t, _) in zip(blocks, self._tolerances)):
-            return PETSc.SNES.ConvergedReason.CONVERGED_FNORM_ABS
-        if it >= self.max_it:
-            return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
-        if self._stalled(self._report.residuals):
-            return PETSc.SNES.ConvergedReason.DIVERGED_DTOL
-        return PETSc.SNES.ConvergedReason.ITERATING
-
-    def _stalled(self, residuals):
-        """Whether the best residual has not halved over the last ``stall_window`` iterations."""
-        w = self.stall_window
-        if w is None or len(residuals) <= 2 * w:
-            return False
-        return min(residuals[-w:]) > 0.5 * min(residuals[:-w])
-
-    def _backtrack(self, x, y):
-        """Line search: the full Newton step unless it raises ‖R‖₂; then halve it.
-
-        Semismooth Newton on contact and friction can cycle between active sets;
-        halving the step while ‖R‖ does not decrease (Armijo, c = 1e-4) breaks
-        the cycle.  Near the solution the full step is accepted, which keeps the
-        local quadratic rate.  If no trial decreases ‖R‖ the full step is taken.
-        With ``line_search="admissible"`` a trial is accepted when every
-        component's ``admissible()`` holds and R is finite; if none is, the
-        smallest trial is taken.  The accepted trial's residual is cached, so SNES
-        does not assemble it again.
-        """
-        r0 = self.snes.getFunctionNorm()
-        xt, bt = x.duplicate(), x.duplicate()
-        alpha = 1.0
-        for _ in range(self.max_backtracks + 1):
-            xt.waxpy(-alpha, y, x)
-            self._cache = None
-            self._residual(self.snes, xt, bt)
-            self._cache = (xt.getArray(readonly=True).copy(), bt)
-            if self._accept(bt.norm(), r0, alpha):
-                if alpha != 1.0:
-                    y.scale(alpha)
-                xt.destroy()
-                return
-            alpha *= 0.5
-        if self.line_search == "admissible":  # the last (smallest) trial step
-            y.scale(2 * alpha)
-        else:  # Armijo found no decrease: the full step
-            self._cache = None
-            bt.destroy()
-        xt.destroy()
-
-    def _accept(self, r, r0, alpha):
-        """Line-search test of a trial with residual 2-norm ``r`` (``r0`` at the iterate)."""
-        ok = all(getattr(c, "admissible", lambda: True)() for c in self.components)
-        if self.line_search == "admissible":
-            return ok and np.isfinite(r)
-        return ok and r < (1 - 1e-4 * alpha) * r0
 
     # -- solve ---------------------------------------------------------------
     def solve(self, verbose=False):
