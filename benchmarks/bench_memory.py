@@ -1,9 +1,13 @@
-"""Memory per rank by phase: the §5.3 groove with the lagged MUMPS factor, serial and 2 ranks.
+"""Memory per rank by phase, serial and 2 ranks: the §5.3 groove or the Hertz ball.
 
 Where the resident memory of a run goes, and how much of it splits over ranks.
-The groove (``wear-ball-halfspace``, mesh level ``--mesh``) is built and its
-unworn contact solved (Newton with the lagged solver: GMRES on the MUMPS LU of
-an earlier Newton matrix); each process reports its resident memory (``/proc``
+``--problem groove``: the groove (``wear-ball-halfspace``, mesh level
+``--mesh``) is built and its unworn contact solved (Newton with the lagged
+solver: GMRES on the MUMPS LU of an earlier Newton matrix).  ``--problem
+ball``: the frictional Hertz sphere (``hertz dim=3 friction=0.3``, P1
+tetrahedra) is built and loaded in three approach steps with the iterative
+solver (GAMG/Schur fieldsplit; MUMPS columns then read 0).  ``--strategy``
+changes the solver.  Each process reports its resident memory (``/proc``
 VmRSS) and its peak so far (VmHWM) after the imports, after the build and after
 the solve, and MUMPS reports per rank the memory it allocated for the
 factorisation (INFO(16), MB), the memory it used (INFO(22)) and, summed over
@@ -12,14 +16,15 @@ process(es), so that every peak is its own.  The ratio printed last is the
 largest 2-rank peak over the serial peak (half the serial memory per rank would
 be 0.5).
 
-    .venv/bin/python benchmarks/bench_memory.py [--mesh 2] [--ranks 1 2]
-        [--petsc-option mat_mumps_icntl_37=0 ...]
+    .venv/bin/python benchmarks/bench_memory.py [--problem groove|ball] [--mesh 2]
+        [--strategy lagged] [--ranks 1 2] [--petsc-option mat_mumps_icntl_37=0 ...]
 
 ``--petsc-option KEY=VALUE`` (no prefix, repeatable) changes the factorisation,
 e.g. ``mat_mumps_icntl_37=0`` (contribution blocks not compressed) or
 ``mat_mumps_icntl_7=3`` (SCOTCH ordering).  Mesh 2 (230,742 unknowns) takes
 about 5 min serially and 4 min on 2 ranks and peaks near 6 GB per process;
-mesh 1 (50,010 unknowns) takes under a minute.  Results in
+mesh 1 (50,010 unknowns) takes under a minute; the ball at mesh 4 (141,590
+unknowns) takes about 5 min serially and 3 min on 2 ranks.  Results in
 ``docs/architecture.md`` ("Memory per rank").
 """
 
@@ -46,8 +51,8 @@ def _memory():
     return out["VmRSS"], out["VmHWM"]
 
 
-def one(mesh, options):
-    """Build and solve the unworn groove in this process; rank 0 prints one JSON line."""
+def one(problem, mesh, strategy, options):
+    """Build and solve one problem in this process; rank 0 prints one JSON line."""
     phases = {}
     import dolfinx_solver  # noqa: F401  (before dolfinx)
     from mpi4py import MPI
@@ -56,34 +61,60 @@ def one(mesh, options):
 
     phases["imports"] = _memory()
     from tribofx import solvers
-    from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
     from tribofx.params import resolve
 
     comm = MPI.COMM_WORLD
-    with solvers.run_settings("lagged", options):
-        v = Case.resolved(resolve(Case.params, {"mesh": str(mesh)}))
-        stepper, info = Case.build(v, comm)
-        phases["built"] = _memory()
-        t0 = time.perf_counter()
-        report = Case.initial_contact(stepper, info)
+    with solvers.run_settings(strategy, options):
+        if problem == "groove":
+            from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
+
+            v = Case.resolved(resolve(Case.params, {"mesh": str(mesh)}))
+            stepper, info = Case.build(v, comm)
+            prob = stepper.problem
+            phases["built"] = _memory()
+            t0 = time.perf_counter()
+            report = Case.initial_contact(stepper, info)
+            newton = report.iterations
+        else:   # the frictional Hertz sphere, three approach steps (as bench_solvers)
+            from tribofx.cases.hertz import HertzCase as Case
+            from tribofx.continuation import ConstantParameter
+            from tribofx.references import hertz
+
+            v = resolve(Case.params, {"dim": "3", "mesh": str(mesh), "friction": "0.3"})
+            Case.validate(v)
+            _, contact, prob = Case.build(v, comm)
+            phases["built"] = _memory()
+            a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
+            delta = ConstantParameter(contact.counterpart.offset, 2)
+            t0 = time.perf_counter()
+            newton = 0
+            for f in (0.3, 0.6, 1.0):
+                delta.set(f * a**2 / v["R"])
+                newton += prob.solve().iterations
+                prob.commit()
+                if f == 0.3:
+                    phases["first step"] = _memory()
         t_solve = comm.allreduce(time.perf_counter() - t0, op=MPI.MAX)
         phases["solved"] = _memory()
-        prob = stepper.problem
-        F = prob.snes.getKSP().getPC().getFactorMatrix()
-        mumps = {"allocated_mb": F.getMumpsInfo(16), "used_mb": F.getMumpsInfo(22)}
-        entries = F.getMumpsInfog(29)
+        mumps, entries = {"allocated_mb": 0, "used_mb": 0}, 0
+        if strategy != "iterative":
+            F = prob.snes.getKSP().getPC().getFactorMatrix()
+            mumps = {"allocated_mb": F.getMumpsInfo(16), "used_mb": F.getMumpsInfo(22)}
+            entries = F.getMumpsInfog(29)
     gathered = comm.gather({"phases": phases, "mumps": mumps}, root=0)
     if comm.rank == 0:
-        print(json.dumps({"mesh": mesh, "ranks": comm.size, "unknowns": prob.num_dofs,
-                          "options": options, "newton": report.iterations,
+        print(json.dumps({"problem": problem, "mesh": mesh, "strategy": strategy,
+                          "ranks": comm.size, "unknowns": prob.num_dofs,
+                          "options": options, "newton": newton,
                           "solve_s": t_solve, "factor_entries": entries,
                           "per_rank": gathered}))
 
 
-def launch(mesh, ranks, options):
+def launch(problem, mesh, strategy, ranks, options):
     """Run :func:`one` in fresh process(es); return its JSON, or a failure."""
     here = Path(__file__).resolve()
-    cmd = [sys.executable, str(here), "--one", "--mesh", str(mesh)]
+    cmd = [sys.executable, str(here), "--one", "--problem", problem, "--mesh", str(mesh),
+           "--strategy", strategy]
     cmd += [a for kv in options.items() for a in ("--petsc-option", "=".join(kv))]
     if ranks > 1:
         cmd = [str(Path(sys.executable).parent / "mpiexec"), "-n", str(ranks)] + cmd
@@ -98,18 +129,22 @@ def launch(mesh, ranks, options):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--one", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--problem", choices=("groove", "ball"), default="groove")
     parser.add_argument("--mesh", type=int, default=2)
+    parser.add_argument("--strategy", default=None,
+                        help="solver strategy (default: lagged for groove, iterative for ball)")
     parser.add_argument("--ranks", type=int, nargs="*", default=[1, 2])
     parser.add_argument("--petsc-option", action="append", default=[], metavar="KEY=VALUE")
     parser.add_argument("--out", default="benchmarks/results/memory.json")
     args = parser.parse_args()
     options = dict(kv.split("=", 1) for kv in args.petsc_option)
+    strategy = args.strategy or {"groove": "lagged", "ball": "iterative"}[args.problem]
     if args.one:
-        one(args.mesh, options)
+        one(args.problem, args.mesh, strategy, options)
         return
     rows = []
     for ranks in args.ranks:
-        r = launch(args.mesh, ranks, options)
+        r = launch(args.problem, args.mesh, strategy, ranks, options)
         rows.append(r)
         if "failed" in r:
             print(f"{ranks} rank(s): failed: {r['failed']}")

@@ -58,6 +58,7 @@ __all__ = [
     "DirectSolver",
     "IterativeSolver",
     "LaggedSolver",
+    "PRODUCT_CLEAR",
     "WORKSPACE_ERRORS",
     "choose",
     "grow_workspace",
@@ -66,6 +67,9 @@ __all__ = [
     "used",
 ]
 
+#: global PETSc option set by :class:`IterativeSolver`: matrix products free their
+#: intermediate data after the numeric product (``MatProductClear``)
+PRODUCT_CLEAR = "mat_product_clear"
 #: unknowns from which ``auto`` leaves LU on 3D problems (iterative on tetrahedra, else lagged)
 AUTO_THRESHOLD = 50_000
 STRATEGIES = ("direct", "lagged", "iterative", "auto")
@@ -405,6 +409,15 @@ class IterativeSolver:
         comm = problem.snes.comm
         ksp = problem.snes.getKSP()
         pc = ksp.getPC()
+        # GAMG's Galerkin products A_c = PᵀAP carry no options prefix, so this one
+        # option is global: without it each product keeps its intermediate data
+        # for a reuse that never comes (the hierarchy is rebuilt at every set-up);
+        # with it the ball at 142k on 2 ranks peaks 8-12 % lower; the set-up that
+        # holds the products is ~2 % of the solve time either way
+        # (docs/architecture.md, "Memory per rank")
+        opts = PETSc.Options()
+        if not opts.hasName(PRODUCT_CLEAR):
+            opts[PRODUCT_CLEAR] = None
 
         def index_set(ks, bs=1):
             idx = [problem.block_start(k) + np.arange(problem._owned_size(problem.u[k]))
