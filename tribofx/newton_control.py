@@ -134,4 +134,3 @@ class NewtonControl:
         if self.line_search == "admissible":
             return ok and np.isfinite(r)
         return ok and r < (1 - 1e-4 * alpha) * r0
-
