@@ -6,8 +6,9 @@ Where the resident memory of a run goes, and how much of it splits over ranks.
 solver: GMRES on the MUMPS LU of an earlier Newton matrix).  ``--problem
 ball``: the frictional Hertz sphere (``hertz dim=3 friction=0.3``, P1
 tetrahedra) is built and loaded in three approach steps with the iterative
-solver (GAMG/Schur fieldsplit; MUMPS columns then read 0).  ``--strategy``
-changes the solver.  Each process reports its resident memory (``/proc``
+solver (GAMG/Schur fieldsplit; MUMPS columns then read 0); both problems come
+from ``bench_solvers.build``.  ``--strategy`` changes the solver.  Each
+process reports its resident memory (``/proc``
 VmRSS) and its peak so far (VmHWM) after the imports, after the build and after
 the solve, and MUMPS reports per rank the memory it allocated for the
 factorisation (INFO(16), MB), the memory it used (INFO(22)) and, summed over
@@ -60,40 +61,22 @@ def one(problem, mesh, strategy, options):
     __import__("dolfinx")
 
     phases["imports"] = _memory()
+    from bench_solvers import build  # the same problems and steps as the solver table
+
     from tribofx import solvers
-    from tribofx.params import resolve
 
     comm = MPI.COMM_WORLD
     with solvers.run_settings(strategy, options):
-        if problem == "groove":
-            from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
-
-            v = Case.resolved(resolve(Case.params, {"mesh": str(mesh)}))
-            stepper, info = Case.build(v, comm)
-            prob = stepper.problem
-            phases["built"] = _memory()
-            t0 = time.perf_counter()
-            report = Case.initial_contact(stepper, info)
-            newton = report.iterations
-        else:   # the frictional Hertz sphere, three approach steps (as bench_solvers)
-            from tribofx.cases.hertz import HertzCase as Case
-            from tribofx.continuation import ConstantParameter
-            from tribofx.references import hertz
-
-            v = resolve(Case.params, {"dim": "3", "mesh": str(mesh), "friction": "0.3"})
-            Case.validate(v)
-            _, contact, prob = Case.build(v, comm)
-            phases["built"] = _memory()
-            a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
-            delta = ConstantParameter(contact.counterpart.offset, 2)
-            t0 = time.perf_counter()
-            newton = 0
-            for f in (0.3, 0.6, 1.0):
-                delta.set(f * a**2 / v["R"])
-                newton += prob.solve().iterations
-                prob.commit()
-                if f == 0.3:
-                    phases["first step"] = _memory()
+        prob, steps = build(problem, mesh, comm)
+        if problem == "groove":   # the unworn contact only
+            steps = steps[:1]
+        phases["built"] = _memory()
+        t0 = time.perf_counter()
+        newton = 0
+        for k, step in enumerate(steps):
+            newton += sum(r.iterations for r in step())
+            if k == 0 and len(steps) > 1:
+                phases["first step"] = _memory()
         t_solve = comm.allreduce(time.perf_counter() - t0, op=MPI.MAX)
         phases["solved"] = _memory()
         mumps, entries = {"allocated_mb": 0, "used_mb": 0}, 0

@@ -45,6 +45,43 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 EVENTS = ("SNESJacobianEval", "KSPSolve", "PCSetUp", "PCApply", "MatMult")
 
 
+def build(problem, level, comm):
+    """Build ``problem`` ("groove" or "ball") at mesh ``level``; return (Problem, steps).
+
+    ``steps``: callables, each solving one load or time step and returning its
+    Newton reports.  Groove: the unworn contact, then one implicit step of 100 s.
+    Ball: three approach steps (0.3, 0.6, 1 of the Hertz approach a²/R).
+    """
+    from tribofx.params import resolve
+
+    if problem == "groove":
+        from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
+
+        v = Case.resolved(resolve(Case.params, {"mesh": str(level)}))
+        stepper, info = Case.build(v, comm)
+        return stepper.problem, [lambda: [Case.initial_contact(stepper, info)],
+                                 lambda: stepper.step(100.0).reports]
+    from tribofx.cases.hertz import HertzCase as Case
+    from tribofx.continuation import ConstantParameter
+    from tribofx.references import hertz
+
+    v = resolve(Case.params, {"dim": "3", "mesh": str(level), "friction": "0.3"})
+    Case.validate(v)
+    _, contact, prob = Case.build(v, comm)
+    a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
+    delta = ConstantParameter(contact.counterpart.offset, 2)
+
+    def approach(f):
+        def step():
+            delta.set(f * a**2 / v["R"])
+            report = prob.solve()
+            prob.commit()
+            return [report]
+        return step
+
+    return prob, [approach(f) for f in (0.3, 0.6, 1.0)]
+
+
 def one(problem, level, strategy):
     """Run one configuration in this process; print one JSON line (rank 0)."""
     import resource
@@ -55,8 +92,6 @@ def one(problem, level, strategy):
     from petsc4py import PETSc
 
     from tribofx import solvers
-    from tribofx.params import resolve
-    from tribofx.references import hertz
 
     PETSc.Log.begin()   # the time of the solve's parts (PETSc events, summed over the run)
     comm = MPI.COMM_WORLD
@@ -72,31 +107,11 @@ def one(problem, level, strategy):
         settings = solvers.run_settings(name, dict(kv.split("=", 1)
                                                    for kv in extra.split(",") if kv))
     with settings:
-        if problem == "groove":
-            from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
-
-            v = Case.resolved(resolve(Case.params, {"mesh": str(level)}))
-            stepper, info = Case.build(v, comm)
-            prob = stepper.problem
-            t0 = time.perf_counter()
-            reports.append(Case.initial_contact(stepper, info))
-            reports += stepper.step(100.0).reports
-            t_solve = time.perf_counter() - t0
-        else:
-            from tribofx.cases.hertz import HertzCase as Case
-            from tribofx.continuation import ConstantParameter
-
-            v = resolve(Case.params, {"dim": "3", "mesh": str(level), "friction": "0.3"})
-            Case.validate(v)
-            _, contact, prob = Case.build(v, comm)
-            a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
-            delta = ConstantParameter(contact.counterpart.offset, 2)
-            t0 = time.perf_counter()
-            for f in (0.3, 0.6, 1.0):
-                delta.set(f * a**2 / v["R"])
-                reports.append(prob.solve())
-                prob.commit()
-            t_solve = time.perf_counter() - t0
+        prob, steps = build(problem, level, comm)
+        t0 = time.perf_counter()
+        for step in steps:
+            reports += step()
+        t_solve = time.perf_counter() - t0
     factor = {}
     if not strategy.startswith("iterative"):   # MUMPS: entries of the factors (all ranks)
         F = prob.snes.getKSP().getPC().getFactorMatrix()
