@@ -37,7 +37,7 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   GMRES iterations per Newton step).
 
 Memory per rank on 2 ranks against one (both paths, measured by phase):
-``docs/architecture.md``, "Linear solvers".
+``docs/architecture.md``, "Memory per rank".
 
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
@@ -412,8 +412,8 @@ class IterativeSolver:
         # GAMG's Galerkin products A_c = PᵀAP carry no options prefix, so this one
         # option is global: without it each product keeps its intermediate data
         # for a reuse that never comes (the hierarchy is rebuilt at every set-up);
-        # with it the ball at 142k on 2 ranks peaks 8-12 % lower; the set-up that
-        # holds the products is ~2 % of the solve time either way
+        # with it the ball at 142k on 2 ranks peaks 8-12 % lower, in the same time
+        # within this machine's noise
         # (docs/architecture.md, "Memory per rank")
         opts = PETSc.Options()
         if not opts.hasName(PRODUCT_CLEAR):
