@@ -52,6 +52,9 @@ from dolfinx.mesh import CellType
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from .near_nullspace import near_nullspace
+from .snes_lag import lag_preconditioner
+
 __all__ = [
     "AUTO_THRESHOLD",
     "STRATEGIES",
@@ -62,7 +65,6 @@ __all__ = [
     "WORKSPACE_ERRORS",
     "choose",
     "grow_workspace",
-    "rigid_body_modes",
     "run_settings",
     "used",
 ]
@@ -231,31 +233,6 @@ def grow_workspace(pc, cap=10_000):
     return percent
 
 
-def rigid_body_modes(V):
-    """Rigid-body modes of the vector space ``V`` (2D: 3, 3D: 6), on its owned dofs.
-
-    Returns an array (modes, owned dofs · bs) in the space's blocked layout:
-    translations e_i, rotations e_i × (x − x̄), with x the dof coordinates.
-    """
-    gdim = V.mesh.geometry.dim
-    n = V.dofmap.index_map.size_local
-    x = V.tabulate_dof_coordinates()[:n, :gdim]
-    comm = V.mesh.comm
-    centre = comm.allreduce(x.sum(axis=0)) / max(comm.allreduce(n), 1)
-    x = x - centre
-    modes = []
-    for i in range(gdim):
-        m = np.zeros((n, gdim))
-        m[:, i] = 1.0
-        modes.append(m)
-    pairs = [(0, 1)] if gdim == 2 else [(0, 1), (1, 2), (2, 0)]
-    for i, j in pairs:
-        m = np.zeros((n, gdim))
-        m[:, i], m[:, j] = -x[:, j], x[:, i]
-        modes.append(m)
-    return np.array([m.ravel() for m in modes])
-
-
 class LaggedSolver(DirectSolver):
     """GMRES preconditioned by the MUMPS LU of an earlier Newton matrix.
 
@@ -310,15 +287,15 @@ class LaggedSolver(DirectSolver):
     def configure(self, problem):
         """Keep the factor across Newton solves; a monitor decides when to refactorise."""
         snes = problem.snes
-        _lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
+        lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
 
         def monitor(snes, it, fnorm):
             # SNES turns a lag of -2 into -1 when it factorises at its next Jacobian
-            if self._lag == -2 and _lag_preconditioner(snes) == -1:
+            if self._lag == -2 and lag_preconditioner(snes) == -1:
                 self.factorisations += 1
             if it > 0 and snes.getKSP().getIterationNumber() > self.refactor_its:
-                _lag_preconditioner(snes, -2)
-            self._lag = _lag_preconditioner(snes)
+                lag_preconditioner(snes, -2)
+            self._lag = lag_preconditioner(snes)
 
         self._lag = -2
         snes.setMonitor(monitor)
@@ -330,8 +307,8 @@ class LaggedSolver(DirectSolver):
         if (grow_workspace(ksp.getPC()) is not None or problem.A is not self._pattern
                 or ksp.getConvergedReason() < 0):
             self._pattern = problem.A
-            _lag_preconditioner(snes, -2)
-        self._lag = _lag_preconditioner(snes)
+            lag_preconditioner(snes, -2)
+        self._lag = lag_preconditioner(snes)
 
     def describe(self, problem):
         """One line naming the strategy (recorded in ``summary.json``)."""
@@ -427,7 +404,8 @@ class IterativeSolver:
             iset.setBlockSize(bs)    # AMG aggregates nodes (blocks of gdim), not dofs
             return iset
 
-        nsp = self._near_nullspace(problem, bulk, comm)
+        nsp = near_nullspace([problem.u[k].function_space for k in bulk],
+                             [problem._owned_size(problem.u[k]) for k in bulk], comm)
         if rest:
             gdim = problem.u[bulk[0]].function_space.mesh.geometry.dim
             is0, is1 = index_set(bulk, gdim), index_set(rest)
@@ -444,65 +422,9 @@ class IterativeSolver:
         if self._split is not None and self._split[0] is None:
             problem.A.setNearNullSpace(self._split[2])
 
-    def _near_nullspace(self, problem, bulk, comm):
-        """Rigid-body modes of each bulk unknown, in the bulk field's layout."""
-        sizes = [problem._owned_size(problem.u[k]) for k in bulk]
-        vecs = []
-        for j, k in enumerate(bulk):
-            for mode in rigid_body_modes(problem.u[k].function_space):
-                arr = np.zeros(sum(sizes))
-                s = sum(sizes[:j])
-                arr[s:s + sizes[j]] = mode
-                v = PETSc.Vec().createMPI((sum(sizes), PETSc.DECIDE), comm=comm)
-                v.setArray(arr)
-                vecs.append(v)
-        # MatNullSpaceCreate needs an orthonormal basis
-        basis = _orthonormalise(vecs)
-        return PETSc.NullSpace().create(vectors=basis, comm=comm)
-
     def describe(self, problem):
         """One line naming the strategy and its fields (recorded in ``summary.json``)."""
         bulk, rest = bulk_fields(problem)
         names = lambda ks: "+".join(problem.u[k].name for k in ks) or "-"  # noqa: E731
         return (f"iterative (GMRES rtol {self.rtol:g}; bulk {names(bulk)}: {self.amg}; "
                 f"interface {names(rest)}: Schur selfp LU; {problem.num_dofs} unknowns)")
-
-
-def _lag_preconditioner(snes, lag=None):
-    """Set (``lag`` given) and return SNES's preconditioner lag.
-
-    −1: keep the preconditioner; −2: rebuild it at the next Jacobian, then −1.
-    petsc4py 3.25 has no binding of SNESSet/GetLagPreconditioner: they are called
-    from the PETSc library petsc4py loaded (PetscInt is ``PETSc.IntType``).
-    """
-    import ctypes
-
-    global _libpetsc
-    if _libpetsc is None:
-        with open("/proc/self/maps") as f:
-            path = next(ln.split()[-1] for ln in f if "/libpetsc.so" in ln)
-        _libpetsc = ctypes.CDLL(path)
-    cint = ctypes.c_int64 if np.dtype(PETSc.IntType).itemsize == 8 else ctypes.c_int32
-    handle = ctypes.c_void_p(snes.handle)
-    if lag is not None and _libpetsc.SNESSetLagPreconditioner(handle, cint(lag)) != 0:
-        raise RuntimeError("SNESSetLagPreconditioner failed")
-    out = cint()
-    if _libpetsc.SNESGetLagPreconditioner(handle, ctypes.byref(out)) != 0:
-        raise RuntimeError("SNESGetLagPreconditioner failed")
-    return out.value
-
-
-_libpetsc = None
-
-
-def _orthonormalise(vecs):
-    """Orthonormalise PETSc vectors by modified Gram–Schmidt (dropping dependent ones)."""
-    out = []
-    for v in vecs:
-        for q in out:
-            v.axpy(-v.dot(q), q)
-        n = v.norm()
-        if n > 1e-12:
-            v.scale(1.0 / n)
-            out.append(v)
-    return out
