@@ -23,7 +23,7 @@ demo: setup
 # which run next, alone; then the tests marked `mpi` again on 2 processes
 XDIST    := -n 2 --dist loadfile
 test: setup
-	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" $(PYTEST_ARGS)
+	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" --durations=15 $(PYTEST_ARGS)
 	$(PY) -m pytest -q -m mpiexec $(PYTEST_ARGS)
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
