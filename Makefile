@@ -5,9 +5,9 @@ MPIEXEC  := $(VENV)/bin/mpiexec
 export UCX_TLS ?= self,sm,tcp
 export OMP_NUM_THREADS ?= 1
 STAMP    := $(VENV)/.tribofx-installed
-SOURCES  := pyproject.toml $(wildcard cpp_kernels/CMakeLists.txt cpp_kernels/src/*)
+SOURCES  := pyproject.toml constraints.txt $(wildcard cpp_kernels/CMakeLists.txt cpp_kernels/src/*)
 
-.PHONY: setup demo test test-slow lint bench clean
+.PHONY: setup demo test test-slow lint bench clean lock
 
 setup: $(STAMP)
 
@@ -45,6 +45,15 @@ bench: setup
 	$(PY) benchmarks/bench_wear_ball.py
 	$(PY) benchmarks/bench_wear_groove.py
 	$(PY) benchmarks/bench_two_body.py
+
+# the newest versions into a fresh venv, frozen into constraints.txt (then run make test)
+lock:
+	rm -rf .venv-lock
+	VENV=.venv-lock UNLOCKED=1 bash .ci/setup.sh
+	{ sed -n '/^#/p' constraints.txt; .venv-lock/bin/pip freeze --all --exclude-editable; } \
+	  > constraints.txt.new
+	mv constraints.txt.new constraints.txt
+	rm -rf .venv-lock
 
 clean:
 	rm -rf build results $(VENV)

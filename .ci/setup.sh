@@ -41,8 +41,11 @@ if [ ! -x "$VENV/bin/python" ]; then
   echo "setup: creating $VENV with $PY"
   "$PY" -m venv "$VENV"
 fi
-"$VENV/bin/python" -m pip install -q --upgrade pip
-"$VENV/bin/python" -m pip install -q "dolfinx-solver-real==0.11.0.post0" gmsh meshio matplotlib \
-  tqdm pytest pytest-xdist ruff nanobind scikit-build-core numpy cmake ninja
-"$VENV/bin/python" -m pip install -q --no-build-isolation -e .
+# the exact versions of constraints.txt (UNLOCKED=1: the newest, for `make lock`)
+LOCK=(-c constraints.txt)
+[ "${UNLOCKED:-0}" = 1 ] && LOCK=()
+"$VENV/bin/python" -m pip install -q "${LOCK[@]}" --upgrade pip
+"$VENV/bin/python" -m pip install -q "${LOCK[@]}" "dolfinx-solver-real==0.11.0.post0" gmsh meshio \
+  matplotlib tqdm pytest pytest-xdist ruff nanobind scikit-build-core numpy cmake ninja
+"$VENV/bin/python" -m pip install -q "${LOCK[@]}" --no-build-isolation -e .
 UCX_TLS=self,sm,tcp "$VENV/bin/python" -c "import dolfinx_solver, dolfinx, gmsh, tribofx._cpp; print('setup: dolfinx', dolfinx.__version__, 'gmsh', gmsh.__version__, 'tribofx ok')"

@@ -41,6 +41,7 @@ from ufl.algorithms import expand_derivatives
 
 from . import pattern, solvers
 from .checkpoint import assign_fields, field_arrays
+from .krylov_guard import reason_name
 from .lifetimes import LIFETIMES, weak_callback
 from .newton_control import NewtonControl
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
@@ -324,12 +325,14 @@ class Problem(NewtonControl):
             self.snes.solve(None, self._x)
             self._set_unknowns(self._x)
         except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step
-            failure = f"PETSc error {err.ierr}"
+            failure = f"PETSc error {err.ierr}{self._linear_state()}"
         finally:
             if self._cache is not None:
                 self._cache[1].destroy()
             self._cache = None
         reason = -1 if failure else self.snes.getConvergedReason()
+        if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
+            failure = f"DIVERGED_LINEAR_SOLVE{self._linear_state()}"
         report = self._report
         report.reason = int(reason)
         report.iterations = self.snes.getIterationNumber()
@@ -346,6 +349,25 @@ class Problem(NewtonControl):
             ui.x.scatter_forward()
         self.refresh()
         return report
+
+    def _linear_state(self):
+        """Describe the last linear solve's failure for an error message ('' if it converged).
+
+        ``: KSP <type> <reason> after <n> iterations``, and whether its LU
+        fallback (:mod:`tribofx.krylov_guard`) failed too.
+        """
+        ksp = self.snes.getKSP()
+        reason = ksp.getConvergedReason()
+        events = self._report.linear_fallbacks if self._report is not None else []
+        failed = [e for e in events if e["direct"] == "failed"]
+        if failed:
+            e = failed[-1]
+            return (f": KSP {e['krylov']} {e['reason']} after {e['iterations']} iterations, "
+                    f"LU fallback failed")
+        if reason >= 0:
+            return ""
+        its = ksp.getIterationNumber()
+        return f": KSP {ksp.getType()} {reason_name(reason)} after {its} iterations"
 
     @staticmethod
     def _reason_name(reason):

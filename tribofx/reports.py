@@ -44,6 +44,7 @@ class NewtonReport:
     reason: int = 0
     linear_iterations: int = 0
     names: list = field(default_factory=list)
+    linear_fallbacks: list = field(default_factory=list)
 
     def rates(self, floor=1e-13):
         """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""

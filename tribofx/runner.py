@@ -91,6 +91,12 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
                 prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:
                 record.data["linear_solver"] = dict(solvers.used)
+                fallbacks = {k: list(v) for k, v in solvers.fallbacks.items() if v}
+                if fallbacks:
+                    record.data["linear_fallbacks"] = fallbacks
+                    n = sum(map(len, fallbacks.values()))
+                    record.warn(f"{n} Krylov solves failed and were solved by LU "
+                                f"(linear_fallbacks)")
     except NewtonDivergence as err:
         status = f"failed: {err}"
         prob = getattr(err, "problem", None)

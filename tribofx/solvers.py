@@ -52,6 +52,7 @@ from dolfinx.mesh import CellType
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from .krylov_guard import KrylovGuard
 from .near_nullspace import near_nullspace
 from .snes_lag import lag_preconditioner
 
@@ -64,6 +65,7 @@ __all__ = [
     "PRODUCT_CLEAR",
     "WORKSPACE_ERRORS",
     "choose",
+    "fallbacks",
     "grow_workspace",
     "run_settings",
     "used",
@@ -79,6 +81,9 @@ STRATEGIES = ("direct", "lagged", "iterative", "auto")
 _run = {"strategy": "auto", "options": {}}
 #: ``{problem name: strategy description}`` of the problems built in this run
 used = {}
+#: ``{problem name: [event, ...]}``: Krylov solves of this run's problems that failed and
+#: were solved by LU (:class:`tribofx.krylov_guard.KrylovGuard`; shared lists)
+fallbacks = {}
 
 
 @contextmanager
@@ -102,6 +107,7 @@ def run_settings(strategy="auto", petsc_options=None):
     for k, v in verbatim.items():
         opts[k] = v
     used.clear()
+    fallbacks.clear()
     try:
         yield
     finally:
@@ -133,6 +139,8 @@ def choose(problem):
         return solver
     solver = {"iterative": IterativeSolver, "lagged": LaggedSolver}.get(strategy, DirectSolver)()
     used[problem.name] = solver.describe(problem)
+    if hasattr(solver, "guard"):
+        fallbacks[problem.name] = solver.guard.fallbacks
     return solver
 
 
@@ -272,6 +280,7 @@ class LaggedSolver(DirectSolver):
                                                                    restart, max_it)
         self.factorisations = 0
         self._pattern = None
+        self.guard = KrylovGuard(package=package)
 
     def options(self, problem=None):
         """PETSc options of the KSP and PC (without the problem's prefix)."""
@@ -279,7 +288,6 @@ class LaggedSolver(DirectSolver):
         out.update({"ksp_type": "gmres", "ksp_gmres_restart": self.restart,
                     "ksp_pc_side": "right", "ksp_rtol": self.rtol, "ksp_atol": 0.0,
                     "ksp_max_it": self.max_it, "ksp_gmres_modifiedgramschmidt": None,
-                    "ksp_error_if_not_converged": True,
                     # the lag (set in configure) holds across Newton solves
                     "snes_lag_preconditioner_persists": True})
         return out
@@ -288,14 +296,19 @@ class LaggedSolver(DirectSolver):
         """Keep the factor across Newton solves; a monitor decides when to refactorise."""
         snes = problem.snes
         lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
+        self.guard.install(problem)
 
         def monitor(snes, it, fnorm):
             # SNES turns a lag of -2 into -1 when it factorises at its next Jacobian
             if self._lag == -2 and lag_preconditioner(snes) == -1:
                 self.factorisations += 1
-            if it > 0 and snes.getKSP().getIterationNumber() > self.refactor_its:
+            fell_back = len(self.guard.fallbacks) > self._seen
+            self._seen = len(self.guard.fallbacks)
+            if it > 0 and (fell_back or snes.getKSP().getIterationNumber() > self.refactor_its):
                 lag_preconditioner(snes, -2)
             self._lag = lag_preconditioner(snes)
+
+        self._seen = 0
 
         self._lag = -2
         snes.setMonitor(monitor)
@@ -336,6 +349,7 @@ class IterativeSolver:
     def __init__(self, rtol=1e-10, restart=300, max_it=3000):
         self.rtol, self.restart, self.max_it = rtol, restart, max_it
         self._split = None
+        self.guard = KrylovGuard()
 
     def _amg_options(self, pre):
         # Chebyshev on SOR sweeps: on the graded tensor grid of the groove (cell aspect
@@ -357,8 +371,7 @@ class IterativeSolver:
         # right preconditioning: rtol bounds the true residual of the Newton system
         out = {"ksp_type": "gmres", "ksp_gmres_restart": self.restart, "ksp_pc_side": "right",
                "ksp_rtol": self.rtol, "ksp_atol": 0.0, "ksp_max_it": self.max_it,
-               "ksp_gmres_modifiedgramschmidt": None,
-               "ksp_error_if_not_converged": True}
+               "ksp_gmres_modifiedgramschmidt": None}
         out.update({"pc_type": "fieldsplit", "pc_fieldsplit_type": "schur",
                     # upper: S solve, then one bulk V-cycle per GMRES iteration ("full"
                     # applies the V-cycle twice): ball 24.5k 22 % and groove 14k 31 %
@@ -416,6 +429,7 @@ class IterativeSolver:
         else:     # the options (Problem) already made the PC an AMG on the whole matrix
             self._split = (None, None, nsp)
         ksp.setFromOptions()
+        self.guard.install(problem)
 
     def prepare(self, problem):
         """Near-nullspace on the current matrix (a grown pattern is a new matrix)."""
