@@ -61,8 +61,32 @@ class NewtonControl:
             out.append(comm.allreduce(float(np.max(np.abs(r), initial=0.0)), op=MPI.MAX))
         return out
 
+    def _accept_iterate(self, snes):
+        """Let components with a Newton-iterate history accept the current iterate.
+
+        (The two-body pairing's hysteresis reference.)  If one moved on, the
+        residual is evaluated again; returns its 2-norm, or None if nothing changed.
+        """
+        movers = [c for c in self.components if hasattr(c, "accept_iterate")]
+        if not movers:
+            return None
+        x = snes.getSolution()
+        self._set_unknowns(x)
+        changed = [c.accept_iterate() for c in movers]
+        if not any(changed):
+            return None
+        b = snes.getFunction()[0]
+        self._cache = None
+        self._evaluate(snes, x, b)
+        fnorm = b.norm()
+        snes.setFunctionNorm(fnorm)
+        return fnorm
+
     def _converged(self, snes, it, norms):
         fnorm = norms[2]
+        if it > 0:
+            moved = self._accept_iterate(snes)
+            fnorm = fnorm if moved is None else moved
         self._report.linear_iterations = snes.getLinearSolveIterations()
         b = snes.getFunction()[0]
         blocks = self._block_norms(b)

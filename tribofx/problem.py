@@ -318,6 +318,7 @@ class Problem(NewtonControl):
         self._verbose = verbose
         self._cache = None
         failure = None
+        self._reset_iterates()
         try:
             self._get_unknowns(self._x)
             self._grow_pattern()
@@ -369,6 +370,12 @@ class Problem(NewtonControl):
         its = ksp.getIterationNumber()
         return f": KSP {ksp.getType()} {reason_name(reason)} after {its} iterations"
 
+    def _reset_iterates(self):
+        """Components with a Newton-iterate history start from their committed one."""
+        for c in self.components:
+            if hasattr(c, "reset_iterate"):
+                c.reset_iterate()
+
     @staticmethod
     def _reason_name(reason):
         names = {v: k for k, v in vars(PETSc.SNES.ConvergedReason).items()
@@ -404,6 +411,7 @@ class Problem(NewtonControl):
     def restore(self, state):
         """Restore a state from :meth:`state` and refresh the kernel data."""
         assign_fields(self.state_fields(), state)
+        self._reset_iterates()
         self.refresh()
 
     def commit(self):

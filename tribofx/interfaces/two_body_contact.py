@@ -132,7 +132,10 @@ class TwoBodyContact:
         self._mseg_local = seg
         self._master = None
         self._old = None
-        self._facet_prev = None
+        # hysteresis reference of the pairing (segments, facet per slave node): the
+        # committed state's, moved on at each accepted Newton iterate (accept_iterate)
+        self._facet_committed = None
+        self._facet_ref = None
         self._cache = None
         self._post = None
 
@@ -175,17 +178,25 @@ class TwoBodyContact:
                 or not np.array_equal(self._segments, seg):
             surface = MasterSurface if d == 2 else MasterSurface3
             self._master, self._segments = surface(np.ascontiguousarray(xm), seg), seg
-            self._facet_prev = None
         else:
             self._master.refit(np.ascontiguousarray(xm))
         xs = self._X + self.slave.u.x.array.reshape(-1, d)[self._bulk]
         proj = self._master.project(np.ascontiguousarray(xs))
-        prev = self._facet_prev
-        if prev is not None and len(prev) == len(xs):
-            # keep the facet of the previous evaluation while the node still projects
-            # onto it (its coordinates within STICKY of the facet) at no more than the
-            # nearest distance plus STICKY of its size: at a kink of the deformed master
-            # the nearest facet jumps between the neighbours of a vertex and Newton cycles
+        ref = self._facet_ref
+        prev = None
+        if ref is not None and ref[0].shape == seg.shape \
+                and np.array_equal(ref[0], seg) and len(ref[1]) == len(xs):
+            prev = ref[1]
+        if prev is not None:
+            # keep the reference facet while the node still projects onto it (its
+            # coordinates within STICKY of the facet) at no more than the nearest
+            # distance plus STICKY of its size: at a kink of the deformed master the
+            # nearest facet jumps between the neighbours of a vertex and Newton cycles.
+            # The reference is the pairing of the last accepted Newton iterate (the
+            # committed state's at the start of a solve and after restore()), never that
+            # of the last evaluation: line-search trials, Taylor perturbations and
+            # output evaluations do not move it, so the residual is a function of the
+            # state and of this reference, which the cache key carries
             xi, dist, size = facets.plane_coordinates(xs, xm[seg[prev]])
             bary = np.c_[1 - xi.sum(axis=1), xi]
             keep = np.all(bary > -self.STICKY, axis=1) & \
@@ -195,14 +206,14 @@ class TwoBodyContact:
             proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
             old = proj["xi"].reshape(len(xs), d - 1)
             proj["xi"] = np.where(keep[:, None], inside, old).reshape(proj["xi"].shape)
-        self._facet_prev = proj["facet"].copy()
         return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
     def _state_key(self):
         return [self.slave.u.x.array, self.master.u.x.array, self.lam_n.x.array] + \
             ([self.lam_t.x.array] if self.lam_t is not None else []) + \
-            (list(self._old) if self._old is not None else [])
+            (list(self._old) if self._old is not None else []) + \
+            (list(self._facet_ref) if self._facet_ref is not None else [])
 
     def _kernel(self):
         """Kernel data of the owned slave nodes at the current state, computed once per state.
@@ -398,13 +409,35 @@ class TwoBodyContact:
         if self._old is None:
             _, keys, seg, _, p = self._pairs()
             self._old = (keys[seg[p["facet"]]], p["xi"].copy())
+            self._facet_committed = self._facet_ref = (seg.copy(), p["facet"].copy())
             return
         k = self._kernel()
+        self._facet_committed = self._facet_ref = (k["seg"].copy(), k["facet"].copy())
         d = self.gdim
         # the kernel's own (unclamped) coordinates: the material point is x̄ itself, so
         # the slip restarts from zero also for a node slightly off its facet
         xi, _, _ = facets.plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
         self._old = (k["keys"][k["seg"][k["facet"]]], xi[:, 0] if d == 2 else xi)
+
+    def reset_iterate(self):
+        """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
+        self._facet_ref = self._facet_committed
+
+    def accept_iterate(self):
+        """Move the pairing's reference to the current (accepted) Newton iterate.
+
+        Returns whether any slave node changed facet (on any rank): the residual at
+        the iterate is then evaluated again, so that it and the Jacobian share the
+        reference.
+        """
+        if self._old is None:
+            return False
+        k = self._kernel()
+        ref = self._facet_ref
+        same = ref is not None and ref[0].shape == k["seg"].shape and np.array_equal(
+            ref[0], k["seg"]) and np.array_equal(ref[1], k["facet"])
+        self._facet_ref = (k["seg"].copy(), k["facet"].copy())
+        return not self.slave.mesh.comm.allreduce(same, op=MPI.LAND)
 
     # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
     def dissipation_increment(self):
