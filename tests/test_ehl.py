@@ -383,6 +383,9 @@ def test_compare_variants_in_one_run(tmp_path):
             assert r[f"{n}_steps_W"] == pytest.approx([0.1, 0.2], rel=1e-5)
             assert len(r[f"{n}_steps_p_max"]) == 2 and len(r[f"{n}_steps_h_min"]) == 2
         assert "h_min" not in r  # only prefixed per-variant results
+        # each variant's problem has its own options prefix tribofx_<name>_, named for it
+        assert set(s["linear_solver"]) == {
+            "ehl_cylinder_" + n.replace(".", "_") for n in names}
         if MPI.COMM_WORLD.rank == 0:
             assert (out / plot).is_file()
             saved = json.loads((out / "summary.json").read_text())

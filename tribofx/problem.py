@@ -31,6 +31,8 @@ The stopping test per block in physical units and the backtracking line search
 are :class:`tribofx.newton_control.NewtonControl`'s, which :class:`Problem` extends.
 """
 
+import re
+
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
 import ufl
@@ -52,7 +54,18 @@ __all__ = [
     "NewtonReport",
     "Problem",
     "convergence_orders",
+    "options_name",
 ]
+
+
+def options_name(base, variant=""):
+    """Problem name of ``variant`` (e.g. "no-shear") of a case: ``base_no_shear``.
+
+    The name is the options prefix ``tribofx_<name>_`` of the problem's SNES, KSP
+    and PC; characters other than letters, digits and '_' become '_'.
+    """
+    name = f"{base}_{variant}" if variant else base
+    return re.sub(r"[^A-Za-z0-9_]", "_", name)
 
 
 def _nonzero_or_none(a):
@@ -76,7 +89,10 @@ class Problem(NewtonControl):
         unknowns: the subset of the components' unknowns to solve for (default:
             all, in component order); the others enter as data.  A staggered
             scheme builds one Problem per subset.
-        name: options prefix ``tribofx_<name>_`` of the SNES, KSP and PC.
+        name: options prefix ``tribofx_<name>_`` of the SNES, KSP and PC; a second
+            problem of the same name in one process gets ``<name>2``, a third
+            ``<name>3`` (the cases give each variant its own name,
+            :func:`options_name`, so that a command-line option reaches the one meant).
         solver: linear-solver strategy (default: the run's, :func:`tribofx.solvers.choose`).
         max_it: maximum Newton iterations.
         max_backtracks: step halvings of the backtracking line search (0: full steps).

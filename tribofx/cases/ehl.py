@@ -63,7 +63,7 @@ from ..obstacles import rigid_cylinder, rigid_surface_mesh
 from ..output import VTXSeries
 from ..params import InputError, Param
 from ..positions import parabolic_vertex
-from ..problem import NewtonDivergence, Problem
+from ..problem import NewtonDivergence, Problem, options_name
 from ..references import rigid_clearance
 from ..restart import SweepJournal, sweep_stem
 from .ehl_user import check_user_ends, read_user_layer
@@ -203,8 +203,11 @@ class EHLCylinderLayerCase:
         return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False):
+    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
         """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
+
+        ``name``: the problem's name (options prefix ``tribofx_<name>_``; a variant of
+        ``compare`` is ``ehl_cylinder_<variant>``).
 
         ``alpha = 0`` uses S = P(γ_l) unless ``intermediate`` (then the general S_α
         kinematics with α = 0, for checking that they coincide).  ``mesh_file``:
@@ -247,7 +250,7 @@ class EHLCylinderLayerCase:
             film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
         else:
             film.add_pressure_bc()
-        problem = Problem([layer, film], name="ehl_cylinder", max_it=25)
+        problem = Problem([layer, film], name=name, max_it=25)
         film.counterpart.offset.value[1] = h_r
         film.jfo_initial_guess()
         return layer, film, problem
@@ -305,10 +308,10 @@ class EHLCylinderLayerCase:
         j-th speed; its increments; the inner position search) are written after
         every converged load and speed, and a resumed variant continues there.
         """
-        run = cls.build(v)
+        name = prefix[:-1] or v["model"]
+        run = cls.build(v, name=options_name("ehl_cylinder", prefix[:-1]))
         interrupt.arm()   # gmsh resets the SIGTERM handler
         layer, film, problem = run
-        name = prefix[:-1] or v["model"]
         journal = journal or SweepJournal(None, layer.mesh.comm, v)
         rec = journal.records(name, steps=[], speed=[], profiles=[], its=[], points=[])
         steps, speed, profiles, its, points = (rec[k] for k in (

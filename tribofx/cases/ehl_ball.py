@@ -120,7 +120,7 @@ from ..obstacles import rigid_plane
 from ..output import VTXSeries
 from ..params import InputError, Param
 from ..positions import oscillation_indicator, paraboloid_vertex
-from ..problem import NewtonDivergence, Problem
+from ..problem import NewtonDivergence, Problem, options_name
 from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal, sweep_stem
 from .ehl_ball_paths import BallPaths, Z
@@ -240,8 +240,12 @@ class EHLBallCase(BallPaths):
         film.set_scales(p_c=p0, eps=eps, film_scale=h_c, speed_scale=U)
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring)."""
+    def build(cls, v, comm=MPI.COMM_WORLD, name="ehl_ball"):
+        """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
+
+        ``name``: the problem's name, options prefix ``tribofx_<name>_`` (a variant
+        of ``compare=all`` is ``ehl_ball_full``, ``ehl_ball_no_shear``, ``ehl_ball_linear``).
+        """
         a = cls.hertz_contact(v).a
         th = math.radians(v["theta_l"])
         if v["mesh_file"]:
@@ -270,7 +274,7 @@ class EHLBallCase(BallPaths):
         else:
             z_cap = cap_height(v["R"], th)
             film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
-        problem = Problem([ball, film], name="ehl_ball", max_it=25)
+        problem = Problem([ball, film], name=name, max_it=25)
         return ball, film, problem
 
     @staticmethod
@@ -345,7 +349,7 @@ class EHLBallCase(BallPaths):
         restores them and continues on the same sequence of steps.
         """
         key = name or vv["model"]
-        run = cls.build(vv)
+        run = cls.build(vv, name=options_name("ehl_ball", name))
         interrupt.arm()   # gmsh resets the SIGTERM handler
         film, problem = run[1], run[2]
         record.data["num_dofs"] = problem.num_dofs

@@ -95,7 +95,7 @@ from .. import interrupt
 from ..output import VTXSeries
 from ..params import InputError, Param, number_list
 from ..plots import plot_oring
-from ..problem import NewtonDivergence
+from ..problem import NewtonDivergence, options_name
 from ..restart import SweepJournal, sweep_stem
 from .oring_seal import axial_balance, build, solve_to
 
@@ -187,7 +187,8 @@ class EHLORingCase:
             points, states, measures = rec["points"], rec["states"], rec["measures"]
             done = len(points)
             t0 = time.perf_counter() - rec["wall_time"]
-            prob = build(v, math.copysign(max(abs(Us), 1000.0), Us))
+            prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
+                         name=options_name("ehl_oring", f"{tag}stroke"))
             interrupt.arm()   # gmsh resets the SIGTERM handler
             record.data["num_dofs"] = prob.problem.num_dofs
             state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
@@ -259,7 +260,7 @@ class EHLORingCase:
         U = abs(v["U"])
         for n in [int(k) for k in number_list(v["mesh_levels"], "mesh_levels")]:
             t0 = time.perf_counter()
-            seal = build(v, max(U, 1000.0), mesh=n)
+            seal = build(v, max(U, 1000.0), mesh=n, name=options_name("ehl_oring", f"density{n}"))
             its = solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
             m = seal.measures()
             row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],

@@ -82,7 +82,7 @@ class ORingSeal:
     ``bottom.counterpart``; the rod speed is ``film.V_counter[1]`` (mm/s).
     """
 
-    def __init__(self, v, U, mesh, comm):
+    def __init__(self, v, U, mesh, comm, name="ehl_oring"):
         self.user = bool(v["mesh_file"])
         if self.user:
             msh, ft, names, extent = _user_section(v, comm)
@@ -130,7 +130,7 @@ class ORingSeal:
         film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
         self.components = [body, film, self.bottom, self.wall]
         # stall_window: over-long mount steps stall far from the solution; cut them early
-        self.problem = Problem(self.components, name="ehl_oring", max_it=40, max_backtracks=10,
+        self.problem = Problem(self.components, name=name, max_it=40, max_backtracks=10,
                                line_search="admissible", stall_window=10)
         self.iterations = []
         self._post = None
@@ -283,9 +283,12 @@ class ORingSeal:
         return res
 
 
-def build(v, U, mesh=None, comm=MPI.COMM_WORLD):
-    """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``."""
-    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm)
+def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring"):
+    """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``.
+
+    ``name``: the problem's name, options prefix ``tribofx_<name>_``.
+    """
+    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm, name)
 
 
 def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
