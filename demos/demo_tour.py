@@ -22,6 +22,9 @@
 # Run it as ``python demos/demo_tour.py --out results`` (about 3 minutes on 2
 # cores).  Each part is a ``tribofx run`` command; change a parameter there,
 # e.g. ``tribofx run ehl-ball --set W=10 --set mesh=2 --set compare=all``.
+# ``--quick`` (the test suite's mode) runs the full model of the ball alone, the
+# O-ring at density 2, the groove for two steps of 50 s and coarser cylinders;
+# the checks are the same.
 
 import argparse
 import os
@@ -38,6 +41,8 @@ from tribofx.runner import run_case
 parser = argparse.ArgumentParser(description="tribofx tour: EHL ball, O-ring, wear groove, "
                                              "two cylinders")
 parser.add_argument("--out", default="results")
+parser.add_argument("--quick", action="store_true",
+                    help="one ball model, coarser O-ring and cylinders, two groove steps (CI)")
 args, _ = parser.parse_known_args()
 rank0 = MPI.COMM_WORLD.rank == 0
 out = Path(args.out)
@@ -54,17 +59,18 @@ def run(case, params):
 
 
 # 1. soft-EHL ball: full, no-shear and linear models at W = 4 N, μU = 0.1 N/m
-ball, _ = run("ehl-ball", {"W": "4", "mesh": "1", "compare": "all"})
-hc = ball["full_h_central"] / ball["hamrock_dowson_h_c"] - 1
+ball, _ = run("ehl-ball", {"W": "4", "mesh": "1", "compare": "none" if args.quick else "all"})
+full = "" if args.quick else "full_"
+hc = ball[f"{full}h_central"] / ball["hamrock_dowson_h_c"] - 1
 if rank0:
-    print(f"  h_c = {1e3 * ball['full_h_central']:.1f} µm (Hamrock–Dowson "
-          f"{1e3 * ball['hamrock_dowson_h_c']:.1f}), p_max full / linear = "
-          f"{ball['full_p_max']:.4f} / {ball['linear_p_max']:.4f} MPa")
+    print(f"  h_c = {1e3 * ball[f'{full}h_central']:.1f} µm (Hamrock–Dowson "
+          f"{1e3 * ball['hamrock_dowson_h_c']:.1f})" + ("" if args.quick else
+          f", p_max full / linear = {ball['full_p_max']:.4f} / {ball['linear_p_max']:.4f} MPa"))
 # first-order mesh convergence: −7 % at mesh 1 (tests/test_ehl_ball.py: 20 % at a/8)
 assert abs(hc) < 0.20, hc
 
 # 2. O-ring: outstroke at 1000 mm/s, sealed pressures 0.5 and 1 MPa
-oring, _ = run("ehl-oring", {"mesh": "4", "U": "1000", "p_s": "0.5,1"})
+oring, _ = run("ehl-oring", {"mesh": "2" if args.quick else "4", "U": "1000", "p_s": "0.5,1"})
 if rank0:
     for ps in ("0.5", "1"):
         print(f"  p_s = {ps} MPa: p_max = {oring[f'out_ps{ps}_p_max']:.3f} MPa, h_min = "
@@ -74,7 +80,7 @@ assert oring["out_ps1_p_max"] > oring["out_ps0.5_p_max"]
 assert max(oring["out_ps0.5_axial_balance"], oring["out_ps1_axial_balance"]) < 1e-6
 
 # 3. wear groove of a rigid ball on an elastic half-space (small-strain regime)
-groove, _ = run("wear-ball-halfspace", {})
+groove, _ = run("wear-ball-halfspace", {"T": "100", "dt": "50"} if args.quick else {})
 volume, radius, p_max = groove["wear_volume"], groove["contact_radius"], groove["max_pressure"]
 if rank0:
     print(f"  groove area after {groove['time'][-1]:g} s: {volume[-1]:.3e} mm², contact "
@@ -87,7 +93,8 @@ assert all(b > a for a, b in zip(volume, volume[1:]))
 assert radius[-1] > radius[0] and p_max[-1] < p_max[0]
 
 # 4. two elastic cylinders (R 10 and 15 mm, E 10 and 20 MPa) against Hertz
-cyl, _ = run("contact-two-cylinders", {"mesh": "2", "R2": "15", "E2": "20", "nu2": "0.2"})
+cyl, _ = run("contact-two-cylinders", {"mesh": "1" if args.quick else "2", "R2": "15",
+                                       "E2": "20", "nu2": "0.2"})
 if rank0:
     print(f"  a = {cyl['contact_half_width']:.4f} mm (Hertz {cyl['hertz_contact_half_width']:.4f}),"
           f" p_max = {cyl['p_max']:.4f} MPa (Hertz {cyl['hertz_p_max']:.4f})")

@@ -4,7 +4,8 @@ The test is marked ``mpi``, so the test command runs it serially and again on
 2 ranks (the demo is executed in-process by every rank, as under
 ``mpiexec -n 2 python demo.py``).  A demo ends with its own checks against
 references (asserts) and prints "all checks passed"; it fails here when it
-raises.  The list is every ``demos/demo_*.py`` that declares ``--quick``.
+raises.  The list is every ``demos/demo_*.py``, the main demo (``demo_tour.py``)
+included; a demo without a ``--quick`` mode fails.
 """
 
 import runpy
@@ -14,8 +15,13 @@ from pathlib import Path
 import pytest
 from mpi4py import MPI
 
-DEMOS = sorted(p for p in (Path(__file__).parents[1] / "demos").glob("demo_*.py")
-               if '"--quick"' in p.read_text())
+DEMOS = sorted((Path(__file__).parents[1] / "demos").glob("demo_*.py"))
+
+
+def test_every_demo_has_a_quick_mode():
+    assert "demo_tour" in [p.stem for p in DEMOS]
+    missing = [p.name for p in DEMOS if '"--quick"' not in p.read_text()]
+    assert not missing, f"demos without --quick: {missing}"
 
 
 @pytest.mark.mpi
