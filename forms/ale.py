@@ -39,7 +39,6 @@ __all__ = [
     "stored_energy_worn",
     "swept_nanson_vector",
     "traction_work_worn",
-    "volume_factor",
 ]
 
 
@@ -86,11 +85,6 @@ def swept_nanson_vector(w, w_old, N_hat):
         return nanson_vector(0.5 * (w + w_old), N_hat)
     return (nanson_vector(w_old, N_hat) + 4 * nanson_vector(0.5 * (w + w_old), N_hat)
             + nanson_vector(w, N_hat)) / 6
-
-
-def volume_factor(w):
-    """Volume factor det G = dV/dV̂ of the shape mapping; det G ≤ 0: inverted cell."""
-    return ufl.det(shape_gradient(w))
 
 
 def _G3(w, kind):

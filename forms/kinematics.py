@@ -17,7 +17,6 @@ __all__ = [
     "KINDS",
     "area_ratio",
     "deformation_gradient",
-    "eulerian_velocity",
     "grad3",
     "nanson_normal",
     "reference_volume_factor",
@@ -84,10 +83,3 @@ def spatial_position(u):
     return ufl.SpatialCoordinate(u.ufl_function_space().mesh) + u
 
 
-def eulerian_velocity(u, V):
-    """Spatial velocity of the steady background motion, v = F V (eq. 26), gdim components.
-
-    ``V`` is the constant reference-frame velocity (mm/s) of the Eulerian motion.
-    """
-    F = ufl.Identity(len(u)) + ufl.grad(u)
-    return F * V

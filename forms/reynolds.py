@@ -59,12 +59,10 @@ import ufl
 
 __all__ = [
     "cavitation_penalty",
-    "jfo_cavitated",
     "jfo_complementarity",
     "jfo_diffusivity",
     "jfo_film_fraction",
     "jfo_residual",
-    "nodal_measure",
     "poiseuille_conductance",
     "reynolds_flux",
     "reynolds_residual",
@@ -156,22 +154,17 @@ def jfo_complementarity(p, lam, dlam, p_c, dx, weight=1):
     """Constraint ∫ w min(p/p_c, λ) δλ dx enforcing (52): p ≥ 0, λ ≥ 0, pλ = 0.
 
     ``p_c`` (MPa) scales the pressure against the void fraction; ``weight`` w
-    only scales the rows (use the nodal measure of :func:`nodal_measure` so that
-    the constraint holds at the nodes).
+    only scales the rows (a vertex-quadrature measure, so that the constraint holds
+    at the nodes).
     """
     return weight * ufl.min_value(p / p_c, lam) * dlam * dx
-
-
-def jfo_cavitated(p, lam, p_c):
-    """Return the indicator of the cavitated branch of C (1 cavitated, 0 full film)."""
-    return ufl.conditional(ufl.lt(p / p_c, lam), 1.0, 0.0)
 
 
 def jfo_film_fraction(p, lam, p_c, delta=1e-6):
     """Continuous full-film fraction s = (p⁺/p_c + δ)/(p⁺/p_c + λ⁺ + 2δ) ∈ (0, 1).
 
     s ≈ 1 in the full film (λ = 0, p > 0), s ≈ 0 in the cavitated zone (p = 0,
-    λ ≫ δ).  Unlike the indicator :func:`jfo_cavitated` it is continuous in
+    λ ≫ δ).  Unlike an indicator of the cavitated zone it is continuous in
     (p, λ), so the SUPG residual built on it has no jumps when a node changes
     between the full film and the cavitated zone during Newton's iteration.
     """
@@ -189,6 +182,3 @@ def jfo_diffusivity(p, lam, h, mu, p_c, delta=1e-6):
     return jfo_film_fraction(p, lam, p_c, delta) * h**2 * p_c / (12 * mu)
 
 
-def nodal_measure(dx):
-    """Return ``dx`` with the vertex (nodal, lumped) quadrature rule (for P1 fields)."""
-    return dx(scheme="vertex", degree=1)

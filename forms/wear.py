@@ -17,7 +17,7 @@ The tractions entering these laws are nominal tractions *per unit area of the
 worn configuration*.  When the contact multiplier λ is a traction per unit area
 of the initial configuration Γ̂_c (every unknown lives on the initial mesh), the
 volume removed per unit initial area and time is Ẇ j_w = k_A |λ| ‖v_T‖ with
-j_w = dS/dŜ — see :func:`worn_volume_rate_density`.
+j_w = dS/dŜ (the rate forms below take j_w where they need it).
 """
 
 import ufl
@@ -26,38 +26,17 @@ __all__ = [
     "archard_dissipation_form",
     "archard_nominal",
     "archard_pressure_form",
-    "archard_spatial",
     "depth_graded_coefficient",
-    "dissipation_nominal",
-    "dissipation_spatial",
     "cycle_average_rate",
-    "master_nominal_rate",
     "shape_update_residual",
-    "slave_nominal_rate",
     "slave_wear_rate",
     "wear_depth",
-    "worn_volume_rate_density",
 ]
-
-
-def dissipation_spatial(t_t, v_t):
-    """Spatial frictional dissipation density ḋ = t_T·v_T (eq. 13₁), MPa·mm/s."""
-    return ufl.dot(t_t, v_t)
-
-
-def dissipation_nominal(d_spatial, j):
-    """Nominal dissipation density Ḋ = j ḋ (eq. 13₂), j = ds/dS."""
-    return j * d_spatial
 
 
 def archard_nominal(K, D_nominal):
     """Nominal Archard law Ẇ = K Ḋ (eq. 14); K in mm³/(N·mm)·(1/μ) = 1/MPa."""
     return K * D_nominal
-
-
-def archard_spatial(k, D_nominal, J):
-    """Spatial Archard law ẇ = k ḋ written nominally, Ẇ = (k/J) Ḋ (eq. 16)."""
-    return k / J * D_nominal
 
 
 def archard_pressure_form(k, T_n, slip_speed, J=None):
@@ -123,11 +102,6 @@ def depth_graded_coefficient(k0, grad, depth):
     return k0 * ufl.max_value(1 + grad * depth, 0)
 
 
-def slave_nominal_rate(K1, t_t_nominal, slip_rate):
-    """Slave-surface nominal rate Ẇ⁽¹⁾ = K⁽¹⁾ T_Tα ξ̄̇^α (eq. 17)."""
-    return K1 * ufl.dot(t_t_nominal, slip_rate)
-
-
 def slave_wear_rate(k, T_n, slip_speed=None, mu=None, t_t=None, v_t=None, J=None):
     """Nominal Archard rate of the slave surface per unit initial area, Ẇ⁽¹⁾ j_w (eqs. 14–17).
 
@@ -149,16 +123,6 @@ def slave_wear_rate(k, T_n, slip_speed=None, mu=None, t_t=None, v_t=None, J=None
 def wear_depth(w, N_hat):
     """Wear depth d = −w·N̂ below the initial surface (mm), N̂ its outer unit normal."""
     return -ufl.dot(w, N_hat)
-
-
-def master_nominal_rate(K2, D1_nominal, j1, j2):
-    """Master-surface nominal rate Ẇ⁽²⁾ = (j⁽²⁾/j⁽¹⁾) K⁽²⁾ Ḋ⁽¹⁾ (eq. 18)."""
-    return j2 / j1 * K2 * D1_nominal
-
-
-def worn_volume_rate_density(W_dot, j_w):
-    """Volume removed per unit *initial* area and time, Ẇ j_w (j_w = dS/dŜ), mm/s."""
-    return W_dot * j_w
 
 
 def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds):
