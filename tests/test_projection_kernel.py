@@ -450,3 +450,11 @@ def test_cpp_validates_directly():
     with pytest.raises(ValueError):
         _cpp.closest_point_projection(points, nodes, facets[:, :2].copy(), "triangle")
     assert _cpp.version() == 1
+
+
+def test_extension_is_built_from_this_package_version():
+    """tribofx._cpp carries the version it was built as: a stale build is caught here."""
+    import tribofx
+    from tribofx import _cpp
+
+    assert _cpp.__version__ == tribofx.__version__

@@ -10,22 +10,19 @@ Python loop.  Shapes and packing:
 * matrix ``values`` (n, nr, nc) float64, row-major per block; vector
   ``values`` (n, nr).
 
-The wheel's PETSc has no headers: the C entry points are found in the
-already loaded ``libpetsc`` (the one petsc4py uses) and passed by address
-with the object handles (``Mat.handle``, ``Vec.handle``).  That lookup is
-the only platform-dependent part and lives here.  :func:`add_matrix_blocks_ref`
+The wheel's PETSc has no headers: the C entry points are those of the PETSc
+petsc4py loaded (:mod:`tribofx.petsc_lib`), passed by address with the object
+handles (``Mat.handle``, ``Vec.handle``).  :func:`add_matrix_blocks_ref`
 and :func:`add_vector_blocks_ref` are the plain petsc4py twins, for the tests.
 """
 
-import ctypes
-import ctypes.util
 import functools
-import os
 
 import numpy as np
 from petsc4py import PETSc
 
 from . import _cpp
+from .petsc_lib import address
 
 __all__ = ["add_matrix_blocks", "add_matrix_blocks_ref", "add_vector_blocks",
            "add_vector_blocks_ref"]
@@ -33,22 +30,7 @@ __all__ = ["add_matrix_blocks", "add_matrix_blocks_ref", "add_vector_blocks",
 
 @functools.cache
 def _entry_points():
-    """Addresses of MatSetValues and VecSetValues in the loaded libpetsc."""
-    path = None
-    try:
-        with open("/proc/self/maps") as maps:    # Linux: the library petsc4py loaded
-            for line in maps:
-                if "libpetsc.so" in line:
-                    path = line.split()[-1]
-                    break
-    except OSError:
-        pass
-    path = path or ctypes.util.find_library("petsc")
-    if path is None:
-        raise RuntimeError("libpetsc not found among the loaded libraries")
-    lib = ctypes.CDLL(path, mode=getattr(os, "RTLD_NOLOAD", 0) | ctypes.RTLD_LOCAL)
-    return tuple(ctypes.cast(getattr(lib, f), ctypes.c_void_p).value
-                 for f in ("MatSetValues", "VecSetValues"))
+    return address("MatSetValues"), address("VecSetValues")
 
 
 def _indices(a):

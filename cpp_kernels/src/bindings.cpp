@@ -297,6 +297,7 @@ void add_vector_blocks(std::uintptr_t fn, std::uintptr_t vec, const CArray2<I>& 
 NB_MODULE(_cpp, m)
 {
   m.doc() = "tribofx C++ kernels";
+  m.attr("__version__") = TRIBOFX_VERSION;
   m.def("version", []() { return 1; });
   m.def("closest_point_projection", &closest_point_projection, "points"_a.noconvert(),
         "nodes"_a.noconvert(), "facets"_a.noconvert(), "cell_type"_a,
