@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import taylor_orders
 
 from tribofx.cases.ehl import EHLCylinderLayerCase as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import cylinder_references
+from tribofx.testing import taylor_orders
 
 # coarse, fast settings (element size 0.04 mm on Γ_l, P1 displacement)
 FAST = {"mesh": 0, "degree": 1}

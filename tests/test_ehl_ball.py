@@ -14,13 +14,13 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import taylor_orders
 from tribofx.meshes.ball import cap_height
 
 from tribofx.cases.ehl_ball import EHLBallCase as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hamrock_dowson, hertz
+from tribofx.testing import taylor_orders
 
 
 def values(**overrides):

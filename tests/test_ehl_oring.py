@@ -9,7 +9,6 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import taylor_orders
 from tribofx.forms import hyperelastic as hf
 from tribofx.forms import kinematics as km
 
@@ -17,6 +16,7 @@ from tribofx.cases.ehl_oring import EHLORingCase as Case
 from tribofx.cases.oring_seal import axial_balance, build, solve_to
 from tribofx.params import InputError, resolve
 from tribofx.references import inverse_film
+from tribofx.testing import taylor_orders
 
 # coarse, fast settings: density 2 (0.05 mm on the film arc), P1, thick film at 1000 mm/s
 FAST = {"mesh": 2, "U": 1000, "p_s": 0.5}

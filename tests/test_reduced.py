@@ -26,12 +26,12 @@ import pytest
 import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
-from taylor import taylor_orders
 from tribofx.meshes.halfspace import prolongation
 
 from tribofx.interfaces.steady_wear import Extrusion
 from tribofx.problem import BlockTolerance
 from tribofx.reduced import AlgebraicRow, ReducedProblem, Reduction
+from tribofx.testing import taylor_orders
 
 LX, N, NX, F = 2.0, 4, 3, 20.0
 

@@ -5,13 +5,13 @@ import pytest
 import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
-from taylor import form_taylor_orders, taylor_orders
 from tribofx.forms import hyperelastic as hf
 
 from tribofx.body import Body
 from tribofx.interfaces import Contact
 from tribofx.obstacles import rigid_cylinder, rigid_plane, rigid_sphere, rigid_surface_mesh
 from tribofx.problem import Problem
+from tribofx.testing import form_taylor_orders, taylor_orders
 
 # remainder orders of an exact Jacobian are 2 up to round-off; 1.8 leaves room for
 # the ε-range where round-off starts to show (a wrong tangent gives order 1)
@@ -144,3 +144,33 @@ def test_axisymmetric_contact_jacobian():
     # axisymmetric body (2πR-weighted contact and hoop stretch) on a rigid cylinder
     # section, with Lagrangian friction
     test_contact_jacobian("cylinder", 0.4, "lagrangian", 2, kind="axisymmetric")
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("cavitation,supg", [("none", True), ("penalty", True),
+                                             ("jfo", False), ("jfo", True)])
+def test_rigid_film_jacobian(cavitation, supg):
+    """RigidFilm (Reynolds between rigid surfaces, §6.6): pressure, SUPG and the
+    penalty or JFO (p, λ) rows at a state away from the kinks of min(·, ·)."""
+    from tribofx.cases.reynolds import rigid_film
+
+    R, h0 = 10.0, 1e-3
+    film, problem = rigid_film(MPI.COMM_WORLD, -0.5, 0.5, 40, 1,
+                               lambda x: h0 + x**2 / (2 * R), 500.0, 1e-9,
+                               cavitation=cavitation, supg=supg, p_c=0.1,
+                               eps=1e-3 if cavitation == "penalty" else None, h_ref=h0)
+    # p, λ of both signs (both branches of min()), the Dirichlet values held: a state
+    # off its conditions makes DOLFINx's lifting add J(x)(g − x) to the residual, a
+    # term whose derivative is not in J
+    dirs = []
+    for k, f in enumerate(problem.u):
+        _random(f, 0.2, 20 + k)
+        d = fem.Function(f.function_space)
+        _random(d, 1.0, 30 + k)
+        fixed = problem.global_rows(f)[0] < 0       # Dirichlet dofs: p = 0, λ = λ_in = 0
+        f.x.array[fixed] = 0.0
+        d.x.array[fixed] = 0.0
+        dirs.append(d)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-6)
+    print(cavitation, supg, orders, rem)
+    assert_exact_jacobian(orders, rem)

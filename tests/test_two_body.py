@@ -12,13 +12,13 @@ import numpy as np
 import pytest
 from dolfinx import mesh
 from mpi4py import MPI
-from taylor import owned_arrays, taylor_orders
 
 from tribofx import two_body, two_body_ref
 from tribofx.body import Body
 from tribofx.interfaces import Contact, TwoBodyContact
 from tribofx.obstacles import rigid_plane
 from tribofx.problem import Problem
+from tribofx.testing import owned_arrays, taylor_orders
 
 LAME = {"mu": 1.0, "lmbda": 1.5}
 

@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 from dolfinx import mesh
 from mpi4py import MPI
-from taylor import owned_arrays, taylor_orders
 from test_two_body import tagged_body
 
 from tribofx.interfaces import Contact, TwoBodyContact
 from tribofx.obstacles import rigid_plane
 from tribofx.problem import Problem
+from tribofx.testing import owned_arrays, taylor_orders
 
 COMM = MPI.COMM_WORLD
 # every check is rank-independent: the suite runs them again on 2 processes (a rank's

@@ -17,13 +17,13 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 from petsc4py import PETSc
-from taylor import owned_arrays, taylor_orders
 
 from tribofx.cases.wear import WearPinCase
 from tribofx.output import RunRecord, bp4_steps
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.stepper import MeshInversion
+from tribofx.testing import owned_arrays, taylor_orders
 
 K, Q, V, W = 5e-6, 2.0, 10.0, 2.0
 MU = 0.3  # Coulomb coefficient of the frictional tests

@@ -17,12 +17,12 @@ import pytest
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
-from taylor import owned_arrays, taylor_orders
 
 from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh, surface_data
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hertz
+from tribofx.testing import owned_arrays, taylor_orders
 
 CASE = WearBallHalfspaceCase
 serial = pytest.mark.skipif(MPI.COMM_WORLD.size > 1, reason="serial-only case")

@@ -1,4 +1,13 @@
-"""Taylor tests of assembled Jacobians (public DOLFINx/tribofx API only).
+"""Taylor tests of assembled Jacobians, for tribofx's own tests and for users' forms.
+
+Public DOLFINx/tribofx API only.  A researcher who writes a new law or form checks
+its tangent with the same call the test suite uses::
+
+    from tribofx.testing import owned_arrays, taylor_orders
+    rng = np.random.default_rng(0)                   # a direction per unknown
+    d = [1e-6 * rng.standard_normal(len(f.x.array)) for f in problem.u]
+    orders, remainders = taylor_orders(problem, owned_arrays(problem, d))
+    assert min(orders) > 1.8
 
 For a direction d, the remainder r(ε) = ‖R(x + ε d) − R(x) − ε J(x) d‖ must decay
 like ε² when J is the exact derivative of R; the observed orders
