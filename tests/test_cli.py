@@ -37,6 +37,7 @@ def test_list():
     (["run", "hertz", "--set", "E=inf"], "must be finite"),
     (["run", "hertz", "--set", "R=nan"], "must be finite"),
     (["run", "hertz", "--set", "load=1e-30"], "load too small"),
+    (["run", "contact-patch", "--set", "mesh_ratio=0"], "needs at least 2"),
     (["run", "wear-ball-flat", "--set", "h_contact=0.1", "--set", "mesh_file=b.msh"],
      "h_contact sets the built mesh"),
     (["frobnicate"], "invalid choice"),

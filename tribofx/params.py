@@ -100,5 +100,7 @@ def number_list(text, name, kind=float, allow_empty=False):
                          f"got {text!r}") from None
     if not vals and not allow_empty:
         raise InputError(f"parameter {name!r} is empty")
+    if not all(math.isfinite(x) for x in vals):
+        raise InputError(f"parameter {name!r} must be finite, got {text!r}")
     return vals
 

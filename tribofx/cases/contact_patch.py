@@ -27,7 +27,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
-from ..params import Param
+from ..params import InputError, Param
 from ..problem import Problem
 
 __all__ = ["ContactPatchCase", "patch_block"]
@@ -66,14 +66,18 @@ class ContactPatchCase:
 
     @staticmethod
     def validate(v):
-        """Nothing beyond the parameter ranges."""
+        """Require at least two slave elements along the interface (a patch, not a point)."""
+        n_s = round(v["mesh_ratio"] * v["n_master"])
+        if n_s < 2:
+            raise InputError(f"mesh_ratio·n_master = {v['mesh_ratio'] * v['n_master']:g} gives "
+                             f"{n_s} slave element(s): the patch test needs at least 2")
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
         """Slave and master blocks, contact and problem."""
         mu, lmbda = lame_parameters(v["E"], v["nu"])
         mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
-        n_s = max(1, round(v["mesh_ratio"] * v["n_master"]))
+        n_s = round(v["mesh_ratio"] * v["n_master"])
         slave = patch_block(comm, 0.0, 0.5, n_s, "slave", mat)
         master = patch_block(comm, -0.5, 0.0, v["n_master"], "master", mat)
         slave.add_traction("top", ufl.as_vector([0.0, -v["pressure"]]))

@@ -237,6 +237,9 @@ class CylinderCase:
             raise InputError("cavitation=jfo needs degree=1 (nodal complementarity)")
         if v["inlet_void"] > 0 and v["cavitation"] != "jfo":
             raise InputError("inlet_void > 0 (starved inlet) needs cavitation=jfo")
+        if max(-v["x_in"], v["x_out"]) >= v["R"]:
+            raise InputError(f"x_in, x_out must lie within the cylinder's radius R = {v['R']} mm "
+                             f"(the gap h0 + x²/(2R) is its parabolic approximation)")
         if v["cavitation"] != "none":
             try:
                 refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
