@@ -43,9 +43,12 @@ from petsc4py import PETSc
 __all__ = ["KrylovGuard", "reason_name"]
 
 
-def reason_name(reason):
-    """Name of a KSP converged reason (``DIVERGED_BREAKDOWN`` for -5)."""
-    names = {v: k for k, v in vars(PETSc.KSP.ConvergedReason).items() if isinstance(v, int)}
+def reason_name(reason, kind=PETSc.KSP.ConvergedReason):
+    """Name of a PETSc converged reason: ``DIVERGED_BREAKDOWN`` for KSP's -5.
+
+    ``kind``: the reason enumeration, KSP's (default) or ``PETSc.SNES.ConvergedReason``.
+    """
+    names = {v: k for k, v in vars(kind).items() if isinstance(v, int)}
     return names.get(int(reason), str(int(reason)))
 
 

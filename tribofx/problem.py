@@ -358,8 +358,9 @@ class Problem(NewtonControl):
             for ui, a in zip(self.u, backup):
                 ui.x.array[:] = a
             self.refresh()
+            why = failure or reason_name(reason, PETSc.SNES.ConvergedReason)
             raise NewtonDivergence(
-                f"Newton did not converge ({failure or self._reason_name(reason)}) in "
+                f"Newton did not converge ({why}) in "
                 f"{report.iterations} iterations (residual history "
                 f"{['%.2e' % v for v in report.residuals]})")
         for ui in self.u:
@@ -391,12 +392,6 @@ class Problem(NewtonControl):
         for c in self.components:
             if hasattr(c, "reset_iterate"):
                 c.reset_iterate()
-
-    @staticmethod
-    def _reason_name(reason):
-        names = {v: k for k, v in vars(PETSc.SNES.ConvergedReason).items()
-                 if isinstance(v, int)}
-        return names.get(int(reason), str(reason))
 
     def assemble(self):
         """Residual ``b`` and Jacobian ``A`` at the current unknowns (Taylor tests)."""

@@ -8,7 +8,8 @@ shape functions N = (1 − Σ ξ^a, ξ^1, ...).
 
 import numpy as np
 
-__all__ = ["normals", "plane_coordinates", "shape_values"]
+__all__ = ["keep_reference_facets", "normals", "plane_coordinates", "same_pairing",
+           "shape_values"]
 
 
 def shape_values(xi):
@@ -46,3 +47,43 @@ def normals(facet):
     else:
         n = np.cross(facet[:, 1] - facet[:, 0], facet[:, 2] - facet[:, 0])
     return n / np.linalg.norm(n, axis=1)[:, None]
+
+
+def keep_reference_facets(xs, xm, seg, proj, reference, sticky):
+    """Pairing with hysteresis: a node keeps its reference facet while it still projects there.
+
+    A node keeps ``reference[k]`` while its plane coordinates on that facet are
+    within ``sticky`` of it and its distance is at most the nearest distance plus
+    ``sticky`` of the facet's size: at a kink of the deformed master the nearest
+    facet jumps between the neighbours of a vertex, and Newton would cycle.
+
+    Args:
+        xs: (n, d) slave positions.
+        xm: master node positions.
+        seg: (m, d) master facets (node indices into ``xm``).
+        proj: the nearest projection (``facet`` (n,), ``xi``, ``distance`` (n,)),
+            updated in place for the kept nodes (their clamped coordinates).
+        reference: (segments, facet per node) or None; used only if its segments
+            are ``seg`` and it has one facet per node.
+        sticky: relative hysteresis.
+    """
+    if reference is None or not same_pairing(reference, (seg, None)) \
+            or len(reference[1]) != len(xs):
+        return proj
+    prev, d = reference[1], xs.shape[1]
+    xi, dist, size = plane_coordinates(xs, xm[seg[prev]])
+    bary = np.c_[1 - xi.sum(axis=1), xi]
+    keep = np.all(bary > -sticky, axis=1) & (dist <= proj["distance"] + sticky * size)
+    inside = np.clip(xi, 0.0, None)
+    inside /= np.maximum(inside.sum(axis=1), 1.0)[:, None]
+    proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
+    old = proj["xi"].reshape(len(xs), d - 1)
+    proj["xi"] = np.where(keep[:, None], inside, old).reshape(proj["xi"].shape)
+    return proj
+
+
+def same_pairing(a, b):
+    """Whether two pairings (segments, facets) have the same segments (and facets, if given)."""
+    if a is None or b is None or a[0].shape != b[0].shape or not np.array_equal(a[0], b[0]):
+        return False
+    return a[1] is None or b[1] is None or np.array_equal(a[1], b[1])

@@ -182,30 +182,12 @@ class TwoBodyContact:
             self._master.refit(np.ascontiguousarray(xm))
         xs = self._X + self.slave.u.x.array.reshape(-1, d)[self._bulk]
         proj = self._master.project(np.ascontiguousarray(xs))
-        ref = self._facet_ref
-        prev = None
-        if ref is not None and ref[0].shape == seg.shape \
-                and np.array_equal(ref[0], seg) and len(ref[1]) == len(xs):
-            prev = ref[1]
-        if prev is not None:
-            # keep the reference facet while the node still projects onto it (its
-            # coordinates within STICKY of the facet) at no more than the nearest
-            # distance plus STICKY of its size: at a kink of the deformed master the
-            # nearest facet jumps between the neighbours of a vertex and Newton cycles.
-            # The reference is the pairing of the last accepted Newton iterate (the
-            # committed state's at the start of a solve and after restore()), never that
-            # of the last evaluation: line-search trials, Taylor perturbations and
-            # output evaluations do not move it, so the residual is a function of the
-            # state and of this reference, which the cache key carries
-            xi, dist, size = facets.plane_coordinates(xs, xm[seg[prev]])
-            bary = np.c_[1 - xi.sum(axis=1), xi]
-            keep = np.all(bary > -self.STICKY, axis=1) & \
-                (dist <= proj["distance"] + self.STICKY * size)
-            inside = np.clip(xi, 0.0, None)
-            inside /= np.maximum(inside.sum(axis=1), 1.0)[:, None]
-            proj["facet"] = np.where(keep, prev, proj["facet"]).astype(np.int32)
-            old = proj["xi"].reshape(len(xs), d - 1)
-            proj["xi"] = np.where(keep[:, None], inside, old).reshape(proj["xi"].shape)
+        # the reference is the pairing of the last accepted Newton iterate (the
+        # committed one at the start of a solve and after restore()), never that of
+        # the last evaluation: line-search trials, Taylor perturbations and output
+        # evaluations do not move it, so the residual is a function of the state and
+        # of this reference, which the cache key carries
+        proj = facets.keep_reference_facets(xs, xm, seg, proj, self._facet_ref, self.STICKY)
         return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
@@ -433,9 +415,7 @@ class TwoBodyContact:
         if self._old is None:
             return False
         k = self._kernel()
-        ref = self._facet_ref
-        same = ref is not None and ref[0].shape == k["seg"].shape and np.array_equal(
-            ref[0], k["seg"]) and np.array_equal(ref[1], k["facet"])
+        same = facets.same_pairing(self._facet_ref, (k["seg"], k["facet"]))
         self._facet_ref = (k["seg"].copy(), k["facet"].copy())
         return not self.slave.mesh.comm.allreduce(same, op=MPI.LAND)
 
