@@ -14,7 +14,9 @@ Lengths in mm.
 import ufl
 
 __all__ = [
+    "AXIS_TOL",
     "KINDS",
+    "axis_safe_hoop",
     "area_ratio",
     "deformation_gradient",
     "grad3",
@@ -42,10 +44,28 @@ def grad3(v, kind):
     if kind == "3d":
         return g
     X = ufl.SpatialCoordinate(v.ufl_function_space().mesh)
-    hoop = v[0] / X[0] if kind == "axisymmetric" else 0
+    hoop = axis_safe_hoop(v, X) if kind == "axisymmetric" else 0
     return ufl.as_tensor(
         [[g[0, 0], g[0, 1], 0], [g[1, 0], g[1, 1], 0], [0, 0, hoop]]
     )
+
+
+#: distance (mm) from the axis below which a point is on it (vertex-rule points, nodes)
+AXIS_TOL = 1e-12
+
+
+def axis_safe_hoop(v, X):
+    """Hoop term v_R/R, by its limit ∂v_R/∂R on the axis (R = 0, where v_R = 0).
+
+    A vertex-rule point on the axis (a contact node at r = 0) would otherwise give
+    0/0; inside the cells (R > 0) this is v_R/R exactly.
+    """
+    # written linear in v with the switches as coefficients (FFCx compiles no test or
+    # trial function inside a conditional)
+    off_axis = ufl.gt(abs(X[0]), AXIS_TOL)
+    inv_r = ufl.conditional(off_axis, 1 / X[0], 0.0)
+    on_axis = ufl.conditional(off_axis, 0.0, 1.0)
+    return v[0] * inv_r + on_axis * ufl.grad(v)[0, 0]
 
 
 def deformation_gradient(u, kind):

@@ -28,7 +28,7 @@ def test_list():
     (["run", "hertz", "--set", "E=-1"], "'E' must be > 0"),
     (["run", "hertz", "--set", "E=0"], "'E' must be > 0"),
     (["run", "hertz", "--set", "nu=0.5"], "'nu' must be < 0.5"),
-    (["run", "hertz", "--set", "dim=two"], "expects int"),
+    (["run", "hertz", "--set", "dim=two"], "expects dimension"),
     (["run", "hertz", "--set", "dim=4"], "must be one of"),
     (["run", "hertz", "--set", "obstacle=cube"], "must be one of"),
     (["run", "hertz", "--set", "friction=-0.1"], "must be >= 0"),

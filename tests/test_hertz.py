@@ -61,6 +61,40 @@ def test_hertz_3d_refinement(tmp_path):
     assert errs[2][2] < 0.04
 
 
+@pytest.mark.mpi
+def test_hertz_axisymmetric_sphere(tmp_path):
+    """The sphere as an axisymmetric body (meridian section, the axis x = 0 in contact)
+    against Hertz for a sphere at two resolutions, a/12 and a/24 at the contact.
+
+    Bounds, each from an error estimate:
+    * radius a: the edge of the contact zone is located to within one element h,
+      plus 1 % for the finite-deformation and finite-radius departures at a/R = 0.04
+      (see LOAD_2D/LOAD_3D);
+    * peak pressure p0: the load balance F = (2/3)π a² p0 with a known to ±h moves p0
+      by 2h/a, plus the same 1 %;
+    * approach δ (the plane's travel): Hertz's a²/R is the approach of two half-spaces,
+      whose far field the hemisphere clamped at its equator (depth R) does not have:
+      the difference is bounded by Boussinesq's displacement at depth R under the
+      load, F(1 + ν)(3 − 2ν)/(2πE R), plus the 1 %.
+    """
+    import math
+
+    v = resolve(HertzCase.params, {"dim": "axisymmetric", "load": str(LOAD_3D)})
+    HertzCase.validate(v)
+    u_far = LOAD_3D * (1 + v["nu"]) * (3 - 2 * v["nu"]) / (2 * math.pi * v["E"] * v["R"])
+    errs = []
+    for level in (1, 2):
+        res, _ = run_hertz(tmp_path, dim="axisymmetric", load=LOAD_3D, mesh=level, steps=1)
+        h_over_a = 1 / (6 * 2**level)
+        print("axisymmetric level", level, res["contact_radius_rel_error"],
+              res["p_max_rel_error"], res["approach"], res["hertz_approach"], u_far)
+        assert abs(res["contact_radius_rel_error"]) < h_over_a + 0.01
+        assert abs(res["p_max_rel_error"]) < 2 * h_over_a + 0.01
+        assert abs(res["approach"] - res["hertz_approach"]) < u_far + 0.01 * res["hertz_approach"]
+        errs.append(res["pressure_profile_rel_l2_error"])
+    assert errs[1] < errs[0]          # the pressure profile converges
+
+
 @pytest.mark.slow
 def test_hertz_3d_refined(tmp_path):
     # contact-zone element size a/32 (≈170k unknowns): P1 tetrahedra need it for the

@@ -174,3 +174,46 @@ def test_rigid_film_jacobian(cavitation, supg):
     orders, rem = taylor_orders(problem, dirs, eps0=1e-6)
     print(cavitation, supg, orders, rem)
     assert_exact_jacobian(orders, rem)
+
+
+@pytest.mark.mpi
+def test_axisymmetric_contact_with_a_node_on_the_axis():
+    """A meridian section touching the axis (R = 0) pressed on a plane: the contact node
+    on the axis carries its exact lumped area ∫ φ 2πR dS, so its multiplier column is
+    not empty (it was: the vertex rule gave it 2π·0), the Jacobian is exact there, and
+    the post-processing (hoop stretch u_R/R → ∂u_R/∂R on the axis) has no NaN."""
+    comm = MPI.COMM_WORLD
+    msh = mesh.create_rectangle(comm, [[0, 0], [1, 0.5]], [6, 3])
+    bot = mesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[1], 0))
+    ft = mesh.meshtags(msh, 1, np.sort(bot), np.full(len(bot), 1, dtype=np.int32))
+    body = Body(msh, ft, {"bottom": 1}, "axisymmetric",
+                ("neo-hookean", {"mu": 1.0, "lmbda": 1.5}))
+    contact = Contact(body, "bottom", rigid_plane([0.0, 0.05], [0.0, 1.0]), rho_n=10.0)
+    problem = Problem([body, contact], name="taylor_axis")
+    # u_R = 0 on the axis, for the state and the direction (a body of revolution)
+    axis = fem.locate_dofs_geometrical(body.V, lambda x: np.isclose(x[0], 0.0))
+    _smooth(body.u, 0.01, 5)
+    body.u.x.array[2 * axis] = 0.0
+    contact.lam_n.x.array[:] = -0.3
+    on_axis = np.flatnonzero(np.isclose(contact.X_sub[:, 0], 0.0))
+    on_axis = on_axis[on_axis < contact.surface.n_own]
+    # the exact lumped area of the axis node: 2π ∫₀ʰ (1 − R/h) R dR = π h²/3, h = 1/6
+    w = contact.surface.weight.x.array[on_axis] * (1 / 12)   # ω_k times ∫ φ_k dS = h/2
+    assert np.allclose(w, np.pi * (1 / 6) ** 2 / 3, rtol=1e-12)
+    b, A = problem.assemble()
+    if len(on_axis):
+        col = int(problem.block_start(1) + on_axis[0])
+        rows = [i for i in range(*A.getOwnershipRange()) if abs(A.getValue(i, col)) > 0
+                and i != col]
+        assert rows, "the axis node's multiplier column is empty"
+    dirs = []
+    for k, f in enumerate(problem.u):
+        d = fem.Function(f.function_space)
+        _random(d, 1.0, 40 + k)
+        if f is body.u:
+            d.x.array[2 * axis] = 0.0
+        dirs.append(d)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-4)
+    print("axis", orders, rem)
+    assert_exact_jacobian(orders, rem)
+    assert np.all(np.isfinite(contact.nodal_data()["p"]))

@@ -45,6 +45,26 @@ from ..references import hertz_reference
 # hertz_reference is re-exported from tribofx.references
 __all__ = ["CURVATURE_TOL", "HertzCase", "hertz_reference", "read_hertz_body"]
 
+#: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
+AXISYMMETRIC = "axisymmetric"
+
+
+def dimension(text):
+    """Parse ``dim``: 2, 3 or "axisymmetric" (ValueError otherwise)."""
+    text = str(text).strip()
+    return AXISYMMETRIC if text == AXISYMMETRIC else int(text)
+
+
+def geometric_dim(dim):
+    """Dimension of the mesh: 2 for the cylinder and the meridian section, else 3."""
+    return 2 if dim == AXISYMMETRIC else dim
+
+
+def hertz_dim(dim):
+    """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
+    return 3 if dim == AXISYMMETRIC else dim
+
+
 #: relative tolerance on the curvature of a user's body at its first-contact point
 #: (of 1/R*, the composite curvature of the Hertz reference): ±5 % moves the Hertz
 #: size a ∝ R*^½ (line) or R*^⅓ (point) by at most 2.5 %
@@ -135,15 +155,17 @@ class HertzCase:
     """Case ``hertz``; see the module docstring."""
 
     name = "hertz"
-    doc = "elastic cylinder (dim=2) or sphere (dim=3) pressed on a rigid plane, vs Hertz"
+    doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
+           "meridian section) pressed on a rigid plane, vs Hertz")
     params = (
-        Param("dim", int, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model)",
-              choices=(2, 3)),
+        Param("dim", dimension, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model), "
+              "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
+              choices=(2, 3, AXISYMMETRIC)),
         Param("E", float, 10.0, "MPa", "Young's modulus", lower=0.0),
         Param("nu", float, 0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0,
               upper=0.5),
         Param("R", float, 10.0, "mm", "radius of the cylinder/sphere", lower=0.0),
-        Param("load", float, None, "N/mm (dim=2) or N (dim=3)",
+        Param("load", float, None, "N/mm (dim=2) or N (dim=3, axisymmetric)",
               "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
               lower=0.0),
         Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0.0,
@@ -172,7 +194,7 @@ class HertzCase:
         """Fill derived defaults and check cross-parameter consistency."""
         if v["load"] is None:
             v["load"] = 0.2 if v["dim"] == 2 else 0.5
-        a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
+        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
         if a > 0.5 * v["R"]:
             raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
         if a < 1e-4 * v["R"]:
@@ -181,9 +203,10 @@ class HertzCase:
     @staticmethod
     def mesh_sizes(v):
         """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
-        a, _ = hertz_reference(v["dim"], v["E"], v["nu"], v["R"], v["load"])
-        per_a = (6 if v["dim"] == 2 else 2) * 2 ** v["mesh"]
-        return a / per_a, v["R"] / (6 if v["dim"] == 2 else 4), 1.5 * a
+        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
+        plane = geometric_dim(v["dim"]) == 2       # a 2D mesh: cylinder or meridian section
+        per_a = (6 if plane else 2) * 2 ** v["mesh"]
+        return a / per_a, v["R"] / (6 if plane else 4), 1.5 * a
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD):
@@ -192,10 +215,10 @@ class HertzCase:
         ``mesh_file``: the user's body (:func:`read_hertz_body`); ρ_N = E/h with h
         its contact element size instead of ``h_fine``.
         """
-        dim, R = v["dim"], v["R"]
+        R, dim = v["R"], geometric_dim(v["dim"])
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
         if v["mesh_file"]:
-            a, _ = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
+            a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], R, v["load"])
             msh, ft, names, h_fine, _ = read_hertz_body(v["mesh_file"], comm, dim, a, R,
                                                         CURVATURE_TOL / R)
         else:
@@ -210,7 +233,8 @@ class HertzCase:
             plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
                                                            4 * h_fine))
         mu, lmbda = lame_parameters(v["E"], v["nu"])
-        body = Body(msh, ft, names, "plane_strain" if dim == 2 else "3d",
+        kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v["dim"]]
+        body = Body(msh, ft, names, kind,
                     (v["material"], {"mu": mu, "lmbda": lmbda}))
         body.add_dirichlet("loaded", np.zeros(dim))
         body.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -236,8 +260,12 @@ class HertzCase:
 
     @staticmethod
     def model_fraction(dim):
-        """Fraction of the full body that is modelled (symmetry)."""
-        return 0.5 if dim == 2 else 0.25
+        """Fraction of the full body whose force the model gives (symmetry).
+
+        A half cylinder, a quarter sphere; the meridian section's forces are those
+        of the revolved (full) sphere, its measures weighted by 2πR.
+        """
+        return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
@@ -248,12 +276,12 @@ class HertzCase:
         communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
         test).
         """
-        dim, R = v["dim"], v["R"]
+        R, dim = v["R"], hertz_dim(v["dim"])
         body, contact, problem = run = cls.build(v, comm)
-        frac = cls.model_fraction(dim)
+        frac = cls.model_fraction(v["dim"])
         record.data["num_dofs"] = problem.num_dofs
         a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
-        axis = dim - 1
+        axis = geometric_dim(v["dim"]) - 1
         control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
                                response=lambda: contact.force()[axis], verbose=verbose,
                                record=record.data["newton_iterations"])
@@ -273,9 +301,11 @@ class HertzCase:
 
     @staticmethod
     def _report(contact, v, record, frac, a_h, p_h):
-        dim = v["dim"]
+        dim, gdim = v["dim"], geometric_dim(v["dim"])
         area, pmax = contact.measures()
-        size = area if dim == 2 else math.sqrt(4 * area / math.pi)
+        # half-width; the radius of a quarter disc's area; that of the revolved disc's
+        size = {2: area, 3: math.sqrt(4 * area / math.pi),
+                AXISYMMETRIC: math.sqrt(area / math.pi)}[dim]
         force = contact.force()
         key = "contact_half_width" if dim == 2 else "contact_radius"
         record.result(key, size, "mm")
@@ -285,13 +315,17 @@ class HertzCase:
         record.result(f"{key}_rel_error", size / a_h - 1)
         record.result("p_max_rel_error", pmax / p_h - 1)
         record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
-        record.result("normal_load_full_body", float(force[dim - 1] / frac),
+        if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
+            delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
+            record.result("approach", delta, "mm")
+            record.result("hertz_approach", a_h**2 / v["R"], "mm (half-space)")
+        record.result("normal_load_full_body", float(force[gdim - 1] / frac),
                       "N/mm" if dim == 2 else "N")
-        record.result("tangential_force_modelled_part", [float(f) for f in force[: dim - 1]],
+        record.result("tangential_force_modelled_part", [float(f) for f in force[: gdim - 1]],
                       "N/mm" if dim == 2 else "N")
         # weighted L2 distance of the nodal pressures from the Hertz distribution
         d = contact.nodal_data()
-        rr = d["x"][:, 0] if dim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
+        rr = d["x"][:, 0] if gdim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
         ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
         comm = contact.body.mesh.comm
         num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
@@ -299,6 +333,6 @@ class HertzCase:
         record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
         prof = contact.gather_profile()
         if comm.rank == 0:
-            r = (prof["x"][:, 0] if dim == 2
+            r = (prof["x"][:, 0] if gdim == 2
                  else np.linalg.norm(prof["x"][:, :2], axis=1))
             record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}

@@ -115,7 +115,7 @@ class Contact:
         R_u, R_n, R_t = cf.augmented_lagrangian_contact(
             self.body.u, self.body.v, self.geometry, self.lam_n, ufl.TestFunction(self.Q),
             self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction,
-            weight=self.body.weight)
+            weight=self.surface.weight)
         out = [(self.body.u, R_u), (self.lam_n, R_n)]
         if R_t is not None:
             out.append((self.lam_t, R_t))
@@ -193,7 +193,7 @@ class Contact:
     def _forms(self):
         if self._post is None:
             tn, tt = self.tractions()
-            w, n = self.body.weight, self.geometry.normal
+            w, n = self.surface.weight, self.geometry.normal
             force = -tn * n - (tt if tt is not None else 0 * n)
             em = [self.emap]
             q = ufl.TestFunction(self.Q)
@@ -220,7 +220,11 @@ class Contact:
         return self.surface.nodal(form)
 
     def force(self):
-        """Total force exerted by the counterpart on the (modelled part of the) body (N)."""
+        """Total force exerted by the counterpart on the modelled body (N; N/mm in plane strain).
+
+        The modelled part of a symmetry-reduced body (a quarter sphere: a quarter of
+        the full force); for an axisymmetric body the revolved body's (2πR-weighted).
+        """
         return np.array([self._sum(f) for f in self._forms()["force"]])
 
     def traction_magnitudes(self):

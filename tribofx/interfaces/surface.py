@@ -61,6 +61,31 @@ class Surface:
                                subdomain_id=body.tag(boundary),
                                metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
         self.n_own = self.Q.dofmap.index_map.size_local
+        self.weight = self._nodal_weight()
+
+    def _nodal_weight(self):
+        """Return the reference measure factor of the nodal (vertex-rule) terms on this surface.
+
+        1, except on an axisymmetric body: there the vertex rule applied to 2πR
+        would give the node on the axis (R = 0) no area, so its contact row would
+        vanish from the momentum equations and its multiplier column with it (a
+        singular Jacobian once the node is active).  Instead ω is the P1 field with
+        ω_k = ∫ φ_k 2πR dS / ∫ φ_k dS (exact quadrature): the vertex rule of
+        f ω dS then gives every node its exact lumped area ∫ φ_k 2πR dS
+        (π h²/3 on the axis for a first facet of length h perpendicular to it).
+        """
+        body = self.body
+        if body.kind != "axisymmetric":
+            return body.weight
+        tag = self.dsc.subdomain_id()
+        exact = ufl.Measure("ds", body.mesh, subdomain_data=body.facet_tags, subdomain_id=tag,
+                            metadata={"quadrature_degree": 2})
+        q = ufl.TestFunction(self.Q)
+        area = self.nodal(q * body.weight * exact)
+        length = self.nodal(q * self.dsc)
+        omega = fem.Function(self.Q, name="surface_weight")
+        omega.x.array[:] = np.divide(area, length, out=np.zeros_like(area), where=length > 0)
+        return omega
 
     def nodal(self, form):
         """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
