@@ -35,6 +35,26 @@ def sphere_cap(R, n):
     return nodes, np.array(tris, dtype=np.int32)
 
 
+def sphere_cap_quads(R, n, quadratic=True):
+    """The same cap with quadrilateral9 (or quadrilateral) facets, normal outward."""
+    s = np.linspace(-0.5, 0.5, 2 * n + 1)
+    u, v = np.meshgrid(s, s, indexing="ij")
+    p = np.c_[u.ravel(), v.ravel(), -np.ones(u.size)]
+    nodes = R * p / np.linalg.norm(p, axis=1)[:, None]
+    idx = np.arange(u.size).reshape(u.shape)
+    quads = []
+    for i in range(0, 2 * n, 2):
+        for j in range(0, 2 * n, 2):
+            # v0, v1 (along v), v2 (along u), v3: t0 x t1 points outward (down); then
+            # the edge nodes of (v0,v1), (v0,v2), (v1,v3), (v2,v3) and the centre
+            q = [idx[i, j], idx[i, j + 2], idx[i + 2, j], idx[i + 2, j + 2]]
+            if quadratic:
+                q += [idx[i, j + 1], idx[i + 1, j], idx[i + 1, j + 2], idx[i + 2, j + 1],
+                      idx[i + 1, j + 1]]
+            quads.append(q)
+    return nodes, np.array(quads, dtype=np.int32)
+
+
 def circle_points(R, m, seed=0):
     rng = np.random.default_rng(seed)
     th = rng.uniform(-np.pi / 2 - 0.3, -np.pi / 2 + 0.3, m)
@@ -51,6 +71,11 @@ CASES = {
     "triangle6": lambda: (sphere_cap(10.0, 4),
                           np.random.default_rng(1).uniform([-2, -2, -11], [2, 2, -10.01],
                                                            (300, 3))),
+    # biquadratic facets: their map has third derivatives (x_,001, x_,011), which the
+    # second derivative of the projection carries through ∂A/∂x
+    "quadrilateral9": lambda: (sphere_cap_quads(10.0, 4),
+                               np.random.default_rng(2).uniform([-2, -2, -11], [2, 2, -10.01],
+                                                                (300, 3))),
 }
 
 
@@ -59,7 +84,7 @@ def _surface(ct):
     return nodes, facets, x
 
 
-@pytest.mark.parametrize("ct", ["interval", "interval3", "triangle6"])
+@pytest.mark.parametrize("ct", ["interval", "interval3", "triangle6", "quadrilateral9"])
 def test_cpp_matches_numpy_twin(ct):
     nodes, facets, x = _surface(ct)
     a = lubrication_projection(x, nodes, facets, ct)
@@ -72,7 +97,7 @@ def test_cpp_matches_numpy_twin(ct):
         np.testing.assert_allclose(va, vb, rtol=0, atol=1e-12 * scale, err_msg=k)
 
 
-@pytest.mark.parametrize("ct", ["interval3", "triangle6"])
+@pytest.mark.parametrize("ct", ["interval3", "triangle6", "quadrilateral9"])
 def test_derivatives_by_finite_differences(ct):
     nodes, facets, x = _surface(ct)
     a = lubrication_projection(x, nodes, facets, ct)

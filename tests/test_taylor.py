@@ -68,6 +68,35 @@ def _arc_mesh(quadratic, n=40):
     return nodes, np.c_[np.arange(n), np.arange(1, n + 1)].astype(np.int32), "interval"
 
 
+def _cap_mesh(quadratic, n=6):
+    """Cap of the sphere of radius 2 centred at (0.5, 0.5, −1.95) over [−0.3, 1.3]²,
+    as quadrilateral or quadrilateral9 facets (every node on the sphere), oriented
+    with the outward normal (t_x × t_y points up).  No slave node of the box
+    projects within 0.03 mm of a facet edge, where the normal of the piecewise
+    surface jumps (a Taylor step across it would show that jump, not the tangent)."""
+    m = 2 * n + 1 if quadratic else n + 1
+    xs = np.linspace(-0.3, 1.3, m)
+    X, Y = np.meshgrid(xs, xs, indexing="ij")
+    Z = -1.95 + np.sqrt(4 - (X - 0.5) ** 2 - (Y - 0.5) ** 2)
+    nodes = np.c_[X.ravel(), Y.ravel(), Z.ravel()]
+
+    def idx(i, j):
+        return i * m + j
+
+    s = 2 if quadratic else 1
+    facets = []
+    for a in range(n):
+        for b in range(n):
+            i, j = s * a, s * b
+            f = [idx(i, j), idx(i + s, j), idx(i, j + s), idx(i + s, j + s)]
+            if quadratic:   # edges (v0,v1), (v0,v2), (v1,v3), (v2,v3), then the centre
+                f += [idx(i + 1, j), idx(i, j + 1), idx(i + 2, j + 1), idx(i + 1, j + 2),
+                      idx(i + 1, j + 1)]
+            facets.append(f)
+    return nodes, np.array(facets, dtype=np.int32), (
+        "quadrilateral9" if quadratic else "quadrilateral")
+
+
 def _box_problem(shape, friction, slip, gdim=2, kind=None):
     comm = MPI.COMM_WORLD
     if kind == "axisymmetric":  # ring section 0.5 ≤ R ≤ 1.5 (R > 0 for the hoop terms)
@@ -82,7 +111,8 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     e = np.eye(gdim)[gdim - 1]
 
     if shape.startswith("meshed"):
-        counterpart = rigid_surface_mesh(*_arc_mesh(shape.endswith("quadratic")))
+        surface = _arc_mesh if gdim == 2 else _cap_mesh
+        counterpart = rigid_surface_mesh(*surface(shape.endswith("quadratic")))
     elif shape == "plane":
         counterpart = rigid_plane(0.05 * e, e)
     else:  # curved countersurfaces below the body, penetrating the bottom face
@@ -120,6 +150,11 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     ("meshed-quadratic", 0.4, "eulerian", 2),
     ("meshed-affine", 0.4, "lagrangian", 2),
     ("meshed-affine", 0.4, "eulerian", 2),
+    # 3D: a sphere cap of curved (quadrilateral9) and flat (quadrilateral) facets
+    ("meshed-quadratic", 0.0, "lagrangian", 3),
+    ("meshed-quadratic", 0.4, "lagrangian", 3),
+    ("meshed-quadratic", 0.4, "eulerian", 3),
+    ("meshed-affine", 0.4, "lagrangian", 3),
 ])
 def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
     body, contact, problem = _box_problem(shape, friction, slip, gdim, kind)

@@ -14,14 +14,45 @@ import numpy.typing as npt
 
 from tribofx.lubrication_projection import LubricationResult
 from tribofx.projection import _validate
-from tribofx.projection_ref import _ELEMENTS, _evaluate, closest_point_projection_ref
+from tribofx.projection_ref import (
+    _ELEMENTS,
+    _QUAD_AB,
+    _evaluate,
+    _line1,
+    _line2,
+    closest_point_projection_ref,
+)
 
 __all__ = ["lubrication_projection_ref"]
 
 
+def _third_derivatives(el, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """x_,abc (m, tdim, tdim, tdim, g) of the facet map.
+
+    Zero for intervals and triangles (at most quadratic); a tensor-product
+    quadrilateral is at most quadratic in each coordinate, so only the mixed
+    x_,001 (and its permutations) and x_,011 remain — nonzero for quadrilateral9.
+    """
+    m, nn, gdim = X.shape
+    d3 = np.zeros((m, el.tdim, el.tdim, el.tdim, gdim))
+    if el.simplex:
+        return d3
+    line = _line2 if nn == 9 else _line1
+    f, df, d2f = line(xi[:, 0])
+    g, dg, d2g = line(xi[:, 1])
+    x001 = sum((d2f[a] * dg[b])[:, None] * X[:, i] for i, (a, b) in enumerate(_QUAD_AB[:nn]))
+    x011 = sum((df[a] * d2g[b])[:, None] * X[:, i] for i, (a, b) in enumerate(_QUAD_AB[:nn]))
+    for a, b, c in ((0, 0, 1), (0, 1, 0), (1, 0, 0)):
+        d3[:, a, b, c] = x001
+    for a, b, c in ((0, 1, 1), (1, 0, 1), (1, 1, 0)):
+        d3[:, a, b, c] = x011
+    return d3
+
+
 def _second_derivative(el, x: np.ndarray, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
-    """d2y_i/dx_j dx_k (m, g, g, g) of interior projections (third derivatives of x(ξ) = 0)."""
+    """d2y_i/dx_j dx_k (m, g, g, g) of interior projections."""
     xs, t, d = _evaluate(el, X, xi)
+    d3 = _third_derivatives(el, X, xi)
     g = x - xs
     gdim = x.shape[1]
     A = np.einsum("mai,mbi->mab", t, t) - np.einsum("mi,mabi->mab", g, d)
@@ -30,7 +61,8 @@ def _second_derivative(el, x: np.ndarray, X: np.ndarray, xi: np.ndarray) -> np.n
     dt = np.einsum("mben,mek->mbnk", d, Xi)
     dg = np.eye(gdim)[None] - np.einsum("men,mek->mnk", t, Xi)
     dA = (np.einsum("mbnk,mcn->mbck", dt, t) + np.einsum("mbn,mcnk->mbck", t, dt)
-          - np.einsum("mnk,mbcn->mbck", dg, d))
+          - np.einsum("mnk,mbcn->mbck", dg, d)
+          - np.einsum("mn,mbcen,mek->mbck", g, d3, Xi))
     dAi = -np.einsum("mac,mcek,meb->mabk", Ai, dA, Ai)
     dXi = np.einsum("mabk,mbj->majk", dAi, t) + np.einsum("mab,mbjk->majk", Ai, dt)
     return np.einsum("maik,maj->mijk", dt, Xi) + np.einsum("mai,majk->mijk", t, dXi)

@@ -132,6 +132,7 @@ struct Quadrilateral
   static constexpr bool affine = false;
   static constexpr bool simplex = false;
 
+  using line = Line;
   static constexpr std::array<std::array<int, 2>, 9> ab = {
       {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {0, 2}, {1, 2}, {2, 1}, {2, 2}}};
 
@@ -194,6 +195,38 @@ Geometry<gdim, E::tdim> evaluate(const double* X, const std::array<double, E::td
           geo.d[a][b][c] += tab.d2N[a][b][i] * Xi[c];
   }
   return geo;
+}
+
+/// Third derivatives d3[a][b][c] = d3x/dxi_a dxi_b dxi_c of a facet map at xi.
+/// Zero for intervals and triangles (at most quadratic); a tensor-product
+/// quadrilateral is at most quadratic in each coordinate, so only the mixed
+/// x_,001 (and permutations) and x_,011 remain (nonzero for quadrilateral9).
+template <class E, int gdim>
+std::array<std::array<std::array<std::array<double, gdim>, E::tdim>, E::tdim>, E::tdim>
+third_derivatives(const double* X, const std::array<double, E::tdim>& xi)
+{
+  std::array<std::array<std::array<std::array<double, gdim>, E::tdim>, E::tdim>, E::tdim> d3{};
+  if constexpr (E::tdim == 2 && !E::simplex)
+  {
+    using Line = typename E::line;
+    std::array<double, Line::n> f, df, d2f, g, dg, d2g;
+    Line::eval(xi[0], f, df, d2f);
+    Line::eval(xi[1], g, dg, d2g);
+    std::array<double, gdim> x001{}, x011{};
+    for (int i = 0; i < E::num_nodes; ++i)
+    {
+      const int a = E::ab[i][0];
+      const int b = E::ab[i][1];
+      for (int c = 0; c < gdim; ++c)
+      {
+        x001[c] += d2f[a] * dg[b] * X[i * gdim + c];
+        x011[c] += df[a] * d2g[b] * X[i * gdim + c];
+      }
+    }
+    d3[0][0][1] = d3[0][1][0] = d3[1][0][0] = x001;
+    d3[0][1][1] = d3[1][0][1] = d3[1][1][0] = x011;
+  }
+  return d3;
 }
 
 /// Bounding box [lo_0..lo_{g-1}, hi_0..hi_{g-1}] of a facet. For quadratic

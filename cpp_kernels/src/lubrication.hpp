@@ -12,9 +12,8 @@
 //           (= nu for an interior projection),
 //   d2h/dx2 = dnu/dx (exact for interior and vertex projections),
 //   d2y_i/dx_j dx_k by differentiating dy/dx = t_a Xi_a, Xi = A^-1 t,
-//           A_ab = t_a.t_b - g.x_,ab, third derivatives of the facet map
-//           neglected (they vanish for interval, interval3, triangle,
-//           triangle6 and quadrilateral; not for quadrilateral9).
+//           A_ab = t_a.t_b - g.x_,ab, whose derivative carries the third
+//           derivatives of the facet map (nonzero for quadrilateral9 only).
 // tribofx/lubrication_projection_ref.py is a NumPy twin of this file: any
 // change here must be mirrored there.
 
@@ -51,6 +50,7 @@ second_derivative(const std::array<double, gdim>& x, const double* X,
   const auto g = projection::sub(x, geo.x);
   const auto& t = geo.t;
   const auto& d = geo.d;
+  const auto d3 = elements::third_derivatives<E, gdim>(X, xi);
 
   // A^-1
   std::array<std::array<double, tdim>, tdim> Ai;
@@ -77,7 +77,8 @@ second_derivative(const std::array<double, gdim>& x, const double* X,
       for (int k = 0; k < gdim; ++k)
         for (int e = 0; e < tdim; ++e)
           dt[b][m][k] += d[b][e][m] * Xi[e][k];
-  // dA[b][c][k] = dt_b.t_c + t_b.dt_c - dg.x_,bc  (dg_m/dx_k = delta_mk - t_em Xi_ek)
+  // dA[b][c][k] = dt_b.t_c + t_b.dt_c - dg.x_,bc - g.x_,bce Xi_ek
+  // (dg_m/dx_k = delta_mk - t_em Xi_ek)
   std::array<std::array<std::array<double, gdim>, tdim>, tdim> dA{};
   for (int b = 0; b < tdim; ++b)
     for (int c = 0; c < tdim; ++c)
@@ -88,6 +89,8 @@ second_derivative(const std::array<double, gdim>& x, const double* X,
           for (int e = 0; e < tdim; ++e)
             dg -= t[e][m] * Xi[e][k];
           dA[b][c][k] += dt[b][m][k] * t[c][m] + t[b][m] * dt[c][m][k] - dg * d[b][c][m];
+          for (int e = 0; e < tdim; ++e)
+            dA[b][c][k] -= g[m] * d3[b][c][e][m] * Xi[e][k];
         }
   // dAi = -A^-1 dA A^-1
   std::array<std::array<std::array<double, gdim>, tdim>, tdim> dAi{};
