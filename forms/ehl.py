@@ -42,7 +42,10 @@ analytic plane, cylinder and sphere of :mod:`forms.contact`, or a surface mesh
 through the data of the C++ kernel refreshed at the nodes of Γ_l before every
 assembly (:func:`forms.contact.meshed_countersurface`: second-order Taylor
 expansions about the expansion point x₀, so value, first and second derivative
-of h and value and first derivative of ν and y are those of the kernel at x₀)
+of h and value and first derivative of ν and y are those of the kernel at x₀;
+x₀ are the nodes, and the data are interpolated (P1) to quadrature points, so
+away from the nodes the tangent is exact up to O(h κ) relative on a curved
+countersurface — exact on flat facets and in vertex-rule terms)
 — gives the lubrication projection by :func:`countersurface_projection`:
 
     h = g_N(x),  ν = n(x),  y = P(x) = x̄(x),  ∂P/∂x = ∂x̄/∂x      (36–37)

@@ -1,4 +1,4 @@
-"""gmsh-built rigid countersurfaces given as surface meshes (for the closest-point kernel).
+"""Rigid countersurfaces given as surface meshes (for the closest-point kernel).
 
 Returns plain arrays ``(nodes, facets, cell_type)`` in the kernel's packing:
 ``nodes`` (nv, gdim) float64, ``facets`` (nf, k) int32 in basix node ordering,
@@ -8,7 +8,7 @@ facet normals oriented towards the deformable body.  Lengths in mm.
 import gmsh
 import numpy as np
 
-__all__ = ["plane_surface_mesh"]
+__all__ = ["cap_surface_mesh", "plane_surface_mesh"]
 
 
 def plane_surface_mesh(gdim, extent, size, height=0.0):
@@ -56,3 +56,42 @@ def plane_surface_mesh(gdim, extent, size, height=0.0):
     facets[flip] = facets[flip][:, ::-1] if gdim == 2 else facets[flip][:, [0, 2, 1]]
     cell_type = "interval" if gdim == 2 else "triangle"
     return np.ascontiguousarray(nodes, dtype=np.float64), facets, cell_type
+
+
+def cap_surface_mesh(radius, centre, extent, n, quadratic=True):
+    """Structured mesh of the sphere cap {|x − centre| = radius, z > centre_z} over a square.
+
+    Every node lies on the sphere; the facets are biquadratic (``quadrilateral9``,
+    curved: the kernel's curvature terms and third derivatives are exercised) or
+    bilinear (``quadrilateral``), oriented with the outward normal (+z at the top).
+
+    Args:
+        radius: sphere radius (mm).
+        centre: (3,) its centre (mm); the cap is the part above it.
+        extent: (lo, hi) of the covered x and y range (mm), inside the sphere's
+            silhouette.
+        n: facets per side.
+        quadratic: quadrilateral9 (True) or quadrilateral facets.
+    """
+    lo, hi = extent
+    cx, cy, cz = np.asarray(centre, dtype=float)
+    if max(np.hypot(lo - cx, lo - cy), np.hypot(hi - cx, hi - cy)) >= radius:
+        raise ValueError("the square extent reaches beyond the sphere")
+    m = 2 * n + 1 if quadratic else n + 1
+    xs = np.linspace(lo, hi, m)
+    X, Y = np.meshgrid(xs, xs, indexing="ij")
+    Z = cz + np.sqrt(radius**2 - (X - cx) ** 2 - (Y - cy) ** 2)
+    nodes = np.c_[X.ravel(), Y.ravel(), Z.ravel()]
+    s = 2 if quadratic else 1
+    facets = []
+    for a in range(n):
+        for b in range(n):
+            i, j = s * a, s * b
+            # v0, v1 (along x), v2 (along y), v3: t_x × t_y points up, outward
+            f = [i * m + j, (i + s) * m + j, i * m + j + s, (i + s) * m + j + s]
+            if quadratic:   # edge nodes of (v0,v1), (v0,v2), (v1,v3), (v2,v3), the centre
+                f += [(i + 1) * m + j, i * m + j + 1, (i + 2) * m + j + 1,
+                      (i + 1) * m + j + 2, (i + 1) * m + j + 1]
+            facets.append(f)
+    return (np.ascontiguousarray(nodes), np.array(facets, dtype=np.int32),
+            "quadrilateral9" if quadratic else "quadrilateral")

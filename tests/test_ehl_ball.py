@@ -133,7 +133,15 @@ def test_coupled_tangent_taylor(light_load):
 
 
 @pytest.mark.mpi
-def test_meshed_plane_tangent_taylor(light_load):
+@pytest.mark.parametrize("surface", [
+    "plane",
+    pytest.param("curved", marks=pytest.mark.xfail(strict=True, reason=(
+        "known: the kernel data are expanded about the nodes of Γ_l and interpolated "
+        "(P1) to the film's quadrature points, so the tangent takes n_h·δu_h where the "
+        "residual varies as I_h(n·δu): a first-order error O(h κ) on a curved "
+        "countersurface (1e-5 relative here, 8e-5 on the 2D meshed cylinder); exact "
+        "for flat facets and for vertex-rule terms (contact)")))])
+def test_meshed_plane_tangent_taylor(light_load, surface):
     """Exact tangent with a meshed countersurface in 3D (C++ lubrication projection).
 
     The same ball and state as :func:`test_coupled_tangent_taylor`, the plane a
@@ -141,8 +149,10 @@ def test_meshed_plane_tangent_taylor(light_load):
     (``Problem.residual_at`` refreshes the kernel data at each perturbed state):
     the kernel's ∂P/∂x, ∂ν/∂x and ∂²P/∂x² must give an O(ε²) remainder.  The
     residual itself equals the analytic plane's (flat facets are exact).
+    ``curved``: a sphere cap of radius 10 R touching z = 0, biquadratic facets, so
+    that the curvature terms of ν and P (and the facets' third derivatives) enter.
     """
-    from tribofx.meshes.obstacles import plane_surface_mesh
+    from tribofx.meshes.obstacles import cap_surface_mesh, plane_surface_mesh
 
     from tribofx.body import Body
     from tribofx.interfaces import Film
@@ -155,7 +165,9 @@ def test_meshed_plane_tangent_taylor(light_load):
     twin.add_dirichlet("midplane", np.zeros(3))
     twin.add_dirichlet("symmetry", 0.0, component=1)
     R = v["R"]
-    meshed = Film(twin, "lubricated", rigid_surface_mesh(*plane_surface_mesh(3, (-R, R), R / 4)),
+    counter = (plane_surface_mesh(3, (-R, R), R / 4) if surface == "plane"
+               else cap_surface_mesh(10 * R, (0.0, 0.0, -10 * R), (-R, R), 7))
+    meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter),
                   v["mu"], V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
                   eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
                   quadrature_degree=2, name="meshed")
@@ -167,8 +179,8 @@ def test_meshed_plane_tangent_taylor(light_load):
     meshed.counterpart.offset.value[:] = film.counterpart.offset.value
     b_m, _ = twin_problem.assemble()
     b_a, _ = problem.assemble()
-    # flat facets: the kernel reproduces the plane to round-off
-    assert abs(b_m.norm() - b_a.norm()) <= 1e-8 * b_a.norm() + 1e-14
+    if surface == "plane":   # flat facets: the kernel reproduces the plane to round-off
+        assert abs(b_m.norm() - b_a.norm()) <= 1e-8 * b_a.norm() + 1e-14
     p0 = Case.scales(v)[1]
     rim_dofs = fem.locate_dofs_geometrical(meshed.Q, rim)
     meshed.p.x.array[:] = np.abs(meshed.p.x.array) + 0.01 * p0
@@ -181,8 +193,9 @@ def test_meshed_plane_tangent_taylor(light_load):
         d.x.scatter_forward()
         dirs.append(d)
     dirs[2].x.array[rim_dofs] = 0.0
-    orders, rem = taylor_orders(twin_problem, dirs, eps0=1e-2)
-    print("meshed plane Taylor orders", orders, "remainders", rem)
+    # ε down to 3e-5 of the state scales: a first-order error of 1e-5 relative shows
+    orders, rem = taylor_orders(twin_problem, dirs, eps0=1e-3, n=6)
+    print(surface, "meshed Taylor orders", orders, "remainders", rem)
     assert orders.min() > 1.8
 
 

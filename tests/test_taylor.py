@@ -6,6 +6,7 @@ import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
 from tribofx.forms import hyperelastic as hf
+from tribofx.meshes.obstacles import cap_surface_mesh
 
 from tribofx.body import Body
 from tribofx.interfaces import Contact
@@ -69,32 +70,13 @@ def _arc_mesh(quadratic, n=40):
 
 
 def _cap_mesh(quadratic, n=6):
-    """Cap of the sphere of radius 2 centred at (0.5, 0.5, −1.95) over [−0.3, 1.3]²,
-    as quadrilateral or quadrilateral9 facets (every node on the sphere), oriented
-    with the outward normal (t_x × t_y points up).  No slave node of the box
-    projects within 0.03 mm of a facet edge, where the normal of the piecewise
-    surface jumps (a Taylor step across it would show that jump, not the tangent)."""
-    m = 2 * n + 1 if quadratic else n + 1
-    xs = np.linspace(-0.3, 1.3, m)
-    X, Y = np.meshgrid(xs, xs, indexing="ij")
-    Z = -1.95 + np.sqrt(4 - (X - 0.5) ** 2 - (Y - 0.5) ** 2)
-    nodes = np.c_[X.ravel(), Y.ravel(), Z.ravel()]
+    """Cap of the sphere of radius 2 centred at (0.5, 0.5, −1.95) over [−0.3, 1.3]².
 
-    def idx(i, j):
-        return i * m + j
-
-    s = 2 if quadratic else 1
-    facets = []
-    for a in range(n):
-        for b in range(n):
-            i, j = s * a, s * b
-            f = [idx(i, j), idx(i + s, j), idx(i, j + s), idx(i + s, j + s)]
-            if quadratic:   # edges (v0,v1), (v0,v2), (v1,v3), (v2,v3), then the centre
-                f += [idx(i + 1, j), idx(i, j + 1), idx(i + 2, j + 1), idx(i + 1, j + 2),
-                      idx(i + 1, j + 1)]
-            facets.append(f)
-    return nodes, np.array(facets, dtype=np.int32), (
-        "quadrilateral9" if quadratic else "quadrilateral")
+    No slave node of the box projects within 0.03 mm of a facet edge, where the
+    normal of the piecewise surface jumps (a Taylor step across it would show that
+    jump, not the tangent).
+    """
+    return cap_surface_mesh(2.0, (0.5, 0.5, -1.95), (-0.3, 1.3), n, quadratic)
 
 
 def _box_problem(shape, friction, slip, gdim=2, kind=None):
