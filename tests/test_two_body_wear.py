@@ -108,3 +108,37 @@ def test_wear_reciprocating_both_bodies(tmp_path, scheme):
     # the VTX time series holds the initial state and every slow step, for both bodies
     for body in ("pin", "block"):
         assert bp4_steps(tmp_path / scheme / f"{body}_series.bp") == len(a_pin)
+
+
+def test_both_bodies_worn_tangent_taylor():
+    """Exact tangent with both bodies worn (eqs. 17-18): after one slow step of the
+    §5.1 case, the fast-time problem (pin and block displacements on their worn shapes,
+    the two-body contact multipliers) and the slow-time shape problem of both bodies
+    (w and ζ of pin and block, driven by their cycle-averaged rates) have Taylor
+    remainders of order 2.  Directions: 1e-6 mm and 1e-6 MPa keep the active and stick
+    sets (as tests/test_two_body.py)."""
+    from tribofx.cases.wear_reciprocating import WearReciprocatingCase as Case
+    from tribofx.params import resolve
+    from tribofx.testing import owned_arrays, taylor_orders
+
+    v = resolve(Case.params, {"mesh": "0", "cycles": "100", "dt": "10", "fast_steps": "8"})
+    Case.validate(v)
+    run = Case.build(v)
+    Case.load_up(run, v)
+    st = run["stepper"]
+    st.start()
+    st.step(10.0)
+    for wear in (run["wear_pin"], run["wear_block"]):
+        assert wear.max_depth() > 0
+        wear.dt.value = 10.0
+    # slide on by a tenth of a fast step, uncommitted: right after a commit the slip is
+    # zero and the slipping nodes sit on the kink of the Coulomb cone
+    cycle = run["cycle"]
+    cycle.drive(float(run["motion"].value[0]) + 0.1 * 2 * v["A"] / v["fast_steps"])
+    st.problem.solve()
+    rng = np.random.default_rng(3 + COMM.rank)
+    for problem in (p for p in (st.problem, st.shape) if p is not None):
+        dirs = [1e-6 * rng.standard_normal(len(f.x.array)) for f in problem.u]
+        orders, rem = taylor_orders(problem, owned_arrays(problem, dirs), eps0=1.0, n=4)
+        print([f.name for f in problem.u], "orders", orders, "remainders", rem)
+        assert rem.max() < 1e-10 or orders.min() > 1.8, (orders, rem)

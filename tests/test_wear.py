@@ -557,6 +557,33 @@ def test_wear_tangent_taylor(scheme, friction, law, k_grad):
     assert rem.max() < 1e-10 or orders.min() > 1.8, (orders, rem)
 
 
+@pytest.mark.mpi
+def test_cycle_averaged_wear_tangent_taylor():
+    # time-scale separation (mode=cyclic, eqs. 21-23): the fast-time contact problem
+    # with Lagrangian friction on the worn shape, and the slow-time shape step driven by
+    # the cycle-averaged rate (a nodal field: only the swept Nanson vector a(w, w_n)
+    # couples), each at the state after one slow step of 200 s (finite w ≠ w_n,
+    # sliding contact).  Same directions and bound as test_wear_tangent_taylor.  (The
+    # implicit slow step iterates these same two problems, Picard, so it adds no tangent)
+    scheme = "explicit"
+    values = resolve(WearPinCase.params, {"scheme": scheme, "E": "40", "mode": "cyclic",
+                                          "friction": str(MU), "fast_steps": "4"})
+    stepper, load = WearPinCase.build(values, n=4)
+    WearPinCase.load_up(stepper, load, values)
+    stepper.start()
+    stepper.step(200.0)
+    wear = stepper.wear
+    assert wear.averaged and wear.max_depth() > 0.01
+    wear.dt.value = 200.0
+    lam = wear.contact.lam_n.x.array
+    lam[lam > -1e-9] = 0.05               # off the kink λ_N = 0 (open contact branch)
+    for problem in (p for p in (stepper.problem, stepper.shape) if p is not None):
+        dirs = [_smooth_direction(f, 1e-3, 11 + i) for i, f in enumerate(problem.u)]
+        orders, rem = taylor_orders(problem, owned_arrays(problem, dirs), eps0=1e-3)
+        print(scheme, [f.name for f in problem.u], "orders", orders, "remainders", rem)
+        assert rem.max() < 1e-10 or orders.min() > 1.8, (orders, rem)
+
+
 # -- checkpoint and restart of the slow-time stepper ----------------------------------
 
 @pytest.mark.mpi
