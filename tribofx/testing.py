@@ -27,7 +27,8 @@ log₂(r(ε)/r(ε/2)) are returned with the remainders relative to the linear te
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["block_vector", "form_taylor_orders", "owned_arrays", "taylor_orders"]
+__all__ = ["block_taylor_orders", "block_vector", "exact_tangent", "form_taylor_orders",
+           "owned_arrays", "taylor_orders"]
 
 
 def _replicated(problem, f):
@@ -86,6 +87,54 @@ def taylor_orders(problem, direction, eps0=1e-3, n=4):
     problem.refresh()
     rem = np.array(rem)
     return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())
+
+
+def block_taylor_orders(problem, direction, eps0=1e-3, n=4):
+    """:func:`taylor_orders` along each unknown's part of ``direction`` alone.
+
+    A combined direction measures the remainder against ‖J d‖, which the stiffest
+    block dominates: a wrong column of a multiplier block can hide below it.  Returns
+    ``{unknown name: (orders, remainders, floor)}``.  ``floor`` bounds the round-off
+    of the relative remainders: a residual row is a sum of terms each at most
+    ‖A‖_∞‖x‖_∞ (to first order about the state), so its evaluation errs by
+    ~ε_mach ‖A‖_∞‖x‖_∞ per row and √N ε_mach ‖A‖_∞‖x‖_∞ in 2-norm; the difference
+    R(x + εd) − R(x) carries two such errors, and 10 more for the summation order.
+    A block the residual is linear in shows remainders below ``floor`` instead of
+    orders.
+    """
+    if all(hasattr(d, "x") for d in direction):
+        direction = owned_arrays(problem, direction)
+    b, A = problem.assemble()
+    x = block_vector(problem, owned_arrays(problem))
+    size = (A.norm(PETSc.NormType.NORM_INFINITY) * x.norm(PETSc.NormType.NORM_INFINITY)
+            * np.sqrt(x.getSize()))
+    x.destroy()
+    out = {}
+    for k, ui in enumerate(problem.u):
+        alone = [d if j == k else np.zeros_like(d) for j, d in enumerate(direction)]
+        dv = block_vector(problem, alone)
+        Ad = A.createVecLeft()
+        A.mult(dv, Ad)
+        floor = 20 * np.finfo(float).eps * size / (eps0 * max(Ad.norm(), 1e-300))
+        for v in (dv, Ad):
+            v.destroy()
+        out[ui.name] = (*taylor_orders(problem, alone, eps0, n), floor)
+    return out
+
+
+def exact_tangent(orders, remainders, floor, min_order=1.8):
+    """Whether a Taylor test shows an exact tangent.
+
+    Second order (every observed order above ``min_order``, 1.8: the ε-range where
+    round-off starts to show), or remainders at round-off (below ``floor``) that do
+    not decay at first order — a wrong tangent column leaves r(ε) ∝ ε, orders 1 to
+    within 0.2 however small r is; round-off leaves erratic orders.
+    """
+    orders = np.asarray(orders)
+    if orders.min() > min_order:
+        return True
+    first_order = np.all(np.abs(orders - 1.0) < 0.2)
+    return bool(np.max(remainders) < floor and not first_order)
 
 
 def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
