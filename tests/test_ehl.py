@@ -320,10 +320,12 @@ def test_intermediate_lubrication_surface():
         if key != "clearance":  # a position, not a film quantity
             print(key, "rel. change α = 0 → 1", a1 / a0 - 1, "h/ℓ", thin)
             assert abs(a1 / a0 - 1) < thin, key
-        # smooth in α: small second difference (measured: h, p ≤ 0.06 %, nearly
-        # linear in α; friction 0.8 %, clearance 0.12 %), and h, p monotone in α
+        # smooth in α: each half step α → α + ½ changes a film quantity by less than
+        # h/ℓ of it (as the whole step above), so the second difference is below 2 h/ℓ
+        # (measured: h, p ≤ 0.06 %, nearly linear in α; friction 0.8 %, clearance
+        # 0.12 %), and h, p monotone in α
         print(key, "second difference", (a0 - 2 * a5 + a1) / a0)
-        assert abs(a0 - 2 * a5 + a1) <= 1.5e-2 * abs(a0), key
+        assert abs(a0 - 2 * a5 + a1) <= 2 * thin * abs(a0), key
         if key in ("h_min", "h_central", "p_max"):
             assert (a5 - a0) * (a1 - a5) > 0, key
 
@@ -415,9 +417,9 @@ def test_mesh_convergence_h_min_p_max():
     """h_min and p_max at W = 0.2 N/mm on Γ_l element sizes 40, 20, 10 µm (P1, P1).
 
     Nodal p_max and h_min of P1 fields converge as O(h²) where the solution is
-    smooth (measured ratios of successive differences ≈ 5); the outlet kink of
-    the cavitation boundary can lower this, so the test asks for an observed
-    order > 1.3 (ratio > 2.5) and a finest difference below 0.2 %.
+    smooth (measured ratios of successive differences ≈ 5), O(h) at worst near the
+    outlet kink of the cavitation boundary: the observed order must be the smooth
+    one, i.e. nearer 2 than 1 (ratio of successive differences > 2^1.5).
     """
     from tribofx.cases.ehl_convergence import mesh_convergence
 
@@ -429,6 +431,4 @@ def test_mesh_convergence_h_min_p_max():
     assert rows[0]["num_dofs"] < rows[1]["num_dofs"] < rows[2]["num_dofs"]
     for k in ("d_h_min", "d_p_max"):
         d1, d2 = rows[1][k], rows[2][k]
-        assert d2 < d1
-        assert d1 / d2 > 2.5, (k, d1, d2)
-        assert d2 < 2e-3
+        assert d1 / d2 > 2**1.5, (k, d1, d2)
