@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import ufl
 
 __all__ = [
+    "multiplier_regularisation",
     "ContactGeometry",
     "augmented_lagrangian_contact",
     "contact_tractions",
@@ -183,3 +184,12 @@ def augmented_lagrangian_contact(
         R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * weight * ds
         R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * ds
     return R_u, R_n, R_t
+
+
+def multiplier_regularisation(lam, mu, rho, ds):
+    """Return the linear part −∫ (1/ρ) λ·δλ dS of the Alart–Curnier constraint rows.
+
+    Of −(1/ρ)(λ − T(λ, g)): the part that stays when T is evaluated outside UFL
+    (the two-body contact's kernel adds (1/ρ) T); scalar or vector ``lam``.
+    """
+    return -(1 / rho) * ufl.inner(lam, mu) * ds

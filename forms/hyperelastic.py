@@ -12,6 +12,7 @@ import ufl
 from .kinematics import deformation_gradient, grad3, reference_volume_factor
 
 __all__ = [
+    "body_force_work",
     "MATERIALS",
     "external_virtual_work",
     "first_piola",
@@ -102,3 +103,9 @@ def external_virtual_work(traction, v, kind, ds):
     """Virtual work ∫ T*·δφ dS of a prescribed nominal traction T* (MPa), eq. (7)."""
     w = reference_volume_factor(v.ufl_function_space().mesh, kind)
     return ufl.dot(traction, v) * w * ds
+
+
+def body_force_work(force, v, kind, dx):
+    """Virtual work ∫ B·δφ dV of a dead body force B (N/mm³ per reference volume), eq. (7)."""
+    w = reference_volume_factor(v.ufl_function_space().mesh, kind)
+    return ufl.dot(force, v) * w * dx

@@ -31,6 +31,7 @@ import ufl
 from .wear import archard_pressure_form
 
 __all__ = [
+    "nodal_rate_form",
     "graded_factor",
     "groove_rate_density",
     "groove_slip_speed",
@@ -87,3 +88,12 @@ def path_averaged_rate(P_line, rate_nodal, L):
     (vectors or Jacobian rows).
     """
     return (P_line.T @ rate_nodal) / L
+
+
+def nodal_rate_form(rate_density, eta, ds):
+    """Return the form ∫ Ẇ j_w η dŜ of the nodal wear rates (mm³/s, vertex rule ``ds``).
+
+    Assembled, it is the r of :func:`path_averaged_rate` (the right-hand side of the
+    line form of eq. 28, eqs. 22–23).
+    """
+    return rate_density * eta * ds

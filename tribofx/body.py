@@ -179,7 +179,7 @@ class Body:
 
     def add_body_force(self, force):
         """Dead body force B (UFL vector, N/mm³ per unit reference volume): ∫ B·δu dV."""
-        self._loads.append(ufl.dot(force, self.v) * self.weight * self.dx)
+        self._loads.append(hf.body_force_work(force, self.v, self.kind, self.dx))
 
     def add_follower_pressure(self, name, pressure):
         """Follower pressure p (MPa) on boundary ``name``: T = −p J F⁻ᵀ N (Nanson)."""

@@ -157,7 +157,8 @@ class SteadyWear:
         J = ufl.det(ale.deformation_gradient_worn(body.u, body.w, "3d")) \
             if law == "spatial" else None
         self.rate_density = gf.groove_rate_density(k, t_n, slip, J)
-        self.rate_form = self.rate_density * ufl.TestFunction(contact.Q) * contact.dsc
+        self.rate_form = gf.nodal_rate_form(self.rate_density, ufl.TestFunction(contact.Q),
+                                            contact.dsc)
         # extrusion maps: shape (w_y, w_z) → body (u_y, u_z); line → contact nodes
         V3 = body.w.function_space
         im3, imQ = V3.dofmap.index_map, contact.Q.dofmap.index_map

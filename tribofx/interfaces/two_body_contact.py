@@ -33,6 +33,7 @@ from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
+from ..forms import contact as cf
 from ..forms import kinematics as kin
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
@@ -348,11 +349,11 @@ class TwoBodyContact:
 
     def contributions(self):
         """Return the linear part −∫(1/ρ) λ·δλ dS of the constraint rows (rest: kernel)."""
-        out = [(self.lam_n, -(1 / self.rho_n) * self.lam_n * ufl.TestFunction(self.Q)
-                * self.dsc)]
+        out = [(self.lam_n, cf.multiplier_regularisation(
+            self.lam_n, ufl.TestFunction(self.Q), self.rho_n, self.dsc))]
         if self.lam_t is not None:
-            out.append((self.lam_t, -(1 / self.rho_t) * ufl.dot(
-                self.lam_t, ufl.TestFunction(self.Vs)) * self.dsc))
+            out.append((self.lam_t, cf.multiplier_regularisation(
+                self.lam_t, ufl.TestFunction(self.Vs), self.rho_t, self.dsc)))
         return out
 
     def bcs(self):
