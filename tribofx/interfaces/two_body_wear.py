@@ -13,6 +13,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from ..forms import wear as wf
 from . import facets
 from .surface import Surface
 
@@ -114,10 +115,10 @@ class WearSurface:
         inc = self._inc.x.array
         if self.side == "slave":
             inc[:] = 0.0
-            inc[self.contact._q] = K * dD
+            inc[self.contact._q] = wf.archard_nominal(K, dD)      # eq. (17)
             self._inc.x.scatter_forward()
             return inc.copy()
-        keys, vol = self.contact.master_transfer(K * dD * self.contact._w_c)
+        keys, vol = self.contact.master_transfer(wf.archard_nominal(K, dD) * self.contact._w_c)
         pos = np.searchsorted(keys, self._key)
         if len(keys) and not np.array_equal(keys[np.minimum(pos, len(keys) - 1)], self._key):
             raise RuntimeError("master surface nodes missing from the gathered polyline")
