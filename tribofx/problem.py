@@ -7,7 +7,8 @@ A *component* (a :class:`tribofx.body.Body` or an interface of
 * ``contributions()``: a list of ``(unknown, form)`` pairs, the residual terms it
   adds to the row of ``unknown`` (the form is linear in the test function of
   ``unknown``'s space; every term is built by :mod:`tribofx.forms`);
-* ``bcs()``: Dirichlet conditions on any of its own or other unknowns;
+* ``bcs()``: Dirichlet conditions on any of its own or other unknowns, and
+  ``bcs_by_unknown()``: the same as ``{unknown: [DirichletBC]}`` (which rows they fix);
 * ``entity_maps()``: entity maps of its mixed-dimensional forms;
 * ``refresh()``: data computed outside UFL (C++ kernel projections, traces),
   run before *every* residual and Jacobian evaluation, line-search trials
@@ -293,8 +294,8 @@ class Problem(NewtonControl):
             f.x.scatter_forward()
             cols = np.rint(f.x.array).astype(np.int64)
             rows = cols.copy()
-            for bc in self.bcs:
-                if V._cpp_object.contains(bc.function_space):
+            for c in self.components:
+                for bc in next((b for v, b in c.bcs_by_unknown().items() if v is ui), []):
                     rows[bc.dof_indices()[0]] = -1
             self._global[key] = (rows, cols)
         return self._global[key]

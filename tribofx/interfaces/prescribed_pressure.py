@@ -43,6 +43,10 @@ class PrescribedPressure:
         """Return no conditions."""
         return []
 
+    def bcs_by_unknown(self):
+        """Return no conditions."""
+        return {}
+
     def entity_maps(self):
         """Return the film's entity map."""
         return [self.film.emap]

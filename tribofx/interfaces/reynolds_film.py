@@ -41,6 +41,7 @@ class ReynoldsFilm:
 
     def _init_rows(self):
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
+        self._bc_on = []      # the unknown each of _bcs prescribes
         self._bfacets = None
         self.set_scales()
 
@@ -89,6 +90,7 @@ class ReynoldsFilm:
         """
         c = fem.Constant(self.sub, float(value))
         self._bcs.append(fem.dirichletbc(c, self._boundary_dofs(self.Q, where), self.Q))
+        self._bc_on.append(self.p)
         return c
 
     def add_inlet(self, where, void=0.0):
@@ -102,6 +104,7 @@ class ReynoldsFilm:
         self._inlet, self._void_in = where, float(void)
         self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
                                          self._boundary_dofs(self.Ql, where), self.Ql))
+        self._bc_on.append(self.lam)
         if void == 0:
             self.add_pressure_bc(where)
 
@@ -152,6 +155,13 @@ class ReynoldsFilm:
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""
         return list(self._bcs)
+
+    def bcs_by_unknown(self):
+        """Dirichlet conditions sorted by unknown: p's and λ's (each space has its own)."""
+        out = {self.p: [bc for bc, on in zip(self._bcs, self._bc_on) if on is self.p]}
+        if self.lam is not None:
+            out[self.lam] = [bc for bc, on in zip(self._bcs, self._bc_on) if on is self.lam]
+        return out
 
     def _flux_width(self):
         """Width (mm) across which the flux scale U·h_ref passes.

@@ -360,6 +360,10 @@ class TwoBodyContact:
         """Return no conditions."""
         return []
 
+    def bcs_by_unknown(self):
+        """Return no conditions."""
+        return {}
+
     def entity_maps(self):
         """Return the submesh ↔ slave entity map."""
         return [self.emap]
