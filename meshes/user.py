@@ -19,16 +19,21 @@ dimension) and cells of dimension d.  Every problem is reported as a one-line
 
 import os
 
+import basix
 import gmsh
 import numpy as np
 import ufl
 from dolfinx import fem
 from dolfinx import mesh as dmesh
-from dolfinx.cpp import mesh as _cpp_mesh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["boundary_facet_size", "read_user_mesh"]
+__all__ = ["boundary_facet_size", "num_cell_vertices", "read_user_mesh"]
+
+
+def num_cell_vertices(cell_type):
+    """Return the number of vertices of a DOLFINx cell type (basix's reference topology)."""
+    return len(basix.topology(basix.CellType[cell_type.name])[0])
 
 
 def _error(msg):
@@ -197,7 +202,7 @@ def boundary_facet_size(msh, ft, tag, near=None):
     im = msh.topology.index_map(fdim)
     facets = ft.find(tag)
     facets = facets[facets < im.size_local]
-    nv = _cpp_mesh.cell_num_vertices(msh.topology.entity_types[fdim][0])
+    nv = num_cell_vertices(msh.topology.entity_types[fdim][0])
     geo = dmesh.entities_to_geometry(msh, fdim, facets, False)
     geo = np.asarray(geo, dtype=np.int64).reshape(len(facets), -1)[:, :nv] if len(facets) \
         else np.zeros((0, nv), dtype=np.int64)     # a rank without such facets: no rows

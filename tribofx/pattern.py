@@ -18,7 +18,7 @@ import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
 
-__all__ = ["grow"]
+__all__ = ["facet_rings", "grow"]
 
 
 def grow(A, rows, cols):
@@ -53,3 +53,20 @@ def grow(A, rows, cols):
     M.setLGMap(*A.getLGMap())
     M.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
     return M
+
+
+def facet_rings(facets):
+    """Per facet, the nodes of every facet sharing a node with it, padded with −1.
+
+    ``facets`` (m, k) node indices; returns (m, width) int.  A contact node paired
+    with facet f may slide onto any facet of its ring during Newton's iterations, so
+    the ring's nodes belong to its preallocated couplings.
+    """
+    node_facets = [[] for _ in range(int(facets.max(initial=-1)) + 1)]
+    for i, f in enumerate(facets):
+        for v in f:
+            node_facets[v].append(i)
+    ring = [np.unique(facets[np.concatenate([node_facets[v] for v in f])]) for f in facets]
+    width = max((len(r) for r in ring), default=0)
+    return np.array([np.pad(r, (0, width - len(r)), constant_values=-1) for r in ring],
+                    dtype=np.int64).reshape(len(facets), width)

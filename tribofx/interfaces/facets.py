@@ -8,8 +8,8 @@ shape functions N = (1 − Σ ξ^a, ξ^1, ...).
 
 import numpy as np
 
-__all__ = ["keep_reference_facets", "normals", "plane_coordinates", "same_pairing",
-           "shape_values"]
+__all__ = ["eulerian_slip_constants", "keep_reference_facets", "normals", "plane_coordinates",
+           "same_pairing", "shape_values"]
 
 
 def shape_values(xi):
@@ -87,3 +87,18 @@ def same_pairing(a, b):
     if a is None or b is None or a[0].shape != b[0].shape or not np.array_equal(a[0], b[0]):
         return False
     return a[1] is None or b[1] is None or np.array_equal(a[1], b[1])
+
+
+def eulerian_slip_constants(facet_ref, V, dtau):
+    """Per node the constants c of the Eulerian slip s = c^a t_a (eq. 27) on its facet.
+
+    ``facet_ref`` (n, d, d): the reference vertices of each node's master facet; the
+    master's material moves with ``V`` along its reference surface, so on a P1 facet
+    F⁽²⁾V = a^b t_b with a = [T_a·T_b]⁻¹[T_a·V] (T_a the reference edge vectors), and
+    the slip over the pseudo-time Δτ is s = −Δτ F⁽²⁾V: c = −Δτ a ((n,) in 2D, (n, 2)).
+    """
+    T = facet_ref[:, 1:] - facet_ref[:, :1]
+    M = np.einsum("nad,nbd->nab", T, T)
+    a = np.linalg.solve(M, np.einsum("nad,d->na", T, V)[..., None])[..., 0]
+    c = -dtau * a
+    return c[:, 0] if facet_ref.shape[1] == 2 else c

@@ -11,8 +11,8 @@ vertex-quadrature measure of the nodal scheme, and lumped nodal assembly.
 import numpy as np
 import ufl
 from dolfinx import fem, la
-from dolfinx.cpp import mesh as _cpp_mesh
 
+from ..meshes.user import num_cell_vertices
 from ..submesh import facet_submesh
 
 __all__ = ["Surface", "node_to_dof"]
@@ -22,7 +22,7 @@ def node_to_dof(V):
     """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
     msh = V.mesh
     xdm = msh.geometry.dofmaps[0]
-    nv = _cpp_mesh.cell_num_vertices(msh.topology.cell_type)
+    nv = num_cell_vertices(msh.topology.cell_type)
     if xdm.shape[1] != nv:
         raise ValueError("contact requires an affine (P1) geometry of the contact body")
     out = np.full(msh.geometry.x.shape[0], -1, dtype=np.int64)

@@ -34,13 +34,13 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..forms import contact as cf
-from ..forms import kinematics as kin
+from ..pattern import facet_rings
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
 from ..two_body import MasterSurface, MasterSurface3, node_residuals, num_local
 from . import facets, two_body_wear
-from .contact import gather_nodal
 from .surface import Surface, node_to_dof
+from .two_body_outputs import TwoBodyOutputs
 
 __all__ = ["TwoBodyContact"]
 
@@ -52,7 +52,7 @@ def _vertex_dofs(body, facets):
     return node_to_dof(body.V)[geo]
 
 
-class TwoBodyContact:
+class TwoBodyContact(TwoBodyOutputs):
     """Frictional contact of ``slave`` on ``slave_boundary`` with ``master`` on ``master_boundary``.
 
     Args:
@@ -239,26 +239,16 @@ class TwoBodyContact:
         return data
 
     def _eulerian_constants(self, keys, seg, f):
-        """Per slave node the constants c of the Eulerian slip s = c^a t_a (eq. 27).
+        """Per slave node the constants c of the Eulerian slip (eq. 27) on its master facet.
 
-        The master's material moves with the constant velocity V along its own
-        reference surface (e.g. a disc or a belt analysed in an Eulerian frame,
-        the slave at rest): the relative velocity of the master material at x̄ is
-        F⁽²⁾V, and on a P1 facet F⁽²⁾ maps the reference edge vectors T_a onto
-        the current t_a, so F⁽²⁾V = a^b t_b with a = [T_a·T_b]⁻¹[T_a·V]
-        (exact for V tangent to the facet; its normal part is removed by the
-        tangential projection of the law anyway).  The slip over the pseudo-time
-        Δτ is s = −Δτ F⁽²⁾V, so c = −Δτ a.
+        The master's material moves with ``V_master`` along its own reference surface
+        (a disc or a belt in an Eulerian frame, the slave at rest):
+        :func:`tribofx.interfaces.facets.eulerian_slip_constants` of the reference facets.
         """
         if getattr(self, "_Xref_keys", None) is None or not np.array_equal(self._Xref_keys, keys):
             X = self.master.V.tabulate_dof_coordinates()[:, :self.gdim]
             self._Xref_keys, self._Xref = self._gather(lambda nd: X[nd])
-        Xf = self._Xref[seg[f]]                                # (n, d, d) reference facet
-        T = Xf[:, 1:] - Xf[:, :1]
-        M = np.einsum("nad,nbd->nab", T, T)
-        a = np.linalg.solve(M, np.einsum("nad,d->na", T, self.V_master)[..., None])[..., 0]
-        c = -self.dtau * a
-        return c[:, 0] if self.gdim == 2 else c
+        return facets.eulerian_slip_constants(self._Xref[seg[f]], self.V_master, self.dtau)
 
     def _rows(self, problem, k):
         """Global rows and columns (n, L) of the local unknowns of ``k`` in ``problem``."""
@@ -300,20 +290,8 @@ class TwoBodyContact:
         k = self._kernel()
         rows, cols = self._rows(problem, k)
         d, seg, f = self.gdim, k["seg"], k["facet"]
-        old = getattr(self, "_ring_seg", None)
-        if old is None or old.shape != seg.shape or not np.array_equal(old, seg):
-            node_facets = [[] for _ in range(len(k["keys"]))]
-            for i, s_ in enumerate(seg):
-                for v in s_:
-                    node_facets[v].append(i)
-            ring = []
-            for s_ in seg:
-                nodes = np.unique(seg[np.concatenate([node_facets[v] for v in s_])])
-                ring.append(nodes)
-            width = max(len(r) for r in ring)
-            self._ring = np.array([np.pad(r, (0, width - len(r)), constant_values=-1)
-                                   for r in ring])
-            self._ring_seg = seg
+        if not facets.same_pairing(getattr(self, "_ring_seg", None), (seg, None)):
+            self._ring, self._ring_seg = facet_rings(seg), seg
         ring = self._ring[f]                                   # (n, width) master nodes
         rc = k["master_rows"][id(problem)]                     # gathered by _rows
         valid = ring >= 0
@@ -444,40 +422,3 @@ class TwoBodyContact:
             raise ValueError("wear of a two-body contact is driven by the frictional "
                              "dissipation (eqs. 17-18): friction > 0 needed")
         return two_body_wear.WearSurface(self, side)
-
-    # -- outputs ---------------------------------------------------------------------
-    def nodal_data(self, problem=None):
-        """Per owned slave node: X, x, nominal T_N, T_T, pressure −T_N/j, weights (current, ref).
-
-        (``problem`` is not needed; accepted for the interface of the other contacts.)
-        """
-        k = self._kernel()
-        r = k["r"]
-        wc = np.where(self._w_c > 0, self._w_c, 1.0)
-        il = self._lam
-        T_n = r[:, il] * self.rho_n / wc
-        T_t = r[:, il + 1:] * self.rho_t / wc[:, None]
-        if self._post is None:
-            s = self.slave
-            j = kin.area_ratio(kin.deformation_gradient(s.u, s.kind), ufl.FacetNormal(s.mesh),
-                               s.kind)
-            self._post = fem.form(j * ufl.TestFunction(self.Q) * self.dsc,
-                                  entity_maps=[self.emap])
-        wj = self._lumped(self._post)[self._q]
-        j = np.divide(wj, self._w_c, out=np.ones_like(wj), where=self._w_c > 0)
-        return {"X": self._X, "x": k["q"][:, 0:self.gdim], "T_n": T_n, "T_t": T_t, "p": -T_n / j,
-                "weight": wj, "weight_ref": self._w_c.copy(), "active": T_n < 0}
-
-    def forces(self, problem=None):
-        """Total contact force on the slave and on the master (N/mm), all ranks."""
-        r = self._kernel()["r"]
-        comm = self.slave.mesh.comm
-        d = self.gdim
-        on_slave = -comm.allreduce(r[:, 0:d].sum(axis=0), op=MPI.SUM)
-        on_master = -comm.allreduce(r[:, d:d + d * d].reshape(-1, d, d).sum(axis=(0, 1)),
-                                    op=MPI.SUM)
-        return on_slave, on_master
-
-    def gather_profile(self, problem=None):
-        """All nodal data on rank 0 (None elsewhere), sorted by reference X[0]."""
-        return gather_nodal(self.slave.mesh.comm, self.nodal_data())

@@ -32,9 +32,9 @@ def dissipation_increment(contact):
     """
     if contact.lam_t is None:
         raise ValueError("wear by frictional dissipation needs friction > 0")
-    k = contact._kernel()
+    k = contact.kernel_data()
     q, r = k["q"], k["r"]
-    d, il = contact.gdim, contact._lam
+    d, il = contact.gdim, contact.multiplier_slot
     x = q[:, 0:d]
     facet = q[:, d:d + d * d].reshape(-1, d, d)
     old = q[:, d + d * d:il].reshape(-1, d, d)
@@ -48,7 +48,7 @@ def dissipation_increment(contact):
         z = np.einsum("nk,nkd->nd", facets.shape_values(k["xi_old"]), old)
         s = xbar - z
     s_t = s - np.sum(s * n, axis=1)[:, None] * n
-    wc = np.where(contact._w_c > 0, contact._w_c, 1.0)
+    wc = np.where(contact.constraint_weights > 0, contact.constraint_weights, 1.0)
     T_t = r[:, il + 1:] * contact.rho_t / wc[:, None]
     return np.sum(T_t * s_t, axis=1)
 
@@ -63,7 +63,7 @@ def master_transfer(contact, volume):
     Ḋ⁽¹⁾ dS⁽²⁾ = K⁽²⁾ Ḋ⁽¹⁾ dS⁽¹⁾ (ds = j dS on both sides), so a slave node
     passes its volume K⁽²⁾ ΔD⁽¹⁾ w_c to the master surface element it faces.
     """
-    k = contact._kernel()
+    k = contact.kernel_data()
     out = np.zeros(len(k["keys"]))
     seg, f = k["seg"], k["facet"]
     N = facets.shape_values(k["xi"])
@@ -115,10 +115,11 @@ class WearSurface:
         inc = self._inc.x.array
         if self.side == "slave":
             inc[:] = 0.0
-            inc[self.contact._q] = wf.archard_nominal(K, dD)      # eq. (17)
+            inc[self.contact.slave_dofs] = wf.archard_nominal(K, dD)      # eq. (17)
             self._inc.x.scatter_forward()
             return inc.copy()
-        keys, vol = self.contact.master_transfer(wf.archard_nominal(K, dD) * self.contact._w_c)
+        keys, vol = self.contact.master_transfer(
+            wf.archard_nominal(K, dD) * self.contact.constraint_weights)
         pos = np.searchsorted(keys, self._key)
         if len(keys) and not np.array_equal(keys[np.minimum(pos, len(keys) - 1)], self._key):
             raise RuntimeError("master surface nodes missing from the gathered polyline")
