@@ -98,25 +98,46 @@ nb::dict project(const CArray2<double>& points, const CArray2<double>& nodes,
   return d;
 }
 
+/// A facet type and the dimension of the space it lives in.
+template <class E, int gdim>
+struct Facet
+{
+  using element = E;
+  static constexpr int dim = gdim;
+};
+
+/// The one cell-type dispatch of the bindings: calls f(Facet<E, gdim>{}) for the
+/// named facet type (the names of tribofx.projection.CELL_TYPES).
+template <class F>
+nb::dict with_facet(const std::string& cell_type, F&& f)
+{
+  namespace el = tribofx::elements;
+  if (cell_type == "interval")
+    return f(Facet<el::Interval2, 2>{});
+  if (cell_type == "interval3")
+    return f(Facet<el::Interval3, 2>{});
+  if (cell_type == "triangle")
+    return f(Facet<el::Triangle3, 3>{});
+  if (cell_type == "triangle6")
+    return f(Facet<el::Triangle6, 3>{});
+  if (cell_type == "quadrilateral")
+    return f(Facet<el::Quadrilateral4, 3>{});
+  if (cell_type == "quadrilateral9")
+    return f(Facet<el::Quadrilateral9, 3>{});
+  throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
+}
+
 nb::dict closest_point_projection(const CArray2<double>& points,
                                   const CArray2<double>& nodes,
                                   const CArray2<std::int32_t>& facets,
                                   const std::string& cell_type)
 {
-  namespace el = tribofx::elements;
-  if (cell_type == "interval")
-    return project<el::Interval2, 2>(points, nodes, facets);
-  if (cell_type == "interval3")
-    return project<el::Interval3, 2>(points, nodes, facets);
-  if (cell_type == "triangle")
-    return project<el::Triangle3, 3>(points, nodes, facets);
-  if (cell_type == "triangle6")
-    return project<el::Triangle6, 3>(points, nodes, facets);
-  if (cell_type == "quadrilateral")
-    return project<el::Quadrilateral4, 3>(points, nodes, facets);
-  if (cell_type == "quadrilateral9")
-    return project<el::Quadrilateral9, 3>(points, nodes, facets);
-  throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
+  return with_facet(cell_type,
+                    [&](auto t)
+                    {
+                      using T = decltype(t);
+                      return project<typename T::element, T::dim>(points, nodes, facets);
+                    });
 }
 
 template <class E, int gdim>
@@ -156,20 +177,12 @@ nb::dict lubrication_projection(const CArray2<double>& points, const CArray2<dou
                                 const CArray2<std::int32_t>& facets,
                                 const std::string& cell_type)
 {
-  namespace el = tribofx::elements;
-  if (cell_type == "interval")
-    return lubricate<el::Interval2, 2>(points, nodes, facets);
-  if (cell_type == "interval3")
-    return lubricate<el::Interval3, 2>(points, nodes, facets);
-  if (cell_type == "triangle")
-    return lubricate<el::Triangle3, 3>(points, nodes, facets);
-  if (cell_type == "triangle6")
-    return lubricate<el::Triangle6, 3>(points, nodes, facets);
-  if (cell_type == "quadrilateral")
-    return lubricate<el::Quadrilateral4, 3>(points, nodes, facets);
-  if (cell_type == "quadrilateral9")
-    return lubricate<el::Quadrilateral9, 3>(points, nodes, facets);
-  throw std::invalid_argument("unknown cell_type '" + cell_type + "'");
+  return with_facet(cell_type,
+                    [&](auto t)
+                    {
+                      using T = decltype(t);
+                      return lubricate<typename T::element, T::dim>(points, nodes, facets);
+                    });
 }
 
 namespace tb = tribofx::two_body;
