@@ -70,10 +70,13 @@ def _taylor_state(film, x_l):
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("model, alpha, countersurface", [
-    ("finite", 0.0, "analytic"), ("linear", 0.0, "analytic"), ("finite", 0.6, "analytic"),
-    ("finite", 0.0, "mesh"), ("linear", 0.0, "mesh")])
-def test_coupled_residual_taylor(model, alpha, countersurface):
+@pytest.mark.parametrize("model, alpha, countersurface, viscosity", [
+    ("finite", 0.0, "analytic", "constant"), ("linear", 0.0, "analytic", "constant"),
+    ("finite", 0.6, "analytic", "constant"), ("finite", 0.0, "mesh", "constant"),
+    ("linear", 0.0, "mesh", "constant"),
+    # μ(p) (Barus, α p ≈ 1 at the state's peak) in the Reynolds rows and the traction
+    ("finite", 0.0, "analytic", "barus")])
+def test_coupled_residual_taylor(model, alpha, countersurface, viscosity):
     """Remainder of the first-order Taylor expansion of (R_u, R_us, R_p, R_g) is O(ε²).
 
     α = 0.6: the intermediate lubrication surface S_α (its normal, metric and
@@ -86,7 +89,8 @@ def test_coupled_residual_taylor(model, alpha, countersurface):
     test checks every other dependence; the error itself is shown by the strict
     xfail of tests/test_ehl_ball.py::test_meshed_plane_tangent_taylor[curved].
     """
-    v = values(model=model, W=0.1, steps=1, alpha=alpha, countersurface=countersurface)
+    v = values(model=model, W=0.1, steps=1, alpha=alpha, countersurface=countersurface,
+               viscosity=viscosity, alpha_p=0.0 if viscosity == "constant" else 10.0)
     layer, film, problem = Case.build(v)
     film.counterpart.offset.value[1] = 0.02
     _taylor_state(film, v["x_l"])

@@ -164,16 +164,22 @@ def test_axisymmetric_contact_jacobian():
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("cavitation,supg", [("none", True), ("penalty", True),
-                                             ("jfo", False), ("jfo", True)])
-def test_rigid_film_jacobian(cavitation, supg):
+@pytest.mark.parametrize("cavitation,supg,viscosity", [
+    ("none", True, "constant"), ("penalty", True, "constant"), ("jfo", False, "constant"),
+    ("jfo", True, "constant"),
+    # a pressure-dependent viscosity μ(p) in every row (Barus, Roelands; p⁺ inside)
+    ("none", True, "barus"), ("penalty", True, "roelands"), ("jfo", True, "barus")])
+def test_rigid_film_jacobian(cavitation, supg, viscosity):
     """RigidFilm (Reynolds between rigid surfaces, §6.6): pressure, SUPG and the
-    penalty or JFO (p, λ) rows at a state away from the kinks of min(·, ·)."""
+    penalty or JFO (p, λ) rows at a state away from the kinks of min(·, ·), with a
+    constant or a pressure-dependent viscosity."""
     from tribofx.cases.reynolds import rigid_film
+    from tribofx.laws import named_viscosity
 
     R, h0 = 10.0, 1e-3
+    mu = named_viscosity(viscosity, 1e-9, alpha=2.0)     # α p ~ 0.4 at the state's |p|
     film, problem = rigid_film(MPI.COMM_WORLD, -0.5, 0.5, 40, 1,
-                               lambda x: h0 + x**2 / (2 * R), 500.0, 1e-9,
+                               lambda x: h0 + x**2 / (2 * R), 500.0, mu,
                                cavitation=cavitation, supg=supg, p_c=0.1,
                                eps=1e-3 if cavitation == "penalty" else None, h_ref=h0)
     # p, λ of both signs (both branches of min()), the Dirichlet values held: a state
@@ -189,7 +195,7 @@ def test_rigid_film_jacobian(cavitation, supg):
         d.x.array[fixed] = 0.0
         dirs.append(d)
     orders, rem = taylor_orders(problem, dirs, eps0=1e-6)
-    print(cavitation, supg, orders, rem)
+    print(cavitation, supg, viscosity, orders, rem)
     assert_exact_jacobian(orders, rem)
 
 

@@ -36,6 +36,7 @@ import numpy as np
 
 __all__ = [
     "HertzContact",
+    "barus_pressure",
     "composite_modulus",
     "composite_radius",
     "cylinder_references",
@@ -172,6 +173,18 @@ def slider_pressure(x, K, L, h0, U, mu):
     """
     s = x / L
     return 6 * mu * U * L / h0**2 * K * s * (1 - s) / ((2 + K) * (1 + K - K * s) ** 2)
+
+
+def barus_pressure(p_iso, alpha, log=math.log):
+    """Pressure of a Barus fluid μ₀ e^{αp} from the isoviscous one of the same film: p(x).
+
+    With the reduced pressure q = (1 − e^{−αp})/α, h³/(12μ₀e^{αp}) ∇p = h³/(12μ₀) ∇q,
+    so q solves the isoviscous Reynolds equation with the same p = q = 0 boundary
+    conditions of a rigid film: q = p_iso, p = −ln(1 − α p_iso)/α, while α p_iso < 1
+    (Barus 1893; the transform of Hamrock, Schmid & Jacobson 2004, §4.10).  ``log``:
+    ``math.log``, ``numpy.log`` or ``ufl.ln`` for the argument's type.
+    """
+    return -log(1 - alpha * p_iso) / alpha
 
 
 def slider_reference(K, L, h0, U, mu):

@@ -67,7 +67,7 @@ from ..problem import NewtonDivergence, Problem, options_name
 from ..references import rigid_clearance
 from ..restart import SweepJournal, sweep_stem
 from .ehl_user import check_user_ends, read_user_layer
-from .film_setup import speed_list
+from .film_setup import VISCOSITY_PARAMS, speed_list, viscosity
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
 
@@ -142,7 +142,7 @@ class EHLCylinderLayerCase:
               "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
               "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
               "is at y = 0, its x extent centred below the cylinder axis"),
-    )
+    ) + VISCOSITY_PARAMS
 
     #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
     COMPARE = {
@@ -171,6 +171,7 @@ class EHLCylinderLayerCase:
                 raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
             cls.check_film_length(v["x_l"], v["R"])
         speeds = cls.speed_list(v)
+        viscosity(v)
         if v["cavitation"] == "jfo" and not v["U"] > 0:
             raise InputError("cavitation=jfo needs U > 0")
         if v["compare"] != "none" and speeds:
@@ -239,7 +240,8 @@ class EHLCylinderLayerCase:
         else:
             cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
         h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
-        film = Film(layer, "lubricated", cylinder, v["mu"], model=v["model"], shear=v["shear"],
+        film = Film(layer, "lubricated", cylinder, viscosity(v), model=v["model"],
+                    shear=v["shear"],
                     supg=v["supg"], cavitation=v["cavitation"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p_s,
                     alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,

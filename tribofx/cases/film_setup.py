@@ -7,9 +7,30 @@ and the ``speeds`` parameter of a speed continuation.
 import numpy as np
 from dolfinx import mesh as dmesh
 
-from ..params import InputError, number_list
+from ..laws import VISCOSITY_LAWS, named_viscosity
+from ..params import InputError, Param, number_list
 
-__all__ = ["at_points", "film_boundary", "speed_list"]
+__all__ = ["VISCOSITY_PARAMS", "at_points", "film_boundary", "speed_list", "viscosity"]
+
+#: the lubricant's pressure–viscosity law, a parameter set of every case with a film
+VISCOSITY_PARAMS = (
+    Param("viscosity", str, "constant", "-", "viscosity law μ(p): constant (the chapter's), "
+          "barus mu exp(alpha_p p), roelands (index z)", choices=VISCOSITY_LAWS),
+    Param("alpha_p", float, 0.0, "1/MPa", "pressure-viscosity coefficient of barus, and the "
+          "slope roelands matches when z = 0 (0.02 1/MPa = 2e-8 1/Pa, a mineral oil; up to "
+          "100 for studies of a strong pressure dependence at soft-EHL pressures)",
+          lower=0.0, upper=100.0, closed=True),
+    Param("z", float, 0.0, "-", "Roelands' index (0: from alpha_p)", lower=0.0, upper=2.0,
+          closed=True),
+)
+
+
+def viscosity(v):
+    """Return the viscosity law of the values ``v`` (``mu`` is its μ₀, MPa·s)."""
+    if v["viscosity"] != "constant" and not v["alpha_p"] > 0 and not v["z"] > 0:
+        raise InputError(f"viscosity={v['viscosity']} needs alpha_p > 0 (or z > 0 for "
+                         f"roelands)")
+    return named_viscosity(v["viscosity"], v["mu"], v["alpha_p"], v["z"] or None)
 
 
 def speed_list(v):

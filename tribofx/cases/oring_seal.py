@@ -204,7 +204,7 @@ class ORingSeal:
             self._post = {
                 "sealed": [fem.form(t[i] * body.weight * ds) for i in range(2)],
                 "Qc": Qc,
-                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_c, film.grad_gamma),
+                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_p, film.grad_gamma),
                                     pts),
                 "z": fem.Expression(xs[1], pts)}
         return self._post

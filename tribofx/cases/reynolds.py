@@ -35,7 +35,13 @@ from ..interfaces import RigidFilm
 from ..params import InputError, Param
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence, Problem
-from ..references import cylinder_references, slider_pressure, slider_reference
+from ..references import (
+    barus_pressure,
+    cylinder_references,
+    slider_pressure,
+    slider_reference,
+)
+from .film_setup import VISCOSITY_PARAMS, viscosity
 
 # cylinder_references and slider_reference are re-exported from tribofx.references
 __all__ = ["CylinderCase", "SliderCase", "cylinder_references", "slider_reference"]
@@ -121,18 +127,25 @@ class SliderCase:
         Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
         Param("mesh", int, 200, "-", "number of elements", lower=2, upper=10**7, closed=True),
         Param("degree", int, 1, "-", "Lagrange degree of the pressure", choices=(1, 2)),
-    )
+    ) + VISCOSITY_PARAMS
 
     @staticmethod
     def validate(v):
-        """Parameter ranges are checked by :class:`Param`; nothing else to check."""
+        """Barus: α p_iso,max < 1 (the reference transform; the fluid stays finite)."""
+        viscosity(v)
+        if v["viscosity"] == "barus":
+            ap = v["alpha_p"] * slider_reference(v["K"], v["L"], v["h0"], v["U"], v["mu"])["p_max"]
+            if not ap < 0.95:
+                raise InputError(f"alpha·p_max of the isoviscous slider = {ap:.3g}: the Barus "
+                                 f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
 
     @staticmethod
     def build(v, comm=MPI.COMM_WORLD):
         """Return the film of the slider and its problem (not solved)."""
         K, L, h0 = v["K"], v["L"], v["h0"]
         return rigid_film(comm, 0.0, L, v["mesh"], v["degree"],
-                          lambda x: h0 * (1 + K - K * x / L), 0.5 * v["U"], v["mu"], h_ref=h0)
+                          lambda x: h0 * (1 + K - K * x / L), 0.5 * v["U"], viscosity(v),
+                          h_ref=h0)
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):
@@ -149,9 +162,16 @@ class SliderCase:
         if progress is not None:
             progress.update(1)
         K, L, h0, U, mu = (v[k] for k in ("K", "L", "h0", "U", "mu"))
-        ref = slider_reference(K, L, h0, U, mu)
+        ref = dict(slider_reference(K, L, h0, U, mu))
         load = film.integral(film.p)
         p_ex = slider_pressure(ufl.SpatialCoordinate(film.sub)[0], K, L, h0, U, mu)
+        if v["viscosity"] == "barus":   # the exact transform of the isoviscous film
+            a = v["alpha_p"]
+            p_ex = barus_pressure(p_ex, a, ufl.ln)
+            ref["p_max"] = barus_pressure(ref["p_max"], a)   # monotone: the same x_p_max
+            ref["load"] = film.integral(p_ex)
+        elif v["viscosity"] != "constant":
+            ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
         err = math.sqrt(film.integral((film.p - p_ex) ** 2))
         nrm = math.sqrt(film.integral(p_ex**2))
         prof = film.profile()

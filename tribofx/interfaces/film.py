@@ -66,6 +66,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import ehl as ef
+from ..laws import viscosity_law
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
 from .prescribed_pressure import PrescribedPressure
@@ -110,7 +111,9 @@ class Film(ReynoldsFilm):
         boundary: name of the lubricated boundary Γ_l.
         counterpart: factory ``counterpart(V_sub)`` (e.g. :func:`tribofx.obstacles.rigid_plane`),
             called with the P1 vector space of the submesh of Γ_l.
-        mu: viscosity (MPa·s).
+        mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
+            (:mod:`tribofx.forms.fluid`): the same expression in the Reynolds rows,
+            the fluid traction and the friction post-processing.
         V_counter: velocity of the countersurface (mm/s): a vector, a ``fem.Constant``
             (e.g. driven by a continuation) or None (at rest).
         model: "finite" or "linear" (geometrically linear EHL).
@@ -148,7 +151,8 @@ class Film(ReynoldsFilm):
         self.body, self.name, self.rtol = body, name, float(rtol)
         self.require_open = bool(require_open)
         self.model, self.shear, self.cavitation, self._supg = model, shear, cavitation, supg
-        self.mu = float(mu)
+        self._viscosity_law = viscosity_law(mu)
+        self.mu = self._viscosity_law.reference_value     # μ₀: the tolerances' scale
         msh = body.mesh
         self.sub, self.emap, _ = facet_submesh(msh, body.facet_tags, body.tag(boundary),
                                                f"{body.name} {boundary}")
@@ -171,7 +175,8 @@ class Film(ReynoldsFilm):
 
         # scales and physical constants
         self.h_ref, self.U_ref = float(film_scale), float(speed_scale)
-        self.mu_c = fem.Constant(sub, self.mu)
+        self.viscosity = self._viscosity_law.bind(sub)
+        self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self.p_c = fem.Constant(sub, float(p_c))
         self.eps = None if eps is None else fem.Constant(sub, float(eps))
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
@@ -224,9 +229,9 @@ class Film(ReynoldsFilm):
         F = ufl.Identity(gdim) + ufl.grad(body.u)
         grad_p = self.g if shear else ufl.zero(gdim)
         self.traction = ef.fluid_traction(self.p, grad_p, self.kin_bulk, F, N_b, self.T_b,
-                                          self.mu_c, shear=shear, model=model)
+                                          self.mu_p, shear=shear, model=model)
         self._couette = ef.fluid_traction(0.0, ufl.zero(gdim), self.kin_bulk, F, N_b,
-                                          self.T_b, self.mu_c, shear=True, model=model)
+                                          self.T_b, self.mu_p, shear=True, model=model)
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
         self.w_solid, self.w_film = body.weight, 1
         if body.kind == "axisymmetric":
@@ -310,7 +315,8 @@ class Film(ReynoldsFilm):
         The scales p_c and ε are not part of the state: they follow the
         continuation parameters (speed, load) through :meth:`set_scales`.
         """
-        return self.unknowns() + list(self.counterpart.state_fields())
+        return (self.unknowns() + list(self.counterpart.state_fields())
+                + self.viscosity.state_fields())
 
     def commit(self):
         """Accept the converged step (the counterpart's history moves on)."""
@@ -322,7 +328,7 @@ class Film(ReynoldsFilm):
             em = [self.emap]
             gdim = self.body.gdim
             counter = ef.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
-                                                 self.mu_c)
+                                                 self.mu_p)
             self._post = {
                 "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
                           for i in range(gdim)],

@@ -25,7 +25,7 @@ class PrescribedPressure:
         gdim = body.gdim
         F = ufl.Identity(gdim) + ufl.grad(body.u)
         self.traction = ef.fluid_traction(self.p, ufl.zero(gdim), f.kin_bulk, F,
-                                          ufl.FacetNormal(body.mesh), f.T_b, f.mu_c,
+                                          ufl.FacetNormal(body.mesh), f.T_b, f.mu_p,
                                           shear=False, model=f.model)
 
     def unknowns(self):

@@ -34,7 +34,7 @@ class ReynoldsFilm:
     A subclass sets ``sub`` (the mesh of the film), ``Q``/``Ql`` and ``p``/``lam``,
     the kinematics ``kin`` (:class:`tribofx.forms.ehl.LubricationKinematics`),
     ``grad_gamma``, ``T`` (curve tangent), the measures ``dx``/``nodal_dx``, the
-    constants ``mu_c``, ``p_c``, ``eps``, ``_c_p``, ``_q_ref``, and ``w_film``,
+    constants ``mu_p`` (the viscosity μ(p)), ``p_c``, ``eps``, ``_c_p``, ``_q_ref``, and ``w_film``,
     ``_supg``, ``_jumps``, ``rtol``, ``h_ref``, ``U_ref``, ``length``, then calls
     :meth:`_init_rows`.
     """
@@ -144,11 +144,11 @@ class ReynoldsFilm:
                  else self.nodal_dx)
         h_e = ufl.CellDiameter(self.sub)
         if self.lam is None:
-            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_c, dx, eps=self.eps,
+            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_p, dx, eps=self.eps,
                                           supg=self._supg, p_c=self.p_c, h_e=h_e,
                                           nodal_dx=nodal, grad_gamma=self.grad_gamma), None
         return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
-                                 self.mu_c, dx, self.p_c, self._q_ref, h_e, nodal,
+                                 self.mu_p, dx, self.p_c, self._q_ref, h_e, nodal,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
                                  ds_ends=self._ds_ends() if self._jumps else None)
 

@@ -6,6 +6,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import ehl as ef
+from ..laws import viscosity_law
 from .reynolds_film import ReynoldsFilm
 
 __all__ = ["RigidFilm"]
@@ -27,7 +28,8 @@ class RigidFilm(ReynoldsFilm):
         mesh: the mesh of the film (e.g. ``dolfinx.mesh.create_interval``), mm.
         gap: callable x (UFL spatial coordinate) → h (UFL, mm).
         vbar: mean velocity v̄ (mm/s): a number (1D) or a vector.
-        mu: viscosity (MPa·s).
+        mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
+            (:mod:`tribofx.forms.fluid`).
         degree: Lagrange degree of p (JFO and the nodal penalty: 1).
         cavitation: "none", "penalty" or "jfo".
         supg, eps, p_c: as for :class:`Film`.
@@ -61,7 +63,11 @@ class RigidFilm(ReynoldsFilm):
         self.kin = ef.planar_kinematics(x, self.h, self.vbar_c)
         self.grad_gamma, self._supg, self._jumps = ufl.grad, supg, False
         self.T = ufl.as_vector([1.0] + [0.0] * (gdim - 1))
-        self.mu_c, self.p_c = fem.Constant(mesh, float(mu)), fem.Constant(mesh, float(p_c))
+        law = viscosity_law(mu)
+        self.mu = law.reference_value
+        self.viscosity = law.bind(mesh)
+        self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
+        self.p_c = fem.Constant(mesh, float(p_c))
         self.eps = None
         if cavitation == "penalty":
             self.eps = fem.Constant(mesh, float(eps))
@@ -109,8 +115,8 @@ class RigidFilm(ReynoldsFilm):
         return self._tol_out
 
     def state_fields(self):
-        """Return p (and λ)."""
-        return self.unknowns()
+        """Return p (and λ) and the viscosity law's parameters."""
+        return self.unknowns() + self.viscosity.state_fields()
 
     def commit(self):
         """Nothing to accept."""

@@ -1,0 +1,59 @@
+"""Lubricant laws: pressure-dependent viscosity μ(p) (UFL of the film pressure).
+
+The chapter takes the fluid isoviscous and says the pressure dependence "can be
+easily accounted for": a law here is a pure function ``law(p, **parameters)`` of
+the (UFL) film pressure p in MPa returning μ in MPa·s.  A film takes the law once
+(:class:`tribofx.laws.Law`) and uses the same expression in every place μ enters —
+the Poiseuille conductance h³/(12μ) and the SUPG diffusivity of the Reynolds rows,
+the Couette and Poiseuille shear of the fluid traction (eq. 46), the friction
+post-processing — so they cannot disagree, and ``ufl.derivative`` keeps the
+Newton tangent exact.
+
+The pressure dependence acts on p⁺ = max(p, 0): a cavitated (p ≤ 0) film is at
+ambient pressure, and Roelands' law is undefined below −p_R.
+
+Units: p and the parameters in MPa, MPa·s and 1/MPa (2·10⁻⁸ Pa⁻¹ = 0.02 MPa⁻¹, a
+mineral oil's pressure–viscosity coefficient).
+"""
+
+import math
+
+import ufl
+
+__all__ = [
+    "ROELANDS_P_R",
+    "barus_viscosity",
+    "constant_viscosity",
+    "roelands_index",
+    "roelands_viscosity",
+]
+
+#: Roelands' reference pressure p_R = 1.96·10⁸ Pa (MPa)
+ROELANDS_P_R = 196.0
+#: ln of Roelands' μ_∞ = 6.31·10⁻⁵ Pa·s, in MPa·s: μ_∞ = 6.31·10⁻¹¹ MPa·s
+_LN_MU_INF = -23.486  # ln(6.31e-11)
+
+
+def constant_viscosity(p, mu0):
+    """μ = μ₀ (the chapter's isoviscous fluid)."""
+    return mu0 + 0 * p
+
+
+def barus_viscosity(p, mu0, alpha):
+    """Barus: μ = μ₀ exp(α p⁺) (α in 1/MPa)."""
+    return mu0 * ufl.exp(alpha * ufl.max_value(p, 0))
+
+
+def roelands_viscosity(p, mu0, z):
+    """Roelands: μ = μ₀ exp{(ln μ₀ − ln μ_∞)[(1 + p⁺/p_R)^z − 1]}.
+
+    μ_∞ = 6.31·10⁻⁵ Pa·s, p_R = 196 MPa, z the pressure–viscosity index (≈ 0.6 for
+    mineral oils; :func:`roelands_index` gives the z of a Barus α).
+    """
+    return mu0 * ufl.exp((ufl.ln(mu0) - _LN_MU_INF)
+                         * ((1 + ufl.max_value(p, 0) / ROELANDS_P_R) ** z - 1))
+
+
+def roelands_index(mu0, alpha):
+    """Return the z for which Roelands' law has Barus' slope α: α p_R/(ln μ₀ − ln μ_∞)."""
+    return alpha * ROELANDS_P_R / (math.log(mu0) - _LN_MU_INF)
