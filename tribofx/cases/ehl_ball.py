@@ -125,7 +125,7 @@ from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal, sweep_stem
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
-from .film_setup import at_points, speed_list
+from .film_setup import VISCOSITY_PARAMS, at_points, speed_list, viscosity
 
 __all__ = ["EHLBallCase"]
 
@@ -181,7 +181,7 @@ class EHLBallCase(BallPaths):
               "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
               "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
               "lowest at z = 0"),
-    )
+    ) + VISCOSITY_PARAMS
 
     #: variants of ``compare=all``: (prefix, label, overrides)
     VARIANTS = (("full", "finite deformation", {"model": "finite", "shear": True}),
@@ -218,6 +218,7 @@ class EHLBallCase(BallPaths):
                              f"(Hertz a at W = {v['W']} N): increase theta_l")
         if not v["U"] > 0 or not v["mu"] > 0:
             raise InputError("U and mu must be positive (entrainment)")
+        viscosity(v)
         speed_list(v)
 
     @staticmethod
@@ -265,7 +266,7 @@ class EHLBallCase(BallPaths):
         ball.add_dirichlet("symmetry", 0.0, component=1)
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
         V_plane = np.array([2 * v["U"], 0.0, 0.0])
-        film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), v["mu"],
+        film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
                     V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
                     speed_scale=v["U"], quadrature_degree=2)

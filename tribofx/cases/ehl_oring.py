@@ -97,6 +97,7 @@ from ..params import InputError, Param, number_list
 from ..plots import plot_oring
 from ..problem import NewtonDivergence, options_name
 from ..restart import SweepJournal, sweep_stem
+from .film_setup import VISCOSITY_PARAMS, viscosity
 from .oring_seal import axial_balance, build, solve_to
 
 __all__ = ["EHLORingCase"]
@@ -137,11 +138,12 @@ class EHLORingCase:
               "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
               "housing (touches groove bottom/wall); replaces d (its radial extent) and "
               "mesh; moved to r_min = r_rod + gap0, z extent centred at 0"),
-    )
+    ) + VISCOSITY_PARAMS
 
     @staticmethod
     def validate(v):
         """Parse the lists and check the consistency of the values."""
+        viscosity(v)
         ps = number_list(v["p_s"], "p_s")
         if any(p <= 0 for p in ps):
             raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")
