@@ -135,6 +135,7 @@ def test_coupled_tangent_taylor(light_load):
 @pytest.mark.mpi
 @pytest.mark.parametrize("surface", [
     "plane",
+    "plane-barus",     # μ(p) = μ₀ e^{αp}, α p0 = 0.7: the 3D film with a pressure-viscosity law
     pytest.param("curved", marks=pytest.mark.xfail(strict=True, reason=(
         "known: the kernel data are expanded about the nodes of Γ_l and interpolated "
         "(P1) to the film's quadrature points, so the tangent takes n_h·δu_h where the "
@@ -165,10 +166,15 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     twin.add_dirichlet("midplane", np.zeros(3))
     twin.add_dirichlet("symmetry", 0.0, component=1)
     R = v["R"]
-    counter = (plane_surface_mesh(3, (-R, R), R / 4) if surface == "plane"
+    from tribofx.laws import named_viscosity
+
+    counter = (plane_surface_mesh(3, (-R, R), R / 4) if surface.startswith("plane")
                else cap_surface_mesh(10 * R, (0.0, 0.0, -10 * R), (-R, R), 7))
+    p0 = Case.scales(v)[1]
+    mu = (named_viscosity("barus", v["mu"], alpha=0.7 / p0) if surface == "plane-barus"
+          else v["mu"])
     meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter),
-                  v["mu"], V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
+                  mu, V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
                   eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
                   quadrature_degree=2, name="meshed")
     rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v["theta_l"]))) < 1e-6 * R  # noqa
@@ -181,7 +187,6 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     b_a, _ = problem.assemble()
     if surface == "plane":   # flat facets: the kernel reproduces the plane to round-off
         assert abs(b_m.norm() - b_a.norm()) <= 1e-8 * b_a.norm() + 1e-14
-    p0 = Case.scales(v)[1]
     rim_dofs = fem.locate_dofs_geometrical(meshed.Q, rim)
     meshed.p.x.array[:] = np.abs(meshed.p.x.array) + 0.01 * p0
     meshed.p.x.array[rim_dofs] = 0.0
