@@ -301,14 +301,15 @@ def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
 
 
 def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,
-                        nodal_dx=None, grad_gamma=ufl.grad):
+                        nodal_dx=None, grad_gamma=ufl.grad, rho=1):
     """Steady Reynolds residual (49) on S pulled back to Γ_l (p = 0 on ∂S by Dirichlet).
 
     ``dx`` is the measure of Γ_l (the facet submesh), ``eps`` the penalty of
     cavitation (MPa·s/mm, None: no cavitation), ``supg`` adds the SUPG term with
     element size ``h_e`` (mm on Γ_l, scaled to S here) and pressure scale ``p_c``
     (MPa) in the Péclet number; ``nodal_dx`` is the vertex-quadrature measure for
-    the penalty.
+    the penalty; ``rho`` the density ρ(p)/ρ₀ (1: incompressible; the compressible
+    equation with a law of :mod:`forms.fluid`).
     """
     dS = WeightedMeasure(kin.stretch, dx)
 
@@ -318,12 +319,12 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     def div(w):
         return kin.div(w, grad_gamma)
 
-    F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad)
+    F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad, rho=rho)
     if supg:
         D = kin.h**2 * p_c / (12 * mu)
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         F += rf.supg_stabilisation(p, 0.0, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
-                                   div=div)
+                                   div=div, rho=rho)
     if eps is not None:
         F += rf.cavitation_penalty(p, dp, eps, WeightedMeasure(kin.stretch, nodal_dx or dx))
     return F

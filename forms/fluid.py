@@ -1,4 +1,4 @@
-"""Lubricant laws: pressure-dependent viscosity μ(p) (UFL of the film pressure).
+"""Lubricant laws: viscosity μ(p) and density ρ(p)/ρ₀ (UFL of the film pressure).
 
 The chapter takes the fluid isoviscous and says the pressure dependence "can be
 easily accounted for": a law here is a pure function ``law(p, **parameters)`` of
@@ -21,7 +21,10 @@ import math
 import ufl
 
 __all__ = [
+    "DOWSON_HIGGINSON_A",
     "ROELANDS_P_R",
+    "constant_density",
+    "dowson_higginson_density",
     "barus_viscosity",
     "constant_viscosity",
     "roelands_index",
@@ -57,3 +60,18 @@ def roelands_viscosity(p, mu0, z):
 def roelands_index(mu0, alpha):
     """Return the z for which Roelands' law has Barus' slope α: α p_R/(ln μ₀ − ln μ_∞)."""
     return alpha * ROELANDS_P_R / (math.log(mu0) - _LN_MU_INF)
+
+
+#: Dowson–Higginson's constants: ρ/ρ₀ = (A + B p)/(A + p), A = 5.9·10⁸ Pa (MPa), B = 1.34
+DOWSON_HIGGINSON_A = 590.0
+
+
+def constant_density(p, rho=1.0):
+    """ρ/ρ₀ = 1: the chapter's incompressible fluid."""
+    return rho + 0 * p
+
+
+def dowson_higginson_density(p, a=DOWSON_HIGGINSON_A, b=1.34):
+    """Dowson–Higginson: ρ/ρ₀ = (a + b p⁺)/(a + p⁺), p and a in MPa (→ b for p → ∞)."""
+    pp = ufl.max_value(p, 0)
+    return (a + b * pp) / (a + pp)

@@ -77,19 +77,25 @@ def poiseuille_conductance(h, mu):
     return h**3 / (12 * mu)
 
 
-def reynolds_flux(p, h, vbar, mu, grad=ufl.grad):
-    """Volume flux per unit width q = −h³/(12μ) grad p + h v̄ (eq. 40; mm²/s)."""
-    return -poiseuille_conductance(h, mu) * grad(p) + h * vbar
+def reynolds_flux(p, h, vbar, mu, grad=ufl.grad, rho=1):
+    """Flux per unit width q = ρ(−h³/(12μ) grad p + h v̄) (eq. 40; mm²/s).
+
+    ``rho``: the density relative to the ambient one (1: the chapter's incompressible
+    fluid, then q is the volume flux; a law ρ(p)/ρ₀ of :mod:`forms.fluid`: the
+    compressible Reynolds equation div(ρ h³/(12μ) grad p) = div(ρ h v̄)).
+    """
+    return rho * (-poiseuille_conductance(h, mu) * grad(p) + h * vbar)
 
 
 def reynolds_residual(p, dp, h, vbar, mu, dx, grad=ufl.grad, dhdt=None, q_star=None,
-                      ds=None):
+                      ds=None, rho=1):
     """Weak form (49) of the Reynolds equation (39)–(40), no cavitation.
 
     ∫ (∂h/∂t δp − q·grad δp) dx + ∫ q* δp ds; ``dhdt`` (mm/s) and the prescribed
-    outward flux ``q_star`` (mm²/s) on ``ds`` are optional.
+    outward flux ``q_star`` (mm²/s) on ``ds`` are optional; ``rho`` as for
+    :func:`reynolds_flux` (``dhdt`` is then ∂(ρh)/∂t).
     """
-    q = reynolds_flux(p, h, vbar, mu, grad)
+    q = reynolds_flux(p, h, vbar, mu, grad, rho)
     F = -ufl.inner(q, grad(dp)) * dx
     if dhdt is not None:
         F += dhdt * dp * dx
@@ -114,12 +120,14 @@ def jfo_residual(p, lam, dp, h, vbar, mu, dx, grad=ufl.grad, div=ufl.div, rate=N
     return F
 
 
-def reynolds_strong_residual(p, lam, h, vbar, mu, grad=ufl.grad, div=ufl.div, rate=None):
-    """Strong residual R = div(θhv̄) − div(θ h³/(12μ) grad p) + ∂(θh)/∂t (mm/s), θ = 1 − λ.
+def reynolds_strong_residual(p, lam, h, vbar, mu, grad=ufl.grad, div=ufl.div, rate=None,
+                             rho=1):
+    """Strong residual R = div(θρhv̄) − div(θρ h³/(12μ) grad p) + ∂(θρh)/∂t, θ = 1 − λ.
 
-    Pass ``lam = 0`` for the model without (or with penalty) cavitation.
+    Pass ``lam = 0`` for the model without (or with penalty) cavitation; ``rho`` as
+    for :func:`reynolds_flux`.
     """
-    theta = 1 - lam
+    theta = (1 - lam) * rho
     R = div(theta * h * vbar) - div(theta * poiseuille_conductance(h, mu) * grad(p))
     if rate is not None:
         R += rate
@@ -136,12 +144,12 @@ def supg_tau(h_e, vbar, diffusivity):
 
 
 def supg_stabilisation(p, lam, dp, h, vbar, mu, tau, dx, grad=ufl.grad, div=ufl.div,
-                       rate=None):
+                       rate=None, rho=1):
     """SUPG term ∫ τ (v̄·grad δp) R dx of Remark 3.2 (to be added to eq. 57 or 49).
 
     Consistent: it vanishes for the exact solution (R = 0).
     """
-    R = reynolds_strong_residual(p, lam, h, vbar, mu, grad, div, rate)
+    R = reynolds_strong_residual(p, lam, h, vbar, mu, grad, div, rate, rho)
     return tau * ufl.inner(vbar, grad(dp)) * R * dx
 
 

@@ -164,38 +164,45 @@ def test_axisymmetric_contact_jacobian():
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("cavitation,supg,viscosity", [
-    ("none", True, "constant"), ("penalty", True, "constant"), ("jfo", False, "constant"),
-    ("jfo", True, "constant"),
+@pytest.mark.parametrize("cavitation,supg,viscosity,density", [
+    ("none", True, "constant", "incompressible"), ("penalty", True, "constant", "incompressible"),
+    ("jfo", False, "constant", "incompressible"), ("jfo", True, "constant", "incompressible"),
     # a pressure-dependent viscosity μ(p) in every row (Barus, Roelands; p⁺ inside)
-    ("none", True, "barus"), ("penalty", True, "roelands"), ("jfo", True, "barus")])
-def test_rigid_film_jacobian(cavitation, supg, viscosity):
+    ("none", True, "barus", "incompressible"), ("penalty", True, "roelands", "incompressible"),
+    ("jfo", True, "barus", "incompressible"),
+    # the compressible equation (Dowson–Higginson ρ(p)), with μ(p) too
+    ("none", True, "constant", "dowson-higginson"), ("penalty", True, "barus", "dowson-higginson")])
+def test_rigid_film_jacobian(cavitation, supg, viscosity, density):
     """RigidFilm (Reynolds between rigid surfaces, §6.6): pressure, SUPG and the
     penalty or JFO (p, λ) rows at a state away from the kinks of min(·, ·), with a
     constant or a pressure-dependent viscosity."""
     from tribofx.cases.reynolds import rigid_film
-    from tribofx.laws import named_viscosity
+    from tribofx.laws import named_density, named_viscosity
 
     R, h0 = 10.0, 1e-3
-    mu = named_viscosity(viscosity, 1e-9, alpha=2.0)     # α p ~ 0.4 at the state's |p|
+    # the state's |p| ~ scale: 200 MPa where the density's pressure dependence must show
+    # ((b − 1) p/(a + p) ≈ 0.08), α p ~ 0.4 for the viscosity
+    scale = 0.2 if density == "incompressible" else 200.0
+    mu = named_viscosity(viscosity, 1e-9, alpha=0.4 / scale)
     film, problem = rigid_film(MPI.COMM_WORLD, -0.5, 0.5, 40, 1,
                                lambda x: h0 + x**2 / (2 * R), 500.0, mu,
                                cavitation=cavitation, supg=supg, p_c=0.1,
-                               eps=1e-3 if cavitation == "penalty" else None, h_ref=h0)
+                               eps=1e-3 if cavitation == "penalty" else None, h_ref=h0,
+                               density=named_density(density))
     # p, λ of both signs (both branches of min()), the Dirichlet values held: a state
     # off its conditions makes DOLFINx's lifting add J(x)(g − x) to the residual, a
     # term whose derivative is not in J
     dirs = []
     for k, f in enumerate(problem.u):
-        _random(f, 0.2, 20 + k)
+        _random(f, scale if f is film.p else 0.2, 20 + k)
         d = fem.Function(f.function_space)
         _random(d, 1.0, 30 + k)
         fixed = problem.global_rows(f)[0] < 0       # Dirichlet dofs: p = 0, λ = λ_in = 0
         f.x.array[fixed] = 0.0
         d.x.array[fixed] = 0.0
         dirs.append(d)
-    orders, rem = taylor_orders(problem, dirs, eps0=1e-6)
-    print(cavitation, supg, viscosity, orders, rem)
+    orders, rem = taylor_orders(problem, dirs, eps0=1e-6 * scale / 0.2)
+    print(cavitation, supg, viscosity, density, orders, rem)
     assert_exact_jacobian(orders, rem)
 
 

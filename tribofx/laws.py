@@ -19,7 +19,11 @@ from dolfinx import fem
 
 from .forms import fluid
 
-__all__ = ["VISCOSITY_LAWS", "BoundLaw", "Law", "named_viscosity", "viscosity_law"]
+__all__ = ["DENSITY_LAWS", "VISCOSITY_LAWS", "BoundLaw", "Law", "density_law",
+           "is_constant", "named_density", "named_viscosity", "viscosity_law"]
+
+#: the density laws a case selects by name (``density=``)
+DENSITY_LAWS = ("incompressible", "dowson-higginson")
 
 #: the viscosity laws a case selects by name (``viscosity=``)
 VISCOSITY_LAWS = ("constant", "barus", "roelands")
@@ -86,3 +90,24 @@ def named_viscosity(name, mu0, alpha=0.0, z=None):
         z = fluid.roelands_index(mu0, alpha) if z is None else z
         return Law(fluid.roelands_viscosity, mu0=mu0, z=z)
     raise ValueError(f"unknown viscosity law {name!r}; expected one of {VISCOSITY_LAWS}")
+
+
+def density_law(rho):
+    """Return a density :class:`Law` (ρ/ρ₀): None or a number is constant, a Law as is."""
+    if isinstance(rho, Law):
+        return rho
+    return Law(fluid.constant_density, rho=1.0 if rho is None else float(rho))
+
+
+def named_density(name):
+    """Return the density :class:`Law` ``name`` of :data:`DENSITY_LAWS`."""
+    if name == "incompressible":
+        return density_law(None)
+    if name == "dowson-higginson":
+        return Law(fluid.dowson_higginson_density, a=fluid.DOWSON_HIGGINSON_A, b=1.34)
+    raise ValueError(f"unknown density law {name!r}; expected one of {DENSITY_LAWS}")
+
+
+def is_constant(law):
+    """Whether ``law`` is one of the constant laws (the chapter's fluid)."""
+    return law.function in (fluid.constant_viscosity, fluid.constant_density)

@@ -67,7 +67,7 @@ from ..problem import NewtonDivergence, Problem, options_name
 from ..references import rigid_clearance
 from ..restart import SweepJournal, sweep_stem
 from .ehl_user import check_user_ends, read_user_layer
-from .film_setup import VISCOSITY_PARAMS, speed_list, viscosity
+from .film_setup import VISCOSITY_PARAMS, density, speed_list, viscosity
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
 
@@ -172,6 +172,7 @@ class EHLCylinderLayerCase:
             cls.check_film_length(v["x_l"], v["R"])
         speeds = cls.speed_list(v)
         viscosity(v)
+        density(v)
         if v["cavitation"] == "jfo" and not v["U"] > 0:
             raise InputError("cavitation=jfo needs U > 0")
         if v["compare"] != "none" and speeds:
@@ -240,7 +241,8 @@ class EHLCylinderLayerCase:
         else:
             cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
         h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
-        film = Film(layer, "lubricated", cylinder, viscosity(v), model=v["model"],
+        film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
+                    model=v["model"],
                     shear=v["shear"],
                     supg=v["supg"], cavitation=v["cavitation"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p_s,

@@ -125,7 +125,7 @@ from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal, sweep_stem
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
-from .film_setup import VISCOSITY_PARAMS, at_points, speed_list, viscosity
+from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
 
 __all__ = ["EHLBallCase"]
 
@@ -219,6 +219,7 @@ class EHLBallCase(BallPaths):
         if not v["U"] > 0 or not v["mu"] > 0:
             raise InputError("U and mu must be positive (entrainment)")
         viscosity(v)
+        density(v)
         speed_list(v)
 
     @staticmethod
@@ -267,6 +268,7 @@ class EHLBallCase(BallPaths):
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
         V_plane = np.array([2 * v["U"], 0.0, 0.0])
         film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
+                    density=density(v),
                     V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
                     speed_scale=v["U"], quadrature_degree=2)

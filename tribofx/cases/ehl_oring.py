@@ -97,7 +97,7 @@ from ..params import InputError, Param, number_list
 from ..plots import plot_oring
 from ..problem import NewtonDivergence, options_name
 from ..restart import SweepJournal, sweep_stem
-from .film_setup import VISCOSITY_PARAMS, viscosity
+from .film_setup import VISCOSITY_PARAMS, density, viscosity
 from .oring_seal import axial_balance, build, solve_to
 
 __all__ = ["EHLORingCase"]
@@ -144,6 +144,7 @@ class EHLORingCase:
     def validate(v):
         """Parse the lists and check the consistency of the values."""
         viscosity(v)
+        density(v)
         ps = number_list(v["p_s"], "p_s")
         if any(p <= 0 for p in ps):
             raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")

@@ -7,10 +7,11 @@ and the ``speeds`` parameter of a speed continuation.
 import numpy as np
 from dolfinx import mesh as dmesh
 
-from ..laws import VISCOSITY_LAWS, named_viscosity
+from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import InputError, Param, number_list
 
-__all__ = ["VISCOSITY_PARAMS", "at_points", "film_boundary", "speed_list", "viscosity"]
+__all__ = ["VISCOSITY_PARAMS", "at_points", "density", "film_boundary", "speed_list",
+           "viscosity"]
 
 #: the lubricant's pressure–viscosity law, a parameter set of every case with a film
 VISCOSITY_PARAMS = (
@@ -22,6 +23,9 @@ VISCOSITY_PARAMS = (
           lower=0.0, upper=100.0, closed=True),
     Param("z", float, 0.0, "-", "Roelands' index (0: from alpha_p)", lower=0.0, upper=2.0,
           closed=True),
+    Param("density", str, "incompressible", "-", "density law ρ(p): incompressible (the "
+          "chapter's) or dowson-higginson (compressible Reynolds; not with jfo)",
+          choices=DENSITY_LAWS),
 )
 
 
@@ -78,3 +82,11 @@ def at_points(points, tol):
         return d.min(axis=1) < tol
 
     return where
+
+
+def density(v):
+    """Return the density law ρ(p)/ρ₀ of the values ``v``."""
+    if v["density"] != "incompressible" and v.get("cavitation") == "jfo":
+        raise InputError("density=dowson-higginson is implemented with penalty or no "
+                         "cavitation, not jfo")
+    return named_density(v["density"])

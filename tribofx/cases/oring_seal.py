@@ -28,7 +28,7 @@ from ..params import InputError, number_list
 from ..positions import oscillation_indicator, parabolic_vertex
 from ..problem import Problem
 from ..references import inverse_film
-from .film_setup import film_boundary, viscosity
+from .film_setup import density, film_boundary, viscosity
 
 __all__ = ["NAMES", "USER_GROUPS", "ORingSeal", "axial_balance", "build", "geometry", "solve_to"]
 
@@ -109,7 +109,8 @@ class ORingSeal:
         # film scales: h_ref of Blok's inverse theory at W_REF, ε relative to 12μℓ²/h_ref³
         h_ref, ell = inverse_film(v["mu"], U, W_REF), 0.25 * a
         self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
-                                viscosity(v), V_counter=[0.0, U], supg=v["supg"],
+                                viscosity(v), density=density(v), V_counter=[0.0, U],
+                                supg=v["supg"],
                                 cavitation="penalty",
                                 eps=v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3,
                                 p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),

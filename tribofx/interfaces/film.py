@@ -114,6 +114,8 @@ class Film(ReynoldsFilm):
         mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
             (:mod:`tribofx.forms.fluid`): the same expression in the Reynolds rows,
             the fluid traction and the friction post-processing.
+        density: None (incompressible) or a density :class:`tribofx.laws.Law`
+            ρ(p)/ρ₀ (the compressible Reynolds equation; penalty cavitation).
         V_counter: velocity of the countersurface (mm/s): a vector, a ``fem.Constant``
             (e.g. driven by a continuation) or None (at rest).
         model: "finite" or "linear" (geometrically linear EHL).
@@ -139,7 +141,7 @@ class Film(ReynoldsFilm):
     def __init__(self, body, boundary, counterpart, mu, V_counter=None, model="finite",
                  shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
                  film_scale=1e-2, speed_scale=1.0, quadrature_degree=4, row_scaling=True,
-                 name="film", rtol=1e-10, require_open=False):
+                 name="film", rtol=1e-10, require_open=False, density=None):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
         if cavitation not in self.CAVITATION:
@@ -177,6 +179,7 @@ class Film(ReynoldsFilm):
         self.h_ref, self.U_ref = float(film_scale), float(speed_scale)
         self.viscosity = self._viscosity_law.bind(sub)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
+        self._bind_density(density, sub)
         self.p_c = fem.Constant(sub, float(p_c))
         self.eps = None if eps is None else fem.Constant(sub, float(eps))
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
@@ -316,7 +319,7 @@ class Film(ReynoldsFilm):
         continuation parameters (speed, load) through :meth:`set_scales`.
         """
         return (self.unknowns() + list(self.counterpart.state_fields())
-                + self.viscosity.state_fields())
+                + self.viscosity.state_fields() + self.density.state_fields())
 
     def commit(self):
         """Accept the converged step (the counterpart's history moves on)."""

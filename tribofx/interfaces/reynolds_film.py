@@ -23,6 +23,7 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..forms import ehl as ef
+from ..laws import density_law, is_constant
 from ..problem import BlockTolerance
 
 __all__ = ["ReynoldsFilm"]
@@ -137,6 +138,15 @@ class ReynoldsFilm:
                 "eps": None if self.eps is None else float(self.eps.value),
                 "film_scale": self.h_ref, "speed_scale": self.U_ref}
 
+    def _bind_density(self, density, mesh):
+        """Bind the density law ρ(p)/ρ₀ (``rho_p``); a variable one is not done with JFO."""
+        law = density_law(density)
+        if self.cavitation == "jfo" and not is_constant(law):
+            raise ValueError("a pressure-dependent density is implemented for penalty or no "
+                             "cavitation (not JFO)")
+        self.density = law.bind(mesh)
+        self.rho_p = self.density(self.p)
+
     def _reynolds(self, dp):
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
         dx = ef.WeightedMeasure(self.w_film, self.dx) if self.w_film != 1 else self.dx
@@ -146,7 +156,8 @@ class ReynoldsFilm:
         if self.lam is None:
             return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_p, dx, eps=self.eps,
                                           supg=self._supg, p_c=self.p_c, h_e=h_e,
-                                          nodal_dx=nodal, grad_gamma=self.grad_gamma), None
+                                          nodal_dx=nodal, grad_gamma=self.grad_gamma,
+                                          rho=self.rho_p), None
         return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
                                  self.mu_p, dx, self.p_c, self._q_ref, h_e, nodal,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,

@@ -30,6 +30,8 @@ class RigidFilm(ReynoldsFilm):
         vbar: mean velocity v̄ (mm/s): a number (1D) or a vector.
         mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
             (:mod:`tribofx.forms.fluid`).
+        density: None (incompressible) or a density :class:`tribofx.laws.Law`
+            ρ(p)/ρ₀ (the compressible Reynolds equation; penalty or no cavitation).
         degree: Lagrange degree of p (JFO and the nodal penalty: 1).
         cavitation: "none", "penalty" or "jfo".
         supg, eps, p_c: as for :class:`Film`.
@@ -43,7 +45,7 @@ class RigidFilm(ReynoldsFilm):
 
     def __init__(self, mesh, gap, vbar, mu, degree=1, cavitation="none", supg=False, eps=None,
                  p_c=1.0, film_scale=1e-2, speed_scale=1.0, quadrature_degree=None,
-                 name="film", rtol=1e-10):
+                 name="film", rtol=1e-10, density=None):
         if cavitation not in self.CAVITATION:
             raise ValueError(f"unknown cavitation model {cavitation!r}")
         if cavitation == "jfo" and degree != 1:
@@ -67,6 +69,7 @@ class RigidFilm(ReynoldsFilm):
         self.mu = law.reference_value
         self.viscosity = law.bind(mesh)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
+        self._bind_density(density, mesh)
         self.p_c = fem.Constant(mesh, float(p_c))
         self.eps = None
         if cavitation == "penalty":
@@ -116,7 +119,7 @@ class RigidFilm(ReynoldsFilm):
 
     def state_fields(self):
         """Return p (and λ) and the viscosity law's parameters."""
-        return self.unknowns() + self.viscosity.state_fields()
+        return self.unknowns() + self.viscosity.state_fields() + self.density.state_fields()
 
     def commit(self):
         """Nothing to accept."""
