@@ -30,6 +30,8 @@ from dataclasses import dataclass
 import ufl
 
 __all__ = [
+    "constant_friction",
+    "pressure_dependent_friction",
     "multiplier_regularisation",
     "ContactGeometry",
     "augmented_lagrangian_contact",
@@ -134,6 +136,8 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
 
     T_N ≤ 0 is the nominal normal traction (eq. 9); T_T the frictional traction,
     inside the Coulomb cone ‖T_T‖ ≤ μ|T_N| (eq. 5).  Without friction T_T is None.
+    ``mu``: the friction coefficient, a number or a friction law, a callable of the
+    contact pressure −T_N (e.g. :func:`pressure_dependent_friction`).
     """
     lhat_n = lam_n + rho_n * geometry.gap
     t_n = ufl.conditional(ufl.lt(lhat_n, 0), lhat_n, 0)
@@ -142,7 +146,7 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
     n = geometry.normal
     # tangential parts only: a Lagrangian slip is a chord of a curved countersurface
     lhat_t = lam_t - ufl.dot(lam_t, n) * n + rho_t * (slip - ufl.dot(slip, n) * n)
-    radius = -mu * t_n
+    radius = -(mu(-t_n) if callable(mu) else mu) * t_n
     norm = ufl.sqrt(ufl.dot(lhat_t, lhat_t) + 1e-24)
     t_t = ufl.conditional(ufl.lt(norm, radius), lhat_t, radius / norm * lhat_t)
     return t_n, t_t
@@ -193,3 +197,17 @@ def multiplier_regularisation(lam, mu, rho, ds):
     (the two-body contact's kernel adds (1/ρ) T); scalar or vector ``lam``.
     """
     return -(1 / rho) * ufl.inner(lam, mu) * ds
+
+
+def constant_friction(p, mu):
+    """Coulomb's constant friction coefficient μ (the chapter's)."""
+    return mu + 0 * p
+
+
+def pressure_dependent_friction(p, mu0, p0, n):
+    """μ(p) = μ₀ (1 + p/p₀)^(−n): friction falling with the contact pressure p ≥ 0 (MPa).
+
+    The form of rubber-like (real area of contact) friction, μ ∝ p^(−n) above p₀
+    with n ≈ 1/3 (Schallamach 1952); μ₀ at vanishing pressure.
+    """
+    return mu0 * (1 + ufl.max_value(p, 0) / p0) ** (-n)

@@ -23,6 +23,8 @@ j_w = dS/dŜ (the rate forms below take j_w where they need it).
 import ufl
 
 __all__ = [
+    "constant_coefficient",
+    "pressure_dependent_coefficient",
     "archard_dissipation_form",
     "archard_nominal",
     "archard_pressure_form",
@@ -143,3 +145,18 @@ def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds):
         ds: measure over the initial contact boundary Γ̂_c.
     """
     return eta * (ufl.dot(w - w_old, a) + dt * rate_density) * ds
+
+
+def constant_coefficient(p, k):
+    """Archard's constant wear coefficient k (mm³/(N·mm))."""
+    return k + 0 * p
+
+
+def pressure_dependent_coefficient(p, k0, p_s, m):
+    """k(p) = k₀ (1 + (p⁺/p_s)^m): mild wear below the pressure p_s, severe above (MPa).
+
+    A smooth transition of the kind seen in wear maps (Lim & Ashby 1987); any
+    law k(p, ...) of the contact pressure p = −T_N enters :class:`tribofx.interfaces.Wear`
+    the same way.
+    """
+    return k0 * (1 + (ufl.max_value(p, 0) / p_s) ** m)

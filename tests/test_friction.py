@@ -41,7 +41,7 @@ E, NU = 10.0, 0.3
 TOP = 2
 
 
-def _block(slip, gdim):
+def _block(slip, gdim, friction=MU_F):
     comm = MPI.COMM_WORLD
     if gdim == 2:
         msh = mesh.create_rectangle(comm, [[0, 0], [2, 1]], [16, 8])
@@ -61,7 +61,7 @@ def _block(slip, gdim):
                 velocity=e[0] if slip == "eulerian" else None)
     top_u = body.add_dirichlet("top", np.zeros(gdim))
     contact = Contact(body, "bottom", rigid_plane(np.zeros(gdim), e[gdim - 1]),
-                      rho_n=10.0 / 0.125, friction=MU_F, rho_t=10.0 / 0.125, slip=slip,
+                      rho_n=10.0 / 0.125, friction=friction, rho_t=10.0 / 0.125, slip=slip,
                       V_master=np.zeros(gdim), dtau=1.0)
     sim = SimpleNamespace(body=body, contact=contact,
                           problem=Problem([body, contact], name=f"friction_{slip}"))
@@ -239,3 +239,35 @@ def test_lagrangian_sliding_reaches_mu():
     # the drag is well below μ N (measured ratio 0.149)
     assert nodal[0][0] > 0
     assert history[0][0] < 0.9 * MU_F
+
+
+@pytest.mark.mpi
+def test_sliding_follows_a_pressure_dependent_friction_law():
+    """A friction law μ(p) = μ₀ (1 + p/p₀)^(−n) (forms.contact.pressure_dependent_friction;
+    μ₀ = 0.6, p₀ = 0.1 MPa, n = 1/3: μ from 0.41 down to 0.23 over the active nodes)
+    given to the Contact as a Law: once the plane has dragged the block into full
+    sliding, every active node carries ‖λ_T‖ = μ(p) p with p = |λ_N|, to the nodal bound
+    d of the solved multipliers: |λ_T − T_T| ≤ d and |d(μ p)/dp| ≤ μ₀, so (1 + μ₀) d."""
+    from tribofx.forms.contact import pressure_dependent_friction
+
+    from tribofx.laws import Law
+
+    law = Law(pressure_dependent_friction, mu0=0.6, p0=0.1, n=1 / 3)
+    prob, top_u = _block("lagrangian", 2, friction=law)
+    top_u.value[1] = -0.05
+    prob.problem.solve()
+    prob.problem.commit()
+    for k in range(1, 11):
+        prob.contact.counterpart.offset.value[0] = 0.05 * k
+        rep = prob.problem.solve()
+        prob.problem.commit()
+    R, F, d_eq, d_nodal = _check_equilibrium(prob, rep.residuals[-1])
+    lam_n, lam_t, w = _nodal_multipliers(prob)
+    act = (w > 0) & (lam_n < -d_nodal)
+    p = np.abs(lam_n[act])
+    mu_p = 0.6 * (1 + p / 0.1) ** (-1 / 3)
+    dev = np.abs(np.abs(lam_t[act, 0]) - mu_p * p)
+    print("active", act.sum(), "μ(p) from", mu_p.min(), "to", mu_p.max(), "max |‖λ_T‖ − μ(p)p|",
+          dev.max(), "bound", d_nodal * (1 + 0.6))
+    assert act.sum() > 4 and mu_p.max() - mu_p.min() > 0.05   # the law really varies
+    assert np.all(dev <= d_nodal * (1 + 0.6))

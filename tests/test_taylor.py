@@ -137,8 +137,17 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     ("meshed-quadratic", 0.4, "lagrangian", 3),
     ("meshed-quadratic", 0.4, "eulerian", 3),
     ("meshed-affine", 0.4, "lagrangian", 3),
+    # a friction law μ(p) (pressure-dependent, forms.contact) instead of Coulomb's μ
+    ("cylinder", "law", "lagrangian", 2),
+    ("sphere", "law", "eulerian", 3),
 ])
 def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
+    if friction == "law":
+        from tribofx.forms.contact import pressure_dependent_friction
+
+        from tribofx.laws import Law
+
+        friction = Law(pressure_dependent_friction, mu0=0.6, p0=0.1, n=1 / 3)
     body, contact, problem = _box_problem(shape, friction, slip, gdim, kind)
     _smooth(body.u, 0.01, 3)
     # last-step projection shifted so that the Lagrangian slip is finite and sliding

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import ufl
 from mpi4py import MPI
 from petsc4py import PETSc
 
@@ -636,3 +637,39 @@ def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
         scale = max(float(np.max(np.abs(a), initial=0.0)), 1e-300)
         assert np.max(np.abs(a - b), initial=0.0) <= 1e-12 * scale
     assert fresh.wear.max_depth() > 0.01
+
+
+@pytest.mark.mpi
+def test_pressure_dependent_wear_coefficient():
+    """k(p) = k₀ (1 + (p/p_s)²) (k_law=pressure, p_s = 1 MPa against the pin's ~2 MPa:
+    k from k₀ to ≈ 5 k₀ across the contact) in the monolithic implicit step: the exact
+    tangent (Taylor order 2 as test_wear_tangent_taylor), and the worn-volume rate of
+    the solved state is the vertex-rule sum Σ w_i k(p_i) p_i V over the contact nodes,
+    recomputed here from the solved multipliers (p = −λ_N) with the law in NumPy, to
+    the tolerance of the multiplier rows."""
+    values = resolve(WearPinCase.params, {"scheme": "implicit", "E": "40", "k_law": "pressure",
+                                          "k_ps": "1.0", "k_m": "2"})
+    stepper, load = WearPinCase.build(values, n=4)
+    WearPinCase.load_up(stepper, load, values)
+    stepper.step(200.0)
+    wear = stepper.wear
+    c = wear.contact
+    # the rate of the solved state, by the library and by hand
+    rate = wear.wear_rate_integral()
+    n_own = c.Q.dofmap.index_map.size_local
+    w = c.nodal(ufl.TestFunction(c.Q) * c.surface.weight * c.dsc)[:n_own]
+    p = np.maximum(-c.lam_n.x.array[:len(w)], 0.0)
+    k = values["k"] * (1 + (p / 1.0) ** 2)
+    by_hand = MPI.COMM_WORLD.allreduce(float(np.sum(w * k * p * values["V"])), op=MPI.SUM)
+    print("rate", rate, "by hand", by_hand, "k/k0 up to", float(np.max(k)) / values["k"])
+    assert MPI.COMM_WORLD.allreduce(float(np.max(k, initial=0.0)), op=MPI.MAX) > 2 * values["k"]
+    assert rate == pytest.approx(by_hand, rel=1e-9)
+    # the tangent with k(p) in the ζ rows
+    wear.dt.value = 200.0
+    lam = c.lam_n.x.array
+    lam[lam > -1e-9] = 0.05
+    problem = stepper.problem
+    dirs = [_smooth_direction(f, 1e-3, 7 + i) for i, f in enumerate(problem.u)]
+    for name, (orders, rem, floor) in block_taylor_orders(problem, dirs, eps0=1e-3).items():
+        print(name, "orders", orders, "remainders", rem)
+        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)

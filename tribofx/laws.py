@@ -17,10 +17,22 @@ A number is the constant law (the chapter's isoviscous fluid).
 
 from dolfinx import fem
 
-from .forms import fluid
+from .forms import contact as contact_forms
+from .forms import fluid, wear
 
-__all__ = ["DENSITY_LAWS", "VISCOSITY_LAWS", "BoundLaw", "Law", "density_law",
-           "is_constant", "named_density", "named_viscosity", "viscosity_law"]
+__all__ = [
+    "DENSITY_LAWS",
+    "VISCOSITY_LAWS",
+    "BoundLaw",
+    "Law",
+    "density_law",
+    "friction_law",
+    "is_constant",
+    "named_density",
+    "named_viscosity",
+    "viscosity_law",
+    "wear_coefficient_law",
+]
 
 #: the density laws a case selects by name (``density=``)
 DENSITY_LAWS = ("incompressible", "dowson-higginson")
@@ -110,4 +122,19 @@ def named_density(name):
 
 def is_constant(law):
     """Whether ``law`` is one of the constant laws (the chapter's fluid)."""
-    return law.function in (fluid.constant_viscosity, fluid.constant_density)
+    return law.function in (fluid.constant_viscosity, fluid.constant_density,
+                            contact_forms.constant_friction, wear.constant_coefficient)
+
+
+def friction_law(mu):
+    """Return a friction :class:`Law` μ(p) from a number (Coulomb) or a Law (as is)."""
+    if isinstance(mu, Law):
+        return mu
+    return Law(contact_forms.constant_friction, mu=float(mu))
+
+
+def wear_coefficient_law(k):
+    """Return a wear-coefficient :class:`Law` k(p) from a number (Archard's constant k)."""
+    if isinstance(k, Law):
+        return k
+    return Law(wear.constant_coefficient, k=float(k))

@@ -63,8 +63,10 @@ from mpi4py import MPI
 from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
+from ..forms import wear as wf
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
+from ..laws import Law
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..obstacles import rigid_plane
@@ -105,6 +107,12 @@ class WearPinCase:
               choices=("nominal", "spatial")),
         Param("k_grad", float, 0.0, "1/mm",
               "depth gradient g of the wear coefficient, k(d) = k max(1 + g d, 0)"),
+        Param("k_law", str, "constant", "-", "wear coefficient against the contact pressure: "
+              "constant (Archard) or pressure, k(p) = k (1 + (p/k_ps)^k_m) (mild to severe)",
+              choices=("constant", "pressure")),
+        Param("k_ps", float, 1.0, "MPa", "transition pressure of k_law=pressure", lower=0.0),
+        Param("k_m", float, 2.0, "-", "exponent of k_law=pressure", lower=0.0, upper=10.0,
+              closed=True),
         Param("friction", float, 0.0, "-",
               "Coulomb coefficient μ (> 0: dissipation-driven wear, K = k/μ)",
               lower=0.0, closed=True),
@@ -231,7 +239,9 @@ class WearPinCase:
                           slip="lagrangian" if cyclic else "eulerian", V_master=(v["V"], 0.0))
         if setup is not None:
             setup(body, contact)
-        wear = Wear(contact, k=v["k"], speed=v["V"], law=v["law"], k_grad=v["k_grad"],
+        k = (Law(wf.pressure_dependent_coefficient, k0=v["k"], p_s=v["k_ps"], m=v["k_m"])
+             if v["k_law"] == "pressure" else v["k"])
+        wear = Wear(contact, k=k, speed=v["V"], law=v["law"], k_grad=v["k_grad"],
                     theta=1.0 if v["scheme"] == "implicit" else 0.0, averaged=cyclic)
         cycle = ReciprocatingCycle(contact, v["stroke"], v["fast_steps"], v["V"]) \
             if cyclic else None

@@ -30,6 +30,7 @@ from mpi4py import MPI
 
 from ..forms import contact as cf
 from ..forms import kinematics as kin
+from ..laws import friction_law
 from ..problem import BlockTolerance
 from .surface import Surface, node_to_dof
 
@@ -45,7 +46,9 @@ class Contact:
         counterpart: factory ``counterpart(V_sub)`` returning the counterpart
             (e.g. :func:`tribofx.obstacles.rigid_plane`).
         rho_n: normal augmentation parameter (MPa/mm).
-        friction: Coulomb coefficient μ (0: frictionless, no tangential multiplier).
+        friction: Coulomb coefficient μ (0: frictionless, no tangential multiplier), or a
+            friction :class:`tribofx.laws.Law` μ(p) of the contact pressure p = −T_N
+            (its reference value μ₀ > 0 decides whether there is friction).
         rho_t: tangential augmentation (MPa per unit of slip measure; default rho_n).
         slip: "lagrangian" or "eulerian" (needs the body's ``velocity``).
         V_master: velocity of the counterpart's surface for eulerian slip (mm/s).
@@ -58,6 +61,8 @@ class Contact:
                  slip="lagrangian", V_master=None, dtau=1.0, name="contact", rtol=1e-10):
         if slip not in ("lagrangian", "eulerian"):
             raise ValueError(f"unknown slip {slip!r}")
+        law = friction_law(friction)
+        friction = law.reference_value
         if friction < 0:
             raise ValueError("friction coefficient must be >= 0")
         self.body, self.name, self.rtol = body, name, rtol
@@ -71,6 +76,7 @@ class Contact:
         self.counterpart = counterpart(self.Vs)
         self.geometry = self.counterpart.geometry(body.position())
         self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
+        self.friction_law = law.bind(msh)       # μ(p), p = −T_N: Coulomb's μ by default
         self.rho_n = rho_n
         self.rho_t = rho_t if rho_t is not None else rho_n
         self.lam_t = self.slip = None
@@ -97,7 +103,7 @@ class Contact:
     def law(self):
         """Keyword arguments of :func:`tribofx.forms.contact.contact_tractions`."""
         return dict(rho_n=self.rho_n, lam_t=self.lam_t, rho_t=self.rho_t, slip=self.slip,
-                    mu=self.friction)
+                    mu=self.friction_law)
 
     def tractions(self):
         """Nominal (T_N, T_T) of the Alart–Curnier law at the current state (UFL)."""
@@ -114,7 +120,7 @@ class Contact:
         mu_t = ufl.TestFunction(self.Vs) if self.lam_t is not None else None
         R_u, R_n, R_t = cf.augmented_lagrangian_contact(
             self.body.u, self.body.v, self.geometry, self.lam_n, ufl.TestFunction(self.Q),
-            self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction,
+            self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction_law,
             weight=self.surface.weight)
         out = [(self.body.u, R_u), (self.lam_n, R_n)]
         if R_t is not None:
@@ -177,7 +183,8 @@ class Contact:
 
     def state_fields(self):
         """Multipliers, the slip history and the counterpart's state."""
-        return self.unknowns() + [self.xbar_n] + list(self.counterpart.state_fields())
+        return (self.unknowns() + [self.xbar_n] + list(self.counterpart.state_fields())
+                + self.friction_law.state_fields())
 
     def commit(self):
         """Accept the converged step: the slip history moves to the current state."""

@@ -60,6 +60,7 @@ from mpi4py import MPI
 
 from ..forms import ale
 from ..forms import wear as wf
+from ..laws import is_constant, wear_coefficient_law
 from ..problem import BlockTolerance
 from .contact import node_to_dof
 
@@ -74,7 +75,11 @@ class Wear:
     Args:
         contact: the :class:`tribofx.interfaces.Contact`; its body must carry a
             shape field (``Body(..., shape=True)``).
-        k: Archard coefficient k (mm³/(N·mm)); with friction K = k/μ.
+        k: Archard coefficient k (mm³/(N·mm)); with friction K = k/μ (μ the contact's
+            friction law at the node).  Or a wear-coefficient :class:`tribofx.laws.Law`
+            k(p) of the contact pressure p = −T_N (e.g.
+            :func:`tribofx.forms.wear.pressure_dependent_coefficient`), times the
+            depth grading of ``k_grad``.
         speed: sliding speed V (mm/s) of the frictionless pressure form (with
             friction the slip velocity of the contact is used).
         law: "nominal" (eq. 14) or "spatial" (eqs. 15–16).
@@ -109,7 +114,10 @@ class Wear:
         self.zeta = fem.Function(contact.Q, name=f"{name}_shape_multiplier")
         self.rate_bar = fem.Function(contact.Q, name=f"{name}_cycle_averaged_rate")
         self.dt = fem.Constant(msh, 0.0)  # 0: a plain contact solve does not wear
-        self.k = fem.Constant(msh, float(k))
+        self.k_law = wear_coefficient_law(k).bind(msh)   # k(p), p = −T_N; a number: constant
+        if hasattr(contact, "wear_increment") and not is_constant(self.k_law.law):
+            raise ValueError("a two-body contact's wear takes a constant coefficient")
+        self.k = next(iter(self.k_law.constants.values()))   # its reference parameter
         self.k_grad = fem.Constant(msh, float(k_grad))
         self.speed = fem.Constant(msh, float(speed))
         self.N_hat = ufl.FacetNormal(msh)
@@ -142,15 +150,19 @@ class Wear:
         increment K T_T·Δs in mm, for the fast-time cycles).
         """
         c = self.contact
-        k = wf.depth_graded_coefficient(self.k, self.k_grad, wf.wear_depth(w, self.N_hat))
+        t_n, t_t = c.tractions()
+        k = wf.depth_graded_coefficient(self.k_law(-t_n), self.k_grad,
+                                        wf.wear_depth(w, self.N_hat))
         J = None
         if self.law == "spatial":
             J = ufl.det(ale.deformation_gradient_worn(self.body.u, w, self.body.kind))
         if c.lam_t is None:
             return wf.slave_wear_rate(k, c.lam_n, slip_speed=self.speed, J=J)
-        _, t_t = c.tractions()
         v_t = self.slip_velocity() if slip is None else slip
-        return wf.slave_wear_rate(k, c.lam_n, mu=c.friction, t_t=t_t, v_t=v_t, J=J)
+        # K = k/μ with the contact's own friction law μ(p), so that in sliding
+        # Ẇ = (k/μ) T_T·v_T = k |T_N| ‖v_T‖ whatever the law
+        mu = c.friction_law(-t_n) if hasattr(c, "friction_law") else c.friction
+        return wf.slave_wear_rate(k, c.lam_n, mu=mu, t_t=t_t, v_t=v_t, J=J)
 
     # -- component protocol --------------------------------------------------------
     def unknowns(self):
@@ -193,8 +205,8 @@ class Wear:
                                           eta * self.contact.dsc)}
 
     def state_fields(self):
-        """ζ and the cycle-averaged rate (w, w_n are the body's)."""
-        return [self.zeta, self.rate_bar]
+        """ζ, the cycle-averaged rate and the wear law's parameters (w, w_n: the body's)."""
+        return [self.zeta, self.rate_bar] + self.k_law.state_fields()
 
     def commit(self):
         """Nothing: the shape history moves on in :meth:`begin_step` of the slow time."""
