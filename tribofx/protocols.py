@@ -1,0 +1,73 @@
+"""The typed protocols of the core: what a component and a counterpart answer.
+
+:class:`Component` is what :class:`tribofx.problem.Problem` asks of a body or an
+interface (the module docstring of :mod:`tribofx.problem` explains each method);
+:class:`Counterpart` is what a contact or a film asks of its rigid countersurface
+(:mod:`tribofx.obstacles`).  They are ``typing.Protocol`` classes: a user's
+component needs no base class, only these methods (``isinstance`` checks them at
+run time).  Optional methods a component may add: ``reductions()`` and
+``algebraic_rows()`` (:class:`tribofx.reduced.ReducedProblem`), ``add_residual``
+/ ``add_jacobian`` / ``couplings`` (terms assembled outside UFL, as the two-body
+contact), ``reset_iterate`` / ``accept_iterate`` (a Newton-iterate history) and
+``admissible()`` (the "admissible" line search).  ``docs/architecture.md``,
+"Write your own component", walks through one.
+"""
+
+from typing import Protocol, runtime_checkable
+
+__all__ = ["Component", "Counterpart"]
+
+
+@runtime_checkable
+class Component(Protocol):
+    """A body or an interface of a :class:`tribofx.problem.Problem`."""
+
+    def unknowns(self) -> list:
+        """Its ``fem.Function`` unknowns, in order."""
+
+    def contributions(self) -> list:
+        """``(unknown, form)`` pairs: residual terms (from :mod:`tribofx.forms`) by row."""
+
+    def bcs(self) -> list:
+        """Dirichlet conditions on any unknown."""
+
+    def bcs_by_unknown(self) -> dict:
+        """Return the same conditions as ``{unknown: [DirichletBC]}``."""
+
+    def entity_maps(self) -> list:
+        """Entity maps of its mixed-dimensional forms."""
+
+    def refresh(self) -> None:
+        """Compute data outside UFL, before every residual and Jacobian evaluation."""
+
+    def tolerances(self) -> dict:
+        """``{unknown: BlockTolerance}``: the stopping test of its rows."""
+
+    def state_fields(self) -> list:
+        """Functions and Constants of its state (restore() resets them)."""
+
+    def commit(self) -> None:
+        """Accept a converged step."""
+
+
+@runtime_checkable
+class Counterpart(Protocol):
+    """A rigid countersurface of a contact or a film (built by a factory of ``V_sub``)."""
+
+    def geometry(self, x):
+        """Closest-point geometry (gap, normal, projection) at the UFL position ``x``."""
+
+    def update(self, x_nodes) -> None:
+        """Refresh kernel data at the slave nodes ``x_nodes`` (n, gdim)."""
+
+    def unknowns(self) -> list:
+        """Its unknowns (none for a prescribed motion)."""
+
+    def state_fields(self) -> list:
+        """Its state (position, motion history)."""
+
+    def motion_since_commit(self):
+        """Its rigid motion since the last commit (UFL vector; the Lagrangian slip's)."""
+
+    def commit(self) -> None:
+        """Accept a converged step."""
