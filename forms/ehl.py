@@ -82,6 +82,7 @@ from dataclasses import dataclass
 import ufl
 
 from . import reynolds as rf
+from .wear import WearLoad
 
 __all__ = [
     "MODELS",
@@ -92,6 +93,7 @@ __all__ = [
     "countersurface_traction",
     "cylinder_countersurface",
     "film_virtual_work",
+    "film_wear_load",
     "fluid_traction",
     "intermediate_surface",
     "jfo_on_surface",
@@ -438,6 +440,26 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
         grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
         Tn = Tn - j * ((mu / kin.h) * v_rel + (kin.h / 2) * grad_S_p)
     return Tn
+
+
+def film_wear_load(p, kin, F, N, model="finite"):
+    """Return the film as a driver of Archard wear of the layer (:class:`forms.wear.WearLoad`).
+
+    The normal traction is the pressure part of (46) along the current normal,
+    T_N = −p⁺ j per unit reference area (j = J|F⁻ᵀN| = ds/dS, Nanson; 1 in the
+    geometrically linear model), and the sliding speed that of the layer against
+    the countersurface, ‖v_layer − v_counter‖ (mm/s): the pressure form of
+    Archard's law, k p j ‖v‖, for wear under the film's load (e.g. by the
+    asperities the film does not separate, or erosive wear in a law k(p)).
+    """
+    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
+    p_plus = ufl.max_value(p, 0)
+    if model == "linear":
+        j = 1
+    else:
+        nJ = ufl.det(F) * ufl.inv(F).T * N
+        j = ufl.sqrt(ufl.dot(nJ, nJ))
+    return WearLoad(normal=-p_plus * j, slip_speed=ufl.sqrt(ufl.dot(v_rel, v_rel)))
 
 
 def countersurface_traction(p, grad_gamma_p, kin, mu):

@@ -20,9 +20,13 @@ volume removed per unit initial area and time is Ẇ j_w = k_A |λ| ‖v_T‖ wi
 j_w = dS/dŜ (the rate forms below take j_w where they need it).
 """
 
+from dataclasses import dataclass
+
 import ufl
 
 __all__ = [
+    "WearLoad",
+    "archard_rate",
     "constant_coefficient",
     "pressure_dependent_coefficient",
     "archard_dissipation_form",
@@ -31,7 +35,6 @@ __all__ = [
     "depth_graded_coefficient",
     "cycle_average_rate",
     "shape_update_residual",
-    "slave_wear_rate",
     "wear_depth",
 ]
 
@@ -104,22 +107,50 @@ def depth_graded_coefficient(k0, grad, depth):
     return k0 * ufl.max_value(1 + grad * depth, 0)
 
 
-def slave_wear_rate(k, T_n, slip_speed=None, mu=None, t_t=None, v_t=None, J=None):
-    """Nominal Archard rate of the slave surface per unit initial area, Ẇ⁽¹⁾ j_w (eqs. 14–17).
+@dataclass(frozen=True)
+class WearLoad:
+    """What an interface supplies to Archard wear at a point of the worn surface (UFL).
 
-    Without a friction traction (``t_t`` None): the pressure form k |T_N| ‖v_T‖
-    (:func:`archard_pressure_form`, frictionless sliding at ``slip_speed``).
-    With friction: the dissipation form (17), K T_T·v_T, K = k/μ
-    (:func:`archard_dissipation_form`; ``v_t`` the slip velocity ξ̄̇ of the slave
-    point relative to the master, or a slip increment for a wear increment).
-    With ``J`` (det F relative to the worn configuration): the spatial law (16).
-    The tractions are nominal per unit initial area (the multipliers of
-    ``forms/contact``), so the result is the volume removed per unit initial
-    area and time (mm/s).
+    Every traction is nominal, per unit initial area of the worn surface Γ̂
+    (where the wear rows are integrated).
+
+    Attributes:
+        normal: normal traction T_N (≤ 0 when pressed, MPa), for the pressure form.
+        pressure: argument p of a wear-coefficient law k(p) (MPa); None: −T_N.
+        slip_speed: sliding speed ‖v_T‖ of the pressure form (mm/s); None: the
+            speed the :class:`tribofx.interfaces.Wear` is given.
+        shear, slip, friction: friction traction T_T, slip velocity v_T (or slip
+            increment) and friction coefficient μ of the dissipation form (17),
+            all given or all None.
     """
-    if t_t is None:
-        return archard_pressure_form(k, T_n, slip_speed, J)
-    return archard_dissipation_form(k, mu, t_t, v_t, J)
+
+    normal: object
+    pressure: object = None
+    slip_speed: object = None
+    shear: object = None
+    slip: object = None
+    friction: object = None
+
+    @property
+    def law_pressure(self):
+        """The pressure p of k(p): ``pressure``, or −T_N."""
+        return -self.normal if self.pressure is None else self.pressure
+
+
+def archard_rate(k, load, speed=None, J=None):
+    """Nominal Archard rate per unit initial area, Ẇ j_w, of one :class:`WearLoad` (eqs. 14–17).
+
+    Without a friction traction (``load.shear`` None): the pressure form k |T_N|
+    ‖v_T‖ (:func:`archard_pressure_form`; ‖v_T‖ = ``load.slip_speed``, else
+    ``speed``).  With friction: the dissipation form (17), K T_T·v_T with
+    K = k/μ (:func:`archard_dissipation_form`).  With ``J`` (det F relative to
+    the worn configuration): the spatial law (16).  The result is the volume
+    removed per unit initial area and time (mm/s).
+    """
+    if load.shear is None:
+        v = speed if load.slip_speed is None else load.slip_speed
+        return archard_pressure_form(k, load.normal, v, J)
+    return archard_dissipation_form(k, load.friction, load.shear, load.slip, J)
 
 
 def wear_depth(w, N_hat):

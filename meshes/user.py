@@ -4,7 +4,7 @@ A case that builds its body by gmsh also accepts ``mesh_file=PATH``: a gmsh
 ``.msh`` whose *physical groups* carry the names the case documents (``tribofx
 list``), one group of dimension d − 1 per named boundary (d the case's
 dimension) and cells of dimension d.  Every problem is reported as a one-line
-:class:`tribofx.params.InputError` (exit status 2 in the CLI), on every rank:
+:class:`InputError` (:mod:`meshes.errors`, exit status 2 in the CLI), on every rank:
 
 * the file cannot be read or is not a gmsh mesh;
 * its mesh has the wrong dimension;
@@ -28,6 +28,8 @@ from dolfinx import mesh as dmesh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
+from .errors import InputError
+
 __all__ = ["boundary_facet_size", "num_cell_vertices", "read_user_mesh"]
 
 
@@ -37,8 +39,6 @@ def num_cell_vertices(cell_type):
 
 
 def _error(msg):
-    from tribofx.params import InputError
-
     return InputError(msg)
 
 

@@ -7,11 +7,9 @@ it into exit status 2.
 import math
 from dataclasses import dataclass
 
+from .meshes.errors import InputError
+
 __all__ = ["InputError", "Param", "number_list", "resolve"]
-
-
-class InputError(ValueError):
-    """Bad user input (unknown case or key, wrong type, value out of range)."""
 
 
 @dataclass(frozen=True)

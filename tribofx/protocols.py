@@ -11,11 +11,15 @@ run time).  Optional methods a component may add: ``reductions()`` and
 contact), ``reset_iterate`` / ``accept_iterate`` (a Newton-iterate history) and
 ``admissible()`` (the "admissible" line search).  ``docs/architecture.md``,
 "Write your own component", walks through one.
+
+:class:`WearDriver` is what a :class:`tribofx.interfaces.Wear` asks of the
+interface (or interfaces) whose load wears the surface: ``Contact``, ``Film``,
+a side of a ``TwoBodyContact`` (cycle-averaged wear only) or the user's own.
 """
 
 from typing import Protocol, runtime_checkable
 
-__all__ = ["Component", "Counterpart"]
+__all__ = ["Component", "Counterpart", "WearDriver"]
 
 
 @runtime_checkable
@@ -71,3 +75,25 @@ class Counterpart(Protocol):
 
     def commit(self) -> None:
         """Accept a converged step."""
+
+
+@runtime_checkable
+class WearDriver(Protocol):
+    """An interface that supplies the load of Archard wear on a body's boundary.
+
+    ``Wear(driver, k, ...)`` or ``Wear([driver, ...], k, ...)`` (a sum of loads on
+    the same boundary, the rates added).  Attributes: ``body`` (the worn
+    :class:`tribofx.body.Body`) and ``surface`` (its boundary as a
+    :class:`tribofx.interfaces.surface.Surface`: the wear multiplier's space,
+    the vertex-rule measure and the nodal maps).
+    """
+
+    def wear_load(self, slip=None):
+        """UFL :class:`tribofx.forms.wear.WearLoad` (per unit initial area) of the state.
+
+        ``slip``: a slip increment instead of the slip velocity (the wear increment
+        of a fast-time sub-step); an interface without one raises ValueError.
+        """
+
+    def entity_maps(self) -> list:
+        """Entity maps of the forms its load is written in."""

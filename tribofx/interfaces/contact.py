@@ -30,6 +30,7 @@ from mpi4py import MPI
 
 from ..forms import contact as cf
 from ..forms import kinematics as kin
+from ..forms import wear as wf
 from ..laws import friction_law
 from ..problem import BlockTolerance
 from .surface import Surface, node_to_dof
@@ -108,6 +109,20 @@ class Contact:
     def tractions(self):
         """Nominal (T_N, T_T) of the Alart–Curnier law at the current state (UFL)."""
         return cf.contact_tractions(self.geometry, self.lam_n, **self.law)
+
+    def wear_load(self, slip=None):
+        """Return what drives Archard wear here (:class:`tribofx.forms.wear.WearLoad`, UFL).
+
+        Frictionless: the pressure form on λ_N (the sliding speed is the Wear's).
+        With friction: the dissipation form, T_T, the slip velocity v_T = slip/Δτ
+        (or the slip increment ``slip``) and μ(p); k(p) and μ(p) take p = −T_N.
+        """
+        t_n, t_t = self.tractions()
+        if self.lam_t is None:
+            return wf.WearLoad(normal=self.lam_n, pressure=-t_n)
+        v_t = self.slip / self.dtau if slip is None else slip
+        return wf.WearLoad(normal=self.lam_n, pressure=-t_n, shear=t_t, slip=v_t,
+                           friction=self.friction_law(-t_n))
 
     # -- component protocol --------------------------------------------------------
     def unknowns(self):

@@ -69,8 +69,9 @@ from ..forms import ehl as ef
 from ..laws import viscosity_law
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
-from .prescribed_pressure import PrescribedPressure
+from .film_start import FilmStart
 from .reynolds_film import ReynoldsFilm
+from .surface import Surface
 
 __all__ = ["Film"]
 
@@ -103,7 +104,7 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
-class Film(ReynoldsFilm):
+class Film(FilmStart, ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
     Args:
@@ -151,6 +152,7 @@ class Film(ReynoldsFilm):
             raise ValueError("cavitation='jfo' and alpha are implemented for a curve Γ_l "
                              "(gdim = 2)")
         self.body, self.name, self.rtol = body, name, float(rtol)
+        self.boundary, self._surface = boundary, None
         self.require_open = bool(require_open)
         self.model, self.shear, self.cavitation, self._supg = model, shear, cavitation, supg
         self._viscosity_law = viscosity_law(mu)
@@ -230,6 +232,7 @@ class Film(ReynoldsFilm):
                                              None, None, V_body, model, surface, self.alpha,
                                              V_counter)
         F = ufl.Identity(gdim) + ufl.grad(body.u)
+        self._F, self._N_b = F, N_b
         grad_p = self.g if shear else ufl.zero(gdim)
         self.traction = ef.fluid_traction(self.p, grad_p, self.kin_bulk, F, N_b, self.T_b,
                                           self.mu_p, shear=shear, model=model)
@@ -280,6 +283,25 @@ class Film(ReynoldsFilm):
     def entity_maps(self):
         """Return the submesh ↔ bulk entity map."""
         return [self.emap]
+
+    # -- wear driver (tribofx.protocols.WearDriver) ----------------------------------------
+    @property
+    def surface(self):
+        """Γ_l as a :class:`~tribofx.interfaces.surface.Surface` (a Wear's home), built once."""
+        if self._surface is None:
+            self._surface = Surface(self.body, self.boundary)
+        return self._surface
+
+    def wear_load(self, slip=None):
+        """Return the film's pressure p⁺ j and sliding speed as the load of Archard wear.
+
+        :func:`tribofx.forms.ehl.film_wear_load`; ``slip`` (a slip increment of
+        fast-time cycles) has no meaning for a film.
+        """
+        if slip is not None:
+            raise ValueError("a film has no slip increments: wear under a film is steady "
+                             "(averaged=False)")
+        return ef.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
 
     def positions(self):
         """Nodal positions of Γ_l at which the counterpart is projected (P1 dof order, mm).
@@ -402,51 +424,3 @@ class Film(ReynoldsFilm):
         if self.lam is not None:
             d["lam"] = self.lam.x.array[:n].copy()
         return self._gather(d, "X", everywhere)
-
-    # -- starting states -----------------------------------------------------------------
-    def place_countersurface(self, h0, at):
-        """Translate a rigid countersurface along its normal so that h = ``h0`` (mm) at ``at``.
-
-        ``at`` is a reference point; the node of Γ_l nearest to it is used.  The
-        counterpart must have a rigid translation ``offset`` (mm).
-        """
-        if not hasattr(self.counterpart, "offset"):
-            raise ValueError("place_countersurface needs a rigid countersurface (offset)")
-        self.refresh()
-        gdim = self.body.gdim
-        n = self.Q.dofmap.index_map.size_local
-        h = self._film_thickness()
-        nu = fem.Function(self.V1)
-        # × N·N (= 1): an Expression needs a coefficient of the submesh (ν of a plane is constant)
-        nu.interpolate(fem.Expression(self.kin.nu * ufl.dot(self.N, self.N),
-                                      self.V1.element.interpolation_points))
-        d2 = np.sum((self._X1[:n] - np.asarray(at, float)[:gdim]) ** 2, axis=1)
-        i = int(np.argmin(d2)) if n else 0
-        loc = (float(d2[i]) if n else np.inf,
-               (float(h[i]), nu.x.array.reshape(-1, gdim)[i].copy()) if n else None)
-        _, (h_c, nu_c) = min(self.body.mesh.comm.allgather(loc), key=lambda t: t[0])
-        self.counterpart.offset.value[:] += (h_c - h0) * nu_c
-        self.refresh()
-
-    def start_from_pressure(self, pressure, h0, at, verbose=False):
-        """Set an initial state: the body under a prescribed film pressure, film ``h0`` at ``at``.
-
-        ``pressure`` is a callable of the reference coordinates (3, n) → p (MPa),
-        e.g. the Hertz pressure; the body is solved under it as a follower load
-        (:class:`PrescribedPressure`, no shear), p is set to it (g to 0) as the
-        first pressure iterate and a rigid countersurface is placed so that the
-        film is ``h0`` (mm) at the node nearest to ``at``.  Returns the Newton report.
-        """
-        from ..problem import Problem
-
-        if self._dry is None:
-            dry = PrescribedPressure(self)
-            self._dry = (dry, Problem([self.body, dry], name=f"{self.name}_dry"))
-        dry, problem = self._dry
-        dry.p.interpolate(pressure)
-        report = problem.solve(verbose=verbose)
-        self.p.x.array[:] = dry.p.x.array
-        if self.g is not None:
-            self.g.x.array[:] = 0.0
-        self.place_countersurface(h0, at)
-        return report

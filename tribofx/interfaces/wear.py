@@ -95,24 +95,36 @@ class Wear:
 
     def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
                  averaged=False, name="wear", rtol=1e-12):
+        drivers = list(contact) if isinstance(contact, (list, tuple)) else [contact]
+        contact = drivers[0]
         body = contact.body
+        if any(d.body is not body for d in drivers):
+            raise ValueError("the interfaces of one Wear must act on the same body")
+        self.drivers, self.surface = drivers, contact.surface
+        tag = self.surface.dsc.subdomain_id()
+        if any(d.surface.dsc.subdomain_id() != tag for d in drivers):
+            raise ValueError("the interfaces of one Wear must lie on the same boundary")
         if body.w is None or not getattr(body, "shape_is_unknown", True):
             raise ValueError("wear needs a body with a shape field: Body(..., shape=True)")
         if law not in LAWS:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
             raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
+        if not averaged and not all(hasattr(d, "wear_load") for d in drivers):
+            raise ValueError(f"{type(contact).__name__} supplies no wear load: averaged=True")
         if hasattr(contact, "wear_increment") and not averaged:
             raise ValueError("two-body wear is driven by the dissipation of the fast-time "
                              "cycles: averaged=True")
-        if contact.lam_t is not None and contact.slip_kind != "eulerian" and not averaged:
+        if any(getattr(d, "lam_t", None) is not None and d.slip_kind != "eulerian"
+               for d in drivers) and not averaged:
             raise ValueError("Lagrangian (fast-time) friction needs averaged=True and the "
                              "fast-time cycles of the slow-time stepper (tribofx.stepper)")
         self.contact, self.body, self.name, self.rtol = contact, body, name, rtol
         self.law, self.theta, self.averaged = law, float(theta), bool(averaged)
         msh = body.mesh
-        self.zeta = fem.Function(contact.Q, name=f"{name}_shape_multiplier")
-        self.rate_bar = fem.Function(contact.Q, name=f"{name}_cycle_averaged_rate")
+        Q = self.surface.Q
+        self.zeta = fem.Function(Q, name=f"{name}_shape_multiplier")
+        self.rate_bar = fem.Function(Q, name=f"{name}_cycle_averaged_rate")
         self.dt = fem.Constant(msh, 0.0)  # 0: a plain contact solve does not wear
         self.k_law = wear_coefficient_law(k).bind(msh)   # k(p), p = −T_N; a number: constant
         if hasattr(contact, "wear_increment") and not is_constant(self.k_law.law):
@@ -131,38 +143,31 @@ class Wear:
         gmap_w = node_to_dof(body.Vw)
         node_of_bulk = np.full(len(gmap_w), -1, dtype=np.int64)
         node_of_bulk[node_to_dof(body.V)] = np.arange(len(gmap_w))
-        self._bulk_dofs_w = gmap_w[node_of_bulk[contact.bulk_dofs]]
+        self._bulk_dofs_w = gmap_w[node_of_bulk[self.surface.bulk_dofs]]
         self._post = None
 
     # -- the wear law ------------------------------------------------------------
-    def slip_velocity(self):
-        """Relative slip velocity v_T of the slave points, the contact's slip / Δτ (mm/s).
-
-        For the Eulerian steady slip (eqs. 26–27) of the contact, v_T of the slave
-        point relative to the counterpart's surface, whatever the counterpart is.
-        """
-        return self.contact.slip / self.contact.dtau
-
     def rate(self, w, slip=None):
-        """Wear rate per unit initial area Ẇ j_w (mm/s) at shape ``w`` and the contact state.
+        """Wear rate per unit initial area Ẇ j_w (mm/s) at shape ``w`` and the interfaces' state.
 
-        ``slip``: a slip increment instead of the slip velocity (then the wear
-        increment K T_T·Δs in mm, for the fast-time cycles).
+        The sum over the driving interfaces of Archard's law for each one's
+        :class:`~tribofx.forms.wear.WearLoad` (:func:`tribofx.forms.wear.archard_rate`),
+        each with k(p) of its own pressure and the depth grading.  ``slip``: a slip
+        increment instead of the slip velocity (then the wear increment K T_T·Δs
+        in mm, for the fast-time cycles).
         """
-        c = self.contact
-        t_n, t_t = c.tractions()
-        k = wf.depth_graded_coefficient(self.k_law(-t_n), self.k_grad,
-                                        wf.wear_depth(w, self.N_hat))
         J = None
         if self.law == "spatial":
             J = ufl.det(ale.deformation_gradient_worn(self.body.u, w, self.body.kind))
-        if c.lam_t is None:
-            return wf.slave_wear_rate(k, c.lam_n, slip_speed=self.speed, J=J)
-        v_t = self.slip_velocity() if slip is None else slip
-        # K = k/μ with the contact's own friction law μ(p), so that in sliding
-        # Ẇ = (k/μ) T_T·v_T = k |T_N| ‖v_T‖ whatever the law
-        mu = c.friction_law(-t_n) if hasattr(c, "friction_law") else c.friction
-        return wf.slave_wear_rate(k, c.lam_n, mu=mu, t_t=t_t, v_t=v_t, J=J)
+        depth = wf.wear_depth(w, self.N_hat)
+        total = 0
+        for d in self.drivers:
+            load = d.wear_load(slip)
+            # with friction K = k/μ(p) (the contact's own friction law), so that in
+            # sliding Ẇ = (k/μ) T_T·v_T = k |T_N| ‖v_T‖ whatever the law
+            k = wf.depth_graded_coefficient(self.k_law(load.law_pressure), self.k_grad, depth)
+            total = total + wf.archard_rate(k, load, speed=self.speed, J=J)
+        return total
 
     # -- component protocol --------------------------------------------------------
     def unknowns(self):
@@ -175,7 +180,7 @@ class Wear:
 
     def contributions(self):
         """ζ δw·a on the shape row, the discrete shape evolution law (28) on ζ's row."""
-        c = self.contact
+        c = self.surface
         dw = ufl.TestFunction(self.body.Vw)
         eta = ufl.TestFunction(c.Q)
         return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a, c.dsc)),
@@ -192,17 +197,21 @@ class Wear:
         return {}
 
     def entity_maps(self):
-        """Return the contact submesh ↔ bulk entity map."""
-        return [self.contact.emap]
+        """Return the submesh ↔ bulk entity maps of the surface and of the interfaces."""
+        out = [self.surface.emap]
+        for d in self.drivers:
+            maps = d.entity_maps() if hasattr(d, "entity_maps") else []
+            out += [m for m in maps if all(m is not o for o in out)]
+        return out
 
     def refresh(self):
         """Nothing computed outside UFL (the contact refreshes its counterpart)."""
 
     def tolerances(self):
         """ζ rows over their lumped measure: a normal shape change ≤ rtol·L (mm)."""
-        eta = ufl.TestFunction(self.contact.Q)
+        eta = ufl.TestFunction(self.surface.Q)
         return {self.zeta: BlockTolerance(self.rtol * self.body.length, "mm",
-                                          eta * self.contact.dsc)}
+                                          eta * self.surface.dsc)}
 
     def state_fields(self):
         """ζ, the cycle-averaged rate and the wear law's parameters (w, w_n: the body's)."""
@@ -224,8 +233,8 @@ class Wear:
     # -- outputs ---------------------------------------------------------------------
     def _forms(self):
         if self._post is None:
-            c, b = self.contact, self.body
-            em = [c.emap]
+            c, b = self.surface, self.body
+            em = self.entity_maps()
             G = ale.shape_gradient(b.w)
             q = ufl.TestFunction(c.Q)
             now = self.rate_bar if self.averaged else self.rate(b.w)
@@ -239,9 +248,10 @@ class Wear:
                 "detG": fem.Function(DG0),
                 "detG_expr": fem.Expression(ufl.det(G), DG0.element.interpolation_points),
             }
-            if c.lam_t is not None and c.slip_kind == "lagrangian" and \
-                    not hasattr(c, "wear_increment"):
-                self._post["increment"] = fem.form(self.rate(b.w, slip=c.slip) * q * c.dsc,
+            d = self.contact
+            if getattr(d, "lam_t", None) is not None and d.slip_kind == "lagrangian" and \
+                    not hasattr(d, "wear_increment"):
+                self._post["increment"] = fem.form(self.rate(b.w, slip=d.slip) * q * c.dsc,
                                                    entity_maps=em)
             n = c.nodal(self._post["normal"]).reshape(-1, b.gdim)
             self._N_nodal = n / np.linalg.norm(n, axis=1)[:, None]
@@ -273,7 +283,7 @@ class Wear:
             return self.contact.wear_increment(self.k.value / self.contact.friction)
         if "increment" not in f:
             raise ValueError("wear increments need Lagrangian friction on the contact")
-        num, den = self.contact.nodal(f["increment"]), self.contact.nodal(f["lumped"])
+        num, den = self.surface.nodal(f["increment"]), self.surface.nodal(f["lumped"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
 
     def min_volume_factor(self):
@@ -287,8 +297,8 @@ class Wear:
     def nodal_shape_data(self):
         """Per owned contact node: the contact's nodal data and X̂, X = X̂ + w, depth −w·N̂ (mm)."""
         self._forms()
-        c, gdim = self.contact, self.body.gdim
-        d = c.nodal_data()
+        c, gdim = self.surface, self.body.gdim
+        d = self.contact.nodal_data() if self.contact.surface is c else {}
         n_own = c.Q.dofmap.index_map.size_local
         wb = self.body.w.x.array.reshape(-1, gdim)
         ws = np.zeros_like(c.X_sub)
