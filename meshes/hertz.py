@@ -18,11 +18,16 @@ from mpi4py import MPI
 from .model import distributed_model
 from .sizing import point_refinement
 
-__all__ = ["CONTACT", "LOADED", "NAMES", "SYMMETRY_X", "SYMMETRY_Y", "hertz_body"]
+__all__ = ["AXIS", "AXISYMMETRIC_NAMES", "CONTACT", "LOADED", "NAMES", "SYMMETRY_X",
+           "SYMMETRY_Y", "hertz_body", "sphere_section"]
 
 CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y = 1, 2, 3, 4
 NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_x": SYMMETRY_X,
          "symmetry_y": SYMMETRY_Y}
+#: the axis of the meridian section of :func:`sphere_section` (the 2D tag SYMMETRY_X)
+AXIS = SYMMETRY_X
+#: boundary names of :func:`sphere_section` for an axisymmetric :class:`tribofx.body.Body`
+AXISYMMETRIC_NAMES = {"contact": CONTACT, "loaded": LOADED, "axis": AXIS}
 
 
 def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
@@ -113,3 +118,20 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=Fals
 
     data = distributed_model(f"hertz{dim}d", build, comm, dim)
     return data.mesh, data.facet_tags
+
+
+def sphere_section(R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+    """Meridian section of the lower hemisphere of a sphere: an axisymmetric body.
+
+    The quarter disc x ≥ 0 of radius R centred at (0, R), cut at the equator
+    y = R: in an axisymmetric :class:`tribofx.body.Body` (``kind="axisymmetric"``)
+    x is the radius r and y the axial coordinate, so the mesh is the whole
+    hemisphere touching the plane y = 0 at the origin, the axis r = 0 being the
+    face ``axis``.  Refined within ``r_fine`` of the origin.  Returns ``(mesh,
+    facet_tags)`` with the names :data:`AXISYMMETRIC_NAMES` (``contact`` the
+    spherical face, ``loaded`` the equator plane, ``axis``): hold u_r = 0 on
+    ``axis`` (symmetry; the contact node on it gets its exact lumped area from
+    :class:`tribofx.interfaces.surface.Surface`).  Forces of an axisymmetric
+    body are the revolved body's (N, weight 2πr).
+    """
+    return hertz_body(2, R, h_fine, h_coarse, r_fine, comm)

@@ -248,12 +248,15 @@ class Body:
         return out
 
     def reaction(self, name, component):
-        """Reaction force (N; N/mm in plane strain) of the supports on boundary ``name``.
+        """Reaction force of the supports on boundary ``name`` (units and parts as below).
 
         The body's own rows (internal work minus its loads) tested with the unit
         field of ``component`` on the dofs of ``name``: at a solved state the
         force the support exerts on the body, from the solid alone — an
-        equilibrium check independent of any interface's force measure.
+        equilibrium check independent of any interface's force measure.  N/mm
+        per unit thickness in plane strain; N in 3D, on the modelled part (a
+        quarter model: a quarter of the full body's); axisymmetric: the revolved
+        body's, N (the weight 2πR).
         """
         fdim = self.mesh.topology.dim - 1
         Vc = self.V.sub(component)

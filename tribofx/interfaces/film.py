@@ -376,11 +376,15 @@ class Film(FilmStart, ReynoldsFilm):
         return np.array([self._sum(f) for f in self._forms()[key]])
 
     def force(self):
-        """Force (N; N/mm in plane strain) of the film on the modelled part of the body."""
+        """Force of the film on the modelled part of the body.
+
+        N/mm per unit thickness in plane strain; N in 3D (a quarter model: a
+        quarter of the full body's); axisymmetric: the revolved body's, N (2πR-weighted).
+        """
         return self._vector_integral("force")
 
     def counter_force(self):
-        """Force (N; N/mm in plane strain) of the film on the countersurface.
+        """Force of the film on the countersurface (units and parts as :meth:`force`).
 
         ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
         (:func:`forms.ehl.countersurface_traction`): what a friction rig measures

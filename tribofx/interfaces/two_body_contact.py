@@ -1,4 +1,4 @@
-"""Contact of two deformable bodies, master–slave closest point (chapter §2, eqs. 1–9), 2D.
+"""Contact of two deformable bodies, master–slave closest point (chapter §2, eqs. 1–9), 2D and 3D.
 
 The slave boundary Γ_c of one :class:`tribofx.body.Body` carries the nominal
 multipliers λ_N (and λ_T with friction), P1 on its facet submesh, as for
@@ -24,7 +24,10 @@ material point of the last converged projection is kept (segment and ξ̄), and
 the slip is the current projection minus that point's current position, so a
 slave node may change master segment between iterations and steps.  A master
 held fixed gives exactly the rigid countersurface of the same shape.
-Plane strain, P1 displacements, affine meshes.  Units: mm, N, MPa.
+Plane strain (master segments) and 3D (master triangles), P1 displacements,
+affine meshes.  Units: mm, N, MPa.  Forces are those on the modelled parts: N/mm
+per unit thickness in plane strain, N on a 3D model (a quarter model carries a
+quarter of the full bodies' force).
 """
 
 import numpy as np

@@ -65,7 +65,11 @@ class TwoBodyOutputs:
                 "weight": wj, "weight_ref": self._w_c.copy(), "active": T_n < 0}
 
     def forces(self, problem=None):
-        """Total contact force on the slave and on the master (N/mm), all ranks."""
+        """Total contact force on the slave and on the master, all ranks.
+
+        N/mm per unit thickness in plane strain; N in 3D, on the modelled parts
+        (a quarter model: a quarter of the full bodies' force).
+        """
         r = self._kernel()["r"]
         comm = self.slave.mesh.comm
         d = self.gdim
