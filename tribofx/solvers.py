@@ -349,7 +349,7 @@ class IterativeSolver:
     def __init__(self, rtol=1e-10, restart=300, max_it=3000):
         self.rtol, self.restart, self.max_it = rtol, restart, max_it
         self._split = None
-        self.guard = KrylovGuard()
+        self.guard = KrylovGuard(switch_after=2)
 
     def _amg_options(self, pre):
         # Chebyshev on SOR sweeps: on the graded tensor grid of the groove (cell aspect
