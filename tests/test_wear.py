@@ -249,7 +249,7 @@ def test_inverting_shape_update_is_rejected(tmp_path, scheme):
 # -- explicit-scheme stability (eq. 31) ------------------------------------------
 
 def _critical(n, E):
-    from tribofx.wear_study import pin_critical_step
+    from tribofx.cases.wear_stability import pin_critical_step
 
     values = resolve(WearPinCase.params, {"E": str(E)})
     dt_cr, probe = pin_critical_step(values, n, lo=5.0, hi=2000.0)
@@ -474,8 +474,8 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
     # tiny 6 × 6 pin, E = 80 MPa, T = 400 s (the tip is not yet flat, so the
     # worn profile depends on Δt at first order); reference: Richardson
     # 2 p(3.125 s) − p(6.25 s) of implicit runs
+    from tribofx.cases.wear_dt_study import run_dt_study
     from tribofx.plots.wear import plot_dt_study
-    from tribofx.wear_study import run_dt_study
 
     values = resolve(WearPinCase.params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "200,50,25,12.5", "study_ref": "richardson",

@@ -17,11 +17,11 @@ import pytest
 from mpi4py import MPI
 
 from tribofx.cases.wear_ball import WearBallCase
+from tribofx.cases.wear_stability import ball_critical_step, pressure_nonuniformity
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence, convergence_orders
 from tribofx.references import hertz, rigid_cap_radius
-from tribofx.wear_study import ball_critical_step, pressure_nonuniformity
 
 
 def hertz_radius(F, R, E, nu):

@@ -25,8 +25,8 @@ Contents:
 
 Not here, because they are not closed forms: the critical step of the explicit
 wear scheme (chapter eq. 31 gives only the scaling Δt_cr ∼ h/E; tribofx measures
-it by bisection, :func:`tribofx.wear_study.pin_critical_step` and
-:func:`tribofx.wear_study.ball_critical_step`).
+it by bisection, :func:`tribofx.cases.wear_stability.pin_critical_step` and
+:func:`tribofx.cases.wear_stability.ball_critical_step`).
 """
 
 import math

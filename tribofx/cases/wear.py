@@ -42,12 +42,12 @@ T/1280 = 0.78125 s, as in the chapter; ``study_ref=richardson``: 2 p(Δt_r) −
 p(2 Δt_r) of two implicit runs instead).  The error of a run is the Euclidean
 norm (as in the chapter) of the difference of the final worn nodal positions
 X̂ + w on Γ̂_c from the reference (mm; the max nodal distance is also stored).
-A run is flagged unstable (:func:`tribofx.wear_study.run_dt_study`) if it fails
+A run is flagged unstable (:func:`tribofx.cases.wear_dt_study.run_dt_study`) if it fails
 (Newton divergence or an inverted mesh at its nominal Δt: explicit runs get no
 step cutting) or if its error is dominated by the node-to-node alternating
-(checkerboard) mode (:func:`tribofx.wear_study.oscillation_ratio` of the
+(checkerboard) mode (:func:`tribofx.cases.wear_stability.oscillation_ratio` of the
 vertical error > ``OSCILLATION_TOL``), or (explicit) if Δt exceeds the critical
-step Δt_cr of the mesh (:func:`tribofx.wear_study.pin_critical_step`, also
+step Δt_cr of the mesh (:func:`tribofx.cases.wear_stability.pin_critical_step`, also
 reported).  Writes ``error_vs_dt.png``,
 ``profiles.png`` and the ``study_*`` results in summary.json.
 """
@@ -326,7 +326,7 @@ class WearPinCase:
         histories so far); ``resume``: continue from it instead of t = 0.
         """
         if v["study"] == "dt":
-            from ..wear_study import run_dt_study
+            from .wear_dt_study import run_dt_study
 
             dts, levels = cls.study_lists(v)
             ns = [10 * 2**m for m in levels] if n is None else [n]
