@@ -79,7 +79,7 @@ with tempfile.TemporaryDirectory() as tmp:
     values = resolve(WearPinCase.params, {"E": str(args.E), "mesh": str(args.mesh)})
     n = WearPinCase.n_elements(values)
     t0 = time.perf_counter()
-    dt_cr, _ = pin_critical_step(values, n, lo=0.05, hi=200.0)
+    dt_cr, _ = pin_critical_step(WearPinCase, values, n, lo=0.05, hi=200.0)
     t_probe = time.perf_counter() - t0
     T = values["T"]
     dt_exp = T / math.ceil(T / dt_cr)

@@ -252,7 +252,7 @@ def _critical(n, E):
     from tribofx.cases.wear_stability import pin_critical_step
 
     values = resolve(WearPinCase.params, {"E": str(E)})
-    dt_cr, probe = pin_critical_step(values, n, lo=5.0, hi=2000.0)
+    dt_cr, probe = pin_critical_step(WearPinCase, values, n, lo=5.0, hi=2000.0)
     return dt_cr, probe
 
 
@@ -483,7 +483,7 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
     WearPinCase.validate(values)
     dts = WearPinCase.study_lists(values)[0]
     rec = _StudyRecord()
-    run_dt_study(values, rec, [6], dts)
+    run_dt_study(WearPinCase, values, rec, [6], dts)
     err = rec.data["study_error_implicit"]["6x6"]
     dt_cr = rec.data["study_dt_cr"]["6x6"]
     orders = [math.log2(a / b) for a, b in zip(err[1:-1], err[2:])]

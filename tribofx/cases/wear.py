@@ -76,6 +76,7 @@ from ..problem import NewtonDivergence
 from ..references import hertz
 from ..restart import open_history, series_stem
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
+from .wear_dt_study import run_dt_study
 
 __all__ = ["WearPinCase"]
 
@@ -326,11 +327,9 @@ class WearPinCase:
         histories so far); ``resume``: continue from it instead of t = 0.
         """
         if v["study"] == "dt":
-            from .wear_dt_study import run_dt_study
-
             dts, levels = cls.study_lists(v)
             ns = [10 * 2**m for m in levels] if n is None else [n]
-            return run_dt_study(v, record, ns, dts, progress=progress, verbose=verbose)
+            return run_dt_study(cls, v, record, ns, dts, progress=progress, verbose=verbose)
         stepper, load = cls.build(v, n=n, setup=setup, checkpoint=checkpoint)
         stepper.verbose = verbose
         wear, contact = stepper.wear, stepper.wear.contact

@@ -13,7 +13,6 @@ import numpy as np
 from mpi4py import MPI
 
 from ..problem import NewtonDivergence
-from .wear import WearPinCase
 from .wear_stability import (
     OSCILLATION_TOL,
     SubRecord,
@@ -25,7 +24,7 @@ from .wear_stability import (
 __all__ = ["run_dt_study"]
 
 
-def _study_run(v, n, scheme, dt, verbose=False):
+def _study_run(case, v, n, scheme, dt, verbose=False):
     """One run of a study; returns (stepper, dict with status, profiles, costs)."""
     over = {**v, "study": "none", "scheme": scheme, "dt": dt}
     if scheme == "explicit":
@@ -34,7 +33,7 @@ def _study_run(v, n, scheme, dt, verbose=False):
     t0 = time.perf_counter()
     status = "ok"
     try:
-        prob = WearPinCase.run(over, sub, n=n, verbose=verbose)
+        prob = case.run(over, sub, n=n, verbose=verbose)
     except NewtonDivergence as err:
         status = f"failed: {type(err).__name__}: {err}"[:200]
         prob = getattr(err, "problem", None)
@@ -56,8 +55,11 @@ def _study_run(v, n, scheme, dt, verbose=False):
     return prob, out
 
 
-def run_dt_study(v, record, ns, dts, progress=None, verbose=False):
+def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     """``study=dt`` of ``wear-pin`` on the n × n meshes ``ns`` for the time steps ``dts``.
+
+    ``case``: the pin case class (:class:`tribofx.cases.wear.WearPinCase`, its
+    ``run`` makes each run).
 
     Records ``study_dt``, ``study_error_explicit`` and ``study_error_implicit``
     ({"n×n": [error per Δt, None if the run failed]}, mm, Euclidean norm of the
@@ -83,14 +85,14 @@ def run_dt_study(v, record, ns, dts, progress=None, verbose=False):
     for n in ns:
         key = f"{n}x{n}"
         t0 = time.perf_counter()
-        prob_ref, ref = _study_run(v, n, "implicit", ref_dt, verbose)
+        prob_ref, ref = _study_run(case, v, n, "implicit", ref_dt, verbose)
         if not ref["status"] == "ok":
             raise NewtonDivergence(f"study reference run ({key}, Δt = {ref_dt} s) "
                                    f"{ref['status']}")
         p_ref = ref["final_profile"]
         correction = 0.0
         if v["study_ref"] == "richardson":
-            _, coarse = _study_run(v, n, "implicit", 2 * ref_dt, verbose)
+            _, coarse = _study_run(case, v, n, "implicit", 2 * ref_dt, verbose)
             if not coarse["status"] == "ok":
                 raise NewtonDivergence(f"study reference run ({key}, Δt = {2 * ref_dt} s) "
                                        f"{coarse['status']}")
@@ -102,7 +104,7 @@ def run_dt_study(v, record, ns, dts, progress=None, verbose=False):
         dt_cr = None
         if v["study_critical"]:
             try:
-                dt_cr = pin_critical_step(v, n, lo=0.01, hi=1e4)[0]
+                dt_cr = pin_critical_step(case, v, n, lo=0.01, hi=1e4)[0]
             except (ValueError, NewtonDivergence):
                 dt_cr = None
         res["dt_cr"][key] = dt_cr
@@ -113,7 +115,7 @@ def run_dt_study(v, record, ns, dts, progress=None, verbose=False):
                          "wall_time", "newton"):
                 res[f"{name}_{scheme}"][key] = []
             for dt in dts:
-                _, r = _study_run(v, n, scheme, dt, verbose)
+                _, r = _study_run(case, v, n, scheme, dt, verbose)
                 ok = r["status"] == "ok"
                 if ok:
                     diff = r["final_profile"] - p_ref

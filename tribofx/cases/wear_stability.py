@@ -17,7 +17,6 @@ import numpy as np
 from mpi4py import MPI
 
 from ..stepper import bisect_critical_step, growth_probe
-from .wear import WearPinCase
 from .wear_ball import MODEL_FRACTION, WearBallCase
 
 __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
@@ -62,11 +61,13 @@ def checkerboard_amplitude(wear):
     return float(depth @ s / (s @ s))
 
 
-def pin_critical_step(v, n, lo, hi, steps=3, iters=12, eps=1e-6):
+def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     """Largest stable Δt (s) of the explicit scheme on an n × n flat-ended pin (eq. 31).
 
     The stability probe: the flat pin in the homogeneous state (parameters ``v``
-    of ``wear-pin``, R_tip forced to 0) gets a node-to-node alternating wear-depth
+    of ``wear-pin``, R_tip forced to 0; ``case`` the pin case class,
+    :class:`tribofx.cases.wear.WearPinCase`, whose ``build`` and ``load_up`` make
+    it) gets a node-to-node alternating wear-depth
     perturbation of amplitude ε (the highest mode the mesh carries, i.e. the
     first to go unstable), the contact problem is re-solved, and ``steps``
     explicit steps are taken.  Forward Euler multiplies that mode by g = 1 − Δt kV S
@@ -77,8 +78,8 @@ def pin_critical_step(v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     (Δt, a_steps/a_0) evaluated.
     """
     v = {**v, "scheme": "explicit", "R_tip": 0.0}
-    stepper, load = WearPinCase.build(v, n=n)
-    WearPinCase.load_up(stepper, load, v)
+    stepper, load = case.build(v, n=n)
+    case.load_up(stepper, load, v)
     seed_checkerboard(stepper.wear, v["W"], n, eps)
     stepper.problem.solve()
     stepper.problem.commit()
