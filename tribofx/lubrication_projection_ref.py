@@ -12,16 +12,10 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from tribofx.facet_elements_ref import ELEMENTS, QUAD_AB, line1, line2
 from tribofx.lubrication_projection import LubricationResult
 from tribofx.projection import _validate
-from tribofx.projection_ref import (
-    _ELEMENTS,
-    _QUAD_AB,
-    _evaluate,
-    _line1,
-    _line2,
-    closest_point_projection_ref,
-)
+from tribofx.projection_ref import _evaluate, closest_point_projection_ref
 
 __all__ = ["lubrication_projection_ref"]
 
@@ -37,11 +31,11 @@ def _third_derivatives(el, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
     d3 = np.zeros((m, el.tdim, el.tdim, el.tdim, gdim))
     if el.simplex:
         return d3
-    line = _line2 if nn == 9 else _line1
+    line = line2 if nn == 9 else line1
     f, df, d2f = line(xi[:, 0])
     g, dg, d2g = line(xi[:, 1])
-    x001 = sum((d2f[a] * dg[b])[:, None] * X[:, i] for i, (a, b) in enumerate(_QUAD_AB[:nn]))
-    x011 = sum((df[a] * d2g[b])[:, None] * X[:, i] for i, (a, b) in enumerate(_QUAD_AB[:nn]))
+    x001 = sum((d2f[a] * dg[b])[:, None] * X[:, i] for i, (a, b) in enumerate(QUAD_AB[:nn]))
+    x011 = sum((df[a] * d2g[b])[:, None] * X[:, i] for i, (a, b) in enumerate(QUAD_AB[:nn]))
     for a, b, c in ((0, 0, 1), (0, 1, 0), (1, 0, 0)):
         d3[:, a, b, c] = x001
     for a, b, c in ((0, 1, 1), (1, 0, 1), (1, 1, 0)):
@@ -73,7 +67,7 @@ def lubrication_projection_ref(
 ) -> LubricationResult:
     """NumPy version of :func:`tribofx.lubrication_projection.lubrication_projection`."""
     points, nodes, facets = _validate(points, nodes, facets, cell_type)
-    el = _ELEMENTS[cell_type]
+    el = ELEMENTS[cell_type]
     n, gdim = points.shape
     pr = closest_point_projection_ref(points, nodes, facets, cell_type)
     g = points - pr.x_bar

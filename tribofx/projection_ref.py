@@ -10,12 +10,10 @@ large meshes.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable
-
 import numpy as np
 import numpy.typing as npt
 
+from tribofx.facet_elements_ref import ELEMENTS, FacetElement, dot
 from tribofx.projection import ProjectionResult, _validate
 
 __all__ = ["closest_point_projection_ref"]
@@ -32,141 +30,8 @@ _VERTEX = -2
 _PAIRS_PER_CHUNK = 200_000
 
 
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Dot product over the last axis, summed left to right."""
-    s = a[..., 0] * b[..., 0]
-    for i in range(1, a.shape[-1]):
-        s = s + a[..., i] * b[..., i]
-    return s
-
-
-def _line1(t: np.ndarray) -> tuple[list, list, list]:
-    """1D P1 basis on [0, 1] (nodes 0, 1): values, first and second derivatives."""
-    one = np.ones_like(t)
-    return [1.0 - t, t], [-one, one], [0.0 * one, 0.0 * one]
-
-
-def _line2(t: np.ndarray) -> tuple[list, list, list]:
-    """1D P2 basis on [0, 1] (nodes 0, 1, 1/2): values, first and second derivatives."""
-    one = np.ones_like(t)
-    f = [(1.0 - t) * (1.0 - 2.0 * t), t * (2.0 * t - 1.0), 4.0 * t * (1.0 - t)]
-    df = [4.0 * t - 3.0, 4.0 * t - 1.0, 4.0 - 8.0 * t]
-    return f, df, [4.0 * one, 4.0 * one, -8.0 * one]
-
-
-_QUAD_AB = ((0, 0), (1, 0), (0, 1), (1, 1), (2, 0), (0, 2), (1, 2), (2, 1), (2, 2))
-
-
-def _tab_interval(line: Callable) -> Callable:
-    def tabulate(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        f, df, d2f = line(xi[:, 0])
-        N = np.stack(f, axis=-1)
-        return N, np.stack(df, axis=-1)[:, None, :], np.stack(d2f, axis=-1)[:, None, None, :]
-
-    return tabulate
-
-
-def _tab_triangle3(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    s, t = xi[:, 0], xi[:, 1]
-    m = len(s)
-    N = np.stack([1.0 - s - t, s, t], axis=-1)
-    dN = np.empty((m, 2, 3))
-    dN[:, 0] = (-1.0, 1.0, 0.0)
-    dN[:, 1] = (-1.0, 0.0, 1.0)
-    return N, dN, np.zeros((m, 2, 2, 3))
-
-
-def _tab_triangle6(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    s, t = xi[:, 0], xi[:, 1]
-    m = len(s)
-    l0 = 1.0 - s - t
-    N = np.stack(
-        [
-            l0 * (2.0 * l0 - 1.0),
-            s * (2.0 * s - 1.0),
-            t * (2.0 * t - 1.0),
-            4.0 * s * t,
-            4.0 * t * l0,
-            4.0 * s * l0,
-        ],
-        axis=-1,
-    )
-    zero = 0.0 * s
-    dN = np.empty((m, 2, 6))
-    dN[:, 0] = np.stack(
-        [1.0 - 4.0 * l0, 4.0 * s - 1.0, zero, 4.0 * t, -4.0 * t, 4.0 * (l0 - s)], axis=-1
-    )
-    dN[:, 1] = np.stack(
-        [1.0 - 4.0 * l0, zero, 4.0 * t - 1.0, 4.0 * s, 4.0 * (l0 - t), -4.0 * s], axis=-1
-    )
-    d2N = np.empty((m, 2, 2, 6))
-    d2N[:, 0, 0] = (4.0, 4.0, 0.0, 0.0, 0.0, -8.0)
-    d2N[:, 0, 1] = (4.0, 0.0, 0.0, 4.0, -4.0, -4.0)
-    d2N[:, 1, 0] = d2N[:, 0, 1]
-    d2N[:, 1, 1] = (4.0, 0.0, 4.0, 0.0, -8.0, 0.0)
-    return N, dN, d2N
-
-
-def _tab_quadrilateral(line: Callable, nn: int) -> Callable:
-    def tabulate(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        f, df, d2f = line(xi[:, 0])
-        g, dg, d2g = line(xi[:, 1])
-        m = len(xi)
-        N = np.empty((m, nn))
-        dN = np.empty((m, 2, nn))
-        d2N = np.empty((m, 2, 2, nn))
-        for i, (a, b) in enumerate(_QUAD_AB[:nn]):
-            N[:, i] = f[a] * g[b]
-            dN[:, 0, i] = df[a] * g[b]
-            dN[:, 1, i] = f[a] * dg[b]
-            d2N[:, 0, 0, i] = d2f[a] * g[b]
-            d2N[:, 0, 1, i] = df[a] * dg[b]
-            d2N[:, 1, 0, i] = df[a] * dg[b]
-            d2N[:, 1, 1, i] = f[a] * d2g[b]
-        return N, dN, d2N
-
-    return tabulate
-
-
-@dataclass(frozen=True)
-class _Element:
-    """Facet type: dimensions, flags, tabulation and reference-domain edges."""
-
-    tdim: int
-    num_nodes: int
-    affine: bool
-    simplex: bool
-    tabulate: Callable
-    centroid: tuple = ()
-    vertices: tuple = ()
-    edge_start: tuple = ()
-    edge_dir: tuple = ()
-
-
-_TRI = dict(
-    centroid=(1.0 / 3.0, 1.0 / 3.0),
-    vertices=((0.0, 0.0), (1.0, 0.0), (0.0, 1.0)),
-    edge_start=((1.0, 0.0), (0.0, 0.0), (0.0, 0.0)),
-    edge_dir=((-1.0, 1.0), (0.0, 1.0), (1.0, 0.0)),
-)
-_QUAD = dict(
-    centroid=(0.5, 0.5),
-    vertices=((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)),
-    edge_start=((0.0, 0.0), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0)),
-    edge_dir=((1.0, 0.0), (0.0, 1.0), (0.0, 1.0), (1.0, 0.0)),
-)
-_ELEMENTS = {
-    "interval": _Element(1, 2, True, True, _tab_interval(_line1)),
-    "interval3": _Element(1, 3, False, True, _tab_interval(_line2)),
-    "triangle": _Element(2, 3, True, True, _tab_triangle3, **_TRI),
-    "triangle6": _Element(2, 6, False, True, _tab_triangle6, **_TRI),
-    "quadrilateral": _Element(2, 4, False, False, _tab_quadrilateral(_line1, 4), **_QUAD),
-    "quadrilateral9": _Element(2, 9, False, False, _tab_quadrilateral(_line2, 9), **_QUAD),
-}
-
-
 def _evaluate(
-    el: _Element, X: np.ndarray, xi: np.ndarray
+    el: FacetElement, X: np.ndarray, xi: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Geometry x (m, g), tangents t (m, tdim, g), second derivatives d (m, tdim, tdim, g)."""
     N, dN, d2N = el.tabulate(xi)
@@ -204,13 +69,15 @@ def _point_on_line(a: tuple, e: tuple, s: np.ndarray) -> np.ndarray:
     return np.stack([a[k] + s * e[k] for k in range(len(a))], axis=-1)
 
 
-def _line_minimiser(el: _Element, x: np.ndarray, X: np.ndarray, a: tuple, e: tuple) -> np.ndarray:
+def _line_minimiser(
+    el: FacetElement, x: np.ndarray, X: np.ndarray, a: tuple, e: tuple
+) -> np.ndarray:
     """Minimise 1/2 |x - x(a + s e)|^2 over s in [0, 1] for every pair."""
     m = len(x)
     if el.affine:
         gx, t, _ = _evaluate(el, X, np.broadcast_to(np.asarray(a), (m, el.tdim)))
         te = _along(e, t)
-        return np.clip(_dot(te, x - gx) / _dot(te, te), 0.0, 1.0)
+        return np.clip(dot(te, x - gx) / dot(te, te), 0.0, 1.0)
     s = np.full(m, 0.5)
     prev = np.full(m, np.inf)
     act = np.arange(m)
@@ -222,9 +89,9 @@ def _line_minimiser(el: _Element, x: np.ndarray, X: np.ndarray, a: tuple, e: tup
         g = x[act] - ga
         te = _along(e, t)
         de = _along2(e, d)
-        r = -_dot(te, g)
-        tt = _dot(te, te)
-        h = tt - _dot(g, de)
+        r = -dot(te, g)
+        tt = dot(te, te)
+        h = tt - dot(g, de)
         h = np.where(h > 0.0, h, tt)
         ok = h > 0.0
         act, sa, r, h = act[ok], sa[ok], r[ok], h[ok]
@@ -237,20 +104,20 @@ def _line_minimiser(el: _Element, x: np.ndarray, X: np.ndarray, a: tuple, e: tup
 
     def dist2(sv: np.ndarray) -> np.ndarray:
         g = x - _evaluate(el, X, _point_on_line(a, e, sv))[0]
-        return _dot(g, g)
+        return dot(g, g)
 
     ds, d0, d1 = dist2(s), dist2(np.zeros(m)), dist2(np.ones(m))
     return np.where((d0 < ds) & (d0 <= d1), 0.0, np.where(d1 < ds, 1.0, s))
 
 
-def _strictly_inside(el: _Element, p: np.ndarray) -> np.ndarray:
+def _strictly_inside(el: FacetElement, p: np.ndarray) -> np.ndarray:
     p0, p1 = p[:, 0], p[:, 1]
     if el.simplex:
         return (p0 > 0.0) & (p1 > 0.0) & (p0 + p1 < 1.0)
     return (p0 > 0.0) & (p0 < 1.0) & (p1 > 0.0) & (p1 < 1.0)
 
 
-def _project_reference(el: _Element, p: np.ndarray) -> np.ndarray:
+def _project_reference(el: FacetElement, p: np.ndarray) -> np.ndarray:
     """Euclidean projection onto the reference facet (tdim = 2)."""
     if not el.simplex:
         return np.clip(p, 0.0, 1.0)
@@ -274,7 +141,9 @@ def _project_reference(el: _Element, p: np.ndarray) -> np.ndarray:
     return out
 
 
-def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _interior_newton(
+    el: FacetElement, x: np.ndarray, X: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Projected Newton for the interior problem; returns xi and a flag for a converged minimum."""
     m = len(x)
     xi = np.empty((m, 2))
@@ -291,11 +160,11 @@ def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.nda
         gx, t, d = _evaluate(el, X[act], xa)
         g = x[act] - gx
         t0, t1 = t[:, 0], t[:, 1]
-        r0, r1 = -_dot(t0, g), -_dot(t1, g)
-        G00, G01, G11 = _dot(t0, t0), _dot(t0, t1), _dot(t1, t1)
-        H00 = G00 - _dot(g, d[:, 0, 0])
-        H01 = G01 - _dot(g, d[:, 0, 1])
-        H11 = G11 - _dot(g, d[:, 1, 1])
+        r0, r1 = -dot(t0, g), -dot(t1, g)
+        G00, G01, G11 = dot(t0, t0), dot(t0, t1), dot(t1, t1)
+        H00 = G00 - dot(g, d[:, 0, 0])
+        H01 = G01 - dot(g, d[:, 0, 1])
+        H11 = G11 - dot(g, d[:, 1, 1])
         det = H00 * H11 - H01 * H01
         gn = ~((H00 > 0.0) & (det > 0.0))
         spd[act] = ~gn
@@ -318,7 +187,7 @@ def _interior_newton(el: _Element, x: np.ndarray, X: np.ndarray) -> tuple[np.nda
 
 
 def _project_pairs(
-    el: _Element, x: np.ndarray, X: np.ndarray
+    el: FacetElement, x: np.ndarray, X: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Closest point of facet X[p] to x[p] for every pair p: xi, state, squared distance."""
     m = len(x)
@@ -332,8 +201,8 @@ def _project_pairs(
             gx, t, _ = _evaluate(el, X, np.zeros((m, 2)))
             r = x - gx
             t0, t1 = t[:, 0], t[:, 1]
-            b0, b1 = _dot(t0, r), _dot(t1, r)
-            G00, G01, G11 = _dot(t0, t0), _dot(t0, t1), _dot(t1, t1)
+            b0, b1 = dot(t0, r), dot(t1, r)
+            G00, G01, G11 = dot(t0, t0), dot(t0, t1), dot(t1, t1)
             det = G00 * G11 - G01 * G01
             xi = np.stack([(G11 * b0 - G01 * b1) / det, (G00 * b1 - G01 * b0) / det], axis=-1)
             found = _strictly_inside(el, xi)
@@ -346,10 +215,10 @@ def _project_pairs(
             # A curved facet may have several local minima: if a vertex is closer
             # than the interior minimum, search the edges as well
             g = x - _evaluate(el, X, xi)[0]
-            best_all = np.where(found, _dot(g, g), 0.0)
+            best_all = np.where(found, dot(g, g), 0.0)
             for v in el.vertices:
                 gv = x - _evaluate(el, X, np.broadcast_to(np.asarray(v), (m, 2)))[0]
-                search |= found & (_dot(gv, gv) < best_all)
+                search |= found & (dot(gv, gv) < best_all)
         rest = np.flatnonzero(search)
         xr, Xr, fr = x[rest], X[rest], found[rest]
         best, bxi, bst = best_all[rest], xi[rest], state[rest]
@@ -357,7 +226,7 @@ def _project_pairs(
             s = _line_minimiser(el, xr, Xr, a, e)
             xe = _point_on_line(a, e, s)
             g = xr - _evaluate(el, Xr, xe)[0]
-            d2 = _dot(g, g)
+            d2 = dot(g, g)
             st = np.where((s > 0.0) & (s < 1.0), k, _VERTEX)
             upd = ((k == 0) & ~fr) | (d2 < best)
             best = np.where(upd, d2, best)
@@ -367,7 +236,7 @@ def _project_pairs(
             xi[rest] = bxi
             state[rest] = bst
     g = x - _evaluate(el, X, xi)[0]
-    return xi, state, _dot(g, g)
+    return xi, state, dot(g, g)
 
 
 def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -382,7 +251,7 @@ def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def _results(
-    el: _Element, x: np.ndarray, X: np.ndarray, xi: np.ndarray, state: np.ndarray
+    el: FacetElement, x: np.ndarray, X: np.ndarray, xi: np.ndarray, state: np.ndarray
 ) -> dict[str, np.ndarray]:
     """Output fields for points x projected onto facets X at (xi, state)."""
     n, gdim = x.shape
@@ -398,22 +267,22 @@ def _results(
             axis=1,
         )
         m = _cross(t[:, 0], t[:, 1])
-    mnorm = np.sqrt(_dot(m, m))[:, None]
+    mnorm = np.sqrt(dot(m, m))[:, None]
     nrm = m / mnorm
     dn = np.stack(
-        [(dm[:, a] - nrm * _dot(nrm, dm[:, a])[:, None]) / mnorm for a in range(tdim)], axis=1
+        [(dm[:, a] - nrm * dot(nrm, dm[:, a])[:, None]) / mnorm for a in range(tdim)], axis=1
     )
 
     dxi = np.zeros((n, tdim, gdim))
     ii = state == _INTERIOR
     ti, di, gi = t[ii], d[ii], g[ii]
     if tdim == 1:
-        A = _dot(ti[:, 0], ti[:, 0]) - _dot(gi, di[:, 0, 0])
+        A = dot(ti[:, 0], ti[:, 0]) - dot(gi, di[:, 0, 0])
         dxi[ii, 0] = ti[:, 0] / A[:, None]
     else:
-        A00 = _dot(ti[:, 0], ti[:, 0]) - _dot(gi, di[:, 0, 0])
-        A01 = _dot(ti[:, 0], ti[:, 1]) - _dot(gi, di[:, 0, 1])
-        A11 = _dot(ti[:, 1], ti[:, 1]) - _dot(gi, di[:, 1, 1])
+        A00 = dot(ti[:, 0], ti[:, 0]) - dot(gi, di[:, 0, 0])
+        A01 = dot(ti[:, 0], ti[:, 1]) - dot(gi, di[:, 0, 1])
+        A11 = dot(ti[:, 1], ti[:, 1]) - dot(gi, di[:, 1, 1])
         det = A00 * A11 - A01 * A01
         i00, i01, i11 = (A11 / det)[:, None], (-A01 / det)[:, None], (A00 / det)[:, None]
         dxi[ii, 0] = i00 * ti[:, 0] + i01 * ti[:, 1]
@@ -422,7 +291,7 @@ def _results(
             ik = state == k
             te = _along(e, t[ik])
             de = _along2(e, d[ik])
-            A = _dot(te, te) - _dot(g[ik], de)
+            A = dot(te, te) - dot(g[ik], de)
             ds = te / A[:, None]
             dxi[ik, 0] = e[0] * ds
             dxi[ik, 1] = e[1] * ds
@@ -435,11 +304,11 @@ def _results(
     curv = np.empty((n, tdim, tdim))
     for a in range(tdim):
         for b in range(tdim):
-            curv[:, a, b] = _dot(nrm, d[:, a, b])
+            curv[:, a, b] = dot(nrm, d[:, a, b])
     return dict(
         xi=xi,
         x_bar=gx,
-        gap=_dot(g, nrm),
+        gap=dot(g, nrm),
         normal=nrm,
         tangents=t,
         dxi_dx=dxi,
@@ -447,7 +316,7 @@ def _results(
         dn_dx=dndx,
         curvature=curv,
         inside=state == _INTERIOR,
-        distance=np.sqrt(_dot(g, g)),
+        distance=np.sqrt(dot(g, g)),
     )
 
 
@@ -467,7 +336,7 @@ def closest_point_projection_ref(
 
     """
     points, nodes, facets = _validate(points, nodes, facets, cell_type)
-    el = _ELEMENTS[cell_type]
+    el = ELEMENTS[cell_type]
     n, gdim = points.shape
     nf = len(facets)
     Xf = nodes[facets]

@@ -7,7 +7,7 @@
 * :func:`oscillation_ratio`, :func:`checkerboard_amplitude`,
   :func:`pressure_nonuniformity` — the measures they use.
 
-Both critical steps bisect with :func:`tribofx.stepper.bisect_critical_step`;
+Both critical steps bisect with :func:`tribofx.stability.bisect_critical_step`;
 the chapter gives only the scaling Δt_cr ∼ h/E.  Units: s, mm.
 """
 
@@ -16,7 +16,7 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..stepper import bisect_critical_step, growth_probe
+from ..stability import bisect_critical_step, growth_probe
 from .wear_ball import MODEL_FRACTION, WearBallCase
 
 __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
