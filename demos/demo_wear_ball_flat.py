@@ -60,12 +60,12 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.wear_ball import NAMES, quarter_ball
 
 from tribofx.body import Body
-from tribofx.continuation import ConstantParameter
+from tribofx.continuation import ConstantParameter, ResponseControl
 from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
-from tribofx.stepper import ResponseControl, Stepper
+from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="ball-on-flat wear demo")
 parser.add_argument("--quick", action="store_true", help="T = 100 s, one step (CI)")

@@ -24,7 +24,7 @@ import numpy as np
 
 from .problem import NewtonDivergence
 
-__all__ = ["ConstantParameter", "Continuation", "HeldResponse"]
+__all__ = ["ConstantParameter", "Continuation", "HeldResponse", "ResponseControl"]
 
 
 class ConstantParameter:
@@ -394,3 +394,68 @@ class HeldResponse:
 
     def commit(self):
         """Do nothing: the inner search has committed its converged step."""
+
+
+class _Recorder:
+    """A problem whose Newton reports are kept (also of failed solves)."""
+
+    def __init__(self, problem):
+        self.problem, self.reports = problem, []
+
+    def solve(self, verbose=False):
+        try:
+            return self.problem.solve(verbose=verbose)
+        finally:
+            self.reports.append(self.problem.report)
+
+    def __getattr__(self, name):
+        return getattr(self.problem, name)
+
+
+class ResponseControl(HeldResponse):
+    """A :class:`HeldResponse` of the slow time: the response held at every step's solves.
+
+    Each solve of the deformation problem is a
+    :meth:`tribofx.continuation.Continuation.reach` on ``parameter``, started
+    from ``predictor(dt)`` (evaluated at step entry, before any shape update)
+    with the first update along ``slope(dt)`` (an estimate of d response / d
+    parameter); both optional.
+
+    Args:
+        problem: the problem solved at each trial (the stepper's ``problem``).
+        parameter: e.g. :class:`tribofx.continuation.ConstantParameter`.
+        response: callable → float.
+        target: the value the response is held at.
+        predictor, slope: callables of Δt (s), or None.
+        rtol, max_trials: of :meth:`Continuation.reach`.
+    """
+
+    def __init__(self, problem, parameter, response, target, predictor=None, slope=None,
+                 rtol=1e-8, max_trials=12, verbose=False):
+        self._rec = _Recorder(problem)
+        super().__init__(Continuation(self._rec, parameter, response=response,
+                                      verbose=verbose, rtol=rtol, max_trials=max_trials),
+                         target)
+        self.parameter = parameter
+        self.predictor, self.step_slope = predictor, slope
+        self._guess = self._step_slope = None
+
+    @property
+    def trials(self):
+        """Newton iteration counts of the trials of every converged reach."""
+        return self.inner.record
+
+    def begin(self, dt):
+        """At step entry: the parameter's value is the converged one; predictor and slope for Δt."""
+        self.inner.done = self.parameter.get()
+        self._guess = None if self.predictor is None else self.predictor(dt)
+        self._step_slope = None if self.step_slope is None else self.step_slope(dt)
+
+    def solve(self, guess=None, slope=None):
+        """Reach the target from ``guess`` (default: the step's predictor); Newton reports."""
+        n0 = len(self._rec.reports)
+        guess = self._guess if guess is None else guess
+        slope = self._step_slope if slope is None else slope
+        self._guess = self._step_slope = None
+        self.inner.reach(self.target, guess=guess, slope=slope)
+        return self._rec.reports[n0:]

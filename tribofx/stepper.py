@@ -19,10 +19,12 @@ Schemes (chosen by the interface's ``theta`` and ``averaged``):
   drives the shape step; θ > 0 by a fixed-point (Picard) iteration, each
   iterate re-solving a cycle on the predicted shape.
 
-A *control* (:class:`ResponseControl`) replaces the plain Newton solve of the
-deformation problem by :meth:`tribofx.continuation.Continuation.reach` on a
-parameter (e.g. the countersurface position that carries a prescribed force),
-with a predictor evaluated at step entry.
+A *control* (:class:`tribofx.continuation.ResponseControl`, a
+:class:`~tribofx.continuation.HeldResponse` of the slow time) replaces the plain
+Newton solve of the deformation problem by
+:meth:`tribofx.continuation.Continuation.reach` on a parameter (e.g. the
+countersurface position that carries a prescribed force), with a predictor
+evaluated at step entry.
 
 Step cutting (one policy): a step that fails (Newton divergence, a force not
 reached, or an inverted cell, :class:`MeshInversion`) restores the state at
@@ -59,12 +61,11 @@ from mpi4py import MPI
 
 from . import interrupt
 from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
-from .continuation import Continuation
 from .cycles import ReciprocatingCycle
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 
-__all__ = ["MeshInversion", "ReciprocatingCycle", "ResponseControl",
+__all__ = ["MeshInversion", "ReciprocatingCycle",
            "StepReport", "Stepper", "nominal_steps"]
 
 
@@ -89,70 +90,6 @@ class StepReport:
     iterations: int = 0
     cycle_iterations: int = 0
     picard: int = 0
-
-
-class _Recorder:
-    """A problem whose Newton reports are kept (also of failed solves)."""
-
-    def __init__(self, problem):
-        self.problem, self.reports = problem, []
-
-    def solve(self, verbose=False):
-        try:
-            return self.problem.solve(verbose=verbose)
-        finally:
-            self.reports.append(self.problem.report)
-
-    def __getattr__(self, name):
-        return getattr(self.problem, name)
-
-
-class ResponseControl:
-    """Hold a measured response at ``target`` through every solve of the slow time.
-
-    Each solve of the deformation problem is a
-    :meth:`tribofx.continuation.Continuation.reach` on ``parameter``, started
-    from ``predictor(dt)`` (evaluated at step entry, before any shape update)
-    with the first update along ``slope(dt)`` (an estimate of d response / d
-    parameter); both optional.
-
-    Args:
-        problem: the problem solved at each trial (the stepper's ``problem``).
-        parameter: e.g. :class:`tribofx.continuation.ConstantParameter`.
-        response: callable → float.
-        target: the value the response is held at.
-        predictor, slope: callables of Δt (s), or None.
-        rtol, max_trials: of :meth:`Continuation.reach`.
-    """
-
-    def __init__(self, problem, parameter, response, target, predictor=None, slope=None,
-                 rtol=1e-8, max_trials=12, verbose=False):
-        self._rec = _Recorder(problem)
-        self.continuation = Continuation(self._rec, parameter, response=response,
-                                         verbose=verbose, rtol=rtol, max_trials=max_trials)
-        self.parameter, self.target = parameter, target
-        self.predictor, self.slope = predictor, slope
-        self._guess = self._slope = None
-
-    @property
-    def trials(self):
-        """Newton iteration counts of the trials of every converged reach."""
-        return self.continuation.record
-
-    def begin(self, dt):
-        """At step entry: the parameter's value is the converged one; predictor and slope for Δt."""
-        self.continuation.done = self.parameter.get()
-        self._guess = None if self.predictor is None else self.predictor(dt)
-        self._slope = None if self.slope is None else self.slope(dt)
-
-    def solve(self, guess=None, slope=None):
-        """Reach the target from ``guess`` (default: the step's predictor); Newton reports."""
-        n0 = len(self._rec.reports)
-        guess = self._guess if guess is None else guess
-        slope = self._slope if slope is None else slope
-        self._guess = self._slope = None
-        self.continuation.reach(self.target, guess=guess, slope=slope)
-        return self._rec.reports[n0:]
 
 
 class Stepper:

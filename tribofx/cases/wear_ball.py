@@ -24,7 +24,7 @@ rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
 supports the friction force and its moment) and the rigid flat is translated
 vertically by δ (``approach``), found in every solve by the secant iteration of
 :meth:`tribofx.continuation.Continuation.reach` around the Newton solve of the
-step (:class:`tribofx.stepper.ResponseControl`) so that the contact force of the
+step (:class:`tribofx.continuation.ResponseControl`) so that the contact force of the
 half contact is F/2 to 10⁻⁸.  A uniform traction on a
 free mid-plane is not used: the friction moment μ F R would tilt the ball.
 Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
@@ -63,7 +63,7 @@ from mpi4py import MPI
 
 from .. import interrupt
 from ..body import Body
-from ..continuation import ConstantParameter
+from ..continuation import ConstantParameter, ResponseControl
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..meshes.user import boundary_facet_size, read_user_mesh
@@ -74,7 +74,7 @@ from ..params import InputError, Param
 from ..problem import NewtonDivergence
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
 from ..restart import open_history, series_stem
-from ..stepper import ResponseControl, Stepper, nominal_steps
+from ..stepper import Stepper, nominal_steps
 
 __all__ = ["MODEL_FRACTION", "WearBallCase"]
 
@@ -279,7 +279,7 @@ class WearBallCase:
         """
         t_wall = time.perf_counter()
         stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
-        stepper.verbose = stepper.control.continuation.verbose = verbose
+        stepper.verbose = stepper.control.inner.verbose = verbose
         record.data["num_dofs"] = stepper.problem.num_dofs
         if stepper.shape is not None:
             record.data["num_dofs_shape"] = stepper.shape.num_dofs
