@@ -60,7 +60,8 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 
 from tribofx.body import Body
-from tribofx.continuation import ConstantParameter, Continuation, HeldResponse
+from tribofx.continuation import ConstantParameter, Continuation
+from tribofx.held_response import HeldResponse
 from tribofx.interfaces import Film
 from tribofx.obstacles import rigid_cylinder
 from tribofx.output import write_summary

@@ -60,7 +60,8 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.wear_ball import NAMES, quarter_ball
 
 from tribofx.body import Body
-from tribofx.continuation import ConstantParameter, ResponseControl
+from tribofx.continuation import ConstantParameter
+from tribofx.held_response import ResponseControl
 from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx

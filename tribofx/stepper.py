@@ -19,8 +19,8 @@ Schemes (chosen by the interface's ``theta`` and ``averaged``):
   drives the shape step; θ > 0 by a fixed-point (Picard) iteration, each
   iterate re-solving a cycle on the predicted shape.
 
-A *control* (:class:`tribofx.continuation.ResponseControl`, a
-:class:`~tribofx.continuation.HeldResponse` of the slow time) replaces the plain
+A *control* (:class:`tribofx.held_response.ResponseControl`, a
+:class:`~tribofx.held_response.HeldResponse` of the slow time) replaces the plain
 Newton solve of the deformation problem by
 :meth:`tribofx.continuation.Continuation.reach` on a parameter (e.g. the
 countersurface position that carries a prescribed force), with a predictor
@@ -149,7 +149,7 @@ class Stepper:
 
     # -- set-up ------------------------------------------------------------------
     def set_control(self, control):
-        """Solve the deformation problem by ``control`` (a :class:`ResponseControl`)."""
+        """Solve the deformation problem by ``control`` (a ``held_response.ResponseControl``)."""
         self.control = control
 
     def shape_unknown_fraction(self):

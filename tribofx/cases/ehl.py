@@ -9,7 +9,7 @@ through its mesh with v = F V, V = (U, 0), eq. 26: the frame of the cylinder), a
 or an interval3 arc projected by the C++ kernel, ``countersurface=mesh``), one
 :class:`~tribofx.problem.Problem` and :class:`~tribofx.continuation.Continuation`
 controllers: the cylinder's vertical position is found by a secant for each load
-(:class:`~tribofx.continuation.HeldResponse`), the loads W/steps, …, W are
+(:class:`~tribofx.held_response.HeldResponse`), the loads W/steps, …, W are
 marched with step cutting, ``speeds`` continues the final load in U (geometric
 steps, cut on failure) and records friction coefficient, h_min, p_max against μU.
 
@@ -55,8 +55,9 @@ from mpi4py import MPI
 
 from .. import interrupt
 from ..body import Body
-from ..continuation import ConstantParameter, Continuation, HeldResponse
+from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
+from ..held_response import HeldResponse
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..obstacles import rigid_cylinder, rigid_surface_mesh

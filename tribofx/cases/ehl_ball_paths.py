@@ -12,7 +12,8 @@ checkpoint (:class:`tribofx.restart.SweepJournal`).  The case supplies
 
 import numpy as np
 
-from ..continuation import ConstantParameter, Continuation, HeldResponse
+from ..continuation import ConstantParameter, Continuation
+from ..held_response import HeldResponse
 from ..problem import NewtonDivergence
 
 __all__ = ["Z", "BallPaths"]

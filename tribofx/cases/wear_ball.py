@@ -24,7 +24,7 @@ rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
 supports the friction force and its moment) and the rigid flat is translated
 vertically by δ (``approach``), found in every solve by the secant iteration of
 :meth:`tribofx.continuation.Continuation.reach` around the Newton solve of the
-step (:class:`tribofx.continuation.ResponseControl`) so that the contact force of the
+step (:class:`tribofx.held_response.ResponseControl`) so that the contact force of the
 half contact is F/2 to 10⁻⁸.  A uniform traction on a
 free mid-plane is not used: the friction moment μ F R would tilt the ball.
 Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
@@ -63,8 +63,9 @@ from mpi4py import MPI
 
 from .. import interrupt
 from ..body import Body
-from ..continuation import ConstantParameter, ResponseControl
+from ..continuation import ConstantParameter
 from ..forms.hyperelastic import lame_parameters
+from ..held_response import ResponseControl
 from ..interfaces import Contact, Wear
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..meshes.wear_ball import NAMES, quarter_ball
