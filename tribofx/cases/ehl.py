@@ -53,7 +53,6 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
@@ -61,12 +60,12 @@ from ..held_response import HeldResponse
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
-from ..output import VTXSeries
 from ..params import InputError, Param
 from ..positions import parabolic_vertex
-from ..problem import NewtonDivergence, Problem, options_name
+from ..problem import Problem, options_name
 from ..references import rigid_clearance
-from ..restart import SweepJournal, sweep_stem
+from ..restart import SweepJournal
+from ..sweep import SweepVariant
 from .ehl_user import check_user_ends, read_user_layer
 from .film_setup import VISCOSITY_PARAMS, density, speed_list, viscosity
 
@@ -311,38 +310,27 @@ class EHLCylinderLayerCase:
         ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
         records and the position (leg 0: the loads, leg 1 + j: the march to the
         j-th speed; its increments; the inner position search) are written after
-        every converged load and speed, and a resumed variant continues there.
+        every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
+        resumed variant continues there.
         """
         name = prefix[:-1] or v["model"]
         run = cls.build(v, name=options_name("ehl_cylinder", prefix[:-1]))
-        interrupt.arm()   # gmsh resets the SIGTERM handler
         layer, film, problem = run
         journal = journal or SweepJournal(None, layer.mesh.comm, v)
-        rec = journal.records(name, steps=[], speed=[], profiles=[], its=[], points=[])
-        steps, speed, profiles, its, points = (rec[k] for k in (
-            "steps", "speed", "profiles", "its", "points"))
-        pos = journal.position(name)
-        if progress is not None and steps:   # the loads restored by a resume
-            progress.update(len(steps))
         record.data["num_dofs"] = problem.num_dofs
-        # u and p at every converged load and speed (ParaView time series; the "time"
-        # is the index of the point, its (W, U) in series_points; a resumed run writes
-        # the points from its restart into series of their own)
-        series = VTXSeries(layer.mesh.comm, getattr(record, "outdir", None),
-                           {sweep_stem(f"{prefix}{k}_series", len(points)): f
-                            for k, f in cls.vtx_fields(run).items()})
-        record.data.setdefault("series_points", {})[name] = points
-        state = problem.state_fields() + [layer.velocity]
+        var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
+                           record, cls.vtx_fields(run), prefix, ("steps", "speed", "profiles"),
+                           layer.mesh.comm, progress)
+        steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
+        pos = var.position
 
         def write(m):
-            points.append([m["W"], float(layer.velocity.value[0])])
-            series.write(len(points) - 1)
+            var.write([m["W"], float(layer.velocity.value[0])])
 
         def save(leg, march):
-            journal.save(name, state, rec, {"leg": leg, "increments": march.increments,
-                                            "W": loads.done if leg == 0 else v["W"],
-                                            "inner": inner.secant_state(),
-                                            "scales": film.scale_values()})
+            var.save({"leg": leg, "increments": march.increments,
+                      "W": loads.done if leg == 0 else v["W"], "inner": inner.secant_state(),
+                      "scales": film.scale_values()})
 
         def on_step():
             m = cls.measures(run, v)
@@ -365,29 +353,25 @@ class EHLCylinderLayerCase:
                                          on_accept=lambda: save(0, loads))
         leg = 0 if pos is None else pos["leg"]
         if pos is not None:
-            journal.restore(name, state)
+            var.resume()
             film.set_scales(**pos["scales"])
             problem.refresh()
             loads.resume_from(pos["W"])
             inner.set_secant_state(pos["inner"])
         increments = None if pos is None else pos["increments"]
-        try:
-            if leg == 0:
-                loads.march(v["W"], v["steps"], predictor=False, increments=increments)
-                increments = None
-            if cls.speed_list(v):
+        with var:
+            try:
                 if leg == 0:
-                    speed.append(dict(steps[-1], U=v["U"]))
-                cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its,
-                                start=max(leg - 1, 0), increments=increments,
-                                on_accept=lambda j, march: save(1 + j, march))
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = run  # restored to the last converged load (or speed) step
-            raise
-        finally:
-            series.close()
-            record.data["newton_iterations"].extend(its)
-            cls._report(steps, speed, profiles, v, record, prefix)
+                    loads.march(v["W"], v["steps"], predictor=False, increments=increments)
+                    increments = None
+                if cls.speed_list(v):
+                    if leg == 0:
+                        speed.append(dict(steps[-1], U=v["U"]))
+                    cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its,
+                                    start=max(leg - 1, 0), increments=increments,
+                                    on_accept=lambda j, march: save(1 + j, march))
+            finally:
+                cls._report(steps, speed, profiles, v, record, prefix)
         return run
 
     @classmethod

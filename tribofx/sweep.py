@@ -1,0 +1,90 @@
+"""One variant of a journalled continuation sweep: its records, series, checkpoint and failure.
+
+A sweep (the load and speed sweeps of the soft-EHL cases, the strokes of the
+O-ring) runs each *variant* (a model of ``compare``, a stroke) along its
+continuation path; what every variant needs besides the path is the same and
+lives here:
+
+* its records (lists of measures the case defines), restored from the
+  :class:`tribofx.restart.SweepJournal` on ``--resume``, and its saved position;
+* a ParaView time series of its fields (:class:`tribofx.output.VTXSeries`, one
+  index per recorded point, the point's coordinates in ``series_points``; a
+  resumed run writes its points into series of their own);
+* :meth:`SweepVariant.save` after every converged point (state, records and the
+  case's position; then it stops on a signal, :mod:`tribofx.interrupt`) and
+  :meth:`SweepVariant.resume` (the saved state back into the problem);
+* the end of the variant as a context: the series closed, the Newton iterations
+  recorded, and a failed or interrupted run (``NewtonDivergence``,
+  ``Interrupted``) carrying ``problem`` = the run at its last converged point.
+
+The case keeps only its physics: what a point measures, where it goes next.
+"""
+
+from . import interrupt
+from .output import VTXSeries
+from .problem import NewtonDivergence
+from .restart import sweep_stem
+
+__all__ = ["SweepVariant"]
+
+
+class SweepVariant:
+    """The journalled records, series and checkpoint of one variant ``key`` of a sweep.
+
+    Args:
+        journal: the sweep's :class:`tribofx.restart.SweepJournal`.
+        key: the variant's name in the journal and in ``series_points``.
+        run: what a failed run reports (``err.problem``), e.g. ``(body, film, problem)``.
+        state: the objects of the variant's state (Functions, Constants) saved and restored.
+        record: the run record (``data``, ``outdir``).
+        fields: ``{name: [Function, ...]}`` of the VTX series, written as
+            ``<prefix><name>_series.bp``.
+        prefix: file prefix of the series (``"full_"`` for a variant of ``compare``).
+        records: the names of the variant's record lists; ``"points"`` (the series'
+            coordinates, one list per point) and ``"its"`` (Newton iterations) are added.
+        comm: the communicator of the series.
+        progress: a progress bar, advanced by the restored ``progress_key`` records.
+    """
+
+    def __init__(self, journal, key, run, state, record, fields, prefix="", records=("steps",),
+                 comm=None, progress=None, progress_key="steps"):
+        self.journal, self.key, self.run, self.state = journal, key, run, state
+        self.record = record
+        names = tuple(dict.fromkeys(tuple(records) + ("its", "points")))
+        self.records = journal.records(key, **{k: [] for k in names})
+        self.position = journal.position(key)
+        self.points, self.its = self.records["points"], self.records["its"]
+        if progress is not None and self.records.get(progress_key):
+            progress.update(len(self.records[progress_key]))
+        self.series = VTXSeries(comm, getattr(record, "outdir", None),
+                                {sweep_stem(f"{prefix}{k}_series", len(self.points)): f
+                                 for k, f in fields.items()})
+        record.data.setdefault("series_points", {})[key] = self.points
+
+    def __getitem__(self, name):
+        """Return the record list ``name``."""
+        return self.records[name]
+
+    def write(self, point):
+        """Append the point's coordinates (a list) and write the fields at its index."""
+        self.points.append(list(point))
+        self.series.write(len(self.points) - 1)
+
+    def save(self, position, arrays=()):
+        """Checkpoint the state, the records and the case's ``position`` (a dict)."""
+        self.journal.save(self.key, self.state, self.records, position, arrays=list(arrays))
+
+    def resume(self):
+        """Copy the saved state back (a resumed variant); returns the saved extra arrays."""
+        return self.journal.restore(self.key, self.state)
+
+    def __enter__(self):
+        interrupt.arm()   # gmsh (a mesh built for the variant) resets the SIGTERM handler
+        return self
+
+    def __exit__(self, kind, err, tb):
+        self.series.close()
+        self.record.data["newton_iterations"].extend(self.its)
+        if isinstance(err, (NewtonDivergence, interrupt.Interrupted)):
+            err.problem = self.run    # restored to its last converged point
+        return False
