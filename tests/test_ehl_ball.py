@@ -567,3 +567,29 @@ def test_film_oscillation_warns_above_its_tolerance(tmp_path):
         assert bool(record.data.get("warnings")) == warns
         if warns:
             assert record.data["warnings"][0].startswith("full: film zig-zags")
+
+
+def test_mesh_chosen_from_load_and_speed():
+    """``mesh``/``edge_refine`` by default from W and U (tribofx.cases.ehl_ball_mesh).
+
+    Against the measured points of the module docstring: the default 10 N at 0.1 N/m
+    keeps mesh=1 (resolved there, h_edge/ℓ = 1.6); the chapter's 40 N at 0.078 N/m gets
+    mesh=2 edge_refine=1 (the mesh measured to resolve it, h_edge/ℓ = 1.03) where the
+    old default mesh=1 (4.1) dipped; with mesh=1 set, edge_refine=2 (the same a/32
+    along the edge); both set, they are kept and flagged unresolved; a point no built
+    mesh resolves (40 N at 10 mm/s: a film of 0.24 µm) is refused at validation with one
+    line, before any mesh is built."""
+    from tribofx.cases.ehl_ball_mesh import edge_size, mesh_levels, outlet_width
+    from tribofx.params import InputError
+
+    default = values()
+    assert mesh_levels(default) == (1, 0, True)
+    chapter = values(W=40.0, U=7800.0, theta_l=60.0)
+    Case.validate(chapter)
+    assert mesh_levels(chapter) == (2, 1, True)
+    assert edge_size(chapter, 2, 1) / outlet_width(chapter) == pytest.approx(1.03, abs=0.01)
+    assert mesh_levels(values(W=40.0, U=7800.0, theta_l=60.0, mesh=1)) == (1, 2, True)
+    assert mesh_levels(values(W=40.0, U=7800.0, theta_l=60.0, mesh=1, edge_refine=0)) == \
+        (1, 0, False)
+    with pytest.raises(InputError, match="no built mesh resolves"):
+        Case.validate(values(W=40.0, U=10.0, theta_l=60.0))

@@ -33,17 +33,20 @@ for the plane position:
 Defaults (mm, N, s, MPa; Stupkiewicz et al. 2016): R = 12.7, E = 1.19, ν = 0.45
 (E* = 1.49 ≈ 240/R², Hertz a ≈ R/2 at 40 N; ν < 0.5 against P1 locking);
 μ = 1e-8 (10 mPa·s), U = 1e4: μU = 1e-4 N/mm (0.1 N/m); W = 10 N in 3 steps;
-θ_l = 40°; element size a/(4·2^mesh) within 1.6 a, ``mesh`` = 1 (≈ 11k unknowns).
-The chapter's point W = 40 N, μU = 0.078 N/m (Figs. 25–26) needs the contact
-resolved: ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact
-edge; 64k unknowns), θ_l = 60°, one load step; the speed is marched down from
-30U in ratios ≤ 2 (9 min on 2 ranks, MUMPS).  Coarser meshes converge too but to
-a film that zig-zags node to node in the Hertzian zone and dips far below the
-Hamrock–Dowson film on the symmetry line (``mesh=1``, a/8: h_central 2.3 µm
-against 16.8 µm at 25k unknowns); refinement removes the dip:
+θ_l = 40°; element size a/(4·2^mesh) within 1.6 a.  ``mesh`` and ``edge_refine``
+default to the cheapest pair that resolves the film's outlet constriction at the
+run's W and U (:mod:`tribofx.cases.ehl_ball_mesh`: elements along the contact
+edge ≤ 2ℓ, ℓ = a (h_c R/a²)^{2/3}); the default point keeps ``mesh=1`` (≈ 11k
+unknowns).  The chapter's point W = 40 N, μU = 0.078 N/m (Figs. 25–26) gets
+``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge; 64k
+unknowns) and needs θ_l = 60° (a smaller cap is refused at once); the speed is
+marched down from 30U in ratios ≤ 2 (9 min on 2 ranks, MUMPS).  Coarser meshes
+converge too but to a film that zig-zags node to node in the Hertzian zone and
+dips far below the Hamrock–Dowson film on the symmetry line (``mesh=1``, a/8:
+h_central 2.3 µm against 16.8 µm at 25k unknowns); set explicitly, they run
+with a warning.  A point no built mesh resolves is refused at validation:
 
-    tribofx run ehl-ball --set W=40 --set steps=1 --set U=7800 --set theta_l=60 \
-        --set mesh=2 --set edge_refine=1 --set solver=direct --set compare=all
+    tribofx run ehl-ball --set W=40 --set U=7800 --set theta_l=60 --set compare=all
 
 Your own ball (``mesh_file``): a 3D gmsh ``.msh`` of the quarter ball with the
 physical groups ``lubricated`` (Γ_l, the cap around the contact point),
@@ -110,19 +113,19 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
 from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..output import VTXSeries
 from ..params import InputError, Param
 from ..positions import oscillation_indicator, paraboloid_vertex
-from ..problem import NewtonDivergence, Problem, options_name
+from ..problem import Problem, options_name
 from ..references import composite_modulus, hamrock_dowson, hertz
-from ..restart import SweepJournal, sweep_stem
+from ..restart import SweepJournal
+from ..sweep import SweepVariant
+from .ehl_ball_mesh import MAX_EDGE_RATIO, edge_size, mesh_levels, outlet_width
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
 from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
@@ -156,14 +159,16 @@ class EHLBallCase(BallPaths):
         Param("penalty", float, 1e-4, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
-        Param("mesh", int, 1, "-", "element size a/(4·2^mesh) near the contact", lower=0,
-              upper=3, closed=True),
+        Param("mesh", int, None, "-", "element size a/(4·2^mesh) near the contact (default: "
+              "chosen with edge_refine from W and U to resolve the outlet, ehl_ball_mesh)",
+              lower=0, upper=3, closed=True),
         Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
-        Param("edge_refine", int, 0, "-",
+        Param("edge_refine", int, None, "-",
               "refinement levels of a band along the edge of the contact zone (the "
               "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
               "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
-              "contact; at 40 N the side-lobe minima lie at 0.94 a)", lower=0, upper=3,
+              "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
+              lower=0, upper=3,
               closed=True),
         Param("start_speed", float, 30.0, "-",
               "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
@@ -218,6 +223,12 @@ class EHLBallCase(BallPaths):
                              f"(Hertz a at W = {v['W']} N): increase theta_l")
         if not v["U"] > 0 or not v["mu"] > 0:
             raise InputError("U and mu must be positive (entrainment)")
+        auto = v["mesh"] is None or v["edge_refine"] is None
+        if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
+            raise InputError(
+                f"no built mesh resolves the film's outlet at W = {v['W']:g} N, U = "
+                f"{v['U']:g} mm/s (width {outlet_width(v):.3g} mm, finest edge element "
+                f"{edge_size(v, 3, 2):.3g} mm): raise U, or give mesh_file")
         viscosity(v)
         density(v)
         speed_list(v)
@@ -254,9 +265,9 @@ class EHLBallCase(BallPaths):
             msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
             place_user_ball(msh, ft, names, v, a)
         else:
-            h_fine = a / (4 * 2 ** v["mesh"])
-            ring = ((0.95 * a, h_fine / 2 ** v["edge_refine"], 0.1 * a) if v["edge_refine"]
-                    else None)
+            level, refine, _ = mesh_levels(v)
+            h_fine = a / (4 * 2**level)
+            ring = (0.95 * a, h_fine / 2**refine, 0.1 * a) if refine else None
             msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
                                        1.6 * a, comm, ring=ring)
             names = NAMES
@@ -333,6 +344,14 @@ class EHLBallCase(BallPaths):
         for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
                            ("hamrock_dowson_h_min", hm)):
             record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
+        if not v["mesh_file"]:
+            level, refine, resolved = mesh_levels(v)
+            record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
+            if not resolved:
+                record.warn(f"mesh={level} edge_refine={refine}: elements of "
+                            f"{edge_size(v, level, refine):.3g} mm along the contact edge "
+                            f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
+                            "at this W and U: expect a zig-zag or a spurious dip of the film")
         record.data["variant_newton_iterations"] = {}
         record.profile = {"variants": {}, "W": v["W"]}
         first = None
@@ -353,37 +372,26 @@ class EHLBallCase(BallPaths):
         """
         key = name or vv["model"]
         run = cls.build(vv, name=options_name("ehl_ball", name))
-        interrupt.arm()   # gmsh resets the SIGTERM handler
         film, problem = run[1], run[2]
         record.data["num_dofs"] = problem.num_dofs
-        rec = journal.records(key, steps=[], speed=[], its=[], points=[])
-        steps, speed, its_all, points = (rec[k] for k in ("steps", "speed", "its", "points"))
-        pos = journal.position(key)
-        if progress is not None and steps:   # the loads restored by a resume
-            progress.update(len(steps))
+        # (the plane's offset is state); the series' "time" is the point's index, its
+        # (W, U) in series_points
+        sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
+                          record, cls.vtx_fields(run), f"{name}_" if name else "",
+                          ("steps", "speed"), run[0].mesh.comm, progress)
+        steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
+        pos = sv.position
         record.data["variant_newton_iterations"][key] = its_all
         var = {"label": label, "shear": vv["shear"]}
         record.profile["variants"][key] = var
-        state = problem.state_fields() + [film.V_counter]   # (the plane's offset is state)
         at = {"leg": 0 if pos is None else pos["leg"]}
 
-        # u and p at every converged load and speed (ParaView time series; the "time"
-        # is the index of the point, its (W, U) in series_points; a resumed run writes
-        # the points from its restart into series of their own; one restored complete,
-        # none)
-        series = VTXSeries(run[0].mesh.comm, getattr(record, "outdir", None),
-                           {sweep_stem(f"{name + '_' if name else ''}{k}_series", len(points)): f
-                            for k, f in cls.vtx_fields(run).items()})
-        record.data.setdefault("series_points", {})[key] = points
-
         def write():
-            points.append([cls.load(run), cls.speed(run).get()])
-            series.write(len(points) - 1)
+            sv.write([cls.load(run), cls.speed(run).get()])
 
         def save(position, arrays=None):
-            position = dict(position, leg=at["leg"], scales=film.scale_values())
-            journal.save(key, state, rec, position,
-                         arrays=[] if arrays is None else arrays)
+            sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
+                    arrays=[] if arrays is None else arrays)
 
         def on_step(W, its):
             its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
@@ -404,40 +412,37 @@ class EHLBallCase(BallPaths):
 
         start = None
         if pos is not None:
-            carrier = journal.restore(key, state)
+            carrier = sv.resume()
             film.set_scales(**pos["scales"])
             problem.refresh()
             start = dict(pos, carrier=carrier)
-        try:
-            if at["leg"] == 0:
-                inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
-                if cls.speed_list(vv):
-                    on_speed()
-            elif cls.large_load(vv):
-                inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
-                inner.set_secant_state(pos["inner"])
-            else:
-                inner = cls.position_control(run, vv, verbose)
-                inner.set_secant_state(pos["inner"])
-            for j, U in enumerate(cls.speed_list(vv)):
-                if j + 1 < at["leg"]:
-                    continue
-                increments = pos["increments"] if j + 1 == at["leg"] else None
-                at["leg"] = j + 1
-                cls.speed_march(run, vv, inner, vv["W"], U, restart=not cls.large_load(vv),
-                                record=its_all, on_speed=on_speed, increments=increments)
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = run
-            raise
-        finally:
-            series.close()
-            record.data["newton_iterations"].extend(its_all)
-            if steps:
-                var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
-            cls._report(steps, speed, vv, record, f"{name}_" if name else "")
-            var["speed"] = {k: [m[k] for m in speed] for k in (
-                "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                "plane_friction_coefficient")}
+        with sv:
+            try:
+                if at["leg"] == 0:
+                    inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
+                    if cls.speed_list(vv):
+                        on_speed()
+                elif cls.large_load(vv):
+                    inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
+                    inner.set_secant_state(pos["inner"])
+                else:
+                    inner = cls.position_control(run, vv, verbose)
+                    inner.set_secant_state(pos["inner"])
+                for j, U in enumerate(cls.speed_list(vv)):
+                    if j + 1 < at["leg"]:
+                        continue
+                    increments = pos["increments"] if j + 1 == at["leg"] else None
+                    at["leg"] = j + 1
+                    cls.speed_march(run, vv, inner, vv["W"], U,
+                                    restart=not cls.large_load(vv), record=its_all,
+                                    on_speed=on_speed, increments=increments)
+            finally:
+                if steps:
+                    var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
+                cls._report(steps, speed, vv, record, f"{name}_" if name else "")
+                var["speed"] = {k: [m[k] for m in speed] for k in (
+                    "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                    "plane_friction_coefficient")}
         return run
 
     @classmethod
