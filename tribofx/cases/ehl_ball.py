@@ -15,20 +15,9 @@ against :func:`~tribofx.obstacles.rigid_plane` moving with ``V_counter`` = 2U e_
 SUPG, traction (46), ``shear`` switching its shear part, ``model=linear`` the
 classical EHL model with a small-strain ball), one
 :class:`~tribofx.problem.Problem`, and :class:`~tribofx.continuation.Continuation`
-for the plane position:
-
-* a(W) ≤ R/3 (W ≲ 12 N): each load starts from the Hertz state
-  (:meth:`~tribofx.interfaces.Film.start_from_pressure`: the dry ball under the
-  Hertz pressure, film of Hamrock–Dowson below the contact point) and the plane
-  position is found by a secant on W (steps ≤ 0.1 δ_Hertz, films with min h ≤ 0
-  rejected);
-* larger loads (a → R/2, finite strain): at ``start_speed``·U (a film ≈ 9×
-  thicker) from the Hertz state at min(W/steps, W/4), displacement control
-  (:meth:`~tribofx.continuation.Continuation.advance`: the plane raised step by
-  step, each step from the last converged state, step cutting), the load hit by
-  the secant, then U continued down to U at fixed load (geometric march, the
-  plane shifted by the Hamrock–Dowson film change); penalty, SUPG and tolerance
-  scales follow load and speed.
+for the plane position along the paths of :mod:`tribofx.cases.ehl_ball_paths`
+(Hertz start and a secant on W; large loads by a thick film, then the speed
+marched down).
 
 Defaults (mm, N, s, MPa; Stupkiewicz et al. 2016): R = 12.7, E = 1.19, ν = 0.45
 (E* = 1.49 ≈ 240/R², Hertz a ≈ R/2 at 40 N; ν < 0.5 against P1 locking);
@@ -48,22 +37,8 @@ with a warning.  A point no built mesh resolves is refused at validation:
 
     tribofx run ehl-ball --set W=40 --set U=7800 --set theta_l=60 --set compare=all
 
-Your own ball (``mesh_file``): a 3D gmsh ``.msh`` of the quarter ball with the
-physical groups ``lubricated`` (Γ_l, the cap around the contact point),
-``midplane`` (held, u = 0) and ``symmetry`` (a plane y = const, u_y = 0), read
-and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other boundary is
-traction free.  It replaces theta_l, mesh, h_coarse and edge_refine (the cap and the
-elements are the user's); R, E and ν still set the Hertz start, the scales
-(penalty, SUPG pressure, tolerances) and the references, so R must be the
-radius of the ball at the contact.  The mesh is moved so that the symmetry
-plane is y = 0 (checked flat to 10⁻⁹ R: the centre line y = 0 of the results
-is found by it), the middle of the cap's x extent is x = 0 and the cap's lowest
-node z = 0 (the Hertz start is centred at the origin).  p = 0 on the cap's rim
-(∂Γ_l off the symmetry line, any shape); the cap must reach 1.5 a(W) from the
-contact point (rim radius √(x² + y²) checked, as R sin θ_l for the built cap),
-and its curvature within a(W) of the contact point must be 1/R within 5 %
-(least-squares fit, checked).  The case uses no element size of its own (SUPG
-takes the cell size of Γ_l).
+Your own ball (``mesh_file``, a gmsh quarter ball with the groups ``lubricated``,
+``midplane``, ``symmetry``): :mod:`tribofx.cases.ehl_ball_user`.
 
 ``compare=all``: full model, no shear tractions and geometrically linear in one
 run (Fig. 26; prefixes ``full_``, ``no-shear_``, ``linear_``); ``speeds`` (mm/s)
@@ -81,31 +56,8 @@ one time index per converged load and speed, its (W, U) in ``series_points``).
 The position of h_min is the vertex of a quadratic fitted to the film nodes
 around the smallest nodal h (:func:`tribofx.positions.paraboloid_vertex`).
 
-``film_oscillation``: the node-to-node zig-zag of h along the centre line where
-p > p_max/2 (:func:`tribofx.positions.oscillation_indicator`, δ for a zig-zag
-±δ h̄).  Above ``FILM_OSCILLATION_TOL`` the run warns: the mesh does not resolve
-the film, whose numbers are then not the continuum's to better than about that
-fraction.  Measured at W = 3 N, U = 10 m/s: 0.048, 0.016, 0.009 on ``mesh=0, 1,
-2`` (3k, 12k, 47k unknowns); at the chapter's 40 N and 0.078 N/m on ``mesh=2
-edge_refine=1`` (64k) 0.062 (full), 0.063 (no shear), 0.057 (linear) — the
-zig-zag visible in Fig. 26 (``docs/figures/ehl_ball_fig26_W40.png``), so the
-variants' differences there are known to about ±6 %; coarser still, the spurious
-dip described above.
-
-Friction on the ball and on the plane.  The film is in equilibrium, so in the
-finite model the x-force of the film on the plane is minus that on the ball
-up to the thin-film approximation where the film is not thin against its
-slope: the shear on the cap's steep flanks, ∫ (shear)(j − ds_S/dS) dS, exactly
-the difference of the two forces on the discrete solution (tested).  The
-geometrically linear model's traction −pN on the undeformed sphere (a/R = 0.5
-at 40 N) leaves out the pressure on the displacement's slope, ∫ p ∂ₓ(ν·u) ds_S,
-and applies its shear on the reference area: at 40 N, μU = 39 N/m, the two
-parts are 1.40 and 1.46 N of the ball's 15.0 N, the finite model's flank 0.96 N
-of 12.5.  The plane's friction coefficient is what a rig measures on the
-counterpart and what the classical EHL friction computes (the shear stress of
-the film at a flat wall), so models are compared by it: at 40 N finite and
-linear differ by 1.4–5.3 % on the plane, 19–26 % on the ball (Fig. 27,
-``benchmarks/chapter_ehl_ball.py``).
+``film_oscillation`` (the node-to-node zig-zag of h) and the friction on the ball
+and on the plane: :mod:`tribofx.cases.ehl_ball_outputs`.
 """
 
 import math
@@ -120,13 +72,12 @@ from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ba
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
-from ..positions import oscillation_indicator, paraboloid_vertex
-from ..problem import Problem, options_name
+from ..problem import Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
-from ..restart import SweepJournal
-from ..sweep import SweepVariant
-from .ehl_ball_mesh import MAX_EDGE_RATIO, edge_size, mesh_levels, outlet_width
+from .ehl_ball_mesh import edge_size, mesh_levels, outlet_width
+from .ehl_ball_outputs import BallOutputs
 from .ehl_ball_paths import BallPaths, Z
+from .ehl_ball_sweep import BallSweep
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
 from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
 
@@ -135,7 +86,7 @@ __all__ = ["EHLBallCase"]
 NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
 
 
-class EHLBallCase(BallPaths):
+class EHLBallCase(BallSweep, BallOutputs, BallPaths):
     """Case ``ehl-ball``; see the module docstring."""
 
     name = "ehl-ball"
@@ -290,216 +241,4 @@ class EHLBallCase(BallPaths):
             film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
         problem = Problem([ball, film], name=name, max_it=25)
         return ball, film, problem
-
-    @staticmethod
-    def film_oscillation(h_axis, p_axis):
-        """Zig-zag of h on the centre line where p > p_max/2 (see the module docstring)."""
-        p_axis = np.asarray(p_axis)
-        return oscillation_indicator(np.asarray(h_axis), p_axis, 0.5 * p_axis.max(initial=0))
-
-    @classmethod
-    def measures(cls, run, v):
-        """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
-        film = run[1]
-        prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
-        f_plane = film.counter_force()
-        xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
-        on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
-        order = np.argsort(xy[on, 0])
-        xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
-        i = int(np.argmin(prof["h"]))
-        # where h is least, between nodes (tribofx.positions); y ≥ 0 in the quarter model
-        x_min, y_min = paraboloid_vertex(xy, prof["h"], "min")
-        per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
-        return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
-                "film_oscillation": cls.film_oscillation(hh, pp),
-                "x_h_min": x_min, "y_h_min": max(y_min, 0.0),
-                "p_max": float(prof["p"].max()),
-                "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
-                            "h_axis": hh, "p_axis": pp},
-                "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
-                "friction_coefficient": abs(float(f[0])) * per_load,
-                "couette_friction_coefficient": abs(float(fc[0])) * per_load,
-                "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
-                "clearance": -float(film.counterpart.offset.value[Z])}
-
-    @classmethod
-    def progress_total(cls, v):
-        """Points the progress bar counts: the loads of every variant."""
-        return v["steps"] * (len(cls.VARIANTS) if v["compare"] == "all" else 1)
-
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
-
-        ``checkpoint``: directory of the sweep's checkpoint, written after every
-        converged load and speed step (:class:`tribofx.restart.SweepJournal`);
-        ``resume``: continue from it.
-        """
-        variants = cls.VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
-        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        a, p0, _, _ = cls.scales(v)
-        hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], cls.e_star(v))
-        for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
-                           ("hamrock_dowson_h_min", hm)):
-            record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
-        if not v["mesh_file"]:
-            level, refine, resolved = mesh_levels(v)
-            record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
-            if not resolved:
-                record.warn(f"mesh={level} edge_refine={refine}: elements of "
-                            f"{edge_size(v, level, refine):.3g} mm along the contact edge "
-                            f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
-                            "at this W and U: expect a zig-zag or a spurious dip of the film")
-        record.data["variant_newton_iterations"] = {}
-        record.profile = {"variants": {}, "W": v["W"]}
-        first = None
-        for name, label, over in variants:
-            run = cls.sweep(dict(v, **over), name, label, record, journal, progress, verbose)
-            first = first or run
-        return first
-
-    @classmethod
-    def sweep(cls, vv, name, label, record, journal, progress=None, verbose=False):
-        """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
-
-        After every converged load and speed step the variant's state, records
-        and position are written to ``journal`` (position: ``leg`` 0 the loads,
-        1 + j the march to the j-th speed; the secant state of the position
-        search; the march increments; the film scales); a resumed variant
-        restores them and continues on the same sequence of steps.
-        """
-        key = name or vv["model"]
-        run = cls.build(vv, name=options_name("ehl_ball", name))
-        film, problem = run[1], run[2]
-        record.data["num_dofs"] = problem.num_dofs
-        # (the plane's offset is state); the series' "time" is the point's index, its
-        # (W, U) in series_points
-        sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
-                          record, cls.vtx_fields(run), f"{name}_" if name else "",
-                          ("steps", "speed"), run[0].mesh.comm, progress)
-        steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
-        pos = sv.position
-        record.data["variant_newton_iterations"][key] = its_all
-        var = {"label": label, "shear": vv["shear"]}
-        record.profile["variants"][key] = var
-        at = {"leg": 0 if pos is None else pos["leg"]}
-
-        def write():
-            sv.write([cls.load(run), cls.speed(run).get()])
-
-        def save(position, arrays=None):
-            sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
-                    arrays=[] if arrays is None else arrays)
-
-        def on_step(W, its):
-            its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
-            if steps:   # the film map is kept for the last load only (checkpoint size)
-                steps[-1].pop("profile", None)
-            steps.append(cls.measures(run, vv))
-            write()
-            if progress is not None:
-                progress.update(1)
-
-        def on_speed(march=None):
-            m = cls.measures(run, vv)
-            m.pop("profile")
-            speed.append(dict(m, U=cls.speed(run).get()))
-            write()
-            if march is not None:
-                save({"increments": march.increments, "inner": inner.secant_state()})
-
-        start = None
-        if pos is not None:
-            carrier = sv.resume()
-            film.set_scales(**pos["scales"])
-            problem.refresh()
-            start = dict(pos, carrier=carrier)
-        with sv:
-            try:
-                if at["leg"] == 0:
-                    inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
-                    if cls.speed_list(vv):
-                        on_speed()
-                elif cls.large_load(vv):
-                    inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
-                    inner.set_secant_state(pos["inner"])
-                else:
-                    inner = cls.position_control(run, vv, verbose)
-                    inner.set_secant_state(pos["inner"])
-                for j, U in enumerate(cls.speed_list(vv)):
-                    if j + 1 < at["leg"]:
-                        continue
-                    increments = pos["increments"] if j + 1 == at["leg"] else None
-                    at["leg"] = j + 1
-                    cls.speed_march(run, vv, inner, vv["W"], U,
-                                    restart=not cls.large_load(vv), record=its_all,
-                                    on_speed=on_speed, increments=increments)
-            finally:
-                if steps:
-                    var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
-                cls._report(steps, speed, vv, record, f"{name}_" if name else "")
-                var["speed"] = {k: [m[k] for m in speed] for k in (
-                    "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                    "plane_friction_coefficient")}
-        return run
-
-    @classmethod
-    def _report(cls, steps, speed, v, record, prefix):
-        keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
-                "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
-                "film_oscillation")
-        for m in steps:  # a journal written before film_oscillation was measured
-            if "film_oscillation" not in m:
-                m["film_oscillation"] = (cls.film_oscillation(m["profile"]["h_axis"],
-                                                              m["profile"]["p_axis"])
-                                         if "profile" in m else math.nan)
-        for m in steps + speed:   # ... or before the force on the plane was
-            m.setdefault("plane_friction_coefficient", math.nan)
-        if steps:
-            for k in keys:
-                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
-            if steps[-1]["film_oscillation"] > cls.FILM_OSCILLATION_TOL:
-                who = f"{prefix.rstrip('_')}: " if prefix else ""
-                record.warn(f"{who}film zig-zags node to node by ±"
-                            f"{100 * steps[-1]['film_oscillation']:.0f} % on the centre line "
-                            f"(W = {steps[-1]['W']:.3g} N): the mesh does not resolve it; "
-                            "refine (mesh, edge_refine)")
-            record.result(prefix + "W_reached", steps[-1]["W"], "N")
-        for k in ("W",) + keys:
-            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
-        for m in speed:
-            m["mu_U"] = v["mu"] * m["U"]
-        if len(speed) > 1:
-            for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                      "plane_friction_coefficient", "h_central", "h_min", "p_max"):
-                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
-
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement (bulk) and film pressure (cap submesh)."""
-        ball, film, _ = run
-        return {"displacement": [ball.u], "pressure": [film.p]}
-
-    @staticmethod
-    def plot(profile, outdir):
-        """film_map.png, centerline.png and (with speeds) friction_vs_speed.png."""
-        from ..plots import plot_ball_film, plot_friction_vs_speed
-
-        variants = {k: var for k, var in profile["variants"].items() if "xy" in var}
-        if not variants:
-            return
-        plot_ball_film(variants, profile["W"], outdir)
-        # without shear tractions the film force has no drag: plot the Couette drag
-        curves = {var["label"] + ("" if var["shear"] else " (Couette drag)"): (
-            var["speed"]["mu_U"], var["speed"]["friction_coefficient" if var["shear"]
-                                               else "couette_friction_coefficient"])
-            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1}
-        curves.update({var["label"] + " (on the plane)": (
-            var["speed"]["mu_U"], var["speed"]["plane_friction_coefficient"])
-            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1
-            and np.isfinite(var["speed"]["plane_friction_coefficient"]).all()})
-        if curves:
-            plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
 

@@ -8,6 +8,19 @@ speed, then the speed marched down) and the speed marches; each strategy takes
 the ``start`` position of a resumed sweep and reports its own position for the
 checkpoint (:class:`tribofx.restart.SweepJournal`).  The case supplies
 ``hertz_contact``, ``scales``, ``set_scales`` and ``measures``.
+
+* a(W) ≤ R/3 (W ≲ 12 N): each load starts from the Hertz state
+  (:meth:`~tribofx.interfaces.Film.start_from_pressure`: the dry ball under the
+  Hertz pressure, film of Hamrock–Dowson below the contact point) and the plane
+  position is found by a secant on W (steps ≤ 0.1 δ_Hertz, films with min h ≤ 0
+  rejected);
+* larger loads (a → R/2, finite strain): at ``start_speed``·U (a film ≈ 9×
+  thicker) from the Hertz state at min(W/steps, W/4), displacement control
+  (:meth:`~tribofx.continuation.Continuation.advance`: the plane raised step by
+  step, each step from the last converged state, step cutting), the load hit by
+  the secant, then U continued down to U at fixed load (geometric march, the
+  plane shifted by the Hamrock–Dowson film change); penalty, SUPG and tolerance
+  scales follow load and speed.
 """
 
 import numpy as np

@@ -6,6 +6,23 @@ case needs the ball in its frame — symmetry plane y = 0, cap centred at x = 0,
 lowest point at z = 0 — with the radius of curvature R at the contact (R sets
 the Hertz start, the scales and the references) and a cap that reaches past
 the contact.  Units: mm; ``a`` is the Hertz radius at the load W.
+
+Your own ball (``mesh_file``): a 3D gmsh ``.msh`` of the quarter ball with the
+physical groups ``lubricated`` (Γ_l, the cap around the contact point),
+``midplane`` (held, u = 0) and ``symmetry`` (a plane y = const, u_y = 0), read
+and checked by :func:`tribofx.meshes.user.read_user_mesh`; any other boundary is
+traction free.  It replaces theta_l, mesh, h_coarse and edge_refine (the cap and the
+elements are the user's); R, E and ν still set the Hertz start, the scales
+(penalty, SUPG pressure, tolerances) and the references, so R must be the
+radius of the ball at the contact.  The mesh is moved so that the symmetry
+plane is y = 0 (checked flat to 10⁻⁹ R: the centre line y = 0 of the results
+is found by it), the middle of the cap's x extent is x = 0 and the cap's lowest
+node z = 0 (the Hertz start is centred at the origin).  p = 0 on the cap's rim
+(∂Γ_l off the symmetry line, any shape); the cap must reach 1.5 a(W) from the
+contact point (rim radius √(x² + y²) checked, as R sin θ_l for the built cap),
+and its curvature within a(W) of the contact point must be 1/R within 5 %
+(least-squares fit, checked).  The case uses no element size of its own (SUPG
+takes the cell size of Γ_l).
 """
 
 import math
