@@ -26,20 +26,9 @@ Defaults (mm, N, s, MPa): R = 10; H = 5, E = 10; t_c = 0.1, E_c = 100; ν = 0.45
 neo-Hookean; μ = 1e-7 (0.1 Pa·s), U = 1000, μU = 1e-4 N/mm (0.1 N/m, Fig. 22);
 W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
 
-Your own layer (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
-``lubricated`` (Γ_l, the face under the cylinder) and ``bottom`` (bonded: u = 0),
-read, placed and checked by :mod:`tribofx.cases.ehl_user`; any other
-boundary is traction free.  A coated layer carries the cell groups ``layer``
-(modulus E) and ``coating`` (E_c), every cell in one of them; a mesh without
-these groups is one material (E, ν).  It replaces H, x_l (half the x extent of
-Γ_l), mesh and t_c (the coating is the user's cells).  The mesh is moved
-so that Γ_l's highest node is at y = 0 and the middle of its x extent at x = 0,
-below the cylinder axis (the rigid film h_r(W/steps) of the start is measured
-from y = 0).  Γ_l must be one open curve ending at its two x extremes (checked):
-p = 0 at both ends, the JFO inlet at the left end X = −x_l.  Everything else
-applies as for the built layer (R, the cylinder; W, μ, U, the scales; the
-lubrication model); ``mesh`` only sets the built layer's element sizes (SUPG
-takes the cell size of Γ_l), so no size is needed from a user's mesh.
+Your own layer (``mesh_file``, a gmsh mesh with the groups ``lubricated`` and
+``bottom``, optionally the cell groups ``layer`` and ``coating``):
+:mod:`tribofx.cases.ehl_user`.
 
 Results: h_min, h_central (below the cylinder axis), p_max, friction coefficient
 (tangential film force on the layer / W), clearance per load step; profiles
@@ -54,18 +43,16 @@ import numpy as np
 from mpi4py import MPI
 
 from ..body import Body
-from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import HeldResponse
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
 from ..params import InputError, Param
-from ..positions import parabolic_vertex
-from ..problem import Problem, options_name
+from ..problem import Problem
 from ..references import rigid_clearance
-from ..restart import SweepJournal
-from ..sweep import SweepVariant
+from .ehl_outputs import CylinderOutputs
+from .ehl_paths import CylinderPaths
+from .ehl_sweep import CylinderSweep
 from .ehl_user import check_user_ends, read_user_layer
 from .film_setup import VISCOSITY_PARAMS, density, speed_list, viscosity
 
@@ -87,7 +74,7 @@ def cylinder_arc(R, n, alpha):
     return nodes, np.c_[k, k + 2, k + 1].astype(np.int32), "interval3"
 
 
-class EHLCylinderLayerCase:
+class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
     """Case ``ehl-cylinder-layer``; see the module docstring."""
 
     name = "ehl-cylinder-layer"
@@ -259,228 +246,3 @@ class EHLCylinderLayerCase:
         film.jfo_initial_guess()
         return layer, film, problem
 
-    @classmethod
-    def load_control(cls, run, v, on_step=None, verbose=False, record=None, on_accept=None):
-        """Load control by the cylinder position: (outer load march, inner position search).
-
-        The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
-        first update) finds the position s at which the film carries the held
-        load; the outer march steps
-        the load with step cutting.  ``on_step()`` runs at every converged load,
-        then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
-        iterations of the trials of each load.
-        """
-        _, film, problem = run
-        inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
-                             response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
-                             verbose=verbose)
-        held = HeldResponse(inner, 0.0, transform=lambda W: 1 / W, slope=cls.slope(run, v))
-
-        def response():
-            if on_step is not None:
-                on_step()
-            if on_accept is not None:
-                on_accept()
-            return held.target
-
-        return Continuation(held, held, response=response, record=record), inner
-
-    @staticmethod
-    def slope(run, v):
-        """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
-        U = run[0].velocity.value
-        return lambda W: 1 / rigid_clearance(1.0, v["mu"], U[0], v["R"])
-
-    @classmethod
-    def measures(cls, run, v):
-        """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
-        film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
-        xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
-        return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
-                "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
-                "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
-                "tangential_force": float(f[0]),
-                "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,
-                "clearance": float(film.counterpart.offset.value[1])}
-
-    @classmethod
-    def sweep(cls, v, record, progress=None, verbose=False, prefix="", journal=None):
-        """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
-
-        ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
-        records and the position (leg 0: the loads, leg 1 + j: the march to the
-        j-th speed; its increments; the inner position search) are written after
-        every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
-        resumed variant continues there.
-        """
-        name = prefix[:-1] or v["model"]
-        run = cls.build(v, name=options_name("ehl_cylinder", prefix[:-1]))
-        layer, film, problem = run
-        journal = journal or SweepJournal(None, layer.mesh.comm, v)
-        record.data["num_dofs"] = problem.num_dofs
-        var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
-                           record, cls.vtx_fields(run), prefix, ("steps", "speed", "profiles"),
-                           layer.mesh.comm, progress)
-        steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
-        pos = var.position
-
-        def write(m):
-            var.write([m["W"], float(layer.velocity.value[0])])
-
-        def save(leg, march):
-            var.save({"leg": leg, "increments": march.increments,
-                      "W": loads.done if leg == 0 else v["W"], "inner": inner.secant_state(),
-                      "scales": film.scale_values()})
-
-        def on_step():
-            m = cls.measures(run, v)
-            profiles.append(dict(m.pop("profile"), W=m["W"]))
-            steps.append(m)
-            write(m)
-            if progress is not None:
-                progress.update(1)
-
-        def on_speed():
-            m = cls.measures(run, v)
-            m.pop("profile")
-            m["U"] = float(layer.velocity.value[0])
-            speed.append(m)
-            write(m)
-
-        if prefix:
-            record.data.setdefault("variant_newton_iterations", {})[name] = its
-        loads, inner = cls.load_control(run, v, on_step, verbose, its,
-                                         on_accept=lambda: save(0, loads))
-        leg = 0 if pos is None else pos["leg"]
-        if pos is not None:
-            var.resume()
-            film.set_scales(**pos["scales"])
-            problem.refresh()
-            loads.resume_from(pos["W"])
-            inner.set_secant_state(pos["inner"])
-        increments = None if pos is None else pos["increments"]
-        with var:
-            try:
-                if leg == 0:
-                    loads.march(v["W"], v["steps"], predictor=False, increments=increments)
-                    increments = None
-                if cls.speed_list(v):
-                    if leg == 0:
-                        speed.append(dict(steps[-1], U=v["U"]))
-                    cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its,
-                                    start=max(leg - 1, 0), increments=increments,
-                                    on_accept=lambda j, march: save(1 + j, march))
-            finally:
-                cls._report(steps, speed, profiles, v, record, prefix)
-        return run
-
-    @classmethod
-    def set_speed(cls, run, v, U):
-        """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
-        layer, film, _ = run
-        layer.velocity.value[0] = U
-        h_r, p_s, eps = cls.scales(v, U=U)
-        film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
-
-    @classmethod
-    def speed_sweep(cls, run, v, inner, W, speeds, on_speed=None, record=None, start=0,
-                    increments=None, on_accept=None):
-        """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
-
-        Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
-        failed step is cut in log U) with the load held by the cylinder position;
-        penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
-        every converged speed step, then ``on_accept(j, march)`` (j: the index of
-        the speed marched to).  ``increments``: those of an interrupted march to
-        ``speeds[start]`` (a resumed run).
-        """
-        layer = run[0]
-        held = HeldResponse(inner, W, transform=lambda W: 1 / W,
-                            slope=cls.slope(run, v))
-        at = {"j": start}
-
-        def response():
-            if on_speed is not None:
-                on_speed()
-            if on_accept is not None:
-                on_accept(at["j"], sweep)
-
-        sweep = Continuation(held, ConstantParameter(
-            layer.velocity, 0, on_set=lambda U: cls.set_speed(run, v, U)),
-            response=response, record=record)
-        for j in range(start, len(speeds)):
-            at["j"] = j
-            sweep.march(speeds[j], predictor=False, geometric=True,
-                        increments=increments if j == start else None)
-
-    @classmethod
-    def _report(cls, steps, speed, profiles, v, record, prefix):
-        keys = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
-        if steps:
-            for k in keys[1:5]:
-                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
-            record.result(prefix + "W_reached", steps[-1]["W"], "N/mm")
-        for k in keys:
-            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
-        for m in speed:
-            m["mu_U"] = v["mu"] * m["U"]
-        if len(speed) > 1:
-            for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max", "clearance"):
-                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
-        if MPI.COMM_WORLD.rank == 0:
-            prof = record.profile or {"variants": {}}
-            prof["variants"][prefix[:-1] or v["model"]] = {
-                "label": prefix[:-1] or v["model"], "steps": profiles,
-                "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
-            record.profile = prof
-
-    @classmethod
-    def progress_total(cls, v):
-        """Points the progress bar counts: the loads of every variant."""
-        return v["steps"] * (1 if v["compare"] == "none" else len(cls.COMPARE[v["compare"]]))
-
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
-
-        ``checkpoint``: directory of the sweep's checkpoint (written after every
-        converged load and speed); ``resume``: continue from it.
-        """
-        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        if v["compare"] == "none":
-            return cls.sweep(v, record, progress, verbose, journal=journal)
-        record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
-        first = None
-        for name, label, over in cls.COMPARE[v["compare"]]:
-            run = cls.sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_",
-                            journal=journal)
-            first = first or run
-            if MPI.COMM_WORLD.rank == 0:
-                record.profile["variants"][name]["label"] = label
-                record.profile["compare"] = v["compare"]
-        return first
-
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement (bulk) and film pressure (Γ_l submesh)."""
-        layer, film, _ = run
-        return {"displacement": [layer.u], "pressure": [film.p]}
-
-    @classmethod
-    def plot(cls, profile, outdir):
-        """``profiles.png`` (or the ``compare`` plot) and ``friction_vs_speed.png``."""
-        from ..plots import plot_film_profiles, plot_friction_vs_speed
-
-        variants = profile["variants"]
-        if "compare" in profile:
-            title = ("coated layer: finite deformation vs geometrically linear"
-                     if profile["compare"] == "linear" else "coated layer: lubrication surface S_α")
-            plot_film_profiles(None, outdir / cls.COMPARE_PLOT[profile["compare"]], title,
-                               variants)
-            return
-        (name, var), = variants.items()
-        plot_film_profiles(var["steps"], outdir / "profiles.png",
-                           f"coated layer, model = {name}")
-        if len(var["speed"][0]) > 1:
-            plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")

@@ -6,6 +6,21 @@ u = 0), and optionally the cell groups ``layer`` (modulus E) and ``coating``
 (E_c).  The case needs Γ_l's highest node at y = 0 and the middle of its x
 extent at x = 0, below the cylinder axis, and Γ_l ending at its two x extremes
 X = ±x_l (p = 0 at both ends, the JFO inlet at X = −x_l).  Units: mm.
+
+Your own layer (``mesh_file``): a 2D gmsh ``.msh`` with the physical groups
+``lubricated`` (Γ_l, the face under the cylinder) and ``bottom`` (bonded: u = 0),
+read, placed and checked by :mod:`tribofx.cases.ehl_user`; any other
+boundary is traction free.  A coated layer carries the cell groups ``layer``
+(modulus E) and ``coating`` (E_c), every cell in one of them; a mesh without
+these groups is one material (E, ν).  It replaces H, x_l (half the x extent of
+Γ_l), mesh and t_c (the coating is the user's cells).  The mesh is moved
+so that Γ_l's highest node is at y = 0 and the middle of its x extent at x = 0,
+below the cylinder axis (the rigid film h_r(W/steps) of the start is measured
+from y = 0).  Γ_l must be one open curve ending at its two x extremes (checked):
+p = 0 at both ends, the JFO inlet at the left end X = −x_l.  Everything else
+applies as for the built layer (R, the cylinder; W, μ, U, the scales; the
+lubrication model); ``mesh`` only sets the built layer's element sizes (SUPG
+takes the cell size of Γ_l), so no size is needed from a user's mesh.
 """
 
 import numpy as np
