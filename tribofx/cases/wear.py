@@ -60,7 +60,6 @@ from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms import wear as wf
@@ -70,11 +69,9 @@ from ..laws import Law
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..obstacles import rigid_plane
-from ..output import VTXSeries
 from ..params import InputError, Param, number_list
-from ..problem import NewtonDivergence
 from ..references import hertz
-from ..restart import open_history, series_stem
+from ..slow_run import SlowRun
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from .wear_dt_study import run_dt_study
 
@@ -334,27 +331,22 @@ class WearPinCase:
         stepper.verbose = verbose
         wear, contact = stepper.wear, stepper.wear.contact
         comm = wear.body.mesh.comm
-        record.data["num_dofs"] = stepper.problem.num_dofs
-        if stepper.shape is not None:
-            record.data["num_dofs_shape"] = stepper.shape.num_dofs
         keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
                 "newton_iterations", "wear_rate_integral", "dt")
-        # the records live in the stepper's history, so the checkpoint carries them
-        h = open_history(stepper, v, resume)
-        hist = h.setdefault("hist", {k: [] for k in keys})
+        # the worn shape and the deformation at every step (ParaView time series)
+        sr = SlowRun(stepper, v, record, keys,
+                     {"displacement": [wear.body.u, wear.body.w]}, resume)
+        h = sr.history
         profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
-        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
         if stepper.cycle is None:
             record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
         def log(t, its, dt):
             area, _ = contact.measures()
-            for key, val in (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
-                             ("max_wear_depth", wear.max_depth()),
-                             ("contact_radius", area / 2), ("newton_iterations", its),
-                             ("wear_rate_integral", wear.wear_rate_integral())):
-                hist[key].append(val)
-            record.data["newton_iterations"].append(its)
+            sr.log(its, (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
+                         ("max_wear_depth", wear.max_depth()), ("contact_radius", area / 2),
+                         ("newton_iterations", its),
+                         ("wear_rate_integral", wear.wear_rate_integral())))
             s = wear.gather_shape()
             if comm.rank == 0:
                 profiles.append(s["X_worn"].tolist())
@@ -368,25 +360,8 @@ class WearPinCase:
 
         if not resume:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
-        # the worn shape and the deformation at every step (ParaView time series; a
-        # resumed run writes its steps into a series of its own)
-        series = VTXSeries(comm, getattr(record, "outdir", None),
-                           {series_stem("displacement_series", stepper, resume):
-                            [wear.body.u, wear.body.w]})
-        series.write(stepper.t)
-
-        def on_step_series(st, rep):
-            on_step(st, rep)
-            series.write(st.t)
-
-        try:
-            stepper.run(v["T"], cls.slow_step(v), on_step=on_step_series, progress=progress)
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = stepper
-            raise
-        finally:
-            series.close()
-            cls._report(stepper, v, record, hist, profiles, ptimes)
+        sr.run(v["T"], cls.slow_step(v), on_step, progress,
+               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes))
         return stepper
 
     @staticmethod

@@ -61,7 +61,6 @@ import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter
 from ..forms.hyperelastic import lame_parameters
@@ -70,11 +69,9 @@ from ..interfaces import Contact, Wear
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..meshes.wear_ball import NAMES, quarter_ball
 from ..obstacles import rigid_plane
-from ..output import VTXSeries
 from ..params import InputError, Param
-from ..problem import NewtonDivergence
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
-from ..restart import open_history, series_stem
+from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
 
 __all__ = ["MODEL_FRACTION", "WearBallCase"]
@@ -281,20 +278,17 @@ class WearBallCase:
         t_wall = time.perf_counter()
         stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
         stepper.verbose = stepper.control.inner.verbose = verbose
-        record.data["num_dofs"] = stepper.problem.num_dofs
-        if stepper.shape is not None:
-            record.data["num_dofs_shape"] = stepper.shape.num_dofs
         record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
         record.stepper = stepper
         comm = stepper.comm
         record.result("h_contact_zone", stepper.h_fine, "mm")
         keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
                 "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral")
-        # the records live in the stepper's history, so the checkpoint carries them
-        h = open_history(stepper, v, resume)
-        hist = h.setdefault("hist", {k: [] for k in keys})
+        # the worn shape (warp by w), the deformation (by u) and the contact pressure at
+        # every step (ParaView time series)
+        sr = SlowRun(stepper, v, record, keys, cls.vtx_fields(stepper), resume)
+        h = sr.history
         state = h.setdefault("state", {"profiles": [], "initial_plane": None})
-        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
         residuals = h.setdefault("newton_residuals", [])
         residuals_all = h.setdefault("newton_residuals_all", [])
         record.data["newton_residuals"] = residuals
@@ -303,10 +297,8 @@ class WearBallCase:
 
         def log(t, its, dt):
             m = cls.measures(stepper, v)
-            for key, val in (("time", t), ("dt", dt), ("newton_iterations", its),
-                             ("approach", float(offset.value[2])), *m.items()):
-                hist[key].append(val)
-            record.data["newton_iterations"].append(its)
+            sr.log(its, (("time", t), ("dt", dt), ("newton_iterations", its),
+                         ("approach", float(offset.value[2])), *m.items()))
             line = cls.symmetry_line(stepper, v)
             if comm.rank == 0:
                 state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
@@ -317,28 +309,15 @@ class WearBallCase:
             residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
             if on_step is not None:
                 on_step(st, rep)
-            series.write(st.t)
 
         if not resume:
             reports = stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
             plane = cls.contact_plane(stepper)
             state["initial_plane"] = None if plane is None else plane.tolist()
             log(0.0, int(sum(r.iterations for r in reports)), 0.0)
-        # the worn shape (warp by w), the deformation (by u) and the contact pressure at
-        # every step (ParaView time series)
-        series = VTXSeries(comm, getattr(record, "outdir", None),
-                           {series_stem(f"{k}_series", stepper, resume): f
-                            for k, f in cls.vtx_fields(stepper).items()})
-        series.write(stepper.t)
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
-        try:
-            stepper.run(T, v["dt"], on_step=step_done, progress=progress)
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = stepper
-            raise
-        finally:
-            series.close()
-            cls._report(stepper, v, record, hist, state, time.perf_counter() - t_wall)
+        sr.run(T, v["dt"], step_done, progress, report=lambda: cls._report(
+            stepper, v, record, sr.hist, state, time.perf_counter() - t_wall))
         return stepper
 
     @staticmethod

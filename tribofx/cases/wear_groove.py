@@ -32,7 +32,6 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..forms import hyperelastic as hf
 from ..forms import wear_groove as gf
@@ -40,11 +39,9 @@ from ..interfaces import Contact
 from ..interfaces.steady_wear import SteadyWear
 from ..meshes import halfspace as hs
 from ..obstacles import rigid_sphere
-from ..output import VTXSeries
 from ..params import InputError, Param
-from ..problem import NewtonDivergence
 from ..references import hertz, rigid_groove_halfwidth
-from ..restart import open_history, series_stem
+from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
 
 __all__ = ["WearBallHalfspaceCase", "groove_mesh", "surface_data"]
@@ -219,17 +216,18 @@ class WearBallHalfspaceCase:
         n = {"u": wear.body.u, "lambda": contact.lam_n, "psi": wear.w2, "zeta": wear.zeta}
         n = {key: f.function_space.dofmap.index_map.size_global
              * f.function_space.dofmap.index_map_bs for key, f in n.items()}
-        record.data["num_dofs"] = sum(n.values())
         record.result("dofs", n, "-")
         record.result("psi_fraction", stepper.shape_unknown_fraction(), "- (share of Ψ and ζ)")
         record.result("hertz", info, "mm, MPa")
-        # the records live in the stepper's history, so the checkpoint carries them
-        h = open_history(stepper, v, resume)
-        hist = h.setdefault("hist", {k: [] for k in (
+        # the groove (warp by w), the deformation (by u) and the contact pressure at every
+        # step (ParaView time series)
+        sr = SlowRun(stepper, v, record, (
             "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
-            "newton_iterations", "averaged_rate", "max_pressure", "dt")})
+            "newton_iterations", "averaged_rate", "max_pressure", "dt"),
+            cls.vtx_fields(stepper), resume)
+        record.data["num_dofs"] = sum(n.values())
+        h, hist = sr.history, sr.hist
         prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
-        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
         residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
         def log(t, its, dt):
@@ -238,11 +236,9 @@ class WearBallHalfspaceCase:
             ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
                    for c in (np.abs(X[:, 0]), X[:, 1], d["p"])]
             lp = wear.line_profile()
-            for key, val in zip(hist, (t, 2 * wear.groove_area(), float(lp["depth"].max()),
-                                       ext[1], ext[0], its, 2 * wear.averaged_rate_integral(),
-                                       ext[2], dt)):
-                hist[key].append(val)
-            record.data["newton_iterations"].append(its)
+            sr.log(its, zip(hist, (t, 2 * wear.groove_area(), float(lp["depth"].max()),
+                                   ext[1], ext[0], its, 2 * wear.averaged_rate_integral(),
+                                   ext[2], dt)))
             g = surface_data(contact, root=0)
             if g is not None:
                 prof["times"].append(t)
@@ -252,24 +248,11 @@ class WearBallHalfspaceCase:
         def on_step(st, rep):
             log(st.t, rep.iterations, rep.dt)
             residuals.append([float(x) for x in rep.reports[0].residuals])
-            series.write(st.t)
 
         if not resume:
             log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
-        # the groove (warp by w), the deformation (by u) and the contact pressure at every
-        # step (ParaView time series)
-        series = VTXSeries(comm, getattr(record, "outdir", None),
-                           {series_stem(f"{k}_series", stepper, resume): f
-                            for k, f in cls.vtx_fields(stepper).items()})
-        series.write(stepper.t)
-        try:
-            stepper.run(v["T"], v["dt"], on_step=on_step, progress=progress)
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = stepper
-            raise
-        finally:
-            series.close()
-            cls._report(stepper, v, record, hist, prof, time.perf_counter() - t_start)
+        sr.run(v["T"], v["dt"], on_step, progress, report=lambda: cls._report(
+            stepper, v, record, hist, prof, time.perf_counter() - t_start))
         return stepper
 
     @staticmethod

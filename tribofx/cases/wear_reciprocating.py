@@ -75,7 +75,6 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from .. import interrupt
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
@@ -85,11 +84,9 @@ from ..meshes.block import block_mesh
 from ..meshes.pin import NAMES as PIN_NAMES
 from ..meshes.pin import pin_body, tip_height
 from ..meshes.user import read_user_mesh
-from ..output import VTXSeries
 from ..params import InputError, Param
-from ..problem import NewtonDivergence
 from ..references import hertz
-from ..restart import open_history, series_stem
+from ..slow_run import SlowRun
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from .wear import WearPinCase
 
@@ -358,8 +355,6 @@ class WearReciprocatingCase:
         st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
         wp, wb = run["wear_pin"], run["wear_block"]
         st.verbose = verbose
-        record.data["num_dofs"] = st.problem.num_dofs
-        record.data["num_dofs_shape"] = st.shape.num_dofs
         for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
                                ("pin_top_length", run["top_length"], "mm"),
                                ("contact_element_size", run["h"], "mm")):
@@ -370,14 +365,13 @@ class WearReciprocatingCase:
         record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
                       * pin.tolerances()[pin.u].atol, "N/mm")
         tau = cls.period(v)
-        # the records live in the stepper's history, so the checkpoint carries them
-        h = open_history(st, v, resume)
-        hist = h.setdefault("hist", {k: [] for k in (
+        # the worn shapes and the deformation at every slow step (ParaView time series)
+        sr = SlowRun(st, v, record, (
             "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
             "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
             "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
-            "picard_iterations", "dt")})
-        record.data["newton_iterations"] = h.setdefault("newton_iterations", [])
+            "picard_iterations", "dt"), cls.vtx_fields(run), resume)
+        h, hist = sr.history, sr.hist
         energy = [hist["dissipated_energy"][-1] if resume else 0.0]
         w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
@@ -390,46 +384,34 @@ class WearReciprocatingCase:
                 energy[0] += cyc_d * dt / tau
             else:
                 cyc_d = None
-            for key, val in (("time", t), ("cycles_done", t / tau),
-                             ("worn_area_pin", wp.worn_volume()),
-                             ("worn_area_block", wb.worn_volume()),
-                             ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
-                             ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
-                             ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
-                             ("rate_integral_pin", wp.wear_rate_integral()),
-                             ("rate_integral_block", wb.wear_rate_integral()),
-                             ("normal_force", float(contact.forces()[0][1])),
-                             ("newton_iterations", its), ("picard_iterations", picard),
-                             ("dt", dt)):
-                hist[key].append(val)
-            record.data["newton_iterations"].append(its)
+            sr.log(its, (("time", t), ("cycles_done", t / tau),
+                         ("worn_area_pin", wp.worn_volume()),
+                         ("worn_area_block", wb.worn_volume()),
+                         ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
+                         ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
+                         ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
+                         ("rate_integral_pin", wp.wear_rate_integral()),
+                         ("rate_integral_block", wb.wear_rate_integral()),
+                         ("normal_force", float(contact.forces()[0][1])),
+                         ("newton_iterations", its), ("picard_iterations", picard),
+                         ("dt", dt)))
 
         if not resume:
             log(0.0, 0.0, cls.load_up(run, v, verbose))
             h["initial_shot"] = _jsonable(cls.snapshot(run))
         shots = {"initial": _arrays(h["initial_shot"])}
-        # the worn shapes and the deformation at every slow step (ParaView time series)
-        series = VTXSeries(contact.slave.mesh.comm, getattr(record, "outdir", None),
-                           {series_stem(f"{k}_series", st, resume): f
-                            for k, f in cls.vtx_fields(run).items()})
-        series.write(st.t)
 
-        def on_step(s, rep):
-            log(s.t, rep.dt, rep.iterations, rep.picard)
-            series.write(s.t)
-
-        try:
-            st.run(v["cycles"] * tau, v["dt"], on_step=on_step, progress=progress)
-            shots["worn"] = cls.snapshot(run)
-        except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = run
-            raise
-        finally:
-            series.close()
+        def report():
+            if st.t >= v["cycles"] * tau * (1 - 1e-12):   # the run reached its end
+                shots["worn"] = cls.snapshot(run)
             cls._report(run, record, hist, shots)
             if record.profile is not None:
                 half = 0.5 * v["L"] + v["A"] + 0.1
                 record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
+
+        sr.run(v["cycles"] * tau, v["dt"],
+               lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard), progress,
+               report=report, problem=run)
         return run
 
     @staticmethod
