@@ -45,7 +45,7 @@ from mpi4py import MPI
 
 from tribofx import solvers
 from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
-from tribofx.cases.wear_groove import surface_data
+from tribofx.cases.wear_groove_run import surface_data
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
 from tribofx.stepper import Stepper

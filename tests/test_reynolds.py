@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.reynolds import CylinderCase, SliderCase, cylinder_references
+from tribofx.cases.reynolds import SliderCase
+from tribofx.cases.reynolds_cylinder import CylinderCase, cylinder_references
 from tribofx.output import RunRecord
 from tribofx.params import InputError, resolve
 from tribofx.problem import NewtonDivergence, convergence_orders

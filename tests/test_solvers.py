@@ -170,8 +170,8 @@ def test_krylov_floor_is_the_newton_test():
 
 def test_failed_krylov_solve_falls_back_to_lu(tmp_path):
     """GMRES capped at 2 iterations fails in every Newton iteration: each system is
-    solved by LU instead, and after two failures in a row the problem's KSP becomes that
-    LU for good (the second event says so), so Newton takes the direct path's iterations
+    solved by LU instead, and after two failures the problem's KSP becomes that LU for
+    good (the second event says so), so Newton takes the direct path's iterations
     and reaches its solution; the events are in the report and in summary.json, and with
     the fallback made to fail too, the error names the Krylov reason and its iteration
     count."""

@@ -31,12 +31,12 @@ not the end of a Newton step: the same system is solved by MUMPS LU, the KSP is
 marked converged, and the event (Krylov reason, iterations, Newton iteration) is
 kept in :attr:`KrylovGuard.fallbacks`, in the Newton report, on stderr, and in
 ``summary.json`` (``linear_fallbacks``).  A run that LU finishes is finished.
-With ``switch_after`` = n (the iterative strategy: 2), n failed Krylov solves in
-a row switch the problem's KSP to that LU for good (the event says so): a
-preconditioner that failed twice on consecutive Newton systems of one problem
-would fail on the next ones too (measured: the soft-EHL ball at 40 N, 64k
-unknowns, GMRES at its 3000-iteration cap in every Newton iteration), and each
-failed solve costs the iteration cap before the LU.
+With ``switch_after`` = n (the iterative strategy: 2), the n-th failed Krylov
+solve of a problem switches its KSP to that LU for good (the event says so): a
+preconditioner that failed twice on a problem's Newton systems fails on later
+ones too (measured: the soft-EHL ball at 40 N, 64k unknowns, GMRES at its
+3000-iteration cap, or broken down, in the first Newton iteration of every load
+step), and each failed solve costs the iteration cap before the LU.
 """
 
 import sys
@@ -65,15 +65,15 @@ class KrylovGuard:
         eta: fraction of each block's Newton tolerance the linear residual must reach
             (rows ``|r_k| ≤ eta·atol_i·w_k``) for GMRES to stop before rtol.
         package: factorisation package of the fallback LU.
-        switch_after: number of Krylov failures in a row after which the KSP becomes
-            that LU for the rest of the run (None: never).
+        switch_after: number of Krylov failures of the problem after which the KSP
+            becomes that LU for the rest of the run (None: never).
     """
 
     def __init__(self, eta=0.1, package="mumps", switch_after=None):
         self.eta, self.package = float(eta), package
         self.switch_after = switch_after
         self.switched = False
-        self._failed_in_row = 0
+        self._failed = 0
         self.fallbacks = []
         self._direct = None
         self._bound = None
@@ -123,9 +123,8 @@ class KrylovGuard:
     def _fallback(self, problem, ksp, b, x):
         reason = ksp.getConvergedReason()
         if reason >= 0:
-            self._failed_in_row = 0
             return
-        self._failed_in_row += 1
+        self._failed += 1
         its = ksp.getIterationNumber()
         A, _ = ksp.getOperators()
         if self._direct is None:
@@ -155,7 +154,7 @@ class KrylovGuard:
                 f"{self.package.upper()} LU instead ({event['direct']})\n")
         if ok:
             ksp.setConvergedReason(PETSc.KSP.ConvergedReason.CONVERGED_ITS)
-        if ok and self.switch_after and self._failed_in_row >= self.switch_after:
+        if ok and self.switch_after and self._failed >= self.switch_after:
             self._switch(problem, ksp)
 
     def _switch(self, problem, ksp):
@@ -167,5 +166,5 @@ class KrylovGuard:
         self.switched = True
         self.fallbacks[-1]["switched"] = f"{self.package} LU from here on"
         if ksp.getComm().getRank() == 0:
-            sys.stderr.write(f"tribofx: {problem.name}: {self._failed_in_row} Krylov failures "
-                             f"in a row: {self.package.upper()} LU from here on\n")
+            sys.stderr.write(f"tribofx: {problem.name}: {self._failed} Krylov failures: "
+                             f"{self.package.upper()} LU from here on\n")

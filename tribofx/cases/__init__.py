@@ -6,7 +6,8 @@ from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
 from .hertz import HertzCase
 from .ironing import IroningCase
-from .reynolds import CylinderCase, SliderCase
+from .reynolds import SliderCase
+from .reynolds_cylinder import CylinderCase
 from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
 from .wear_ball import WearBallCase

@@ -13,8 +13,8 @@ Your own body (``mesh_file``): a gmsh ``.msh`` of dimension ``dim`` with the
 physical groups ``contact``, ``loaded`` (the flat face, clamped),
 ``symmetry_x`` and, in 3D, ``symmetry_y``, read and checked by
 :func:`tribofx.meshes.user.read_user_mesh` and placed by
-:func:`read_hertz_body`.  The Hertz comparison stays against R, E, ν and the
-load, so the mesh must be the symmetry-reduced cylinder (the x ≥ 0 half of
+:func:`tribofx.cases.hertz_user.read_hertz_body`.  The Hertz comparison stays
+against R, E, ν and the load, so the mesh must be the symmetry-reduced cylinder (the x ≥ 0 half of
 its cross-section) or sphere (the x, y ≥ 0 quarter) of radius R whose lowest
 point touches the plane: it is moved so that its symmetry planes are x = 0
 (and y = 0) and its lowest contact node is on the plane y = 0 (2D) / z = 0
@@ -22,136 +22,29 @@ point touches the plane: it is moved so that its symmetry planes are x = 0
 body is not on the positive side of it, or the curvature of ``contact`` at the
 first-contact point is not 1/R to within 5 % (a forgotten ``R``).  ``mesh`` is
 then ignored; the augmentation ρ_N = E/h takes h from the user's contact
-facets near the first-contact point (see :func:`read_hertz_body`).
+facets near the first-contact point (see :func:`tribofx.cases.hertz_user.read_hertz_body`).
 """
 
-import math
 
 import numpy as np
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
-from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact
 from ..meshes.hertz import NAMES, hertz_body
-from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..obstacles import rigid_plane, rigid_surface_mesh
 from ..params import InputError, Param
-from ..problem import NewtonDivergence, Problem
+from ..problem import Problem
 from ..references import hertz_reference
+from .hertz_run import AXISYMMETRIC, HertzRun, dimension, geometric_dim, hertz_dim
 
 # hertz_reference is re-exported from tribofx.references
-__all__ = ["CURVATURE_TOL", "HertzCase", "hertz_reference", "read_hertz_body"]
+from .hertz_user import CURVATURE_TOL, read_hertz_body
 
-#: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
-AXISYMMETRIC = "axisymmetric"
+__all__ = ["HertzCase", "hertz_reference"]
 
-
-def dimension(text):
-    """Parse ``dim``: 2, 3 or "axisymmetric" (ValueError otherwise)."""
-    text = str(text).strip()
-    return AXISYMMETRIC if text == AXISYMMETRIC else int(text)
-
-
-def geometric_dim(dim):
-    """Dimension of the mesh: 2 for the cylinder and the meridian section, else 3."""
-    return 2 if dim == AXISYMMETRIC else dim
-
-
-def hertz_dim(dim):
-    """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
-    return 3 if dim == AXISYMMETRIC else dim
-
-
-#: relative tolerance on the curvature of a user's body at its first-contact point
-#: (of 1/R*, the composite curvature of the Hertz reference): ±5 % moves the Hertz
-#: size a ∝ R*^½ (line) or R*^⅓ (point) by at most 2.5 %
-CURVATURE_TOL = 0.05
-
-
-def _gmin(comm, a):
-    return comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN)
-
-
-def _gmax(comm, a):
-    return comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX)
-
-
-def read_hertz_body(path, comm, dim, a, radius, tol, name="R", below=False):
-    """Read a user's symmetry-reduced Hertz body, place it and check its curvature.
-
-    The mesh (:func:`tribofx.meshes.user.read_user_mesh`, groups contact, loaded,
-    symmetry_x and in 3D symmetry_y) is translated so that symmetry_x lies on
-    x = 0 (symmetry_y on y = 0) and the first-contact point — the lowest node of
-    ``contact`` (``below``: the highest, a body under the contact plane) — on
-    the plane of the last coordinate = 0.  One-line :class:`InputError` if a
-    symmetry group is not a plane (spread above 1e-6 of the body's size), the
-    body is not on its positive side, or the curvature κ of ``contact`` at the
-    first-contact point differs from 1/``radius`` (0: a flat) by more than
-    ``tol`` (1/mm).
-
-    κ is the least-squares fit of the circle (sphere) tangent to the plane at
-    the origin, centred on the symmetry axis, r² + z² = 2z/κ (r the distance
-    from the axis, z the height above the plane), to the owned contact nodes
-    within r ≤ 2a of the axis (at least the 4 in 2D / 8 in 3D nearest nodes):
-    κ = Σ 2z q / Σ q², q = r² + z², exact for nodes on a circle or a plane, and
-    the local curvature of another profile.
-
-    Returns ``(mesh, facet_tags, names, h, R_mesh)``: h the mean longest edge of
-    the contact facets whose midpoint is within 1.5a of the first-contact point
-    (the refined zone of the case's own mesh, or the nearest facets if none is;
-    :func:`tribofx.meshes.user.boundary_facet_size`) — the element size gmsh
-    aims at, as ``h_fine`` of the built mesh (the mean over the whole group
-    would be dominated by the coarse far facets of a graded mesh); R_mesh = 1/κ
-    (inf for κ ≤ 0).
-    """
-    required = ("contact", "loaded", "symmetry_x") + (("symmetry_y",) if dim == 3 else ())
-    msh, ft, names = read_user_mesh(path, comm, dim, required)
-    fdim, v = dim - 1, dim - 1
-    x = msh.geometry.x
-
-    def nodes(group):
-        return np.unique(dmesh.entities_to_geometry(msh, fdim, ft.find(names[group]),
-                                                    False).ravel())
-
-    size = max(_gmax(comm, x[:, k]) - _gmin(comm, x[:, k]) for k in range(dim))
-    for k, group in enumerate(required[2:]):
-        axis = "xy"[k]
-        c = x[nodes(group), k]
-        lo, hi = _gmin(comm, c), _gmax(comm, c)
-        if hi - lo > 1e-6 * size:
-            raise InputError(f"physical group {group!r} in {path!r} is not a plane {axis} = "
-                             f"const ({axis} from {lo:.6g} to {hi:.6g} mm)")
-        x[:, k] -= lo
-        if _gmin(comm, x[:, k]) < -1e-6 * size:
-            raise InputError(f"the body in {path!r} must lie on the side {axis} >= 0 of its "
-                             f"plane {group!r}")
-    s = -1.0 if below else 1.0
-    contact = nodes("contact")
-    x[:, v] -= _gmax(comm, x[contact, v]) if below else _gmin(comm, x[contact, v])
-    # curvature at the first-contact point, from the owned contact nodes
-    own = contact[contact < msh.geometry.index_map().size_local]
-    r = np.concatenate(comm.allgather(np.linalg.norm(x[own, :v], axis=1)))
-    z = np.concatenate(comm.allgather(s * x[own, v]))
-    order = np.argsort(r, kind="stable")
-    n = max(int(np.sum(r <= 2 * a)), 4 if dim == 2 else 8)
-    q = r[order[:n]] ** 2 + z[order[:n]] ** 2
-    kappa = float(np.sum(2 * z[order[:n]] * q) / np.sum(q * q))
-    expected = 1.0 / radius if 0 < radius < math.inf else 0.0
-    if not abs(kappa - expected) <= tol:
-        got = f"radius {1 / kappa:.4g} mm" if kappa > 0 else f"curvature {kappa:.3g} 1/mm"
-        want = f"{name} = {radius:g} mm" if expected else f"{name} = {radius:g} (a flat)"
-        raise InputError(f"'contact' in {path!r} has the {got} at its first-contact point "
-                         f"(its {'highest' if below else 'lowest'} node, moved to the "
-                         f"origin), but {want}")
-    # element size of the contact zone (midpoints within 1.5a of the first-contact point)
-    h = boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(dim), 1.5 * a))
-    return msh, ft, names, h, (1 / kappa if kappa > 0 else math.inf)
-
-
-class HertzCase:
+class HertzCase(HertzRun):
     """Case ``hertz``; see the module docstring."""
 
     name = "hertz"
@@ -212,8 +105,9 @@ class HertzCase:
     def build(cls, v, comm=MPI.COMM_WORLD):
         """Body, contact interface and :class:`Problem` of the case (not yet loaded).
 
-        ``mesh_file``: the user's body (:func:`read_hertz_body`); ρ_N = E/h with h
-        its contact element size instead of ``h_fine``.
+        ``mesh_file``: the user's body
+        (:func:`tribofx.cases.hertz_user.read_hertz_body`); ρ_N = E/h with h its
+        contact element size instead of ``h_fine``.
         """
         R, dim = v["R"], geometric_dim(v["dim"])
         h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
@@ -245,94 +139,3 @@ class HertzCase:
         problem = Problem([body, contact], name="hertz")
         return body, contact, problem
 
-    @staticmethod
-    def vtx_fields(run):
-        """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
-        body, contact, _ = run
-        return {"displacement": [body.u], "contact": [contact.lam_n]}
-
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure profile against Hertz (``pressure.png``)."""
-        from ..plots import plot_hertz_pressure
-
-        plot_hertz_pressure(profile, outdir / "pressure.png")
-
-    @staticmethod
-    def model_fraction(dim):
-        """Fraction of the full body whose force the model gives (symmetry).
-
-        A half cylinder, a quarter sphere; the meridian section's forces are those
-        of the revolved (full) sphere, its measures weighted by 2πR.
-        """
-        return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
-
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
-        """Load the body to ``load`` and record contact size and peak pressure.
-
-        The plane's position δ is driven by :meth:`Continuation.reach` so that the
-        normal contact force equals each load increment.  ``comm``: the
-        communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
-        test).
-        """
-        R, dim = v["R"], hertz_dim(v["dim"])
-        body, contact, problem = run = cls.build(v, comm)
-        frac = cls.model_fraction(v["dim"])
-        record.data["num_dofs"] = problem.num_dofs
-        a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
-        axis = geometric_dim(v["dim"]) - 1
-        control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
-                               response=lambda: contact.force()[axis], verbose=verbose,
-                               record=record.data["newton_iterations"])
-        targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
-        delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
-        try:
-            for k, target in enumerate(targets):
-                delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
-                if progress is not None:
-                    progress.update(1)
-        except NewtonDivergence as err:
-            err.problem = run  # restored to the last converged load step
-            raise
-        finally:
-            cls._report(contact, v, record, frac, a_h, p_h)
-        return run
-
-    @staticmethod
-    def _report(contact, v, record, frac, a_h, p_h):
-        dim, gdim = v["dim"], geometric_dim(v["dim"])
-        area, pmax = contact.measures()
-        # half-width; the radius of a quarter disc's area; that of the revolved disc's
-        size = {2: area, 3: math.sqrt(4 * area / math.pi),
-                AXISYMMETRIC: math.sqrt(area / math.pi)}[dim]
-        force = contact.force()
-        key = "contact_half_width" if dim == 2 else "contact_radius"
-        record.result(key, size, "mm")
-        record.result(f"hertz_{key}", a_h, "mm")
-        record.result("p_max", pmax, "MPa")
-        record.result("hertz_p_max", p_h, "MPa")
-        record.result(f"{key}_rel_error", size / a_h - 1)
-        record.result("p_max_rel_error", pmax / p_h - 1)
-        record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
-        if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
-            delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
-            record.result("approach", delta, "mm")
-            record.result("hertz_approach", a_h**2 / v["R"], "mm (half-space)")
-        record.result("normal_load_full_body", float(force[gdim - 1] / frac),
-                      "N/mm" if dim == 2 else "N")
-        record.result("tangential_force_modelled_part", [float(f) for f in force[: gdim - 1]],
-                      "N/mm" if dim == 2 else "N")
-        # weighted L2 distance of the nodal pressures from the Hertz distribution
-        d = contact.nodal_data()
-        rr = d["x"][:, 0] if gdim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
-        ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
-        comm = contact.body.mesh.comm
-        num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
-        den = comm.allreduce(float(np.sum(d["weight"] * ph**2)), op=MPI.SUM)
-        record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
-        prof = contact.gather_profile()
-        if comm.rank == 0:
-            r = (prof["x"][:, 0] if gdim == 2
-                 else np.linalg.norm(prof["x"][:, :2], axis=1))
-            record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}

@@ -57,28 +57,25 @@ import math
 import numpy as np
 import ufl
 from dolfinx import fem
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
-from ..continuation import ConstantParameter, Continuation
 from ..forms import wear as wf
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
 from ..laws import Law
 from ..meshes.pin import NAMES, pin_body, tip_height
-from ..meshes.user import boundary_facet_size, read_user_mesh
+from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..params import InputError, Param, number_list
-from ..references import hertz
-from ..slow_run import SlowRun
-from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
-from .wear_dt_study import run_dt_study
+from ..params import InputError, Param
+from ..stepper import ReciprocatingCycle, Stepper
+from .wear_pin_run import PinRun
+from .wear_pin_setup import PinSetup
 
 __all__ = ["WearPinCase"]
 
 
-class WearPinCase:
+class WearPinCase(PinSetup, PinRun):
     """Case ``wear-pin``; see the module docstring."""
 
     name = "wear-pin"
@@ -146,13 +143,6 @@ class WearPinCase:
     )
 
     @staticmethod
-    def study_lists(v):
-        """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
-        dts = number_list(v["study_dts"], "study_dts", allow_empty=True)
-        levels = number_list(v["study_meshes"], "study_meshes", int, True) or [v["mesh"]]
-        return dts, levels
-
-    @staticmethod
     def validate(v):
         """Check cross-parameter consistency."""
         if v["mesh_file"] and v["study"] != "none":
@@ -182,14 +172,6 @@ class WearPinCase:
             r = v["study_ref_dt"] * (2 if v["study_ref"] == "richardson" else 1)
             if r > v["T"] or r >= min(dts):
                 raise InputError("study_ref_dt must be below the study time steps")
-
-    @classmethod
-    def progress_total(cls, v):
-        """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
-        if v["study"] == "dt":
-            dts, levels = cls.study_lists(v)
-            return 2 * len(dts) * len(levels)
-        return nominal_steps(v["T"], cls.slow_step(v))
 
     @staticmethod
     def slow_step(v):
@@ -247,134 +229,3 @@ class WearPinCase:
                           max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_pin")
         return stepper, load
 
-    @staticmethod
-    def _user_pin(msh, ft, names):
-        """Move a user's pin so that its lowest tip point is at y = 0; (width, tip element size).
-
-        The width is the x extent of the mesh, the element size the mean length of
-        the tip facets (the augmentation ρ_N = E/h).
-        """
-        comm = msh.comm
-        x = msh.geometry.x
-        tip = np.unique(dmesh.entities_to_geometry(
-            msh, 1, ft.find(names["contact"]), False).ravel())
-        y0 = comm.allreduce(float(np.min(x[tip, 1], initial=np.inf)), op=MPI.MIN)
-        x[:, 1] -= y0
-        lo = comm.allreduce(float(np.min(x[:, 0], initial=np.inf)), op=MPI.MIN)
-        hi = comm.allreduce(float(np.max(x[:, 0], initial=-np.inf)), op=MPI.MAX)
-        return hi - lo, boundary_facet_size(msh, ft, names["contact"])
-
-    @staticmethod
-    def load_up(stepper, load, v, verbose=False):
-        """Unworn contact under the full traction (load factor 0 → 1 by Continuation).
-
-        Newton starts from the rigid translation δ₀ = a²/(2R) + qH/E of the pin (a
-        the 2D Hertz half-width of the tip, ν = 0.3, at most W/2), so that the tip
-        nodes start active; a failed solve halves the load increment.  Returns
-        the Newton iterations spent.
-        """
-        R = v["R_tip"]
-        a = min(hertz(v["q"] * v["W"], R, v["E"], 0.3, line=True).a, v["W"] / 2) if R else 0.0
-        delta0 = (a * a / (2 * R) if a else 0.0) + v["q"] * v["H"] / v["E"]
-        if v["mesh_file"]:   # a user's tip: its middle half starts in contact
-            delta0 = WearPinCase._user_approach(stepper.wear.contact, v)
-        stepper.wear.body.u.x.array.reshape(-1, 2)[:, 1] = -delta0
-        load.value = 0.0
-        control = Continuation(stepper.problem, ConstantParameter(load), verbose=verbose)
-        control.march(1.0, steps=1, predictor=False)
-        return int(sum(control.record))
-
-    @staticmethod
-    def _user_approach(contact, v):
-        """Return the initial approach of a user's pin: tip height at |x| = W/4 plus qH/E."""
-        msh = contact.body.mesh
-        comm = msh.comm
-        x = msh.geometry.x
-        lo, hi = (comm.allreduce(f(x[:, 0]), op=o) for f, o in
-                  ((np.min, MPI.MIN), (np.max, MPI.MAX)))
-        H = comm.allreduce(float(np.max(x[:, 1])), op=MPI.MAX)
-        d = contact.nodal_data()
-        xs = d["X"]
-        quarter = 0.25 * (hi - lo)
-        near = np.abs(np.abs(xs[:, 0] - 0.5 * (lo + hi)) - quarter) <= 0.25 * quarter
-        rise = comm.allreduce(float(np.max(xs[near, 1], initial=0.0)), op=MPI.MAX)
-        return rise + v["q"] * H / v["E"]
-
-    @staticmethod
-    def vtx_fields(stepper):
-        """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        wear = stepper.wear
-        return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
-
-    @staticmethod
-    def plot(profile, outdir):
-        """Plot ``profiles.png``, ``wear.png`` (``study=dt``: ``error_vs_dt.png``, profiles)."""
-        from ..plots.wear import plot_dt_study, plot_wear_pin
-
-        if profile.get("study") == "dt":
-            return plot_dt_study(profile, outdir)
-        return plot_wear_pin(profile, outdir)
-
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
-            resume=False):
-        """Integrate the wear of the pin from t = 0 to T; record per-step histories.
-
-        ``checkpoint``: directory of the per-step checkpoint (state and the
-        histories so far); ``resume``: continue from it instead of t = 0.
-        """
-        if v["study"] == "dt":
-            dts, levels = cls.study_lists(v)
-            ns = [10 * 2**m for m in levels] if n is None else [n]
-            return run_dt_study(cls, v, record, ns, dts, progress=progress, verbose=verbose)
-        stepper, load = cls.build(v, n=n, setup=setup, checkpoint=checkpoint)
-        stepper.verbose = verbose
-        wear, contact = stepper.wear, stepper.wear.contact
-        comm = wear.body.mesh.comm
-        keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
-                "newton_iterations", "wear_rate_integral", "dt")
-        # the worn shape and the deformation at every step (ParaView time series)
-        sr = SlowRun(stepper, v, record, keys,
-                     {"displacement": [wear.body.u, wear.body.w]}, resume)
-        h = sr.history
-        profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
-        if stepper.cycle is None:
-            record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
-
-        def log(t, its, dt):
-            area, _ = contact.measures()
-            sr.log(its, (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
-                         ("max_wear_depth", wear.max_depth()), ("contact_radius", area / 2),
-                         ("newton_iterations", its),
-                         ("wear_rate_integral", wear.wear_rate_integral())))
-            s = wear.gather_shape()
-            if comm.rank == 0:
-                profiles.append(s["X_worn"].tolist())
-                ptimes.append(t)
-
-        def on_step(st, rep):
-            log(st.t, rep.iterations, rep.dt)
-            if st.cycle is None:
-                record.data["newton_residuals"].append(
-                    [float(x) for x in rep.reports[-1].residuals])
-
-        if not resume:
-            log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
-        sr.run(v["T"], cls.slow_step(v), on_step, progress,
-               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes))
-        return stepper
-
-    @staticmethod
-    def _report(stepper, v, record, hist, profiles, ptimes):
-        units = {"time": "s", "wear_volume": "mm^3/mm", "max_wear_depth": "mm",
-                 "contact_radius": "mm (half-width)", "newton_iterations": "-",
-                 "wear_rate_integral": "mm^3/(mm*s)", "dt": "s"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        d = stepper.wear.gather_shape()
-        if d is not None:
-            record.result("final_profile", d["X_worn"].tolist(), "mm (worn configuration)")
-            record.result("final_profile_deformed", d["x"].tolist(), "mm (current)")
-            record.result("final_pressure", d["p"].tolist(), "MPa")
-            record.profile = {**hist, "profiles": profiles, "times": ptimes,
-                              "scheme": v["scheme"], "dt": WearPinCase.slow_step(v)}
