@@ -82,7 +82,6 @@ from dataclasses import dataclass
 import ufl
 
 from . import reynolds as rf
-from .wear import WearLoad
 
 __all__ = [
     "MODELS",
@@ -90,11 +89,7 @@ __all__ = [
     "WeightedMeasure",
     "countersurface_projection",
     "couette_flux",
-    "countersurface_traction",
     "cylinder_countersurface",
-    "film_virtual_work",
-    "film_wear_load",
-    "fluid_traction",
     "intermediate_surface",
     "jfo_on_surface",
     "lubrication_kinematics",
@@ -388,95 +383,6 @@ def couette_flux(kin, lam, T):
     """
     tS = kin.A * T
     return (1 - lam) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
-
-
-def film_virtual_work(traction, v, ds, weight=1):
-    """Film term of the solid's virtual work (62): −∫_Γl T·δφ w dS.
-
-    ``traction`` is the nominal fluid traction T (:func:`fluid_traction`, MPa),
-    ``v`` the test function of the displacement, ``ds`` the measure of Γ_l and
-    ``weight`` w the reference measure factor (2πR for axisymmetry, else 1).
-    Equivalent to the spatial form (63) with t ds = T dS.
-    """
-    return -ufl.dot(traction, v) * weight * ds
-
-
-def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
-    """Nominal traction (MPa per reference length) of the film on the layer, eq. (46).
-
-    Args:
-        p: pressure (MPa).
-        dpdT: tangential derivative Grad_Γ p · T of the pressure on Γ_l (MPa/mm), or
-            (vector) the tangential gradient Grad_Γ p itself.
-        kin: :class:`LubricationKinematics` evaluated with the bulk displacement.
-        F: deformation gradient (gdim × gdim) of the bulk.
-        N: unit outer normal of Γ_l (reference).
-        T: unit tangent of Γ_l (reference, gdim = 2: the shear stretch |F T| and,
-            for a scalar ``dpdT``, the direction of the gradient); None in 3D.
-        mu: viscosity (MPa·s).
-        model: "finite" (Nanson, current normal and stretch) or "linear" (reference surface).
-        shear: include the Couette −(μ/h)(v_layer − v_counter) and Poiseuille
-            −(h/2) grad_S p terms (v_counter = ``kin.v_counter``, 0 if None).
-    """
-    if len(ufl.shape(dpdT)) == 1:
-        grad_gamma_p = dpdT                       # Grad_Γ p
-    else:
-        grad_gamma_p = dpdT * T                   # (Grad_Γ p·T) T (gdim = 2)
-    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
-    if model == "linear":
-        Tn = -p * N
-        if shear:
-            grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-            Tn = Tn - (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
-        return Tn
-    Tn = -p * ufl.det(F) * ufl.inv(F).T * N      # −p n ds/dS (Nanson)
-    if shear:
-        if len(N) == 2:
-            FT = F * T
-            j = ufl.sqrt(ufl.dot(FT, FT))         # ds/dS of γ_l
-        else:
-            nJ = ufl.det(F) * ufl.inv(F).T * N
-            j = ufl.sqrt(ufl.dot(nJ, nJ))         # ds/dS = J|F⁻ᵀN| (Nanson)
-        grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-        Tn = Tn - j * ((mu / kin.h) * v_rel + (kin.h / 2) * grad_S_p)
-    return Tn
-
-
-def film_wear_load(p, kin, F, N, model="finite"):
-    """Return the film as a driver of Archard wear of the layer (:class:`forms.wear.WearLoad`).
-
-    The normal traction is the pressure part of (46) along the current normal,
-    T_N = −p⁺ j per unit reference area (j = J|F⁻ᵀN| = ds/dS, Nanson; 1 in the
-    geometrically linear model), and the sliding speed that of the layer against
-    the countersurface, ‖v_layer − v_counter‖ (mm/s): the pressure form of
-    Archard's law, k p j ‖v‖, for wear under the film's load (e.g. by the
-    asperities the film does not separate, or erosive wear in a law k(p)).
-    """
-    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
-    p_plus = ufl.max_value(p, 0)
-    if model == "linear":
-        j = 1
-    else:
-        nJ = ufl.det(F) * ufl.inv(F).T * N
-        j = ufl.sqrt(ufl.dot(nJ, nJ))
-    return WearLoad(normal=-p_plus * j, slip_speed=ufl.sqrt(ufl.dot(v_rel, v_rel)))
-
-
-def countersurface_traction(p, grad_gamma_p, kin, mu):
-    """Film traction on the countersurface per unit area of S (MPa): (46) at the other wall.
-
-    −p ν + (μ/h)(v_layer − v_counter) − (h/2) grad_S p: the pressure along the
-    countersurface's normal ν (into the film) and the wall shear stress of
-    Reynolds' velocity profile at the countersurface (its Couette part
-    reverses, its Poiseuille part keeps its sign against (46) on the layer).
-    ``grad_gamma_p`` is Grad_Γ p on Γ_l, ``kin`` the :class:`LubricationKinematics`
-    of S (the reference surface for the linear model); integrate with ds_S =
-    ``kin.stretch`` dS.  The film's force on a rigid counterpart: the friction a
-    rig measures on it.
-    """
-    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
-    grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-    return -p * kin.nu + (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
 
 
 def trace_constraint(u_s, u, du_s, ds):

@@ -27,7 +27,7 @@ multiplied by the constant 2π r_rod.
 Fluid traction on the seal (46), nominal per reference area dA = 2πR dS: with
 the 3×3 axisymmetric F (hoop stretch r/R), J F^{-T} N = (r/R) J₂ F₂^{-T} N and
 da/dA = (r/R)|F₂ T|, so the axisymmetric nominal traction is the plane one of
-:func:`forms.ehl.fluid_traction` times the hoop stretch r/R.
+:func:`forms.film_traction.fluid_traction` times the hoop stretch r/R.
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """

@@ -4,7 +4,7 @@ A plane-strain block [0, 1] × [0, 0.5] mm with a shape field; its bottom face i
 lubricated against a rigid cylinder (radius 2 mm, clearance 10 µm under the
 middle) sliding at U, and (in the combined case) also in contact with it.  The
 wear rows are those of :class:`tribofx.interfaces.Wear` with the film's load
-(:func:`tribofx.forms.ehl.film_wear_load`: T_N = −p⁺ j, ‖v_layer − v_counter‖).
+(:func:`tribofx.forms.film_traction.film_wear_load`: T_N = −p⁺ j, ‖v_layer − v_counter‖).
 """
 
 import numpy as np

@@ -23,7 +23,7 @@ Residual rows, all from :mod:`tribofx.forms.ehl` (pure UFL):
 
 * u: the film term of the virtual work (62), −∫_Γl T·δu dS, with the nominal
   fluid traction (46) T = −p J F⁻ᵀN − j((μ/h)(v_layer − v_counter) + (h/2) grad_S p)
-  (:func:`~tribofx.forms.ehl.fluid_traction`, ``shear=False``: pressure only);
+  (:func:`~tribofx.forms.film_traction.fluid_traction`, ``shear=False``: pressure only);
 * u_s: the trace constraint;
 * p: the steady Reynolds equation (49) on the lubrication surface S = P(γ_l)
   (or S_α, Fig. 23) pulled back to Γ_l, SUPG (Remark 3.2), penalty cavitation
@@ -66,6 +66,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import ehl as ef
+from ..forms import film_traction as ft
 from ..laws import viscosity_law
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
@@ -234,9 +235,9 @@ class Film(FilmStart, ReynoldsFilm):
         F = ufl.Identity(gdim) + ufl.grad(body.u)
         self._F, self._N_b = F, N_b
         grad_p = self.g if shear else ufl.zero(gdim)
-        self.traction = ef.fluid_traction(self.p, grad_p, self.kin_bulk, F, N_b, self.T_b,
+        self.traction = ft.fluid_traction(self.p, grad_p, self.kin_bulk, F, N_b, self.T_b,
                                           self.mu_p, shear=shear, model=model)
-        self._couette = ef.fluid_traction(0.0, ufl.zero(gdim), self.kin_bulk, F, N_b,
+        self._couette = ft.fluid_traction(0.0, ufl.zero(gdim), self.kin_bulk, F, N_b,
                                           self.T_b, self.mu_p, shear=True, model=model)
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
         self.w_solid, self.w_film = body.weight, 1
@@ -268,7 +269,7 @@ class Film(FilmStart, ReynoldsFilm):
     def contributions(self):
         """Film virtual work on u; trace, Reynolds, gradient and complementarity rows."""
         body = self.body
-        out = [(body.u, ef.film_virtual_work(self.traction, body.v, self.ds, self.w_solid)),
+        out = [(body.u, ft.film_virtual_work(self.traction, body.v, self.ds, self.w_solid)),
                (self.u_s, self._c_u * ef.trace_constraint(self.u_s, body.u,
                                                           ufl.TestFunction(self.Vs), self.ds))]
         R_p, C = self._reynolds(ufl.TestFunction(self.Q))
@@ -295,13 +296,13 @@ class Film(FilmStart, ReynoldsFilm):
     def wear_load(self, slip=None):
         """Return the film's pressure p⁺ j and sliding speed as the load of Archard wear.
 
-        :func:`tribofx.forms.ehl.film_wear_load`; ``slip`` (a slip increment of
+        :func:`tribofx.forms.film_traction.film_wear_load`; ``slip`` (a slip increment of
         fast-time cycles) has no meaning for a film.
         """
         if slip is not None:
             raise ValueError("a film has no slip increments: wear under a film is steady "
                              "(averaged=False)")
-        return ef.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
+        return ft.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
 
     def positions(self):
         """Nodal positions of Γ_l at which the counterpart is projected (P1 dof order, mm).
@@ -352,7 +353,7 @@ class Film(FilmStart, ReynoldsFilm):
         if self._post is None:
             em = [self.emap]
             gdim = self.body.gdim
-            counter = ef.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
+            counter = ft.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
                                                  self.mu_p)
             self._post = {
                 "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
@@ -387,7 +388,7 @@ class Film(FilmStart, ReynoldsFilm):
         """Force of the film on the countersurface (units and parts as :meth:`force`).
 
         ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
-        (:func:`forms.ehl.countersurface_traction`): what a friction rig measures
+        (:func:`forms.film_traction.countersurface_traction`): what a friction rig measures
         on the rigid counterpart.  The film's momentum balance makes this
         −:meth:`force` up to the shear where the layer's area differs from S's,
         ∫ shear (j − ds_S/dS) dS (steep flanks of a thick film); the

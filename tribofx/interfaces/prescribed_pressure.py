@@ -4,6 +4,7 @@ import ufl
 from dolfinx import fem
 
 from ..forms import ehl as ef
+from ..forms import film_traction as ft
 
 __all__ = ["PrescribedPressure"]
 
@@ -24,7 +25,7 @@ class PrescribedPressure:
         f, body = film, film.body
         gdim = body.gdim
         F = ufl.Identity(gdim) + ufl.grad(body.u)
-        self.traction = ef.fluid_traction(self.p, ufl.zero(gdim), f.kin_bulk, F,
+        self.traction = ft.fluid_traction(self.p, ufl.zero(gdim), f.kin_bulk, F,
                                           ufl.FacetNormal(body.mesh), f.T_b, f.mu_p,
                                           shear=False, model=f.model)
 
@@ -35,7 +36,7 @@ class PrescribedPressure:
     def contributions(self):
         """Prescribed-pressure work on u, trace rows on u_s."""
         f, body = self.film, self.film.body
-        return [(body.u, ef.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
+        return [(body.u, ft.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
                 (f.u_s, f._c_u * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
                                                      f.ds))]
 
