@@ -86,8 +86,8 @@ def test_coupled_residual_taylor(model, alpha, countersurface, viscosity):
     interpolated to the quadrature points, which leaves a first-order tangent error
     of relative size O(h κ) on the curved cylinder (8e-5 here, measured on ∫ h):
     at ε₀ = 0.1 of these directions the quadratic remainder dominates it, so this
-    test checks every other dependence; the error itself is shown by the strict
-    xfail of tests/test_ehl_ball.py::test_meshed_plane_tangent_taylor[curved].
+    test checks every other dependence (the vertex rule, Film(quadrature="vertex"),
+    removes the error: tests/test_ehl_ball.py::test_meshed_plane_tangent_taylor[curved]).
     """
     v = values(model=model, W=0.1, steps=1, alpha=alpha, countersurface=countersurface,
                viscosity=viscosity, alpha_p=0.0 if viscosity == "constant" else 10.0)

@@ -136,12 +136,7 @@ def test_coupled_tangent_taylor(light_load):
 @pytest.mark.parametrize("surface", [
     "plane",
     "plane-barus",     # μ(p) = μ₀ e^{αp}, α p0 = 0.7: the 3D film with a pressure-viscosity law
-    pytest.param("curved", marks=pytest.mark.xfail(strict=True, reason=(
-        "known: the kernel data are expanded about the nodes of Γ_l and interpolated "
-        "(P1) to the film's quadrature points, so the tangent takes n_h·δu_h where the "
-        "residual varies as I_h(n·δu): a first-order error O(h κ) on a curved "
-        "countersurface (1e-5 relative here, 8e-5 on the 2D meshed cylinder); exact "
-        "for flat facets and for vertex-rule terms (contact)")))])
+    "curved"])
 def test_meshed_plane_tangent_taylor(light_load, surface):
     """Exact tangent with a meshed countersurface in 3D (C++ lubrication projection).
 
@@ -151,7 +146,10 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     the kernel's ∂P/∂x, ∂ν/∂x and ∂²P/∂x² must give an O(ε²) remainder.  The
     residual itself equals the analytic plane's (flat facets are exact).
     ``curved``: a sphere cap of radius 10 R touching z = 0, biquadratic facets, so
-    that the curvature terms of ν and P (and the facets' third derivatives) enter.
+    that the curvature terms of ν and P (and the facets' third derivatives) enter;
+    the film integrates by the vertex rule (``Film(quadrature="vertex")``), at the
+    nodes where the kernel data are exact (the Gauss rule sees their P1
+    interpolation, a first-order tangent error O(h κ), 1e-5 relative here).
     """
     from tribofx.meshes.obstacles import cap_surface_mesh, plane_surface_mesh
 
@@ -176,7 +174,8 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter),
                   mu, V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
                   eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
-                  quadrature_degree=2, name="meshed")
+                  quadrature_degree=2, name="meshed",
+                  quadrature="vertex" if surface == "curved" else "gauss")
     rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v["theta_l"]))) < 1e-6 * R  # noqa
     meshed.add_pressure_bc(rim)
     twin_problem = Problem([twin, meshed], name="meshed_taylor")
