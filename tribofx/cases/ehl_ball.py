@@ -74,7 +74,7 @@ from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..problem import Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
-from .ehl_ball_mesh import edge_size, mesh_levels, outlet_width
+from .ehl_ball_mesh import checked_outlet_width, edge_size, mesh_levels, outlet_width
 from .ehl_ball_outputs import BallOutputs
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_sweep import BallSweep
@@ -174,6 +174,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
                              f"(Hertz a at W = {v['W']} N): increase theta_l")
         if not v["U"] > 0 or not v["mu"] > 0:
             raise InputError("U and mu must be positive (entrainment)")
+        checked_outlet_width(v)
         auto = v["mesh"] is None or v["edge_refine"] is None
         if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
             raise InputError(

@@ -21,9 +21,13 @@ h_edge ≤ ``MAX_EDGE_RATIO`` ℓ = 2ℓ, between the measured good (1.6) and ba
 with the contact width resolved by a/8 (``mesh`` ≥ 1).
 """
 
+import math
+
+from ..params import InputError
 from ..references import composite_modulus, hamrock_dowson, hertz
 
-__all__ = ["MAX_EDGE_RATIO", "LEVELS", "edge_size", "mesh_levels", "outlet_width"]
+__all__ = ["MAX_EDGE_RATIO", "LEVELS", "checked_outlet_width", "edge_size", "mesh_levels",
+           "outlet_width"]
 
 #: largest element size along the contact edge, in units of the outlet width ℓ
 MAX_EDGE_RATIO = 2.0
@@ -36,6 +40,18 @@ def outlet_width(v):
     a = hertz(v["W"], v["R"], v["E"], v["nu"]).a
     h_c = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], composite_modulus(v["E"], v["nu"]))[0]
     return a * (h_c * v["R"] / a**2) ** (2 / 3)
+
+
+def checked_outlet_width(v):
+    """Return :func:`outlet_width`, or raise InputError (one line) if it is not finite."""
+    try:
+        ell = outlet_width(v)
+    except (ArithmeticError, ValueError):
+        ell = math.nan
+    if not 0 < ell < math.inf:
+        raise InputError(f"W = {v['W']:g} N, U = {v['U']:g} mm/s, R = {v['R']:g} mm, "
+                         f"E = {v['E']:g} MPa give no finite film scale (Hamrock–Dowson)")
+    return ell
 
 
 def edge_size(v, mesh, edge_refine):
