@@ -27,6 +27,7 @@ import ufl
 __all__ = [
     "WearLoad",
     "archard_rate",
+    "bdf2_coefficients",
     "constant_coefficient",
     "pressure_dependent_coefficient",
     "archard_dissipation_form",
@@ -158,7 +159,17 @@ def wear_depth(w, N_hat):
     return -ufl.dot(w, N_hat)
 
 
-def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds):
+def bdf2_coefficients(omega):
+    """Variable-step BDF2 weights (c₀, c₁) of the swept volumes, ω = Δt_{n+1}/Δt_n.
+
+    For y' = f: c₀ (y_{n+1} − y_n) + c₁ (y_n − y_{n−1}) = Δt_{n+1} f_{n+1} with
+    c₀ = (1 + 2ω)/(1 + ω), c₁ = −ω²/(1 + ω) (second order for any ω > 0;
+    ω = 1: 3/2, −1/2).  ω = 0 gives backward Euler (1, 0), the start.
+    """
+    return (1 + 2 * omega) / (1 + omega), -omega**2 / (1 + omega)
+
+
+def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds, bdf2=None):
     """Weak form of the discrete shape evolution law (28) on the contact boundary.
 
     ∫_Γ̂c η [(w − w_n)·a + Δt Ẇ_{n+θ} j_w] dŜ = 0, where ``a`` is the Nanson
@@ -174,8 +185,17 @@ def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds):
         dt: time step Δt (s).
         eta: test function of the constraint multiplier.
         ds: measure over the initial contact boundary Γ̂_c.
+        bdf2: None (the θ-scheme), or ``(c0, c1, swept_old)``: the variable-step
+            BDF2 law in swept volumes per unit initial area,
+            ∫ η [c₀ (w − w_n)·a + c₁ s_n + Δt Ẇ_{n+1} j_w] dŜ = 0, with s_n the
+            volume swept in the previous step ((w_n − w_{n−1})·a_n, a nodal field)
+            and (c₀, c₁) of :func:`bdf2_coefficients`.  The worn volume then obeys
+            BDF2 exactly: c₀ ΔV_{n+1} + c₁ ΔV_n = −Δt ∫ Ẇ dS.
     """
-    return eta * (ufl.dot(w - w_old, a) + dt * rate_density) * ds
+    if bdf2 is None:
+        return eta * (ufl.dot(w - w_old, a) + dt * rate_density) * ds
+    c0, c1, swept_old = bdf2
+    return eta * (c0 * ufl.dot(w - w_old, a) + c1 * swept_old + dt * rate_density) * ds
 
 
 def constant_coefficient(p, k):

@@ -81,8 +81,9 @@ class WearPinCase(PinSetup, PinRun):
     name = "wear-pin"
     doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
     params = (
-        Param("scheme", str, "implicit", "-", "θ-scheme: explicit (θ=0) or implicit (θ=1)",
-              choices=("explicit", "implicit")),
+        Param("scheme", str, "implicit", "-",
+              "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
+              "started by one implicit step)", choices=("explicit", "implicit", "bdf2")),
         Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 5e-6, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
@@ -159,6 +160,8 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
             if v["V"] <= 0:
                 raise InputError("mode=cyclic needs V > 0")
+            if v["scheme"] == "bdf2":
+                raise InputError("scheme=bdf2 is for the instantaneous rate (mode=steady)")
         if WearPinCase.slow_step(v) > v["T"]:
             raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
         if v["study"] == "dt":
@@ -222,7 +225,8 @@ class WearPinCase(PinSetup, PinRun):
         k = (Law(wf.pressure_dependent_coefficient, k0=v["k"], p_s=v["k_ps"], m=v["k_m"])
              if v["k_law"] == "pressure" else v["k"])
         wear = Wear(contact, k=k, speed=v["V"], law=v["law"], k_grad=v["k_grad"],
-                    theta=1.0 if v["scheme"] == "implicit" else 0.0, averaged=cyclic)
+                    theta=0.0 if v["scheme"] == "explicit" else 1.0, averaged=cyclic,
+                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
         cycle = ReciprocatingCycle(contact, v["stroke"], v["fast_steps"], v["V"]) \
             if cyclic else None
         stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],

@@ -91,10 +91,14 @@ class Wear:
         rtol: relative size of the stopping tolerance of the ζ rows (× body size, mm);
             the rows carry the wear increment of a step, orders of magnitude below
             the body size, hence a default two decades below the contact gap's.
+        scheme: "theta" (the θ-scheme (28)) or "bdf2" (θ = 1 only: the
+            variable-step BDF2 law in swept volumes,
+            :func:`tribofx.forms.wear.shape_update_residual`; its first step, and
+            the first after a start, is backward Euler).
     """
 
     def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
-                 averaged=False, name="wear", rtol=1e-12):
+                 averaged=False, name="wear", rtol=1e-12, scheme="theta"):
         drivers = list(contact) if isinstance(contact, (list, tuple)) else [contact]
         contact = drivers[0]
         body = contact.body
@@ -108,6 +112,11 @@ class Wear:
             raise ValueError("wear needs a body with a shape field: Body(..., shape=True)")
         if law not in LAWS:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
+        if scheme not in ("theta", "bdf2"):
+            raise ValueError(f"unknown scheme {scheme!r}: theta or bdf2")
+        if scheme == "bdf2" and (theta != 1 or averaged):
+            raise ValueError("scheme='bdf2' is implicit and instantaneous: theta=1, "
+                             "averaged=False")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
             raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
         if not averaged and not all(hasattr(d, "wear_load") for d in drivers):
@@ -121,11 +130,17 @@ class Wear:
                              "fast-time cycles of the slow-time stepper (tribofx.stepper)")
         self.contact, self.body, self.name, self.rtol = contact, body, name, rtol
         self.law, self.theta, self.averaged = law, float(theta), bool(averaged)
+        self.scheme = scheme
         msh = body.mesh
         Q = self.surface.Q
         self.zeta = fem.Function(Q, name=f"{name}_shape_multiplier")
         self.rate_bar = fem.Function(Q, name=f"{name}_cycle_averaged_rate")
         self.dt = fem.Constant(msh, 0.0)  # 0: a plain contact solve does not wear
+        # BDF2: weights, the volume swept in the previous step (nodal, per unit
+        # initial area) and that step's Δt (state: restored with a failed step)
+        self.c0, self.c1 = fem.Constant(msh, 1.0), fem.Constant(msh, 0.0)
+        self.swept_old = fem.Function(Q, name=f"{name}_previous_swept_volume")
+        self.dt_prev = fem.Constant(msh, 0.0)
         self.k_law = wear_coefficient_law(k).bind(msh)   # k(p), p = −T_N; a number: constant
         if hasattr(contact, "wear_increment") and not is_constant(self.k_law.law):
             raise ValueError("a two-body contact's wear takes a constant coefficient")
@@ -145,6 +160,7 @@ class Wear:
         node_of_bulk[node_to_dof(body.V)] = np.arange(len(gmap_w))
         self._bulk_dofs_w = gmap_w[node_of_bulk[self.surface.bulk_dofs]]
         self._post = None
+        self._bdf_forms = {}
 
     # -- the wear law ------------------------------------------------------------
     def rate(self, w, slip=None):
@@ -183,10 +199,11 @@ class Wear:
         c = self.surface
         dw = ufl.TestFunction(self.body.Vw)
         eta = ufl.TestFunction(c.Q)
+        bdf2 = (self.c0, self.c1, self.swept_old) if self.scheme == "bdf2" else None
         return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a, c.dsc)),
                 (self.zeta, wf.shape_update_residual(self.body.w, self.body.w_n, self.a,
                                                      self.rate_density, self.dt, eta,
-                                                     c.dsc))]
+                                                     c.dsc, bdf2=bdf2))]
 
     def bcs(self):
         """No Dirichlet conditions of its own (the body holds those of w)."""
@@ -214,17 +231,50 @@ class Wear:
                                           eta * self.surface.dsc)}
 
     def state_fields(self):
-        """ζ, the cycle-averaged rate and the wear law's parameters (w, w_n: the body's)."""
-        return [self.zeta, self.rate_bar] + self.k_law.state_fields()
+        """ζ, the cycle-averaged rate, the BDF2 history and the wear law's parameters.
+
+        (w, w_n: the body's.)
+        """
+        return ([self.zeta, self.rate_bar, self.swept_old, self.dt_prev]
+                + self.k_law.state_fields())
 
     def commit(self):
         """Nothing: the shape history moves on in :meth:`begin_step` of the slow time."""
 
     # -- slow time -------------------------------------------------------------------
     def begin_step(self, dt):
-        """Start a slow step of Δt (s): w_n ← w, Δt set."""
+        """Start a slow step of Δt (s): w_n ← w, Δt set.
+
+        BDF2: the volume swept in the previous step, (w − w_n)·a per node, is kept
+        before w_n moves on, and the weights follow ω = Δt/Δt_prev (backward Euler
+        when there is no previous step).
+        """
+        if self.scheme == "bdf2":
+            prev = float(self.dt_prev.value)
+            if prev > 0:
+                self.swept_old.x.array[:] = self._swept_volume()
+            c0, c1 = wf.bdf2_coefficients(dt / prev if prev > 0 else 0.0)
+            self.c0.value, self.c1.value = c0, c1
+            self.dt_prev.value = float(dt)
         self.dt.value = float(dt)
         self.body.w_n.x.array[:] = self.body.w.x.array
+
+    def _swept_volume(self):
+        """Nodal (w − w_n)·a(w, w_n) per unit initial area, the vertex rule's lumping."""
+        if "swept" not in self._bdf_forms:
+            eta, c = ufl.TestFunction(self.surface.Q), self.surface
+            self._bdf_forms["swept"] = fem.form(
+                eta * ufl.dot(self.body.w - self.body.w_n, self.a) * c.dsc,
+                entity_maps=[c.emap])
+            self._bdf_forms["lumped"] = fem.form(eta * c.dsc, entity_maps=[c.emap])
+        f = self._bdf_forms
+        num, den = self.surface.nodal(f["swept"]), self.surface.nodal(f["lumped"])
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def restart_history(self):
+        """Forget the previous step (the next BDF2 step starts by backward Euler)."""
+        self.dt_prev.value = 0.0
+        self.swept_old.x.array[:] = 0.0
 
     def end_step(self):
         """End a slow step: Δt = 0, so that a later contact solve does not wear."""
