@@ -40,18 +40,23 @@ class SweepVariant:
         fields: ``{name: [Function, ...]}`` of the VTX series, written as
             ``<prefix><name>_series.bp``.
         prefix: file prefix of the series (``"full_"`` for a variant of ``compare``).
-        records: the names of the variant's record lists; ``"points"`` (the series'
-            coordinates, one list per point) and ``"its"`` (Newton iterations) are added.
+        records: the names of the variant's record lists, or ``{name: default}``;
+            ``"points"`` (the series' coordinates, one per point) and ``"its"``
+            (Newton iterations) are added.
         comm: the communicator of the series.
         progress: a progress bar, advanced by the restored ``progress_key`` records.
+        newton: add the variant's ``its`` to the run's Newton iterations at the end
+            (False: the case records them itself).
     """
 
     def __init__(self, journal, key, run, state, record, fields, prefix="", records=("steps",),
-                 comm=None, progress=None, progress_key="steps"):
+                 comm=None, progress=None, progress_key="steps", newton=True):
         self.journal, self.key, self.run, self.state = journal, key, run, state
-        self.record = record
-        names = tuple(dict.fromkeys(tuple(records) + ("its", "points")))
-        self.records = journal.records(key, **{k: [] for k in names})
+        self.record, self.newton = record, newton
+        defaults = dict(records) if isinstance(records, dict) else {k: [] for k in records}
+        defaults.setdefault("its", [])
+        defaults.setdefault("points", [])
+        self.records = journal.records(key, **defaults)
         self.position = journal.position(key)
         self.points, self.its = self.records["points"], self.records["its"]
         if progress is not None and self.records.get(progress_key):
@@ -66,8 +71,8 @@ class SweepVariant:
         return self.records[name]
 
     def write(self, point):
-        """Append the point's coordinates (a list) and write the fields at its index."""
-        self.points.append(list(point))
+        """Append the point's coordinates (a number or a list) and write the fields there."""
+        self.points.append(point)
         self.series.write(len(self.points) - 1)
 
     def save(self, position, arrays=()):
@@ -84,7 +89,8 @@ class SweepVariant:
 
     def __exit__(self, kind, err, tb):
         self.series.close()
-        self.record.data["newton_iterations"].extend(self.its)
+        if self.newton:
+            self.record.data["newton_iterations"].extend(self.its)
         if isinstance(err, (NewtonDivergence, interrupt.Interrupted)):
             err.problem = self.run    # restored to its last converged point
         return False

@@ -8,12 +8,11 @@ import time
 
 from mpi4py import MPI
 
-from .. import interrupt
-from ..output import VTXSeries
 from ..params import number_list
 from ..plots import plot_oring
-from ..problem import NewtonDivergence, options_name
-from ..restart import SweepJournal, sweep_stem
+from ..problem import options_name
+from ..restart import SweepJournal
+from ..sweep import SweepVariant
 from .oring_seal import axial_balance, build, solve_to
 
 __all__ = ["ORingRun"]
@@ -46,36 +45,28 @@ class ORingRun:
         prob = None
         for Us in speeds:
             tag = "out" if Us > 0 else "in"
-            rec = journal.records(tag, points=[], states=[], measures=[], its=[],
-                                  wall_time=0.0)
+            prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
+                         name=options_name("ehl_oring", f"{tag}stroke"))
+            record.data["num_dofs"] = prob.problem.num_dofs
+            state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
+            # u and p at each sealed pressure of the stroke (ParaView time series; the
+            # "time" is the index of the state, its p_s in series_points)
+            sv = SweepVariant(journal, tag, prob, state, record, cls.vtx_fields(prob),
+                              f"{tag}stroke_", {"states": [], "measures": [], "wall_time": 0.0},
+                              comm, progress, progress_key="points", newton=False)
+            rec = sv.records
             points, states, measures = rec["points"], rec["states"], rec["measures"]
             done = len(points)
             t0 = time.perf_counter() - rec["wall_time"]
-            prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
-                         name=options_name("ehl_oring", f"{tag}stroke"))
-            interrupt.arm()   # gmsh resets the SIGTERM handler
-            record.data["num_dofs"] = prob.problem.num_dofs
-            state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
             if done:
-                journal.restore(tag, state)
+                sv.resume()
                 prob.problem.refresh()
                 prob.iterations.extend(rec["its"])
-                if progress is not None:   # the states restored by a resume
-                    progress.update(done)
             for p_s, m in zip(points, measures):
                 cls._record(record, tag, p_s, m)
-            # u and p at each sealed pressure of the stroke (ParaView time series; the
-            # "time" is the index of the state, its p_s in series_points; a resumed
-            # stroke writes its states into series of their own; one restored complete,
-            # none)
-            series = VTXSeries(comm, getattr(record, "outdir", None),
-                               {sweep_stem(f"{tag}stroke_{k}_series", done): f
-                                for k, f in cls.vtx_fields(prob).items()})
-            record.data.setdefault("series_points", {})[tag] = points
 
-            def on_state(p_s, prob=prob, tag=tag, rec=rec, series=series, state=state, t0=t0):
-                rec["points"].append(p_s)
-                series.write(len(rec["points"]) - 1)
+            def on_state(p_s, prob=prob, tag=tag, rec=rec, sv=sv, t0=t0):
+                sv.write(p_s)
                 m = prob.measures()
                 m["axial_balance"] = axial_balance(prob)
                 rec["measures"].append(m)
@@ -86,16 +77,12 @@ class ORingRun:
                                           **{k: pr[k].tolist() for k in ("z", "h", "p")}})
                 if progress is not None:
                     progress.update(1)
-                rec["its"], rec["wall_time"] = list(prob.iterations), time.perf_counter() - t0
-                journal.save(tag, state, rec, {"reached": len(rec["points"])})
+                rec["its"][:] = list(prob.iterations)
+                rec["wall_time"] = time.perf_counter() - t0
+                sv.save({"reached": len(rec["points"])})
 
-            try:
+            with sv:
                 its = solve_to(prob, v, Us, p_targets, on_state, done=done)
-            except (NewtonDivergence, interrupt.Interrupted) as err:
-                err.problem = prob
-                raise
-            finally:
-                series.close()
             record.data["newton_iterations"].append({tag: its})
             record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
             profiles["strokes"][tag] = states
