@@ -32,6 +32,11 @@ ARGS = ["run", "wear-pin", "--set", "mesh=0", "--set", "dt=100", "--quiet"]
 CASES = {
     "wear-pin": (ARGS, 1000.0, 3, ("wear_volume", "max_wear_depth", "contact_radius",
                                    "wear_rate_integral"), "final_profile", "displacement"),
+    # BDF2 with error control: the previous swept volume, its Δt and the proposed next
+    # step are in the state
+    "wear-pin-bdf2": (ARGS + ["--set", "scheme=bdf2", "--set", "tol=1e-5"], 1000.0, 3,
+                      ("wear_volume", "max_wear_depth", "dt", "error_estimate"),
+                      "final_profile", "displacement"),
     # the flat's position (held at the force F/2 by a secant iteration) is in the state
     "wear-ball-flat": (["run", "wear-ball-flat", "--set", "dt=100", "--set", "T=300",
                         "--quiet"], 300.0, 1,
@@ -115,6 +120,7 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
 
 @pytest.mark.parametrize("case,ranks,sig", [
     ("wear-pin", 1, signal.SIGTERM),
+    ("wear-pin-bdf2", 1, signal.SIGTERM),
     pytest.param("wear-pin", 2, signal.SIGINT, marks=MPIEXEC),
     ("wear-ball-flat", 1, signal.SIGTERM),
     pytest.param("wear-ball-halfspace", 2, signal.SIGINT, marks=MPIEXEC),

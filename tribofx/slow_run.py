@@ -56,12 +56,13 @@ class SlowRun:
             self.hist[key].append(val)
         self.record.data["newton_iterations"].append(iterations)
 
-    def run(self, T, dt, on_step=None, progress=None, report=None, problem=None):
+    def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None):
         """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
 
         ``on_step(stepper, report)`` after every accepted step (before its
         series entry); ``report()`` at the end whatever happens; ``problem``:
-        what a failure carries (default the stepper).
+        what a failure carries (default the stepper); ``tol`` (mm): error
+        control of the steps (:meth:`tribofx.stepper.Stepper.run`).
         """
         st = self.stepper
         self.series.write(st.t)
@@ -72,7 +73,7 @@ class SlowRun:
             self.series.write(s.t)
 
         try:
-            st.run(T, dt, on_step=step, progress=progress)
+            st.run(T, dt, on_step=step, progress=progress, tol=tol)
         except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = st if problem is None else problem
             raise

@@ -83,6 +83,8 @@ class StepReport:
         iterations: all Newton iterations of the step (fast-time cycles included).
         cycle_iterations: Newton iterations of the fast-time cycles and restarts.
         picard: fixed-point iterations (θ > 0 with cycles).
+        error: the step's error estimate (mm) under error control, else None.
+        rejected: steps rejected by the error control before this one was accepted.
     """
 
     dt: float
@@ -90,6 +92,8 @@ class StepReport:
     iterations: int = 0
     cycle_iterations: int = 0
     picard: int = 0
+    error: float = None
+    rejected: int = 0
 
 
 class Stepper:
@@ -329,7 +333,7 @@ class Stepper:
         self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
-    def run(self, T, dt, on_step=None, progress=None):
+    def run(self, T, dt, on_step=None, progress=None, tol=None):
         """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
 
         ``on_step(stepper, report)`` is called after every accepted step, then
@@ -337,7 +341,17 @@ class Stepper:
         received meanwhile stops the run (:func:`tribofx.interrupt.check`).
         Raises the last failure when a step still fails after ``max_cuts``
         halvings (the state is the last accepted one).
+
+        ``tol`` (mm, with BDF2 wear): error control.  ``dt`` is then the first
+        step; each step's estimate E (:meth:`tribofx.interfaces.Wear.step_error`,
+        O(Δt²)) is held at ``tol``: a step with E > tol is rejected (state
+        restored) and retried with Δt·max(0.2, 0.9 (tol/E)^½); an accepted one
+        proposes Δt·min(2, max(0.2, 0.9 (tol/E)^½)) for the next, kept as the
+        stepper's ``dt`` (so a checkpoint resumes with it).  Newton failures are
+        halved as without control.
         """
+        if tol:
+            return self._run_controlled(T, dt, on_step, progress, tol)
         self.dt = dt
         if progress is not None and getattr(progress, "n", None) == 0 and self.steps:
             progress.update(self.steps)    # resumed from a checkpoint: the bar goes on
@@ -355,13 +369,48 @@ class Stepper:
             # double the step back once t is aligned with the coarser step
             while self.cuts > 0 and _aligned(self.t, dt / 2 ** (self.cuts - 1)):
                 self.cuts -= 1
-            if on_step is not None:
-                on_step(self, report)
-            if self.checkpoint is not None:
-                self.checkpoint.write(self.state(), self.field_names(), self.history)
-            if progress is not None:
-                progress.update(1)
-            interrupt.check(self.comm, self.t)
+            self._accepted(report, on_step, progress)
+
+    def _accepted(self, report, on_step, progress):
+        if on_step is not None:
+            on_step(self, report)
+        if self.checkpoint is not None:
+            self.checkpoint.write(self.state(), self.field_names(), self.history)
+        if progress is not None:
+            progress.update(1)
+        interrupt.check(self.comm, self.t)
+
+    def _run_controlled(self, T, dt, on_step, progress, tol):
+        """Run the error-controlled loop of :meth:`run` (see there)."""
+        if not self.steps:
+            self.dt = dt            # a resumed run goes on with its proposed step
+        interrupt.arm()
+        rejected = 0
+        while self.t < T * (1 - 1e-12):
+            h = min(self.dt, T - self.t)
+            saved = self.state()
+            try:
+                report = self.step(h)
+            except NewtonDivergence:
+                self.restore(saved)
+                self.cuts += 1
+                if self.cuts > self.max_cuts:
+                    raise
+                self.dt = h / 2
+                continue
+            errs = [e for e in (w.step_error() for w in self.wears) if e is not None]
+            err = max(errs) if errs else None
+            factor = 2.0 if not err else min(2.0, max(0.2, 0.9 * math.sqrt(tol / err)))
+            if err is not None and err > tol:
+                self.restore(saved)
+                rejected += 1
+                self.dt = h * factor
+                continue
+            self.cuts = 0
+            report.error, report.rejected, rejected = err, rejected, 0
+            if h == self.dt or factor < 1:   # a last, shortened step keeps the proposal
+                self.dt = h * factor
+            self._accepted(report, on_step, progress)
 
 
 def nominal_steps(T, dt):

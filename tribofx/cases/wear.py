@@ -84,6 +84,10 @@ class WearPinCase(PinSetup, PinRun):
         Param("scheme", str, "implicit", "-",
               "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
               "started by one implicit step)", choices=("explicit", "implicit", "bdf2")),
+        Param("tol", float, 0.0, "mm",
+              "scheme=bdf2: error control, each step's estimate of the worn-surface "
+              "error held at tol (dt the first step); 0: the fixed step dt", lower=0.0,
+              closed=True),
         Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 5e-6, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
@@ -162,6 +166,8 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError("mode=cyclic needs V > 0")
             if v["scheme"] == "bdf2":
                 raise InputError("scheme=bdf2 is for the instantaneous rate (mode=steady)")
+        if v["tol"] > 0 and v["scheme"] != "bdf2":
+            raise InputError("tol > 0 (error control) needs scheme=bdf2")
         if WearPinCase.slow_step(v) > v["T"]:
             raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
         if v["study"] == "dt":

@@ -64,7 +64,7 @@ class PinRun:
         wear, contact = stepper.wear, stepper.wear.contact
         comm = wear.body.mesh.comm
         keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
-                "newton_iterations", "wear_rate_integral", "dt")
+                "newton_iterations", "wear_rate_integral", "dt", "error_estimate", "rejected")
         # the worn shape and the deformation at every step (ParaView time series)
         sr = SlowRun(stepper, v, record, keys,
                      {"displacement": [wear.body.u, wear.body.w]}, resume)
@@ -73,19 +73,20 @@ class PinRun:
         if stepper.cycle is None:
             record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
-        def log(t, its, dt):
+        def log(t, its, dt, error=None, rejected=0):
             area, _ = contact.measures()
             sr.log(its, (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
                          ("max_wear_depth", wear.max_depth()), ("contact_radius", area / 2),
                          ("newton_iterations", its),
-                         ("wear_rate_integral", wear.wear_rate_integral())))
+                         ("wear_rate_integral", wear.wear_rate_integral()),
+                         ("error_estimate", error), ("rejected", rejected)))
             s = wear.gather_shape()
             if comm.rank == 0:
                 profiles.append(s["X_worn"].tolist())
                 ptimes.append(t)
 
         def on_step(st, rep):
-            log(st.t, rep.iterations, rep.dt)
+            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
             if st.cycle is None:
                 record.data["newton_residuals"].append(
                     [float(x) for x in rep.reports[-1].residuals])
@@ -93,16 +94,20 @@ class PinRun:
         if not resume:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
         sr.run(v["T"], cls.slow_step(v), on_step, progress,
-               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes))
+               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes),
+               tol=v["tol"] or None)
         return stepper
 
     @classmethod
     def _report(cls, stepper, v, record, hist, profiles, ptimes):
         units = {"time": "s", "wear_volume": "mm^3/mm", "max_wear_depth": "mm",
                  "contact_radius": "mm (half-width)", "newton_iterations": "-",
-                 "wear_rate_integral": "mm^3/(mm*s)", "dt": "s"}
+                 "wear_rate_integral": "mm^3/(mm*s)", "dt": "s",
+                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
+        record.result("accepted_steps", len(hist["time"]) - 1, "-")
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
         d = stepper.wear.gather_shape()
         if d is not None:
             record.result("final_profile", d["X_worn"].tolist(), "mm (worn configuration)")

@@ -161,6 +161,7 @@ class Wear:
         self._bulk_dofs_w = gmap_w[node_of_bulk[self.surface.bulk_dofs]]
         self._post = None
         self._bdf_forms = {}
+        self._omega = self._rate0 = None
 
     # -- the wear law ------------------------------------------------------------
     def rate(self, w, slip=None):
@@ -253,7 +254,11 @@ class Wear:
             prev = float(self.dt_prev.value)
             if prev > 0:
                 self.swept_old.x.array[:] = self._swept_volume()
-            c0, c1 = wf.bdf2_coefficients(dt / prev if prev > 0 else 0.0)
+            self._omega = dt / prev if prev > 0 else None
+            # the first (backward Euler) step is checked against forward Euler: the
+            # nodal rate at the step's start
+            self._rate0 = None if prev > 0 else self._nodal_rate()
+            c0, c1 = wf.bdf2_coefficients(self._omega or 0.0)
             self.c0.value, self.c1.value = c0, c1
             self.dt_prev.value = float(dt)
         self.dt.value = float(dt)
@@ -269,6 +274,37 @@ class Wear:
             self._bdf_forms["lumped"] = fem.form(eta * c.dsc, entity_maps=[c.emap])
         f = self._bdf_forms
         num, den = self.surface.nodal(f["swept"]), self.surface.nodal(f["lumped"])
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def step_error(self):
+        """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
+
+        The max over the nodes of |s_{n+1} − ω s_n|: the swept volume per unit
+        area against its linear predictor (the first step, backward Euler:
+        |s₁ + Δt Ẇ₀| against forward Euler)
+        from the previous step (ω = Δt_{n+1}/Δt_n); O(Δt²) where the step's own
+        error is O(Δt³), so a controller holding it at a tolerance keeps the
+        global error of BDF2 ∝ the tolerance.  None without a previous step.
+        """
+        if self.scheme != "bdf2" or (self._omega is None and self._rate0 is None):
+            return None
+        n = self.surface.n_own
+        if self._omega is None:   # first step: s₁ against −Δt Ẇ₀ (forward Euler)
+            d = self._swept_volume()[:n] + float(self.dt_prev.value) * self._rate0[:n]
+        else:
+            d = self._swept_volume()[:n] - self._omega * self.swept_old.x.array[:n]
+        return self.body.mesh.comm.allreduce(float(np.max(np.abs(d), initial=0.0)),
+                                             op=MPI.MAX)
+
+    def _nodal_rate(self):
+        """Nodal Ẇ j_w (mm/s) of the current state, the vertex rule's lumping."""
+        if "rate" not in self._bdf_forms:
+            eta, c = ufl.TestFunction(self.surface.Q), self.surface
+            self._bdf_forms["rate"] = fem.form(eta * self.rate_density * c.dsc,
+                                               entity_maps=self.entity_maps())
+            self._bdf_forms["lumped_rate"] = fem.form(eta * c.dsc, entity_maps=[c.emap])
+        f = self._bdf_forms
+        num, den = self.surface.nodal(f["rate"]), self.surface.nodal(f["lumped_rate"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
 
     def restart_history(self):
