@@ -9,14 +9,14 @@ wear rows are those of :class:`tribofx.interfaces.Wear` with the film's load
 
 import numpy as np
 import pytest
-from dolfinx import fem, mesh
+from dolfinx import mesh
 from mpi4py import MPI
 
 from tribofx.body import Body
 from tribofx.interfaces import Contact, Film, Wear
 from tribofx.obstacles import rigid_cylinder
 from tribofx.problem import Problem
-from tribofx.testing import block_taylor_orders, exact_tangent
+from tribofx.testing import block_taylor_orders, exact_tangent, smooth_direction
 
 U = 100.0      # mm/s, the cylinder's sliding speed
 K = 1e-4       # 1/MPa, Archard coefficient
@@ -55,15 +55,6 @@ def _block(with_contact):
     return body, film, drivers, wear
 
 
-def _smooth(f, scale, seed):
-    d = fem.Function(f.function_space)
-    rng = np.random.default_rng(seed)
-    c = rng.uniform(-1, 1, (f.function_space.value_size, 3))
-    d.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
-                                              for ci in c]))
-    return d
-
-
 def _state(body, film, wear, dt):
     """A smooth state off every kink: p > 0 inside, u, w ≠ w_n, ζ; Δt > 0."""
     film.p.interpolate(lambda x: P0 * (0.2 + np.sin(np.pi * x[0])))
@@ -89,7 +80,7 @@ def test_film_driven_wear_tangent_taylor(with_contact):
     if with_contact:
         drivers[1].lam_n.interpolate(lambda x: -0.02 - 0.0 * x[0])   # all pressed, off λ_N = 0
     problem.refresh()
-    dirs = [_smooth(f, 1e-3 * (P0 if f is film.p else 1.0), 5 + i)
+    dirs = [smooth_direction(f, 1e-3 * (P0 if f is film.p else 1.0), 5 + i)
             for i, f in enumerate(problem.u)]
     dirs[problem.u.index(film.p)].x.array[film.p.x.array == 0] = 0.0    # the p = 0 rows
     for name, (orders, rem, floor) in block_taylor_orders(problem, dirs, eps0=1e-3).items():

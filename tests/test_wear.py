@@ -24,7 +24,13 @@ from tribofx.output import RunRecord, bp4_steps
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.stepper import MeshInversion
-from tribofx.testing import block_taylor_orders, exact_tangent, owned_arrays, taylor_orders
+from tribofx.testing import (
+    block_taylor_orders,
+    exact_tangent,
+    owned_arrays,
+    smooth_direction,
+    taylor_orders,
+)
 
 K, Q, V, W = 5e-6, 2.0, 10.0, 2.0
 MU = 0.3  # Coulomb coefficient of the frictional tests
@@ -516,14 +522,15 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
 # -- Taylor tests of the wear tangents (u, λ_N, [λ_T], w, ζ) --------------------------
 
 def _smooth_direction(f, scale, seed):
-    from dolfinx import fem
+    return smooth_direction(f, scale, seed)
 
-    d = fem.Function(f.function_space)
-    rng = np.random.default_rng(seed)
-    c = rng.uniform(-1, 1, (f.function_space.value_size, 3))
-    d.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
-                                              for ci in c]))
-    return d
+
+def _exact_per_block(problem, seed=7):
+    """Assert the exact tangent of every block of ``problem`` (smooth directions 1e-3)."""
+    dirs = [_smooth_direction(f, 1e-3, seed + i) for i, f in enumerate(problem.u)]
+    for name, (orders, rem, floor) in block_taylor_orders(problem, dirs, eps0=1e-3).items():
+        print(name, "orders", orders, "remainders", rem)
+        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 
 
 @pytest.mark.mpi
@@ -668,11 +675,7 @@ def test_pressure_dependent_wear_coefficient():
     wear.dt.value = 200.0
     lam = c.lam_n.x.array
     lam[lam > -1e-9] = 0.05
-    problem = stepper.problem
-    dirs = [_smooth_direction(f, 1e-3, 7 + i) for i, f in enumerate(problem.u)]
-    for name, (orders, rem, floor) in block_taylor_orders(problem, dirs, eps0=1e-3).items():
-        print(name, "orders", orders, "remainders", rem)
-        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
+    _exact_per_block(stepper.problem)
 
 
 # -- second-order slow time (BDF2) -------------------------------------------------------
@@ -730,11 +733,7 @@ def test_bdf2_wear_tangent_taylor():
     assert np.abs(wear.swept_old.x.array).max() > 0
     lam = wear.contact.lam_n.x.array
     lam[lam > -1e-9] = 0.05
-    problem = stepper.problem
-    dirs = [_smooth_direction(f, 1e-3, 7 + i) for i, f in enumerate(problem.u)]
-    for name, (orders, rem, floor) in block_taylor_orders(problem, dirs, eps0=1e-3).items():
-        print(name, "orders", orders, "remainders", rem)
-        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
+    _exact_per_block(stepper.problem)
 
 
 @pytest.mark.mpi

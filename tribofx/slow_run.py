@@ -23,7 +23,12 @@ from .output import VTXSeries
 from .problem import NewtonDivergence
 from .restart import open_history, series_stem
 
-__all__ = ["SlowRun"]
+__all__ = ["SlowRun", "wear_fields"]
+
+
+def wear_fields(wear):
+    """VTX fields of a worn body: displacement and shape change (bulk), contact multiplier."""
+    return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
 
 
 class SlowRun:

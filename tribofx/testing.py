@@ -28,7 +28,7 @@ import numpy as np
 from petsc4py import PETSc
 
 __all__ = ["block_taylor_orders", "block_vector", "exact_tangent", "form_taylor_orders",
-           "owned_arrays", "taylor_orders"]
+           "owned_arrays", "smooth_direction", "taylor_orders"]
 
 
 def _replicated(problem, f):
@@ -46,6 +46,23 @@ def owned_arrays(problem, functions=None):
             n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
         out.append(np.asarray(f.x.array[:n] if hasattr(f, "x") else f[:n]))
     return out
+
+
+def smooth_direction(f, scale, seed):
+    """Return a smooth random direction in the space of ``f`` (x and y enter).
+
+    Each component is scale·sin(c₀ + 2c₁x + 3c₂y) with c uniform in [−1, 1]³: of size
+    ``scale`` everywhere, so a Taylor step stays within one branch of a semismooth
+    law where a random nodal direction would cross its kinks.
+    """
+    from dolfinx import fem
+
+    d = fem.Function(f.function_space)
+    rng = np.random.default_rng(seed)
+    c = rng.uniform(-1, 1, (f.function_space.value_size, 3))
+    d.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
+                                              for ci in c]))
+    return d
 
 
 def block_vector(problem, arrays):

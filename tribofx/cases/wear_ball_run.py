@@ -13,7 +13,7 @@ import numpy as np
 from mpi4py import MPI
 
 from ..references import hertz, rigid_cap_radius
-from ..slow_run import SlowRun
+from ..slow_run import SlowRun, wear_fields
 from ..stepper import nominal_steps
 
 __all__ = ["MODEL_FRACTION", "BallWearRun"]
@@ -172,8 +172,7 @@ class BallWearRun:
     @staticmethod
     def vtx_fields(stepper):
         """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        wear = stepper.wear
-        return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
+        return wear_fields(stepper.wear)
 
     @staticmethod
     def plot(profile, outdir):

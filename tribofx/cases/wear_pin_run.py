@@ -7,7 +7,7 @@ and the results.
 """
 
 from ..params import number_list
-from ..slow_run import SlowRun
+from ..slow_run import SlowRun, wear_fields
 from ..stepper import nominal_steps
 from .wear_dt_study import run_dt_study
 
@@ -35,8 +35,7 @@ class PinRun:
     @staticmethod
     def vtx_fields(stepper):
         """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        wear = stepper.wear
-        return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
+        return wear_fields(stepper.wear)
 
     @staticmethod
     def plot(profile, outdir):
