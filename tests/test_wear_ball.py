@@ -202,3 +202,27 @@ def test_bad_input_is_rejected(over, fragment):
     assert get_case("wear-ball-flat") is WearBallCase
     with pytest.raises(InputError, match=fragment):
         WearBallCase.validate(resolve(WearBallCase.params, over))
+
+
+def test_bdf2_with_error_control_conserves_the_worn_volume(tmp_path):
+    """scheme=bdf2, tol = 1e-2 mm (steps chosen by the controller, so the BDF2 weights
+    vary): the worn volume obeys the variable-step BDF2 recurrence of the recorded
+    rate integrals, c₀ ΔV_{n+1} + c₁ ΔV_n = Δt_{n+1} ∫Ẇ dS (forms.wear.bdf2_coefficients,
+    ω = Δt_{n+1}/Δt_n; backward Euler for the first step), and since the flat holds the
+    force at F, Archard's ∫Ẇ dS = k V F makes it k F V t exactly — both to the Newton
+    tolerance as in test_worn_volume_equals_integrated_rate_and_archard."""
+    from tribofx.forms.wear import bdf2_coefficients
+
+    v, res, _ = _run(tmp_path, scheme="bdf2", dt=100, T=200, tol=1e-2)
+    t, vol = np.asarray(res["time"]), np.asarray(res["wear_volume"])
+    rate, dt = np.asarray(res["wear_rate_integral"]), np.asarray(res["dt"])
+    print("steps", dt[1:], "rejected", res["rejected_steps"], "estimates",
+          res["error_estimate"][1:])
+    assert len(set(np.round(dt[2:], 6))) > 1        # the controller changed the step
+    assert max(e for e in res["error_estimate"][1:]) <= 1e-2
+    dV = np.diff(vol)
+    for n in range(1, len(dV)):
+        c0, c1 = bdf2_coefficients(dt[n + 1] / dt[n]) if n > 0 else (1.0, 0.0)
+        assert c0 * dV[n] + c1 * dV[n - 1] == pytest.approx(dt[n + 1] * rate[n + 1], rel=1e-8)
+    assert dV[0] == pytest.approx(dt[1] * rate[1], rel=1e-8)
+    assert vol == pytest.approx(v["k"] * v["F"] * v["V"] * t, rel=1e-7, abs=1e-14)

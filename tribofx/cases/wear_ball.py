@@ -83,9 +83,12 @@ class WearBallCase(BallWearRun):
     name = "wear-ball-flat"
     doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
     params = (
-        Param("scheme", str, "implicit", "-", "θ-scheme: explicit (θ=0) or implicit (θ=1)",
-              choices=("explicit", "implicit")),
-        Param("dt", float, 100.0, "s", "time step Δt", lower=0.0),
+        Param("scheme", str, "implicit", "-",
+              "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order)",
+              choices=("explicit", "implicit", "bdf2")),
+        Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
+        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
+              lower=0.0, closed=True),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
               lower=0.0, closed=True),
@@ -115,6 +118,8 @@ class WearBallCase(BallWearRun):
         """Check cross-parameter consistency."""
         if v["dt"] > v["T"]:
             raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
+        if v["tol"] > 0 and v["scheme"] != "bdf2":
+            raise InputError("tol > 0 (error control) needs scheme=bdf2")
         if v["mesh_file"] and v["h_contact"]:
             raise InputError("h_contact sets the built mesh: not with mesh_file")
         aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
@@ -159,7 +164,8 @@ class WearBallCase(BallWearRun):
                           rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
                           V_master=(v["V"], 0.0, 0.0), dtau=1.0)
         wear = Wear(contact, k=v["k"], speed=v["V"],
-                    theta=1.0 if v["scheme"] == "implicit" else 0.0)
+                    theta=0.0 if v["scheme"] == "explicit" else 1.0,
+                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
         # the flat's position is state of the contact (its counterpart's state fields):
         # restored by a cut step and by a resume
         stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],

@@ -89,7 +89,8 @@ class BallWearRun:
         comm = stepper.comm
         record.result("h_contact_zone", stepper.h_fine, "mm")
         keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
-                "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral")
+                "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral",
+                "error_estimate", "rejected")
         # the worn shape (warp by w), the deformation (by u) and the contact pressure at
         # every step (ParaView time series)
         sr = SlowRun(stepper, v, record, keys, cls.vtx_fields(stepper), resume)
@@ -101,16 +102,17 @@ class BallWearRun:
         record.data["newton_residuals_all"] = residuals_all
         offset = stepper.wear.contact.counterpart.offset
 
-        def log(t, its, dt):
+        def log(t, its, dt, error=None, rejected=0):
             m = cls.measures(stepper, v)
             sr.log(its, (("time", t), ("dt", dt), ("newton_iterations", its),
-                         ("approach", float(offset.value[2])), *m.items()))
+                         ("approach", float(offset.value[2])), *m.items(),
+                         ("error_estimate", error), ("rejected", rejected)))
             line = cls.symmetry_line(stepper, v)
             if comm.rank == 0:
                 state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
 
         def step_done(st, rep):
-            log(st.t, rep.iterations, rep.dt)
+            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
             residuals.append([float(x) for x in rep.reports[-1].residuals])
             residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
             if on_step is not None:
@@ -123,7 +125,8 @@ class BallWearRun:
             log(0.0, int(sum(r.iterations for r in reports)), 0.0)
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
         sr.run(T, v["dt"], step_done, progress, report=lambda: cls._report(
-            stepper, v, record, sr.hist, state, time.perf_counter() - t_wall))
+            stepper, v, record, sr.hist, state, time.perf_counter() - t_wall),
+            tol=v["tol"] or None)
         return stepper
 
     @staticmethod
@@ -142,9 +145,11 @@ class BallWearRun:
                  "wear_volume": "mm^3 (full ball)",
                  "max_wear_depth": "mm", "contact_radius": "mm", "scar_radius": "mm",
                  "pressure_ratio": "-", "newton_iterations": "-",
-                 "wear_rate_integral": "mm^3/s (full ball)"}
+                 "wear_rate_integral": "mm^3/s (full ball)",
+                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
         record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
         record.result("steps", len(hist["time"]) - 1, "-")
         s = v["V"] * np.asarray(hist["time"])
