@@ -741,15 +741,12 @@ def test_bdf2_error_control_follows_the_tolerance():
     """tol = 1e-4, 1e-5, 1e-6 mm on the pin of test_bdf2_wear_is_second_order (first step
     50 s): the final worn-profile error against a BDF2 reference at Δt = 0.78125 s
     (its own error ≈ 1.2e-8 mm, (0.78/25)² of the 25 s error) follows the tolerance
-    within a stated factor — measured error/tol 0.17, 0.39, 0.98, bounded here by
-    [0.05, 2] (the estimate is the O(Δt²) difference to the linear predictor, held at
-    tol per step; the global BDF2 error is then ∝ Δt² ∝ tol up to an O(1) constant of
-    the problem; measured it falls like tol^0.6 here, so the factor is stated over the
-    two decades only, not extrapolated) — and the number of
-    accepted steps grows no faster than tol^(−1/2) (measured 20, 60, 187: ×9.4 over
-    two decades; bound ×15, the ×10 of tol^(−1/2) and the first steps' growth from
-    the forward-Euler-checked start).  Rejected steps and the per-step estimates are
-    in the results."""
+    within a stated factor — measured error/tol 0.55, 0.69, 0.88, bounded here by
+    [0.05, 2] (Milne's O(Δt³) estimate held at tol·Δt/T per step, so the steps' errors
+    add up to about tol) — and the number of accepted steps grows no faster than
+    tol^(−1/2) (measured 20, 50, 139: ×7 over two decades; bound ×15, the ×10 of
+    tol^(−1/2) and the first steps, checked by O(Δt²) estimates).  Rejected steps and
+    the per-step estimates are in the results."""
     ref = _pin_profile("bdf2", 0.78125)
     steps, ratios = [], []
     for tol in (1e-4, 1e-5, 1e-6):

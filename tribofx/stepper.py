@@ -342,13 +342,14 @@ class Stepper:
         Raises the last failure when a step still fails after ``max_cuts``
         halvings (the state is the last accepted one).
 
-        ``tol`` (mm, with BDF2 wear): error control.  ``dt`` is then the first
-        step; each step's estimate E (:meth:`tribofx.interfaces.Wear.step_error`,
-        O(Δt²)) is held at ``tol``: a step with E > tol is rejected (state
-        restored) and retried with Δt·max(0.2, 0.9 (tol/E)^½); an accepted one
-        proposes Δt·min(2, max(0.2, 0.9 (tol/E)^½)) for the next, kept as the
-        stepper's ``dt`` (so a checkpoint resumes with it).  Newton failures are
-        halved as without control.
+        ``tol`` (mm, with BDF2 wear): error control per unit step.  ``dt`` is
+        then the first step; each step's estimate E of order p
+        (:meth:`tribofx.interfaces.Wear.step_error`, ``error_order``) may be at
+        most tol·Δt/T, so that the steps' errors add up to about ``tol``: a step
+        above it is rejected (state restored) and retried with Δt·max(0.2,
+        0.9 (tol Δt/(T E))^(1/(p−1))); an accepted one proposes Δt·min(2, …) for
+        the next, kept as the stepper's ``dt`` (so a checkpoint resumes with it).
+        Newton failures are halved as without control.
         """
         if tol:
             return self._run_controlled(T, dt, on_step, progress, tol)
@@ -398,10 +399,15 @@ class Stepper:
                     raise
                 self.dt = h / 2
                 continue
-            errs = [e for e in (w.step_error() for w in self.wears) if e is not None]
-            err = max(errs) if errs else None
-            factor = 2.0 if not err else min(2.0, max(0.2, 0.9 * math.sqrt(tol / err)))
-            if err is not None and err > tol:
+            errs = [(e, w.error_order) for w, e in ((w, w.step_error()) for w in self.wears)
+                    if e is not None]
+            err, order = max(errs) if errs else (None, 2)
+            # error per unit step: a step may err by tol·Δt/T, so the errors of all
+            # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1)
+            allowed = tol * h / T
+            factor = 2.0 if not err else min(2.0, max(
+                0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
+            if err is not None and err > allowed:
                 self.restore(saved)
                 rejected += 1
                 self.dt = h * factor
