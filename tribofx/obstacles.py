@@ -97,8 +97,8 @@ class AnalyticObstacle(_RigidMotion):
 class MeshedObstacle(_RigidMotion):
     """Rigid countersurface given as a surface mesh, projected by the C++ kernel.
 
-    Its data are exact at the nodes it is updated at (``nodal_data``): a form
-    evaluated elsewhere sees their P1 interpolation.
+    Its data are exact at the nodes it is updated at: a form evaluated elsewhere
+    sees their P1 interpolation (see ``Film(quadrature=...)``).
 
     Args:
         mesh: mesh the offset constant lives on (the contact submesh).
@@ -106,8 +106,6 @@ class MeshedObstacle(_RigidMotion):
         nodes, facets, cell_type: surface mesh in the packing of
             :func:`tribofx.projection.closest_point_projection`.
     """
-
-    nodal_data = True
 
     def __init__(self, mesh, V_sub, nodes, facets, cell_type):
         from .lubrication_projection import lubrication_projection
