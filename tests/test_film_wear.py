@@ -122,3 +122,18 @@ def test_wear_refuses_interfaces_on_other_boundaries():
     other = Contact(body, "top", rigid_cylinder(CENTRE, 2.0), rho_n=10.0)
     with pytest.raises(ValueError, match="same boundary"):
         Wear([film, other], K, speed=U)
+
+
+@pytest.mark.mpi
+def test_film_driven_wear_shape_outputs():
+    """The worn-shape outputs of a film-driven Wear (its Surface, not a contact's nodal
+    data): at w = 0 the depth is 0 at every node of the bottom face (all ranks), and a
+    prescribed uniform shape change −d N̂ (d = 1e-3 mm, w_y = d on y = 0) gives depth d
+    exactly (vertex-rule nodal normals of a flat face)."""
+    body, film, _, wear = _block(False)
+    assert wear.max_depth() == 0.0
+    d = 1e-3
+    body.w.interpolate(lambda x: np.array([0.0 * x[0], d * (1 - x[1] / 0.5)]))
+    shape = wear.gather_shape(root_only=False)
+    assert np.allclose(shape["depth"], d, rtol=0, atol=1e-15)
+    assert len(shape["X_hat"]) == 9          # the 8 + 1 nodes of the bottom face

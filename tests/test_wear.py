@@ -760,3 +760,15 @@ def test_bdf2_error_control_follows_the_tolerance():
         assert max(est) <= tol                 # every accepted step within tol
     assert all(0.05 <= r <= 2 for r in ratios), ratios
     assert steps[0] < steps[1] < steps[2] <= 15 * steps[0]
+
+
+def test_error_control_needs_bdf2_and_no_dt_study():
+    """tol > 0 with the θ-scheme or with study=dt is refused in one line (the Δt study
+    runs its own schemes at fixed steps)."""
+    from tribofx.params import InputError
+
+    for over in ({"scheme": "implicit", "tol": "1e-5"},
+                 {"scheme": "bdf2", "tol": "1e-5", "study": "dt"}):
+        v = resolve(WearPinCase.params, over)
+        with pytest.raises(InputError, match="tol > 0"):
+            WearPinCase.validate(v)

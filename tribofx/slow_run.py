@@ -61,13 +61,16 @@ class SlowRun:
             self.hist[key].append(val)
         self.record.data["newton_iterations"].append(iterations)
 
-    def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None):
+    def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None,
+            after=None):
         """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
 
         ``on_step(stepper, report)`` after every accepted step (before its
         series entry); ``report()`` at the end whatever happens; ``problem``:
         what a failure carries (default the stepper); ``tol`` (mm): error
-        control of the steps (:meth:`tribofx.stepper.Stepper.run`).
+        control of the steps (:meth:`tribofx.stepper.Stepper.run`); ``after()``
+        once the run has reached T, before the report (a failure there carries
+        ``problem`` too).
         """
         st = self.stepper
         self.series.write(st.t)
@@ -79,6 +82,8 @@ class SlowRun:
 
         try:
             st.run(T, dt, on_step=step, progress=progress, tol=tol)
+            if after is not None:
+                after()
         except (NewtonDivergence, interrupt.Interrupted) as err:
             err.problem = st if problem is None else problem
             raise

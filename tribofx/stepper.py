@@ -85,6 +85,7 @@ class StepReport:
         picard: fixed-point iterations (θ > 0 with cycles).
         error: the step's error estimate (mm) under error control, else None.
         rejected: steps rejected by the error control before this one was accepted.
+        forced: accepted at the error control's smallest step above the tolerance.
     """
 
     dt: float
@@ -94,6 +95,7 @@ class StepReport:
     picard: int = 0
     error: float = None
     rejected: int = 0
+    forced: bool = False
 
 
 class Stepper:
@@ -382,9 +384,19 @@ class Stepper:
         interrupt.check(self.comm, self.t)
 
     def _run_controlled(self, T, dt, on_step, progress, tol):
-        """Run the error-controlled loop of :meth:`run` (see there)."""
+        """Run the error-controlled loop of :meth:`run` (see there).
+
+        A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
+        estimate (``report.forced``): across a jump of the rate (a node entering
+        contact) the estimate per unit step does not vanish with Δt, and the step
+        boundary at the jump is the best the scheme can do.  A NaN estimate is
+        a rejection.
+        """
+        if any(getattr(w, "scheme", None) != "bdf2" for w in self.wears):
+            raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
         if not self.steps:
             self.dt = dt            # a resumed run goes on with its proposed step
+        dt_min = 1e-6 * T
         interrupt.arm()
         rejected = 0
         while self.t < T * (1 - 1e-12):
@@ -405,15 +417,25 @@ class Stepper:
             # error per unit step: a step may err by tol·Δt/T, so the errors of all
             # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1)
             allowed = tol * h / T
-            factor = 2.0 if not err else min(2.0, max(
-                0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
-            if err is not None and err > allowed:
+            bad = err is not None and not err <= allowed        # NaN: rejected
+            if err is None or err == 0:
+                factor = 2.0
+            elif err != err:
+                factor = 0.2
+            else:
+                factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
+            forced = bad and err == err and h <= dt_min * (1 + 1e-9)
+            if bad and err != err and h <= dt_min * (1 + 1e-9):
+                self.restore(saved)
+                raise NewtonDivergence(f"error control: NaN estimate at t = {self.t:g} s")
+            if bad and not forced:
                 self.restore(saved)
                 rejected += 1
-                self.dt = h * factor
+                self.dt = max(h * factor, dt_min)
                 continue
             self.cuts = 0
             report.error, report.rejected, rejected = err, rejected, 0
+            report.forced = forced
             if h == self.dt or factor < 1:   # a last, shortened step keeps the proposal
                 self.dt = h * factor
             self._accepted(report, on_step, progress)

@@ -74,7 +74,7 @@ from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..problem import Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
-from .ehl_ball_mesh import checked_outlet_width, edge_size, mesh_levels, outlet_width
+from .ehl_ball_mesh import checked_outlet_width, mesh_levels, outlet_width
 from .ehl_ball_outputs import BallOutputs
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_sweep import BallSweep
@@ -178,9 +178,10 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
         auto = v["mesh"] is None or v["edge_refine"] is None
         if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
             raise InputError(
-                f"no built mesh resolves the film's outlet at W = {v['W']:g} N, U = "
-                f"{v['U']:g} mm/s (width {outlet_width(v):.3g} mm, finest edge element "
-                f"{edge_size(v, 3, 2):.3g} mm): raise U, or give mesh_file")
+                f"no built mesh{'' if v['mesh'] is None else ' with mesh=' + str(v['mesh'])}"
+                f"{'' if v['edge_refine'] is None else ' edge_refine=' + str(v['edge_refine'])}"
+                f" resolves the film's outlet at W = {v['W']:g} N, U = {v['U']:g} mm/s "
+                f"(width {outlet_width(v):.3g} mm): raise U, refine, or give mesh_file")
         viscosity(v)
         density(v)
         speed_list(v)

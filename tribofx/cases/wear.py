@@ -166,8 +166,8 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError("mode=cyclic needs V > 0")
             if v["scheme"] == "bdf2":
                 raise InputError("scheme=bdf2 is for the instantaneous rate (mode=steady)")
-        if v["tol"] > 0 and v["scheme"] != "bdf2":
-            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        if v["tol"] > 0 and (v["scheme"] != "bdf2" or v["study"] == "dt"):
+            raise InputError("tol > 0 (error control) needs scheme=bdf2 (and no study=dt)")
         if WearPinCase.slow_step(v) > v["T"]:
             raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
         if v["study"] == "dt":

@@ -187,8 +187,6 @@ class ReciprocatingRun:
         shots = {"initial": _arrays(h["initial_shot"])}
 
         def report():
-            if st.t >= v["cycles"] * tau * (1 - 1e-12):   # the run reached its end
-                shots["worn"] = cls.snapshot(run)
             cls._report(run, record, hist, shots)
             if record.profile is not None:
                 half = 0.5 * v["L"] + v["A"] + 0.1
@@ -196,7 +194,8 @@ class ReciprocatingRun:
 
         sr.run(v["cycles"] * tau, v["dt"],
                lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard), progress,
-               report=report, problem=run)
+               report=report, problem=run,
+               after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
         return run
 
     @staticmethod

@@ -320,6 +320,9 @@ class Film(FilmStart, ReynoldsFilm):
         if slip is not None:
             raise ValueError("a film has no slip increments: wear under a film is steady "
                              "(averaged=False)")
+        if self.body.kind == "axisymmetric":
+            raise ValueError("wear under a film of an axisymmetric body is not built (its "
+                             "load needs the hoop stretch r/R)")
         return ft.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
 
     def positions(self):

@@ -119,6 +119,8 @@ class Wear:
                              "averaged=False")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
             raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
+        if averaged and len(drivers) > 1:
+            raise ValueError("cycle-averaged wear is driven by one interface")
         if not averaged and not all(hasattr(d, "wear_load") for d in drivers):
             raise ValueError(f"{type(contact).__name__} supplies no wear load: averaged=True")
         if hasattr(contact, "wear_increment") and not averaged:
@@ -398,7 +400,7 @@ class Wear:
         """Per owned contact node: the contact's nodal data and X̂, X = X̂ + w, depth −w·N̂ (mm)."""
         self._forms()
         c, gdim = self.surface, self.body.gdim
-        d = self.contact.nodal_data() if self.contact.surface is c else {}
+        d = self.contact.nodal_data() if hasattr(self.contact, "nodal_data") else {}
         n_own = c.Q.dofmap.index_map.size_local
         wb = self.body.w.x.array.reshape(-1, gdim)
         ws = np.zeros_like(c.X_sub)
