@@ -72,7 +72,6 @@ class KrylovGuard:
     def __init__(self, eta=0.1, package="mumps", switch_after=None):
         self.eta, self.package = float(eta), package
         self.switch_after = switch_after
-        self.switched = False
         self._failed = 0
         self.fallbacks = []
         self._direct = None
@@ -163,7 +162,6 @@ class KrylovGuard:
         pc = ksp.getPC()
         pc.setType("lu")
         pc.setFactorSolverType(self.package)
-        self.switched = True
         self.fallbacks[-1]["switched"] = f"{self.package} LU from here on"
         if ksp.getComm().getRank() == 0:
             sys.stderr.write(f"tribofx: {problem.name}: {self._failed} Krylov failures: "

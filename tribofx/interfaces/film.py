@@ -130,19 +130,12 @@ class Film(FilmStart, ReynoldsFilm):
         film_scale: film thickness scale h_ref (mm) of the tolerances and row scales.
         speed_scale: speed scale U (mm/s) of the Reynolds tolerance and of the JFO flux scale.
         quadrature_degree: quadrature degree of the (Gauss) integrals over Γ_l.
-        quadrature: "gauss" (degree ``quadrature_degree``) or "vertex" (the
-            vertex rule, second-order accurate for P1 displacements).  A meshed
-            countersurface's kernel data are exact at the nodes of Γ_l and P1
-            between them: with the Gauss rule its tangent is exact on flat facets
-            and off by O(h κ) (relative 1e-5 to 1e-4 measured) on curved ones,
-            with the vertex rule exact on both (Taylor order 2.00 on a curved cap,
-            tests/test_ehl_ball.py).  The vertex rule is not the default because a
-            node of Γ_l whose closest point is a vertex where the countersurface's
-            facets meet at an angle gets ∂P/∂x = 0 there (the projection is
-            locally constant): S degenerates at that node, which the Gauss rule
-            averages with its neighbours and the vertex rule does not (a NaN
-            residual); aligned meshes (e.g. the symmetric layer and arc of
-            ``ehl-cylinder-layer`` at u = 0) hit it.
+        quadrature: "gauss" (degree ``quadrature_degree``) or "vertex" (the vertex
+            rule, second order for P1 displacements).  A meshed countersurface's
+            data are exact at the nodes of Γ_l, P1 between them: the Gauss rule's
+            tangent is off by O(h κ) on curved facets, the vertex rule's exact.  Not
+            the default: a node projecting onto a kinked countersurface vertex gets
+            ∂P/∂x = 0 (a degenerate S, NaN rows), which aligned meshes hit (README).
         row_scaling: physical row scales of the film rows (see the module docstring).
         name: name of the interface (unknown names, reports).
         rtol: relative size of the stopping tolerances (see the module docstring).
@@ -207,9 +200,7 @@ class Film(FilmStart, ReynoldsFilm):
         # measures and reference geometry
         if quadrature not in ("gauss", "vertex"):
             raise ValueError(f"quadrature {quadrature!r}: gauss or vertex")
-        nodal = quadrature == "vertex"
-        self.quadrature = quadrature
-        qd = ({"quadrature_rule": "vertex", "quadrature_degree": 1} if nodal
+        qd = ({"quadrature_rule": "vertex", "quadrature_degree": 1} if quadrature == "vertex"
               else {"quadrature_degree": quadrature_degree})
         self.ds = ufl.Measure("ds", msh, subdomain_data=body.facet_tags,
                               subdomain_id=body.tag(boundary), metadata=qd)

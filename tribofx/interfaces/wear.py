@@ -276,17 +276,22 @@ class Wear:
         self.dt.value = float(dt)
         self.body.w_n.x.array[:] = self.body.w.x.array
 
-    def _swept_volume(self):
-        """Nodal (w − w_n)·a(w, w_n) per unit initial area, the vertex rule's lumping."""
-        if "swept" not in self._bdf_forms:
-            eta, c = ufl.TestFunction(self.surface.Q), self.surface
-            self._bdf_forms["swept"] = fem.form(
-                eta * ufl.dot(self.body.w - self.body.w_n, self.a) * c.dsc,
-                entity_maps=[c.emap])
-            self._bdf_forms["lumped"] = fem.form(eta * c.dsc, entity_maps=[c.emap])
-        f = self._bdf_forms
-        num, den = self.surface.nodal(f["swept"]), self.surface.nodal(f["lumped"])
+    def _nodal_value(self, key, integrand):
+        """Return nodal values of ``integrand``, the vertex rule's lumping ∫η_i f/∫η_i.
+
+        The form of ``key`` is compiled once.
+        """
+        if key not in self._bdf_forms:
+            eta = ufl.TestFunction(self.surface.Q)
+            self._bdf_forms[key] = fem.form(eta * integrand * self.surface.dsc,
+                                            entity_maps=self.entity_maps())
+        num = self.surface.nodal(self._bdf_forms[key])
+        den = self.surface.nodal(self._forms()["lumped"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def _swept_volume(self):
+        """Nodal (w − w_n)·a(w, w_n) per unit initial area."""
+        return self._nodal_value("swept", ufl.dot(self.body.w - self.body.w_n, self.a))
 
     def step_error(self):
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
@@ -313,20 +318,8 @@ class Wear:
                                              op=MPI.MAX)
 
     def _nodal_rate(self):
-        """Nodal Ẇ j_w (mm/s) of the current state, the vertex rule's lumping."""
-        if "rate" not in self._bdf_forms:
-            eta, c = ufl.TestFunction(self.surface.Q), self.surface
-            self._bdf_forms["rate"] = fem.form(eta * self.rate_density * c.dsc,
-                                               entity_maps=self.entity_maps())
-            self._bdf_forms["lumped_rate"] = fem.form(eta * c.dsc, entity_maps=[c.emap])
-        f = self._bdf_forms
-        num, den = self.surface.nodal(f["rate"]), self.surface.nodal(f["lumped_rate"])
-        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
-
-    def restart_history(self):
-        """Forget the previous step (the next BDF2 step starts by backward Euler)."""
-        self.dt_prev.value = 0.0
-        self.swept_old.x.array[:] = 0.0
+        """Nodal Ẇ j_w (mm/s) of the current state."""
+        return self._nodal_value("rate", self.rate_density)
 
     def end_step(self):
         """End a slow step: Δt = 0, so that a later contact solve does not wear."""
