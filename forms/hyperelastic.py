@@ -5,6 +5,26 @@ the first Piola–Kirchhoff stress is P = ∂ψ/∂F obtained with ``ufl.diff`` 
 the tangent follows from ``ufl.derivative`` of the residual.  The geometrically
 linear model is offered behind the same interface: ψ(F) = μ ε:ε + λ/2 (tr ε)²
 with ε = sym(F − I), whose derivative is the small-strain stress σ(ε).
+
+Mixed (u, p) form for nearly incompressible solids.  Every law is written
+
+    ψ(F) = ψ_r(F) + K/2 g(J)²          (:func:`volumetric_split`)
+
+with a volumetric measure g (J − 1 for Mooney–Rivlin, ln J for neo-Hookean,
+tr ε for the linear law) and its modulus K (κ, λ, λ).  The perturbed-Lagrangian
+energy of the displacement u and the volumetric stress p (MPa, tension positive)
+
+    Π(u, p) = ∫ ψ_r(F) + p g(J) − p²/(2K) − β/2 |Grad p|² dV,   β = α h_K²/G   (M)
+
+returns ψ on eliminating p = K g(J) (β = 0), so the continuous problem is
+unchanged; its stationarity in (u, p) is the mixed residual
+(:func:`mixed_virtual_work`) and its second derivative the (symmetric) tangent.
+With equal-order P1 u and p the β term (Brezzi–Pitkäranta, O(h_K²) and so
+without effect on the rates of P1 displacements) makes the pair inf–sup stable:
+linear triangles and tetrahedra no longer lock when K/G is large (the O-ring's
+κ = 1000 G), which is what makes the contact and film pressures on their
+boundaries zig-zag node to node (a locked P1 surface cannot take the smooth
+shape the film or the contact asks of it).
 """
 
 import ufl
@@ -19,10 +39,13 @@ __all__ = [
     "internal_virtual_work",
     "lame_parameters",
     "linear_elastic",
+    "mixed_strain_energy",
+    "mixed_virtual_work",
     "mooney_rivlin",
     "neo_hookean",
     "stored_energy",
     "strain_energy",
+    "volumetric_split",
 ]
 
 MATERIALS = ("neo-hookean", "mooney-rivlin", "linear")
@@ -33,11 +56,23 @@ def lame_parameters(E, nu):
     return E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
 
 
+def _neo_hookean_parts(F, mu, lmbda):
+    J = ufl.det(F)
+    return mu / 2 * (ufl.tr(F.T * F) - 3 - 2 * ufl.ln(J)), ufl.ln(J), lmbda
+
+
 def neo_hookean(F, mu, lmbda):
     """Compressible neo-Hookean ψ = μ/2 (I₁ − 3 − 2 ln J) + λ/2 (ln J)²."""
+    psi, g, K = _neo_hookean_parts(F, mu, lmbda)
+    return psi + K / 2 * g**2
+
+
+def _mooney_rivlin_parts(F, mu1, mu2, kappa):
     J = ufl.det(F)
-    I1 = ufl.tr(F.T * F)
-    return mu / 2 * (I1 - 3 - 2 * ufl.ln(J)) + lmbda / 2 * ufl.ln(J) ** 2
+    C = F.T * F
+    I1 = ufl.tr(C)
+    I2 = (I1**2 - ufl.tr(C * C)) / 2
+    return mu1 / 2 * (J ** (-2 / 3) * I1 - 3) + mu2 / 2 * (J ** (-4 / 3) * I2 - 3), J - 1, kappa
 
 
 def mooney_rivlin(F, mu1, mu2, kappa):
@@ -46,21 +81,54 @@ def mooney_rivlin(F, mu1, mu2, kappa):
     Isochoric invariants Ī₁ = J^{-2/3} I₁, Ī₂ = J^{-4/3} I₂; small-strain shear
     modulus μ₁ + μ₂ and bulk modulus κ (all MPa).
     """
-    J = ufl.det(F)
-    C = F.T * F
-    I1 = ufl.tr(C)
-    I2 = (I1**2 - ufl.tr(C * C)) / 2
-    return (
-        mu1 / 2 * (J ** (-2 / 3) * I1 - 3)
-        + mu2 / 2 * (J ** (-4 / 3) * I2 - 3)
-        + kappa / 2 * (J - 1) ** 2
-    )
+    psi, g, K = _mooney_rivlin_parts(F, mu1, mu2, kappa)
+    return psi + K / 2 * g**2
+
+
+def _linear_parts(F, mu, lmbda):
+    eps = ufl.sym(F - ufl.Identity(3))
+    return mu * ufl.inner(eps, eps), ufl.tr(eps), lmbda
 
 
 def linear_elastic(F, mu, lmbda):
     """Geometrically linear (small-strain) Hooke law written as ψ(F) with ε = sym(F − I)."""
-    eps = ufl.sym(F - ufl.Identity(3))
-    return mu * ufl.inner(eps, eps) + lmbda / 2 * ufl.tr(eps) ** 2
+    psi, g, K = _linear_parts(F, mu, lmbda)
+    return psi + K / 2 * g**2
+
+
+def volumetric_split(F, material, params):
+    """Return (ψ_r(F), g(J), K) with ψ = ψ_r + K/2 g² (see the module docstring)."""
+    if material == "neo-hookean":
+        return _neo_hookean_parts(F, params["mu"], params["lmbda"])
+    if material == "linear":
+        return _linear_parts(F, params["mu"], params["lmbda"])
+    if material == "mooney-rivlin":
+        return _mooney_rivlin_parts(F, params["mu1"], params["mu2"], params["kappa"])
+    raise ValueError(f"unknown material {material!r}; expected one of {MATERIALS}")
+
+
+def mixed_strain_energy(F, p, material, params):
+    """Mixed energy density ψ_r(F) + p g(J) − p²/(2K) of eq. (M) without the β term (MPa)."""
+    psi, g, K = volumetric_split(F, material, params)
+    return psi + p * g - p**2 / (2 * K)
+
+
+def mixed_virtual_work(u, p, v, q, kind, material, params, dx, beta):
+    """Residuals (R_u, R_p) of the mixed energy (M): its derivatives along (δu, δp) = (v, q).
+
+        R_u = ∫ ∂ψ_m/∂F : Grad δu dV,   ψ_m = ψ_r(F) + p g(J) − p²/(2K),
+        R_p = ∫ (g(J) − p/K) δp − β Grad p·Grad δp dV
+
+    (2πR-weighted if axisymmetric); ``beta`` = α h_K²/G (mm²/MPa, UFL).  The
+    u row is the internal work of eq. (7) with P = ∂ψ_m/∂F (``ufl.diff``).
+    """
+    F = ufl.variable(deformation_gradient(u, kind))
+    psi, g, K = volumetric_split(F, material, params)
+    P = ufl.diff(psi + p * g - p**2 / (2 * K), F)
+    w = reference_volume_factor(u.ufl_function_space().mesh, kind)
+    R_u = ufl.inner(P, grad3(v, kind)) * w * dx
+    R_p = ((g - p / K) * q - beta * ufl.dot(ufl.grad(p), ufl.grad(q))) * w * dx
+    return R_u, R_p
 
 
 def strain_energy(F, material, params):
@@ -69,13 +137,8 @@ def strain_energy(F, material, params):
     neo-hookean and linear take ``mu``, ``lmbda``; mooney-rivlin takes ``mu1``,
     ``mu2``, ``kappa``.
     """
-    if material == "neo-hookean":
-        return neo_hookean(F, params["mu"], params["lmbda"])
-    if material == "linear":
-        return linear_elastic(F, params["mu"], params["lmbda"])
-    if material == "mooney-rivlin":
-        return mooney_rivlin(F, params["mu1"], params["mu2"], params["kappa"])
-    raise ValueError(f"unknown material {material!r}; expected one of {MATERIALS}")
+    psi, g, K = volumetric_split(F, material, params)
+    return psi + K / 2 * g**2
 
 
 def first_piola(F, material, params):

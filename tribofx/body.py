@@ -16,6 +16,11 @@ background velocity V (eq. 26) is stored for interfaces that need v = F V.
 
 Tags are looked up by name (``names = {"contact": 1, ...}``), so that a case or a
 user's mesh file names its boundaries once.  Units: mm, N, MPa.
+
+``formulation="mixed"`` adds the volumetric stress p (P1, MPa) as a second
+unknown of the body: the stabilised perturbed-Lagrangian (u, p) form of
+:func:`tribofx.forms.hyperelastic.mixed_virtual_work`, locking-free for linear
+elements of a nearly incompressible solid (the O-ring's elastomer).
 """
 
 import numpy as np
@@ -29,7 +34,10 @@ from .forms import kinematics as kin
 from .params import InputError
 from .problem import BlockTolerance
 
-__all__ = ["Body", "shear_modulus"]
+__all__ = ["FORMULATIONS", "Body", "shear_modulus"]
+
+#: formulations of the solid (``Body(formulation=...)``)
+FORMULATIONS = ("displacement", "mixed")
 
 
 def shear_modulus(material, params):
@@ -71,13 +79,24 @@ class Body:
         stiffness: small-strain shear modulus G (MPa) of the tolerances (default: from
             the material parameters; needed when they are UFL expressions, e.g. a
             modulus graded with the depth).
+        formulation: "displacement" (u only) or "mixed" (u and the volumetric
+            stress p, P1, with the pressure stabilisation β = α h_K²/G of
+            :mod:`tribofx.forms.hyperelastic`; not with a shape field).
+        alpha: the stabilisation factor α of the mixed formulation (−).
     """
 
     def __init__(self, mesh, facet_tags, names, kind, material, cell_tags=None, degree=1,
                  quadrature_degree=None, shape=False, aux=(1.0, 0.3), velocity=None,
-                 name="body", rtol=1e-10, force_scale=None, stiffness=None):
+                 name="body", rtol=1e-10, force_scale=None, stiffness=None,
+                 formulation="displacement", alpha=0.1):
         if kind not in kin.KINDS:
             raise ValueError(f"unknown kind {kind!r}; expected one of {kin.KINDS}")
+        if formulation not in FORMULATIONS:
+            raise ValueError(f"unknown formulation {formulation!r}; expected one of "
+                             f"{FORMULATIONS}")
+        if formulation == "mixed" and shape is not False:
+            raise InputError("the mixed formulation is not available with a shape field "
+                             "(finite wear)")
         self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
         self.cell_tags, self.name = cell_tags, name
         self.materials = material if isinstance(material, dict) else {None: material}
@@ -120,6 +139,12 @@ class Body:
             shear_modulus(m, p) for m, p in self.materials.values())
         self.rtol = rtol
         self.force_scale = force_scale
+        self.p = None
+        if formulation == "mixed":
+            self.Q = fem.functionspace(mesh, ("Lagrange", 1))
+            self.p = fem.Function(self.Q, name=f"{name}_volumetric_stress")
+            h_K = ufl.CellDiameter(mesh)
+            self._beta = fem.Constant(mesh, float(alpha)) * h_K**2 / self.stiffness
 
     # -- tags ------------------------------------------------------------------
     def tag(self, name):
@@ -209,7 +234,13 @@ class Body:
 
     # -- component protocol (tribofx.problem) ---------------------------------------
     def internal_work(self):
-        """Return the internal virtual work of eq. (7) over all materials (worn if shaped)."""
+        """Return the internal virtual work of eq. (7) over all materials (worn if shaped).
+
+        Mixed formulation: the u row of the mixed energy (the p row is
+        :meth:`volumetric_rows`).
+        """
+        if self.p is not None:
+            return self._mixed()[0]
         R = 0
         for tag, (law, params) in self.materials.items():
             dx = self.dx if tag is None else self.dx(tag)
@@ -220,6 +251,17 @@ class Body:
                 R += hf.internal_virtual_work(self.u, self.v, self.kind, law, params, dx)
         return R
 
+    def _mixed(self):
+        """(R_u, R_p) of the mixed formulation summed over the materials."""
+        R_u = R_p = 0
+        q = ufl.TestFunction(self.Q)
+        for tag, (law, params) in self.materials.items():
+            dx = self.dx if tag is None else self.dx(tag)
+            ru, rp = hf.mixed_virtual_work(self.u, self.p, self.v, q, self.kind, law, params,
+                                           dx, self._beta)
+            R_u, R_p = R_u + ru, R_p + rp
+        return R_u, R_p
+
     def strain_energy(self):
         """Return the stored energy ∫ ψ(F) dV of the current state (N·mm; N·mm/mm in 2D)."""
         E = 0
@@ -227,13 +269,17 @@ class Body:
             dx = self.dx if tag is None else self.dx(tag)
             if self.w is not None:
                 E += ale.stored_energy_worn(self.u, self.w, self.kind, law, params, dx)
+            elif self.p is not None:
+                F = kin.deformation_gradient(self.u, self.kind)
+                E += hf.mixed_strain_energy(F, self.p, law, params) * self.weight * dx
             else:
                 E += hf.stored_energy(self.u, self.kind, law, params, dx)
         return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(E)), op=MPI.SUM)
 
     def unknowns(self):
-        """Return u, and w for a shaped body."""
-        return [self.u] + ([self.w] if self.shape_is_unknown else [])
+        """Return u, and w for a shaped body or p for a mixed one."""
+        return ([self.u] + ([self.w] if self.shape_is_unknown else [])
+                + ([self.p] if self.p is not None else []))
 
     def contributions(self):
         """Return internal work minus loads on u's row, auxiliary elasticity on w's row."""
@@ -241,6 +287,8 @@ class Body:
         for load in self._loads:
             R = R - load
         out = [(self.u, R)]
+        if self.p is not None:
+            out.append((self.p, self._mixed()[1]))
         if self.shape_is_unknown:
             mu_a, lmbda_a = self._aux
             out.append((self.w, ale.aux_elasticity(self.w, ufl.TestFunction(self.Vw), mu_a,
@@ -277,6 +325,8 @@ class Body:
         out = {self.u: list(self._bcs)}
         if self.shape_is_unknown:
             out[self.w] = list(self._w_bcs)
+        if self.p is not None:
+            out[self.p] = []
         return out
 
     def entity_maps(self):
@@ -300,6 +350,10 @@ class Body:
         out = {self.u: BlockTolerance(self.rtol * scale, "N" if d == 2 else "N/mm")}
         if self.shape_is_unknown:
             out[self.w] = BlockTolerance(self.rtol * self._aux[0] * self.length**d, "aux")
+        if self.p is not None:
+            # volumetric rows ∫ (g − p/K) δp dV: rtol of the body's volume (strain × volume)
+            out[self.p] = BlockTolerance(self.rtol * self.length ** (d + 1),
+                                         "mm³" if d == 2 else "mm²")
         return out
 
     def state_fields(self):

@@ -94,7 +94,8 @@ class ORingSeal(SealOutputs):
         E = 3 * (mat["mu1"] + mat["mu2"])
         deg = v["degree"]
         self.body = body = Body(msh, ft, names, "axisymmetric", ("mooney-rivlin", mat),
-                                degree=deg, quadrature_degree=2 * deg, name="oring")
+                                degree=deg, quadrature_degree=2 * deg, name="oring",
+                                formulation=v["formulation"])
         p0 = min(P_MOUNT, number_list(v["p_s"], "p_s")[0])
         self.p_s = fem.Constant(msh, p0)
         body.add_follower_pressure("sealed", self.p_s)
