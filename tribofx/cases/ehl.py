@@ -54,7 +54,7 @@ from .ehl_outputs import CylinderOutputs
 from .ehl_paths import CylinderPaths
 from .ehl_sweep import CylinderSweep
 from .ehl_user import check_user_ends, read_user_layer
-from .film_setup import VISCOSITY_PARAMS, density, speed_list, viscosity
+from .film_setup import VISCOSITY_PARAMS, density, formulation_param, speed_list, viscosity
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
 
@@ -99,6 +99,7 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
+        formulation_param("displacement"),
         Param("penalty", float, 1e-6, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
               lower=0.0),
@@ -220,7 +221,8 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
             materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0
                                                else {})
         layer = Body(msh, ft, names, "plane_strain", materials, cell_tags=ct,
-                     degree=v["degree"], velocity=(v["U"], 0.0), name="layer")
+                     degree=v["degree"], velocity=(v["U"], 0.0), name="layer",
+                     formulation=v["formulation"])
         layer.add_dirichlet("bottom", np.zeros(2))
         if v["countersurface"] == "mesh":
             nodes, facets, ctype = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))

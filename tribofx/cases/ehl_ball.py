@@ -79,7 +79,14 @@ from .ehl_ball_outputs import BallOutputs
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_sweep import BallSweep
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
-from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
+from .film_setup import (
+    VISCOSITY_PARAMS,
+    at_points,
+    density,
+    formulation_param,
+    speed_list,
+    viscosity,
+)
 
 __all__ = ["EHLBallCase"]
 
@@ -107,6 +114,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
+        formulation_param("displacement"),
         Param("penalty", float, 1e-4, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
@@ -226,7 +234,8 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
             names = NAMES
         mu, lm = lame_parameters(v["E"], v["nu"])
         law = "linear" if v["model"] == "linear" else "neo-hookean"
-        ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball")
+        ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball",
+                    formulation=v["formulation"])
         ball.add_dirichlet("midplane", np.zeros(3))
         ball.add_dirichlet("symmetry", 0.0, component=1)
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])

@@ -90,7 +90,7 @@ one time index per sealed pressure, its p_s in ``series_points``).
 
 from ..params import InputError, Param, number_list
 from .ehl_oring_run import ORingRun
-from .film_setup import VISCOSITY_PARAMS, density, viscosity
+from .film_setup import VISCOSITY_PARAMS, density, formulation_param, viscosity
 
 __all__ = ["EHLORingCase"]
 
@@ -108,9 +108,7 @@ class EHLORingCase(ORingRun):
         Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
               lower=1, upper=32, closed=True),
         Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-        Param("formulation", str, "displacement", "-",
-              "solid: displacement, or mixed (u and a P1 volumetric stress, locking-free)",
-              choices=("displacement", "mixed")),
+        formulation_param("mixed"),
         Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
               upper=0.3),
         Param("d", float, 3.5, "mm", "cross-section diameter", lower=0),

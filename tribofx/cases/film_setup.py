@@ -10,8 +10,20 @@ from dolfinx import mesh as dmesh
 from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import InputError, Param, number_list
 
-__all__ = ["VISCOSITY_PARAMS", "at_points", "density", "film_boundary", "speed_list",
-           "viscosity"]
+__all__ = ["VISCOSITY_PARAMS", "at_points", "density", "film_boundary", "formulation_param",
+           "speed_list", "viscosity"]
+
+
+def formulation_param(default):
+    """Return the ``formulation`` parameter of a film case: the solid's (u) or (u, p) form.
+
+    ``mixed`` (:class:`tribofx.body.Body`, ``formulation="mixed"``) is locking-free
+    for nearly incompressible solids: a locked P1 surface makes the film zig-zag.
+    """
+    return Param("formulation", str, default, "-",
+                 "solid: displacement (u only) or mixed (u and a P1 volumetric stress: "
+                 "locking-free, no film zig-zag for nearly incompressible solids)",
+                 choices=("displacement", "mixed"))
 
 #: the lubricant's pressure–viscosity law, a parameter set of every case with a film
 VISCOSITY_PARAMS = (
