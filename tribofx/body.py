@@ -236,8 +236,8 @@ class Body:
     def internal_work(self):
         """Return the internal virtual work of eq. (7) over all materials (worn if shaped).
 
-        Mixed formulation: the u row of the mixed energy (the p row is
-        :meth:`volumetric_rows`).
+        Mixed formulation: the u row of the mixed energy (its p row is the second
+        block of :meth:`contributions`).
         """
         if self.p is not None:
             return self._mixed()[0]
@@ -282,7 +282,7 @@ class Body:
                 + ([self.p] if self.p is not None else []))
 
     def contributions(self):
-        """Return internal work minus loads on u's row, auxiliary elasticity on w's row."""
+        """Return the rows: internal work minus loads (u), volumetric (p), auxiliary (w)."""
         R = self.internal_work()
         for load in self._loads:
             R = R - load
