@@ -74,19 +74,13 @@ from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..problem import Problem
 from ..references import composite_modulus, hamrock_dowson, hertz
+from . import film_setup
 from .ehl_ball_mesh import checked_outlet_width, mesh_levels, outlet_width
 from .ehl_ball_outputs import BallOutputs
 from .ehl_ball_paths import BallPaths, Z
 from .ehl_ball_sweep import BallSweep
 from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
-from .film_setup import (
-    VISCOSITY_PARAMS,
-    at_points,
-    density,
-    formulation_param,
-    speed_list,
-    viscosity,
-)
+from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
 
 __all__ = ["EHLBallCase"]
 
@@ -114,7 +108,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        formulation_param("displacement"),
+        film_setup.formulation_param("displacement"),
         Param("penalty", float, 1e-4, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
