@@ -328,7 +328,7 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
 
 
 def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
-                   grad_gamma=ufl.grad, T=None, ds_ends=None):
+                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1):
     """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l, steady.
 
     Returns (transport, constraint): the transport residual
@@ -344,14 +344,20 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     ``ds_ends`` (the end points of Γ_l, with the reference tangent ``T``) adds
     the jumps of the Couette flux between elements (see the code), so that the
     discrete form is conservative node by node.
+
+    ``weight`` w: the area factor of a surface of revolution, ds_S = w dl with
+    w = 2π r_S (1 in the plane).  ``dx``, ``nodal_dx`` and ``ds_ends`` are then
+    unweighted: w multiplies the fluxes, and the divergence is the one of the
+    surface of revolution, div_S q = (1/w) d(w q)/dl for a meridional q (the hoop
+    term included), so that the balance stays exact when r_S varies.
     """
-    dS = WeightedMeasure(kin.stretch, dx)
+    dS = WeightedMeasure(kin.stretch * weight, dx)
 
     def grad(f):
         return kin.grad(f, grad_gamma)
 
     def div(w):
-        return kin.div(w, grad_gamma)
+        return kin.div(weight * w, grad_gamma) / weight
 
     lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
     F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
@@ -367,11 +373,11 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
         # They are added element by element, without interior-facet integrals:
         # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
         # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
-        w_t = couette_flux(kin, lam_c, T)
+        w_t = weight * couette_flux(kin, lam_c, T)
         n = ufl.FacetNormal(ds_ends.ufl_domain())
         F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
         F += w_t * ufl.dot(T, n) * dp * ds_ends
-    C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=q_ref / h_e)
+    C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=weight * q_ref / h_e)
     return F, C
 
 

@@ -52,8 +52,12 @@ def follower_pressure_traction(p, u, N):
     return -p * ufl.as_vector([a[0], a[1]])
 
 
-def film_flux(kin, p, mu, grad_gamma):
-    """Axial volume flux per unit circumference q = h v̄_z − h³/(12μ) ∂p/∂z (mm²/s), eq. (48)."""
+def film_flux(kin, p, mu, grad_gamma, lam=None):
+    """Axial volume flux per unit circumference q = θ(h v̄_z − h³/(12μ) ∂p/∂z) (mm²/s), eq. (48).
+
+    θ = 1 − λ with the JFO void fraction ``lam`` (eq. 57; None: θ = 1).
+    """
     gp = kin.grad(p, grad_gamma)
-    return kin.h * kin.vbar[1] - kin.h**3 / (12 * mu) * gp[1]
+    theta = 1 if lam is None else 1 - lam
+    return theta * (kin.h * kin.vbar[1] - kin.h**3 / (12 * mu) * gp[1])
 

@@ -17,7 +17,12 @@ Axisymmetric about the rod axis, mesh coordinates (r, z):
 * rod: soft-EHL film on the inner quarter arc Γ_l (135° ≤ φ ≤ 225°): S = P(γ_l)
   on the rod cylinder, h = r − r_rod, v̄ = ½U e_z, steady Reynolds equation (49)
   on the surface of revolution (weight 2π r_rod times the meridian stretch),
-  p = p_s / 0 at the sealed / air end, penalty cavitation ε⁻¹ min(p, 0), SUPG;
+  SUPG; cavitation (``cavitation``): JFO (57, mass-conserving, the default with
+  the mixed solid: void fraction λ, p ≥ 0, λ ≥ 0, pλ = 0 at the nodes; flooded
+  inlet p = p_s or 0, λ = 0 at the upstream end, a natural outlet downstream in
+  outstroke, p = p_s at the sealed end in instroke) or the penalty ε⁻¹ min(p, 0)
+  with p = p_s / 0 at the sealed / air end (the chapter's; the default with the
+  displacement solid);
   fluid traction (46): pressure (axisymmetric Nanson), Couette (μ/h)U e_z and
   Poiseuille −(h/2) grad_S p shear (forms/ehl_axisym.py).
 
@@ -48,8 +53,10 @@ Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 * oil viscosity μ = 5e-8 MPa·s (0.05 Pa·s), U = 400 mm/s (Fig. 18: outstroke,
   p_s = 1 MPa, U = 400 mm/s);
 * mesh density n: element size 0.1/n mm on Γ_l, 0.4/n mm in the bulk; P1
-  displacement (default; the chapter's zigzag film oscillations come from the
-  piecewise-linear boundary), P1 pressure.
+  displacement with a P1 volumetric stress (``formulation=mixed``, default:
+  locking-free; the chapter's zigzag film oscillations are the volumetric
+  locking of the P1 displacement solid, ``formulation=displacement``), P1 film
+  pressure.
 
 ``study=mesh`` repeats the outstroke at the first p_s on the densities
 ``mesh_levels`` (Figs. 18–19) and reports an oscillation indicator per density
@@ -90,6 +97,7 @@ one time index per sealed pressure, its p_s in ``series_points``).
 
 from ..params import InputError, Param, number_list
 from .ehl_oring_run import ORingRun
+from .oring_seal import cavitation_model
 from .film_setup import VISCOSITY_PARAMS, density, formulation_param, viscosity
 
 __all__ = ["EHLORingCase"]
@@ -116,6 +124,11 @@ class EHLORingCase(ORingRun):
         Param("mu1", float, 2.93, "MPa", "Mooney–Rivlin μ₁", lower=0),
         Param("mu2", float, 0.73, "MPa", "Mooney–Rivlin μ₂", lower=0, closed=True),
         Param("kappa", float, 3660.0, "MPa", "bulk modulus", lower=0),
+        Param("cavitation", str, "auto", "-",
+              "penalty (ε⁻¹ min(p, 0), Swift–Stieber limit), jfo (mass-conserving: void "
+              "fraction λ, flooded inlet, natural outlet) or auto: jfo with the mixed solid, "
+              "penalty with the displacement one (a locked, zig-zag surface makes JFO's "
+              "semismooth iteration cycle)", choices=("auto", "penalty", "jfo")),
         Param("eps", float, 1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³",
               lower=0),
         Param("supg", bool, True, "-", "SUPG in the Reynolds equation"),
@@ -137,7 +150,7 @@ class EHLORingCase(ORingRun):
     def validate(v):
         """Parse the lists and check the consistency of the values."""
         viscosity(v)
-        density(v)
+        density({**v, "cavitation": cavitation_model(v)})
         ps = number_list(v["p_s"], "p_s")
         if any(p <= 0 for p in ps):
             raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")

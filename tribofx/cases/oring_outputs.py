@@ -31,7 +31,8 @@ class SealOutputs:
             self._post = {
                 "sealed": [fem.form(t[i] * body.weight * ds) for i in range(2)],
                 "Qc": Qc,
-                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_p, film.grad_gamma),
+                "q": fem.Expression(ax.film_flux(film.kin, film.p, film.mu_p, film.grad_gamma,
+                                                  film.lam),
                                     pts),
                 "z": fem.Expression(xs[1], pts)}
         return self._post
@@ -47,8 +48,9 @@ class SealOutputs:
     def profile(self):
         """Film data on rank 0 (None elsewhere), sorted by the current axial position.
 
-        Nodal: z (current axial position = position on the rod, mm), h (mm), p (MPa);
-        cellwise: z_cell, q (flux per unit circumference, mm²/s).
+        Nodal: z (current axial position = position on the rod, mm), h (mm), p (MPa)
+        and, with JFO cavitation, the void fraction lam (-); cellwise: z_cell, q
+        (flux per unit circumference, mm²/s).
         """
         pr = self.film.profile()
         post = self._forms()
@@ -63,8 +65,11 @@ class SealOutputs:
         z = pr["x"][:, 1]
         o, zcell = np.argsort(z, kind="stable"), np.concatenate([c[0] for c in cells])
         oc = np.argsort(zcell, kind="stable")
-        return {"z": z[o], "h": pr["h"][o], "p": pr["p"][o], "z_cell": zcell[oc],
-                "q": np.concatenate([c[1] for c in cells])[oc]}
+        out = {"z": z[o], "h": pr["h"][o], "p": pr["p"][o], "z_cell": zcell[oc],
+               "q": np.concatenate([c[1] for c in cells])[oc]}
+        if "lam" in pr:
+            out["lam"] = pr["lam"][o]
+        return out
 
     def sealed_arc_radii(self):
         """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc.

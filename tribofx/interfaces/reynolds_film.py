@@ -94,20 +94,23 @@ class ReynoldsFilm:
         self._bc_on.append(self.p)
         return c
 
-    def add_inlet(self, where, void=0.0):
-        """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = 0 at ``where``.
+    def add_inlet(self, where, void=0.0, pressure=0.0):
+        """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = ``pressure`` at ``where``.
 
         The rest of ∂Γ_l is a natural outlet (no Poiseuille flux; p = 0 there by
-        complementarity in the cavitated zone).
+        complementarity in the cavitated zone) unless a pressure is prescribed
+        there too (:meth:`add_pressure_bc`: an outlet into a reservoir).  Returns
+        the inlet pressure's Constant (MPa), None for a starved inlet.
         """
         if self.lam is None:
             raise ValueError("an inlet needs cavitation='jfo'")
+        if void > 0 and pressure != 0:
+            raise ValueError("a starved inlet (void > 0) is at the cavity pressure 0")
         self._inlet, self._void_in = where, float(void)
         self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
                                          self._boundary_dofs(self.Ql, where), self.Ql))
         self._bc_on.append(self.lam)
-        if void == 0:
-            self.add_pressure_bc(where)
+        return self.add_pressure_bc(where, pressure) if void == 0 else None
 
     def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
         """Change the SUPG/complementarity pressure scale, the penalty and the tolerance scales.
@@ -158,10 +161,12 @@ class ReynoldsFilm:
                                           supg=self._supg, p_c=self.p_c, h_e=h_e,
                                           nodal_dx=nodal, grad_gamma=self.grad_gamma,
                                           rho=self.rho_p), None
+        # JFO: the weight (2π r_S, axisymmetric) enters the divergence of the fluxes
         return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
-                                 self.mu_p, dx, self.p_c, self._q_ref, h_e, nodal,
+                                 self.mu_p, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
-                                 ds_ends=self._ds_ends() if self._jumps else None)
+                                 ds_ends=self._ds_ends() if self._jumps else None,
+                                 weight=self.w_film)
 
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""
