@@ -223,8 +223,9 @@ def test_jfo_film_carries_its_flux_through_the_cavitated_outlet():
     −34 %, −10 %, −4 % on the first three).  Tolerance 2 %: the loaded-zone flux from
     the P1 pressure varies by its flux spread (0.6 % measured at this density).  With
     the penalty model the same nodes carry h U/2, 1.2 to 400 times q (measured:
-    fluid is created where the flank opens).  The exact tangent of the semismooth rows, the void fraction included
-    (directions away from the kinks), is Taylor-tested.
+    fluid is created where the flank opens).  The exact tangent of the semismooth
+    rows, the void fraction included (directions away from the kinks), is
+    Taylor-tested.
     """
     v = values(formulation="mixed", cavitation="jfo", U=400, p_s=1)
     seal = build(v, 1000.0)

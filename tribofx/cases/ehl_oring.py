@@ -97,8 +97,13 @@ one time index per sealed pressure, its p_s in ``series_points``).
 
 from ..params import InputError, Param, number_list
 from .ehl_oring_run import ORingRun
-from .oring_seal import cavitation_model
-from .film_setup import VISCOSITY_PARAMS, density, formulation_param, viscosity
+from .film_setup import (
+    VISCOSITY_PARAMS,
+    cavitation_model,
+    density,
+    formulation_param,
+    viscosity,
+)
 
 __all__ = ["EHLORingCase"]
 

@@ -25,11 +25,10 @@ from ..obstacles import rigid_plane
 from ..params import InputError, number_list
 from ..problem import Problem
 from ..references import inverse_film
-from .film_setup import density, film_boundary, viscosity
+from .film_setup import cavitation_model, density, film_boundary, viscosity
 from .oring_outputs import SealOutputs
 
-__all__ = ["NAMES", "USER_GROUPS", "ORingSeal", "axial_balance", "build", "cavitation_model",
-           "geometry", "solve_to"]
+__all__ = ["NAMES", "USER_GROUPS", "ORingSeal", "axial_balance", "build", "geometry", "solve_to"]
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
 W_REF = 20.0         # MPa/mm, nominal inlet gradient of the film scale h_ref
@@ -207,15 +206,6 @@ class ORingSeal(SealOutputs):
         s = math.copysign(1.0, U)
         self._march(ConstantParameter(self.film.V_counter, 1, scale=s), abs(U), steps,
                     geometric=True)
-
-
-def cavitation_model(v):
-    """The film's cavitation model: ``v["cavitation"]``, or for auto JFO with the mixed solid
-    and the penalty with the displacement one (measured: on the zig-zag surface of the
-    locked P1 solid the semismooth JFO iteration cycles, density 2 at 1000 mm/s)."""
-    if v["cavitation"] != "auto":
-        return v["cavitation"]
-    return "jfo" if v["formulation"] == "mixed" else "penalty"
 
 
 def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring"):
