@@ -244,7 +244,8 @@ def test_jfo_film_carries_its_flux_through_the_cavitated_outlet():
 
 def test_bad_input():
     """Non-positive or decreasing p_s and U = 0 are rejected (exit 2)."""
-    for bad in ({"p_s": "0"}, {"p_s": "2,1"}, {"U": "0"}, {"mesh_levels": "1,x"}):
+    for bad in ({"p_s": "0"}, {"p_s": "2,1"}, {"U": "0"}, {"mesh_levels": "1,x"},
+                {"mesh_file": "ring.msh", "arc_refine": "1"}):
         v = resolve(Case.params, {**{k: str(x) for k, x in FAST.items()}, **bad})
         with pytest.raises(InputError):
             Case.validate(v)
@@ -292,6 +293,32 @@ def test_inverse_hydrodynamic_relations(formulation, cavitation):
     assert abs(m["h_mean"] - h_c) < 0.1 * h_c, (m["h_mean"], h_c)
     assert abs(2 * m["flux"] / v["U"] - h_c) < 0.1 * h_c, (m["flux"], h_c)
     assert abs(0.5 * (h[j] + h[j + 1]) - 1.5 * h_c) < 0.1 * 1.5 * h_c
+
+
+@pytest.mark.slow
+def test_chapter_speed_film_on_coarse_meshes():
+    """Fig. 17's point (outstroke 100 mm/s, p_s = 1 MPa) with the mixed solid and JFO.
+
+    Density 4 converges (with the penalty model the continuation stalls at
+    U ≈ 120 mm/s: the node past the outlet collapses to 0.2 nm) and is smooth:
+    oscillation indicator < 2 %, flux spread < 3 % (the issue's bounds; a smooth
+    film has ≲ 1e-3, see :func:`test_mixed_solid_film_is_free_of_oscillations`).
+    Its mean film is short by 7.5 % (measured against density 8): the inlet, where
+    the film is set, is a few elements long.  Refining only the film arc once
+    (``arc_refine=1``) brings it within 3 % of the uniformly refined density 8
+    (measured 0.4 %; the film arc refined twice, 74k unknowns, gives 1.9 % above
+    density 8, so 3 % bounds the discretisation error of both).
+    """
+    v = values(formulation="mixed", cavitation="jfo", U=100, p_s=1, mesh=4)
+    h = {}
+    for key, over in (("d4", {}), ("d4_arc1", {"arc_refine": 1}), ("d8", {"mesh": 8})):
+        w = {**v, **over}
+        seal = build(w, 1000.0)
+        solve_to(seal, w, 100.0, [1.0])
+        m = seal.measures()
+        assert m["oscillation"] < 0.02 and m["flux_spread"] < 0.03, (key, m)
+        h[key] = m["h_mean"]
+    assert abs(h["d4_arc1"] / h["d8"] - 1) < 0.03, h
 
 
 @pytest.mark.slow

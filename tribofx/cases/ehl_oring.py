@@ -52,7 +52,9 @@ Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 * d = 3.5 mm, r_rod = 10 mm, squeeze 10 % (typical dynamic O-ring gland);
 * oil viscosity μ = 5e-8 MPa·s (0.05 Pa·s), U = 400 mm/s (Fig. 18: outstroke,
   p_s = 1 MPa, U = 400 mm/s);
-* mesh density n: element size 0.1/n mm on Γ_l, 0.4/n mm in the bulk; P1
+* mesh density n: element size 0.1/n mm on Γ_l (0.1/(n·2^k) with
+  ``arc_refine`` k: the film's inlet, where its thickness is set, is a few
+  elements long at 100 mm/s), 0.4/n mm in the bulk; P1
   displacement with a P1 volumetric stress (``formulation=mixed``, default:
   locking-free; the chapter's zigzag film oscillations are the volumetric
   locking of the P1 displacement solid, ``formulation=displacement``), P1 film
@@ -120,6 +122,8 @@ class EHLORingCase(ORingRun):
         Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
         Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
               lower=1, upper=32, closed=True),
+        Param("arc_refine", int, 0, "-", "halvings of the element size on the film arc "
+              "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm)", lower=0, upper=3, closed=True),
         Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
         formulation_param("mixed"),
         Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
@@ -167,8 +171,8 @@ class EHLORingCase(ORingRun):
         if any(k < 1 or k != int(k) for k in levels):
             raise InputError("mesh_levels must be positive integers")
         if v["mesh_file"]:
-            if v["study"] != "none":
-                raise InputError("mesh_file works with study=none only")
+            if v["study"] != "none" or v["arc_refine"]:
+                raise InputError("mesh_file works with study=none and arc_refine=0 only")
         elif v["gap0"] >= 0.5 * v["d"]:
             raise InputError("gap0 must be below the cross-section radius")
 

@@ -89,7 +89,8 @@ class ORingSeal(SealOutputs):
         center, a, r_rod, r_g, z_w = geometry(v, extent)
         self.center, self.a, self.r_rod = center, a, r_rod
         if not self.user:
-            msh, _, ft = oring_section(*center, a, mesh, comm=comm)
+            msh, _, ft = oring_section(*center, a, mesh, h_l=0.1 / 2 ** v["arc_refine"],
+                                       comm=comm)
         mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
         E = 3 * (mat["mu1"] + mat["mu2"])
         deg = v["degree"]
@@ -136,9 +137,11 @@ class ORingSeal(SealOutputs):
             # (cavitated, p = 0 by complementarity) on the air side
             self.p_end = film.add_inlet(sealed, pressure=p0)
         else:
-            # JFO instroke: flooded inlet from the air side, outlet into the sealed fluid
+            # JFO instroke: the outlet into the sealed fluid is flooded too (p = p_s, λ = 0:
+            # λ would have no row there), then the inlet from the air side (the last inlet
+            # is the one the initial guess of λ starts from)
+            self.p_end = film.add_inlet(sealed, pressure=p0)
             film.add_inlet(air)
-            self.p_end = film.add_pressure_bc(sealed, p0)
         Xq = film.Q.tabulate_dof_coordinates()
         film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
         film.jfo_initial_guess(downstream=(0.0, math.copysign(1.0, U)))

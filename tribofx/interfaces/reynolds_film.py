@@ -251,7 +251,8 @@ class ReynoldsFilm:
         Downstream (along ``downstream``) of the minimum film h_m the film ruptures,
         λ = max(0, 1 − h_m/h); upstream the film supplied at the inlet, (1 − λ_in)
         h_in, is advected, λ = max(0, 1 − (1 − λ_in) h_in/h) (0 for a flooded inlet
-        of a converging gap); from the current film h, p left as it is.  The
+        of a converging gap), and λ = 0 wherever p > 0 (complementarity); from the
+        current film h, p left as it is.  The
         semismooth Newton iteration then only moves the free boundaries.
         """
         if self.lam is None:
@@ -267,8 +268,9 @@ class ReynoldsFilm:
         if self._inlet is not None:
             supplied = (1 - self._void_in) * self._at_dofs(
                 h, self._boundary_dofs(self.Q, self._inlet))
-        # λ and p share the P1 layout of the same mesh
-        self.lam.x.array[:] = np.maximum(np.where(X > X_m, 1 - h_m / h, 1 - supplied / h), 0.0)
+        # λ and p share the P1 layout of the same mesh; λ = 0 where p > 0 (complementarity)
+        lam = np.maximum(np.where(X > X_m, 1 - h_m / h, 1 - supplied / h), 0.0)
+        self.lam.x.array[:] = np.where(self.p.x.array > 0, 0.0, lam)
         self.lam.x.scatter_forward()
 
     def consistent_fluxes(self, inlet=None):
