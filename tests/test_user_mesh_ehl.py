@@ -322,7 +322,8 @@ def test_user_oring_is_placed_with_its_end_conditions(tmp_path):
     from tribofx.cases.oring_seal import build
 
     mesh = _oring(tmp_path / "ring.msh")
-    v = _values(Case, **ORING_FAST, mesh_file=mesh)
+    # the penalty film: a p condition at both ends (JFO: λ and p at the inlet only)
+    v = _values(Case, **ORING_FAST, mesh_file=mesh, cavitation="penalty")
     seal = build(v, v["U"])
     x = seal.body.mesh.geometry.x
     sag = 0.2**2 / (8 * ORING_A)
