@@ -109,7 +109,6 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
         film_setup.formulation_param("displacement"),
-        Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
         Param("penalty", float, 1e-4, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
@@ -122,7 +121,8 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
               "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
               "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
               "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
-              lower=0, upper=3, closed=True),
+              lower=0, upper=3,
+              closed=True),
         Param("start_speed", float, 30.0, "-",
               "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
               "displacement control (thick film), then U is continued down to U",
@@ -229,7 +229,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
         mu, lm = lame_parameters(v["E"], v["nu"])
         law = "linear" if v["model"] == "linear" else "neo-hookean"
         ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball",
-                    formulation=v["formulation"], degree=v["degree"])
+                    formulation=v["formulation"])
         ball.add_dirichlet("midplane", np.zeros(3))
         ball.add_dirichlet("symmetry", 0.0, component=1)
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
