@@ -137,11 +137,9 @@ class ORingSeal(SealOutputs):
             # (cavitated, p = 0 by complementarity) on the air side
             self.p_end = film.add_inlet(sealed, pressure=p0)
         else:
-            # JFO instroke: the outlet into the sealed fluid is flooded too (p = p_s, λ = 0:
-            # λ would have no row there), then the inlet from the air side (the last inlet
-            # is the one the initial guess of λ starts from)
-            self.p_end = film.add_inlet(sealed, pressure=p0)
+            # JFO instroke: flooded inlet from the air side, outlet into the sealed fluid
             film.add_inlet(air)
+            self.p_end = film.add_reservoir(sealed, p0)
         Xq = film.Q.tabulate_dof_coordinates()
         film.p.x.array[:] = np.where(Xq[:, 1] < center[1], p0, 0.0)
         film.jfo_initial_guess(downstream=(0.0, math.copysign(1.0, U)))

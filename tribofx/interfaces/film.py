@@ -421,19 +421,8 @@ class Film(FilmStart, ReynoldsFilm):
                                        op=MPI.MIN)
 
     def admissible(self):
-        """Line-search test of a trial state: True, or with ``require_open`` whether it is open.
-
-        Open: h > 0 at every node and, with JFO, some fluid at every node (λ < 1:
-        at λ ≥ 1 the clamped transport row of a cavitated node has no derivative,
-        and the Newton matrix is singular).
-        """
-        if not self.require_open:
-            return True
-        if self.lam is not None:
-            lam_max = self.lam.x.array.max(initial=0.0)
-            if self.sub.comm.allreduce(float(lam_max), op=MPI.MAX) >= 1.0:
-                return False
-        return self.min_film() > 0
+        """Line-search test: True, or with ``require_open`` h > 0 and fluid at every node."""
+        return not self.require_open or (self.has_fluid() and self.min_film() > 0)
 
     def profile(self, everywhere=False):
         """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.

@@ -98,19 +98,43 @@ class ReynoldsFilm:
         """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = ``pressure`` at ``where``.
 
         The rest of ∂Γ_l is a natural outlet (no Poiseuille flux; p = 0 there by
-        complementarity in the cavitated zone) unless a pressure is prescribed
-        there too (:meth:`add_pressure_bc`: an outlet into a reservoir).  Returns
-        the inlet pressure's Constant (MPa), None for a starved inlet.
+        complementarity in the cavitated zone) unless it is a reservoir
+        (:meth:`add_reservoir`).  Returns the inlet pressure's Constant (MPa), None
+        for a starved inlet.  The inlet is where :meth:`jfo_initial_guess` takes
+        the supplied film from.
         """
-        if self.lam is None:
-            raise ValueError("an inlet needs cavitation='jfo'")
         if void > 0 and pressure != 0:
             raise ValueError("a starved inlet (void > 0) is at the cavity pressure 0")
+        self._void_bc(where, void)
         self._inlet, self._void_in = where, float(void)
+        return self.add_pressure_bc(where, pressure) if void == 0 else None
+
+    def add_reservoir(self, where, pressure):
+        """JFO outlet into a reservoir: the end is flooded, p = ``pressure`` and λ = 0.
+
+        λ needs its condition there: the p row replaces the transport row, and a
+        node with p > 0 has λ = 0.  Returns the pressure's Constant (MPa).
+        """
+        self._void_bc(where, 0.0)
+        return self.add_pressure_bc(where, pressure)
+
+    def _void_bc(self, where, void):
+        if self.lam is None:
+            raise ValueError("an inlet or reservoir condition on λ needs cavitation='jfo'")
         self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
                                          self._boundary_dofs(self.Ql, where), self.Ql))
         self._bc_on.append(self.lam)
-        return self.add_pressure_bc(where, pressure) if void == 0 else None
+
+    def has_fluid(self):
+        """Whether every node holds fluid, λ < 1 (always without JFO; collective).
+
+        At λ ≥ 1 the clamped transport row of a cavitated node has no derivative,
+        and the Newton matrix is singular.
+        """
+        if self.lam is None:
+            return True
+        lam_max = float(self.lam.x.array.max(initial=0.0))
+        return self.sub.comm.allreduce(lam_max, op=MPI.MAX) < 1.0
 
     def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
         """Change the SUPG/complementarity pressure scale, the penalty and the tolerance scales.
@@ -152,15 +176,15 @@ class ReynoldsFilm:
 
     def _reynolds(self, dp):
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
-        dx = ef.WeightedMeasure(self.w_film, self.dx) if self.w_film != 1 else self.dx
-        nodal = (ef.WeightedMeasure(self.w_film, self.nodal_dx) if self.w_film != 1
-                 else self.nodal_dx)
         h_e = ufl.CellDiameter(self.sub)
         if self.lam is None:
-            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_p, dx, eps=self.eps,
-                                          supg=self._supg, p_c=self.p_c, h_e=h_e,
-                                          nodal_dx=nodal, grad_gamma=self.grad_gamma,
-                                          rho=self.rho_p), None
+            def weighted(measure):
+                return measure if self.w_film == 1 else ef.WeightedMeasure(self.w_film, measure)
+
+            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_p, weighted(self.dx),
+                                          eps=self.eps, supg=self._supg, p_c=self.p_c, h_e=h_e,
+                                          nodal_dx=weighted(self.nodal_dx),
+                                          grad_gamma=self.grad_gamma, rho=self.rho_p), None
         # JFO: the weight (2π r_S, axisymmetric) enters the divergence of the fluxes
         return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
                                  self.mu_p, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
