@@ -298,8 +298,8 @@ def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
 
 
 def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,
-                        nodal_dx=None, grad_gamma=ufl.grad, rho=1):
-    """Steady Reynolds residual (49) on S pulled back to Γ_l (p = 0 on ∂S by Dirichlet).
+                        nodal_dx=None, grad_gamma=ufl.grad, rho=1, rate=None):
+    """Reynolds residual (49) on S pulled back to Γ_l (p = 0 on ∂S by Dirichlet).
 
     ``dx`` is the measure of Γ_l (the facet submesh), ``eps`` the penalty of
     cavitation (MPa·s/mm, None: no cavitation), ``supg`` adds the SUPG term with
@@ -307,8 +307,13 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     (MPa) in the Péclet number; ``nodal_dx`` is the vertex-quadrature measure for
     the penalty; ``rho`` the density ρ(p)/ρ₀ (1: incompressible; the compressible
     equation with a law of :mod:`forms.fluid`).
+
+    ``rate``: the transient film (:mod:`forms.squeeze`), d(ρ h J_S w)/dt per unit
+    reference measure (w the weight of a :class:`WeightedMeasure` ``dx``, else 1),
+    with ``kin`` relative to the moving S; None: steady.
     """
     dS = WeightedMeasure(kin.stretch, dx)
+    raw, w = (dx.measure, dx.weight) if isinstance(dx, WeightedMeasure) else (dx, 1)
 
     def grad(f):
         return kin.grad(f, grad_gamma)
@@ -317,19 +322,23 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
         return kin.div(w, grad_gamma)
 
     F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad, rho=rho)
+    if rate is not None:
+        F += rate * dp * raw
     if supg:
         D = kin.h**2 * p_c / (12 * mu)
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
+        # the strong residual per unit area of S: the rate over J_S w
         F += rf.supg_stabilisation(p, 0.0, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
-                                   div=div, rho=rho)
+                                   div=div, rho=rho,
+                                   rate=None if rate is None else rate / (kin.stretch * w))
     if eps is not None:
         F += rf.cavitation_penalty(p, dp, eps, WeightedMeasure(kin.stretch, nodal_dx or dx))
     return F
 
 
 def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
-                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1):
-    """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l, steady.
+                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1, rate=None):
+    """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l.
 
     Returns (transport, constraint): the transport residual
 
@@ -350,6 +359,9 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     unweighted: w multiplies the fluxes, and the divergence is the one of the
     surface of revolution, div_S q = (1/w) d(w q)/dl for a meridional q (the hoop
     term included), so that the balance stays exact when r_S varies.
+
+    ``rate``: the transient film (:mod:`forms.squeeze`), d(θ h J_S w)/dt per unit
+    reference measure ``dx``, with ``kin`` relative to the moving S; None: steady.
     """
     dS = WeightedMeasure(kin.stretch * weight, dx)
 
@@ -361,11 +373,14 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
 
     lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
     F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
+    if rate is not None:
+        F += rate * dp * dx
     if supg:
         D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
-                                   div=div)
+                                   div=div,
+                                   rate=None if rate is None else rate / (kin.stretch * weight))
     if ds_ends is not None:
         # v̄ = ½(I − ν⊗ν)FV is discontinuous between elements for a C⁰ displacement:
         # the element-wise divergence theorem leaves the jumps of the Couette flux

@@ -64,6 +64,7 @@ from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
 from .cycles import ReciprocatingCycle
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
+from .step_control import run_controlled
 
 __all__ = ["MeshInversion", "ReciprocatingCycle",
            "StepReport", "Stepper", "nominal_steps"]
@@ -116,11 +117,14 @@ class Stepper:
         problem_kw: further keyword arguments of the Problems.
         problem_class: class of the Problems (default :class:`tribofx.problem.Problem`;
             same constructor, e.g. :class:`tribofx.reduced.ReducedProblem`).
+        schedule: pairs (Constant, f) of time-dependent data (speeds, loads,
+            positions): each step sets the Constant to f(t_{n+1}) after the
+            interfaces' ``begin_step`` (their histories hold t_n); part of the state.
     """
 
     def __init__(self, components, wear, cycle=None, parameters=(), max_cuts=6,
                  checkpoint=None, picard_tol=1e-8, max_picard=20, name="wear", verbose=False,
-                 problem_kw=None, problem_class=Problem):
+                 problem_kw=None, problem_class=Problem, schedule=()):
         self.wears = list(wear) if isinstance(wear, (list, tuple)) else [wear]
         wear = self.wears[0]
         if any((w.theta, w.averaged) != (wear.theta, wear.averaged) for w in self.wears):
@@ -131,7 +135,8 @@ class Stepper:
         if wear.averaged and cycle is None:
             raise ValueError("an averaged wear rate needs a fast-time cycle")
         self.components, self.wear, self.cycle = list(components), wear, cycle
-        self.parameters = list(parameters)
+        self.schedule = list(schedule)
+        self.parameters = list(parameters) + [c for c, _ in self.schedule]
         self.max_cuts, self.verbose = int(max_cuts), verbose
         self.picard_tol, self.max_picard = picard_tol, max_picard
         kw = problem_kw or {}
@@ -222,6 +227,8 @@ class Stepper:
         out = StepReport(dt=dt)
         for w in self.wears:
             w.begin_step(dt)
+        for c, f in self.schedule:
+            c.value = f(self.t + dt)
         if self.control is not None:
             self.control.begin(dt)
         try:
@@ -354,7 +361,7 @@ class Stepper:
         Newton failures are halved as without control.
         """
         if tol:
-            return self._run_controlled(T, dt, on_step, progress, tol)
+            return run_controlled(self, T, dt, on_step, progress, tol)
         self.dt = dt
         if progress is not None and getattr(progress, "n", None) == 0 and self.steps:
             progress.update(self.steps)    # resumed from a checkpoint: the bar goes on
@@ -382,64 +389,6 @@ class Stepper:
         if progress is not None:
             progress.update(1)
         interrupt.check(self.comm, self.t)
-
-    def _run_controlled(self, T, dt, on_step, progress, tol):
-        """Run the error-controlled loop of :meth:`run` (see there).
-
-        A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
-        estimate (``report.forced``): across a jump of the rate (a node entering
-        contact) the estimate per unit step does not vanish with Δt, and the step
-        boundary at the jump is the best the scheme can do.  A NaN estimate is
-        a rejection.
-        """
-        if any(getattr(w, "scheme", None) != "bdf2" for w in self.wears):
-            raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
-        if not self.steps:
-            self.dt = dt            # a resumed run goes on with its proposed step
-        dt_min = 1e-6 * T
-        interrupt.arm()
-        rejected = 0
-        while self.t < T * (1 - 1e-12):
-            h = min(self.dt, T - self.t)
-            saved = self.state()
-            try:
-                report = self.step(h)
-            except NewtonDivergence:
-                self.restore(saved)
-                self.cuts += 1
-                if self.cuts > self.max_cuts:
-                    raise
-                self.dt = h / 2
-                continue
-            errs = [(e, w.error_order) for w, e in ((w, w.step_error()) for w in self.wears)
-                    if e is not None]
-            err, order = max(errs) if errs else (None, 2)
-            # error per unit step: a step may err by tol·Δt/T, so the errors of all
-            # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1)
-            allowed = tol * h / T
-            bad = err is not None and not err <= allowed        # NaN: rejected
-            if err is None or err == 0:
-                factor = 2.0
-            elif err != err:
-                factor = 0.2
-            else:
-                factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
-            forced = bad and err == err and h <= dt_min * (1 + 1e-9)
-            if bad and err != err and h <= dt_min * (1 + 1e-9):
-                self.restore(saved)
-                raise NewtonDivergence(f"error control: NaN estimate at t = {self.t:g} s")
-            if bad and not forced:
-                self.restore(saved)
-                rejected += 1
-                self.dt = max(h * factor, dt_min)
-                continue
-            self.cuts = 0
-            report.error, report.rejected, rejected = err, rejected, 0
-            report.forced = forced
-            if h == self.dt or factor < 1:   # a last, shortened step keeps the proposal
-                self.dt = h * factor
-            self._accepted(report, on_step, progress)
-
 
 def nominal_steps(T, dt):
     """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""

@@ -71,6 +71,7 @@ from ..laws import viscosity_law
 from ..problem import BlockTolerance
 from ..submesh import facet_submesh
 from .film_start import FilmStart
+from .film_transient import TransientFilm
 from .reynolds_film import ReynoldsFilm
 from .surface import Surface
 
@@ -105,7 +106,7 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
-class Film(FilmStart, ReynoldsFilm):
+class Film(FilmStart, TransientFilm, ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
     Args:
@@ -241,13 +242,8 @@ class Film(FilmStart, ReynoldsFilm):
         self.kin = ef.lubrication_kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N,
                                              None, None, V_body, model, surface, self.alpha,
                                              V_counter)
-        F = ufl.Identity(gdim) + ufl.grad(body.u)
-        self._F, self._N_b = F, N_b
-        grad_p = self.g if shear else ufl.zero(gdim)
-        self.traction = ft.fluid_traction(self.p, grad_p, self.kin_bulk, F, N_b, self.T_b,
-                                          self.mu_p, shear=shear, model=model)
-        self._couette = ft.fluid_traction(0.0, ufl.zero(gdim), self.kin_bulk, F, N_b,
-                                          self.T_b, self.mu_p, shear=True, model=model)
+        self._F, self._N_b = ufl.Identity(gdim) + ufl.grad(body.u), N_b
+        self._tractions()
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
         self.w_solid, self.w_film = body.weight, 1
         if body.kind == "axisymmetric":
@@ -258,6 +254,15 @@ class Film(FilmStart, ReynoldsFilm):
         self._post = None
         self._dry = None
         self._init_rows()
+
+    def _tractions(self):
+        """Fluid traction (46) on the body from ``kin_bulk``, and its Couette part alone."""
+        args = (self.kin_bulk, self._F, self._N_b, self.T_b, self.mu_p)
+        grad_p = self.g if self.shear else ufl.zero(self.body.gdim)
+        self.traction = ft.fluid_traction(self.p, grad_p, *args, shear=self.shear,
+                                          model=self.model)
+        self._couette = ft.fluid_traction(0.0, ufl.zero(self.body.gdim), *args, shear=True,
+                                          model=self.model)
 
     def _mirror(self, constant):
         copy = fem.Constant(self.sub, np.array(constant.value, dtype=float))
@@ -354,7 +359,8 @@ class Film(FilmStart, ReynoldsFilm):
         continuation parameters (speed, load) through :meth:`set_scales`.
         """
         return (self.unknowns() + list(self.counterpart.state_fields())
-                + self.viscosity.state_fields() + self.density.state_fields())
+                + self.viscosity.state_fields() + self.density.state_fields()
+                + self.history_fields())
 
     def commit(self):
         """Accept the converged step (the counterpart's history moves on)."""

@@ -36,9 +36,13 @@ class ReynoldsFilm:
     the kinematics ``kin`` (:class:`tribofx.forms.ehl.LubricationKinematics`),
     ``grad_gamma``, ``T`` (curve tangent), the measures ``dx``/``nodal_dx``, the
     constants ``mu_p`` (the viscosity μ(p)), ``p_c``, ``eps``, ``_c_p``, ``_q_ref``, and ``w_film``,
+    ``kin_reynolds`` and ``film_rate`` (None, or those of a transient film),
     ``_supg``, ``_jumps``, ``rtol``, ``h_ref``, ``U_ref``, ``length``, then calls
     :meth:`_init_rows`.
     """
+
+    kin_reynolds = None      # a transient film's kinematics relative to S(t)
+    film_rate = None         # a transient film's rate of the fluid content
 
     def _init_rows(self):
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
@@ -177,20 +181,23 @@ class ReynoldsFilm:
     def _reynolds(self, dp):
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
         h_e = ufl.CellDiameter(self.sub)
+        # a transient film (TransientFilm): kinematics relative to S(t), the content's rate
+        kin, rate = self.kin_reynolds or self.kin, self.film_rate
         if self.lam is None:
             def weighted(measure):
                 return measure if self.w_film == 1 else ef.WeightedMeasure(self.w_film, measure)
 
-            return ef.reynolds_on_surface(self.p, dp, self.kin, self.mu_p, weighted(self.dx),
+            return ef.reynolds_on_surface(self.p, dp, kin, self.mu_p, weighted(self.dx),
                                           eps=self.eps, supg=self._supg, p_c=self.p_c, h_e=h_e,
                                           nodal_dx=weighted(self.nodal_dx),
-                                          grad_gamma=self.grad_gamma, rho=self.rho_p), None
+                                          grad_gamma=self.grad_gamma, rho=self.rho_p,
+                                          rate=rate), None
         # JFO: the weight (2π r_S, axisymmetric) enters the divergence of the fluxes
-        return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), self.kin,
+        return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), kin,
                                  self.mu_p, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
                                  ds_ends=self._ds_ends() if self._jumps else None,
-                                 weight=self.w_film)
+                                 weight=self.w_film, rate=rate)
 
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""

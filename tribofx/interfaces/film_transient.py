@@ -1,0 +1,145 @@
+"""Transient films: the squeeze term in time, the film as an evolving interface of the Stepper.
+
+:class:`TransientFilm` is a base class of :class:`tribofx.interfaces.Film`.
+:meth:`TransientFilm.transient` (called before the Problem is built) turns the
+steady film of the chapter into the transient one of :mod:`tribofx.forms.squeeze`:
+
+* the Reynolds (or JFO transport) rows get the rate of the fluid content
+  c = ρ θ h J_S w at fixed reference point X and the mean velocity relative to
+  the moving lubrication surface, v̄ − (I − ν⊗ν) ẏ;
+* the layer velocity gets the displacement rate u̇ (rows and Couette traction);
+* the rates are backward differences of histories kept by the film: c at the
+  quadrature points of Γ_l, the trace u_s and the body's u at their nodes, the
+  countersurface's rigid translation; ẏ follows by the chain rule
+  (:func:`tribofx.forms.squeeze.surface_rate`).
+
+The film then answers the slow-time protocol of :class:`tribofx.stepper.Stepper`
+(``theta = 1``, not averaged, no shape unknowns): ``begin_step(dt)`` moves the
+histories on (t_n ← the converged state) and sets the weights, backward Euler
+(``scheme="euler"``) or variable-step BDF2 (``scheme="bdf2"``, started by one
+backward-Euler step).  Between steps (before the first) the rate weight 1/Δt is
+0 and the film is the steady one, so a steady solve gives the initial state.
+"""
+
+import basix.ufl
+import numpy as np
+from dolfinx import fem
+
+from ..forms import squeeze as sq
+from ..forms import wear as wf
+
+__all__ = ["TransientFilm"]
+
+SCHEMES = ("euler", "bdf2")
+
+
+class TransientFilm:
+    """Time history and slow-time protocol of a transient :class:`tribofx.interfaces.Film`."""
+
+    theta, averaged = 1, False
+    scheme = None            # None: the steady film of the chapter
+
+    def transient(self, scheme="bdf2"):
+        """Make the film transient, integrated by ``scheme`` ("euler" or "bdf2"); returns self.
+
+        Call before the :class:`tribofx.problem.Problem` is built (the rows are
+        built with the rates).  Needs the Gauss quadrature of Γ_l (the histories
+        of c and y live at its points).
+        """
+        if scheme not in SCHEMES:
+            raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
+        if self.scheme is not None:
+            raise ValueError("the film is already transient")
+        md = self.dx.metadata()
+        if md.get("quadrature_rule") == "vertex":
+            raise ValueError("a transient film needs quadrature='gauss'")
+        self.scheme = scheme
+        sub, body, gdim = self.sub, self.body, self.body.gdim
+        deg = md["quadrature_degree"]
+        Cq = fem.functionspace(sub, basix.ufl.quadrature_element(sub.basix_cell(), (),
+                                                                 degree=deg))
+        n = self.name
+        self._hist = {
+            "c": [fem.Function(Cq, name=f"{n}_content_{k}") for k in ("n", "nm1")],
+            "u_s": [fem.Function(self.Vs, name=f"{n}_trace_{k}") for k in ("n", "nm1")],
+            "u": [fem.Function(body.u.function_space, name=f"{n}_body_u_{k}")
+                  for k in ("n", "nm1")],
+        }
+        # the countersurface's rigid translation (if any) at t_n, t_{n−1}
+        self._offset = getattr(self.counterpart, "offset", None)
+        self._offset_hist = [fem.Constant(sub, np.zeros(gdim)) for _ in range(2)]
+        # weights 1/Δt, c₀, c₁ and the previous step: bulk constants, submesh mirrors
+        self.time_weights = [fem.Constant(body.mesh, 0.0) for _ in range(3)]
+        self.dt_prev = fem.Constant(body.mesh, 0.0)
+        w_sub = [self._mirror(c) for c in self.time_weights]
+        H = self._hist
+        self._content = sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
+        self.film_rate = sq.backward_difference(self._content, *H["c"], *w_sub)
+        u_rate = sq.backward_difference(self.u_s, *H["u_s"], *w_sub)
+        # ẏ by the chain rule: y(x, c) moves with a common translation of x and c
+        c_rate = None
+        if self._offset is not None:
+            c_rate = sq.backward_difference(self._offset, *self._offset_hist, *w_sub)
+        y_rate = sq.surface_rate(self.kin.y, self.u_s, u_rate, c_rate)
+        self.kin = sq.moving_surface(self.kin, layer_rate=u_rate)
+        self.kin_reynolds = sq.moving_surface(self.kin, surface_rate=y_rate)
+        self.kin_bulk = sq.moving_surface(self.kin_bulk,
+                                          layer_rate=sq.backward_difference(
+                                              body.u, *H["u"], *self.time_weights))
+        self._tractions()
+        self._expr = fem.Expression(self._content, Cq.element.interpolation_points)
+        return self
+
+    def history_fields(self):
+        """Histories and time weights of a transient film (none when steady)."""
+        if self.scheme is None:
+            return []
+        return ([f for fs in self._hist.values() for f in fs] + list(self.time_weights)
+                + [self.dt_prev] + self._offset_hist)
+
+    # -- slow-time protocol (tribofx.stepper.Stepper) ------------------------------------
+    def shape_unknowns(self):
+        """No shape unknowns: the film's unknowns are solved with the body's."""
+        return []
+
+    def min_volume_factor(self):
+        """No shape change: +inf (the Stepper's mesh check passes)."""
+        return np.inf
+
+    def begin_step(self, dt):
+        """Start a step of Δt (s): histories t_{n−1} ← t_n ← the converged state; weights.
+
+        BDF2 with ω = Δt/Δt_prev (:func:`tribofx.forms.wear.bdf2_coefficients`);
+        the first step, and every step of ``scheme="euler"``, is backward Euler.
+        """
+        if self.scheme is None:
+            raise ValueError("begin_step of a steady film: call film.transient() first")
+        self.refresh()
+        live = {"u_s": self.u_s, "u": self.body.u}
+        for key, (f_n, f_nm1) in self._hist.items():
+            f_nm1.x.array[:] = f_n.x.array
+            if key in live:
+                f_n.x.array[:] = live[key].x.array
+            else:
+                f_n.interpolate(self._expr)
+            f_n.x.scatter_forward()
+        if self._offset is not None:
+            self._offset_hist[1].value[:] = self._offset_hist[0].value
+            self._offset_hist[0].value[:] = self._offset.value
+        prev = float(self.dt_prev.value)
+        c0, c1 = (1.0, 0.0) if self.scheme == "euler" or prev <= 0 \
+            else wf.bdf2_coefficients(dt / prev)
+        for c, v in zip(self.time_weights, (1.0 / dt, c0, c1)):
+            c.value = v
+        self.dt_prev.value = float(dt)
+
+    def end_step(self):
+        """Nothing: the outputs of the step keep its rates (the next step resets them)."""
+
+    def content(self):
+        """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks).
+
+        mm² per unit length in the plane, mm³ in 3D and revolved.
+        """
+        c = sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
+        return self._sum(fem.form(c * self.dx))

@@ -1,0 +1,70 @@
+"""Error-controlled slow time: the accept/reject loop of :meth:`tribofx.stepper.Stepper.run`.
+
+Each evolving interface gives the error estimate of its last step
+(``step_error()``, of order ``error_order``); a step whose estimate per unit
+step exceeds tol/T is rejected and retried with a smaller step, an accepted
+one proposes the next (see :meth:`tribofx.stepper.Stepper.run`).
+"""
+
+from . import interrupt
+from .problem import NewtonDivergence
+
+__all__ = ["run_controlled"]
+
+
+def run_controlled(stepper, T, dt, on_step, progress, tol):
+    """Run the error-controlled loop of :meth:`tribofx.stepper.Stepper.run` (``stepper``).
+
+    A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
+    estimate (``report.forced``): across a jump of the rate (a node entering
+    contact) the estimate per unit step does not vanish with Δt, and the step
+    boundary at the jump is the best the scheme can do.  A NaN estimate is
+    a rejection.
+    """
+    if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
+        raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
+    if not stepper.steps:
+        stepper.dt = dt            # a resumed run goes on with its proposed step
+    dt_min = 1e-6 * T
+    interrupt.arm()
+    rejected = 0
+    while stepper.t < T * (1 - 1e-12):
+        h = min(stepper.dt, T - stepper.t)
+        saved = stepper.state()
+        try:
+            report = stepper.step(h)
+        except NewtonDivergence:
+            stepper.restore(saved)
+            stepper.cuts += 1
+            if stepper.cuts > stepper.max_cuts:
+                raise
+            stepper.dt = h / 2
+            continue
+        errs = [(e, w.error_order) for w, e in ((w, w.step_error()) for w in stepper.wears)
+                if e is not None]
+        err, order = max(errs) if errs else (None, 2)
+        # error per unit step: a step may err by tol·Δt/T, so the errors of all
+        # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1)
+        allowed = tol * h / T
+        bad = err is not None and not err <= allowed        # NaN: rejected
+        if err is None or err == 0:
+            factor = 2.0
+        elif err != err:
+            factor = 0.2
+        else:
+            factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
+        forced = bad and err == err and h <= dt_min * (1 + 1e-9)
+        if bad and err != err and h <= dt_min * (1 + 1e-9):
+            stepper.restore(saved)
+            raise NewtonDivergence(f"error control: NaN estimate at t = {stepper.t:g} s")
+        if bad and not forced:
+            stepper.restore(saved)
+            rejected += 1
+            stepper.dt = max(h * factor, dt_min)
+            continue
+        stepper.cuts = 0
+        report.error, report.rejected, rejected = err, rejected, 0
+        report.forced = forced
+        if h == stepper.dt or factor < 1:   # a last, shortened step keeps the proposal
+            stepper.dt = h * factor
+        stepper._accepted(report, on_step, progress)
