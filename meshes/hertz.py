@@ -9,7 +9,9 @@ lies at the origin; the rigid plane is y = 0 (2D) or z = 0 (3D).
   (0, 0, R), cut at its equator plane z = R.
 
 Facet tags: 1 potential contact surface, 2 loaded flat face, 3 symmetry x = 0,
-4 symmetry y = 0 (3D only).  Lengths in mm.
+4 symmetry y = 0 (3D only); with ``cap`` = L the contact surface is only the cap
+within the distance L of the axis (its rim exactly on the circle x = L, or
+x² + y² = L²), the rest of the curved surface 5 (free).  Lengths in mm.
 """
 
 import gmsh
@@ -18,10 +20,10 @@ from mpi4py import MPI
 from .model import distributed_model
 from .sizing import point_refinement
 
-__all__ = ["AXIS", "AXISYMMETRIC_NAMES", "CONTACT", "LOADED", "NAMES", "SYMMETRY_X",
+__all__ = ["AXIS", "AXISYMMETRIC_NAMES", "CONTACT", "FREE", "LOADED", "NAMES", "SYMMETRY_X",
            "SYMMETRY_Y", "hertz_body", "sphere_section"]
 
-CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y = 1, 2, 3, 4
+CONTACT, LOADED, SYMMETRY_X, SYMMETRY_Y, FREE = 1, 2, 3, 4, 5
 NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_x": SYMMETRY_X,
          "symmetry_y": SYMMETRY_Y}
 #: the axis of the meridian section of :func:`sphere_section` (the 2D tag SYMMETRY_X)
@@ -30,7 +32,34 @@ AXIS = SYMMETRY_X
 AXISYMMETRIC_NAMES = {"contact": CONTACT, "loaded": LOADED, "axis": AXIS}
 
 
-def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
+def _split_cap(dim, R, cap):
+    """Cut the body at the cap's rim (z or y = R − √(R² − L²)) so the cap is a surface of its own.
+
+    The cut is a segment (2D) or a quarter disc (3D) of the body's section there;
+    pieces of it outside the body are removed.
+    """
+    occ = gmsh.model.occ
+    z = R - (R * R - cap * cap) ** 0.5
+    if dim == 2:
+        tool = occ.addLine(occ.addPoint(cap, z, 0), occ.addPoint(cap, R, 0))
+    else:
+        tool = occ.addDisk(0, 0, z, R, R)
+    body = gmsh.model.getEntities(dim)
+    occ.fragment(body, [(dim - 1, tool)])
+    occ.synchronize()
+    for d, t in gmsh.model.getEntities(dim - 1):
+        if not len(gmsh.model.getAdjacencies(d, t)[0]):
+            occ.remove([(d, t)], recursive=True)
+    occ.synchronize()
+    return z
+
+
+def _boundary(dim, tag):
+    """Whether entity ``tag`` of dimension dim − 1 bounds one body piece only."""
+    return len(gmsh.model.getAdjacencies(dim - 1, tag)[0]) == 1
+
+
+def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None, cap=None):
     occ = gmsh.model.occ
     s = -1.0 if below else 1.0
     y_load = s * R
@@ -42,13 +71,19 @@ def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
         box = occ.addRectangle(0, min(0.0, s * R), 0, R, R)
         occ.intersect([(2, disc)], [(2, box)])
     occ.synchronize()
-    contact, loaded, sym = [], [], []
+    if cap is not None:
+        _split_cap(2, R, cap)
+    contact, loaded, sym, free = [], [], [], []
     for dim, tag in gmsh.model.getEntities(1):
         x, y, _ = occ.getCenterOfMass(dim, tag)
+        if not _boundary(2, tag):
+            continue
         if abs(x) < 1e-8 * R:
             sym.append(tag)
         elif abs(y - y_load) < 1e-8 * R:
             loaded.append(tag)
+        elif cap is not None and x > cap:
+            free.append(tag)
         elif block is None or abs(y) < 1e-8 * R:
             contact.append(tag)
     surf = [t for _, t in gmsh.model.getEntities(2)]
@@ -56,6 +91,8 @@ def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
     gmsh.model.addPhysicalGroup(1, contact, CONTACT)
     gmsh.model.addPhysicalGroup(1, loaded, LOADED)
     gmsh.model.addPhysicalGroup(1, sym, SYMMETRY_X)
+    if free:
+        gmsh.model.addPhysicalGroup(1, free, FREE)
     p0 = [t for _, t in gmsh.model.getEntities(0)
           if sum(abs(c) for c in gmsh.model.getValue(0, t, [])) < 1e-8 * R]
     if not p0:
@@ -65,27 +102,33 @@ def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None):
     gmsh.model.mesh.generate(2)
 
 
-def _build_3d(R, h_fine, h_coarse, r_fine):
+def _build_3d(R, h_fine, h_coarse, r_fine, cap=None):
     occ = gmsh.model.occ
     ball = occ.addSphere(0, 0, R, R)
     box = occ.addBox(0, 0, 0, R, R, R)
     occ.intersect([(3, ball)], [(3, box)])
     occ.synchronize()
-    tags = {CONTACT: [], LOADED: [], SYMMETRY_X: [], SYMMETRY_Y: []}
+    z_cap = _split_cap(3, R, cap) if cap is not None else None
+    tags = {CONTACT: [], LOADED: [], SYMMETRY_X: [], SYMMETRY_Y: [], FREE: []}
     for dim, tag in gmsh.model.getEntities(2):
         x, y, z = occ.getCenterOfMass(dim, tag)
+        if not _boundary(3, tag):
+            continue
         if abs(x) < 1e-8 * R:
             tags[SYMMETRY_X].append(tag)
         elif abs(y) < 1e-8 * R:
             tags[SYMMETRY_Y].append(tag)
         elif abs(z - R) < 1e-8 * R:
             tags[LOADED].append(tag)
+        elif z_cap is not None and z > z_cap:
+            tags[FREE].append(tag)
         else:
             tags[CONTACT].append(tag)
     vol = [t for _, t in gmsh.model.getEntities(3)]
     gmsh.model.addPhysicalGroup(3, vol, 1)
     for k, v in tags.items():
-        gmsh.model.addPhysicalGroup(2, v, k)
+        if v:
+            gmsh.model.addPhysicalGroup(2, v, k)
     p0 = [t for _, t in gmsh.model.getEntities(0)
           if sum(abs(c) for c in gmsh.model.getValue(0, t, [])) < 1e-8 * R]
     point_refinement(h_fine, h_coarse, r_fine, R, p0[0])
@@ -93,7 +136,7 @@ def _build_3d(R, h_fine, h_coarse, r_fine):
 
 
 def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=False,
-               block=None):
+               block=None, cap=None):
     """Build the symmetry-reduced Hertz body and return ``(mesh, facet_tags)``.
 
     Args:
@@ -107,14 +150,16 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=Fals
             loaded face y = −R), the counterpart of a two-cylinder contact.
         block: 2D only: instead a flat block [0, block] × [−block, 0] (contact
             face y = 0, loaded face y = −block, the right side free).
+        cap: None, or the radius L < R of the contact cap (tag CONTACT; the rest of
+            the curved surface FREE), e.g. the end of a lubricated film.
     """
     if dim not in (2, 3):
         raise ValueError(f"dim must be 2 or 3, got {dim}")
     def build():
         if dim == 2:
-            _build_2d(R, h_fine, h_coarse, r_fine, below, block)
+            _build_2d(R, h_fine, h_coarse, r_fine, below, block, cap)
         else:
-            _build_3d(R, h_fine, h_coarse, r_fine)
+            _build_3d(R, h_fine, h_coarse, r_fine, cap)
 
     data = distributed_model(f"hertz{dim}d", build, comm, dim)
     return data.mesh, data.facet_tags

@@ -1,6 +1,7 @@
 """Run outputs: ``summary.json``, VTX (.bp) fields for ParaView and PNG plots."""
 
 import json
+import math
 import time
 from pathlib import Path
 
@@ -10,7 +11,11 @@ __all__ = ["RunRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary", "
 
 
 def jsonable(obj):
-    """``obj`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types."""
+    """``obj`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types.
+
+    An infinite float (e.g. ``E2=inf``, a rigid body) becomes the string "inf"
+    ("-inf"): strict JSON has no infinity.
+    """
     if isinstance(obj, dict):
         return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -18,7 +23,9 @@ def jsonable(obj):
     if isinstance(obj, np.ndarray):
         return jsonable(obj.tolist())
     if isinstance(obj, (np.floating, np.integer, np.bool_)):
-        return obj.item()
+        obj = obj.item()
+    if isinstance(obj, float) and obj in (math.inf, -math.inf):
+        return "inf" if obj > 0 else "-inf"
     return obj
 
 

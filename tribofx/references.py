@@ -20,6 +20,8 @@ Contents:
   :func:`rigid_clearance` (Martin 1916);
 * soft EHL: :func:`hamrock_dowson` (isoviscous-elastic point contact, Hamrock and
   Dowson 1978), :func:`inverse_film` (inverse hydrodynamic theory, Blok 1963);
+* squeeze films (Reynolds 1886): :func:`squeeze_resistance`, :func:`squeeze_closed_form`,
+  :func:`squeeze_film_under_load` (in :mod:`tribofx.references_squeeze`);
 * Archard wear of a rigid ball: :func:`rigid_cap_depth`, :func:`rigid_cap_radius`
   (ball on a flat), :func:`rigid_groove_halfwidth` (ball on a track).
 
@@ -33,6 +35,12 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+
+from .references_squeeze import (
+    squeeze_closed_form,
+    squeeze_film_under_load,
+    squeeze_resistance,
+)
 
 __all__ = [
     "HertzContact",
@@ -50,6 +58,9 @@ __all__ = [
     "rigid_groove_halfwidth",
     "slider_pressure",
     "slider_reference",
+    "squeeze_closed_form",
+    "squeeze_film_under_load",
+    "squeeze_resistance",
 ]
 
 

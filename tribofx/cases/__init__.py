@@ -4,6 +4,7 @@ from .contact_patch import ContactPatchCase
 from .ehl import EHLCylinderLayerCase
 from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
+from .ehl_squeeze import EHLSqueezeCase
 from .hertz import HertzCase
 from .ironing import IroningCase
 from .reynolds import SliderCase
@@ -18,7 +19,7 @@ __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
-                                  EHLORingCase, TwoCylindersCase,
+                                  EHLORingCase, EHLSqueezeCase, TwoCylindersCase,
                                   ContactPatchCase, IroningCase, WearReciprocatingCase)}
 
 

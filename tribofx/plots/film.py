@@ -7,7 +7,7 @@ import numpy as np
 from .common import pyplot
 
 __all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
-           "plot_reynolds_cylinder", "plot_slider"]
+           "plot_reynolds_cylinder", "plot_slider", "plot_squeeze"]
 
 
 def _save(plt, fig, path):
@@ -201,3 +201,44 @@ def plot_oring(profile, outdir):
         fig = _oring_axes(plt, {":": (lambda st: f"density {st['mesh']}", profile["mesh"])},
                           "mesh-density study (outstroke)")
         _save(plt, fig, Path(outdir) / "mesh_study.png")
+
+
+def plot_squeeze(profile, outdir):
+    """Plot ``squeeze.png`` and ``squeeze_profiles.png`` of ``ehl-squeeze``.
+
+    The first: film at the centre, minimum film and force against time, with the
+    rigid references; the second: the final p and h against the radius.
+    """
+    plt = pyplot()
+    t = 1e3 * np.asarray(profile["time"])
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
+    a1.plot(t, 1e3 * np.asarray(profile["h_center"]), "o-", ms=3, label="h at the centre")
+    a1.plot(t, 1e3 * np.asarray(profile["h_min"]), "s--", ms=3, label="h_min")
+    a1.plot(t, 1e3 * np.asarray(profile["h_center_rigid"]), "k:", label="rigid body")
+    a1.set_ylabel("film (µm)")
+    a1.legend(fontsize=8)
+    a1.grid(alpha=0.3)
+    a2.plot(t, profile["force"], "o-", ms=3, label="film force")
+    a2.plot(t, profile["force_rigid"], "k:", label="rigid body (speed) / load")
+    a2.set_ylabel("force (N; N/mm in 2D)")
+    a2.set_xlabel("time (ms)")
+    a2.legend(fontsize=8)
+    a2.grid(alpha=0.3)
+    _save(plt, fig, Path(outdir) / "squeeze.png")
+    X = np.asarray(profile["X"])
+    r = np.linalg.norm(X[:, :-1] if X.shape[1] == 2 else X[:, :2], axis=1)
+    order = np.argsort(r)
+    fig, (b1, b2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
+    b1.plot(r[order], np.asarray(profile["p"])[order], ".", ms=3)
+    b1.set_ylabel("pressure p (MPa)")
+    b1.grid(alpha=0.3)
+    b2.plot(r[order], 1e3 * np.asarray(profile["h"])[order], ".", ms=3)
+    b2.set_ylabel("film h (µm)")
+    b2.set_yscale("log")
+    b2.set_xlabel("radius of the reference point (mm)")
+    p = np.asarray(profile["p"])[order]
+    loaded = r[order][p > 0.01 * p.max(initial=0.0)]
+    if len(loaded):
+        b2.set_xlim(0, 2 * loaded.max())
+    b2.grid(alpha=0.3)
+    _save(plt, fig, Path(outdir) / "squeeze_profiles.png")

@@ -1,0 +1,201 @@
+"""Transient films (issue 31): the squeeze term against Reynolds' squeeze film, orders, tangent.
+
+References (independent of the FE code): :mod:`tribofx.references_squeeze`, the
+rigid cylinder/sphere approaching a plane with the exact gap, by quadrature and
+RK4; and their classical closed forms (checked here against the quadrature in
+the limit h₀/R → 0, with the leading correction derived in the comments).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from tribofx.cases.ehl_squeeze import EHLSqueezeCase as Case
+from tribofx.params import resolve
+from tribofx.references import (
+    squeeze_closed_form,
+    squeeze_film_under_load,
+    squeeze_resistance,
+)
+from tribofx.runner import COMMON_PARAMS
+from tribofx.testing import block_taylor_orders, exact_tangent, smooth_direction
+
+R, MU = 10.0, 1e-7
+
+
+def values(**over):
+    """Parameter values of ``ehl-squeeze`` with ``over`` (as text, like ``--set``)."""
+    return resolve(tuple(Case.params) + COMMON_PARAMS, {k: str(x) for k, x in over.items()})
+
+
+# -- the references -----------------------------------------------------------------------
+def test_cylinder_quadrature_tends_to_the_closed_form():
+    # exact gap h = h₀ + x²/2R + x⁴/8R³ + …: the quartic term lowers ∫x²/h³ by
+    # 3·(5π/32)/(π/16)·… = (15/4) h₀/R relative (Beta integrals of t⁶/(1+t²)⁴ and
+    # t²/(1+t²)³); the next terms are O((h₀/R)²) and the film's end at L = R adds
+    # O((2Rh₀)^{3/2}/R³) = O((h₀/R)^{3/2})
+    for ratio in (1e-5, 1e-6, 1e-7):
+        K = squeeze_resistance(2, R, MU, ratio * R)
+        Kc = squeeze_closed_form(2, R, MU, ratio * R)[0]
+        assert K / Kc - 1 == pytest.approx(-3.75 * ratio, abs=10 * ratio**1.5)
+
+
+def test_sphere_quadrature_tends_to_the_closed_form():
+    # the quartic term gives −3/(8R³)·(2Rh₀)⁴/h₀⁴ ∫ t⁷/(1+t²)⁴ dt, logarithmic up to
+    # t = L/√(2Rh₀): relative −3 (h₀/R) ln(L²/(2Rh₀)) + O(h₀/R) (the integral's
+    # constant), so the estimate holds to a fraction O(1/ln) of itself
+    for ratio in (1e-5, 1e-7):
+        K = squeeze_resistance(3, R, MU, ratio * R)
+        Kc = squeeze_closed_form(3, R, MU, ratio * R)[0]
+        log = math.log(1 / (2 * ratio))
+        assert (K / Kc - 1) / (-3 * ratio * log) == pytest.approx(1, abs=2 / log)
+
+
+def test_thinning_under_load_follows_the_closed_forms():
+    # h ≪ R: the sphere's h = h₀ exp(−Ft/(6πμR²)), the cylinder's
+    # h^{−1/2} = h₀^{−1/2} + W t/(6√2πμR^{3/2}); the resistance differs from the
+    # closed form by ~4e-5 (sphere) and 4e-7 (cylinder) relative at h₀/R = 1e-6,
+    # which the thinning carries into h over one time constant at most
+    h0 = 1e-5
+    tau = 6 * math.pi * MU * R**2 / 1e-3
+    h = squeeze_film_under_load(3, R, MU, 1e-3, h0, [tau])[0]
+    assert h == pytest.approx(h0 * math.exp(-1), rel=1e-4)
+    W = 1.0
+    t = 2 * h0**-0.5 * 6 * math.sqrt(2) * math.pi * MU * R**1.5 / W
+    h = squeeze_film_under_load(2, R, MU, W, h0, [t])[0]
+    assert h == pytest.approx((h0**-0.5 + W * t / (6 * math.sqrt(2) * math.pi * MU
+                                                      * R**1.5)) ** -2, rel=1e-5)
+
+
+# -- the transient film ---------------------------------------------------------------------
+def run(v):
+    """Step the case; return the stepper and the per-step (t, h_center, force) of the film."""
+    st = Case.build(v)
+    film, dim = st.wear, v["dim"]
+    y0 = float(film.counterpart.offset.value[dim - 1])
+    out = []
+    st.run(v["T"], v["dt"], on_step=lambda s, r: out.append(
+        (s.t, Case.measures(film, v, y0), r.iterations)))
+    return st, out
+
+
+def test_rigid_cylinder_squeezed_at_a_speed():
+    """The plane approaches at V: the film force converges to the rigid cylinder's at rate 2.
+
+    E = 1e7 MPa: the body's compliance changes h by ~p ℓ/E* ≈ 1e-9 mm against
+    h ≈ 1e-2 mm (1e-7), far below the mesh error, which is O(h_e²) (P1 pressure
+    and the chords of the arc) with every element size halved per ``mesh`` level:
+    the error falls at a rate ≥ 1.8 and Richardson's extrapolation (4F₁ − F₀)/3
+    removes at least 90 % of it (both hold only if the error is the O(h_e²) one
+    and the limit is the reference).  The motion is linear in t, so backward Euler
+    is exact for the rigid gap: the time step leaves no error.
+    """
+    L = None
+    forces = []
+    for mesh in (0, 1):
+        v = values(E1=1e7, mesh=mesh, T=1e-3, dt=5e-4, scheme="euler")
+        _, out = run(v)
+        L = Case.extent(v)
+        forces.append(np.array([m["force"] for _, m, _ in out]))
+        assert all(its <= 3 for _, _, its in out)     # nearly linear: Newton at once
+    ref = np.array([squeeze_resistance(2, R, MU, v["h_start"] - v["V"] * t, L) * v["V"]
+                    for t, _, _ in out])
+    e0, e1 = forces[0] / ref - 1, forces[1] / ref - 1
+    assert np.all(np.log2(e0 / e1) >= 1.8)
+    assert np.all(np.abs((4 * e1 - e0) / 3) <= 0.1 * np.abs(e0))
+
+
+def test_time_schemes_converge_at_their_orders_under_a_load():
+    """Constant load: h(T) of backward Euler and BDF2 against a fine-step solution.
+
+    The cylinder (E = 1e7 MPa) carries F on the film alone.  Reference: BDF2
+    with Δt = T/64 on the same mesh (its own error ~ (1/4)² of the Δt = T/16 one,
+    below the differences measured).  Measured orders over Δt = T/4, T/8, T/16:
+    ≥ 0.85 (backward Euler, order 1) and ≥ 1.7 (BDF2, order 2; its first step
+    is backward Euler, an O(Δt²) contribution to the global error).  The fine
+    solution then matches the rigid cylinder's thinning (RK4 of dh/dt = −F/K(h))
+    to the mesh error of K (1.2 % at mesh 0, the test above) times the thinning
+    h₀ − h(T).
+    """
+    T = 2e-3
+
+    def h_end(scheme, n):
+        v = values(control="load", F=0.05, E1=1e7, T=T, dt=T / n, scheme=scheme)
+        _, out = run(v)
+        return out[-1][1]["h_center"], v
+
+    h_fine, v = h_end("bdf2", 64)
+    for scheme, order in (("euler", 0.85), ("bdf2", 1.7)):
+        err = np.array([abs(h_end(scheme, n)[0] - h_fine) for n in (4, 8, 16)])
+        assert np.all(np.log2(err[:-1] / err[1:]) >= order), (scheme, err)
+    h_ref = squeeze_film_under_load(2, R, MU, 0.05, v["h_start"], [T], Case.extent(v))[0]
+    assert h_fine == pytest.approx(h_ref, abs=0.012 * (v["h_start"] - h_ref))
+
+
+def test_transient_film_tangent_is_exact():
+    """Taylor test mid-step of the load-controlled squeeze (BDF2 weights, moving plane)."""
+    v = values(control="load", F=0.05, E1=1e5, T=1e-3, dt=2.5e-4, scheme="bdf2")
+    st = Case.build(v)
+    st.run(5e-4, 2.5e-4)                 # two steps: the BDF2 history is full
+    film = st.wear
+    film.begin_step(2.5e-4)
+    prob = st.problem
+    dirs = [smooth_direction(u, 1e-4 * v["h_start"] if u is not film.p else 0.01, k)
+            for k, u in enumerate(prob.u)]
+    for name, (orders, rem, floor) in block_taylor_orders(prob, dirs, eps0=1e-1).items():
+        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
+
+
+def test_soft_cylinder_traps_a_dimple():
+    """A soft cylinder (E = 10 MPa, ν = 0.45) under 0.5 N/mm: fluid trapped at the centre.
+
+    The classical elastohydrodynamic squeeze (e.g. Christensen 1970 for the sphere):
+    the film pressure flattens the body before the film drains, the film at the
+    centre stays thicker than at the rim of the flat, h_center > h_min, and the
+    film thins far slower than on the rigid cylinder (whose gap at 5 ms is ~0.6 µm
+    against the 8 µm here: the load spreads over the flattened contact).
+    """
+    v = values(control="load", F=0.5, E1=10, nu1=0.45, T=5e-3, dt=1e-3)
+    _, out = run(v)
+    m = out[-1][1]
+    assert m["h_center"] > 1.1 * m["h_min"]
+    h_rigid = squeeze_film_under_load(2, R, MU, 0.5, v["h_start"], [5e-3], Case.extent(v))[0]
+    assert m["h_min"] > 5 * h_rigid
+
+
+@pytest.mark.mpi
+def test_parallel_matches_serial():
+    """The soft squeeze's film at the centre, its minimum and the pressure: 2 ranks = 1."""
+    from mpi4py import MPI
+
+    if MPI.COMM_WORLD.size < 2:
+        pytest.skip("compares COMM_WORLD with COMM_SELF: run under mpiexec -n 2")
+    v = values(control="load", F=0.5, E1=10, nu1=0.45, T=2e-3, dt=1e-3)
+    out = []
+    for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
+        st = Case.build(v, comm=comm)
+        film = st.wear
+        y0 = float(film.counterpart.offset.value[1])
+        st.run(v["T"], v["dt"])
+        m = Case.measures(film, v, y0)
+        out.append(np.array([m["h_center"], m["h_min"], m["p_center"], m["approach"]]))
+    # solver tolerance 1e-10 relative: the partitions differ by round-off only
+    assert np.allclose(out[0], out[1], rtol=1e-6, atol=0)
+
+
+@pytest.mark.slow
+def test_rigid_sphere_squeezed_at_a_speed():
+    """The sphere (quarter model): the film force converges at rate 2 to the rigid sphere's.
+
+    As the cylinder's test, on meshes 0 and 1 (17k and ~130k unknowns).
+    """
+    forces = []
+    for mesh in (0, 1):
+        v = values(dim=3, E1=1e7, mesh=mesh, T=2.5e-4, dt=2.5e-4, scheme="euler")
+        _, out = run(v)
+        forces.append(out[-1][1]["force"])
+    ref = squeeze_resistance(3, R, MU, v["h_start"] - v["V"] * v["T"], Case.extent(v)) * v["V"]
+    e0, e1 = forces[0] / ref - 1, forces[1] / ref - 1
+    assert math.log2(e0 / e1) >= 1.8
+    assert abs((4 * e1 - e0) / 3) <= 0.1 * abs(e0)

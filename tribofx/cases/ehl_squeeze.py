@@ -1,0 +1,254 @@
+"""Squeeze film of a soft cylinder or sphere approaching a plane (transient soft-EHL, issue 31).
+
+``ehl-squeeze`` — a hyperelastic cylinder (``dim=2``, plane strain, half model
+x ≥ 0) or sphere (``dim=3``, quarter model x, y ≥ 0) of radius R, its lowest
+point h_start above a rigid plane, squeezes the flooded film between them:
+
+* ``control=speed``: the plane rises at V (mm/s) towards the body, whose top
+  face is held (u = 0);
+* ``control=load``: the body's top face carries the load F (N; N/mm of the
+  whole cylinder in 2D) as a dead traction and nothing else holds it: the film
+  alone carries F, through its squeeze term (a monolithic Newton in u, p).
+
+The film is the transient one of :mod:`tribofx.forms.squeeze` on the lubricated
+cap within L = min(10ℓ, R/2) of the axis: the rate of the content ρθhJ_S at fixed reference
+point, the mean velocity relative to the moving lubrication surface, integrated
+by backward Euler or BDF2 (``scheme``) in steps ``dt`` to ``T``; p = 0 at the
+film's end (its rim at L opens to a flooded reservoir).
+
+Rigid limit (E1 ≫ the film pressures), the independent checks: Reynolds'
+squeeze film with the exact gap (:func:`tribofx.references.squeeze_resistance`,
+→ W' = 3√2πμV(R/h)^{3/2} and F = 6πμR²V/h for h ≪ R) and its thinning under a
+constant load (:func:`tribofx.references.squeeze_film_under_load`); recorded
+per step as ``force_rigid`` / ``h_center_rigid``.  A soft body under load
+traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
+
+``E2`` finite (a deformable plane body) is the two-body film of issue 31, not
+built yet: a one-line error.
+
+Units: mm, N, s, MPa (viscosity MPa·s).
+"""
+
+import math
+
+import numpy as np
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..body import Body
+from ..forms.hyperelastic import lame_parameters
+from ..interfaces import Film
+from ..meshes.hertz import FREE, NAMES, hertz_body
+from ..obstacles import rigid_plane
+from ..params import InputError, Param
+from ..references import hertz, squeeze_film_under_load, squeeze_resistance
+from ..slow_run import SlowRun
+from ..stepper import Stepper, nominal_steps
+from .film_setup import VISCOSITY_PARAMS, density, viscosity
+
+__all__ = ["EHLSqueezeCase"]
+
+
+class EHLSqueezeCase:
+    """Case ``ehl-squeeze``; see the module docstring."""
+
+    name = "ehl-squeeze"
+    doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
+           "plane, at a speed or under a load; rigid-limit references")
+    params = (
+        Param("dim", int, 2, "-", "2: cylinder (plane strain, half model), 3: sphere "
+              "(quarter model)", choices=(2, 3)),
+        Param("control", str, "speed", "-", "speed: the plane approaches at V; load: the "
+              "body carries F", choices=("speed", "load")),
+        Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed)",
+              lower=0.0),
+        Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
+              lower=0.0),
+        Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
+        Param("E1", float, 1e5, "MPa", "Young's modulus of the cylinder or sphere (neo-Hookean)",
+              lower=0.0),
+        Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
+              upper=0.5),
+        Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
+              "finite: the two-body film, not built yet)", lower=0.0),
+        Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
+              upper=0.5),
+        Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
+        Param("h_start", float, 0.01, "mm", "initial film at the centre", lower=0.0),
+        Param("T", float, 2e-3, "s", "end time", lower=0.0),
+        Param("dt", float, 2.5e-4, "s", "time step", lower=0.0),
+        Param("scheme", str, "bdf2", "-", "time scheme of the squeeze term: euler (backward "
+              "Euler) or bdf2 (second order, started by one Euler step)",
+              choices=("euler", "bdf2")),
+        Param("mesh", int, 0, "-", "element size ℓ/(8·2^mesh) near the centre, "
+              "ℓ = max(√(2R h_start), Hertz half-width)", lower=0, upper=6, closed=True),
+        Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds rows"),
+    ) + VISCOSITY_PARAMS
+
+    @classmethod
+    def validate(cls, v):
+        """Bad input: a one-line error."""
+        if math.isfinite(v["E2"]):
+            raise InputError("E2 finite (two deformable bodies) needs the two-body film, not "
+                             "built yet; use E2=inf (a rigid plane)")
+        if not v["h_start"] < 0.1 * v["R"]:
+            raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
+        if v["dt"] > v["T"]:
+            raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+        if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
+            raise InputError(f"V·T = {v['V'] * v['T']:.3g} mm would close the rigid gap "
+                             f"h_start = {v['h_start']} mm; shorten T")
+        viscosity(v)
+        density(v)
+
+    @staticmethod
+    def fraction(v):
+        """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
+        return 0.5 if v["dim"] == 2 else 0.25
+
+    @classmethod
+    def length(cls, v):
+        """ℓ = max(√(2R h_start), Hertz half-width at F) (mm): the film's width."""
+        ell = math.sqrt(2 * v["R"] * v["h_start"])
+        if v["control"] == "load" and v["F"] > 0:
+            ell = max(ell, hertz(v["F"], v["R"], v["E1"], v["nu1"], line=v["dim"] == 2).a)
+        return ell
+
+    @classmethod
+    def extent(cls, v):
+        """End L of the film (mm): min(10ℓ, R/2); the body is lubricated within L of its axis.
+
+        Beyond it the gap exceeds ~50 h_start: the film carries ≲ (ℓ/L)³ (2D) or
+        ≲ (ℓ/L)² (3D) of the load there, and Reynolds' thin-film equation with its
+        growing conductance h³ (ill-conditioned rows) has no business there.  The
+        references are taken with the same extent.
+        """
+        return min(10 * cls.length(v), 0.5 * v["R"])
+
+    @classmethod
+    def speed_scale(cls, v):
+        """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
+        if v["control"] == "speed":
+            return v["V"]
+        return v["F"] / squeeze_resistance(v["dim"], v["R"], v["mu"], v["h_start"],
+                                           cls.extent(v))
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
+        """Body, transient film and stepper at t = 0 (the plane at h_start below the body)."""
+        dim, R, h0 = v["dim"], v["R"], v["h_start"]
+        ell, L = cls.length(v), cls.extent(v)
+        h_fine = ell / (8 * 2 ** v["mesh"])
+        msh, ft = hertz_body(dim, R, h_fine, R / (8 * 2 ** v["mesh"]), 2 * ell, comm, cap=L)
+        names = {("lubricated" if k == "contact" else k): t for k, t in NAMES.items()}
+        names["free"] = FREE
+        if dim == 2:
+            names.pop("symmetry_y")
+        mu_s, lm = lame_parameters(v["E1"], v["nu1"])
+        kind = "plane_strain" if dim == 2 else "3d"
+        Vs = cls.speed_scale(v)
+        K0 = squeeze_resistance(dim, R, v["mu"], h0, L)
+        # momentum rows relative to the film's force, far below the body's stiffness
+        # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
+        # the coarse elements h = R/8 (×100), so a stiff body (the rigid limit) converges
+        f_s = cls.fraction(v) * K0 * Vs
+        rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * (R / 8) ** (dim - 1) / f_s)
+        body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
+                    name="body", force_scale=f_s, rtol=rtol)
+        body.add_dirichlet("symmetry_x", 0.0, component=0)
+        if dim == 3:
+            body.add_dirichlet("symmetry_y", 0.0, component=1)
+        up = np.eye(dim)[dim - 1]
+        if v["control"] == "speed":
+            body.add_dirichlet("loaded", np.zeros(dim))
+        else:   # the model's part of F, uniform over the top face (its discrete area)
+            one = fem.form(fem.Constant(msh, 1.0) * body.ds(body.tag("loaded")))
+            area = msh.comm.allreduce(fem.assemble_scalar(one), op=MPI.SUM)
+            body.add_traction("loaded", fem.Constant(msh, -cls.fraction(v) * v["F"] / area * up))
+        p_c = K0 * Vs / (ell if dim == 2 else ell * ell)
+        # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
+        # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
+        h_L = h0 + R - math.sqrt(R * R - L * L)
+        floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * R / 8)
+        film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v),
+                    density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
+                    speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)))
+        film.add_pressure_bc(lambda X: np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2)
+        film.place_countersurface(h0, np.zeros(3))
+        film.transient(v["scheme"])
+        offset = film.counterpart.offset
+        y0 = float(offset.value[dim - 1])
+        schedule = []
+        if v["control"] == "speed":
+            schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
+        return Stepper([body, film], film, checkpoint=checkpoint, schedule=schedule,
+                       name="ehl_squeeze")
+
+    @staticmethod
+    def progress_total(v):
+        """Time steps to T."""
+        return nominal_steps(v["T"], v["dt"])
+
+    @staticmethod
+    def vtx_fields(stepper):
+        """Displacement of the body; film pressure (on Γ_l)."""
+        film = stepper.wear
+        return {"displacement": [film.body.u], "pressure": [film.p]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """``squeeze.png``: film and force against time; ``squeeze_profiles.png``."""
+        from ..plots.film import plot_squeeze
+
+        plot_squeeze(profile, outdir)
+
+    @classmethod
+    def measures(cls, film, v, y0):
+        """One step's measures: film at the centre and its minimum, force, plane position."""
+        dim = v["dim"]
+        prof = film.profile(everywhere=True)
+        r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
+        h_c = float(prof["h"][np.argmin(r)])
+        force = float(film.force()[dim - 1]) / cls.fraction(v)
+        return {"h_center": h_c, "h_min": film.min_film(), "force": force,
+                "approach": float(film.counterpart.offset.value[dim - 1]) - y0,
+                "p_center": float(prof["p"][np.argmin(r)])}
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
+        stepper = cls.build(v, checkpoint=checkpoint)
+        stepper.verbose = verbose
+        film, dim = stepper.wear, v["dim"]
+        keys = ("time", "h_center", "h_min", "force", "approach", "p_center",
+                "newton_iterations", "force_rigid", "h_center_rigid")
+        sr = SlowRun(stepper, v, record, keys, {"displacement": [film.body.u]}, resume)
+        y0 = sr.history.setdefault("y0", float(film.counterpart.offset.value[dim - 1]))
+        R, mu, L = v["R"], v["mu"], cls.extent(v)
+
+        def log(t, its):
+            m = cls.measures(film, v, y0)
+            h_rigid = v["h_start"] - m["approach"]     # the rigid body's gap at the plane
+            m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v["V"]
+                                if v["control"] == "speed" else v["F"])
+            m["h_center_rigid"] = (h_rigid if v["control"] == "speed" else float(
+                squeeze_film_under_load(dim, R, mu, v["F"], v["h_start"], [t], L)[0]))
+            sr.log(its, dict(time=t, newton_iterations=its, **m))
+
+        if not resume:
+            log(0.0, 0)
+        sr.run(v["T"], v["dt"], lambda st, rep: log(st.t, rep.iterations), progress,
+               report=lambda: cls._report(film, record, sr.hist))
+        return stepper
+
+    @staticmethod
+    def _report(film, record, hist):
+        units = {"time": "s", "h_center": "mm", "h_min": "mm", "force": "N (N/mm in 2D)",
+                 "approach": "mm", "p_center": "MPa", "newton_iterations": "-",
+                 "force_rigid": "N (N/mm in 2D)", "h_center_rigid": "mm"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        prof = film.profile()
+        if prof is not None:
+            record.profile = {**hist, "X": prof["X"].tolist(), "h": prof["h"].tolist(),
+                              "p": prof["p"].tolist()}
