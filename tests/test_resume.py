@@ -53,6 +53,13 @@ CASES = {
                             "--quiet"], 20.0, 1,
                            ("worn_area_pin", "worn_area_block", "dissipated_energy",
                             "drive_work"), "final_profile_pin", "pin"),
+    # a transient film: the BDF2 histories (content at the quadrature points, u, the
+    # trace) and the time weights are in the state; the body held by the film alone
+    "ehl-squeeze": (["run", "ehl-squeeze", "--set", "control=load", "--set", "F=0.5",
+                     "--set", "E1=10", "--set", "nu1=0.45", "--set", "T=5e-3", "--set",
+                     "dt=5e-4", "--quiet"], 5e-3, 3,
+                    ("h_center", "h_min", "p_center", "approach"), "final_film",
+                    "displacement"),
 }
 
 
@@ -124,7 +131,8 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
     pytest.param("wear-pin", 2, signal.SIGINT, marks=MPIEXEC),
     ("wear-ball-flat", 1, signal.SIGTERM),
     pytest.param("wear-ball-halfspace", 2, signal.SIGINT, marks=MPIEXEC),
-    ("wear-reciprocating", 1, signal.SIGTERM)])
+    ("wear-reciprocating", 1, signal.SIGTERM),
+    ("ehl-squeeze", 1, signal.SIGTERM)])
 def test_interrupted_run_resumes_to_the_same_result(tmp_path, case, ranks, sig):
     if ranks > 1 and not (Path(sys.executable).parent / "mpiexec").exists():
         pytest.skip("no mpiexec next to the interpreter")

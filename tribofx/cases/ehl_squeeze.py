@@ -250,5 +250,8 @@ class EHLSqueezeCase:
             record.result(key, vals, units[key])
         prof = film.profile()
         if prof is not None:
+            r = np.linalg.norm(prof["X"][:, :-1], axis=1)    # distance from the axis
+            record.result("final_film", np.column_stack([r, prof["h"], prof["p"]]).tolist(),
+                          "mm (radius), mm (h), MPa (p) per node of the film")
             record.profile = {**hist, "X": prof["X"].tolist(), "h": prof["h"].tolist(),
                               "p": prof["p"].tolist()}
