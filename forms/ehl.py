@@ -324,7 +324,7 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad, rho=rho)
     if rate is not None:
         F += rate * dp * raw
-    if supg:
+    if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
         D = kin.h**2 * p_c / (12 * mu)
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         # the strong residual per unit area of S: the rate over J_S w
@@ -375,7 +375,7 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
     if rate is not None:
         F += rate * dp * dx
-    if supg:
+    if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
         D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,

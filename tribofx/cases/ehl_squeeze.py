@@ -134,8 +134,11 @@ class EHLSqueezeCase:
                                            cls.extent(v))
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
-        """Body, transient film and stepper at t = 0 (the plane at h_start below the body)."""
+    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
+        """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
+
+        ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
+        """
         dim, R, h0 = v["dim"], v["R"], v["h_start"]
         ell, L = cls.length(v), cls.extent(v)
         h_fine = ell / (8 * 2 ** v["mesh"])
@@ -175,7 +178,8 @@ class EHLSqueezeCase:
                     speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)))
         film.add_pressure_bc(lambda X: np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2)
         film.place_countersurface(h0, np.zeros(3))
-        film.transient(v["scheme"])
+        if not steady:
+            film.transient(v["scheme"])
         offset = film.counterpart.offset
         y0 = float(offset.value[dim - 1])
         schedule = []
