@@ -13,28 +13,21 @@ controllers: the cylinder's vertical position is found by a secant for each load
 marched with step cutting, ``speeds`` continues the final load in U (geometric
 steps, cut on failure) and records friction coefficient, h_min, p_max against μU.
 
-Film options: ``cavitation`` penalty (Swift–Stieber limit) or jfo (void
-fraction λ, weak form (57), flooded inlet at X = −x_l); ``alpha`` moves the
-lubrication surface to S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23); ``shear`` the
-Couette and Poiseuille tractions; ``model=linear`` the classical EHL model (with
-a small-strain layer); ``compare=linear`` (Fig. 22) or ``alpha`` (Fig. 23) runs
-the load sweep per variant, results prefixed ``finite_``/``linear_`` or
-``alpha0_``/``alpha0.5_``/``alpha1_``.  h_min and p_max on mesh levels 0, 1, 2
-at one load: :func:`tribofx.cases.ehl_convergence.mesh_convergence`.
+Film options: ``cavitation`` penalty (Swift–Stieber limit) or jfo (void fraction λ,
+(57), flooded inlet at X = −x_l); ``alpha``: S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23);
+``shear``; ``quadrature``; ``model=linear`` the classical EHL model; ``compare=linear``
+(Fig. 22) or ``alpha`` (Fig. 23) runs the load sweep per variant (results prefixed
+``finite_``/``linear_``, ``alpha0_``/…); mesh levels: :mod:`tribofx.cases.ehl_convergence`.
 
 Defaults (mm, N, s, MPa): R = 10; H = 5, E = 10; t_c = 0.1, E_c = 100; ν = 0.45,
-neo-Hookean; μ = 1e-7 (0.1 Pa·s), U = 1000, μU = 1e-4 N/mm (0.1 N/m, Fig. 22);
-W = 1 N/mm in 10 steps; |X| ≤ x_l = 3 lubricated on a layer of half width 3H.
-
-Your own layer (``mesh_file``, a gmsh mesh with the groups ``lubricated`` and
-``bottom``, optionally the cell groups ``layer`` and ``coating``):
+neo-Hookean; μ = 1e-7, U = 1000, μU = 1e-4 N/mm (Fig. 22); W = 1 N/mm in 10 steps;
+|X| ≤ x_l = 3 lubricated on a layer of half width 3H.  Your own layer (``mesh_file``):
 :mod:`tribofx.cases.ehl_user`.
 
-Results: h_min, h_central (below the cylinder axis), p_max, friction coefficient
-(tangential film force on the layer / W), clearance per load step; profiles
-(``profiles.png``), VTX of u and p at the end and as time series
-(``[variant_]displacement_series.bp``, ``..._pressure_series.bp``: one time index per
-converged load and speed, its (W, U) in ``series_points``).
+Results: h_min, h_central (below the axis), p_max, friction coefficient (tangential
+film force / W), clearance per load step; ``profiles.png``; VTX of u and p at the end
+and per converged load and speed (``[variant_]displacement_series.bp``, its (W, U)
+in ``series_points``).
 """
 
 import math
@@ -54,7 +47,14 @@ from .ehl_outputs import CylinderOutputs
 from .ehl_paths import CylinderPaths
 from .ehl_sweep import CylinderSweep
 from .ehl_user import check_user_ends, read_user_layer
-from .film_setup import VISCOSITY_PARAMS, density, formulation_param, speed_list, viscosity
+from .film_setup import (
+    VISCOSITY_PARAMS,
+    density,
+    formulation_param,
+    quadrature_param,
+    speed_list,
+    viscosity,
+)
 
 __all__ = ["EHLCylinderLayerCase", "cylinder_arc"]
 
@@ -99,7 +99,7 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        formulation_param("displacement"),
+        formulation_param("displacement"), quadrature_param(),
         Param("penalty", float, 1e-6, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
               lower=0.0),
@@ -231,8 +231,7 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
             cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
         h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
         film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
-                    model=v["model"],
-                    shear=v["shear"],
+                    model=v["model"], shear=v["shear"], quadrature=v["quadrature"],
                     supg=v["supg"], cavitation=v["cavitation"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p_s,
                     alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,

@@ -108,7 +108,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        film_setup.formulation_param("displacement"),
+        film_setup.formulation_param("displacement"), film_setup.quadrature_param(),
         Param("penalty", float, 1e-4, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
@@ -235,7 +235,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
         _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
         V_plane = np.array([2 * v["U"], 0.0, 0.0])
         film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
-                    density=density(v),
+                    density=density(v), quadrature=v["quadrature"],
                     V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
                     speed_scale=v["U"], quadrature_degree=2)

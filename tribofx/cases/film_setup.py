@@ -11,7 +11,7 @@ from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import InputError, Param, number_list
 
 __all__ = ["VISCOSITY_PARAMS", "at_points", "cavitation_model", "density", "film_boundary",
-           "formulation_param", "speed_list", "viscosity"]
+           "formulation_param", "quadrature_param", "speed_list", "viscosity"]
 
 
 def formulation_param(default):
@@ -24,6 +24,20 @@ def formulation_param(default):
                  "solid: displacement (u only) or mixed (u and a P1 volumetric stress: "
                  "locking-free, no film zig-zag for nearly incompressible solids)",
                  choices=("displacement", "mixed"))
+
+def quadrature_param():
+    """Return the ``quadrature`` parameter of a film case: the rule of the film's integrals.
+
+    ``vertex`` evaluates h, its conductance h³ and every film term at the nodes of
+    Γ_l, where the P1 surface is exact: a Gauss point inside a facet sees the
+    chord, below the curved surface by up to h_e²/(8R), which in a thin film
+    (h ≲ h_e²/R) is a node-to-node ripple of h (:class:`tribofx.interfaces.Film`).
+    """
+    return Param("quadrature", str, "gauss", "-",
+                 "rule of the film integrals: gauss, or vertex (film terms at the nodes: no "
+                 "chord sag h_e²/8R of the faceted surface in a thin film; not with a kinked "
+                 "meshed countersurface)", choices=("gauss", "vertex"))
+
 
 #: the lubricant's pressure–viscosity law, a parameter set of every case with a film
 VISCOSITY_PARAMS = (
