@@ -23,8 +23,10 @@ constant load (:func:`tribofx.references.squeeze_film_under_load`); recorded
 per step as ``force_rigid`` / ``h_center_rigid``.  A soft body under load
 traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
-``E2`` finite (a deformable plane body) is the two-body film of issue 31, not
-built yet: a one-line error.
+``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
+(V < 0) opens a cavity in which the void fraction is transported, θh constant at
+each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (a deformable
+plane body) is the two-body film of issue 31, not built yet: a one-line error.
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
@@ -41,15 +43,15 @@ from ..interfaces import Film
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
-from ..references import hertz, squeeze_film_under_load, squeeze_resistance
-from ..slow_run import SlowRun
-from ..stepper import Stepper, nominal_steps
+from ..references import hertz, squeeze_resistance
+from ..stepper import Stepper
+from .ehl_squeeze_run import SqueezeRun
 from .film_setup import VISCOSITY_PARAMS, density, viscosity
 
 __all__ = ["EHLSqueezeCase"]
 
 
-class EHLSqueezeCase:
+class EHLSqueezeCase(SqueezeRun):
     """Case ``ehl-squeeze``; see the module docstring."""
 
     name = "ehl-squeeze"
@@ -60,8 +62,10 @@ class EHLSqueezeCase:
               "(quarter model)", choices=(2, 3)),
         Param("control", str, "speed", "-", "speed: the plane approaches at V; load: the "
               "body carries F", choices=("speed", "load")),
-        Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed)",
-              lower=0.0),
+        Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed; < 0: "
+              "it recedes, the film cavitates: cavitation=jfo)"),
+        Param("cavitation", str, "none", "-", "none (a full film) or jfo (mass-conserving, "
+              "the void fraction transported in time; dim=2)", choices=("none", "jfo")),
         Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
               lower=0.0),
         Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
@@ -95,6 +99,12 @@ class EHLSqueezeCase:
             raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
         if v["dt"] > v["T"]:
             raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+        if v["control"] == "speed" and v["V"] <= 0 and not (v["V"] < 0 and v["cavitation"]
+                                                             == "jfo"):
+            raise InputError(f"V = {v['V']} mm/s: a receding plane (V < 0) needs "
+                             f"cavitation=jfo; V = 0 has no squeeze")
+        if v["cavitation"] == "jfo" and v["dim"] != 2:
+            raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
         if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
             raise InputError(f"V·T = {v['V'] * v['T']:.3g} mm would close the rigid gap "
                              f"h_start = {v['h_start']} mm; shorten T")
@@ -129,7 +139,7 @@ class EHLSqueezeCase:
     def speed_scale(cls, v):
         """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
         if v["control"] == "speed":
-            return v["V"]
+            return abs(v["V"])
         return v["F"] / squeeze_resistance(v["dim"], v["R"], v["mu"], v["h_start"],
                                            cls.extent(v))
 
@@ -175,8 +185,16 @@ class EHLSqueezeCase:
         floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * R / 8)
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v),
                     density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
-                    speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)))
-        film.add_pressure_bc(lambda X: np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2)
+                    speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
+                    cavitation="penalty" if v["cavitation"] == "none" else "jfo")
+
+        def rim(X):
+            return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
+
+        if v["cavitation"] == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
+            film.add_reservoir(rim, 0.0)
+        else:
+            film.add_pressure_bc(rim)
         film.place_countersurface(h0, np.zeros(3))
         if not steady:
             film.transient(v["scheme"])
@@ -187,75 +205,3 @@ class EHLSqueezeCase:
             schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
         return Stepper([body, film], film, checkpoint=checkpoint, schedule=schedule,
                        name="ehl_squeeze")
-
-    @staticmethod
-    def progress_total(v):
-        """Time steps to T."""
-        return nominal_steps(v["T"], v["dt"])
-
-    @staticmethod
-    def vtx_fields(stepper):
-        """Displacement of the body; film pressure (on Γ_l)."""
-        film = stepper.wear
-        return {"displacement": [film.body.u], "pressure": [film.p]}
-
-    @staticmethod
-    def plot(profile, outdir):
-        """``squeeze.png``: film and force against time; ``squeeze_profiles.png``."""
-        from ..plots.film import plot_squeeze
-
-        plot_squeeze(profile, outdir)
-
-    @classmethod
-    def measures(cls, film, v, y0):
-        """One step's measures: film at the centre and its minimum, force, plane position."""
-        dim = v["dim"]
-        prof = film.profile(everywhere=True)
-        r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
-        h_c = float(prof["h"][np.argmin(r)])
-        force = float(film.force()[dim - 1]) / cls.fraction(v)
-        return {"h_center": h_c, "h_min": film.min_film(), "force": force,
-                "approach": float(film.counterpart.offset.value[dim - 1]) - y0,
-                "p_center": float(prof["p"][np.argmin(r)])}
-
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
-        stepper = cls.build(v, checkpoint=checkpoint)
-        stepper.verbose = verbose
-        film, dim = stepper.wear, v["dim"]
-        keys = ("time", "h_center", "h_min", "force", "approach", "p_center",
-                "newton_iterations", "force_rigid", "h_center_rigid")
-        sr = SlowRun(stepper, v, record, keys, {"displacement": [film.body.u]}, resume)
-        y0 = sr.history.setdefault("y0", float(film.counterpart.offset.value[dim - 1]))
-        R, mu, L = v["R"], v["mu"], cls.extent(v)
-
-        def log(t, its):
-            m = cls.measures(film, v, y0)
-            h_rigid = v["h_start"] - m["approach"]     # the rigid body's gap at the plane
-            m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v["V"]
-                                if v["control"] == "speed" else v["F"])
-            m["h_center_rigid"] = (h_rigid if v["control"] == "speed" else float(
-                squeeze_film_under_load(dim, R, mu, v["F"], v["h_start"], [t], L)[0]))
-            sr.log(its, dict(time=t, newton_iterations=its, **m))
-
-        if not resume:
-            log(0.0, 0)
-        sr.run(v["T"], v["dt"], lambda st, rep: log(st.t, rep.iterations), progress,
-               report=lambda: cls._report(film, record, sr.hist))
-        return stepper
-
-    @staticmethod
-    def _report(film, record, hist):
-        units = {"time": "s", "h_center": "mm", "h_min": "mm", "force": "N (N/mm in 2D)",
-                 "approach": "mm", "p_center": "MPa", "newton_iterations": "-",
-                 "force_rigid": "N (N/mm in 2D)", "h_center_rigid": "mm"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        prof = film.profile()
-        if prof is not None:
-            r = np.linalg.norm(prof["X"][:, :-1], axis=1)    # distance from the axis
-            record.result("final_film", np.column_stack([r, prof["h"], prof["p"]]).tolist(),
-                          "mm (radius), mm (h), MPa (p) per node of the film")
-            record.profile = {**hist, "X": prof["X"].tolist(), "h": prof["h"].tolist(),
-                              "p": prof["p"].tolist()}
