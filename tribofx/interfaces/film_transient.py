@@ -43,8 +43,8 @@ class TransientFilm:
         """Make the film transient, integrated by ``scheme`` ("euler" or "bdf2"); returns self.
 
         Call before the :class:`tribofx.problem.Problem` is built (the rows are
-        built with the rates).  Needs the Gauss quadrature of Γ_l (the histories
-        of c and y live at its points).
+        built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
+        the content c lives at its points).
         """
         if scheme not in SCHEMES:
             raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
