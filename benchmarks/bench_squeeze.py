@@ -17,11 +17,18 @@ at least as many (2–3 here; 3–6 per continuation step in the EHL cases), so
 the ratio bounds the step's cost against a steady solve.  Writes ``--out`` (JSON).
 
     .venv/bin/python benchmarks/bench_squeeze.py [--out results/bench_squeeze.json]
+        [--ranks 2]
+
+``--ranks 2`` runs the same measurements again under ``mpiexec -n 2`` (a
+subprocess of this run) and reports the times per iteration serial against
+2 ranks.
 """
 
 import argparse
 import json
 import os
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -77,14 +84,29 @@ def main():
     """Run both dimensions and print the table."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default="results/bench_squeeze.json")
+    ap.add_argument("--ranks", type=int, default=1)
     a = ap.parse_args()
     rows = [run(2), run(3)]
+    from mpi4py import MPI
+
+    if MPI.COMM_WORLD.rank != 0:
+        return
+    if a.ranks > 1:
+        par = Path(a.out).with_name(Path(a.out).stem + f"_{a.ranks}ranks.json")
+        mpiexec = Path(sys.executable).parent / "mpiexec"
+        subprocess.run([str(mpiexec), "-n", str(a.ranks), sys.executable, __file__,
+                        "--out", str(par)], check=True, cwd=Path(__file__).parent)
+        other = json.loads((Path(__file__).parent / par).read_text())
+        for r, o in zip(rows, other):
+            r[f"speedup_{a.ranks}_ranks"] = r["iteration_transient_s"] / o["iteration_transient_s"]
     for r in rows:
         print(f"dim {r['dim']}: {r['unknowns']} unknowns, begin_step {r['begin_step_s']:.4f} s, "
               f"iteration {r['iteration_transient_s']:.4f} s transient / "
               f"{r['iteration_steady_s']:.4f} s steady, {r['iterations_transient_step']} "
               f"iterations per step, per iteration {r['ratio_iteration']:.2f}, step/solve "
-              f"{r['ratio_step_to_solve']:.2f}")
+              f"{r['ratio_step_to_solve']:.2f}"
+              + (f", {a.ranks} ranks: {r[f'speedup_{a.ranks}_ranks']:.2f}x" if a.ranks > 1
+                 else ""))
     out = Path(__file__).parent / a.out
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(rows, indent=2))
