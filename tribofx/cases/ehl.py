@@ -15,7 +15,7 @@ steps, cut on failure) and records friction coefficient, h_min, p_max against μ
 
 Film options: ``cavitation`` penalty (Swift–Stieber limit) or jfo (void fraction λ,
 (57), flooded inlet at X = −x_l); ``alpha``: S_α = (1 − α) P(γ_l) + α γ_l (Fig. 23);
-``shear``; ``quadrature``; ``model=linear`` the classical EHL model; ``compare=linear``
+``shear``; ``model=linear`` the classical EHL model; ``compare=linear``
 (Fig. 22) or ``alpha`` (Fig. 23) runs the load sweep per variant (results prefixed
 ``finite_``/``linear_``, ``alpha0_``/…); mesh levels: :mod:`tribofx.cases.ehl_convergence`.
 
@@ -51,7 +51,6 @@ from .film_setup import (
     VISCOSITY_PARAMS,
     density,
     formulation_param,
-    quadrature_param,
     speed_list,
     viscosity,
 )
@@ -99,7 +98,7 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
               choices=("finite", "linear")),
         Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
         Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        formulation_param("displacement"), quadrature_param(),
+        formulation_param("displacement"),
         Param("penalty", float, 1e-6, "-",
               "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
               lower=0.0),
@@ -231,7 +230,7 @@ class EHLCylinderLayerCase(CylinderSweep, CylinderOutputs, CylinderPaths):
             cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
         h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
         film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
-                    model=v["model"], shear=v["shear"], quadrature=v["quadrature"],
+                    model=v["model"], shear=v["shear"],
                     supg=v["supg"], cavitation=v["cavitation"],
                     eps=eps if v["penalty"] > 0 else None, p_c=p_s,
                     alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,

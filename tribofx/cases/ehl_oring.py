@@ -104,7 +104,6 @@ from .film_setup import (
     cavitation_model,
     density,
     formulation_param,
-    quadrature_param,
     viscosity,
 )
 
@@ -126,7 +125,7 @@ class EHLORingCase(ORingRun):
         Param("arc_refine", int, 0, "-", "halvings of the element size on the film arc "
               "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm)", lower=0, upper=3, closed=True),
         Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-        formulation_param("mixed"), quadrature_param(),
+        formulation_param("mixed"),
         Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
               upper=0.3),
         Param("d", float, 3.5, "mm", "cross-section diameter", lower=0),

@@ -111,7 +111,7 @@ class ORingSeal(SealOutputs):
         self.cavitation = cav = cavitation_model(v)
         self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
                                 viscosity(v), density=density(v), V_counter=[0.0, U],
-                                supg=v["supg"], quadrature=v["quadrature"],
+                                supg=v["supg"],
                                 cavitation=cav,
                                 eps=(v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3
                                      if cav == "penalty" else None),
