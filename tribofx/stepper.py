@@ -39,7 +39,9 @@ shape Problem) answers: ``theta`` and ``averaged``;
 ``min_volume_factor()`` (smallest det(I + Grad w), collective); ``body.mesh.comm``;
 and, for fast-time cycles, ``rate_bar`` (the nodal averaged rate it is driven
 by), ``nodal_increment()`` (the wear increment of the last sub-step) and
-``body.w``/``body.w_n``.  :class:`tribofx.interfaces.Wear` is such an interface;
+``body.w``/``body.w_n``.  :class:`tribofx.interfaces.Wear` is such an interface, and
+so is a transient :class:`tribofx.interfaces.Film` (``Film.transient``: no shape
+unknowns, its squeeze term's histories move on in ``begin_step``);
 one whose shape unknowns live elsewhere (e.g. on a cross-section extruded along
 the sliding direction) needs only the same methods and, if its unknowns need
 a different assembly, a ``problem_class`` with the constructor of
