@@ -151,8 +151,8 @@ class EHLSqueezeCase(SqueezeRun):
         """
         dim, R, h0 = v["dim"], v["R"], v["h_start"]
         ell, L = cls.length(v), cls.extent(v)
-        h_fine = ell / (8 * 2 ** v["mesh"])
-        msh, ft = hertz_body(dim, R, h_fine, R / (8 * 2 ** v["mesh"]), 2 * ell, comm, cap=L)
+        h_fine, h_coarse = ell / (8 * 2 ** v["mesh"]), R / (8 * 2 ** v["mesh"])
+        msh, ft = hertz_body(dim, R, h_fine, h_coarse, 2 * ell, comm, cap=L)
         names = {("lubricated" if k == "contact" else k): t for k, t in NAMES.items()}
         names["free"] = FREE
         if dim == 2:
@@ -163,9 +163,9 @@ class EHLSqueezeCase(SqueezeRun):
         K0 = squeeze_resistance(dim, R, v["mu"], h0, L)
         # momentum rows relative to the film's force, far below the body's stiffness
         # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
-        # the coarse elements h = R/8 (×100), so a stiff body (the rigid limit) converges
+        # the coarse elements h (×100), so a stiff body (the rigid limit) converges
         f_s = cls.fraction(v) * K0 * Vs
-        rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * (R / 8) ** (dim - 1) / f_s)
+        rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * h_coarse ** (dim - 1) / f_s)
         body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                     name="body", force_scale=f_s, rtol=rtol)
         body.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -182,7 +182,7 @@ class EHLSqueezeCase(SqueezeRun):
         # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
         # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
         h_L = h0 + R - math.sqrt(R * R - L * L)
-        floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * R / 8)
+        floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * h_coarse)
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v),
                     density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
                     speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),

@@ -38,6 +38,7 @@ class TransientFilm:
 
     theta, averaged = 1, False
     scheme = None            # None: the steady film of the chapter
+    _content_form = None     # the compiled ∫ c dS of :meth:`content`
 
     def transient(self, scheme="bdf2"):
         """Make the film transient, integrated by ``scheme`` ("euler" or "bdf2"); returns self.
@@ -73,8 +74,7 @@ class TransientFilm:
         self.dt_prev = fem.Constant(body.mesh, 0.0)
         w_sub = [self._mirror(c) for c in self.time_weights]
         H = self._hist
-        self._content = sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
-        self.film_rate = sq.backward_difference(self._content, *H["c"], *w_sub)
+        self.film_rate = sq.backward_difference(self._content(), *H["c"], *w_sub)
         u_rate = sq.backward_difference(self.u_s, *H["u_s"], *w_sub)
         # ẏ by the chain rule: y(x, c) moves with a common translation of x and c
         c_rate = None
@@ -87,7 +87,7 @@ class TransientFilm:
                                           layer_rate=sq.backward_difference(
                                               body.u, *H["u"], *self.time_weights))
         self._tractions()
-        self._expr = fem.Expression(self._content, Cq.element.interpolation_points)
+        self._expr = fem.Expression(self._content(), Cq.element.interpolation_points)
         return self
 
     def history_fields(self):
@@ -136,10 +136,15 @@ class TransientFilm:
     def end_step(self):
         """Nothing: the outputs of the step keep its rates (the next step resets them)."""
 
+    def _content(self):
+        """UFL content ρ θ h J_S w per unit reference measure (h, J_S: any ``kin`` of the film)."""
+        return sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
+
     def content(self):
-        """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks).
+        """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks; form compiled once).
 
         mm² per unit length in the plane, mm³ in 3D and revolved.
         """
-        c = sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
-        return self._sum(fem.form(c * self.dx))
+        if self._content_form is None:
+            self._content_form = fem.form(self._content() * self.dx)
+        return self._sum(self._content_form)
