@@ -33,26 +33,18 @@ quarter of the full bodies' force).
 import numpy as np
 import ufl
 from dolfinx import fem
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..forms import contact as cf
-from ..pattern import facet_rings
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
-from ..two_body import MasterSurface, MasterSurface3, node_residuals, num_local
+from ..two_body import node_residuals, num_local
 from . import facets, two_body_wear
-from .surface import Surface, node_to_dof
+from .master_side import MasterSide
+from .surface import Surface
 from .two_body_outputs import TwoBodyOutputs
 
 __all__ = ["TwoBodyContact"]
-
-
-def _vertex_dofs(body, facets):
-    """Per facet the two (P1 block) dofs of its vertices, local indices."""
-    msh = body.mesh
-    geo = dmesh.entities_to_geometry(msh, msh.topology.dim - 1, facets, False)
-    return node_to_dof(body.V)[geo]
 
 
 class TwoBodyContact(TwoBodyOutputs):
@@ -113,28 +105,8 @@ class TwoBodyContact(TwoBodyOutputs):
         q = ufl.TestFunction(self.Q)
         self._w_c = self._lumped(q * self.dsc)[self._q]
         self._w = self._lumped(q * slave.weight * self.dsc)[self._q]
-        # master boundary facets oriented with the outward normal: (τ_y, −τ_x)/l in 2D,
-        # t₁ × t₂/|t₁ × t₂| in 3D (see tribofx.two_body)
-        mfacets = master.facets(master_boundary)
-        seg = _vertex_dofs(master, mfacets)
-        if len(mfacets):
-            mm = master.mesh
-            tdim = mm.topology.dim
-            mm.topology.create_connectivity(tdim - 1, tdim)
-            f2c = mm.topology.connectivity(tdim - 1, tdim)
-            cells = np.array([f2c.links(f)[0] for f in mfacets])
-            xc = mm.geometry.x[dmesh.entities_to_geometry(mm, tdim, cells, False)].mean(axis=1)
-            Xd = master.V.tabulate_dof_coordinates()[:, :d]
-            a, b = Xd[seg[:, 0]], Xd[seg[:, 1]]
-            if d == 2:
-                t = b - a
-                out = np.c_[t[:, 1], -t[:, 0]]
-            else:
-                out = np.cross(b - a, Xd[seg[:, 2]] - a)
-            flip = np.sum(out * (Xd[seg].mean(axis=1) - xc[:, :d]), axis=1) < 0
-            seg[flip] = seg[flip][:, ::-1] if d == 2 else seg[flip][:, [0, 2, 1]]
-        self._mseg_local = seg
-        self._master = None
+        # the current master boundary on every rank (oriented facets, search, rows)
+        self.side = MasterSide(master, master_boundary)
         self._old = None
         # hysteresis reference of the pairing (segments, facet per slave node): the
         # committed state's, moved on at each accepted Newton iterate (accept_iterate)
@@ -147,51 +119,17 @@ class TwoBodyContact(TwoBodyOutputs):
         """Assembled (ghost-updated) vector of a linear form on the slave submesh."""
         return self.surface.nodal(form)
 
-    # -- master polyline on every rank -------------------------------------------------
-    def _master_dofs(self):
-        """Local (P1 block) dofs of the master boundary and their global block indices."""
-        dofs = np.unique(self._mseg_local)
-        im = self.master.V.dofmap.index_map
-        return dofs, im.local_to_global(dofs.astype(np.int32))
-
-    def _gather(self, local):
-        """Concatenate per-node arrays of every rank's master dofs, one row per global node."""
-        dofs, keys = self._master_dofs()
-        parts = self.master.mesh.comm.allgather((keys, local(dofs)))
-        allk = np.concatenate([p[0] for p in parts])
-        uniq, first = np.unique(allk, return_index=True)
-        return uniq, np.concatenate([p[1] for p in parts])[first]
-
-    def _gather_master(self):
-        """Return current master positions (n_m, d), global node keys, facets (all ranks)."""
-        m, d = self.master, self.gdim
-        X = m.V.tabulate_dof_coordinates()[:, :d]
-        u = m.u.x.array.reshape(-1, d)
-        keys, x = self._gather(lambda d: X[d] + u[d])
-        dofs, local_keys = self._master_dofs()
-        seg_keys = local_keys[np.searchsorted(dofs, self._mseg_local)]
-        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, d)))
-        seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # facets on two ranks: once
-        return x, keys, seg.astype(np.int32)
-
     def _pairs(self):
-        """Return master data, slave positions and projections (box tree refitted)."""
-        xm, keys, seg = self._gather_master()
-        d = self.gdim
-        if self._master is None or self._segments.shape != seg.shape \
-                or not np.array_equal(self._segments, seg):
-            surface = MasterSurface if d == 2 else MasterSurface3
-            self._master, self._segments = surface(np.ascontiguousarray(xm), seg), seg
-        else:
-            self._master.refit(np.ascontiguousarray(xm))
-        xs = self._X + self.slave.u.x.array.reshape(-1, d)[self._bulk]
-        proj = self._master.project(np.ascontiguousarray(xs))
-        # the reference is the pairing of the last accepted Newton iterate (the
-        # committed one at the start of a solve and after restore()), never that of
-        # the last evaluation: line-search trials, Taylor perturbations and output
-        # evaluations do not move it, so the residual is a function of the state and
-        # of this reference, which the cache key carries
-        proj = facets.keep_reference_facets(xs, xm, seg, proj, self._facet_ref, self.STICKY)
+        """Return master data, slave positions and projections (box tree refitted).
+
+        The reference is the pairing of the last accepted Newton iterate (the
+        committed one at the start of a solve and after restore()), never that of
+        the last evaluation: line-search trials, Taylor perturbations and output
+        evaluations do not move it, so the residual is a function of the state and
+        of this reference, which the cache key carries.
+        """
+        xs = self._X + self.slave.u.x.array.reshape(-1, self.gdim)[self._bulk]
+        xm, keys, seg, proj = self.side.project(xs, self._facet_ref, self.STICKY)
         return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
@@ -248,21 +186,16 @@ class TwoBodyContact(TwoBodyOutputs):
         (a disc or a belt in an Eulerian frame, the slave at rest):
         :func:`tribofx.interfaces.facets.eulerian_slip_constants` of the reference facets.
         """
-        if getattr(self, "_Xref_keys", None) is None or not np.array_equal(self._Xref_keys, keys):
-            X = self.master.V.tabulate_dof_coordinates()[:, :self.gdim]
-            self._Xref_keys, self._Xref = self._gather(lambda nd: X[nd])
-        return facets.eulerian_slip_constants(self._Xref[seg[f]], self.V_master, self.dtau)
+        Xref = self.side.reference(keys)
+        return facets.eulerian_slip_constants(Xref[seg[f]], self.V_master, self.dtau)
 
     def _rows(self, problem, k):
         """Global rows and columns (n, L) of the local unknowns of ``k`` in ``problem``."""
         if id(problem) in k["rows"]:
             return k["rows"][id(problem)]
         d, il = self.gdim, self._lam
-        mrow, mcol = problem.global_rows(self.master.u)
-        _, rc = self._gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
-                                              np.stack([mcol[d * nd + c] for c in range(d)], 1)])
-        k.setdefault("master_rows", {})[id(problem)] = rc
-        rm, cm = rc[:, :d], rc[:, d:]
+        rm, cm = self.side.rows(problem)
+        k.setdefault("master_rows", {})[id(problem)] = (rm, cm)
         seg, f, old_seg = k["seg"], k["facet"], k["old_seg"]
         n, L = len(self._q), num_local(d)
         srow, scol = problem.global_rows(self.slave.u)
@@ -292,15 +225,7 @@ class TwoBodyContact(TwoBodyOutputs):
         """
         k = self._kernel()
         rows, cols = self._rows(problem, k)
-        d, seg, f = self.gdim, k["seg"], k["facet"]
-        if not facets.same_pairing(getattr(self, "_ring_seg", None), (seg, None)):
-            self._ring, self._ring_seg = facet_rings(seg), seg
-        ring = self._ring[f]                                   # (n, width) master nodes
-        rc = k["master_rows"][id(problem)]                     # gathered by _rows
-        valid = ring >= 0
-        width = d * ring.shape[1]
-        rr = np.where(valid[..., None], rc[np.maximum(ring, 0), :d], -1).reshape(len(f), width)
-        cc = np.where(valid[..., None], rc[np.maximum(ring, 0), d:], -1).reshape(len(f), width)
+        rr, cc = self.side.ring_rows(*k["master_rows"][id(problem)], k["seg"], k["facet"])
         return np.c_[rows, rr], np.c_[cols, cc]
 
     def evaluate(self, problem):

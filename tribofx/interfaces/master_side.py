@@ -1,0 +1,136 @@
+"""The master side of a two-body interface: the current master boundary on every rank.
+
+A slave node of a two-body interface (:class:`tribofx.interfaces.TwoBodyContact`,
+:class:`tribofx.interfaces.TwoBodyFilm`) may pair with a master facet owned by
+another rank.  :class:`MasterSide` holds the master boundary's facets, oriented
+with the master's outward normal ((τ_y, −τ_x)/l in 2D, t₁ × t₂/|t₁ × t₂| in 3D,
+the convention of :mod:`tribofx.two_body`), gathers their current nodes on
+every rank (one row per global node, sorted by global dof), keeps the C++ box
+tree of the search (refitted while the facets stay the same), and maps the
+gathered nodes to the rows and columns of a :class:`tribofx.problem.Problem`.
+"""
+
+import numpy as np
+from dolfinx import mesh as dmesh
+
+from ..pattern import facet_rings
+from ..two_body import MasterSurface, MasterSurface3
+from . import facets
+from .surface import node_to_dof
+
+__all__ = ["MasterSide"]
+
+
+def _vertex_dofs(body, fs):
+    """Per facet the (P1 block) dofs of its vertices, local indices."""
+    msh = body.mesh
+    geo = dmesh.entities_to_geometry(msh, msh.topology.dim - 1, fs, False)
+    return node_to_dof(body.V)[geo]
+
+
+class MasterSide:
+    """The boundary ``boundary`` of ``master`` as the master of a two-body interface."""
+
+    def __init__(self, master, boundary):
+        self.body = master
+        self.gdim = d = master.gdim
+        mfacets = master.facets(boundary)
+        seg = _vertex_dofs(master, mfacets)
+        if len(mfacets):
+            mm = master.mesh
+            tdim = mm.topology.dim
+            mm.topology.create_connectivity(tdim - 1, tdim)
+            f2c = mm.topology.connectivity(tdim - 1, tdim)
+            cells = np.array([f2c.links(f)[0] for f in mfacets])
+            xc = mm.geometry.x[dmesh.entities_to_geometry(mm, tdim, cells, False)].mean(axis=1)
+            Xd = master.V.tabulate_dof_coordinates()[:, :d]
+            a, b = Xd[seg[:, 0]], Xd[seg[:, 1]]
+            if d == 2:
+                t = b - a
+                out = np.c_[t[:, 1], -t[:, 0]]
+            else:
+                out = np.cross(b - a, Xd[seg[:, 2]] - a)
+            flip = np.sum(out * (Xd[seg].mean(axis=1) - xc[:, :d]), axis=1) < 0
+            seg[flip] = seg[flip][:, ::-1] if d == 2 else seg[flip][:, [0, 2, 1]]
+        self.seg_local = seg
+        self._tree = self._segments = None
+        self._ring = self._ring_seg = None
+        self._ref_keys = self._ref = None
+
+    def dofs(self):
+        """Local (P1 block) dofs of the master boundary and their global block indices."""
+        dofs = np.unique(self.seg_local)
+        im = self.body.V.dofmap.index_map
+        return dofs, im.local_to_global(dofs.astype(np.int32))
+
+    def gather(self, local):
+        """Concatenate per-node arrays ``local(dofs)`` of every rank, one row per global node."""
+        dofs, keys = self.dofs()
+        parts = self.body.mesh.comm.allgather((keys, local(dofs)))
+        allk = np.concatenate([p[0] for p in parts])
+        uniq, first = np.unique(allk, return_index=True)
+        return uniq, np.concatenate([p[1] for p in parts])[first]
+
+    def current(self):
+        """Return current master positions (n_m, d), global node keys, facets (all ranks)."""
+        m, d = self.body, self.gdim
+        X = m.V.tabulate_dof_coordinates()[:, :d]
+        u = m.u.x.array.reshape(-1, d)
+        keys, x = self.gather(lambda nd: X[nd] + u[nd])
+        dofs, local_keys = self.dofs()
+        seg_keys = local_keys[np.searchsorted(dofs, self.seg_local)]
+        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, d)))
+        seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # facets on two ranks: once
+        return x, keys, seg.astype(np.int32)
+
+    def reference(self, keys):
+        """Return the reference positions of the gathered nodes ``keys`` (cached)."""
+        if self._ref_keys is None or not np.array_equal(self._ref_keys, keys):
+            X = self.body.V.tabulate_dof_coordinates()[:, :self.gdim]
+            self._ref_keys, self._ref = self.gather(lambda nd: X[nd])
+        return self._ref
+
+    def project(self, xs, reference, sticky):
+        """Project the slave positions ``xs`` (n, d) onto the current master boundary.
+
+        The box tree is refitted (rebuilt when the gathered facets change); a node
+        keeps its ``reference`` facet (segments, facet per node) under the
+        hysteresis ``sticky`` (:func:`facets.keep_reference_facets`).  Returns
+        ``(xm, keys, seg, proj)`` with ``proj`` the kernel's ``facet``, ``xi``,
+        ``distance``.
+        """
+        xm, keys, seg = self.current()
+        if self._tree is None or self._segments.shape != seg.shape \
+                or not np.array_equal(self._segments, seg):
+            surface = MasterSurface if self.gdim == 2 else MasterSurface3
+            self._tree, self._segments = surface(np.ascontiguousarray(xm), seg), seg
+        else:
+            self._tree.refit(np.ascontiguousarray(xm))
+        proj = self._tree.project(np.ascontiguousarray(xs))
+        proj = facets.keep_reference_facets(xs, xm, seg, proj, reference, sticky)
+        return xm, keys, seg, proj
+
+    def rows(self, problem):
+        """Return global (rows, cols) (n_m, d) of the gathered master nodes in ``problem``."""
+        d = self.gdim
+        mrow, mcol = problem.global_rows(self.body.u)
+        _, rc = self.gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
+                                             np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+        return rc[:, :d], rc[:, d:]
+
+    def ring_rows(self, rm, cm, seg, facet):
+        """Rows and columns (n, d·width) of the master nodes of every facet near ``facet``.
+
+        A node paired with facet f may slide onto any facet sharing a node with f
+        during the iterations (:func:`tribofx.pattern.facet_rings`), so those
+        couplings are preallocated.
+        """
+        if not facets.same_pairing(self._ring_seg, (seg, None)):
+            self._ring, self._ring_seg = facet_rings(seg), seg
+        ring = self._ring[facet]
+        valid = ring >= 0
+        width = self.gdim * ring.shape[1]
+        safe = np.maximum(ring, 0)
+        rr = np.where(valid[..., None], rm[safe], -1).reshape(len(facet), width)
+        cc = np.where(valid[..., None], cm[safe], -1).reshape(len(facet), width)
+        return rr, cc
