@@ -33,16 +33,32 @@ The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
   (rows 0–11 the virtual work, 12–20 zero, 21–24 the multiplier rows), r
   (n, 25) and J (n, 25, 25); the equations are in the header of
   ``two_body_3d.hpp``.
+* :func:`film_node_residuals` — per slave node of a film between two deformable
+  bodies (:class:`tribofx.interfaces.TwoBodyFilm`, 2D) the residual r (n, 11)
+  and its exact tangent J (n, 11, 11) over
+
+      q = [x (2), x₁ (2), x₂ (2), h, w (2), t (2)]
+
+  (slave node, master segment, the film's nodal gap, master surface velocity and
+  nominal traction), with ``data`` (n, 7) = [c₁, c₂, k₀, z₁ (2), z₂ (2)]: rows
+  0–5 carry the traction t to the slave (−w t) and to the master at the
+  projection (w(1 − ξ)t, wξt), row 6 is −c_h w_c g, rows 7–8 −c_w w_c v_m (the
+  master's surface velocity at the projection), rows 9–10 zero; the equations
+  are in the header of ``cpp_kernels/src/two_body_film.hpp``.
 """
 
 import numpy as np
 
 from . import _cpp
 
-__all__ = ["NUM_LOCAL", "MasterSurface", "MasterSurface3", "node_residuals", "num_local"]
+__all__ = ["NUM_LOCAL", "NUM_LOCAL_FILM", "MasterSurface", "MasterSurface3", "film_node_residuals",
+           "node_residuals", "num_local"]
 
 #: Local unknowns per slave node (2D).
 NUM_LOCAL = 13
+
+#: Local unknowns per slave node of the two-body film (2D).
+NUM_LOCAL_FILM = 11
 
 MasterSurface = _cpp.MasterSurface
 MasterSurface3 = _cpp.MasterSurface3
@@ -79,3 +95,22 @@ def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False)
         return _cpp.two_body_nodes_3d(q, xi, *vec, *args)
     xi = np.ascontiguousarray(xi_old, dtype=np.float64).ravel()
     return _cpp.two_body_nodes(q, xi, *vec, *args)
+
+
+def film_node_residuals(q, data, w, w_c, c_h, c_w):
+    """Residuals (n, 11) and tangents (n, 11, 11) of n film nodes (see the module docstring).
+
+    Args:
+        q: (n, 11) local unknowns [x, x₁, x₂, h, w, t] (mm, mm/s, MPa).
+        data: (n, 7) [c₁, c₂, k₀, z₁, z₂]: the master's reference tangential velocity
+            per reference length at x₁, x₂ (1/s), and the master nodes' velocities
+            ẋ_k = k₀ x_k + z_k (k₀ in 1/s, z_k in mm/s; 0 for a steady film).
+        w: (n,) lumped reference weights of the traction rows (mm).
+        w_c: (n,) lumped reference weights of the gap and velocity rows (mm).
+        c_h: row scale of the gap rows (MPa/mm).
+        c_w: row scale of the velocity rows (MPa·s/mm).
+    """
+    q = np.ascontiguousarray(q, dtype=np.float64).reshape(-1, NUM_LOCAL_FILM)
+    data = np.ascontiguousarray(data, dtype=np.float64).reshape(-1, 7)
+    vec = [np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (w, w_c)]
+    return _cpp.two_body_film_nodes(q, data, *vec, float(c_h), float(c_w))

@@ -8,6 +8,7 @@
 #include "projection.hpp"
 #include "two_body.hpp"
 #include "two_body_3d.hpp"
+#include "two_body_film.hpp"
 
 #include <cstdint>
 #include <nanobind/nanobind.h>
@@ -275,6 +276,30 @@ two_body_nodes(const CArray2<double>& q, const CArrayN& xi_old, const CArray1& w
                            {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
 }
 
+/// Nodal residuals (n, 11) and tangents (n, 11, 11) of the 2D two-body film.
+std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
+two_body_film_nodes(const CArray2<double>& q, const CArray2<double>& data, const CArray1& w,
+                    const CArray1& w_c, double c_h, double c_w)
+{
+  constexpr int N = tb::num_local_film, M = tb::num_data_film;
+  const std::size_t n = q.shape(0);
+  if (q.shape(1) != N or data.shape(1) != M)
+    throw std::invalid_argument("q must have shape (., 11) and data (., 7)");
+  if (data.shape(0) != n or w.shape(0) != n or w_c.shape(0) != n)
+    throw std::invalid_argument("data, w and w_c need one row per row of q");
+  std::vector<double> r(n * N), J(n * N * N);
+  {
+    nb::gil_scoped_release release;
+    for (std::size_t i = 0; i < n; ++i)
+      tb::film_node_residual(q.data() + i * N, data.data() + i * M, w.data()[i],
+                             w_c.data()[i], c_h, c_w, r.data() + i * N,
+                             J.data() + i * N * N);
+  }
+  return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
+          to_numpy<double>(std::move(J),
+                           {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
+}
+
 template <typename I>
 void add_matrix_blocks(std::uintptr_t fn, std::uintptr_t mat, const CArray2<I>& rows,
                        const CArray2<I>& cols,
@@ -353,6 +378,10 @@ NB_MODULE(_cpp, m)
         "eulerian"_a = false,
         "Nodal 3D two-body contact residuals (n, 25) and tangents (n, 25, 25) (see "
         "tribofx.two_body.node_residuals).");
+  m.def("two_body_film_nodes", &two_body_film_nodes, "q"_a.noconvert(), "data"_a.noconvert(),
+        "w"_a.noconvert(), "w_c"_a.noconvert(), "c_h"_a, "c_w"_a,
+        "Nodal two-body film residuals (n, 11) and tangents (n, 11, 11) (see "
+        "tribofx.two_body.film_node_residuals).");
   m.def("add_matrix_blocks", &add_matrix_blocks<std::int32_t>, "fn"_a, "mat"_a,
         "rows"_a.noconvert(), "cols"_a.noconvert(), "values"_a.noconvert());
   m.def("add_matrix_blocks", &add_matrix_blocks<std::int64_t>, "fn"_a, "mat"_a,

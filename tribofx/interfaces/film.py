@@ -69,7 +69,6 @@ from ..forms import ehl as ef
 from ..forms import film_traction as ft
 from ..laws import viscosity_law
 from ..problem import BlockTolerance
-from ..submesh import facet_submesh
 from .film_start import FilmStart
 from .film_transient import TransientFilm
 from .reynolds_film import ReynoldsFilm
@@ -160,14 +159,14 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
             raise ValueError("cavitation='jfo' and alpha are implemented for a curve Γ_l "
                              "(gdim = 2)")
         self.body, self.name, self.rtol = body, name, float(rtol)
-        self.boundary, self._surface = boundary, None
+        self.boundary = boundary
         self.require_open = bool(require_open)
         self.model, self.shear, self.cavitation, self._supg = model, shear, cavitation, supg
         self._viscosity_law = viscosity_law(mu)
         self.mu = self._viscosity_law.reference_value     # μ₀: the tolerances' scale
         msh = body.mesh
-        self.sub, self.emap, _ = facet_submesh(msh, body.facet_tags, body.tag(boundary),
-                                               f"{body.name} {boundary}")
+        self._surface = Surface(body, boundary)      # the submesh of Γ_l, shared with wear
+        self.sub, self.emap = self._surface.sub, self._surface.emap
         sub = self.sub
         degree = body.V.ufl_element().embedded_superdegree
         self.Vs = fem.functionspace(sub, ("Lagrange", degree, (gdim,)))
@@ -233,15 +232,9 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         if V_counter is not None:
             V_counter = self._mirror(V_counter)
 
-        def surface(x):
-            return ef.countersurface_projection(self.counterpart.geometry, x)
-
-        self.kin_bulk = ef.lubrication_kinematics(X, body.u, ufl.grad(body.u), N_b, None,
-                                                  None, V_body, model, surface, self.alpha,
-                                                  V_counter)
-        self.kin = ef.lubrication_kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N,
-                                             None, None, V_body, model, surface, self.alpha,
-                                             V_counter)
+        self.kin_bulk = self._kinematics(X, body.u, ufl.grad(body.u), N_b, V_body, V_counter)
+        self.kin = self._kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N, V_body,
+                                    V_counter)
         self._F, self._N_b = ufl.Identity(gdim) + ufl.grad(body.u), N_b
         self._tractions()
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
@@ -254,6 +247,14 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         self._post = None
         self._dry = None
         self._init_rows()
+
+    def _kinematics(self, X, disp, grad_disp, N, V_body, V_counter):
+        """Lubrication surface S = P(γ_l) (or S_α) at X: on the bulk side or on the submesh."""
+        def surface(x):
+            return ef.countersurface_projection(self.counterpart.geometry, x)
+
+        return ef.lubrication_kinematics(X, disp, grad_disp, N, None, None, V_body, self.model,
+                                         surface, self.alpha, V_counter)
 
     def _tractions(self):
         """Fluid traction (46) on the body from ``kin_bulk``, and its Couette part alone."""
@@ -302,9 +303,7 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
     # -- wear driver (tribofx.protocols.WearDriver) ----------------------------------------
     @property
     def surface(self):
-        """Γ_l as a :class:`~tribofx.interfaces.surface.Surface` (a Wear's home), built once."""
-        if self._surface is None:
-            self._surface = Surface(self.body, self.boundary)
+        """Γ_l as a :class:`~tribofx.interfaces.surface.Surface` (a Wear's home)."""
         return self._surface
 
     def wear_load(self, slip=None):

@@ -1,0 +1,304 @@
+"""A lubricating film between two deformable bodies (plane strain): §6–7 for two soft solids.
+
+The chapter restricts soft-EHL to one rigid body and calls two deformable bodies
+"a challenging task for future work".  :class:`TwoBodyFilm` is the
+:class:`tribofx.interfaces.Film` on the slave's lubricated boundary Γ_l with
+the other body (the master) in place of a rigid countersurface:
+
+* the lubrication surface is the slave's current boundary, S = γ_l
+  (:func:`tribofx.forms.two_body_film.layer_surface_kinematics`; the derivation
+  and why this surface are in ``docs/architecture.md``, "A film between two
+  deformable bodies");
+* each node of Γ_l is projected onto the master's *current* boundary
+  (:class:`tribofx.interfaces.master_side.MasterSide`: gathered on every rank, the
+  C++ box tree refitted every evaluation); the gap h and the master's surface
+  velocity w at the projection are nodal unknowns of the film, equal to their
+  kernel values node by node;
+* the fluid traction (46) is collocated at the nodes (unknown t) and carried by
+  the kernel to the slave (−w_k t_k) and to the master at the projection
+  (w_k N_m(ξ̄_k) t_k): action equals reaction exactly;
+* the Reynolds rows (49)/(57) with SUPG, penalty or JFO cavitation, and the
+  stopping test, are the film's own.
+
+The exact Jacobian: UFL differentiates the Reynolds, trace, gradient and
+collocation rows with respect to u_s, p, g, λ, h, w, t and the bulk u; the
+C++ kernel (:func:`tribofx.two_body.film_node_residuals`, exact dual-number
+tangent) supplies the slave and master columns of the gap, velocity and
+traction rows, inserted like the two-body contact's (:mod:`tribofx.pattern`).
+
+The bodies' materials move through their meshes (Eulerian rolling or sliding):
+``motion1``/``motion2`` (:mod:`tribofx.motions`) with speeds ``U1``/``U2`` (mm/s,
+Constants a continuation may drive).  Plane strain, P1 displacements, affine
+meshes.  Units: mm, N, s, MPa; forces per unit thickness (N/mm).
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..forms import two_body_film as tbf
+from ..petsc_insert import add_matrix_blocks, add_vector_blocks
+from ..problem import BlockTolerance
+from ..two_body import NUM_LOCAL_FILM, film_node_residuals
+from . import facets
+from .film import Film
+from .master_side import MasterSide
+
+__all__ = ["TwoBodyFilm"]
+
+
+class _NoCounterpart:
+    """The film's counterpart slot: the master enters through the kernel, not a geometry."""
+
+    def update(self, x_nodes):
+        """Nothing to project here: the kernel runs inside the assembly."""
+
+    def unknowns(self):
+        """Return no unknowns."""
+        return []
+
+    def state_fields(self):
+        """Return no state."""
+        return []
+
+    def commit(self):
+        """Nothing to accept."""
+
+
+class TwoBodyFilm(Film):
+    """Soft-EHL film on ``boundary`` of ``slave`` against ``master_boundary`` of ``master``.
+
+    Args:
+        slave, master: plane-strain P1 :class:`tribofx.body.Body` (affine meshes).
+        boundary, master_boundary: boundary names; the master's must extend beyond
+            the projections of Γ_l.
+        mu: viscosity (MPa·s) or a viscosity law (as for :class:`Film`).
+        motion1, motion2: None (at rest) or the shape of the reference velocity of
+            the slave's and the master's material (:class:`tribofx.motions.Rolling`,
+            :class:`~tribofx.motions.Sliding`).
+        U1, U2: their speeds (mm/s); ``self.U1``/``self.U2`` are the Constants.
+        **kwargs: the :class:`Film` options (shear, supg, cavitation, eps, p_c,
+            film_scale, speed_scale, quadrature, row_scaling, name, rtol,
+            require_open, density); model is "finite", S = γ_l.
+    """
+
+    #: relative hysteresis of the master-segment choice (as for TwoBodyContact)
+    STICKY = 0.05
+
+    def __init__(self, slave, boundary, master, master_boundary, mu, motion1=None, U1=0.0,
+                 motion2=None, U2=0.0, **kwargs):
+        for b in (slave, master):
+            if b.kind != "plane_strain" or b.V.ufl_element().embedded_superdegree != 1:
+                raise ValueError("TwoBodyFilm is implemented for plane-strain P1 bodies")
+        for key in ("V_counter", "model", "alpha"):
+            if key in kwargs:
+                raise ValueError(f"TwoBodyFilm has no option {key!r} (S = γ_l, finite model)")
+        self.master, self._motion1, self._motion2 = master, motion1, motion2
+        self.U1 = fem.Constant(slave.mesh, float(U1))
+        self.U2 = fem.Constant(slave.mesh, float(U2))
+        self.gap = None
+        super().__init__(slave, boundary, lambda V1: _NoCounterpart(), mu, **kwargs)
+        self.side = MasterSide(master, master_boundary)
+        sf, sub = self._surface, self.sub
+        self._c_w = fem.Constant(sub, self.mu / self.h_ref if kwargs.get("row_scaling", True)
+                                 else 1.0)
+        own = sf.sub_dofs < sf.n_own
+        order = np.argsort(sf.sub_dofs[own])
+        self._q, self._bulk = sf.sub_dofs[own][order], sf.bulk_dofs[own][order]
+        self._Xk = sf.X_sub[self._q]
+        self._w = sf.nodal(ufl.TestFunction(sf.Q) * sf.dsc)[self._q]
+        self._w_c = sf.nodal(fem.form(ufl.TestFunction(self.gap.function_space)
+                                      * self.nodal_dx))[self._q]
+        self._facet_ref = self._facet_committed = None
+        self._cache = None
+        self.set_nodal_data()
+
+    def _kinematics(self, X, disp, grad_disp, N, V_body, V_counter):
+        """S = γ_l with the film's nodal gap and master velocity (bulk side or submesh)."""
+        if self.gap is None:
+            gdim = self.body.gdim
+            self.gap = fem.Function(fem.functionspace(self.sub, ("Lagrange", 1)),
+                                       name=f"{self.name}_gap")
+            vec = ("Lagrange", 1, (gdim,))
+            self.v_master = fem.Function(fem.functionspace(self.sub, vec),
+                                       name=f"{self.name}_counter_velocity")
+            self.t_nodal = fem.Function(fem.functionspace(self.sub, vec),
+                                       name=f"{self.name}_traction_nominal")
+        U1 = self.U1 if disp is self.body.u else self._mirror(self.U1)
+        V = None if self._motion1 is None else U1 * self._motion1(X)
+        return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
+
+    # -- kernel ----------------------------------------------------------------------------
+    def _state_key(self):
+        fields = (self.body.u, self.master.u, self.gap, self.v_master, self.t_nodal)
+        ref = list(self._facet_ref) if self._facet_ref is not None else []
+        return [f.x.array for f in fields] + [np.array([float(self.U2.value)])] + ref
+
+    def _kernel(self):
+        """Kernel data of the owned nodes of Γ_l at the current state (cached per state).
+
+        Returns a dict: ``q`` (n, 11), ``data`` (n, 7), ``r``, ``J``, the pairing
+        (``xm``, ``keys``, ``seg``, ``facet``, ``xi``) and ``rows`` (per problem).
+        """
+        key = self._state_key()
+        c = self._cache
+        same = c is not None and len(c[0]) == len(key) and all(
+            a.shape == b.shape and np.array_equal(a, b) for a, b in zip(c[0], key))
+        if self.body.mesh.comm.allreduce(same, op=MPI.LAND):
+            return c[1]
+        d = self.body.gdim
+        xs = self._Xk + self.body.u.x.array.reshape(-1, d)[self._bulk]
+        xm, keys, seg, proj = self.side.project(xs, self._facet_ref, self.STICKY)
+        f = proj["facet"]
+        q = np.zeros((len(self._q), NUM_LOCAL_FILM))
+        q[:, 0:2], q[:, 2:4], q[:, 4:6] = xs, xm[seg[f, 0]], xm[seg[f, 1]]
+        q[:, 6] = self.gap.x.array[self._q]
+        q[:, 7:9] = self.v_master.x.array.reshape(-1, d)[self._q]
+        q[:, 9:11] = self.t_nodal.x.array.reshape(-1, d)[self._q]
+        data = np.zeros((len(self._q), 7))
+        if self._motion2 is not None:
+            Xr = self.side.reference(keys)
+            A, B = Xr[seg[f, 0]], Xr[seg[f, 1]]
+            T = B - A
+            T2 = np.sum(T * T, axis=1)
+            U2 = float(self.U2.value)
+            data[:, 0] = U2 * np.sum(self._motion2(A) * T, axis=1) / T2
+            data[:, 1] = U2 * np.sum(self._motion2(B) * T, axis=1) / T2
+        r, J = film_node_residuals(q, data, self._w, self._w_c, float(self._c_u.value),
+                                   float(self._c_w.value))
+        k = {"q": q, "data": data, "r": r, "J": J, "xm": xm, "keys": keys, "seg": seg,
+             "facet": f, "xi": proj["xi"], "rows": {}}
+        self._cache = ([a.copy() for a in key], k)
+        return k
+
+    def set_nodal_data(self):
+        """Set h and w to their kernel values at the current state (a start or a restart)."""
+        k = self._kernel()
+        d = self.body.gdim
+        self.gap.x.array[self._q] = -k["r"][:, 6] / (float(self._c_u.value) * self._w_c)
+        w = self.v_master.x.array.reshape(-1, d)
+        w[self._q] = -k["r"][:, 7:9] / (float(self._c_w.value) * self._w_c[:, None])
+        for f in (self.gap, self.v_master):
+            f.x.scatter_forward()
+
+    def _rows(self, problem, k):
+        """Global rows and columns (n, 11) of the local unknowns of ``k`` in ``problem``."""
+        if id(problem) in k["rows"]:
+            return k["rows"][id(problem)]
+        d = self.body.gdim
+        rm, cm = self.side.rows(problem)
+        k["master_rows"] = (rm, cm)
+        seg, f = k["seg"], k["facet"]
+        rows = np.full((len(self._q), NUM_LOCAL_FILM), -1, dtype=np.int64)
+        cols = np.full_like(rows, -1)
+        comp = np.arange(d)
+        slots = ((0, self.body.u, d * self._bulk[:, None] + comp),
+                 (6, self.gap, self._q[:, None]),
+                 (7, self.v_master, d * self._q[:, None] + comp),
+                 (9, self.t_nodal, d * self._q[:, None] + comp))
+        for j, fun, idx in slots:
+            gr, gc = problem.global_rows(fun)
+            rows[:, j:j + idx.shape[1]], cols[:, j:j + idx.shape[1]] = gr[idx], gc[idx]
+        for k_, j in ((0, 2), (1, 4)):
+            rows[:, j:j + d], cols[:, j:j + d] = rm[seg[f, k_]], cm[seg[f, k_]]
+        k["rows"][id(problem)] = (rows, cols)
+        return rows, cols
+
+    def couplings(self, problem):
+        """Dense blocks (rows, cols) this film may add in the next solve (see TwoBodyContact)."""
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        rr, cc = self.side.ring_rows(*k["master_rows"], k["seg"], k["facet"])
+        return np.c_[rows, rr], np.c_[cols, cc]
+
+    def add_residual(self, b, problem):
+        """Add the kernel residual of every owned node of Γ_l to ``b`` (global rows, C++)."""
+        k = self._kernel()
+        add_vector_blocks(b, self._rows(problem, k)[0], k["r"])
+
+    def add_jacobian(self, A, problem):
+        """Add the kernel's dense 11 × 11 tangent blocks (slave, master and film columns)."""
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        add_matrix_blocks(A, rows, cols, k["J"])
+
+    def reset_iterate(self):
+        """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
+        self._facet_ref = self._facet_committed
+
+    def accept_iterate(self):
+        """Move the pairing's reference to the accepted iterate; whether any node changed facet."""
+        k = self._kernel()
+        same = facets.same_pairing(self._facet_ref, (k["seg"], k["facet"]))
+        self._facet_ref = (k["seg"].copy(), k["facet"].copy())
+        return not self.body.mesh.comm.allreduce(same, op=MPI.LAND)
+
+    # -- component protocol -------------------------------------------------------------------
+    def unknowns(self):
+        """Return the film's unknowns and its nodal gap, master velocity and traction."""
+        return super().unknowns() + [self.gap, self.v_master, self.t_nodal]
+
+    def contributions(self):
+        """Film rows without the solid's (the kernel carries t to both bodies), nodal rows."""
+        out = [c for c in super().contributions() if c[0] is not self.body.u]
+        tests = [ufl.TestFunction(f.function_space) for f in (self.gap, self.v_master,
+                                                               self.t_nodal)]
+        return out + [
+            (self.gap, tbf.nodal_equality(self.gap, tests[0], self._c_u, self.nodal_dx)),
+            (self.v_master, tbf.nodal_equality(self.v_master, tests[1], self._c_w, self.nodal_dx)),
+            (self.t_nodal, tbf.traction_collocation(self.t_nodal, self.traction, tests[2],
+                                                   self._surface.dsc))]
+
+    def refresh(self):
+        """Copy the velocities to the submesh (the kernel runs inside the assembly)."""
+        self._sync()
+
+    def positions(self):
+        """Nodal current positions of Γ_l (P1 dof order, mm)."""
+        self._u1.interpolate(self.u_s)
+        return self._X1 + self._u1.x.array.reshape(-1, self.body.gdim)
+
+    def tolerances(self):
+        """Return the film's tolerances and those of the gap, velocity and traction rows."""
+        if "h" not in self._tol:
+            out = dict(super().tolerances())
+            gdim = self.body.gdim
+            ones = ufl.as_vector([1.0] * gdim)
+            for key, fun, unit, c in (("h", self.gap, "mm", self._c_u),
+                                      ("w", self.v_master, "mm/s", self._c_w),
+                                      ("t", self.t_nodal, "MPa", 1.0)):
+                v = ufl.TestFunction(fun.function_space)
+                v = v if key == "h" else ufl.dot(v, ones)
+                self._tol[key] = BlockTolerance(0.0, unit, c * v * self.nodal_dx)
+                out[fun] = self._tol[key]
+            self._tol_out = out
+            self.set_scales()
+        return self._tol_out
+
+    def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
+        """As :meth:`Film.set_scales`; also the nodal rows' tolerances."""
+        super().set_scales(p_c, eps, film_scale, speed_scale)
+        atol = {"h": self.rtol * self.h_ref, "w": self.rtol * self.U_ref,
+                "t": self.rtol * float(self.p_c.value)}
+        for key, a in atol.items():
+            if key in self._tol:
+                self._tol[key].atol = a
+
+    def commit(self):
+        """Accept the converged step: the pairing of the converged state is the reference."""
+        k = self._kernel()
+        self._facet_committed = self._facet_ref = (k["seg"].copy(), k["facet"].copy())
+
+    # -- outputs ---------------------------------------------------------------------------
+    def forces(self):
+        """Film force on the slave and on the master (N/mm), all ranks: equal and opposite."""
+        r = self._kernel()["r"]
+        comm = self.body.mesh.comm
+        on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
+        on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
+        return on_slave, on_master
+
+    def force(self):
+        """Film force on the slave (N/mm per unit thickness), the nodal tractions' sum."""
+        return self.forces()[0]

@@ -1,0 +1,45 @@
+"""Reference (Eulerian) velocity fields of a body's material along its surface, eq. (26).
+
+A body at rest in an Eulerian frame whose material moves through its mesh
+(a rolling cylinder, a sliding block) has the background velocity V(X) at
+its reference points; its current surface velocity is F V.  Here
+V(X) = U V̂(X) with the speed U (mm/s, the continuation parameter) kept apart
+from the shape V̂ (dimensionless), which evaluates on a UFL vector (the film's
+forms) and on NumPy points (n, 2) (the two-body film kernel's master data).
+"""
+
+import numpy as np
+import ufl
+
+__all__ = ["Rolling", "Sliding"]
+
+
+class Rolling:
+    """Rigid rotation about ``center`` with surface speed U at ``radius``: V̂ = e_z × (X − C)/R.
+
+    Counter-clockwise for U > 0: the lowest point of a cylinder moves along +x.
+    """
+
+    def __init__(self, center, radius):
+        self.center, self.radius = np.asarray(center, float)[:2], float(radius)
+
+    def __call__(self, X):
+        """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
+        c, R = self.center, self.radius
+        if isinstance(X, np.ndarray):
+            return np.c_[-(X[:, 1] - c[1]), X[:, 0] - c[0]] / R
+        return ufl.as_vector([-(X[1] - c[1]) / R, (X[0] - c[0]) / R])
+
+
+class Sliding:
+    """Uniform translation along ``direction`` (a unit vector): V̂ = direction."""
+
+    def __init__(self, direction):
+        d = np.asarray(direction, float)
+        self.direction = d / np.linalg.norm(d)
+
+    def __call__(self, X):
+        """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
+        if isinstance(X, np.ndarray):
+            return np.tile(self.direction[:X.shape[1]], (len(X), 1))
+        return ufl.as_vector([float(c) for c in self.direction[:len(X)]])

@@ -1,0 +1,46 @@
+"""NumPy twin of the two-body film kernel (:func:`tribofx.two_body.film_node_residuals`).
+
+The same nodal coupling written in NumPy (``cpp_kernels/src/two_body_film.hpp``
+has the equations), its tangent by complex-step differentiation,
+J[:, k] = Im r(q + i h e_k)/h: exact to round-off and independent of the
+kernel's dual numbers.  Used by the tests.
+"""
+
+import numpy as np
+
+__all__ = ["film_node_residual", "film_node_residuals"]
+
+
+def film_node_residual(q, data, w, w_c, c_h, c_w):
+    """Residual (11,) of one film node; q may be complex (complex-step tangent)."""
+    x, a, b, h, t = q[0:2], q[2:4], q[4:6], q[6], q[9:11]
+    c1, c2, k0, z1, z2 = data[0], data[1], data[2], data[3:5], data[5:7]
+    tau = b - a
+    l2 = tau @ tau
+    n = np.array([tau[1], -tau[0]]) / np.sqrt(l2)
+    xi = (x - a) @ tau / l2
+    g = (x - a - xi * tau) @ n
+    v_m = ((1 - xi) * c1 + xi * c2) * tau + (1 - xi) * (k0 * a + z1) + xi * (k0 * b + z2)
+    r = np.zeros(11, dtype=q.dtype)
+    r[0:2] = -w * t
+    r[2:4] = w * (1 - xi) * t
+    r[4:6] = w * xi * t
+    r[6] = -c_h * w_c * g
+    r[7:9] = -c_w * w_c * v_m
+    del h                      # h enters through the UFL part of its row (c_h w_c h)
+    return r
+
+
+def film_node_residuals(q, data, w, w_c, c_h, c_w, h=1e-30):
+    """Residuals (n, 11) and complex-step tangents (n, 11, 11), as the C++ kernel."""
+    q = np.asarray(q, float).reshape(-1, 11)
+    r = np.zeros_like(q)
+    J = np.zeros((len(q), 11, 11))
+    for i, qi in enumerate(q):
+        args = (data[i], w[i], w_c[i], c_h, c_w)
+        r[i] = film_node_residual(qi.astype(complex), *args).real
+        for k in range(11):
+            qc = qi.astype(complex)
+            qc[k] += 1j * h
+            J[i, :, k] = film_node_residual(qc, *args).imag / h
+    return r, J
