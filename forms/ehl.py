@@ -217,9 +217,11 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
             the intermediate surface S_α = (1 − α) P(γ_l) + α γ_l of Fig. 23
             (see :func:`intermediate_surface`; α = 0 gives S = P(γ_l) to round-off).
         V_counter: None (countersurface at rest) or the velocity of the rigid
-            countersurface at y (mm/s, e.g. 2U e_x of the plane of §8.3); its
+            countersurface at y (mm/s, e.g. 2U e_x of the plane of §8.3; a callable
+            of y for a rolling countersurface); its
             tangential part (I − ν⊗ν) V_counter enters v̄ = ½(v_layer + v_counter)
-            (eq. 41) and the Couette traction (46).  gdim = 2 or 3 (alpha: 2 only).
+            (eq. 41) and the Couette traction (46) (on S_α its part tangent to S_α).
+            gdim = 2 or 3 (alpha: 2 only).
     """
     if model not in MODELS:
         raise ValueError(f"unknown model {model!r}; expected one of {MODELS}")
@@ -238,11 +240,11 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
         h, nu, y, dP = cylinder_countersurface(x, center, radius)
     else:
         h, nu, y, dP = surface(x)
+    if callable(V_counter):              # a field of the countersurface's points
+        V_counter = V_counter(y)
     Ft = (Id + grad_disp) * PN           # F (I − N⊗N)
     if alpha is not None:
-        if V_counter is not None:
-            raise ValueError("the intermediate surface S_α assumes a countersurface at rest")
-        return intermediate_surface(h, nu, y, dP, Ft, N, V, alpha)
+        return intermediate_surface(h, nu, y, dP, Ft, N, V, alpha, V_counter)
     Pnu = Id - ufl.outer(nu, nu)
     A = dP * Ft + ufl.outer(nu, N)
     v_layer = Pnu * (Ft * V)             # tangential part of v = F V (V ⊥ N)
@@ -269,7 +271,7 @@ def planar_kinematics(x, h, vbar):
                                  A=ufl.Identity(gdim), stretch=1, vbar=vbar, v_layer=vbar)
 
 
-def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
+def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha, V_counter=None):
     """Kinematics on the intermediate lubrication surface S_α (Fig. 23), plane (gdim = 2).
 
     With y = P(x) the projection onto the countersurface and x the layer point,
@@ -286,15 +288,20 @@ def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha):
     only the surface carrying the Reynolds equation (its metric, its operators
     grad_S, div_S and the tangential projection of the velocity) depends on α.
     Everything is UFL of the displacement, so the Newton tangent stays exact.
+    A moving countersurface (``V_counter``) adds its part tangent to S_α,
+    v̄ = ½ (I − n_α⊗n_α)(F V + V_counter) (α = 0: eq. 41).
     """
     G = (1 - alpha) * dP * Ft + alpha * Ft
     tau = G * ufl.as_vector([N[1], -N[0]])       # G T with T = (N_y, −N_x)
     jt = ufl.sqrt(ufl.dot(tau, tau))
     n_a = ufl.as_vector([tau[1], -tau[0]]) / jt
     A = G + ufl.outer(n_a, N)                    # G already annihilates N
-    v_layer = (ufl.Identity(2) - ufl.outer(n_a, n_a)) * (Ft * V)
+    P_a = ufl.Identity(2) - ufl.outer(n_a, n_a)
+    v_layer = P_a * (Ft * V)
+    v_counter = None if V_counter is None else P_a * V_counter
+    vbar = 0.5 * (v_layer if v_counter is None else v_layer + v_counter)
     return LubricationKinematics(h=h, nu=nu, y=y + alpha * h * nu, A=A, stretch=abs(ufl.det(A)),
-                                 vbar=0.5 * v_layer, v_layer=v_layer)
+                                 vbar=vbar, v_layer=v_layer, v_counter=v_counter)
 
 
 def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,

@@ -69,6 +69,7 @@ from ..forms import ehl as ef
 from ..forms import film_traction as ft
 from ..laws import viscosity_law
 from ..problem import BlockTolerance
+from .film_outputs import FilmOutputs
 from .film_start import FilmStart
 from .film_transient import TransientFilm
 from .reynolds_film import ReynoldsFilm
@@ -105,7 +106,7 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
-class Film(FilmStart, TransientFilm, ReynoldsFilm):
+class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
     Args:
@@ -119,7 +120,9 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         density: None (incompressible) or a density :class:`tribofx.laws.Law`
             ρ(p)/ρ₀ (the compressible Reynolds equation; penalty cavitation).
         V_counter: velocity of the countersurface (mm/s): a vector, a ``fem.Constant``
-            (e.g. driven by a continuation) or None (at rest).
+            (e.g. driven by a continuation), (shape, U) (U·shape(y) at the projection
+            y, a shape of :mod:`tribofx.motions` and U a Constant: a rolling cylinder)
+            or None (at rest).
         model: "finite" or "linear" (geometrically linear EHL).
         shear: Couette and Poiseuille shear tractions on the body (and the unknown g).
         supg: SUPG stabilisation of the Reynolds equation.
@@ -142,6 +145,9 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         require_open: line-search trials must keep the film open, h > 0 at every
             node of Γ_l (:meth:`admissible`; with ``Problem(line_search="admissible")``
             the only test of a trial step).
+        motion: None (the layer moves with ``body.velocity``) or (shape, U): the
+            layer's reference velocity U·shape(X) (:mod:`tribofx.motions`, U a Constant,
+            mm/s), e.g. a rolling cylinder.
     """
 
     CAVITATION = ("penalty", "jfo")
@@ -149,7 +155,8 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
     def __init__(self, body, boundary, counterpart, mu, V_counter=None, model="finite",
                  shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
                  film_scale=1e-2, speed_scale=1.0, quadrature_degree=4, row_scaling=True,
-                 name="film", rtol=1e-10, require_open=False, density=None, quadrature="gauss"):
+                 name="film", rtol=1e-10, require_open=False, density=None, quadrature="gauss",
+                 motion=None):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
         if cavitation not in self.CAVITATION:
@@ -225,12 +232,11 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         # FFCx compiles a submesh form only with Constants of the submesh: the film
         # keeps submesh copies of the velocities, synchronised before every assembly
         self._mirrors = []
-        V_body = self._mirror(body.velocity) if body.velocity is not None else ufl.zero(gdim)
-        if V_counter is not None and not isinstance(V_counter, fem.Constant):
+        V_body = self._velocity(motion, body.velocity)
+        if V_counter is not None and not isinstance(V_counter, (fem.Constant, tuple)):
             V_counter = fem.Constant(sub, np.asarray(V_counter, dtype=float))
         self.V_counter = V_counter
-        if V_counter is not None:
-            V_counter = self._mirror(V_counter)
+        V_counter = self._velocity(V_counter)
 
         self.kin_bulk = self._kinematics(X, body.u, ufl.grad(body.u), N_b, V_body, V_counter)
         self.kin = self._kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N, V_body,
@@ -248,12 +254,33 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
         self._dry = None
         self._init_rows()
 
+    def _velocity(self, spec, constant=None):
+        """Return a velocity field (callable of a UFL position) from ``spec``, or None.
+
+        ``spec``: None, a Constant (uniform) or (shape, U): U·shape(X) with a shape
+        of :mod:`tribofx.motions` and U a Constant (mm/s).  The Constants are
+        mirrored on the submesh (the Reynolds forms need them there).
+        """
+        if isinstance(spec, tuple):
+            shape, U = spec[0], self._mirror(spec[1])
+            return lambda X: U * shape(X)
+        c = spec if spec is not None else constant
+        if c is None:
+            return None
+        c = self._mirror(c)
+        return lambda X: c
+
     def _kinematics(self, X, disp, grad_disp, N, V_body, V_counter):
-        """Lubrication surface S = P(γ_l) (or S_α) at X: on the bulk side or on the submesh."""
+        """Lubrication surface S = P(γ_l) (or S_α) at X: on the bulk side or on the submesh.
+
+        ``V_body`` (the layer's reference velocity) and ``V_counter`` (the
+        countersurface's, at the projection y) are callables of a position, or None.
+        """
         def surface(x):
             return ef.countersurface_projection(self.counterpart.geometry, x)
 
-        return ef.lubrication_kinematics(X, disp, grad_disp, N, None, None, V_body, self.model,
+        V = V_body(X) if V_body is not None else ufl.zero(self.body.gdim)
+        return ef.lubrication_kinematics(X, disp, grad_disp, N, None, None, V, self.model,
                                          surface, self.alpha, V_counter)
 
     def _tractions(self):
@@ -364,85 +391,3 @@ class Film(FilmStart, TransientFilm, ReynoldsFilm):
     def commit(self):
         """Accept the converged step (the counterpart's history moves on)."""
         self.counterpart.commit()
-
-    # -- outputs -------------------------------------------------------------------------
-    def _forms(self):
-        if self._post is None:
-            em = [self.emap]
-            gdim = self.body.gdim
-            counter = ft.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
-                                                 self.mu_p)
-            self._post = {
-                "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
-                          for i in range(gdim)],
-                "couette": [fem.form(self._couette[i] * self.w_solid * self.ds, entity_maps=em)
-                            for i in range(gdim)],
-                "counter": [fem.form(counter[i] * self.kin.stretch * self.w_film * self.dx)
-                            for i in range(gdim)],
-                "y": fem.Expression(self.kin.y, self.V1.element.interpolation_points),
-            }
-        return self._post
-
-    def _nodal(self, key):
-        f = fem.Function(self.V1)
-        f.interpolate(self._forms()[key])
-        return f.x.array
-
-    def _vector_integral(self, key):
-        """Refresh the kernel data; the components of the post-processing form ``key``."""
-        self.refresh()
-        return np.array([self._sum(f) for f in self._forms()[key]])
-
-    def force(self):
-        """Force of the film on the modelled part of the body.
-
-        N/mm per unit thickness in plane strain; N in 3D (a quarter model: a
-        quarter of the full body's); axisymmetric: the revolved body's, N (2πR-weighted).
-        """
-        return self._vector_integral("force")
-
-    def counter_force(self):
-        """Force of the film on the countersurface (units and parts as :meth:`force`).
-
-        ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
-        (:func:`forms.film_traction.countersurface_traction`): what a friction rig measures
-        on the rigid counterpart.  The film's momentum balance makes this
-        −:meth:`force` up to the shear where the layer's area differs from S's,
-        ∫ shear (j − ds_S/dS) dS (steep flanks of a thick film); the
-        geometrically linear model's traction −pN also leaves out the pressure on
-        the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
-        """
-        return self._vector_integral("counter")
-
-    def couette_force(self):
-        """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""
-        return self._vector_integral("couette")
-
-    def min_film(self):
-        """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
-        self.refresh()
-        n = self.Q.dofmap.index_map.size_local
-        return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
-                                       op=MPI.MIN)
-
-    def admissible(self):
-        """Line-search test: True, or with ``require_open`` h > 0 and fluid at every node."""
-        return not self.require_open or (self.has_fluid() and self.min_film() > 0)
-
-    def profile(self, everywhere=False):
-        """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.
-
-        On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
-        are P1 nodal values (the trace interpolated at the vertices).
-        """
-        self.refresh()
-        gdim = self.body.gdim
-        n = self.Q.dofmap.index_map.size_local
-        # Q, V1 (and Ql) share the P1 layout of the same submesh
-        self._u1.interpolate(self.u_s)
-        x = self._X1 + self._u1.x.array.reshape(-1, gdim)
-        d = {"X": self._X1[:n], "x": x[:n], "y": self._nodal("y").reshape(-1, gdim)[:n],
-             "h": self._film_thickness()[:n].copy(), "p": self.p.x.array[:n].copy()}
-        if self.lam is not None:
-            d["lam"] = self.lam.x.array[:n].copy()
-        return self._gather(d, "X", everywhere)

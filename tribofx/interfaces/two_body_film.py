@@ -91,14 +91,15 @@ class TwoBodyFilm(Film):
         for b in (slave, master):
             if b.kind != "plane_strain" or b.V.ufl_element().embedded_superdegree != 1:
                 raise ValueError("TwoBodyFilm is implemented for plane-strain P1 bodies")
-        for key in ("V_counter", "model", "alpha"):
+        for key in ("V_counter", "model", "alpha", "motion"):
             if key in kwargs:
                 raise ValueError(f"TwoBodyFilm has no option {key!r} (S = γ_l, finite model)")
         self.master, self._motion1, self._motion2 = master, motion1, motion2
         self.U1 = fem.Constant(slave.mesh, float(U1))
         self.U2 = fem.Constant(slave.mesh, float(U2))
         self.gap = None
-        super().__init__(slave, boundary, lambda V1: _NoCounterpart(), mu, **kwargs)
+        super().__init__(slave, boundary, lambda V1: _NoCounterpart(), mu,
+                         motion=None if motion1 is None else (motion1, self.U1), **kwargs)
         self.side = MasterSide(master, master_boundary)
         sf, sub = self._surface, self.sub
         self._c_w = fem.Constant(sub, self.mu / self.h_ref if kwargs.get("row_scaling", True)
@@ -125,8 +126,7 @@ class TwoBodyFilm(Film):
                                        name=f"{self.name}_counter_velocity")
             self.t_nodal = fem.Function(fem.functionspace(self.sub, vec),
                                        name=f"{self.name}_traction_nominal")
-        U1 = self.U1 if disp is self.body.u else self._mirror(self.U1)
-        V = None if self._motion1 is None else U1 * self._motion1(X)
+        V = None if V_body is None else V_body(X)
         return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
 
     # -- kernel ----------------------------------------------------------------------------

@@ -1,0 +1,100 @@
+"""Outputs of a soft-EHL film: its forces on both walls, its thinnest point, its profile.
+
+:class:`FilmOutputs` is the part of :class:`tribofx.interfaces.Film` that reads
+a solved film: the force on the body (the traction (46) of its virtual work),
+on the countersurface and its Couette part, the minimum film, the line-search
+admissibility test and the nodal profile of Γ_l.
+"""
+
+import numpy as np
+from dolfinx import fem
+from mpi4py import MPI
+
+from ..forms import film_traction as ft
+
+__all__ = ["FilmOutputs"]
+
+
+class FilmOutputs:
+    """Post-processing of :class:`tribofx.interfaces.Film` (its base; reads its fields)."""
+
+    def _forms(self):
+        if self._post is None:
+            em = [self.emap]
+            gdim = self.body.gdim
+            counter = ft.countersurface_traction(self.p, self.grad_gamma(self.p), self.kin,
+                                                 self.mu_p)
+            self._post = {
+                "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
+                          for i in range(gdim)],
+                "couette": [fem.form(self._couette[i] * self.w_solid * self.ds, entity_maps=em)
+                            for i in range(gdim)],
+                "counter": [fem.form(counter[i] * self.kin.stretch * self.w_film * self.dx)
+                            for i in range(gdim)],
+                "y": fem.Expression(self.kin.y, self.V1.element.interpolation_points),
+            }
+        return self._post
+
+    def _nodal(self, key):
+        f = fem.Function(self.V1)
+        f.interpolate(self._forms()[key])
+        return f.x.array
+
+    def _vector_integral(self, key):
+        """Refresh the kernel data; the components of the post-processing form ``key``."""
+        self.refresh()
+        return np.array([self._sum(f) for f in self._forms()[key]])
+
+    def force(self):
+        """Force of the film on the modelled part of the body.
+
+        N/mm per unit thickness in plane strain; N in 3D (a quarter model: a
+        quarter of the full body's); axisymmetric: the revolved body's, N (2πR-weighted).
+        """
+        return self._vector_integral("force")
+
+    def counter_force(self):
+        """Force of the film on the countersurface (units and parts as :meth:`force`).
+
+        ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
+        (:func:`forms.film_traction.countersurface_traction`): what a friction rig measures
+        on the rigid counterpart.  The film's momentum balance makes this
+        −:meth:`force` up to the shear where the layer's area differs from S's,
+        ∫ shear (j − ds_S/dS) dS (steep flanks of a thick film); the
+        geometrically linear model's traction −pN also leaves out the pressure on
+        the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
+        """
+        return self._vector_integral("counter")
+
+    def couette_force(self):
+        """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""
+        return self._vector_integral("couette")
+
+    def min_film(self):
+        """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
+        self.refresh()
+        n = self.Q.dofmap.index_map.size_local
+        return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
+                                       op=MPI.MIN)
+
+    def admissible(self):
+        """Line-search test: True, or with ``require_open`` h > 0 and fluid at every node."""
+        return not self.require_open or (self.has_fluid() and self.min_film() > 0)
+
+    def profile(self, everywhere=False):
+        """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.
+
+        On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
+        are P1 nodal values (the trace interpolated at the vertices).
+        """
+        self.refresh()
+        gdim = self.body.gdim
+        n = self.Q.dofmap.index_map.size_local
+        # Q, V1 (and Ql) share the P1 layout of the same submesh
+        self._u1.interpolate(self.u_s)
+        x = self._X1 + self._u1.x.array.reshape(-1, gdim)
+        d = {"X": self._X1[:n], "x": x[:n], "y": self._nodal("y").reshape(-1, gdim)[:n],
+             "h": self._film_thickness()[:n].copy(), "p": self.p.x.array[:n].copy()}
+        if self.lam is not None:
+            d["lam"] = self.lam.x.array[:n].copy()
+        return self._gather(d, "X", everywhere)
