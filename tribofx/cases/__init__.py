@@ -5,6 +5,7 @@ from .ehl import EHLCylinderLayerCase
 from .ehl_ball import EHLBallCase
 from .ehl_oring import EHLORingCase
 from .ehl_squeeze import EHLSqueezeCase
+from .ehl_two_cylinders import EHLTwoCylindersCase
 from .hertz import HertzCase
 from .ironing import IroningCase
 from .reynolds import SliderCase
@@ -19,8 +20,9 @@ __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
-                                  EHLORingCase, EHLSqueezeCase, TwoCylindersCase,
-                                  ContactPatchCase, IroningCase, WearReciprocatingCase)}
+                                  EHLORingCase, EHLSqueezeCase, EHLTwoCylindersCase,
+                                  TwoCylindersCase, ContactPatchCase, IroningCase,
+                                  WearReciprocatingCase)}
 
 
 def get_case(name):
