@@ -25,6 +25,7 @@ class Param:
         choices: allowed values for strings/ints.
         lower, upper: open bounds (``lower < value < upper``) unless ``closed``.
         closed: bounds are inclusive.
+        infinite: +inf is allowed (e.g. a rigid body's modulus, a flat body's radius).
     """
 
     name: str
@@ -36,6 +37,7 @@ class Param:
     lower: float | None = None
     upper: float | None = None
     closed: bool = False
+    infinite: bool = False
 
     def parse(self, text):
         """Convert ``text`` to the parameter's type and check its range."""
@@ -61,7 +63,7 @@ class Param:
                 f"parameter {self.name!r} must be one of {list(self.choices)}, got {value!r}"
             )
         if isinstance(value, (int, float)) and not isinstance(value, bool):
-            if not math.isfinite(value):
+            if not math.isfinite(value) and not (self.infinite and value == math.inf):
                 raise InputError(f"parameter {self.name!r} must be finite, got {value}")
             lo, hi = self.lower, self.upper
             if lo is not None and (value < lo or (value == lo and not self.closed)):

@@ -74,7 +74,7 @@ class EHLSqueezeCase(SqueezeRun):
         Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
               upper=0.5),
         Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
-              "finite: the two-body film, not built yet)", lower=0.0),
+              "finite: the two-body film, not built yet)", lower=0.0, infinite=True),
         Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
               upper=0.5),
         Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
