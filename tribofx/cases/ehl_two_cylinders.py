@@ -172,9 +172,9 @@ class EHLTwoCylindersCase:
                 "sign": sign}
 
     @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
+    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
         """March the load to W (the approach found per load by a secant on 1/W)."""
-        run = cls.build(v)
+        run = cls.build(v, comm)
         film, problem, sign = run["film"], run["problem"], run["sign"]
         record.data["num_dofs"] = problem.num_dofs
         ref = cls.reference(v)
@@ -239,7 +239,7 @@ class EHLTwoCylindersCase:
         record.result("hertz_p_max", ref.p0, "MPa")
         record.result("rigid_film_martin", rigid_clearance(m["W"], v["mu"], 2 * u_m,
                                                            ref.R_star), "mm")
-        if MPI.COMM_WORLD.rank == 0:
+        if run["film"].sub.comm.rank == 0:
             record.profile = {"steps": [{k: s[k] for k in ("W", "x", "p", "h")}
                                         for s in steps]}
 
