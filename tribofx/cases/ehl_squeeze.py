@@ -25,8 +25,10 @@ traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
 ``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
-each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (a deformable
-plane body) is the two-body film of issue 31, not built yet: a one-line error.
+each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (``dim=2``):
+the plane is the top of an elastic block [0, 2L] × [−2L, 0] (ν2), held — or
+lifted at V — at its bottom, and the film is the two-body one
+(:class:`~tribofx.interfaces.TwoBodyFilm`, S = the body's surface).
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
@@ -40,6 +42,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
+from ..interfaces.two_body_film import TwoBodyFilm
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
@@ -74,7 +77,7 @@ class EHLSqueezeCase(SqueezeRun):
         Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
               upper=0.5),
         Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
-              "finite: the two-body film, not built yet)", lower=0.0, infinite=True),
+              "finite: an elastic block, the two-body film, dim=2)", lower=0.0, infinite=True),
         Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
               upper=0.5),
         Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
@@ -92,9 +95,8 @@ class EHLSqueezeCase(SqueezeRun):
     @classmethod
     def validate(cls, v):
         """Bad input: a one-line error."""
-        if math.isfinite(v["E2"]):
-            raise InputError("E2 finite (two deformable bodies) needs the two-body film, not "
-                             "built yet; use E2=inf (a rigid plane)")
+        if math.isfinite(v["E2"]) and v["dim"] != 2:
+            raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
         if not v["h_start"] < 0.1 * v["R"]:
             raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
         if v["dt"] > v["T"]:
@@ -183,10 +185,22 @@ class EHLSqueezeCase(SqueezeRun):
         # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
         h_L = h0 + R - math.sqrt(R * R - L * L)
         floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * h_coarse)
-        film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v),
-                    density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
-                    speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
-                    cavitation="penalty" if v["cavitation"] == "none" else "jfo")
+        kw = dict(density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
+                  speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
+                  cavitation="penalty" if v["cavitation"] == "none" else "jfo")
+        bodies = [body]
+        if math.isinf(v["E2"]):
+            film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v), **kw)
+        else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
+            mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
+            mu_b, lm_b = lame_parameters(v["E2"], v["nu2"])
+            block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
+                         name="block", force_scale=f_s, rtol=rtol)
+            block.add_dirichlet("symmetry_x", 0.0, component=0)
+            lift = block.add_dirichlet("loaded", np.zeros(dim))
+            msh.geometry.x[:, 1] += h0        # the body's lowest point h0 above the block
+            film = TwoBodyFilm(body, "lubricated", block, "lubricated", viscosity(v), **kw)
+            bodies.append(block)
 
         def rim(X):
             return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
@@ -195,13 +209,16 @@ class EHLSqueezeCase(SqueezeRun):
             film.add_reservoir(rim, 0.0)
         else:
             film.add_pressure_bc(rim)
-        film.place_countersurface(h0, np.zeros(3))
+        if math.isinf(v["E2"]):
+            film.place_countersurface(h0, np.zeros(3))
+            lift = film.counterpart.offset
+        film.plane = lift             # the plane's (or the block's) rigid position
         if not steady:
             film.transient(v["scheme"])
-        offset = film.counterpart.offset
+        offset = lift
         y0 = float(offset.value[dim - 1])
         schedule = []
         if v["control"] == "speed":
             schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
-        return Stepper([body, film], film, checkpoint=checkpoint, schedule=schedule,
+        return Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
                        name="ehl_squeeze")

@@ -43,7 +43,7 @@ class SqueezeRun:
         h_c = float(prof["h"][np.argmin(r)])
         force = float(film.force()[dim - 1]) / cls.fraction(v)
         return {"h_center": h_c, "h_min": film.min_film(), "force": force,
-                "approach": float(film.counterpart.offset.value[dim - 1]) - y0,
+                "approach": float(film.plane.value[dim - 1]) - y0,
                 "p_center": float(prof["p"][np.argmin(r)]),
                 "content": film.content() / cls.fraction(v)}
 
@@ -56,7 +56,7 @@ class SqueezeRun:
         keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
                 "newton_iterations", "force_rigid", "h_center_rigid")
         sr = SlowRun(stepper, v, record, keys, {"displacement": [film.body.u]}, resume)
-        y0 = sr.history.setdefault("y0", float(film.counterpart.offset.value[dim - 1]))
+        y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
         R, mu, L = v["R"], v["mu"], cls.extent(v)
 
         def log(t, its):

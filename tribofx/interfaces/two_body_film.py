@@ -129,11 +129,51 @@ class TwoBodyFilm(Film):
         V = None if V_body is None else V_body(X)
         return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
 
+    # -- time: the master's nodes move too ------------------------------------------------
+    def transient(self, scheme="bdf2"):
+        """Make the film transient (:meth:`Film.transient`); the master's history is kept too.
+
+        The master's surface velocity at the projection gains its nodes' rates,
+        ẋ_k = (c₀ (u_k − u_kⁿ) + c₁ (u_kⁿ − u_kⁿ⁻¹))/Δt, through the kernel's data
+        k₀ = c₀/Δt, z_k = −k₀ (X_k + u_kⁿ) + (c₁/Δt)(u_kⁿ − u_kⁿ⁻¹).
+        """
+        super().transient(scheme)
+        self._master_hist = [fem.Function(self.master.V, name=f"{self.name}_master_u_{k}")
+                             for k in ("n", "nm1")]
+        return self
+
+    def history_fields(self):
+        """Return the film's histories and the master's displacements at t_n, t_{n−1}."""
+        return super().history_fields() + (self._master_hist if self.scheme else [])
+
+    def begin_step(self, dt):
+        """Start a step (:meth:`Film.begin_step`) and move the master's history on."""
+        super().begin_step(dt)
+        m_n, m_nm1 = self._master_hist
+        m_nm1.x.array[:] = m_n.x.array
+        m_n.x.array[:] = self.master.u.x.array
+        self._cache = None
+
+    def _master_rates(self, keys):
+        """Per gathered master node: k₀ (1/s) and z (mm/s) of ẋ = k₀ x + z (0, 0 when steady)."""
+        d = self.body.gdim
+        if self.scheme is None:
+            return 0.0, np.zeros((len(keys), d))
+        inv_dt, c0, c1 = (float(c.value) for c in self.time_weights)
+        u_n, u_nm1 = (self.side.gather(lambda nd, f=f: f.x.array.reshape(-1, d)[nd])[1]
+                      for f in self._master_hist)
+        k0 = inv_dt * c0
+        return k0, -k0 * (self.side.reference(keys) + u_n) + inv_dt * c1 * (u_n - u_nm1)
+
     # -- kernel ----------------------------------------------------------------------------
     def _state_key(self):
         fields = (self.body.u, self.master.u, self.gap, self.v_master, self.t_nodal)
         ref = list(self._facet_ref) if self._facet_ref is not None else []
-        return [f.x.array for f in fields] + [np.array([float(self.U2.value)])] + ref
+        hist = []
+        if self.scheme is not None:       # the master's rates: its history and the weights
+            hist = [f.x.array for f in self._master_hist] + [
+                np.array([float(c.value) for c in self.time_weights])]
+        return [f.x.array for f in fields] + [np.array([float(self.U2.value)])] + ref + hist
 
     def _kernel(self):
         """Kernel data of the owned nodes of Γ_l at the current state (cached per state).
@@ -165,6 +205,8 @@ class TwoBodyFilm(Film):
             U2 = float(self.U2.value)
             data[:, 0] = U2 * np.sum(self._motion2(A) * T, axis=1) / T2
             data[:, 1] = U2 * np.sum(self._motion2(B) * T, axis=1) / T2
+        k0, z = self._master_rates(keys)
+        data[:, 2], data[:, 3:5], data[:, 5:7] = k0, z[seg[f, 0]], z[seg[f, 1]]
         r, J = film_node_residuals(q, data, self._w, self._w_c, float(self._c_u.value),
                                    float(self._c_w.value))
         k = {"q": q, "data": data, "r": r, "J": J, "xm": xm, "keys": keys, "seg": seg,
