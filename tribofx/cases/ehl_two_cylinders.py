@@ -109,7 +109,15 @@ class EHLTwoCylindersCase:
         if not v["U1"] + v["U2"] > 0:
             raise InputError(f"U1 + U2 = {v['U1'] + v['U2']} mm/s: no entrainment into the "
                              f"film (needs > 0)")
-        x_l = cls.scales(v)[3]
+        try:
+            h_r, _, _, x_l = cls.scales(v)
+            R_star = cls.reference(v).R_star
+        except (ArithmeticError, ValueError):
+            raise InputError("W, U1, U2, mu or the radii out of range (the film's scales "
+                             "overflow)") from None
+        if not 0 < h_r < 0.05 * R_star:
+            raise InputError(f"the rigid film at W, {h_r:.3g} mm, is not thin against R* = "
+                             f"{R_star:.3g} mm: W, U1 + U2 or mu out of range")
         if x_l > 0.5 * min(v["R1"], v["R2"]):
             raise InputError(f"film half length x_l = {x_l:.3g} mm exceeds R/2: lower "
                              f"extent or W")
