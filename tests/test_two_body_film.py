@@ -12,8 +12,7 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.roller import ROLLER_NAMES, roller
 
 from tribofx.body import Body
-from tribofx.interfaces import Film
-from tribofx.interfaces.two_body_film import TwoBodyFilm
+from tribofx.interfaces import Film, TwoBodyFilm
 from tribofx.motions import Rolling, Sliding
 from tribofx.obstacles import rigid_plane
 from tribofx.problem import Problem

@@ -41,8 +41,7 @@ from mpi4py import MPI
 
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
-from ..interfaces import Film
-from ..interfaces.two_body_film import TwoBodyFilm
+from ..interfaces import Film, TwoBodyFilm
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, Param

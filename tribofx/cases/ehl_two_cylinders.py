@@ -38,8 +38,7 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..held_response import HeldResponse
-from ..interfaces import Film
-from ..interfaces.two_body_film import TwoBodyFilm
+from ..interfaces import Film, TwoBodyFilm
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..motions import Rolling, Sliding
 from ..obstacles import rigid_cylinder, rigid_plane

@@ -11,7 +11,8 @@ from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .rigid_film import RigidFilm
 from .two_body_contact import TwoBodyContact
+from .two_body_film import TwoBodyFilm
 from .wear import Wear
 
 __all__ = ["Contact", "Film", "PrescribedPressure", "ReynoldsFilm", "RigidFilm", "TwoBodyContact",
-           "Wear"]
+           "TwoBodyFilm", "Wear"]
