@@ -10,6 +10,8 @@ tree of the search (refitted while the facets stay the same), and maps the
 gathered nodes to the rows and columns of a :class:`tribofx.problem.Problem`.
 """
 
+import weakref
+
 import numpy as np
 from dolfinx import mesh as dmesh
 
@@ -56,6 +58,7 @@ class MasterSide:
         self._tree = self._segments = None
         self._ring = self._ring_seg = None
         self._ref_keys = self._ref = None
+        self._seg, self._rows = None, {}
 
     def dofs(self):
         """Local (P1 block) dofs of the master boundary and their global block indices."""
@@ -77,11 +80,13 @@ class MasterSide:
         X = m.V.tabulate_dof_coordinates()[:, :d]
         u = m.u.x.array.reshape(-1, d)
         keys, x = self.gather(lambda nd: X[nd] + u[nd])
-        dofs, local_keys = self.dofs()
-        seg_keys = local_keys[np.searchsorted(dofs, self.seg_local)]
-        allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, d)))
-        seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # facets on two ranks: once
-        return x, keys, seg.astype(np.int32)
+        if self._seg is None:                  # the facets' topology: gathered once
+            dofs, local_keys = self.dofs()
+            seg_keys = local_keys[np.searchsorted(dofs, self.seg_local)]
+            allseg = np.concatenate(m.mesh.comm.allgather(seg_keys.reshape(-1, d)))
+            seg = np.unique(np.searchsorted(keys, allseg), axis=0)   # on two ranks: once
+            self._seg = seg.astype(np.int32)
+        return x, keys, self._seg
 
     def reference(self, keys):
         """Return the reference positions of the gathered nodes ``keys`` (cached)."""
@@ -112,11 +117,16 @@ class MasterSide:
 
     def rows(self, problem):
         """Return global (rows, cols) (n_m, d) of the gathered master nodes in ``problem``."""
-        d = self.gdim
-        mrow, mcol = problem.global_rows(self.body.u)
-        _, rc = self.gather(lambda nd: np.c_[np.stack([mrow[d * nd + c] for c in range(d)], 1),
-                                             np.stack([mcol[d * nd + c] for c in range(d)], 1)])
-        return rc[:, :d], rc[:, d:]
+        ref, rows = self._rows.get(id(problem), (None, None))
+        if ref is None or ref() is not problem:     # a problem's layout is fixed: once
+            d = self.gdim
+            mrow, mcol = problem.global_rows(self.body.u)
+            _, rc = self.gather(lambda nd: np.c_[
+                np.stack([mrow[d * nd + c] for c in range(d)], 1),
+                np.stack([mcol[d * nd + c] for c in range(d)], 1)])
+            rows = (rc[:, :d], rc[:, d:])
+            self._rows[id(problem)] = (weakref.ref(problem), rows)
+        return rows
 
     def ring_rows(self, rm, cm, seg, facet):
         """Rows and columns (n, d·width) of the master nodes of every facet near ``facet``.
