@@ -10,6 +10,7 @@ from .hertz import HertzCase
 from .ironing import IroningCase
 from .reynolds import SliderCase
 from .reynolds_cylinder import CylinderCase
+from .stribeck import StribeckCase
 from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
 from .wear_ball import WearBallCase
@@ -22,7 +23,7 @@ CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLay
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
                                   EHLORingCase, EHLSqueezeCase, EHLTwoCylindersCase,
                                   TwoCylindersCase, ContactPatchCase, IroningCase,
-                                  WearReciprocatingCase)}
+                                  WearReciprocatingCase, StribeckCase)}
 
 
 def get_case(name):

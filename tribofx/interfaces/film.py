@@ -67,6 +67,7 @@ from mpi4py import MPI
 
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
+from ..forms import mixed
 from ..laws import viscosity_law
 from ..problem import BlockTolerance
 from .film_outputs import FilmOutputs
@@ -148,6 +149,9 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         motion: None (the layer moves with ``body.velocity``) or (shape, U): the
             layer's reference velocity U·shape(X) (:mod:`tribofx.motions`, U a Constant,
             mm/s), e.g. a rolling cylinder.
+        roughness: None (smooth surfaces) or a :class:`tribofx.roughness.Roughness`:
+            mixed lubrication, the average-flow Reynolds rows and the asperity
+            pressure and boundary friction in the traction (plane strain and 3D).
     """
 
     CAVITATION = ("penalty", "jfo")
@@ -156,7 +160,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
                  shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
                  film_scale=1e-2, speed_scale=1.0, quadrature_degree=4, row_scaling=True,
                  name="film", rtol=1e-10, require_open=False, density=None, quadrature="gauss",
-                 motion=None):
+                 motion=None, roughness=None):
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
         if cavitation not in self.CAVITATION:
@@ -196,6 +200,10 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         self.viscosity = self._viscosity_law.bind(sub)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, sub)
+        if roughness is not None and body.kind == "axisymmetric":
+            raise ValueError("roughness is implemented for plane-strain and 3D films")
+        self.roughness = roughness
+        self._rough = roughness.bind(sub) if roughness is not None else None
         self.p_c = fem.Constant(sub, float(p_c))
         self.eps = None if eps is None else fem.Constant(sub, float(eps))
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
@@ -291,6 +299,13 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
                                           model=self.model)
         self._couette = ft.fluid_traction(0.0, ufl.zero(self.body.gdim), *args, shear=True,
                                           model=self.model)
+        self.asperity = None
+        if self._rough is not None and self._rough[2] is not None:
+            r = self.roughness
+            self.asperity = mixed.asperity_traction(self._rough[2](self.kin_bulk.h),
+                                                    self.kin_bulk, self._F, self._N_b,
+                                                    r.mu_b, r.eps_v)
+            self.traction = self.traction + self.asperity
 
     def _mirror(self, constant):
         copy = fem.Constant(self.sub, np.array(constant.value, dtype=float))

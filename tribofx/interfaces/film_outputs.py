@@ -31,6 +31,9 @@ class FilmOutputs:
                             for i in range(gdim)],
                 "counter": [fem.form(counter[i] * self.kin.stretch * self.w_film * self.dx)
                             for i in range(gdim)],
+                "asperity": None if self.asperity is None else [
+                    fem.form(self.asperity[i] * self.w_solid * self.ds, entity_maps=em)
+                    for i in range(gdim)],
                 "y": fem.Expression(self.kin.y, self.V1.element.interpolation_points),
             }
         return self._post
@@ -65,6 +68,12 @@ class FilmOutputs:
         the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
         """
         return self._vector_integral("counter")
+
+    def asperity_force(self):
+        """Force of the asperity contact on the body (N; N/mm): pressure and boundary friction."""
+        if self.asperity is None:
+            return np.zeros(self.body.gdim)
+        return self._vector_integral("asperity")
 
     def couette_force(self):
         """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""

@@ -23,6 +23,7 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..forms import ehl as ef
+from ..forms import mixed
 from ..laws import density_law, is_constant
 from ..problem import BlockTolerance
 
@@ -182,19 +183,23 @@ class ReynoldsFilm:
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
         h_e = ufl.CellDiameter(self.sub)
         # a transient film (TransientFilm): kinematics relative to S(t), the content's rate
-        kin, rate = self.kin_reynolds or self.kin, self.film_rate
+        kin, rate, mu = self.kin_reynolds or self.kin, self.film_rate, self.mu_p
+        rough = getattr(self, "_rough", None)
+        if rough is not None and rough[0] is not None:   # mixed: the average-flow rows
+            kin, mu = mixed.average_flow(kin, mu, self.roughness.sigma, rough[0], rough[1],
+                                         self.roughness.share)
         if self.lam is None:
             def weighted(measure):
                 return measure if self.w_film == 1 else ef.WeightedMeasure(self.w_film, measure)
 
-            return ef.reynolds_on_surface(self.p, dp, kin, self.mu_p, weighted(self.dx),
+            return ef.reynolds_on_surface(self.p, dp, kin, mu, weighted(self.dx),
                                           eps=self.eps, supg=self._supg, p_c=self.p_c, h_e=h_e,
                                           nodal_dx=weighted(self.nodal_dx),
                                           grad_gamma=self.grad_gamma, rho=self.rho_p,
                                           rate=rate), None
         # JFO: the weight (2π r_S, axisymmetric) enters the divergence of the fluxes
         return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), kin,
-                                 self.mu_p, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
+                                 mu, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
                                  ds_ends=self._ds_ends() if self._jumps else None,
                                  weight=self.w_film, rate=rate)

@@ -7,7 +7,7 @@ import numpy as np
 from .common import pyplot
 
 __all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
-           "plot_reynolds_cylinder", "plot_slider", "plot_squeeze"]
+           "plot_reynolds_cylinder", "plot_slider", "plot_squeeze", "plot_stribeck"]
 
 
 def _save(plt, fig, path):
@@ -242,3 +242,23 @@ def plot_squeeze(profile, outdir):
         b2.set_xlim(0, 2 * loaded.max())
     b2.grid(alpha=0.3)
     _save(plt, fig, Path(outdir) / "squeeze_profiles.png")
+
+
+def plot_stribeck(rows, path):
+    """Friction coefficient and film load fraction against speed (log), λ = h_c/σ on top."""
+    plt = pyplot()
+    U = [r["U"] for r in rows]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
+    a1.loglog(U, [r["friction_coefficient"] for r in rows], "o-", color="C3")
+    a1.set_ylabel("friction coefficient")
+    a1.grid(alpha=0.3, which="both")
+    a1.set_title("Stribeck curve: soft cylinder on a rough plane")
+    for r in rows:
+        a1.annotate(f"λ={r['lambda_ratio']:.2g}", (r["U"], r["friction_coefficient"]),
+                    fontsize=7, textcoords="offset points", xytext=(3, 4))
+    a2.semilogx(U, [r["film_load_fraction"] for r in rows], "s-", color="C0")
+    a2.set_ylabel("film load / W")
+    a2.set_xlabel("sliding speed U (mm/s)")
+    a2.set_ylim(-0.05, 1.05)
+    a2.grid(alpha=0.3, which="both")
+    _save(plt, fig, path)

@@ -1,0 +1,69 @@
+"""Rough surfaces for mixed lubrication: flow factors, asperity pressure, boundary friction.
+
+A :class:`Roughness` bundles the laws of :mod:`tribofx.forms.mixed` (each a
+:class:`tribofx.laws.Law`, so a researcher passes another in one place) and
+the roughness data.  A :class:`tribofx.interfaces.Film` given ``roughness=``
+binds it to its meshes and uses the one law wherever it enters:
+
+* the Reynolds rows become the average-flow ones (φ_x, φ_s, h_T:
+  :func:`tribofx.forms.mixed.average_flow`);
+* the traction on the layer gains the asperity pressure p_a(h) and the boundary
+  friction μ_b p_a (:func:`tribofx.forms.mixed.asperity_traction`);
+* the outputs report the asperity load beside the film's.
+
+Defaults: isotropic Patir–Cheng flow factors, Greenwood–Tripp asperities.
+Units: mm, N, s, MPa.
+"""
+
+from .forms import mixed
+from .laws import Law
+
+__all__ = ["Roughness", "greenwood_tripp", "patir_cheng_pressure", "patir_cheng_shear"]
+
+
+def patir_cheng_pressure():
+    """φ_x(H), isotropic (Patir & Cheng 1978): 1 − 0.90 e^{−0.56H}."""
+    return Law(mixed.patir_cheng_pressure_factor, C=0.90, r=0.56)
+
+
+def patir_cheng_shear():
+    """Φ_s(H) of one rough surface, isotropic (Patir & Cheng 1979)."""
+    return Law(mixed.patir_cheng_shear_factor, A1=1.899, a1=0.98, a2=0.92, a3=0.05,
+               A2=1.126, a4=0.25)
+
+
+def greenwood_tripp(KE, sigma):
+    """p_a(h) = K E* F_{5/2}(h/σ) (MPa) with K E* (MPa) and σ (mm); reference value K E*."""
+    return Law(lambda h, KE, sigma: mixed.greenwood_tripp_pressure(h, sigma, KE),
+               KE=KE, sigma=sigma)
+
+
+class Roughness:
+    """The combined roughness of a lubricated pair and its laws.
+
+    Args:
+        sigma: combined RMS roughness σ (mm).
+        asperity: a :class:`~tribofx.laws.Law` p_a(h) (MPa), e.g. :func:`greenwood_tripp`;
+            None: no asperity contact (average flow only).
+        flow: (φ_x, Φ_s) laws of H = h/σ, or None (smooth flow: φ_x = 1, no shear flow).
+        share: share s of the shear flow: +1 the layer rough, −1 the counterface
+            rough, 0 both alike.
+        mu_b: boundary friction coefficient of the asperity contact.
+        eps_v: slip speed (mm/s) regularising the boundary friction's direction.
+    """
+
+    def __init__(self, sigma, asperity=None, flow="patir-cheng", share=-1.0, mu_b=0.0,
+                 eps_v=1e-3):
+        self.sigma, self.share, self.mu_b, self.eps_v = float(sigma), float(share), \
+            float(mu_b), float(eps_v)
+        self.asperity = asperity
+        self.flow = (patir_cheng_pressure(), patir_cheng_shear()) if flow == "patir-cheng" \
+            else flow
+
+    def bind(self, mesh):
+        """Return the bound laws (phi_x, phi_s, p_a) on ``mesh`` (None where absent)."""
+        phi_x = phi_s = None
+        if self.flow is not None:
+            phi_x, phi_s = (law.bind(mesh) for law in self.flow)
+        p_a = self.asperity.bind(mesh) if self.asperity is not None else None
+        return phi_x, phi_s, p_a
