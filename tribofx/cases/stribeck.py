@@ -104,8 +104,11 @@ class StribeckCase:
         return Roughness(sig, asperity=greenwood_tripp(KE, sig), share=-1.0, mu_b=v["mu_b"])
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Cylinder, rough film and problem; the plane at Martin's film of W/steps."""
+    def build(cls, v, comm=MPI.COMM_WORLD, rough=True):
+        """Cylinder, rough film and problem; the plane at Martin's film of W/steps.
+
+        ``rough=False``: the same film on smooth surfaces (the chapter's).
+        """
         R, U0 = v["R"], cls.speeds(v)[0]
         ref = hertz(v["W"], R, v["E"], v["nu"], line=True)
         h_r = rigid_clearance(v["W"] / v["steps"], v["mu"], U0, R)
@@ -117,8 +120,9 @@ class StribeckCase:
         body.add_dirichlet("loaded", np.zeros(2))
         speed = fem.Constant(msh, np.array([U0, 0.0]))
         film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v["mu"], V_counter=speed,
-                    roughness=cls.roughness(v), eps=1e-4 * 24 * v["mu"] * R / h_r**2,
-                    p_c=ref.p0, film_scale=h_r, speed_scale=U0)
+                    roughness=cls.roughness(v) if rough else None,
+                    eps=1e-4 * 24 * v["mu"] * R / h_r**2, p_c=ref.p0, film_scale=h_r,
+                    speed_scale=U0)
         film.add_pressure_bc()
         film.counterpart.offset.value[1] = -h_r
         problem = Problem([body, film], name="stribeck", max_it=30)
@@ -130,11 +134,13 @@ class StribeckCase:
         run = cls.build(v, comm)
         film, problem = run["film"], run["problem"]
         record.data["num_dofs"] = problem.num_dofs
+        # the secant runs on log W: d log W/dδ = 1/h for the rigid film (W ∝ 1/h), and
+        # n/(σ(H_c − H)) where the asperities carry (W ∝ (H_c − H)^n): both mild in log
+        h_r = -float(film.counterpart.offset.value[1])
         inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
-                             response=lambda: 1.0 / film.force()[1], rtol=1e-6,
-                             max_trials=30, verbose=verbose)
-        held = HeldResponse(inner, 0.0, transform=lambda W: 1.0 / W,
-                            slope=-1.0 / (2.45 * v["mu"] * cls.speeds(v)[0] * v["R"]))
+                             response=lambda: math.log(max(film.force()[1], 1e-300)),
+                             rtol=1e-7, max_trials=30, verbose=verbose)
+        held = HeldResponse(inner, 0.0, transform=math.log, slope=1.0 / h_r)
         rows, its = [], []
         try:
             Continuation(held, held, response=lambda: held.target, record=its).march(
