@@ -67,7 +67,8 @@ def patir_cheng_pressure_factor(H, C=0.90, r=0.56):
 def patir_cheng_shear_factor(H, A1=1.899, a1=0.98, a2=0.92, a3=0.05, A2=1.126, a4=0.25):
     """Shear flow factor Φ_s(H) of one rough surface (isotropic coefficients, H ≤ 5 / > 5)."""
     Hs = ufl.max_value(H, 1e-12)
-    low = A1 * Hs**a1 * ufl.exp(-a2 * Hs + a3 * Hs**2)
+    Hl = ufl.min_value(Hs, 5.0)      # both branches are evaluated: no overflow of e^{a3 H²}
+    low = A1 * Hl**a1 * ufl.exp(-a2 * Hl + a3 * Hl**2)
     return ufl.conditional(ufl.le(H, 5.0), low, A2 * ufl.exp(-a4 * Hs))
 
 

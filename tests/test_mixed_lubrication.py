@@ -60,13 +60,50 @@ def test_expected_gap_and_flow_factors_limits():
         1 / math.sqrt(2 * math.pi), rel=1e-12)
 
 
-def stribeck(**over):
+def stribeck(rough=True, **over):
     """Run the stribeck case with ``over``; return (run, per-speed results)."""
     v = resolve(StribeckCase.params, {k: str(x) for k, x in over.items()})
     StribeckCase.validate(v)
     rec = RunRecord(StribeckCase.name, {}, {}, ".", MPI.COMM_WORLD)
-    run = StribeckCase.run(v, rec)
+    run = StribeckCase.run(v, rec, rough=rough)
     return run, {k: r["value"] for k, r in rec.data["results"].items()}
+
+
+def test_full_film_end_is_the_smooth_film():
+    """At λ ≈ 14 the rough film carries W alone and equals the smooth one.
+
+    The flux differs from the smooth film's by 1 − φ_x(H) = 0.9e^{−0.56H} in the
+    Poiseuille part and by the shear flow σΦ_s(H)/h = 1.126e^{−0.25H}/H against
+    the Couette part, largest where the film is thinnest (H = h_min/σ ≈ 11: 1.7e-3
+    and 6e-3); h_T/h − 1 < 1e-27.  Tolerance: their sum at h_min, on h_central,
+    h_min and p_max; the asperities (zero above H = 4) carry nothing.
+    """
+    _, rough = stribeck(speeds="1000")
+    _, smooth = stribeck(rough=False, speeds="1000")
+    lam = rough["h_min"][0] / 1e-3
+    tol = 0.9 * math.exp(-0.56 * lam) + 1.126 * math.exp(-0.25 * lam) / lam
+    for k in ("h_central", "h_min", "p_max"):
+        assert abs(rough[k][0] / smooth[k][0] - 1) < tol, (k, rough[k], smooth[k], tol)
+    assert rough["film_load_fraction"][0] == pytest.approx(1.0, abs=1e-12)
+
+
+def test_stribeck_curve_has_its_three_regimes():
+    """Full film, mixed, boundary over five decades of speed (the defaults, 11 speeds).
+
+    Full film (λ > 3): the film carries W, the friction is the fluid's and falls
+    with the speed (Couette μU/h with h ∝ U^0.6: f ∝ U^0.4 at most); mixed: the
+    friction has its minimum at λ ≈ 1–3 (Stribeck); boundary end: the asperities
+    carry most of W and the friction rises towards μ_b = 0.1, a weighted mean of
+    μ_b and the fluid's smaller coefficient, so below μ_b.
+    """
+    _, r = stribeck()
+    lam, f, frac = (np.array(r[k]) for k in ("lambda_ratio", "friction_coefficient",
+                                             "film_load_fraction"))
+    i = int(np.argmin(f))
+    assert 1.0 <= lam[i] <= 3.0, (lam, f)
+    assert np.all(np.diff(f[:i + 1]) < 0) and np.all(np.diff(f[i:]) > 0)
+    assert frac[0] == pytest.approx(1.0, abs=1e-9) and frac[-1] < 0.5
+    assert np.all(f < 0.1)          # below the dry boundary friction μ_b everywhere
 
 
 def test_vanishing_roughness_is_the_smooth_film():
