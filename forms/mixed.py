@@ -15,9 +15,10 @@ the film parameter H = h/σ:
   smooth flux of :mod:`forms.reynolds` with the effective viscosity μ/φ_x and
   the effective mean velocity v̄_eff = v̄ + (σ/2) s φ_s Δv/h_T
   (:func:`average_flow`), so the chapter's forms (49)/(57), SUPG included, carry
-  it unchanged (written on h_T, see :func:`average_flow`).  Isotropic roughness (γ = 1, Patir & Cheng 1978 Table 1, 1979
-  Table 1): φ_x = 1 − 0.90 e^{−0.56H} (H > 0.5); φ_s = 1.899 H^0.98
-  e^{−0.92H + 0.05H²} (H ≤ 5), 1.126 e^{−0.25H} (H > 5).
+  it unchanged (written on h_T, see :func:`average_flow`).  Isotropic roughness
+  (γ = 1, Patir & Cheng 1978 Table 1, 1979 Table 1): φ_x = 1 − 0.90 e^{−0.56H}
+  (H > 0.5); φ_s = 1.899 H^0.98 e^{−0.92H + 0.05H²} (H ≤ 5), 1.126 e^{−0.25H}
+  (H > 5).
 * Expected gap of a Gaussian surface (Wu & Zheng 1989, *J. Tribol.* 111:30),
   h_T = (h/2)(1 + erf(H/√2)) + (σ/√(2π)) e^{−H²/2} (→ h for H ≳ 3).
 * Asperity pressure (Greenwood & Williamson 1966; Greenwood & Tripp 1970,
