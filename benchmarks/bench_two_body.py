@@ -32,6 +32,7 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 import dolfinx_solver  # noqa: F401,E402  (before dolfinx / petsc4py)
 import numpy as np  # noqa: E402
 from mpi4py import MPI  # noqa: E402
+from timing import Timer  # noqa: E402  (benchmarks/timing.py)
 
 from tribofx.two_body import MasterSurface3  # noqa: E402
 
@@ -39,22 +40,6 @@ sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
 from test_two_body_3d import box  # noqa: E402
 
 __all__ = ["main"]
-
-
-class _Timer:
-    """Accumulated wall time of wrapped callables."""
-
-    def __init__(self):
-        self.total = {}
-
-    def wrap(self, name, fn):
-        def timed(*args, **kw):
-            t0 = time.perf_counter()
-            try:
-                return fn(*args, **kw)
-            finally:
-                self.total[name] = self.total.get(name, 0.0) + time.perf_counter() - t0
-        return timed
 
 
 def newton_split(n_slave, n_master):
@@ -71,7 +56,7 @@ def newton_split(n_slave, n_master):
     problem.solve()
     problem.commit()
     push.value[:] = [0.05, 0.02, -0.02]
-    timer = _Timer()
+    timer = Timer()
     for name in ("add_residual", "add_jacobian", "_pairs"):
         setattr(contact, name, timer.wrap(name, getattr(contact, name)))
     for attr in ("_assemble_residual", "_assemble_jacobian"):

@@ -30,28 +30,13 @@ from pathlib import Path
 os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401,E402
+from timing import Timer  # noqa: E402  (benchmarks/timing.py)
 
 from tribofx.cases.ehl_two_cylinders import EHLTwoCylindersCase as Case  # noqa: E402
 from tribofx.output import RunRecord  # noqa: E402
 from tribofx.params import resolve  # noqa: E402
 
 __all__ = ["main", "split"]
-
-
-class _Timer:
-    """Accumulated wall time of wrapped callables."""
-
-    def __init__(self):
-        self.total = {}
-
-    def wrap(self, name, fn):
-        def timed(*args, **kw):
-            t0 = time.perf_counter()
-            try:
-                return fn(*args, **kw)
-            finally:
-                self.total[name] = self.total.get(name, 0.0) + time.perf_counter() - t0
-        return timed
 
 
 def split(level):
@@ -63,7 +48,7 @@ def split(level):
     run = Case.run(v, rec)
     film, problem, lift = run["film"], run["problem"], run["lift"]
     lift.value[1] *= 0.98                      # a new approach: a few Newton iterations
-    timer = _Timer()
+    timer = Timer()
     for name in ("add_residual", "add_jacobian", "_kernel"):
         setattr(film, name, timer.wrap(name, getattr(film, name)))
     for attr in ("_assemble_residual", "_assemble_jacobian"):

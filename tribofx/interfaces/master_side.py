@@ -14,13 +14,14 @@ import weakref
 
 import numpy as np
 from dolfinx import mesh as dmesh
+from mpi4py import MPI
 
 from ..pattern import facet_rings
 from ..two_body import MasterSurface, MasterSurface3
 from . import facets
 from .surface import node_to_dof
 
-__all__ = ["MasterSide"]
+__all__ = ["MasterSide", "cached_state"]
 
 
 def _vertex_dofs(body, fs):
@@ -28,6 +29,17 @@ def _vertex_dofs(body, fs):
     msh = body.mesh
     geo = dmesh.entities_to_geometry(msh, msh.topology.dim - 1, fs, False)
     return node_to_dof(body.V)[geo]
+
+
+def cached_state(cache, key, comm):
+    """Return the data of ``cache`` = (key, data) if its key equals ``key`` on all ranks.
+
+    A kernel evaluation is collective (the master is gathered), so the cache hit is
+    decided on all ranks together; returns the data, or None (evaluate again).
+    """
+    same = cache is not None and len(cache[0]) == len(key) and all(
+        a.shape == b.shape and np.array_equal(a, b) for a, b in zip(cache[0], key))
+    return cache[1] if comm.allreduce(same, op=MPI.LAND) else None
 
 
 class MasterSide:

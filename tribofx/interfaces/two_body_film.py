@@ -43,7 +43,7 @@ from ..problem import BlockTolerance
 from ..two_body import NUM_LOCAL_FILM, film_node_residuals
 from . import facets
 from .film import Film
-from .master_side import MasterSide
+from .master_side import MasterSide, cached_state
 
 __all__ = ["TwoBodyFilm"]
 
@@ -182,11 +182,9 @@ class TwoBodyFilm(Film):
         (``xm``, ``keys``, ``seg``, ``facet``, ``xi``) and ``rows`` (per problem).
         """
         key = self._state_key()
-        c = self._cache
-        same = c is not None and len(c[0]) == len(key) and all(
-            a.shape == b.shape and np.array_equal(a, b) for a, b in zip(c[0], key))
-        if self.body.mesh.comm.allreduce(same, op=MPI.LAND):
-            return c[1]
+        hit = cached_state(self._cache, key, self.body.mesh.comm)
+        if hit is not None:
+            return hit
         d = self.body.gdim
         xs = self._Xk + self.body.u.x.array.reshape(-1, d)[self._bulk]
         xm, keys, seg, proj = self.side.project(xs, self._facet_ref, self.STICKY)
