@@ -107,6 +107,11 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
+def _is_motion(spec):
+    """Whether a velocity ``spec`` is (shape, U): a motion of :mod:`tribofx.motions` and a speed."""
+    return isinstance(spec, tuple) and len(spec) == 2 and callable(spec[0])
+
+
 class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
@@ -241,7 +246,8 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         # keeps submesh copies of the velocities, synchronised before every assembly
         self._mirrors = []
         V_body = self._velocity(motion, body.velocity)
-        if V_counter is not None and not isinstance(V_counter, (fem.Constant, tuple)):
+        if V_counter is not None and not (isinstance(V_counter, fem.Constant)
+                                          or _is_motion(V_counter)):
             V_counter = fem.Constant(sub, np.asarray(V_counter, dtype=float))
         self.V_counter = V_counter
         V_counter = self._velocity(V_counter)
@@ -269,7 +275,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         of :mod:`tribofx.motions` and U a Constant (mm/s).  The Constants are
         mirrored on the submesh (the Reynolds forms need them there).
         """
-        if isinstance(spec, tuple):
+        if _is_motion(spec):
             shape, U = spec[0], self._mirror(spec[1])
             return lambda X: U * shape(X)
         c = spec if spec is not None else constant
