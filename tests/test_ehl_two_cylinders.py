@@ -72,6 +72,7 @@ def test_stiff_lower_block_reproduces_the_rigid_plane(tmp_path):
     assert np.all(_rel(block, rigid) < tol), (_rel(block, rigid), tol)
 
 
+@pytest.mark.slow
 def test_film_thickness_speed_exponent_soft_regime(tmp_path):
     """h_c ∝ U^n with n between Herrebrugh's isoviscous-elastic asymptote 0.6 and 0.8.
 
