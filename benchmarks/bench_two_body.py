@@ -57,11 +57,7 @@ def newton_split(n_slave, n_master):
     problem.commit()
     push.value[:] = [0.05, 0.02, -0.02]
     timer = Timer()
-    for name in ("add_residual", "add_jacobian", "_pairs"):
-        setattr(contact, name, timer.wrap(name, getattr(contact, name)))
-    for attr in ("_assemble_residual", "_assemble_jacobian"):
-        fn, args, kw = getattr(problem, attr)
-        setattr(problem, attr, (timer.wrap(attr, fn), args, kw))
+    timer.time_split(contact, ("add_residual", "add_jacobian", "_pairs"), problem)
     t0 = time.perf_counter()
     rep = problem.solve()
     total = time.perf_counter() - t0

@@ -49,11 +49,7 @@ def split(level):
     film, problem, lift = run["film"], run["problem"], run["lift"]
     lift.value[1] *= 0.98                      # a new approach: a few Newton iterations
     timer = Timer()
-    for name in ("add_residual", "add_jacobian", "_kernel"):
-        setattr(film, name, timer.wrap(name, getattr(film, name)))
-    for attr in ("_assemble_residual", "_assemble_jacobian"):
-        fn, args, kw = getattr(problem, attr)
-        setattr(problem, attr, (timer.wrap(attr, fn), args, kw))
+    timer.time_split(film, ("add_residual", "add_jacobian", "_kernel"), problem)
     t0 = time.perf_counter()
     rep = problem.solve()
     total = time.perf_counter() - t0

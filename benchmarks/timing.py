@@ -20,3 +20,11 @@ class Timer:
             finally:
                 self.total[name] = self.total.get(name, 0.0) + time.perf_counter() - t0
         return timed
+
+    def time_split(self, interface, methods, problem):
+        """Time ``methods`` of ``interface`` and the problem's UFL assembly (residual, Jacobian)."""
+        for name in methods:
+            setattr(interface, name, self.wrap(name, getattr(interface, name)))
+        for attr in ("_assemble_residual", "_assemble_jacobian"):
+            fn, args, kw = getattr(problem, attr)
+            setattr(problem, attr, (self.wrap(attr, fn), args, kw))

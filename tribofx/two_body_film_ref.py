@@ -13,7 +13,7 @@ __all__ = ["film_node_residual", "film_node_residuals"]
 
 def film_node_residual(q, data, w, w_c, c_h, c_w):
     """Residual (11,) of one film node; q may be complex (complex-step tangent)."""
-    x, a, b, h, t = q[0:2], q[2:4], q[4:6], q[6], q[9:11]
+    x, a, b, t = q[0:2], q[2:4], q[4:6], q[9:11]     # q[6:9] (h, w): rows from UFL
     c1, c2, k0, z1, z2 = data[0], data[1], data[2], data[3:5], data[5:7]
     tau = b - a
     l2 = tau @ tau
@@ -27,7 +27,6 @@ def film_node_residual(q, data, w, w_c, c_h, c_w):
     r[4:6] = w * xi * t
     r[6] = -c_h * w_c * g
     r[7:9] = -c_w * w_c * v_m
-    del h                      # h enters through the UFL part of its row (c_h w_c h)
     return r
 
 

@@ -17,11 +17,12 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..pattern import facet_rings
+from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..two_body import MasterSurface, MasterSurface3
 from . import facets
 from .surface import node_to_dof
 
-__all__ = ["MasterSide", "cached_state"]
+__all__ = ["KernelAssembly", "MasterSide", "cached_state"]
 
 
 def _vertex_dofs(body, fs):
@@ -156,3 +157,68 @@ class MasterSide:
         rr = np.where(valid[..., None], rm[safe], -1).reshape(len(facet), width)
         cc = np.where(valid[..., None], cm[safe], -1).reshape(len(facet), width)
         return rr, cc
+
+
+class KernelAssembly:
+    """The nodal kernel of a two-body interface in a :class:`tribofx.problem.Problem`.
+
+    Base of :class:`~tribofx.interfaces.TwoBodyContact` and
+    :class:`~tribofx.interfaces.TwoBodyFilm`, which give ``side`` (a
+    :class:`MasterSide`), ``sub`` (the slave's submesh), ``_kernel()`` (a dict
+    with ``r``, ``J``, ``seg``, ``facet`` of the current state), ``_rows(problem,
+    k)`` (global rows and columns of the kernel's slots) and the pairing
+    references ``_facet_ref``, ``_facet_committed``.
+    """
+
+    def _kernel_ready(self):
+        """Whether the kernel has a committed state to evaluate (always, by default)."""
+        return True
+
+    def couplings(self, problem):
+        """Dense blocks (rows, cols) of the entries the kernel may add in the next solve.
+
+        Per owned slave node its slots and the nodes of every master facet sharing
+        a node with its current one (a node sliding onto a neighbour facet during
+        the iterations stays inside the pattern), all against all (:mod:`tribofx.pattern`).
+        """
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        rr, cc = self.side.ring_rows(*self.side.rows(problem), k["seg"], k["facet"])
+        return np.c_[rows, rr], np.c_[cols, cc]
+
+    def evaluate(self, problem):
+        """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
+        k = self._kernel()
+        rows, cols = self._rows(problem, k)
+        return k["r"], k["J"], rows, cols
+
+    def add_residual(self, b, problem):
+        """Add the kernel residual of every owned slave node to ``b`` (global rows, C++)."""
+        r, _, rows, _ = self.evaluate(problem)
+        add_vector_blocks(b, rows, r)
+
+    def add_jacobian(self, A, problem):
+        """Add the kernel's dense tangent block of every owned slave node to ``A`` (C++).
+
+        Inserted by :func:`tribofx.petsc_insert.add_matrix_blocks` (unused slots −1).
+        """
+        _, J, rows, cols = self.evaluate(problem)
+        add_matrix_blocks(A, rows, cols, J)
+
+    def reset_iterate(self):
+        """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
+        self._facet_ref = self._facet_committed
+
+    def accept_iterate(self):
+        """Move the pairing's reference to the current (accepted) Newton iterate.
+
+        Returns whether any slave node changed facet (on any rank): the residual at
+        the iterate is then evaluated again, so that it and the Jacobian share the
+        reference.
+        """
+        if not self._kernel_ready():
+            return False
+        k = self._kernel()
+        same = facets.same_pairing(self._facet_ref, (k["seg"], k["facet"]))
+        self._facet_ref = (k["seg"].copy(), k["facet"].copy())
+        return not self.sub.comm.allreduce(same, op=MPI.LAND)

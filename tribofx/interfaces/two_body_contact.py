@@ -33,21 +33,19 @@ quarter of the full bodies' force).
 import numpy as np
 import ufl
 from dolfinx import fem
-from mpi4py import MPI
 
 from ..forms import contact as cf
-from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
 from ..two_body import node_residuals, num_local
 from . import facets, two_body_wear
-from .master_side import MasterSide, cached_state
+from .master_side import KernelAssembly, MasterSide, cached_state
 from .surface import Surface
 from .two_body_outputs import TwoBodyOutputs
 
 __all__ = ["TwoBodyContact"]
 
 
-class TwoBodyContact(TwoBodyOutputs):
+class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
     """Frictional contact of ``slave`` on ``slave_boundary`` with ``master`` on ``master_boundary``.
 
     Args:
@@ -193,7 +191,6 @@ class TwoBodyContact(TwoBodyOutputs):
             return k["rows"][id(problem)]
         d, il = self.gdim, self._lam
         rm, cm = self.side.rows(problem)
-        k.setdefault("master_rows", {})[id(problem)] = (rm, cm)
         seg, f, old_seg = k["seg"], k["facet"], k["old_seg"]
         n, L = len(self._q), num_local(d)
         srow, scol = problem.global_rows(self.slave.u)
@@ -212,39 +209,6 @@ class TwoBodyContact(TwoBodyOutputs):
             rows[:, il + 1:], cols[:, il + 1:] = trow[td], tcol[td]
         k["rows"][id(problem)] = (rows, cols)
         return rows, cols
-
-    def couplings(self, problem):
-        """Dense blocks (rows, cols) of the entries this contact may add in the next solve.
-
-        Per owned slave node: its position and multiplier rows, the nodes of its
-        committed master facet and of every master facet sharing a node with its
-        current one (a node sliding onto a neighbour facet during the iterations
-        stays inside the pattern), all against all (:mod:`tribofx.pattern`).
-        """
-        k = self._kernel()
-        rows, cols = self._rows(problem, k)
-        rr, cc = self.side.ring_rows(*k["master_rows"][id(problem)], k["seg"], k["facet"])
-        return np.c_[rows, rr], np.c_[cols, cc]
-
-    def evaluate(self, problem):
-        """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
-        k = self._kernel()
-        rows, cols = self._rows(problem, k)
-        return k["r"], k["J"], rows, cols
-
-    def add_residual(self, b, problem):
-        """Add the kernel residual of every owned slave node to ``b`` (global rows, C++)."""
-        r, _, rows, _ = self.evaluate(problem)
-        add_vector_blocks(b, rows, r)
-
-    def add_jacobian(self, A, problem):
-        """Add the kernel tangent blocks (slave, master and multiplier rows × columns) to ``A``.
-
-        One dense L × L block per slave node (L = 13 in 2D, 25 in 3D), inserted by the C++ loop of
-        :func:`tribofx.petsc_insert.add_matrix_blocks` (unused slots are −1).
-        """
-        _, J, rows, cols = self.evaluate(problem)
-        add_matrix_blocks(A, rows, cols, J)
 
     # -- component protocol --------------------------------------------------------------
     def unknowns(self):
@@ -310,23 +274,9 @@ class TwoBodyContact(TwoBodyOutputs):
         xi, _, _ = facets.plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
         self._old = (k["keys"][k["seg"][k["facet"]]], xi[:, 0] if d == 2 else xi)
 
-    def reset_iterate(self):
-        """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
-        self._facet_ref = self._facet_committed
-
-    def accept_iterate(self):
-        """Move the pairing's reference to the current (accepted) Newton iterate.
-
-        Returns whether any slave node changed facet (on any rank): the residual at
-        the iterate is then evaluated again, so that it and the Jacobian share the
-        reference.
-        """
-        if self._old is None:
-            return False
-        k = self._kernel()
-        same = facets.same_pairing(self._facet_ref, (k["seg"], k["facet"]))
-        self._facet_ref = (k["seg"].copy(), k["facet"].copy())
-        return not self.slave.mesh.comm.allreduce(same, op=MPI.LAND)
+    def _kernel_ready(self):
+        """Whether the slip history exists (the kernel needs the committed points)."""
+        return self._old is not None
 
     # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
     def dissipation_increment(self):

@@ -38,12 +38,10 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import two_body_film as tbf
-from ..petsc_insert import add_matrix_blocks, add_vector_blocks
 from ..problem import BlockTolerance
 from ..two_body import NUM_LOCAL_FILM, film_node_residuals
-from . import facets
 from .film import Film
-from .master_side import MasterSide, cached_state
+from .master_side import KernelAssembly, MasterSide, cached_state
 
 __all__ = ["TwoBodyFilm"]
 
@@ -66,7 +64,7 @@ class _NoCounterpart:
         """Nothing to accept."""
 
 
-class TwoBodyFilm(Film):
+class TwoBodyFilm(KernelAssembly, Film):
     """Soft-EHL film on ``boundary`` of ``slave`` against ``master_boundary`` of ``master``.
 
     Args:
@@ -228,7 +226,6 @@ class TwoBodyFilm(Film):
             return k["rows"][id(problem)]
         d = self.body.gdim
         rm, cm = self.side.rows(problem)
-        k["master_rows"] = (rm, cm)
         seg, f = k["seg"], k["facet"]
         rows = np.full((len(self._q), NUM_LOCAL_FILM), -1, dtype=np.int64)
         cols = np.full_like(rows, -1)
@@ -244,35 +241,6 @@ class TwoBodyFilm(Film):
             rows[:, j:j + d], cols[:, j:j + d] = rm[seg[f, k_]], cm[seg[f, k_]]
         k["rows"][id(problem)] = (rows, cols)
         return rows, cols
-
-    def couplings(self, problem):
-        """Dense blocks (rows, cols) this film may add in the next solve (see TwoBodyContact)."""
-        k = self._kernel()
-        rows, cols = self._rows(problem, k)
-        rr, cc = self.side.ring_rows(*k["master_rows"], k["seg"], k["facet"])
-        return np.c_[rows, rr], np.c_[cols, cc]
-
-    def add_residual(self, b, problem):
-        """Add the kernel residual of every owned node of Γ_l to ``b`` (global rows, C++)."""
-        k = self._kernel()
-        add_vector_blocks(b, self._rows(problem, k)[0], k["r"])
-
-    def add_jacobian(self, A, problem):
-        """Add the kernel's dense 11 × 11 tangent blocks (slave, master and film columns)."""
-        k = self._kernel()
-        rows, cols = self._rows(problem, k)
-        add_matrix_blocks(A, rows, cols, k["J"])
-
-    def reset_iterate(self):
-        """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
-        self._facet_ref = self._facet_committed
-
-    def accept_iterate(self):
-        """Move the pairing's reference to the accepted iterate; whether any node changed facet."""
-        k = self._kernel()
-        same = facets.same_pairing(self._facet_ref, (k["seg"], k["facet"]))
-        self._facet_ref = (k["seg"].copy(), k["facet"].copy())
-        return not self.body.mesh.comm.allreduce(same, op=MPI.LAND)
 
     # -- component protocol -------------------------------------------------------------------
     def unknowns(self):
