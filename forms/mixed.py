@@ -35,8 +35,9 @@ the film parameter H = h/σ:
 
 The asperities' traction on the layer is the normal pressure p_a on the
 current surface and a boundary friction μ_b p_a against the relative slip
-(:func:`asperity_traction`, regularised by a slip speed ε_v).  Units: mm, N, s,
-MPa.
+(:func:`asperity_traction`, regularised by a slip speed ε_v).  The asperities,
+not the film, wear the surface: Archard's law driven by p_a
+(:func:`asperity_wear_load`).  Units: mm, N, s, MPa.
 """
 
 import math
@@ -44,11 +45,13 @@ import math
 import ufl
 
 from .ehl import LubricationKinematics
+from .wear import WearLoad
 
 __all__ = [
     "GT_FIT",
     "asperity_constant",
     "asperity_traction",
+    "asperity_wear_load",
     "average_flow",
     "expected_gap",
     "greenwood_tripp_pressure",
@@ -74,10 +77,17 @@ def patir_cheng_shear_factor(H, A1=1.899, a1=0.98, a2=0.92, a3=0.05, A2=1.126, a
 
 
 def expected_gap(h, sigma):
-    """Return the expected local gap h_T of a Gaussian roughness σ about the gap h (mm)."""
+    """Return the expected local gap h_T of a Gaussian roughness σ about the gap h (mm).
+
+    Bounded below by 1e-9 σ: in floating point the two terms cancel to 0 (or
+    below) far inside the asperity contact (H ≲ −8), where a Newton trial may
+    pass; the bound acts below H ≈ −5.6 only, where p_a exceeds 90 K E* (no
+    converged state of a mixed film lies there).
+    """
     H = h / sigma
-    return 0.5 * h * (1 + ufl.erf(H / math.sqrt(2))) \
+    h_T = 0.5 * h * (1 + ufl.erf(H / math.sqrt(2))) \
         + sigma / math.sqrt(2 * math.pi) * ufl.exp(-0.5 * H**2)
+    return ufl.max_value(h_T, 1e-9 * sigma)
 
 
 def asperity_constant(eta, beta, sigma):
@@ -131,3 +141,17 @@ def asperity_traction(p_a, kin, F, N, mu_b=0.0, eps_v=1e-3):
         j = ufl.sqrt(ufl.dot(nJ, nJ))
         T = T - mu_b * p_a * j * v_rel / ufl.sqrt(ufl.dot(v_rel, v_rel) + eps_v**2)
     return T
+
+
+def asperity_wear_load(p_a, kin, F, N):
+    """Return the asperity contact as the load of Archard wear (:class:`forms.wear.WearLoad`).
+
+    Mixed lubrication wears the surface where the asperities touch: the normal
+    traction T_N = −p_a j per unit reference area (j = J|F⁻ᵀN| = ds/dS, Nanson)
+    and the sliding speed ‖v_layer − v_counter‖, so Ẇ j_w = k p_a j ‖v_s‖; the
+    film pressure p does not wear.
+    """
+    v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
+    nJ = ufl.det(F) * ufl.inv(F).T * N
+    return WearLoad(normal=-p_a * ufl.sqrt(ufl.dot(nJ, nJ)),
+                    slip_speed=ufl.sqrt(ufl.dot(v_rel, v_rel)))

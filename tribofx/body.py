@@ -214,11 +214,18 @@ class Body:
         self._loads.append(hf.external_virtual_work(t, self.v, self.kind,
                                                     self.ds(self.tag(name))))
 
-    def add_shape_dirichlet(self, name, component):
-        """Zero normal motion of the worn boundary: w[component] = 0 on boundary ``name``."""
+    def add_shape_dirichlet(self, name, component, except_on=None):
+        """Zero normal motion of the worn boundary: w[component] = 0 on boundary ``name``.
+
+        ``except_on``: a boundary whose nodes stay free (e.g. the worn boundary where
+        it meets ``name``: its shape-law rows keep their w columns).
+        """
         fdim = self.mesh.topology.dim - 1
         Vc = self.Vw.sub(component)
         dofs = fem.locate_dofs_topological(Vc, fdim, self.facets(name))
+        if except_on is not None:
+            dofs = np.setdiff1d(dofs, fem.locate_dofs_topological(
+                Vc, fdim, self.facets(except_on))).astype(np.int32)
         self._w_bcs.append(fem.dirichletbc(fem.Constant(self.mesh, 0.0), dofs, Vc))
 
     # -- kinematics ----------------------------------------------------------------

@@ -219,7 +219,8 @@ def grow_workspace(pc, cap=10_000):
     factorisation of ``pc`` failed so (INFOG(1) in :data:`WORKSPACE_ERRORS`, the
     same on all ranks), ICNTL(14) is doubled (up to ``cap``) in the options under
     the PC's prefix and the PC is reset, so that the next solve analyses and
-    factorises anew.  Returns the new ICNTL(14), or None (no failed MUMPS factor).
+    factorises anew.  Any other failed MUMPS factorisation resets the PC too.  Returns
+    the (new) ICNTL(14), or None (no failed MUMPS factor).
     """
     # a factor is queried only after a failed set-up (before the first factorisation
     # MUMPS's data is not allocated); the failure is collective, the reason maybe not
@@ -227,16 +228,19 @@ def grow_workspace(pc, cap=10_000):
         return None
     try:
         F = pc.getFactorMatrix()
-        if F.getType() != "mumps" or F.getMumpsInfog(1) not in WORKSPACE_ERRORS:
+        if F.getType() != "mumps" or F.getMumpsInfog(1) >= 0:
             return None
+        info, percent = F.getMumpsInfog(1), F.getMumpsIcntl(14)
     except PETSc.Error:   # not a factorisation PC
         return None
-    percent = min(cap, 2 * max(F.getMumpsIcntl(14), 10))
+    if info in WORKSPACE_ERRORS:
+        percent = min(cap, 2 * max(percent, 10))
+        PETSc.Options()[(pc.getOptionsPrefix() or "") + "mat_mumps_icntl_14"] = percent
     # PETSc skips every numeric factorisation after a failed one (it takes the
-    # failure for the analysis's): reset the PC, so that the next set-up analyses
-    # and factorises anew and reads ICNTL(14) from the options (the next Newton
-    # iteration sets the operators again)
-    PETSc.Options()[(pc.getOptionsPrefix() or "") + "mat_mumps_icntl_14"] = percent
+    # failure for the analysis's), whatever the failure (workspace, a singular or
+    # non-finite matrix of a wild Newton trial): reset the PC, so that the next
+    # set-up analyses and factorises anew and reads ICNTL(14) from the options (the
+    # next Newton iteration sets the operators again)
     pc.reset()
     return percent
 

@@ -15,6 +15,7 @@ from .two_cylinders import TwoCylindersCase
 from .wear import WearPinCase
 from .wear_ball import WearBallCase
 from .wear_groove import WearBallHalfspaceCase
+from .wear_lubricated import WearLubricatedCase
 from .wear_reciprocating import WearReciprocatingCase
 
 __all__ = ["CASES", "get_case"]
@@ -23,7 +24,8 @@ CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLay
                                   WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
                                   EHLORingCase, EHLSqueezeCase, EHLTwoCylindersCase,
                                   TwoCylindersCase, ContactPatchCase, IroningCase,
-                                  WearReciprocatingCase, StribeckCase)}
+                                  WearReciprocatingCase, StribeckCase,
+                                  WearLubricatedCase)}
 
 
 def get_case(name):

@@ -110,10 +110,12 @@ class StribeckCase:
         return Roughness(sig, asperity=greenwood_tripp(KE, sig), share=-1.0, mu_b=v["mu_b"])
 
     @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, rough=True):
+    def build(cls, v, comm=MPI.COMM_WORLD, rough=True, shape=False):
         """Cylinder, rough film and problem; the plane at Martin's film of W/steps.
 
         ``rough=False``: the same film on smooth surfaces (the chapter's).
+        ``shape=True``: the cylinder carries a shape field (wear) and no Problem is
+        built (the slow-time stepper builds it: ``run["problem"]`` is None).
         """
         R, U0 = v["R"], cls.speeds(v)[0]
         ref = hertz(v["W"], R, v["E"], v["nu"], line=True)
@@ -122,8 +124,12 @@ class StribeckCase:
         msh, ft = roller(R, x_l, h_fine, R / 4, x_l, comm)
         mu_s, lm = lame_parameters(v["E"], v["nu"])
         body = Body(msh, ft, ROLLER_NAMES, "plane_strain",
-                    ("neo-hookean", {"mu": mu_s, "lmbda": lm}), name="cylinder")
+                    ("neo-hookean", {"mu": mu_s, "lmbda": lm}), name="cylinder",
+                    shape=shape, aux=(v["E"], 0.3))
         body.add_dirichlet("loaded", np.zeros(2))
+        for i in range(2 if shape else 0):   # only the film face wears: the rest keeps its shape
+            body.add_shape_dirichlet("loaded", i)
+            body.add_shape_dirichlet("free", i, except_on="lubricated")
         speed = fem.Constant(msh, np.array([U0, 0.0]))
         film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v["mu"], V_counter=speed,
                     roughness=cls.roughness(v) if rough else None,
@@ -131,7 +137,7 @@ class StribeckCase:
                     speed_scale=U0, rtol=1e-8)
         film.add_pressure_bc()
         film.counterpart.offset.value[1] = -h_r
-        problem = Problem([body, film], name="stribeck", max_it=30)
+        problem = None if shape else Problem([body, film], name="stribeck", max_it=30)
         return {"body": body, "film": film, "problem": problem, "speed": speed, "ref": ref}
 
     @classmethod
@@ -141,10 +147,34 @@ class StribeckCase:
         ``rough=False``: the smooth film (the chapter's) at the same speeds.
         """
         run = cls.build(v, comm, rough)
+        record.data["num_dofs"] = run["problem"].num_dofs
+        rows = []
+
+        def on_speed(U, iterations):
+            rows.append(dict(cls.measures(run, v), U=U, newton_iterations=iterations))
+            if progress is not None:
+                progress.update(1)
+
+        try:
+            cls.load_and_slow(run, v, cls.speeds(v), verbose, on_speed)
+        except NewtonDivergence as err:
+            err.problem = run
+            raise
+        finally:
+            cls.report(rows, record)
+        return run
+
+    @staticmethod
+    def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
+        """Reach W at ``speeds[0]`` by the plane's approach, then march down through ``speeds``.
+
+        ``on_speed(U, newton_iterations)`` once each speed is reached.  The approach
+        is a secant on log W: d log W/dδ = 1/h for the rigid film (W ∝ 1/h), and
+        n/(σ(H_c − H)) where the asperities carry (W ∝ (H_c − H)^n): both mild in log.
+        Between speeds, 8 geometric steps per decade, a failed step retried at its
+        square root.
+        """
         film, problem = run["film"], run["problem"]
-        record.data["num_dofs"] = problem.num_dofs
-        # the secant runs on log W: d log W/dδ = 1/h for the rigid film (W ∝ 1/h), and
-        # n/(σ(H_c − H)) where the asperities carry (W ∝ (H_c − H)^n): both mild in log
         h_r = -float(film.counterpart.offset.value[1])
         inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
                              response=lambda: math.log(max(film.force()[1], 1e-300)),
@@ -153,39 +183,29 @@ class StribeckCase:
         # film's 1/h; steeper once the asperities carry: at least 1/σ)
         held = HeldResponse(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
             film.min_film(), v["sigma"]) if inner.history else 1.0 / h_r)
-        rows, its = [], []
-        try:
-            Continuation(held, held, response=lambda: held.target, record=its).march(
-                v["W"], v["steps"])
-            U_done = cls.speeds(v)[0]
-            for k, U in enumerate(cls.speeds(v)):
-                # 8 geometric steps per decade; a failed step is retried at its square root
-                while U_done > U * (1 + 1e-12):
-                    ratio = max(U / U_done, 10 ** -0.125)
-                    for _ in range(6):
-                        try:
-                            # the secant history belongs to the last speed: start afresh
-                            del inner.history[:-1]
-                            cls.set_speed(run, U_done * ratio)
-                            its.append(held.solve().iterations)
-                            U_done *= ratio
-                            break
-                        except NewtonDivergence:
-                            cls.set_speed(run, U_done)
-                            ratio = math.sqrt(ratio)
-                    else:
-                        raise NewtonDivergence(f"speed {U_done * ratio:.4g} mm/s not reached")
-                rows.append(dict(cls.measures(run, v), U=U, newton_iterations=sum(
-                    sum(t) if isinstance(t, list) else t for t in its)))
-                its.clear()
-                if progress is not None:
-                    progress.update(1)
-        except NewtonDivergence as err:
-            err.problem = run
-            raise
-        finally:
-            cls.report(rows, record)
-        return run
+        its = []
+        Continuation(held, held, response=lambda: held.target, record=its).march(
+            v["W"], v["steps"])
+        U_done = speeds[0]
+        for U in speeds:
+            while U_done > U * (1 + 1e-12):
+                ratio = max(U / U_done, 10 ** -0.125)
+                for _ in range(6):
+                    try:
+                        # the secant history belongs to the last speed: start afresh
+                        del inner.history[:-1]
+                        StribeckCase.set_speed(run, U_done * ratio)
+                        its.append(held.solve().iterations)
+                        U_done *= ratio
+                        break
+                    except NewtonDivergence:
+                        StribeckCase.set_speed(run, U_done)
+                        ratio = math.sqrt(ratio)
+                else:
+                    raise NewtonDivergence(f"speed {U_done * ratio:.4g} mm/s not reached")
+            if on_speed is not None:
+                on_speed(U, sum(sum(t) if isinstance(t, list) else t for t in its))
+            its.clear()
 
     @staticmethod
     def set_speed(run, U):

@@ -357,8 +357,10 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
     def wear_load(self, slip=None):
         """Return the film's pressure p⁺ j and sliding speed as the load of Archard wear.
 
-        :func:`tribofx.forms.film_traction.film_wear_load`; ``slip`` (a slip increment of
-        fast-time cycles) has no meaning for a film.
+        :func:`tribofx.forms.film_traction.film_wear_load`; with a rough surface's
+        asperity contact, the asperity pressure p_a j instead (the film does not wear,
+        :func:`tribofx.forms.mixed.asperity_wear_load`).  ``slip`` (a slip increment
+        of fast-time cycles) has no meaning for a film.
         """
         if slip is not None:
             raise ValueError("a film has no slip increments: wear under a film is steady "
@@ -366,6 +368,9 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         if self.body.kind == "axisymmetric":
             raise ValueError("wear under a film of an axisymmetric body is not built (its "
                              "load needs the hoop stretch r/R)")
+        if self._rough is not None and self._rough[2] is not None:
+            return mixed.asperity_wear_load(self._rough[2](self.kin_bulk.h), self.kin_bulk,
+                                            self._F, self._N_b)
         return ft.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
 
     def positions(self):

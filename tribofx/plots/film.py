@@ -262,3 +262,31 @@ def plot_stribeck(rows, path):
     a2.set_ylim(-0.05, 1.05)
     a2.grid(alpha=0.3, which="both")
     _save(plt, fig, path)
+
+
+def plot_running_in(profile, path):
+    """Worn profiles (depth against x) and the load share and friction against time."""
+    plt = pyplot()
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    cmap = plt.get_cmap("viridis")
+    times = profile["times"]
+    for i, (t, X) in enumerate(zip(times, profile["profiles"])):
+        X = np.asarray(X)
+        X0 = np.asarray(profile["profiles"][0])
+        a1.plot(X[:, 0], 1e3 * (X[:, 1] - X0[:, 1]), color=cmap(i / max(len(times) - 1, 1)),
+                label=f"t = {t:.0f} s" if i in (0, len(times) - 1) else None)
+    a1.set_xlabel("x (mm)")
+    a1.set_ylabel("worn surface − initial surface (µm)")
+    a1.set_title("worn profile of the cylinder")
+    a1.grid(alpha=0.3)
+    a1.legend(fontsize=8)
+    t = profile["time"]
+    a2.plot(t, profile["film_load_fraction"], "s-", color="C0", label="film load / W")
+    a2.plot(t, np.asarray(profile["friction_coefficient"]) * 10, "o-", color="C3",
+            label="10 × friction coefficient")
+    a2.set_xlabel("time (s)")
+    a2.set_ylim(bottom=0)
+    a2.grid(alpha=0.3)
+    a2.legend(fontsize=8)
+    a2.set_title("running-in: the film builds up as the surface conforms")
+    _save(plt, fig, path)

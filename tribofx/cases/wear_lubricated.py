@@ -1,0 +1,198 @@
+"""Running-in of a soft cylinder under mixed lubrication: the asperities wear it (issue 32).
+
+``wear-lubricated`` — the cylinder of ``stribeck`` (neo-Hookean, plane strain,
+radius R, held at its flat face) under the load W (N/mm) on the rough rigid
+plane sliding at V (mm/s), in the mixed regime: the average-flow film and the
+Greenwood–Tripp asperities share W.  The asperities, not the film, wear the
+cylinder by Archard's law,
+
+    Ẇ j_w = k p_a j ‖v_s‖        (k in mm³/(N·mm), p_a = K E* F_{5/2}(h/σ)),
+
+(:func:`tribofx.forms.mixed.asperity_wear_load`), and the worn shape changes the
+film: the finite shape update (28) of the core (:class:`tribofx.interfaces.Wear`
+on the film, the ALE shape field of the body), monolithic with the film and the
+body (``scheme=implicit``: θ = 1; ``bdf2``: second order, ``tol`` its error
+control; ``explicit``: θ = 0).  W is held at every step by the plane's approach
+(a secant on log W, :class:`tribofx.held_response.ResponseControl`).
+
+The run: W is reached at ``U_start`` (a full film, the load march of
+``stribeck``), the speed is marched down to V, then the slow time runs from 0
+to T in steps dt.  As the cylinder conforms, the asperity load falls and the
+film's share of W grows: the film builds up.
+
+Results per step: ``time``, ``wear_volume`` (worn area per unit length, mm²),
+``max_wear_depth``, ``asperity_load``, ``film_load_fraction``,
+``friction_coefficient``, ``h_central``, ``h_min``, ``wear_rate_integral``
+(∫ Ẇ dS, mm²/s), ``newton_iterations``; the worn profiles; the final film
+(h, p, p_a).  Units: mm, N, s, MPa.
+"""
+
+import math
+
+import numpy as np
+from mpi4py import MPI
+
+from ..continuation import ConstantParameter
+from ..forms.mixed import GT_FIT
+from ..held_response import ResponseControl
+from ..interfaces import Wear
+from ..params import InputError, Param
+from ..slow_run import SlowRun
+from ..stepper import Stepper, nominal_steps
+from .stribeck import StribeckCase
+
+__all__ = ["WearLubricatedCase"]
+
+_SHARED = [p for p in StribeckCase.params if p.name not in ("speeds",)]
+
+
+class WearLubricatedCase:
+    """Case ``wear-lubricated``; see the module docstring."""
+
+    name = "wear-lubricated"
+    doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
+    params = (*_SHARED,
+              Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",
+                    lower=0.0),
+              Param("U_start", float, 1000.0, "mm/s", "speed at which W is reached (full film)",
+                    lower=0.0),
+              Param("k", float, 1e-5, "mm^3/(N*mm)",
+                    "Archard coefficient (1e-5 mm³/(N·mm) = 1e-2 mm³/(N·m): an elastomer "
+                    "on a rough counterface)", lower=0.0),
+              Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
+              Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
+              Param("scheme", str, "implicit", "-",
+                    "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order)",
+                    choices=("explicit", "implicit", "bdf2")),
+              Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
+                    lower=0.0, closed=True),
+              Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
+                    upper=20, closed=True))
+
+    @classmethod
+    def validate(cls, v):
+        """Bad input: a one-line error."""
+        if v["V"] >= v["U_start"]:
+            raise InputError("V must be below U_start (W is reached at U_start)")
+        if v["tol"] > 0 and v["scheme"] != "bdf2":
+            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}"))
+
+    @staticmethod
+    def progress_total(v):
+        """Return the number of slow steps."""
+        return nominal_steps(v["T"], v["dt"])
+
+    @classmethod
+    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
+        """Cylinder with a shape field, rough film, wear, stepper and the load control.
+
+        Returns the run dict of :meth:`StribeckCase.build` with ``wear`` and
+        ``stepper``; ``problem`` is the stepper's monolithic Problem.
+        """
+        s = dict(v, speeds=f"{v['U_start']},{v['V']}")
+        run = StribeckCase.build(s, comm, shape=True)
+        film = run["film"]
+        wear = Wear(film, k=v["k"], speed=v["V"],
+                    theta=0.0 if v["scheme"] == "explicit" else 1.0,
+                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
+        stepper = Stepper([run["body"], film, wear], wear, max_cuts=v["max_cuts"],
+                          checkpoint=checkpoint, name="wear_lubricated",
+                          problem_kw={"max_it": 30})
+        offset = film.counterpart.offset
+        track = []   # (t, plane position) of the accepted steps (appended by ``run``)
+
+        def predictor(dt):
+            # the plane follows the worn surface: its last rate (none before two steps;
+            # the mean worn depth k F_a V Δt/(2a) overshoots the plane's rise about 2×
+            # as the film takes load back, and a trial 0.3σ off may not converge)
+            if len(track) < 2:
+                return float(offset.value[1])
+            (t0, y0), (t1, y1) = track[-2:]
+            return y1 + (y1 - y0) * dt / (t1 - t0)
+
+        stepper.set_control(ResponseControl(
+            stepper.problem, ConstantParameter(offset, 1),
+            lambda: math.log(max(float(film.force()[1]), 1e-300)), math.log(v["W"]),
+            predictor=predictor, slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]),
+            rtol=1e-7, max_trials=30))
+        run.update(wear=wear, stepper=stepper, problem=stepper.problem, speeds=s, track=track)
+        return run
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
+            checkpoint=None, resume=False):
+        """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
+        run = cls.build(v, comm, checkpoint)
+        stepper, wear, film = run["stepper"], run["wear"], run["film"]
+        stepper.verbose = stepper.control.inner.verbose = verbose
+        keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
+                "film_load_fraction", "friction_coefficient", "h_central", "h_min",
+                "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
+        sr = SlowRun(stepper, v, record, keys,
+                     {"displacement": [run["body"].u, run["body"].w]}, resume)
+        state = sr.history.setdefault("state", {"profiles": [], "times": []})
+
+        def log(t, its, dt, error=None, rejected=0):
+            m = StribeckCase.measures(run, v)
+            Fa = film.asperity_force()
+            sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
+                         "max_wear_depth": wear.max_depth(), "asperity_load": float(Fa[1]),
+                         **{k: m[k] for k in ("film_load_fraction", "friction_coefficient",
+                                              "h_central", "h_min")},
+                         "wear_rate_integral": wear.wear_rate_integral(),
+                         "newton_iterations": its, "error_estimate": error,
+                         "rejected": rejected})
+            run["track"].append((t, float(film.counterpart.offset.value[1])))
+            d = wear.gather_shape()
+            if d is not None:
+                state["profiles"].append(d["X_worn"].tolist())
+                state["times"].append(t)
+
+        if resume:   # the state is the checkpoint's; the speed is V
+            StribeckCase.set_speed(run, v["V"])
+        else:
+            its = []
+            StribeckCase.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
+                                       lambda U, n: its.append(n))
+            log(0.0, sum(its) + stepper.start(), 0.0)
+        sr.run(v["T"], v["dt"],
+               lambda st, rep: log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected),
+               progress, report=lambda: cls.report(run, v, record, sr.hist, state),
+               problem=run, tol=v["tol"] or None)
+        return run
+
+    @staticmethod
+    def report(run, v, record, hist, state):
+        """Per-step lists, the final film (h, p, p_a) and the worn profiles."""
+        units = {"time": "s", "dt": "s", "wear_volume": "mm^2/mm", "max_wear_depth": "mm",
+                 "asperity_load": "N/mm", "film_load_fraction": "-",
+                 "friction_coefficient": "-", "h_central": "mm", "h_min": "mm",
+                 "wear_rate_integral": "mm^2/(mm*s)", "newton_iterations": "-",
+                 "error_estimate": "mm", "rejected": "-"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        record.result("accepted_steps", max(len(hist["time"]) - 1, 0), "-")
+        prof = run["film"].profile()
+        if prof is not None:
+            KE = run["film"].roughness.asperity.parameters["KE"]
+            A, Hc, n = GT_FIT
+            p_a = KE * A * np.maximum(Hc - prof["h"] / v["sigma"], 0.0) ** n
+            record.result("final_film", {"x": prof["X"][:, 0].tolist(),
+                                         "h": prof["h"].tolist(), "p": prof["p"].tolist(),
+                                         "p_a": p_a.tolist()}, "mm, MPa")
+            record.profile = {**hist, **state, "film": {
+                "x": prof["X"][:, 0].tolist(), "h": prof["h"].tolist(),
+                "p": prof["p"].tolist(), "p_a": p_a.tolist()}}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacement and shape change of the cylinder."""
+        return {"displacement": [run["body"].u, run["body"].w]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """``running_in.png``: worn profiles, loads and friction against time."""
+        from ..plots.film import plot_running_in
+
+        plot_running_in(profile, outdir / "running_in.png")
