@@ -16,15 +16,17 @@ from tribofx.body import Body
 from tribofx.interfaces import Contact, Film, Wear
 from tribofx.obstacles import rigid_cylinder
 from tribofx.problem import Problem
+from tribofx.roughness import Roughness, greenwood_tripp
 from tribofx.testing import block_taylor_orders, exact_tangent, smooth_direction
 
 U = 100.0      # mm/s, the cylinder's sliding speed
 K = 1e-4       # 1/MPa, Archard coefficient
 P0 = 0.05      # MPa, the scale of the film pressure set below
 CENTRE = np.array([0.5, -2.01])
+SIGMA = 5e-3   # mm, the roughness of the mixed variant
 
 
-def _block(with_contact):
+def _block(with_contact, rough=False):
     comm = MPI.COMM_WORLD
     msh = mesh.create_rectangle(comm, [[0, 0], [1, 0.5]], [8, 3])
     fdim = 1
@@ -45,8 +47,13 @@ def _block(with_contact):
     body.add_shape_dirichlet("top", 0)
     body.add_shape_dirichlet("top", 1)
     body.add_shape_dirichlet("sides", 0)
+    # rough: σ = 5 µm against the 10 µm clearance (H ≈ 2 mid-face): average flow,
+    # asperity pressure and boundary friction all active, the wear driven by p_a
+    roughness = Roughness(SIGMA, asperity=greenwood_tripp(2.0, SIGMA), mu_b=0.2) \
+        if rough else None
     film = Film(body, "bottom", rigid_cylinder(CENTRE, 2.0), 1e-8, V_counter=(U, 0.0),
-                eps=1e-6, p_c=P0, film_scale=0.01, speed_scale=U, quadrature_degree=2)
+                eps=1e-6, p_c=P0, film_scale=0.01, speed_scale=U, quadrature_degree=2,
+                roughness=roughness)
     film.add_pressure_bc(lambda X: np.isclose(X[0], 0) | np.isclose(X[0], 1))
     drivers = [film]
     if with_contact:
@@ -68,13 +75,15 @@ def _state(body, film, wear, dt):
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("with_contact", [False, True])
-def test_film_driven_wear_tangent_taylor(with_contact):
+@pytest.mark.parametrize("with_contact,rough", [(False, False), (True, False), (False, True)])
+def test_film_driven_wear_tangent_taylor(with_contact, rough):
     """The monolithic (u, u_s, p, g, [λ_N], w, ζ) step with wear driven by the film (and a
     contact): every block's columns exact (Taylor order 2 or round-off,
     :func:`tribofx.testing.exact_tangent`), the film load's dependence on u (j, the
-    layer velocity) and p (p⁺) included."""
-    body, film, drivers, wear = _block(with_contact)
+    layer velocity) and p (p⁺) included.  ``rough``: the lubricated wear step of mixed
+    lubrication (issue 32) — average flow, asperity traction and the wear by p_a(h),
+    whose h depends on u and w."""
+    body, film, drivers, wear = _block(with_contact, rough)
     problem = Problem([body, *drivers, wear], name="film_wear_taylor")
     _state(body, film, wear, dt=10.0)
     if with_contact:
