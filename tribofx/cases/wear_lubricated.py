@@ -173,6 +173,10 @@ class WearLubricatedCase:
         for key, vals in hist.items():
             record.result(key, vals, units[key])
         record.result("accepted_steps", max(len(hist["time"]) - 1, 0), "-")
+        if state["profiles"]:
+            record.result("worn_profiles", {"time": state["times"],
+                                            "X_worn": state["profiles"]},
+                          "s, mm (worn configuration, nodes of the film face by X̂₀)")
         prof = run["film"].profile()
         if prof is not None:
             KE = run["film"].roughness.asperity.parameters["KE"]
