@@ -25,7 +25,7 @@ def film_virtual_work(traction, v, ds, weight=1):
     return -ufl.dot(traction, v) * weight * ds
 
 
-def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
+def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite", factors=None):
     """Nominal traction (MPa per reference length) of the film on the layer, eq. (46).
 
     Args:
@@ -41,7 +41,10 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
         model: "finite" (Nanson, current normal and stretch) or "linear" (reference surface).
         shear: include the Couette −(μ/h)(v_layer − v_counter) and Poiseuille
             −(h/2) grad_S p terms (v_counter = ``kin.v_counter``, 0 if None).
+        factors: (c, d) in place of μ/h and h/2 (a rough film's shear-stress
+            factors, :func:`forms.mixed.rough_shear_factors`), or None.
     """
+    c, d = factors if factors is not None else (mu / kin.h, kin.h / 2)
     if len(ufl.shape(dpdT)) == 1:
         grad_gamma_p = dpdT                       # Grad_Γ p
     else:
@@ -51,7 +54,7 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
         Tn = -p * N
         if shear:
             grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-            Tn = Tn - (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
+            Tn = Tn - c * v_rel - d * grad_S_p
         return Tn
     Tn = -p * ufl.det(F) * ufl.inv(F).T * N      # −p n ds/dS (Nanson)
     if shear:
@@ -62,11 +65,11 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite"):
             nJ = ufl.det(F) * ufl.inv(F).T * N
             j = ufl.sqrt(ufl.dot(nJ, nJ))         # ds/dS = J|F⁻ᵀN| (Nanson)
         grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-        Tn = Tn - j * ((mu / kin.h) * v_rel + (kin.h / 2) * grad_S_p)
+        Tn = Tn - j * (c * v_rel + d * grad_S_p)
     return Tn
 
 
-def countersurface_traction(p, grad_gamma_p, kin, mu):
+def countersurface_traction(p, grad_gamma_p, kin, mu, factors=None):
     """Film traction on the countersurface per unit area of S (MPa): (46) at the other wall.
 
     −p ν + (μ/h)(v_layer − v_counter) − (h/2) grad_S p: the pressure along the
@@ -76,11 +79,13 @@ def countersurface_traction(p, grad_gamma_p, kin, mu):
     ``grad_gamma_p`` is Grad_Γ p on Γ_l, ``kin`` the :class:`LubricationKinematics`
     of S (the reference surface for the linear model); integrate with ds_S =
     ``kin.stretch`` dS.  The film's force on a rigid counterpart: the friction a
-    rig measures on it.
+    rig measures on it.  ``factors``: (c, d) in place of μ/h and h/2 (a rough film's,
+    ``wall="counter"`` of :func:`forms.mixed.rough_shear_factors`).
     """
+    c, d = factors if factors is not None else (mu / kin.h, kin.h / 2)
     v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
     grad_S_p = ufl.inv(kin.A).T * grad_gamma_p
-    return -p * kin.nu + (mu / kin.h) * v_rel - (kin.h / 2) * grad_S_p
+    return -p * kin.nu + c * v_rel - d * grad_S_p
 
 
 def film_wear_load(p, kin, F, N, model="finite"):

@@ -55,8 +55,12 @@ __all__ = [
     "average_flow",
     "expected_gap",
     "greenwood_tripp_pressure",
+    "patir_cheng_couette_factor",
+    "patir_cheng_poiseuille_factor",
     "patir_cheng_pressure_factor",
+    "patir_cheng_roughness_shear_factor",
     "patir_cheng_shear_factor",
+    "rough_shear_factors",
 ]
 
 #: the fit F_{5/2}(H) ≈ A (H_c − H)^n of Arcoumanis et al. (1997)
@@ -74,6 +78,86 @@ def patir_cheng_shear_factor(H, A1=1.899, a1=0.98, a2=0.92, a3=0.05, A2=1.126, a
     Hl = ufl.min_value(Hs, 5.0)      # both branches are evaluated: no overflow of e^{a3 H²}
     low = A1 * Hl**a1 * ufl.exp(-a2 * Hl + a3 * Hl**2)
     return ufl.conditional(ufl.le(H, 5.0), low, A2 * ufl.exp(-a4 * Hs))
+
+
+def patir_cheng_couette_factor(H, eps=1.0 / 300):
+    """Couette shear factor over H, φ_f(H)/H, of Gaussian roughness (Patir & Cheng 1979).
+
+    The mean wall shear of sliding is (μ Δv/h) φ_f = (μ Δv/σ) φ_f/H, with
+    φ_f = (35/32) z ∫ (1 − x²)³/(z + x) dx over the fluid part of Patir and
+    Cheng's polynomial height density (z = H/3, local gaps below ε* 3σ = σ/100
+    count as contact):
+
+        H ≤ 3:  φ_f = (35/32) z {(1 − z²)³ ln((z + 1)/ε*) + [−55 + z(132 + z(345
+                + z(−160 + z(−405 + z(60 + 147z)))))]/60},
+        H > 3:  φ_f = (35/32) z {(1 − z²)³ ln((z + 1)/(z − 1)) + (z/15)[66 + z²(30z² − 80)]},
+
+    ε* = 1/300.  Written as φ_f/H it is finite through H = 0 (1.745) and falls to 0
+    at H = −3(1 − ε*) (all of the gap in contact: no fluid shears), where it is
+    held at 0.  Above H = 15 the series φ_f = 1 + Σ_k c_k z^{−2k} of the same integral
+    (c = 1/9, 1/33, …, to 1e-13) replaces the closed form, whose terms cancel.
+    """
+    z = H / 3
+    zl = ufl.min_value(ufl.max_value(z, eps - 1), 1.0)
+    poly = -55 + zl * (132 + zl * (345 + zl * (-160 + zl * (-405 + zl * (60 + 147 * zl)))))
+    low = ufl.max_value((1 - zl**2) ** 3 * ufl.ln((zl + 1) / eps) + poly / 60, 0.0)
+    zm = ufl.min_value(ufl.max_value(z, 1 + 1e-9), 5.0)
+    mid = (1 - zm**2) ** 3 * ufl.ln((zm + 1) / (zm - 1)) \
+        + zm / 15 * (66 + zm**2 * (30 * zm**2 - 80))
+    zh = ufl.max_value(z, 5.0)
+    series = sum(c / zh ** (2 * k + 1) for k, c in enumerate(_PHI_F_SERIES))
+    inner = ufl.conditional(ufl.le(z, 1.0), low, ufl.conditional(ufl.le(z, 5.0), mid,
+                                                                  series * 32 / 35))
+    return 35 / 96 * inner
+
+
+#: φ_f = Σ_k c_k z^{−2k} for large z: c_k = (35/32) ∫ x^{2k} (1 − x²)³ dx over (−1, 1)
+_PHI_F_SERIES = (1.0, 1 / 9, 1 / 33, 0.011655011655011656, 0.005439005439005439, 0.0028794734677087615,
+                 0.0016670635865682307)
+
+
+def patir_cheng_poiseuille_factor(H, D=1.40, s=0.66):
+    """Poiseuille shear factor φ_fp = 1 − D e^{−sH} (Patir & Cheng 1979, isotropic).
+
+    Fitted for H > 0.5; H is held at 0.5 below (φ_fp = −0.006 there, ≈ 0).
+    """
+    return 1 - D * ufl.exp(-s * ufl.max_value(H, 0.5))
+
+
+def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_max=7.0):
+    """Roughness shear factor over H, Φ_fs(H)/H (Patir & Cheng 1979, isotropic).
+
+    Φ_fs = A3 H^a4 e^{−a5 H + a6 H²} for 0.5 ≤ H ≤ 7, 0 above (the fit is 0.013
+    at 7), H held at 0.5 below; the wall shear of a surface gains
+    ± (μ Δv/σ) s Φ_fs/H with the share s of the roughness
+    (:func:`rough_shear_factors`).
+    """
+    Hc = ufl.min_value(ufl.max_value(H, 0.5), H_max)
+    return ufl.conditional(ufl.le(H, H_max),
+                           A3 * Hc ** (a4 - 1) * ufl.exp(-a5 * Hc + a6 * Hc**2), 0.0)
+
+
+def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, share,
+                        wall="layer"):
+    """The factors of the wall shear of a rough film (Patir & Cheng 1979).
+
+    The mean shear on a wall is (μ Δv/σ)(φ_f/H ∓ s Φ_fs/H) + φ_fp (h_T/2) grad p
+    (H = h/σ, nominal), − on the layer (the share s = +1 when it alone is rough),
+    + on the countersurface.  A smooth wall facing a rough one takes φ_f + Φ_fs:
+    with no mean pressure gradient the local pressure of the roughness's wedges,
+    high on the flanks where the gap closes along the sliding, gives the mean
+    Poiseuille shear −½⟨p ∂h/∂x⟩ > 0 on both walls, added on the smooth wall, and
+    taken off the rough wall's viscous shear (whose form drag makes it up: the
+    forces on the two walls balance).  Returns (c, d) that replace
+    μ/h and h/2 of the smooth traction (:func:`forms.film_traction.fluid_traction`,
+    ``factors=``); ``couette``, ``poiseuille``, ``roughness_shear`` the factor laws
+    of H (None: 0 for Φ_fs); the Poiseuille part on the expected gap h_T.
+    """
+    H = h / sigma
+    c = couette(H)
+    if roughness_shear is not None and share:
+        c = c + (-share if wall == "layer" else share) * roughness_shear(H)
+    return (mu / sigma) * c, 0.5 * expected_gap(h, sigma) * poiseuille(H)
 
 
 def expected_gap(h, sigma):

@@ -8,7 +8,9 @@ binds it to its meshes and uses the one law wherever it enters:
 * the Reynolds rows become the average-flow ones (φ_x, φ_s, h_T:
   :func:`tribofx.forms.mixed.average_flow`);
 * the traction on the layer gains the asperity pressure p_a(h) and the boundary
-  friction μ_b p_a (:func:`tribofx.forms.mixed.asperity_traction`);
+  friction μ_b p_a (:func:`tribofx.forms.mixed.asperity_traction`), and its
+  fluid shear takes the shear-stress factors (φ_f, φ_fp, Φ_fs:
+  :func:`tribofx.forms.mixed.rough_shear_factors`);
 * the outputs report the asperity load beside the film's.
 
 Defaults: isotropic Patir–Cheng flow factors, Greenwood–Tripp asperities.
@@ -18,7 +20,8 @@ Units: mm, N, s, MPa.
 from .forms import mixed
 from .laws import Law
 
-__all__ = ["Roughness", "greenwood_tripp", "patir_cheng_pressure", "patir_cheng_shear"]
+__all__ = ["Roughness", "greenwood_tripp", "patir_cheng_pressure", "patir_cheng_shear",
+           "patir_cheng_shear_stress"]
 
 
 def patir_cheng_pressure():
@@ -30,6 +33,14 @@ def patir_cheng_shear():
     """Φ_s(H) of one rough surface, isotropic (Patir & Cheng 1979)."""
     return Law(mixed.patir_cheng_shear_factor, A1=1.899, a1=0.98, a2=0.92, a3=0.05,
                A2=1.126, a4=0.25)
+
+
+def patir_cheng_shear_stress():
+    """(φ_f/H, φ_fp, Φ_fs/H) of the wall shear, isotropic (Patir & Cheng 1979)."""
+    return (Law(mixed.patir_cheng_couette_factor, eps=1.0 / 300),
+            Law(mixed.patir_cheng_poiseuille_factor, D=1.40, s=0.66),
+            Law(mixed.patir_cheng_roughness_shear_factor, A3=11.1, a4=2.31, a5=2.38,
+                a6=0.11, H_max=7.0))
 
 
 def greenwood_tripp(KE, sigma):
@@ -48,22 +59,31 @@ class Roughness:
         flow: (φ_x, Φ_s) laws of H = h/σ, or None (smooth flow: φ_x = 1, no shear flow).
         share: share s of the shear flow: +1 the layer rough, −1 the counterface
             rough, 0 both alike.
+        shear: (φ_f/H, φ_fp, Φ_fs/H) laws of the wall shear (H = h/σ;
+            :func:`forms.mixed.rough_shear_factors`; Φ_fs may be None), or None
+            (the smooth shear μ/h, h/2 on the nominal gap).
         mu_b: boundary friction coefficient of the asperity contact.
         eps_v: slip speed (mm/s) regularising the boundary friction's direction.
     """
 
     def __init__(self, sigma, asperity=None, flow="patir-cheng", share=-1.0, mu_b=0.0,
-                 eps_v=1e-3):
+                 eps_v=1e-3, shear="patir-cheng"):
         self.sigma, self.share, self.mu_b, self.eps_v = float(sigma), float(share), \
             float(mu_b), float(eps_v)
         self.asperity = asperity
         self.flow = (patir_cheng_pressure(), patir_cheng_shear()) if flow == "patir-cheng" \
             else flow
+        self.shear = patir_cheng_shear_stress() if shear == "patir-cheng" else shear
 
     def bind(self, mesh):
-        """Return the bound laws (phi_x, phi_s, p_a) on ``mesh`` (None where absent)."""
+        """Return the bound laws (phi_x, phi_s, p_a, shear) on ``mesh`` (None where absent).
+
+        ``shear`` is the tuple (φ_f/H, φ_fp, Φ_fs/H) or None.
+        """
         phi_x = phi_s = None
         if self.flow is not None:
             phi_x, phi_s = (law.bind(mesh) for law in self.flow)
         p_a = self.asperity.bind(mesh) if self.asperity is not None else None
-        return phi_x, phi_s, p_a
+        shear = None if self.shear is None else tuple(
+            law.bind(mesh) if law is not None else None for law in self.shear)
+        return phi_x, phi_s, p_a, shear

@@ -301,10 +301,11 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         """Fluid traction (46) on the body from ``kin_bulk``, and its Couette part alone."""
         args = (self.kin_bulk, self._F, self._N_b, self.T_b, self.mu_p)
         grad_p = self.g if self.shear else ufl.zero(self.body.gdim)
+        factors = self.shear_factors(self.kin_bulk.h)
         self.traction = ft.fluid_traction(self.p, grad_p, *args, shear=self.shear,
-                                          model=self.model)
+                                          model=self.model, factors=factors)
         self._couette = ft.fluid_traction(0.0, ufl.zero(self.body.gdim), *args, shear=True,
-                                          model=self.model)
+                                          model=self.model, factors=factors)
         self.asperity = None
         if self._rough is not None and self._rough[2] is not None:
             r = self.roughness
@@ -312,6 +313,13 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
                                                     self.kin_bulk, self._F, self._N_b,
                                                     r.mu_b, r.eps_v)
             self.traction = self.traction + self.asperity
+
+    def shear_factors(self, h, wall="layer"):
+        """The rough film's (c, d) in place of μ/h and h/2 on ``wall``, or None (smooth)."""
+        if self._rough is None or self._rough[3] is None:
+            return None
+        r = self.roughness
+        return mixed.rough_shear_factors(h, self.mu_p, r.sigma, *self._rough[3], r.share, wall)
 
     def _mirror(self, constant):
         copy = fem.Constant(self.sub, np.array(constant.value, dtype=float))
