@@ -112,8 +112,8 @@ def patir_cheng_couette_factor(H, eps=1.0 / 300):
 
 
 #: φ_f = Σ_k c_k z^{−2k} for large z: c_k = (35/32) ∫ x^{2k} (1 − x²)³ dx over (−1, 1)
-_PHI_F_SERIES = (1.0, 1 / 9, 1 / 33, 0.011655011655011656, 0.005439005439005439, 0.0028794734677087615,
-                 0.0016670635865682307)
+_PHI_F_SERIES = (1.0, 1 / 9, 1 / 33, 0.011655011655011656, 0.005439005439005439,
+                 0.0028794734677087615, 0.0016670635865682307)
 
 
 def patir_cheng_poiseuille_factor(H, D=1.40, s=0.66):
@@ -139,7 +139,7 @@ def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_
 
 def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, share,
                         wall="layer"):
-    """The factors of the wall shear of a rough film (Patir & Cheng 1979).
+    """Return the factors of the wall shear of a rough film (Patir & Cheng 1979).
 
     The mean shear on a wall is (μ Δv/σ)(φ_f/H ∓ s Φ_fs/H) + φ_fp (h_T/2) grad p
     (H = h/σ, nominal), − on the layer (the share s = +1 when it alone is rough),

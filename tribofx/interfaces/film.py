@@ -315,7 +315,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
             self.traction = self.traction + self.asperity
 
     def shear_factors(self, h, wall="layer"):
-        """The rough film's (c, d) in place of μ/h and h/2 on ``wall``, or None (smooth)."""
+        """Return the rough film's (c, d) in place of μ/h and h/2 on ``wall``, or None."""
         if self._rough is None or self._rough[3] is None:
             return None
         r = self.roughness
