@@ -22,7 +22,8 @@ from tribofx.obstacles import rigid_plane
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import Problem
-from tribofx.references_mixed import flat_punch_separation, greenwood_tripp_f52
+from tribofx.references import hertz
+from tribofx.references_mixed import flat_punch_separation, greenwood_tripp_f52, jgp_load_sharing
 from tribofx.roughness import Roughness, greenwood_tripp
 from tribofx.testing import block_taylor_orders, exact_tangent, owned_arrays
 
@@ -120,8 +121,12 @@ def test_full_film_end_is_the_smooth_film():
     assert rough["film_load_fraction"][0] == pytest.approx(1.0, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_stribeck_curve_has_its_three_regimes():
     """Full film, mixed, boundary over five decades of speed (the defaults, 11 speeds).
+
+    Slow (28 s, ``--runslow``): the default suite checks the three regimes at three
+    speeds (``demos/demo_mixed_lubrication.py``) and the mixed regime against JGP.
 
     Full film (λ > 3): the film carries W, the friction is the fluid's and falls
     with the speed (Couette μU/h with h ∝ U^0.6: f ∝ U^0.4 at most); its minimum
@@ -145,6 +150,38 @@ def test_stribeck_curve_has_its_three_regimes():
     assert np.all(np.diff(f[i:]) > 0), f
     assert frac[-1] < 0.5
     assert np.all(f < 0.1)          # below the dry boundary friction μ_b everywhere
+
+
+def test_mixed_regime_against_the_jgp_load_sharing():
+    """The film's share of W against Johnson, Greenwood & Poon's (1972) estimate.
+
+    JGP splits W into a film part W/γ₁, the smooth film of that load on E*/γ₁
+    (its h_c from the smooth model's own central film at the same speed, the
+    isoviscous-elastic exponents h ∝ W^−0.2 E*^−0.4), and an asperity part W/γ₂
+    whose central pressure is Hertz's (:func:`jgp_load_sharing`).  What it leaves
+    out: the rough film's flow factors (φ_x(1) ≈ 0.5) and the outlet constriction
+    of a soft EHL film (h_min ≈ 0.75 h_c), where p_a is ((4 − H_min)/(4 − H_c))^6.8
+    ≈ 1.2–1.5 times its central value here.  Expected agreement: the asperity share
+    1 − s within a factor 1.5 of JGP's, i.e. |s − s_JGP| ≤ 0.5 (1 − s_JGP), where
+    the asperities carry a part (U = 30 … 1 mm/s, λ = 1.5 … 0.13).  Measured: film
+    shares 0.989, 0.947, 0.869, 0.773 against JGP 0.990, 0.942, 0.878, 0.832.
+    """
+    speeds = "1000,30,10,3,1"
+    _, rough = stribeck(speeds=speeds)
+    _, smooth = stribeck(rough=False, speeds=speeds)
+    v = resolve(StribeckCase.params, {"speeds": speeds})
+    p0 = hertz(v["W"], v["R"], v["E"], v["nu"], line=True).p0
+    KE, (A, Hc, n) = StribeckCase.roughness(v).asperity.parameters["KE"], mixed.GT_FIT
+
+    def p_a(h):
+        return KE * A * max(Hc - h / v["sigma"], 0.0) ** n
+
+    for i, U in enumerate(rough["speeds"][1:], start=1):
+        share, h_c = jgp_load_sharing(smooth["h_central"][i], p0, p_a)
+        s = rough["film_load_fraction"][i]
+        print(f"U {U}: film share {s:.4f}, JGP {share:.4f}; h_c {rough['h_central'][i]:.3e}"
+              f", JGP {h_c:.3e}")
+        assert abs(s - share) <= 0.5 * (1 - share), (U, s, share)
 
 
 def test_vanishing_roughness_is_the_smooth_film():
