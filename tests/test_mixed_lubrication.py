@@ -184,6 +184,21 @@ def test_mixed_regime_against_the_jgp_load_sharing():
         assert abs(s - share) <= 0.5 * (1 - share), (U, s, share)
 
 
+def test_at_creeping_speed_the_asperities_carry_the_load():
+    """At U = 1e-6 mm/s the film carries nothing: the asperity contact alone balances W.
+
+    Reynolds' estimate of the film pressure of a wedge of length a and gap h_T at
+    speed U is 6μUa/h_T², with h_T ≥ 0.4σ (the expected gap where the nominal
+    surfaces touch): ≤ 3e-6 MPa here against the Hertz pressure p₀ = 0.45 MPa, so
+    the film's share is below 1e-3 with two decades to spare for the wedge's shape.
+    The load march reaches W there directly (the first secant slope 1/σ; the film's
+    flux tolerance floored at the Poiseuille flux of a σ-thick gap).
+    """
+    _, r = stribeck(speeds="1e-6")
+    assert r["film_load_fraction"][0] < 1e-3
+    assert r["W"][0] == pytest.approx(0.5, rel=1e-6)
+
+
 def test_vanishing_roughness_is_the_smooth_film():
     """σ → 0 (1e-9 mm, no asperities): the smooth film to solver tolerance.
 

@@ -14,22 +14,16 @@ The load is reached at the highest speed by the approach of the plane (a secant
 on 1/W inside a load march), then the speed is marched down through
 ``speeds`` (geometric steps, cut on failure), W held by the approach at each.
 
-Asperity data: σ (mm, combined RMS), ``eta_beta_sigma`` (ηβσ) and
-``sigma_beta`` (σ/β), so K = (16√2/15)π(ηβσ)²√(σ/β); E* = E/(1 − ν²) (rigid
-plane).  Greenwood & Williamson (1966) found ηβσ ≈ 0.03–0.05 and σ/β ≈ 1e-4–1e-2
-for machined metals; the defaults (0.1, 0.1) are a rough counterface at the
-high end.  With the metals' values the Greenwood–Tripp pressure of a soft
-pair is weak against its contact pressure (K E* = 0.015 against p₀ = 0.3 MPa
-at ηβσ = 0.05, σ/β = 0.01): the film then carries nearly all of W down to
-λ ≈ 0.4, and the asperities take over only where the nominal surfaces overlap
-(the Newton iterations stall below U ≈ 2 mm/s there).
+Asperity data: σ (mm, combined RMS), ``eta_beta_sigma`` (ηβσ), ``sigma_beta`` (σ/β):
+K = (16√2/15)π(ηβσ)²√(σ/β), E* = E/(1 − ν²); the defaults (0.1, 0.1) are a rough
+counterface (machined metals, Greenwood & Williamson 1966: 0.03–0.05, 1e-4–1e-2).
 
 Results per speed: ``friction_coefficient`` (the tangential force on the
 cylinder over W: fluid shear plus μ_b times the asperity load),
 ``film_load_fraction`` (film load / W), ``lambda_ratio`` (h_c/σ), ``h_central``,
-``h_min``, ``newton_iterations``; ``stribeck.png``.  Units: mm, N, s, MPa.
+``h_min``, ``p_max`` (film), ``p_total_max`` (film and asperities),
+``newton_iterations``; ``stribeck.png``.  Units: mm, N, s, MPa.
 """
-
 
 import math
 
@@ -102,11 +96,9 @@ class StribeckCase:
     @staticmethod
     def roughness(v):
         """Return the plane's roughness: Patir–Cheng flow, Greenwood–Tripp asperities, μ_b."""
-        E_star = v["E"] / (1 - v["nu"] ** 2)
-        sig = v["sigma"]
+        sig, E_star = v["sigma"], v["E"] / (1 - v["nu"] ** 2)
         beta = sig / v["sigma_beta"]
-        eta = v["eta_beta_sigma"] / (beta * sig)
-        KE = asperity_constant(eta, beta, sig) * E_star
+        KE = asperity_constant(v["eta_beta_sigma"] / (beta * sig), beta, sig) * E_star
         return Roughness(sig, asperity=greenwood_tripp(KE, sig), share=-1.0, mu_b=v["mu_b"])
 
     @classmethod
@@ -119,7 +111,11 @@ class StribeckCase:
         """
         R, U0 = v["R"], cls.speeds(v)[0]
         ref = hertz(v["W"], R, v["E"], v["nu"], line=True)
-        h_r = rigid_clearance(v["W"] / v["steps"], v["mu"], U0, R)
+        # the rigid film at W/steps, at least σ (the asperities' scale at creeping speeds)
+        h_r = max(rigid_clearance(v["W"] / v["steps"], v["mu"], U0, R), v["sigma"])
+        # the film's flux scale: Couette U h_r, at least the Poiseuille flux σ³p₀/(12μa)
+        # of a σ-thick gap under the contact pressure (the tolerances at creeping speeds)
+        U_floor = v["sigma"] ** 3 * ref.p0 / (12 * v["mu"] * ref.a * h_r)
         x_l, h_fine = 4 * ref.a, ref.a / (8 * 2 ** v["mesh"])
         msh, ft = roller(R, x_l, h_fine, R / 4, x_l, comm)
         mu_s, lm = lame_parameters(v["E"], v["nu"])
@@ -134,11 +130,12 @@ class StribeckCase:
         film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v["mu"], V_counter=speed,
                     roughness=cls.roughness(v) if rough else None,
                     eps=1e-4 * 24 * v["mu"] * R / h_r**2, p_c=ref.p0, film_scale=h_r,
-                    speed_scale=U0, rtol=1e-8)
+                    speed_scale=max(U0, U_floor), rtol=1e-8)
         film.add_pressure_bc()
         film.counterpart.offset.value[1] = -h_r
         problem = None if shape else Problem([body, film], name="stribeck", max_it=30)
-        return {"body": body, "film": film, "problem": problem, "speed": speed, "ref": ref}
+        return {"body": body, "film": film, "problem": problem, "speed": speed, "ref": ref,
+                "U_floor": U_floor}
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
@@ -182,7 +179,7 @@ class StribeckCase:
         # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
         # film's 1/h; steeper once the asperities carry: at least 1/σ)
         held = HeldResponse(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
-            film.min_film(), v["sigma"]) if inner.history else 1.0 / h_r)
+            film.min_film(), v["sigma"]) if inner.history else 1.0 / max(h_r, v["sigma"]))
         its = []
         Continuation(held, held, response=lambda: held.target, record=its).march(
             v["W"], v["steps"])
@@ -211,7 +208,7 @@ class StribeckCase:
     def set_speed(run, U):
         """Sliding speed U (mm/s); the flux scale U h_r of the tolerances follows it."""
         run["speed"].value[0] = U
-        run["film"].set_scales(speed_scale=U)
+        run["film"].set_scales(speed_scale=max(U, run["U_floor"]))
 
     @staticmethod
     def measures(run, v):
@@ -224,14 +221,15 @@ class StribeckCase:
                 "film_load_fraction": float(F[1] - Fa[1]) / float(F[1]),
                 "lambda_ratio": h_c / v["sigma"], "h_central": h_c,
                 "h_min": float(prof["h"].min()), "W": float(F[1]),
-                "p_max": float(prof["p"].max())}
+                "p_max": float(prof["p"].max()),
+                "p_total_max": float((prof["p"] + prof.get("p_a", 0.0)).max())}
 
     @staticmethod
     def report(rows, record):
         """Per-speed lists and the curve for the plot."""
         units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
                  "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm",
-                 "p_max": "MPa",
+                 "p_max": "MPa", "p_total_max": "MPa",
                  "newton_iterations": "-"}
         for key, unit in units.items():
             record.result(key if key != "U" else "speeds", [r[key] for r in rows], unit)

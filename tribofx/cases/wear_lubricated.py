@@ -29,11 +29,9 @@ Results per step: ``time``, ``wear_volume`` (worn area per unit length, mm²),
 
 import math
 
-import numpy as np
 from mpi4py import MPI
 
 from ..continuation import ConstantParameter
-from ..forms.mixed import GT_FIT
 from ..held_response import ResponseControl
 from ..interfaces import Wear
 from ..params import InputError, Param
@@ -179,15 +177,10 @@ class WearLubricatedCase:
                           "s, mm (worn configuration, nodes of the film face by X̂₀)")
         prof = run["film"].profile()
         if prof is not None:
-            KE = run["film"].roughness.asperity.parameters["KE"]
-            A, Hc, n = GT_FIT
-            p_a = KE * A * np.maximum(Hc - prof["h"] / v["sigma"], 0.0) ** n
-            record.result("final_film", {"x": prof["X"][:, 0].tolist(),
-                                         "h": prof["h"].tolist(), "p": prof["p"].tolist(),
-                                         "p_a": p_a.tolist()}, "mm, MPa")
-            record.profile = {**hist, **state, "film": {
-                "x": prof["X"][:, 0].tolist(), "h": prof["h"].tolist(),
-                "p": prof["p"].tolist(), "p_a": p_a.tolist()}}
+            film = {"x": prof["X"][:, 0].tolist(),
+                    **{k: prof[k].tolist() for k in ("h", "p", "p_a")}}
+            record.result("final_film", film, "mm, MPa")
+            record.profile = {**hist, **state, "film": film}
 
     @staticmethod
     def vtx_fields(run):

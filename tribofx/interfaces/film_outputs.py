@@ -92,7 +92,7 @@ class FilmOutputs:
         return not self.require_open or (self.has_fluid() and self.min_film() > 0)
 
     def profile(self, everywhere=False):
-        """Nodal X, x (current), y (projection), h, p (and λ) of Γ_l, sorted by X₀.
+        """Nodal X, x (current), y (projection), h, p (λ, p_a) of Γ_l, sorted by X₀.
 
         On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
         are P1 nodal values (the trace interpolated at the vertices).
@@ -107,4 +107,17 @@ class FilmOutputs:
              "h": self._film_thickness()[:n].copy(), "p": self.p.x.array[:n].copy()}
         if self.lam is not None:
             d["lam"] = self.lam.x.array[:n].copy()
+        if self.asperity is not None:
+            d["p_a"] = self._asperity_pressure(d["h"], n)
         return self._gather(d, "X", everywhere)
+
+    def _asperity_pressure(self, h, n):
+        """Nodal asperity pressure p_a(h) (MPa) of the roughness's law at the nodal gaps."""
+        if getattr(self, "_pa_nodal", None) is None:
+            hf, out = fem.Function(self.Q), fem.Function(self.Q)
+            expr = fem.Expression(self._rough[2](hf), self.Q.element.interpolation_points)
+            self._pa_nodal = (hf, out, expr)
+        hf, out, expr = self._pa_nodal
+        hf.x.array[:n] = h
+        out.interpolate(expr)
+        return out.x.array[:n].copy()
