@@ -167,7 +167,9 @@ if args.out:
 
 # +
 assert abs(on_upper[1] / W - 1) < 1e-5
-assert np.allclose(on_upper, -on_lower, rtol=1e-12, atol=0)
+# the same nodal tractions summed twice: round-off of W (the friction component, 1e-6 W
+# in pure rolling, is not compared relative to itself)
+assert np.allclose(on_upper, -on_lower, rtol=0, atol=1e-12 * W)
 for b in (upper, lower):
     assert max(balance) < 2 * b.V.dofmap.index_map.size_global * b.tolerances()[b.u].atol
 tol = ref.p0 / ref.E_star + (ref.a / ref.R_star) ** 2

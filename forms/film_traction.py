@@ -80,7 +80,7 @@ def countersurface_traction(p, grad_gamma_p, kin, mu, factors=None):
     of S (the reference surface for the linear model); integrate with ds_S =
     ``kin.stretch`` dS.  The film's force on a rigid counterpart: the friction a
     rig measures on it.  ``factors``: (c, d) in place of μ/h and h/2 (a rough film's,
-    ``wall="counter"`` of :func:`forms.mixed.rough_shear_factors`).
+    :func:`forms.mixed.rough_shear_factors`).
     """
     c, d = factors if factors is not None else (mu / kin.h, kin.h / 2)
     v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter

@@ -137,26 +137,26 @@ def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_
                            A3 * Hc ** (a4 - 1) * ufl.exp(-a5 * Hc + a6 * Hc**2), 0.0)
 
 
-def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, share,
-                        wall="layer"):
-    """Return the factors of the wall shear of a rough film (Patir & Cheng 1979).
+def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, share):
+    """Return the factors of the wall traction of a rough film (Patir & Cheng 1979).
 
-    The mean shear on a wall is (μ Δv/σ)(φ_f/H ∓ s Φ_fs/H) + φ_fp (h_T/2) grad p
-    (H = h/σ, nominal), − on the layer (the share s = +1 when it alone is rough),
-    + on the countersurface.  A smooth wall facing a rough one takes φ_f + Φ_fs:
-    with no mean pressure gradient the local pressure of the roughness's wedges,
-    high on the flanks where the gap closes along the sliding, gives the mean
-    Poiseuille shear −½⟨p ∂h/∂x⟩ > 0 on both walls, added on the smooth wall, and
-    taken off the rough wall's viscous shear (whose form drag makes it up: the
-    forces on the two walls balance).  Returns (c, d) that replace
-    μ/h and h/2 of the smooth traction (:func:`forms.film_traction.fluid_traction`,
-    ``factors=``); ``couette``, ``poiseuille``, ``roughness_shear`` the factor laws
-    of H (None: 0 for Φ_fs); the Poiseuille part on the expected gap h_T.
+    The tangential traction on either wall is (μ Δv/σ)(φ_f/H + |s| Φ_fs/H) +
+    φ_fp (h_T/2) grad p (H = h/σ, nominal; s the share of the roughness).  Patir
+    and Cheng's mean *viscous* shear is φ_f ∓ s Φ_fs on the two walls: with no
+    mean pressure gradient the roughness's local wedges (pressure high on the
+    flanks where the gap closes along the sliding) add the mean Poiseuille shear
+    −½⟨p ∂h/∂x⟩ on the smooth wall and take it off the rough wall's viscous shear,
+    whose asperity flanks carry it back as form drag.  A body feels the total
+    (viscous shear and form drag), and the two walls' totals balance: φ_f + |s| Φ_fs
+    on both.  Returns (c, d) that replace μ/h and h/2 of the smooth traction
+    (:func:`forms.film_traction.fluid_traction`, ``factors=``); ``couette``,
+    ``poiseuille``, ``roughness_shear`` the factor laws of H (None: 0 for Φ_fs);
+    the Poiseuille part on the expected gap h_T.
     """
     H = h / sigma
     c = couette(H)
     if roughness_shear is not None and share:
-        c = c + (-share if wall == "layer" else share) * roughness_shear(H)
+        c = c + abs(share) * roughness_shear(H)
     return (mu / sigma) * c, 0.5 * expected_gap(h, sigma) * poiseuille(H)
 
 

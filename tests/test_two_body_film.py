@@ -136,7 +136,8 @@ def test_each_body_balances_the_film():
         bound = 2 * body.V.dofmap.index_map.size_global * atol
         for c in range(2):
             assert abs(body.reaction("loaded", c) + f[c]) < bound
-    assert np.allclose(on_slave, -on_master, rtol=1e-14, atol=0)
+    # the same nodal tractions summed twice: round-off of the largest component
+    assert np.allclose(on_slave, -on_master, rtol=0, atol=1e-13 * np.abs(on_slave).max())
 
 
 def test_rigid_master_reproduces_the_rigid_film():

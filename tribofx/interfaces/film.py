@@ -314,12 +314,12 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
                                                     r.mu_b, r.eps_v)
             self.traction = self.traction + self.asperity
 
-    def shear_factors(self, h, wall="layer"):
-        """Return the rough film's (c, d) in place of μ/h and h/2 on ``wall``, or None."""
+    def shear_factors(self, h):
+        """Return the rough film's (c, d) in place of μ/h and h/2 (both walls), or None."""
         if self._rough is None or self._rough[3] is None:
             return None
         r = self.roughness
-        return mixed.rough_shear_factors(h, self.mu_p, r.sigma, *self._rough[3], r.share, wall)
+        return mixed.rough_shear_factors(h, self.mu_p, r.sigma, *self._rough[3], r.share)
 
     def _mirror(self, constant):
         copy = fem.Constant(self.sub, np.array(constant.value, dtype=float))

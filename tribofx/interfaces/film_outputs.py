@@ -24,7 +24,7 @@ class FilmOutputs:
             gdim = self.body.gdim
             counter = ft.countersurface_traction(
                 self.p, self.grad_gamma(self.p), self.kin, self.mu_p,
-                factors=self.shear_factors(self.kin.h, wall="counter"))
+                factors=self.shear_factors(self.kin.h))
             self._post = {
                 "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
                           for i in range(gdim)],
