@@ -268,9 +268,14 @@ def test_rough_film_tangent_is_exact():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 
 
+@pytest.mark.slow
 @pytest.mark.mpi
 def test_parallel_matches_serial():
-    """The mixed film at two speeds (full film, then λ ≈ 0.8): 2 ranks = 1 (secant 1e-7)."""
+    """The mixed film at two speeds (full film, then λ ≈ 0.8): 2 ranks = 1 (secant 1e-7).
+
+    Slow (``--runslow``): the running-in's parity test (``tests/test_wear_lubricated.py``)
+    runs the same film through the same speeds (1000 → 10 mm/s), and wears it.
+    """
     if MPI.COMM_WORLD.size < 2:
         pytest.skip("run under mpiexec -n 2")
     out = []
