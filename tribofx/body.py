@@ -25,7 +25,7 @@ elements of a nearly incompressible solid (the O-ring's elastomer).
 
 import numpy as np
 import ufl
-from dolfinx import fem
+from dolfinx import fem, la
 from mpi4py import MPI
 
 from .forms import ale
@@ -224,8 +224,15 @@ class Body:
         Vc = self.Vw.sub(component)
         dofs = fem.locate_dofs_topological(Vc, fdim, self.facets(name))
         if except_on is not None:
-            dofs = np.setdiff1d(dofs, fem.locate_dofs_topological(
-                Vc, fdim, self.facets(except_on))).astype(np.int32)
+            # a node of ``except_on`` may lie on a rank that holds none of its facets:
+            # mark the nodes on the ranks that do and share the marks (owner and ghosts)
+            V0, parent = Vc.collapse()
+            mark = fem.Function(V0)
+            mark.x.array[fem.locate_dofs_topological(V0, fdim, self.facets(except_on))] = 1
+            mark.x.scatter_reverse(la.InsertMode.add)
+            mark.x.scatter_forward()
+            free = np.asarray(parent).ravel()[np.flatnonzero(mark.x.array > 0)]
+            dofs = np.setdiff1d(dofs, free).astype(np.int32)
         self._w_bcs.append(fem.dirichletbc(fem.Constant(self.mesh, 0.0), dofs, Vc))
 
     # -- kinematics ----------------------------------------------------------------
