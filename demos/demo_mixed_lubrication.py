@@ -132,7 +132,7 @@ for n in range(nsteps + 1):
     history.append({"time": n * dt, "wear_area": wear.worn_volume(),
                     "archard_rate": k * V * float(np.sum(ds * (p_a[1:] + p_a[:-1]) / 2)),
                     "max_depth": wear.max_depth(),
-                    "asperity_load": float(film.asperity_force()[1]),
+                    "asperity_load": m["asperity_load"],
                     "film_load_fraction": m["film_load_fraction"],
                     "friction_coefficient": m["friction_coefficient"], "h_min": m["h_min"]})
 if comm.rank == 0:

@@ -128,8 +128,8 @@ def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_
     """Roughness shear factor over H, Φ_fs(H)/H (Patir & Cheng 1979, isotropic).
 
     Φ_fs = A3 H^a4 e^{−a5 H + a6 H²} for 0.5 ≤ H ≤ 7, 0 above (the fit is 0.013
-    at 7), H held at 0.5 below; the wall shear of a surface gains
-    ± (μ Δv/σ) s Φ_fs/H with the share s of the roughness
+    at 7), H held at 0.5 below; the traction on either wall gains
+    (μ Δv/σ) |s| Φ_fs/H with the share s of the roughness
     (:func:`rough_shear_factors`).
     """
     Hc = ufl.min_value(ufl.max_value(H, 0.5), H_max)

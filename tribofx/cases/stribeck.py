@@ -212,13 +212,14 @@ class StribeckCase:
 
     @staticmethod
     def measures(run, v):
-        """Return friction coefficient, film load fraction, λ = h_c/σ, h_central, h_min, p_max."""
+        """Return friction coefficient, film and asperity loads, λ = h_c/σ, h, p maxima."""
         film = run["film"]
         F, Fa = film.force(), film.asperity_force()
         prof = film.profile(everywhere=True)
         h_c = float(prof["h"][np.argmin(np.abs(prof["X"][:, 0]))])
         return {"friction_coefficient": abs(float(F[0])) / float(F[1]),
                 "film_load_fraction": float(F[1] - Fa[1]) / float(F[1]),
+                "asperity_load": float(Fa[1]),
                 "lambda_ratio": h_c / v["sigma"], "h_central": h_c,
                 "h_min": float(prof["h"].min()), "W": float(F[1]),
                 "p_max": float(prof["p"].max()),

@@ -114,7 +114,7 @@ class WearLubricatedCase:
             lambda: math.log(max(float(film.force()[1]), 1e-300)), math.log(v["W"]),
             predictor=predictor, slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]),
             rtol=1e-7, max_trials=30))
-        run.update(wear=wear, stepper=stepper, problem=stepper.problem, speeds=s, track=track)
+        run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
         return run
 
     @classmethod
@@ -127,17 +127,15 @@ class WearLubricatedCase:
         keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
                 "film_load_fraction", "friction_coefficient", "h_central", "h_min",
                 "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
-        sr = SlowRun(stepper, v, record, keys,
-                     {"displacement": [run["body"].u, run["body"].w]}, resume)
+        sr = SlowRun(stepper, v, record, keys, cls.vtx_fields(run), resume)
         state = sr.history.setdefault("state", {"profiles": [], "times": []})
 
         def log(t, its, dt, error=None, rejected=0):
             m = StribeckCase.measures(run, v)
-            Fa = film.asperity_force()
             sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
-                         "max_wear_depth": wear.max_depth(), "asperity_load": float(Fa[1]),
-                         **{k: m[k] for k in ("film_load_fraction", "friction_coefficient",
-                                              "h_central", "h_min")},
+                         "max_wear_depth": wear.max_depth(),
+                         **{k: m[k] for k in ("asperity_load", "film_load_fraction",
+                                              "friction_coefficient", "h_central", "h_min")},
                          "wear_rate_integral": wear.wear_rate_integral(),
                          "newton_iterations": its, "error_estimate": error,
                          "rejected": rejected})

@@ -270,9 +270,9 @@ def plot_running_in(profile, path):
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
     cmap = plt.get_cmap("viridis")
     times = profile["times"]
+    X0 = np.asarray(profile["profiles"][0])
     for i, (t, X) in enumerate(zip(times, profile["profiles"])):
         X = np.asarray(X)
-        X0 = np.asarray(profile["profiles"][0])
         a1.plot(X[:, 0], 1e3 * (X[:, 1] - X0[:, 1]), color=cmap(i / max(len(times) - 1, 1)),
                 label=f"t = {t:.0f} s" if i in (0, len(times) - 1) else None)
     a1.set_xlabel("x (mm)")
