@@ -1,8 +1,10 @@
-"""The Stribeck curve of a soft cylinder sliding on a rough rigid plane (issue 32, mixed EHL).
+"""The Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (issue 32).
 
-``stribeck`` — a neo-Hookean cylinder (radius R, plane strain, both sides of
-the contact modelled) at rest under the load W (N/mm) on a rigid plane that
-slides at U (mm/s) under it; the film between them is the chapter's
+``stribeck`` — a neo-Hookean cylinder (``geometry=cylinder``: radius R, plane
+strain, both sides of the contact modelled, W in N/mm) or ball (``geometry=ball``:
+the quarter model of ``ehl-ball``, W in N on the whole ball) at rest on a rigid
+plane that slides at U (mm/s) under it (:mod:`.stribeck_geometry`); the film
+between them is the chapter's
 :class:`~tribofx.interfaces.Film` with a :class:`~tribofx.roughness.Roughness`:
 the average-flow Reynolds equation (Patir–Cheng flow factors) and the
 Greenwood–Tripp asperity pressure p_a(h) with boundary friction μ_b p_a, the
@@ -11,7 +13,7 @@ W = ∫ (p + p_a) — the film alone at high speed (λ = h_c/σ ≳ 3), the aspe
 alone at low speed, mixed between.
 
 The load is reached at the highest speed by the approach of the plane (a secant
-on 1/W inside a load march), then the speed is marched down through
+on log W inside a load march), then the speed is marched down through
 ``speeds`` (geometric steps, cut on failure), W held by the approach at each.
 
 Asperity data: σ (mm, combined RMS), ``eta_beta_sigma`` (ηβσ), ``sigma_beta`` (σ/β):
@@ -19,7 +21,7 @@ K = (16√2/15)π(ηβσ)²√(σ/β), E* = E/(1 − ν²); the defaults (0.1, 0
 counterface (machined metals, Greenwood & Williamson 1966: 0.03–0.05, 1e-4–1e-2).
 
 Results per speed: ``friction_coefficient`` (the tangential force on the
-cylinder over W: fluid shear plus μ_b times the asperity load),
+body over W: fluid shear plus μ_b times the asperity load),
 ``film_load_fraction`` (film load / W), ``lambda_ratio`` (h_c/σ), ``h_central``,
 ``h_min``, ``p_max`` (film), ``p_total_max`` (film and asperities),
 ``newton_iterations``; ``stribeck.png``.  Units: mm, N, s, MPa.
@@ -28,21 +30,15 @@ cylinder over W: fluid shear plus μ_b times the asperity load),
 import math
 
 import numpy as np
-from dolfinx import fem
 from mpi4py import MPI
 
-from ..body import Body
 from ..continuation import ConstantParameter, Continuation
-from ..forms.hyperelastic import lame_parameters
 from ..forms.mixed import asperity_constant
 from ..held_response import HeldResponse
-from ..interfaces import Film
-from ..meshes.roller import ROLLER_NAMES, roller
-from ..obstacles import rigid_plane
 from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence, Problem
-from ..references import hertz, rigid_clearance
 from ..roughness import Roughness, greenwood_tripp
+from . import stribeck_geometry as geometry
 
 __all__ = ["StribeckCase"]
 
@@ -51,11 +47,14 @@ class StribeckCase:
     """Case ``stribeck``; see the module docstring."""
 
     name = "stribeck"
-    doc = "Stribeck curve of a soft cylinder sliding on a rough rigid plane (mixed EHL)"
+    doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
     params = (
-        Param("W", float, 0.5, "N/mm", "load per unit length", lower=0.0),
-        Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
-        Param("E", float, 10.0, "MPa", "Young's modulus of the cylinder", lower=0.0),
+        Param("geometry", str, "cylinder", "-", "cylinder (plane strain) or ball (3D quarter)",
+              choices=("cylinder", "ball")),
+        Param("W", float, 0.5, "N/mm | N", "load per unit length (cylinder), on the ball (ball)",
+              lower=0.0),
+        Param("R", float, 10.0, "mm", "radius", lower=0.0),
+        Param("E", float, 10.0, "MPa", "Young's modulus of the body", lower=0.0),
         Param("nu", float, 0.45, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
         Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
         Param("sigma", float, 1e-3, "mm", "combined RMS roughness σ (on the plane)",
@@ -86,12 +85,12 @@ class StribeckCase:
     def validate(cls, v):
         """Bad input: a one-line error."""
         U = cls.speeds(v)
-        ref = hertz(v["W"], v["R"], v["E"], v["nu"], line=True)
-        if not 0 < rigid_clearance(v["W"], v["mu"], U[0], v["R"]) < 0.05 * v["R"]:
-            raise InputError("the rigid film at the first speed is not thin: W, mu or speeds "
+        a = geometry.hertz_contact(v).a
+        if not 0 < geometry.first_film(v, U[0], v["W"]) < 0.05 * v["R"]:
+            raise InputError("the film at the first speed is not thin: W, mu or speeds "
                              "out of range")
-        if 4 * ref.a > 0.5 * v["R"]:
-            raise InputError(f"load too large: the film (4a = {4 * ref.a:.3g} mm) exceeds R/2")
+        if 4 * a > 0.5 * v["R"]:
+            raise InputError(f"load too large: the film (4a = {4 * a:.3g} mm) exceeds R/2")
 
     @staticmethod
     def roughness(v):
@@ -103,39 +102,20 @@ class StribeckCase:
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD, rough=True, shape=False):
-        """Cylinder, rough film and problem; the plane at Martin's film of W/steps.
+        """Body, rough film and problem at the first speed (:mod:`.stribeck_geometry`).
 
         ``rough=False``: the same film on smooth surfaces (the chapter's).
-        ``shape=True``: the cylinder carries a shape field (wear) and no Problem is
-        built (the slow-time stepper builds it: ``run["problem"]`` is None).
+        ``shape=True`` (cylinder): the body carries a shape field (wear) and no Problem
+        is built (the slow-time stepper builds it: ``run["problem"]`` is None).
         """
-        R, U0 = v["R"], cls.speeds(v)[0]
-        ref = hertz(v["W"], R, v["E"], v["nu"], line=True)
-        # the rigid film at W/steps, at least σ (the asperities' scale at creeping speeds)
-        h_r = max(rigid_clearance(v["W"] / v["steps"], v["mu"], U0, R), v["sigma"])
-        # the film's flux scale: Couette U h_r, at least the Poiseuille flux σ³p₀/(12μa)
-        # of a σ-thick gap under the contact pressure (the tolerances at creeping speeds)
-        U_floor = v["sigma"] ** 3 * ref.p0 / (12 * v["mu"] * ref.a * h_r)
-        x_l, h_fine = 4 * ref.a, ref.a / (8 * 2 ** v["mesh"])
-        msh, ft = roller(R, x_l, h_fine, R / 4, x_l, comm)
-        mu_s, lm = lame_parameters(v["E"], v["nu"])
-        body = Body(msh, ft, ROLLER_NAMES, "plane_strain",
-                    ("neo-hookean", {"mu": mu_s, "lmbda": lm}), name="cylinder",
-                    shape=shape, aux=(v["E"], 0.3))
-        body.add_dirichlet("loaded", np.zeros(2))
-        for i in range(2 if shape else 0):   # only the film face wears: the rest keeps its shape
-            body.add_shape_dirichlet("loaded", i)
-            body.add_shape_dirichlet("free", i, except_on="lubricated")
-        speed = fem.Constant(msh, np.array([U0, 0.0]))
-        film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v["mu"], V_counter=speed,
-                    roughness=cls.roughness(v) if rough else None,
-                    eps=1e-4 * 24 * v["mu"] * R / h_r**2, p_c=ref.p0, film_scale=h_r,
-                    speed_scale=max(U0, U_floor), rtol=1e-8)
-        film.add_pressure_bc()
-        film.counterpart.offset.value[1] = -h_r
-        problem = None if shape else Problem([body, film], name="stribeck", max_it=30)
-        return {"body": body, "film": film, "problem": problem, "speed": speed, "ref": ref,
-                "U_floor": U_floor}
+        U0, law = cls.speeds(v)[0], cls.roughness(v) if rough else None
+        if v["geometry"] == "ball":
+            run = geometry.ball(v, U0, law, comm)
+        else:
+            run = geometry.cylinder(v, U0, law, comm, shape)
+        run["problem"] = None if shape else Problem([run["body"], run["film"]],
+                                                    name="stribeck", max_it=30)
+        return run
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
@@ -172,9 +152,9 @@ class StribeckCase:
         square root.
         """
         film, problem = run["film"], run["problem"]
-        h_r = -float(film.counterpart.offset.value[1])
-        inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
-                             response=lambda: math.log(max(film.force()[1], 1e-300)),
+        h_r = -float(film.counterpart.offset.value[run["axis"]])
+        inner = Continuation(problem, ConstantParameter(film.counterpart.offset, run["axis"]),
+                             response=lambda: math.log(max(run["load"](), 1e-300)),
                              rtol=1e-7, max_trials=30, verbose=verbose)
         # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
         # film's 1/h; steeper once the asperities carry: at least 1/σ)
@@ -214,14 +194,15 @@ class StribeckCase:
     def measures(run, v):
         """Return friction coefficient, film and asperity loads, λ = h_c/σ, h, p maxima."""
         film = run["film"]
+        n, W = run["axis"], run["load"]()
         F, Fa = film.force(), film.asperity_force()
         prof = film.profile(everywhere=True)
-        h_c = float(prof["h"][np.argmin(np.abs(prof["X"][:, 0]))])
-        return {"friction_coefficient": abs(float(F[0])) / float(F[1]),
-                "film_load_fraction": float(F[1] - Fa[1]) / float(F[1]),
-                "asperity_load": float(Fa[1]),
+        h_c = float(prof["h"][np.argmin(np.linalg.norm(prof["X"][:, :n], axis=1))])
+        return {"friction_coefficient": abs(float(F[0])) / float(F[n]),
+                "film_load_fraction": float(F[n] - Fa[n]) / float(F[n]),
+                "asperity_load": float(Fa[n]) * W / float(F[n]),
                 "lambda_ratio": h_c / v["sigma"], "h_central": h_c,
-                "h_min": float(prof["h"].min()), "W": float(F[1]),
+                "h_min": float(prof["h"].min()), "W": W,
                 "p_max": float(prof["p"].max()),
                 "p_total_max": float((prof["p"] + prof.get("p_a", 0.0)).max())}
 
@@ -229,7 +210,7 @@ class StribeckCase:
     def report(rows, record):
         """Per-speed lists and the curve for the plot."""
         units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
-                 "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm",
+                 "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm | N",
                  "p_max": "MPa", "p_total_max": "MPa",
                  "newton_iterations": "-"}
         for key, unit in units.items():

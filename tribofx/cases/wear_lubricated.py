@@ -41,7 +41,7 @@ from .stribeck import StribeckCase
 
 __all__ = ["WearLubricatedCase"]
 
-_SHARED = [p for p in StribeckCase.params if p.name not in ("speeds",)]
+_SHARED = [p for p in StribeckCase.params if p.name not in ("speeds", "geometry")]
 
 
 class WearLubricatedCase:
@@ -74,7 +74,7 @@ class WearLubricatedCase:
             raise InputError("V must be below U_start (W is reached at U_start)")
         if v["tol"] > 0 and v["scheme"] != "bdf2":
             raise InputError("tol > 0 (error control) needs scheme=bdf2")
-        StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}"))
+        StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
 
     @staticmethod
     def progress_total(v):
@@ -88,7 +88,7 @@ class WearLubricatedCase:
         Returns the run dict of :meth:`StribeckCase.build` with ``wear`` and
         ``stepper``; ``problem`` is the stepper's monolithic Problem.
         """
-        s = dict(v, speeds=f"{v['U_start']},{v['V']}")
+        s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
         run = StribeckCase.build(s, comm, shape=True)
         film = run["film"]
         wear = Wear(film, k=v["k"], speed=v["V"],
