@@ -21,10 +21,13 @@ backward-Euler step).  Between steps (before the first) the rate weight 1/Δt is
 0 and the film is the steady one, so a steady solve gives the initial state.
 """
 
+import dataclasses
+
 import basix.ufl
 import numpy as np
 from dolfinx import fem
 
+from ..forms import mixed
 from ..forms import squeeze as sq
 from ..forms import wear as wf
 
@@ -137,8 +140,15 @@ class TransientFilm:
         """Nothing: the outputs of the step keep its rates (the next step resets them)."""
 
     def _content(self):
-        """UFL content ρ θ h J_S w per unit reference measure (h, J_S: any ``kin`` of the film)."""
-        return sq.film_content(self.kin, self.lam, self.rho_p, self.w_film)
+        """UFL content ρ θ h J_S w per unit reference measure (h, J_S: any ``kin`` of the film).
+
+        A rough film with average flow stores the expected gap h_T(h) (Patir & Cheng:
+        the squeeze term is ∂h_T/∂t), the gap its flux is written on.
+        """
+        kin, rough = self.kin, getattr(self, "_rough", None)
+        if rough is not None and rough[0] is not None:
+            kin = dataclasses.replace(kin, h=mixed.expected_gap(kin.h, self.roughness.sigma))
+        return sq.film_content(kin, self.lam, self.rho_p, self.w_film)
 
     def content(self):
         """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks; form compiled once).
