@@ -138,7 +138,7 @@ class StribeckCase:
             err.problem = run
             raise
         finally:
-            cls.report(rows, record)
+            cls.report(rows, record, v["geometry"])
         return run
 
     @staticmethod
@@ -207,7 +207,7 @@ class StribeckCase:
                 "p_total_max": float((prof["p"] + prof.get("p_a", 0.0)).max())}
 
     @staticmethod
-    def report(rows, record):
+    def report(rows, record, geometry="cylinder"):
         """Per-speed lists and the curve for the plot."""
         units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
                  "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm | N",
@@ -216,7 +216,7 @@ class StribeckCase:
         for key, unit in units.items():
             record.result(key if key != "U" else "speeds", [r[key] for r in rows], unit)
         if MPI.COMM_WORLD.rank == 0 and rows:
-            record.profile = {"rows": rows}
+            record.profile = {"rows": rows, "geometry": geometry}
 
     @staticmethod
     def vtx_fields(run):
@@ -228,4 +228,4 @@ class StribeckCase:
         """``stribeck.png``: friction coefficient and film load fraction against speed."""
         from ..plots.film import plot_stribeck
 
-        plot_stribeck(profile["rows"], outdir / "stribeck.png")
+        plot_stribeck(profile["rows"], outdir / "stribeck.png", profile.get("geometry", "cylinder"))

@@ -244,7 +244,7 @@ def plot_squeeze(profile, outdir):
     _save(plt, fig, Path(outdir) / "squeeze_profiles.png")
 
 
-def plot_stribeck(rows, path):
+def plot_stribeck(rows, path, body="cylinder"):
     """Friction coefficient and film load fraction against speed (log), λ = h_c/σ on top."""
     plt = pyplot()
     U = [r["U"] for r in rows]
@@ -252,7 +252,7 @@ def plot_stribeck(rows, path):
     a1.loglog(U, [r["friction_coefficient"] for r in rows], "o-", color="C3")
     a1.set_ylabel("friction coefficient")
     a1.grid(alpha=0.3, which="both")
-    a1.set_title("Stribeck curve: soft cylinder on a rough plane")
+    a1.set_title(f"Stribeck curve: soft {body} on a rough plane")
     for r in rows:
         a1.annotate(f"λ={r['lambda_ratio']:.2g}", (r["U"], r["friction_coefficient"]),
                     fontsize=7, textcoords="offset points", xytext=(3, 4))
