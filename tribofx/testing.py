@@ -28,7 +28,7 @@ import numpy as np
 from petsc4py import PETSc
 
 __all__ = ["block_taylor_orders", "block_vector", "exact_tangent", "form_taylor_orders",
-           "owned_arrays", "smooth_direction", "taylor_orders"]
+           "owned_arrays", "penalty_film_directions", "smooth_direction", "taylor_orders"]
 
 
 def _replicated(problem, f):
@@ -63,6 +63,21 @@ def smooth_direction(f, scale, seed):
     d.interpolate(lambda x: scale * np.array([np.sin(ci[0] + 2 * ci[1] * x[0] + 3 * ci[2] * x[1])
                                               for ci in c]))
     return d
+
+
+def penalty_film_directions(problem, p, seed, scale=1e-7, p_scale=1e-4):
+    """Owned random directions of every unknown; the film pressure ``p`` off its kink.
+
+    A penalty film's ε⁻¹ min(p, 0) has a kink at p = 0 (semismooth), where no
+    tangent is exact: p (a Function among ``problem.u``) is moved only where
+    p > 0.01 p_max, by ``p_scale``; the other unknowns everywhere by ``scale``.
+    """
+    rng = np.random.default_rng(seed)
+    dirs = [scale * rng.standard_normal(len(f.x.array)) for f in problem.u]
+    k = [i for i, f in enumerate(problem.u) if f is p][0]
+    a = p.x.array
+    dirs[k] = np.where(a > 0.01 * a.max(), p_scale * rng.standard_normal(len(a)), 0.0)
+    return owned_arrays(problem, dirs)
 
 
 def block_vector(problem, arrays):

@@ -110,6 +110,8 @@ class StribeckCase:
         """
         U0, law = cls.speeds(v)[0], cls.roughness(v) if rough else None
         if v["geometry"] == "ball":
+            if shape:
+                raise ValueError("a worn ball (shape=True) is not built: geometry=cylinder")
             run = geometry.ball(v, U0, law, comm)
         else:
             run = geometry.cylinder(v, U0, law, comm, shape)
