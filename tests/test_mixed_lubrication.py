@@ -13,7 +13,7 @@ from dolfinx import fem
 from mpi4py import MPI
 from tribofx.forms import mixed
 from tribofx.forms.hyperelastic import lame_parameters
-from tribofx.meshes.hertz import NAMES, hertz_body
+from tribofx.meshes.hertz import AXISYMMETRIC_NAMES, NAMES, hertz_body
 
 from tribofx.body import Body
 from tribofx.cases.stribeck import StribeckCase
@@ -272,6 +272,38 @@ def test_rough_flat_punch_separation():
     h = flat_punch_separation(P * B / b, sigma, KE)
     assert np.allclose(prof["h"], h, rtol=1e-6, atol=0), (prof["h"], h)
     assert abs(film.asperity_force()[1] / (P * B) + 1) < 1e-8
+
+
+def test_rough_axisymmetric_punch_separation():
+    """The rough flat punch revolved: a cylinder of radius B pressed on a rough plane at rest.
+
+    As the plane-strain punch, with the weights of a surface of revolution: the
+    dead traction P on the base (area πB²) is balanced by the asperity pressure
+    on the current end face of radius b, p_a = P B²/b², so h solves
+    p_a = K E* F_{5/2}(h/σ) (:func:`flat_punch_separation`), and the asperity
+    force is −P πB² (the revolved body's, N).  Solver tolerance 1e-10: h to 1e-6,
+    the force to 1e-8.
+    """
+    B, E, nu, P, sigma, KE = 2.0, 10.0, 0.3, 0.02, 1e-3, 0.05
+    msh, ft = hertz_body(2, B, B / 8, B / 8, B, MPI.COMM_WORLD, block=B)
+    names = {"lubricated": AXISYMMETRIC_NAMES["contact"], "loaded": AXISYMMETRIC_NAMES["loaded"],
+             "axis": AXISYMMETRIC_NAMES["axis"]}
+    mu_s, lm = lame_parameters(E, nu)
+    body = Body(msh, ft, names, "axisymmetric", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
+                name="cylinder")
+    body.add_dirichlet("axis", 0.0, component=0)
+    body.add_traction("loaded", fem.Constant(msh, np.array([0.0, P])))   # up, to the plane
+    h0 = flat_punch_separation(P, sigma, KE)
+    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), 1e-7,
+                roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None),
+                film_scale=sigma, speed_scale=1.0, p_c=P)
+    film.add_pressure_bc(lambda X: X[0] > B * (1 - 1e-9))
+    Problem([body, film], name="punch_axi").solve()
+    prof = film.profile(everywhere=True)
+    b = prof["x"][:, 0].max()
+    h = flat_punch_separation(P * B**2 / b**2, sigma, KE)
+    assert np.allclose(prof["h"], h, rtol=1e-6, atol=0), (prof["h"], h)
+    assert abs(film.asperity_force()[1] / (P * math.pi * B**2) + 1) < 1e-8
 
 
 def test_rough_film_tangent_is_exact():

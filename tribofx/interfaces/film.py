@@ -205,8 +205,6 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         self.viscosity = self._viscosity_law.bind(sub)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, sub)
-        if roughness is not None and body.kind == "axisymmetric":
-            raise ValueError("roughness is implemented for plane-strain and 3D films")
         self.roughness = roughness
         self._rough = roughness.bind(sub) if roughness is not None else None
         self.p_c = fem.Constant(sub, float(p_c))
