@@ -315,6 +315,9 @@ class Stepper:
         theta, tau = self.wear.theta, self.cycle.period
         dW, its = self.run_cycle()
         rate_n = [wf.cycle_average_rate(d, tau) for d in dW]  # eq. 23
+        for w, r in zip(self.wears, rate_n):
+            if getattr(w, "_rate0", None) is not None:   # BDF2's first step: the rate at t_n
+                w._rate0 = r.copy()
         w0 = [w.body.w.x.array.copy() for w in self.wears]
         dw_prev = self._shape_step(rate_n, w0, out)
         if theta > 0:

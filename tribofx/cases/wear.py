@@ -164,8 +164,6 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
             if v["V"] <= 0:
                 raise InputError("mode=cyclic needs V > 0")
-            if v["scheme"] == "bdf2":
-                raise InputError("scheme=bdf2 is for the instantaneous rate (mode=steady)")
         if v["tol"] > 0 and (v["scheme"] != "bdf2" or v["study"] == "dt"):
             raise InputError("tol > 0 (error control) needs scheme=bdf2 (and no study=dt)")
         if WearPinCase.slow_step(v) > v["T"]:

@@ -94,7 +94,9 @@ class Wear:
         scheme: "theta" (the θ-scheme (28)) or "bdf2" (θ = 1 only: the
             variable-step BDF2 law in swept volumes,
             :func:`tribofx.forms.wear.shape_update_residual`; its first step, and
-            the first after a start, is backward Euler).
+            the first after a start, is backward Euler; with ``averaged`` the law is
+            driven by ``rate_bar`` of the new shape, the Stepper's Picard iteration of
+            cycles).
     """
 
     def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
@@ -114,9 +116,8 @@ class Wear:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
         if scheme not in ("theta", "bdf2"):
             raise ValueError(f"unknown scheme {scheme!r}: theta or bdf2")
-        if scheme == "bdf2" and (theta != 1 or averaged):
-            raise ValueError("scheme='bdf2' is implicit and instantaneous: theta=1, "
-                             "averaged=False")
+        if scheme == "bdf2" and theta != 1:
+            raise ValueError("scheme='bdf2' is implicit: theta=1")
         if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
             raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
         if averaged and len(drivers) > 1:
