@@ -96,8 +96,9 @@ class WearReciprocatingCase(ReciprocatingRun):
     name = "wear-reciprocating"
     doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
     params = (
-        Param("scheme", str, "explicit", "-", "θ-scheme on the slow time: explicit (θ=0) "
-              "or implicit (θ=1, Picard iteration of cycles)", choices=("explicit", "implicit")),
+        Param("scheme", str, "explicit", "-", "slow time: explicit (θ=0), implicit (θ=1) or "
+              "bdf2 (second order; both with the Picard iteration of cycles)",
+              choices=("explicit", "implicit", "bdf2")),
         Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
         Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
         Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
@@ -215,12 +216,12 @@ class WearReciprocatingCase(ReciprocatingRun):
             block.add_shape_dirichlet(name, c)
         contact = TwoBodyContact(pin, "contact", block, "top",
                                  rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
-        theta = 1.0 if v["scheme"] == "implicit" else 0.0
-        mu_f = v["friction"]
+        theta = 0.0 if v["scheme"] == "explicit" else 1.0
+        mu_f, sch = v["friction"], "bdf2" if v["scheme"] == "bdf2" else "theta"
         wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f, theta=theta,
-                        averaged=True, name="wear_pin")
+                        averaged=True, name="wear_pin", scheme=sch)
         wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f, theta=theta,
-                          averaged=True, name="wear_block")
+                          averaged=True, name="wear_block", scheme=sch)
 
         def drive(position):
             """Move the block's bottom to ``position``; the block translated as predictor."""
