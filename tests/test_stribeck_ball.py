@@ -63,9 +63,15 @@ def test_ball_mixed_film_tangent_is_exact():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 
 
+@pytest.mark.slow
 @pytest.mark.mpi
 def test_ball_parallel_matches_serial():
-    """The 3D mixed film at U = 10 mm/s: 2 ranks = 1 (the load secant stops within 1e-7)."""
+    """The 3D mixed film at U = 10 mm/s: 2 ranks = 1 (the load secant stops within 1e-7).
+
+    Slow (45 s on 2 ranks, ``--runslow``): the default suite runs the ball at 10 mm/s on
+    2 ranks in ``demos/demo_mixed_lubrication.py`` (its checks), and the cylinder's
+    mixed film against serial in ``tests/test_wear_lubricated.py``.
+    """
     if MPI.COMM_WORLD.size < 2:
         pytest.skip("run under mpiexec -n 2")
     out = []
