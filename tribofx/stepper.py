@@ -316,8 +316,7 @@ class Stepper:
         dW, its = self.run_cycle()
         rate_n = [wf.cycle_average_rate(d, tau) for d in dW]  # eq. 23
         for w, r in zip(self.wears, rate_n):
-            if getattr(w, "_rate0", None) is not None:   # BDF2's first step: the rate at t_n
-                w._rate0 = r.copy()
+            w.set_start_rate(r)     # BDF2's first-step error estimate: the rate at t_n
         w0 = [w.body.w.x.array.copy() for w in self.wears]
         dw_prev = self._shape_step(rate_n, w0, out)
         if theta > 0:

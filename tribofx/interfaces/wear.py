@@ -318,6 +318,16 @@ class Wear:
         return self.body.mesh.comm.allreduce(float(np.max(np.abs(d), initial=0.0)),
                                              op=MPI.MAX)
 
+    def set_start_rate(self, rate):
+        """Nodal rate Ẇ j_w (mm/s) at the start of a cycle-driven step (``rate_bar``'s layout).
+
+        A BDF2 first step is checked against forward Euler from the rate at t_n;
+        driven by cycles, that rate is the first cycle's (``rate_bar`` at
+        :meth:`begin_step` is the last step's).  No effect otherwise.
+        """
+        if self.scheme == "bdf2" and self._rate0 is not None:
+            self._rate0 = np.array(rate, dtype=float)
+
     def _nodal_rate(self):
         """Nodal Ẇ j_w (mm/s) of the current state."""
         return self._nodal_value("rate", self.rate_density)
