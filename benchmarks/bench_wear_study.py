@@ -14,7 +14,8 @@ steps: expect hours on 2 cores.  A smaller version, e.g.
     .venv/bin/python benchmarks/bench_wear_study.py --Es 40,160,640 --E-mesh 1 --meshes 0,1,2
 
 (``--E-mesh``: mesh level of the E sweep; ``--dts``, ``--ref-dt``, ``--ref`` as in
-the case; ``--meshes none`` skips the mesh sweep.)  ``fig4_left.png``: error
+the case; ``--meshes none`` skips the mesh sweep; ``--schemes implicit,bdf2`` puts
+BDF2 beside backward Euler, against a BDF2 reference.)  ``fig4_left.png``: error
 against Δt of the E sweep, explicit and implicit, Δt_cr marked.  Runs split
 over several processes (one core each) are merged without running anything by
 
@@ -43,6 +44,8 @@ parser.add_argument("--dts", default="200,100,50,20,10,5")
 parser.add_argument("--ref-dt", default="0.78125")
 parser.add_argument("--ref", default="fine", choices=("fine", "richardson"),
                     help="reference: implicit at --ref-dt, or Richardson from --ref-dt and 2x")
+parser.add_argument("--schemes", default="explicit,implicit",
+                    help="study_schemes: explicit, implicit, bdf2 (bdf2: a BDF2 reference)")
 parser.add_argument("--merge", nargs="+", default=[],
                     help="only merge the study.json of these folders into --out and plot")
 parser.add_argument("--out", default="benchmarks/results/wear_study")
@@ -57,10 +60,14 @@ def plot_fig4_left(runs, path):
     from tribofx.plots.wear import error_curve
 
     plt = pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
-    sweep = sorted((c for c in runs.values() if len(c["study_error_explicit"] or {}) == 1),
-                   key=lambda c: c["E_MPa"])
-    for ax, scheme in zip(axes, ("explicit", "implicit")):
+    schemes = [s for s in ("explicit", "implicit", "bdf2")
+               if any(c.get(f"study_error_{s}") for c in runs.values())]
+    fig, axes = plt.subplots(1, len(schemes), figsize=(5 * len(schemes), 4), sharey=True,
+                             squeeze=False)
+    axes = axes[0]
+    sweep = sorted((c for c in runs.values()
+                    if len(c[f"study_error_{schemes[0]}"] or {}) == 1), key=lambda c: c["E_MPa"])
+    for ax, scheme in zip(axes, schemes):
         for i, c in enumerate(sweep):
             (mesh, err), = c[f"study_error_{scheme}"].items()
             dt_cr = (c["study_dt_cr"] or {}).get(mesh) if scheme == "explicit" else None
@@ -110,20 +117,21 @@ collected = {}
 for label, over in jobs:
     t0 = time.perf_counter()
     s = run_case("wear-pin", {"study": "dt", "study_dts": args.dts,
-                              "study_ref_dt": args.ref_dt, "study_ref": args.ref, **over},
+                              "study_ref_dt": args.ref_dt, "study_ref": args.ref,
+                              "study_schemes": args.schemes, **over},
                  out=out / label, progress=False)
     r = {k: v["value"] for k, v in s["results"].items()}
     collected[label] = {"E_MPa": float(over["E"]), "status": s["status"],
                         "wall_time_s": time.perf_counter() - t0,
-                        **{k: r.get(k) for k in ("study_dt", "study_dt_cr", "study_error_explicit",
-                                                 "study_error_implicit", "study_unstable_explicit",
-                                                 "study_unstable_implicit", "study_reference")}}
+                        **{k: v for k, v in r.items() if k in ("study_dt", "study_dt_cr",
+                                                               "study_reference")
+                           or k.startswith(("study_error_", "study_unstable_"))}}
     if comm.rank == 0:
         c = collected[label]
         print(f"{label}: {c['status']}, {c['wall_time_s']:.0f} s, dt_cr {c['study_dt_cr']}")
-        for mesh, e in (c["study_error_explicit"] or {}).items():
-            print(f"  {mesh} explicit {e}\n  {mesh} implicit {c['study_error_implicit'][mesh]}"
-                  f"\n  unstable explicit {c['study_unstable_explicit'][mesh]}")
+        for scheme in args.schemes.split(","):
+            for mesh, e in (c.get(f"study_error_{scheme}") or {}).items():
+                print(f"  {mesh} {scheme} {e}")
 
 check = dt_cr_scaling(collected)
 if comm.rank == 0:

@@ -129,7 +129,8 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
     ("wear-pin", 1, signal.SIGTERM),
     ("wear-pin-bdf2", 1, signal.SIGTERM),
     pytest.param("wear-pin", 2, signal.SIGINT, marks=MPIEXEC),
-    ("wear-ball-flat", 1, signal.SIGTERM),
+    # slow (26 s): the 3D wear under force control resumes on 2 ranks below (halfspace)
+    pytest.param("wear-ball-flat", 1, signal.SIGTERM, marks=pytest.mark.slow),
     pytest.param("wear-ball-halfspace", 2, signal.SIGINT, marks=MPIEXEC),
     ("wear-reciprocating", 1, signal.SIGTERM),
     ("ehl-squeeze", 1, signal.SIGTERM)])

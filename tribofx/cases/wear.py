@@ -39,7 +39,8 @@ level of ``study_meshes`` (default: ``mesh``), the explicit and the implicit
 scheme are run to T with every Δt of ``study_dts`` (default 200, 100, 50, 20,
 10, 5 s), plus an implicit reference run with Δt = ``study_ref_dt`` (default
 T/1280 = 0.78125 s, as in the chapter; ``study_ref=richardson``: 2 p(Δt_r) −
-p(2 Δt_r) of two implicit runs instead).  The error of a run is the Euclidean
+p(2 Δt_r) of two implicit runs instead; ``study_schemes`` may add ``bdf2``, and the
+reference is then a BDF2 run at Δt_r).  The error of a run is the Euclidean
 norm (as in the chapter) of the difference of the final worn nodal positions
 X̂ + w on Γ̂_c from the reference (mm; the max nodal distance is also stored).
 A run is flagged unstable (:func:`tribofx.cases.wear_dt_study.run_dt_study`) if it fails
@@ -139,6 +140,9 @@ class WearPinCase(PinSetup, PinRun):
         Param("study_ref", str, "fine", "-",
               "study=dt: reference = implicit run at study_ref_dt (fine) or Richardson "
               "2 p(study_ref_dt) - p(2 study_ref_dt)", choices=("fine", "richardson")),
+        Param("study_schemes", str, "explicit,implicit", "-",
+              "study=dt: schemes compared (explicit, implicit, bdf2; with bdf2 the "
+              "reference is a BDF2 run)"),
         Param("study_critical", bool, True, "-",
               "study=dt: also compute the explicit critical step of each mesh"),
         Param("mesh_file", str, "", "-",
@@ -176,6 +180,9 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError(f"study_meshes = {v['study_meshes']!r}: levels 0..4")
             if v["mode"] != "steady":
                 raise InputError("study=dt supports mode=steady only")
+            if "bdf2" in WearPinCase.study_schemes(v) and v["study_ref"] == "richardson":
+                raise InputError("study_ref=richardson extrapolates a first-order "
+                                 "reference: use study_ref=fine with bdf2")
             r = v["study_ref_dt"] * (2 if v["study_ref"] == "richardson" else 1)
             if r > v["T"] or r >= min(dts):
                 raise InputError("study_ref_dt must be below the study time steps")

@@ -1,7 +1,8 @@
 """The error-versus-Δt study of the wear pin (Figs. 3–4, ``wear-pin --set study=dt``).
 
-:func:`run_dt_study` runs the explicit and the implicit scheme over a list of
-steps on one or more meshes against a fine (or Richardson) reference, flags the
+:func:`run_dt_study` runs the explicit and the implicit scheme (and BDF2, if
+``study_schemes`` asks) over a list of steps on one or more meshes against a fine
+(or Richardson) reference, flags the
 unstable runs (:mod:`tribofx.cases.wear_stability`) and records errors, costs
 and profiles.  Units: s, mm.
 """
@@ -61,7 +62,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     ``case``: the pin case class (:class:`tribofx.cases.wear.WearPinCase`, its
     ``run`` makes each run).
 
-    Records ``study_dt``, ``study_error_explicit`` and ``study_error_implicit``
+    Records ``study_dt``, ``study_error_<scheme>`` for each of ``study_schemes``
     ({"n×n": [error per Δt, None if the run failed]}, mm, Euclidean norm of the
     final worn contact-node positions minus the reference), the max-norm
     counterparts ``study_maxerror_*``, ``study_unstable_*`` and ``study_status_*``
@@ -72,20 +73,20 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     """
     T = v["T"]
     ref_dt = v["study_ref_dt"]
-    res = {key: {} for key in ("error_explicit", "error_implicit", "maxerror_explicit",
-                               "maxerror_implicit", "unstable_explicit", "unstable_implicit",
-                               "status_explicit", "status_implicit", "oscillation_explicit",
-                               "oscillation_implicit", "checkerboard_explicit",
-                               "checkerboard_implicit", "wall_time_explicit",
-                               "wall_time_implicit", "newton_explicit", "newton_implicit",
-                               "dt_cr", "reference_wall_time", "reference_correction",
-                               "checkerboard_reference")}
-    plots = {"study": "dt", "dts": list(dts), "E": v["E"], "T": T, "meshes": {}}
+    schemes = case.study_schemes(v)
+    ref_scheme = "bdf2" if "bdf2" in schemes else "implicit"
+    names = ("error", "maxerror", "unstable", "oscillation", "status", "checkerboard",
+             "wall_time", "newton")
+    res = {f"{name}_{s}": {} for s in schemes for name in names}
+    res.update({key: {} for key in ("dt_cr", "reference_wall_time", "reference_correction",
+                                    "checkerboard_reference")})
+    plots = {"study": "dt", "dts": list(dts), "E": v["E"], "T": T, "meshes": {},
+             "schemes": schemes}
     prob_ref = None
     for n in ns:
         key = f"{n}x{n}"
         t0 = time.perf_counter()
-        prob_ref, ref = _study_run(case, v, n, "implicit", ref_dt, verbose)
+        prob_ref, ref = _study_run(case, v, n, ref_scheme, ref_dt, verbose)
         if not ref["status"] == "ok":
             raise NewtonDivergence(f"study reference run ({key}, Δt = {ref_dt} s) "
                                    f"{ref['status']}")
@@ -110,9 +111,8 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
         res["dt_cr"][key] = dt_cr
         runs = {"reference": {"dt": ref_dt, "profiles": ref["profiles"],
                               "final_profile": p_ref}}
-        for scheme in ("explicit", "implicit"):
-            for name in ("error", "maxerror", "unstable", "oscillation", "status", "checkerboard",
-                         "wall_time", "newton"):
+        for scheme in schemes:
+            for name in names:
                 res[f"{name}_{scheme}"][key] = []
             for dt in dts:
                 _, r = _study_run(case, v, n, scheme, dt, verbose)
@@ -137,11 +137,9 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
                 runs[(scheme, dt)] = {"profiles": r["profiles"], "ok": ok}
                 if progress is not None:
                     progress.update(1)
-        plots["meshes"][key] = {"runs": runs, "dt_cr": dt_cr,
-                                "error_explicit": res["error_explicit"][key],
-                                "error_implicit": res["error_implicit"][key],
-                                "unstable_explicit": res["unstable_explicit"][key],
-                                "unstable_implicit": res["unstable_implicit"][key]}
+        plots["meshes"][key] = {"runs": runs, "dt_cr": dt_cr, **{
+            f"{name}_{s}": res[f"{name}_{s}"][key] for s in schemes
+            for name in ("error", "unstable")}}
     record.result("study_dt", list(dts), "s")
     units = {"error": "mm (Euclidean norm over the contact nodes)",
              "maxerror": "mm (max nodal distance)", "unstable": "-", "status": "-",
@@ -150,7 +148,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
              "reference": "s", "checkerboard_reference": "mm"}
     for name, val in res.items():
         record.result(f"study_{name}", val, units.get(name.split("_")[0], units.get(name, "-")))
-    ref_txt = (f"implicit, Δt = {ref_dt:g} s" if v["study_ref"] == "fine" else
+    ref_txt = (f"{ref_scheme}, Δt = {ref_dt:g} s" if v["study_ref"] == "fine" else
                f"Richardson 2 p({ref_dt:g} s) − p({2 * ref_dt:g} s), implicit")
     record.result("study_reference", ref_txt, "-")
     record.result("study_unstable_criterion",

@@ -6,7 +6,7 @@ run from t = 0 (or a checkpoint) to T through :class:`tribofx.slow_run.SlowRun`
 and the results.
 """
 
-from ..params import number_list
+from ..params import InputError, number_list
 from ..slow_run import SlowRun, wear_fields
 from ..stepper import nominal_steps
 from .wear_dt_study import run_dt_study
@@ -24,12 +24,21 @@ class PinRun:
         levels = number_list(v["study_meshes"], "study_meshes", int, True) or [v["mesh"]]
         return dts, levels
 
+    @staticmethod
+    def study_schemes(v):
+        """Schemes of ``study=dt`` (one-line error if unknown or none)."""
+        schemes = [x.strip() for x in v["study_schemes"].split(",") if x.strip()]
+        if not schemes or any(x not in ("explicit", "implicit", "bdf2") for x in schemes):
+            raise InputError(f"study_schemes = {v['study_schemes']!r}: a comma-separated "
+                             "list of explicit, implicit, bdf2")
+        return list(dict.fromkeys(schemes))
+
     @classmethod
     def progress_total(cls, v):
         """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
         if v["study"] == "dt":
             dts, levels = cls.study_lists(v)
-            return 2 * len(dts) * len(levels)
+            return len(cls.study_schemes(v)) * len(dts) * len(levels)
         return nominal_steps(v["T"], cls.slow_step(v))
 
     @staticmethod

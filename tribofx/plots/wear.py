@@ -56,7 +56,7 @@ def error_curve(ax, dts, errors, unstable, color, label, dt_cr=None):
 def plot_dt_study(study, outdir):
     """Plot ``study=dt``: ``error_vs_dt.png`` and ``profiles.png``.
 
-    ``error_vs_dt.png``: log-log, explicit and implicit panels, one curve per
+    ``error_vs_dt.png``: log-log, a panel per scheme (explicit, implicit, bdf2), one curve per
     mesh, unstable runs as red crosses, Δt_cr dotted (like Fig. 4).
     ``profiles.png``: worn profiles every 200 s (the largest Δt) for Δt = 200 s
     and 5 s (or the largest and smallest Δt) against the reference, explicit
@@ -64,19 +64,21 @@ def plot_dt_study(study, outdir):
     """
     plt = pyplot()
     dts = np.asarray(study["dts"])
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
-    for ax, scheme in zip(axes, ("explicit", "implicit")):
+    schemes = study.get("schemes", ["explicit", "implicit"])
+    fig, axes = plt.subplots(1, len(schemes), figsize=(5 * len(schemes), 4), sharey=True,
+                             squeeze=False)
+    for ax, scheme in zip(axes[0], schemes):
         for i, (key, m) in enumerate(study["meshes"].items()):
             error_curve(ax, dts, m[f"error_{scheme}"], m[f"unstable_{scheme}"], f"C{i}",
                         f"{key}, {scheme}", m["dt_cr"] if scheme == "explicit" else None)
         ok = [e for m in study["meshes"].values() for e in m[f"error_{scheme}"] if e]
-        if ok:  # slope-1 guide
-            x = np.array([dts.min(), dts.max()])
-            ax.loglog(x, min(ok) * x / dts.min(), "k--", lw=0.8, label="slope 1")
+        if ok:  # slope guide: 1, or 2 for BDF2
+            x, q = np.array([dts.min(), dts.max()]), 2 if scheme == "bdf2" else 1
+            ax.loglog(x, min(ok) * (x / dts.min()) ** q, "k--", lw=0.8, label=f"slope {q}")
         ax.set_xlabel("Δt (s)")
         ax.set_title(f"{scheme}, E = {study['E']:g} MPa (× unstable, ⋮ Δt_cr)")
         ax.legend(fontsize=7)
-    axes[0].set_ylabel("error of the worn contact profile (mm)")
+    axes[0, 0].set_ylabel("error of the worn contact profile (mm)")
     fig.suptitle(f"reference: {study['reference']}", fontsize=8)
     fig.tight_layout()
     fig.savefig(Path(outdir) / "error_vs_dt.png", dpi=120)
