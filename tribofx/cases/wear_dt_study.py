@@ -103,7 +103,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
         res["reference_correction"][key] = correction
         res["checkerboard_reference"][key] = ref["checkerboard"]
         dt_cr = None
-        if v["study_critical"]:
+        if v["study_critical"] and "explicit" in schemes:
             try:
                 dt_cr = pin_critical_step(case, v, n, lo=0.01, hi=1e4)[0]
             except (ValueError, NewtonDivergence):
