@@ -37,7 +37,8 @@ of 50 s).
 the explicit scheme with those steps (from t = 0) and implicit Δt = 100 s to the
 horizon, with their errors against the reference: the explicit step that gives
 the implicit accuracy (the early Hertzian stage limits it below the late-time
-Δt_cr).
+Δt_cr).  ``--bdf2-tols 1e-2,1e-3`` adds BDF2 runs under error control at those
+tolerances (mm), against a BDF2 reference.
 """
 
 import argparse
@@ -70,6 +71,9 @@ parser.add_argument("--ref-dt", type=float, default=10.0,
 parser.add_argument("--accuracy-dts", default="",
                     help="only an accuracy study: explicit runs with these comma-separated Δt "
                          "(s) to --t-explicit, against the reference, next to implicit 100 s")
+parser.add_argument("--bdf2-tols", default="",
+                    help="with --accuracy-dts: also BDF2 with error control at these "
+                         "comma-separated tol (mm) to --t-explicit; the reference is then BDF2")
 parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="case parameter (repeatable), e.g. --set k=1e-7 --set V=100")
 parser.add_argument("--dt-cr-range", default="3,30",
@@ -102,18 +106,27 @@ def profile_at(rec):
     return np.asarray(rec.stepper.wear.gather_shape(root_only=False)["X_worn"])
 
 
-def accuracy_study(t_e, dts):
-    """Errors at t_e of implicit Δt = 100 s (or t_e) and explicit runs against the reference."""
-    res = {"horizon": t_e, "reference": f"implicit, Δt = {args.ref_dt:g} s", "runs": []}
+def accuracy_study(t_e, dts, tols=()):
+    """Errors at t_e of implicit Δt = 100 s (or t_e), explicit and BDF2 (tol) runs.
+
+    With ``tols`` the reference is BDF2 at ``--ref-dt`` (else backward Euler), and
+    each BDF2 run starts at Δt = 100 s (or t_e) under its error control.
+    """
+    ref_scheme = "bdf2" if tols else "implicit"
+    res = {"horizon": t_e, "reference": f"{ref_scheme}, Δt = {args.ref_dt:g} s", "runs": []}
     with tempfile.TemporaryDirectory() as tmp:
-        _, rec_r, wall_r = run(tmp, t_stop=t_e, scheme="implicit", dt=args.ref_dt)
+        _, rec_r, wall_r = run(tmp, t_stop=t_e, scheme=ref_scheme, dt=args.ref_dt)
         p_ref = profile_at(rec_r)
         res["reference_wall_time_s"] = wall_r
-        for scheme, dt in [("implicit", min(100.0, t_e))] + [("explicit", d) for d in dts]:
+        legs = [("implicit", min(100.0, t_e), 0.0)] + [("explicit", d, 0.0) for d in dts] \
+            + [("bdf2", min(100.0, t_e), tol) for tol in tols]
+        for scheme, dt, tol in legs:
             try:
-                r, rec, wall = run(tmp, t_stop=t_e, scheme=scheme, dt=dt, max_cuts=0)
+                r, rec, wall = run(tmp, t_stop=t_e, scheme=scheme, dt=dt, tol=tol,
+                                   max_cuts=0 if scheme == "explicit" else 6)
                 e = float(np.max(np.linalg.norm(profile_at(rec) - p_ref, axis=1)))
-                row = {"scheme": scheme, "dt": dt, "steps": r["steps"], "wall_time_s": wall,
+                row = {"scheme": scheme, "dt": dt, "tol": tol, "steps": r["steps"],
+                       "wall_time_s": wall,
                        "newton_iterations": int(sum(r["newton_iterations"][1:])),
                        "max_pressure_ratio": float(max(r["pressure_ratio"][1:])),
                        "profile_error_mm": e}
@@ -128,7 +141,8 @@ def accuracy_study(t_e, dts):
 out = {}
 if args.accuracy_dts:
     dts = [float(x) for x in args.accuracy_dts.split(",")]
-    out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts)
+    tols = [float(x) for x in args.bdf2_tols.split(",") if x.strip()]
+    out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts, tols)
     if comm.rank == 0:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         with open(args.out, "w") as f:
