@@ -13,7 +13,7 @@ from dolfinx import fem
 from mpi4py import MPI
 from tribofx.forms import mixed
 from tribofx.forms.hyperelastic import lame_parameters
-from tribofx.meshes.hertz import AXISYMMETRIC_NAMES, NAMES, hertz_body
+from tribofx.meshes.hertz import NAMES, hertz_body
 
 from tribofx.body import Body
 from tribofx.cases.stribeck import StribeckCase
@@ -243,67 +243,41 @@ def test_vanishing_roughness_is_the_smooth_film():
     assert np.allclose(out[0], out[1], rtol=1e-8, atol=0), out
 
 
-def test_rough_flat_punch_separation():
+@pytest.mark.parametrize("kind", ["plane_strain", "axisymmetric"])
+def test_rough_flat_punch_separation(kind):
     """A block pressed on a rough rigid plane at rest: the asperities alone carry p.
 
-    The block (plane strain, [0, B]² with symmetry at x = 0) carries a dead
-    uniform traction P on its base towards the plane; with no motion the film
-    has no pressure, and the asperity pressure balances P over the current top
-    face: p_a = P B/b (b its current width), so h solves p_a = K E* F_{5/2}(h/σ)
-    (:func:`flat_punch_separation`).  Solver tolerance 1e-10: h to 1e-8.
+    The block ([0, B]² with symmetry at x = 0, or revolved about it: a cylinder of
+    radius B) carries a dead uniform traction P on its base towards the plane; with
+    no motion the film has no pressure, and the asperity pressure balances P over the
+    current top face of width (radius) b: p_a = P B/b, or P B²/b² revolved, so h
+    solves p_a = K E* F_{5/2}(h/σ) (:func:`flat_punch_separation`), and the asperity
+    force is −P B per unit length, or −P πB² (the revolved body's, N: the weights of
+    a surface of revolution).  Solver tolerance 1e-10: h to 1e-6, the force to 1e-8.
     """
     B, E, nu, P, sigma, KE = 2.0, 10.0, 0.3, 0.02, 1e-3, 0.05
     msh, ft = hertz_body(2, B, B / 8, B / 8, B, MPI.COMM_WORLD, block=B)
-    names = {"lubricated" if k == "contact" else k: t for k, t in NAMES.items()
-             if k != "symmetry_y"}
+    axi = kind == "axisymmetric"
+    axis = "axis" if axi else "symmetry_x"
+    names = {"lubricated": NAMES["contact"], "loaded": NAMES["loaded"],
+             axis: NAMES["symmetry_x"]}      # the axis of revolution: the 2D symmetry tag
     mu_s, lm = lame_parameters(E, nu)
-    body = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
+    body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                 name="block")
-    body.add_dirichlet("symmetry_x", 0.0, component=0)
+    body.add_dirichlet(axis, 0.0, component=0)
     body.add_traction("loaded", fem.Constant(msh, np.array([0.0, P])))   # up, to the plane
     h0 = flat_punch_separation(P, sigma, KE)
     film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), 1e-7,
                 roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None),
                 film_scale=sigma, speed_scale=1.0, p_c=P)
-    film.add_pressure_bc()
+    film.add_pressure_bc((lambda X: X[0] > B * (1 - 1e-9)) if axi else None)
     Problem([body, film], name="punch").solve()
     prof = film.profile(everywhere=True)
     b = prof["x"][:, 0].max() - prof["x"][:, 0].min()
-    h = flat_punch_separation(P * B / b, sigma, KE)
+    m, area = (2, math.pi * B**2) if axi else (1, B)
+    h = flat_punch_separation(P * (B / b) ** m, sigma, KE)
     assert np.allclose(prof["h"], h, rtol=1e-6, atol=0), (prof["h"], h)
-    assert abs(film.asperity_force()[1] / (P * B) + 1) < 1e-8
-
-
-def test_rough_axisymmetric_punch_separation():
-    """The rough flat punch revolved: a cylinder of radius B pressed on a rough plane at rest.
-
-    As the plane-strain punch, with the weights of a surface of revolution: the
-    dead traction P on the base (area πB²) is balanced by the asperity pressure
-    on the current end face of radius b, p_a = P B²/b², so h solves
-    p_a = K E* F_{5/2}(h/σ) (:func:`flat_punch_separation`), and the asperity
-    force is −P πB² (the revolved body's, N).  Solver tolerance 1e-10: h to 1e-6,
-    the force to 1e-8.
-    """
-    B, E, nu, P, sigma, KE = 2.0, 10.0, 0.3, 0.02, 1e-3, 0.05
-    msh, ft = hertz_body(2, B, B / 8, B / 8, B, MPI.COMM_WORLD, block=B)
-    names = {"lubricated": AXISYMMETRIC_NAMES["contact"], "loaded": AXISYMMETRIC_NAMES["loaded"],
-             "axis": AXISYMMETRIC_NAMES["axis"]}
-    mu_s, lm = lame_parameters(E, nu)
-    body = Body(msh, ft, names, "axisymmetric", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
-                name="cylinder")
-    body.add_dirichlet("axis", 0.0, component=0)
-    body.add_traction("loaded", fem.Constant(msh, np.array([0.0, P])))   # up, to the plane
-    h0 = flat_punch_separation(P, sigma, KE)
-    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), 1e-7,
-                roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None),
-                film_scale=sigma, speed_scale=1.0, p_c=P)
-    film.add_pressure_bc(lambda X: X[0] > B * (1 - 1e-9))
-    Problem([body, film], name="punch_axi").solve()
-    prof = film.profile(everywhere=True)
-    b = prof["x"][:, 0].max()
-    h = flat_punch_separation(P * B**2 / b**2, sigma, KE)
-    assert np.allclose(prof["h"], h, rtol=1e-6, atol=0), (prof["h"], h)
-    assert abs(film.asperity_force()[1] / (P * math.pi * B**2) + 1) < 1e-8
+    assert abs(film.asperity_force()[1] / (P * area) + 1) < 1e-8
 
 
 def test_rough_film_tangent_is_exact():

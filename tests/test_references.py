@@ -54,6 +54,19 @@ def test_hertz_matches_the_chapter_ball_on_flat():
     assert (a, p0) == (h.a, h.p0)
 
 
+def test_hertz_pressure_carries_the_load():
+    # ∫ p dA of the point contact's pressure (Gauss–Legendre in r = a sin t, which
+    # removes the edge's square root) is F; the line contact's ∫ p dx is W
+    h = hertz(100.0, 5.0, 1e5, 0.3)
+    F = gauss(lambda t: h.pressure(h.a * np.sin(t)) * 2 * np.pi * h.a * np.sin(t)
+               * h.a * np.cos(t), 0.0, 0.5 * np.pi)
+    assert F == pytest.approx(100.0, rel=1e-10)
+    g = hertz(0.5, 10.0, 10.0, 0.45, line=True)
+    W = gauss(lambda t: 2 * g.pressure(g.a * np.sin(t)) * g.a * np.cos(t), 0.0, 0.5 * np.pi)
+    assert W == pytest.approx(0.5, rel=1e-10)
+    assert h.pressure(2 * h.a) == 0.0 and h.pressure(0.0) == h.p0
+
+
 def _boussinesq_displacement(r, a, p0, n_theta=256):
     """∫∫ p/ρ dA of the Hertz pressure at distance r < a from the centre (mm·MPa).
 

@@ -112,6 +112,10 @@ class HertzContact(NamedTuple):
     E_star: float   #: composite modulus E*, MPa
     R_star: float   #: composite radius R*, mm
 
+    def pressure(self, r):
+        """Return p₀√(1 − r²/a²) (MPa, 0 outside) at r (mm) from the centre line/point."""
+        return self.p0 * np.sqrt(np.maximum(0.0, 1.0 - np.asarray(r) ** 2 / self.a**2))
+
 
 def hertz(load, R1, E1, nu1, R2=math.inf, E2=math.inf, nu2=0.0, *, line=False):
     """Hertz contact of two elastic bodies: size, peak pressure and approach.

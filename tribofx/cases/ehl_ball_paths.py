@@ -51,7 +51,7 @@ class BallPaths:
         """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
         h = cls.hertz_contact(v, W)
         run[1].start_from_pressure(
-            lambda x: h.p0 * np.sqrt(np.maximum(0.0, 1 - (x[0] ** 2 + x[1] ** 2) / h.a**2)),
+            lambda x: h.pressure(np.hypot(x[0], x[1])),
             cls.scales(v, W, U)[2], np.zeros(3))
 
     @staticmethod

@@ -156,7 +156,7 @@ class StribeckCase:
         film, problem = run["film"], run["problem"]
         h_r = -float(film.counterpart.offset.value[run["axis"]])
         inner = Continuation(problem, ConstantParameter(film.counterpart.offset, run["axis"]),
-                             response=lambda: math.log(max(run["load"](), 1e-300)),
+                             response=lambda: math.log(max(StribeckCase.load(run), 1e-300)),
                              rtol=1e-7, max_trials=30, verbose=verbose)
         # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
         # film's 1/h; steeper once the asperities carry: at least 1/σ)
@@ -193,11 +193,16 @@ class StribeckCase:
         run["film"].set_scales(speed_scale=max(U, run["U_floor"]))
 
     @staticmethod
+    def load(run):
+        """Load carried by the whole body (N/mm or N): film and asperities."""
+        return run["copies"] * float(run["film"].force()[run["axis"]])
+
+    @staticmethod
     def measures(run, v):
         """Return friction coefficient, film and asperity loads, λ = h_c/σ, h, p maxima."""
         film = run["film"]
-        n, W = run["axis"], run["load"]()
-        F, Fa = film.force(), film.asperity_force()
+        n, F, Fa = run["axis"], film.force(), film.asperity_force()
+        W = run["copies"] * float(F[n])
         prof = film.profile(everywhere=True)
         h_c = float(prof["h"][np.argmin(np.linalg.norm(prof["X"][:, :n], axis=1))])
         return {"friction_coefficient": abs(float(F[0])) / float(F[n]),

@@ -3,9 +3,9 @@
 Each builder returns the run's pieces (a dict): ``body``, ``film``, ``speed``
 (the plane's velocity, a Constant), ``ref`` (the Hertz contact at W), ``U_floor``
 (the film's flux scale at creeping speeds), ``axis`` (the normal: y in 2D, z in
-3D) and ``load`` (a callable: the load carried by the whole body, N/mm or N,
-film and asperities).  Both bodies are at rest; the plane slides at U under them
-(pure sliding, entrainment U/2).
+3D) and ``copies`` (the whole body's load over the model's: 1, or 2 for the
+ball).  Both bodies are at rest; the plane slides at U under them (pure
+sliding, entrainment U/2).
 
 * ``cylinder``: radius R, plane strain, both sides of the contact modelled
   (film on ±4a), held at its flat face; the plane at Martin's rigid film of
@@ -27,11 +27,12 @@ from dolfinx import fem
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film
-from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
+from ..meshes.ball import cap_height, quarter_ball
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..obstacles import rigid_plane
 from ..references import composite_modulus, hamrock_dowson, hertz, rigid_clearance
 from ..references_mixed import flat_punch_separation
+from .ehl_ball import NAMES as BALL_NAMES
 
 __all__ = ["ball", "cylinder", "first_film", "hertz_contact"]
 
@@ -85,7 +86,7 @@ def cylinder(v, U0, roughness, comm, shape=False):
     film.add_pressure_bc()
     film.counterpart.offset.value[1] = -h_r
     return {"body": body, "film": film, "speed": speed, "ref": ref, "U_floor": U_floor,
-            "axis": 1, "load": lambda: float(film.force()[1])}
+            "axis": 1, "copies": 1.0}
 
 
 def ball(v, U0, roughness, comm):
@@ -97,9 +98,8 @@ def ball(v, U0, roughness, comm):
     h_fine = a / (8 * 2 ** v["mesh"])
     msh, _, ft = quarter_ball(R, theta, h_fine, max(R / 3, h_fine), 1.6 * a, comm)
     mu_s, lm = lame_parameters(v["E"], v["nu"])
-    body = Body(msh, ft, {"lubricated": LUBRICATED, "midplane": MIDPLANE,
-                          "symmetry": SYMMETRY}, "3d",
-                ("neo-hookean", {"mu": mu_s, "lmbda": lm}), name="ball")
+    body = Body(msh, ft, BALL_NAMES, "3d", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
+                name="ball")
     body.add_dirichlet("midplane", np.zeros(3))
     body.add_dirichlet("symmetry", 0.0, component=1)
     speed = fem.Constant(msh, np.array([U0, 0.0, 0.0]))
@@ -117,9 +117,9 @@ def ball(v, U0, roughness, comm):
     if roughness is not None and roughness.asperity is not None:
         h_a = flat_punch_separation(start.p0, v["sigma"], roughness.asperity.parameters["KE"])
     if h_r >= h_a:
-        film.start_from_pressure(lambda x: start.p0 * np.sqrt(np.maximum(
-            0.0, 1 - (x[0] ** 2 + x[1] ** 2) / start.a**2)), h_r, np.zeros(3))
+        film.start_from_pressure(lambda x: start.pressure(np.hypot(x[0], x[1])), h_r,
+                                 np.zeros(3))
     else:
         film.counterpart.offset.value[2] = -h_r
     return {"body": body, "film": film, "speed": speed, "ref": ref, "U_floor": U_floor,
-            "axis": 2, "load": lambda: 2.0 * float(film.force()[2])}
+            "axis": 2, "copies": 2.0}
