@@ -88,10 +88,8 @@ __all__ = [
     "LubricationKinematics",
     "WeightedMeasure",
     "countersurface_projection",
-    "couette_flux",
     "cylinder_countersurface",
     "intermediate_surface",
-    "jfo_on_surface",
     "lubrication_kinematics",
     "planar_kinematics",
     "reynolds_on_surface",
@@ -264,7 +262,7 @@ def planar_kinematics(x, h, vbar):
     ds_S = dS, grad_S = grad, div_S = div; ``h`` is the film thickness (UFL of the
     position ``x``, mm) and ``vbar`` the mean velocity (UFL vector, mm/s).  With it
     the Reynolds forms of this module (:func:`reynolds_on_surface`,
-    :func:`jfo_on_surface`) are those of :mod:`forms.reynolds` in the plane.
+    :func:`forms.jfo.jfo_on_surface`) are those of :mod:`forms.reynolds` in the plane.
     """
     gdim = len(x)
     return LubricationKinematics(h=h, nu=ufl.as_vector([0.0] * (gdim - 1) + [1.0]), y=x,
@@ -341,76 +339,6 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     if eps is not None:
         F += rf.cavitation_penalty(p, dp, eps, WeightedMeasure(kin.stretch, nodal_dx or dx))
     return F
-
-
-def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
-                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1, rate=None):
-    """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l.
-
-    Returns (transport, constraint): the transport residual
-
-        ∫_S ( θ h³/(12μ) grad_S p·grad_S δp + div_S(θ h v̄) δp ) ds  (+ SUPG),  θ = 1 − min(λ, 1),
-
-    (ds = ds_S, grad_S, div_S through A, continuous P1 λ so the jump term on Σ
-    vanishes) and the nodal complementarity (52) ∫ (q_ref/h_e) min(p/p_c, λ) δλ dS
-    with the vertex quadrature ``nodal_dx`` (C = 0 node by node; semismooth Newton
-    through ``ufl.derivative`` of ``min_value``).  SUPG (Remark 3.2) uses the
-    diffusivity D = s h² p_c/(12μ) blended by the full-film fraction s(p, λ)
-    (:func:`forms.reynolds.jfo_diffusivity`), element size h_e scaled to S.
-    ``ds_ends`` (the end points of Γ_l, with the reference tangent ``T``) adds
-    the jumps of the Couette flux between elements (see the code), so that the
-    discrete form is conservative node by node.
-
-    ``weight`` w: the area factor of a surface of revolution, ds_S = w dl with
-    w = 2π r_S (1 in the plane).  ``dx``, ``nodal_dx`` and ``ds_ends`` are then
-    unweighted: w multiplies the fluxes, and the divergence is the one of the
-    surface of revolution, div_S q = (1/w) d(w q)/dl for a meridional q (the hoop
-    term included), so that the balance stays exact when r_S varies.
-
-    ``rate``: the transient film (:mod:`forms.squeeze`), d(θ h J_S w)/dt per unit
-    reference measure ``dx``, with ``kin`` relative to the moving S; None: steady.
-    """
-    dS = WeightedMeasure(kin.stretch * weight, dx)
-
-    def grad(f):
-        return kin.grad(f, grad_gamma)
-
-    def div(w):
-        return kin.div(weight * w, grad_gamma) / weight
-
-    lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
-    F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
-    if rate is not None:
-        F += rate * dp * dx
-    if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
-        D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
-        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
-        F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
-                                   div=div,
-                                   rate=None if rate is None else rate / (kin.stretch * weight))
-    if ds_ends is not None:
-        # v̄ = ½(I − ν⊗ν)FV is discontinuous between elements for a C⁰ displacement:
-        # the element-wise divergence theorem leaves the jumps of the Couette flux
-        # w_t = θ h v̄·t_S at the nodes, −Σ_F [[w_t]] δp (zero for the exact solution).
-        # They are added element by element, without interior-facet integrals:
-        # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
-        # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
-        w_t = weight * couette_flux(kin, lam_c, T)
-        n = ufl.FacetNormal(ds_ends.ufl_domain())
-        F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
-        F += w_t * ufl.dot(T, n) * dp * ds_ends
-    C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=weight * q_ref / h_e)
-    return F, C
-
-
-def couette_flux(kin, lam, T):
-    """Couette volume flux θ h v̄·t_S along S (mm²/s), θ = 1 − λ, gdim = 2 (eq. 40).
-
-    t_S = A T/|A T| is the unit tangent of S in the direction of the reference
-    tangent T of Γ_l; ``lam`` is the void fraction (0 without cavitation).
-    """
-    tS = kin.A * T
-    return (1 - lam) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
 
 
 def trace_constraint(u_s, u, du_s, ds):

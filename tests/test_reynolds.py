@@ -473,3 +473,39 @@ def test_law_parameters_are_state():
     # (test_barus_slider_…: 2.8e-3 at 25 elements / 64) plus the peak between two nodes,
     # ½|p''|(h/2)² ≈ 3e-5 relative (p'' ≈ p_max/(L/3)², h = 0.05 mm): 2e-4 bounds both
     assert p_max == pytest.approx(barus_pressure(p_iso, 0.2), rel=2e-4)
+
+
+# -- an open end supplied with lubricant (ReynoldsFilm.add_inflow), the O-ring's air end ---
+def test_open_end_supply_starved_inlet(tmp_path):
+    # The starved inlet as an open end supplied with the content c_in = (1 − λ_in) h(x_in)
+    # (weak upwind inflow, Robin leak for p = 0) instead of the Dirichlet λ_in, p = 0.
+    # (1) Everything that enters is the supply: q_in = q_out = c_in u_m (the analytic
+    # flux 11.55 mm²/s) to solver tolerance (rows ≤ 1e-10 of the Couette flux; 1e-9).
+    v = resolve(CylinderCase.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo"})
+    c_in = (1 - LAM_IN) * (v["h0"] + v["x_in"] ** 2 / (2 * v["R"]))
+    res, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
+                         mesh=100, inlet="supply")
+    for key in ("flux_in", "flux_out"):
+        assert res[key] == pytest.approx(c_in * v["um"], rel=1e-9)
+    # (2) the same discrete film as the Dirichlet inlet's test above: the reformation node
+    # within one element of Swift–Stieber, the load error of order 2 (Δx 0.04 → 0.01)
+    dx = (v["x_out"] - v["x_in"]) / 100
+    assert abs(res["x_reformation"] - res["swift_stieber_x_reformation"]) <= dx
+    fine, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
+                          mesh=400, inlet="supply")
+    order = math.log(abs(res["load_rel_error"]) / abs(fine["load_rel_error"])) / math.log(4)
+    assert abs(order - 2) < 0.5
+
+
+def test_open_end_flooded_supply_leaks_back(tmp_path):
+    # A flooded supply, c_in = h(x_in) = 0.21 mm: the Couette flow brings 210 mm²/s, the
+    # film passes the Swift–Stieber flux (12.2 mm²/s) and the rest leaves through the
+    # open end by the Robin leak (p ≈ 0 there).  Against the Dirichlet inlet p = 0, λ = 0
+    # on the same mesh: the leak leaves p_0 = Δp_e/1000 at the end (Δp_e the last
+    # element's pressure drop, ≲ p_max Δx/(x_pmax − x_in) ≈ p_max/50 at 100 elements), a
+    # load change ≤ p_0 (x_r − x_in)/load ≲ 1e-4 of the load; the fluxes likewise.
+    sup, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=100, inlet="supply")
+    dir_, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=100)
+    assert abs(sup["load_rel_error"] - dir_["load_rel_error"]) < 1e-4
+    assert sup["flux_out"] == pytest.approx(dir_["flux_out"], rel=1e-4)
+    assert sup["flux_in"] == pytest.approx(sup["flux_out"], rel=1e-9)   # mass: the leak counted

@@ -173,18 +173,25 @@ def test_axisymmetric_contact_jacobian():
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("cavitation,supg,viscosity,density", [
-    ("none", True, "constant", "incompressible"), ("penalty", True, "constant", "incompressible"),
-    ("jfo", False, "constant", "incompressible"), ("jfo", True, "constant", "incompressible"),
+@pytest.mark.parametrize("cavitation,supg,viscosity,density,supply", [
+    ("none", True, "constant", "incompressible", False),
+    ("penalty", True, "constant", "incompressible", False),
+    ("jfo", False, "constant", "incompressible", False),
+    ("jfo", True, "constant", "incompressible", False),
+    # the inlet as an open end supplied with lubricant (weak inflow and leak)
+    ("jfo", True, "constant", "incompressible", True),
     # a pressure-dependent viscosity μ(p) in every row (Barus, Roelands; p⁺ inside)
-    ("none", True, "barus", "incompressible"), ("penalty", True, "roelands", "incompressible"),
-    ("jfo", True, "barus", "incompressible"),
+    ("none", True, "barus", "incompressible", False),
+    ("penalty", True, "roelands", "incompressible", False),
+    ("jfo", True, "barus", "incompressible", False),
     # the compressible equation (Dowson–Higginson ρ(p)), with μ(p) too
-    ("none", True, "constant", "dowson-higginson"), ("penalty", True, "barus", "dowson-higginson")])
-def test_rigid_film_jacobian(cavitation, supg, viscosity, density):
+    ("none", True, "constant", "dowson-higginson", False),
+    ("penalty", True, "barus", "dowson-higginson", False)])
+def test_rigid_film_jacobian(cavitation, supg, viscosity, density, supply):
     """RigidFilm (Reynolds between rigid surfaces, §6.6): pressure, SUPG and the
     penalty or JFO (p, λ) rows at a state away from the kinks of min(·, ·), with a
-    constant or a pressure-dependent viscosity."""
+    constant or a pressure-dependent viscosity; ``supply``: the JFO inlet as an open
+    end (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`)."""
     from tribofx.cases.reynolds import rigid_film
     from tribofx.laws import named_density, named_viscosity
 
@@ -197,7 +204,8 @@ def test_rigid_film_jacobian(cavitation, supg, viscosity, density):
                                lambda x: h0 + x**2 / (2 * R), 500.0, mu,
                                cavitation=cavitation, supg=supg, p_c=0.1,
                                eps=1e-3 if cavitation == "penalty" else None, h_ref=h0,
-                               density=named_density(density))
+                               density=named_density(density), lam_in=0.5 * supply,
+                               supply=supply)
     # p, λ of both signs (both branches of min()), the Dirichlet values held: a state
     # off its conditions makes DOLFINx's lifting add J(x)(g − x) to the residual, a
     # term whose derivative is not in J
@@ -211,7 +219,7 @@ def test_rigid_film_jacobian(cavitation, supg, viscosity, density):
         d.x.array[fixed] = 0.0
         dirs.append(d)
     orders, rem = taylor_orders(problem, dirs, eps0=1e-6 * scale / 0.2)
-    print(cavitation, supg, viscosity, density, orders, rem)
+    print(cavitation, supg, viscosity, density, supply, orders, rem)
     assert_exact_jacobian(orders, rem)
 
 

@@ -21,7 +21,7 @@ from .forms import mixed
 from .laws import Law
 
 __all__ = ["Roughness", "greenwood_tripp", "patir_cheng_pressure", "patir_cheng_shear",
-           "patir_cheng_shear_stress"]
+           "patir_cheng_shear_stress", "rough_pair"]
 
 
 def patir_cheng_pressure():
@@ -47,6 +47,19 @@ def greenwood_tripp(KE, sigma):
     """p_a(h) = K E* F_{5/2}(h/σ) (MPa) with K E* (MPa) and σ (mm); reference value K E*."""
     return Law(lambda h, KE, sigma: mixed.greenwood_tripp_pressure(h, sigma, KE),
                KE=KE, sigma=sigma)
+
+
+def rough_pair(sigma, E_star, mu_b, eta_beta_sigma=0.1, sigma_beta=0.1, share=-1.0):
+    """Patir–Cheng flow and Greenwood–Tripp asperities of a rough pair, as :class:`Roughness`.
+
+    ``sigma`` σ (mm), ``E_star`` the contact modulus (MPa), ``mu_b`` the boundary
+    friction; ηβσ and σ/β the asperity density and radius (dimensionless; 0.1 and
+    0.1 are typical of ground steel against a smooth elastomer or of engineering
+    surfaces, Greenwood & Tripp 1970); ``share``: −1 the counterface rough.
+    """
+    beta = sigma / sigma_beta
+    KE = mixed.asperity_constant(eta_beta_sigma / (beta * sigma), beta, sigma) * E_star
+    return Roughness(sigma, asperity=greenwood_tripp(KE, sigma), share=share, mu_b=mu_b)
 
 
 class Roughness:

@@ -68,6 +68,8 @@ class EHLSqueezeCase(SqueezeRun):
               "it recedes, the film cavitates: cavitation=jfo)"),
         Param("cavitation", str, "none", "-", "none (a full film) or jfo (mass-conserving, "
               "the void fraction transported in time; dim=2)", choices=("none", "jfo")),
+        Param("lumped", bool, False, "-", "jfo: the content's rate at the nodes (lumped) and "
+              "the SUPG rate weighted by the full-film fraction (forms.jfo.jfo_on_surface)"),
         Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
               lower=0.0),
         Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
@@ -104,6 +106,8 @@ class EHLSqueezeCase(SqueezeRun):
                                                              == "jfo"):
             raise InputError(f"V = {v['V']} mm/s: a receding plane (V < 0) needs "
                              f"cavitation=jfo; V = 0 has no squeeze")
+        if v["lumped"] and v["cavitation"] != "jfo":
+            raise InputError("lumped=true is for cavitation=jfo")
         if v["cavitation"] == "jfo" and v["dim"] != 2:
             raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
         if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
@@ -213,7 +217,7 @@ class EHLSqueezeCase(SqueezeRun):
             lift = film.counterpart.offset
         film.plane = lift             # the plane's (or the block's) rigid position
         if not steady:
-            film.transient(v["scheme"])
+            film.transient(v["scheme"], lumped=v["lumped"])
         offset = lift
         y0 = float(offset.value[dim - 1])
         schedule = []

@@ -78,9 +78,12 @@ class ORingSeal(SealOutputs):
     ``p_s`` (Constant, MPa) loads the sealed arc and is mirrored into the film's
     Dirichlet value at the sealed end; the groove bottom moves by the offset of
     ``bottom.counterpart``; the rod speed is ``film.V_counter[1]`` (mm/s).
+    ``roughness``: a rough rod (mixed film); ``transient``: the time scheme of a
+    reciprocating film (:mod:`.oring_cycle`: lumped JFO transport, a weak inflow
+    at the air end whose content is ``supply``).
     """
 
-    def __init__(self, v, U, mesh, comm, name="ehl_oring"):
+    def __init__(self, v, U, mesh, comm, name="ehl_oring", roughness=None, transient=None):
         self.user = bool(v["mesh_file"])
         if self.user:
             msh, ft, names, extent = _user_section(v, comm)
@@ -111,8 +114,7 @@ class ORingSeal(SealOutputs):
         self.cavitation = cav = cavitation_model(v)
         self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
                                 viscosity(v), density=density(v), V_counter=[0.0, U],
-                                supg=v["supg"],
-                                cavitation=cav,
+                                supg=v["supg"], cavitation=cav, roughness=roughness,
                                 eps=(v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3
                                      if cav == "penalty" else None),
                                 p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),
@@ -129,6 +131,9 @@ class ORingSeal(SealOutputs):
             self._check_ends(film, z_lo, z_hi, tol, v["mesh_file"])
         sealed = lambda y: np.isclose(y[1], z_lo, atol=tol)   # noqa: E731
         air = lambda y: np.isclose(y[1], z_hi, atol=tol)      # noqa: E731
+        if transient is not None:
+            film.transient(transient, lumped=True)
+            self.supply = film.add_inflow(air)
         if cav == "penalty":
             self.p_end = film.add_pressure_bc(sealed, p0)
             film.add_pressure_bc(air, 0.0)
@@ -209,12 +214,13 @@ class ORingSeal(SealOutputs):
                     geometric=True)
 
 
-def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring"):
+def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw):
     """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``.
 
-    ``name``: the problem's name, options prefix ``tribofx_<name>_``.
+    ``name``: the problem's name, options prefix ``tribofx_<name>_``; ``kw``: the
+    seal's ``roughness`` and ``transient``.
     """
-    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm, name)
+    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm, name, **kw)
 
 
 def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):

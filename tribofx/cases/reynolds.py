@@ -37,20 +37,26 @@ __all__ = ["SliderCase", "rigid_film", "slider_reference"]
 
 
 def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,
-               p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None):
+               p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None, supply=False):
     """Return the film of a 1D gap on [x0, x1] (flow entering at x0) and its :class:`Problem`.
 
     Penalty or no cavitation: p = 0 at both ends.  JFO: inlet at x0 with void
     fraction λ_in (flooded, λ_in = 0: also p = 0), natural outlet (no
     Poiseuille flux, p = 0 there by complementarity).  ``h_ref`` (mm) is the
     film scale of the tolerances and, times v̄, the flux scale of the JFO
-    complementarity rows.  Returns ``(film, problem)``.
+    complementarity rows.  ``supply`` (JFO): the inlet is an open end supplied with
+    the content (1 − λ_in) h(x0) (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`)
+    instead of the Dirichlet conditions on λ and p.  Returns ``(film, problem)``.
     """
     msh = dmesh.create_interval(comm, n, [x0, x1])
     film = RigidFilm(msh, gap, vbar, mu, degree=degree, cavitation=cavitation, supg=supg,
                      eps=eps, p_c=p_c, film_scale=h_ref, speed_scale=vbar, density=density)
     if cavitation == "jfo":
-        film.add_inlet(lambda y: np.isclose(y[0], x0), void=lam_in)
+        at_inlet = lambda y: np.isclose(y[0], x0)   # noqa: E731
+        if supply:
+            film.add_inflow(at_inlet, (1 - lam_in) * gap(np.array(x0)))
+        else:
+            film.add_inlet(at_inlet, void=lam_in)
         film.jfo_initial_guess()
     else:
         film.add_pressure_bc()

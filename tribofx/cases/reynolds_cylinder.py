@@ -95,6 +95,9 @@ class CylinderCase:
         Param("inlet_void", float, 0.0, "-",
               "void fraction λ of the supplied film at x_in (jfo; 0: fully flooded, "
               "> 0: starved inlet)", lower=0.0, upper=1.0, closed=True),
+        Param("inlet", str, "dirichlet", "-", "jfo inlet: dirichlet (λ = inlet_void, p = 0 "
+              "at x_in) or supply (an open end supplied with the content (1 − inlet_void) "
+              "h(x_in), as the reciprocating O-ring's air end)", choices=("dirichlet", "supply")),
         Param("penalty", float, 1e-6, "-",
               "relative penalty ε/ε_ref, ε_ref = 12 μ ℓ²/h0³ (MPa·s/mm), ℓ = √(2 R h0)",
               lower=0.0),
@@ -155,7 +158,8 @@ class CylinderCase:
         return rigid_film(comm, v["x_in"], v["x_out"], v["mesh"], v["degree"],
                           lambda x: h0 + x**2 / (2 * R), v["um"], viscosity(v),
                           cavitation=v["cavitation"], supg=v["supg"], p_c=p_s, eps=eps,
-                          h_ref=h0, lam_in=v["inlet_void"], density=density(v))
+                          h_ref=h0, lam_in=v["inlet_void"], density=density(v),
+                          supply=v["inlet"] == "supply")
 
     @classmethod
     def run(cls, v, record, progress=None, verbose=False):

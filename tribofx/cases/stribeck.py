@@ -33,11 +33,10 @@ import numpy as np
 from mpi4py import MPI
 
 from ..continuation import ConstantParameter, Continuation
-from ..forms.mixed import asperity_constant
 from ..held_response import HeldResponse
 from ..params import InputError, Param, number_list
 from ..problem import NewtonDivergence, Problem
-from ..roughness import Roughness, greenwood_tripp
+from ..roughness import rough_pair
 from . import stribeck_geometry as geometry
 
 __all__ = ["StribeckCase"]
@@ -95,10 +94,8 @@ class StribeckCase:
     @staticmethod
     def roughness(v):
         """Return the plane's roughness: Patir–Cheng flow, Greenwood–Tripp asperities, μ_b."""
-        sig, E_star = v["sigma"], v["E"] / (1 - v["nu"] ** 2)
-        beta = sig / v["sigma_beta"]
-        KE = asperity_constant(v["eta_beta_sigma"] / (beta * sig), beta, sig) * E_star
-        return Roughness(sig, asperity=greenwood_tripp(KE, sig), share=-1.0, mu_b=v["mu_b"])
+        return rough_pair(v["sigma"], v["E"] / (1 - v["nu"] ** 2), v["mu_b"],
+                          v["eta_beta_sigma"], v["sigma_beta"])
 
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD, rough=True, shape=False):

@@ -28,7 +28,7 @@ Residual rows, all from :mod:`tribofx.forms.ehl` (pure UFL):
 * p: the steady Reynolds equation (49) on the lubrication surface S = P(γ_l)
   (or S_α, Fig. 23) pulled back to Γ_l, SUPG (Remark 3.2), penalty cavitation
   (:func:`~tribofx.forms.ehl.reynolds_on_surface`), or the JFO transport (57)
-  (:func:`~tribofx.forms.ehl.jfo_on_surface`);
+  (:func:`~tribofx.forms.jfo.jfo_on_surface`);
 * g: Grad_Γ p; λ: the nodal complementarity (52).
 
 The lubrication surface follows the counterpart's projection, h = (x − y)·ν,

@@ -88,8 +88,14 @@ class FilmOutputs:
                                        op=MPI.MIN)
 
     def admissible(self):
-        """Line-search test: True, or with ``require_open`` h > 0 and fluid at every node."""
-        return not self.require_open or (self.has_fluid() and self.min_film() > 0)
+        """Line-search test: True, or with ``require_open`` an open film and fluid at every node.
+
+        Open: h > 0, or on rough surfaces h > −4σ (the nominal surfaces may
+        overlap where the asperities carry; the Greenwood–Tripp fit ends at 4σ).
+        """
+        rough = getattr(self, "roughness", None)
+        floor = 0.0 if rough is None else -4 * rough.sigma
+        return not self.require_open or (self.has_fluid() and self.min_film() > floor)
 
     def profile(self, everywhere=False):
         """Nodal X, x (current), y (projection), h, p (λ, p_a) of Γ_l, sorted by X₀.

@@ -43,12 +43,15 @@ class TransientFilm:
     scheme = None            # None: the steady film of the chapter
     _content_form = None     # the compiled ∫ c dS of :meth:`content`
 
-    def transient(self, scheme="bdf2"):
+    def transient(self, scheme="bdf2", lumped=False):
         """Make the film transient, integrated by ``scheme`` ("euler" or "bdf2"); returns self.
 
         Call before the :class:`tribofx.problem.Problem` is built (the rows are
         built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
-        the content c lives at its points).
+        the content c lives at its points).  ``lumped`` (JFO): the content's rate
+        on the vertex rule, its history at the nodes of each cell (discontinuous
+        P1), and the monotone transport of :func:`tribofx.forms.jfo.jfo_on_surface`
+        (a starved film keeps θ ≥ 0).
         """
         if scheme not in SCHEMES:
             raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
@@ -57,11 +60,15 @@ class TransientFilm:
         md = self.dx.metadata()
         if md.get("quadrature_rule") == "vertex":
             raise ValueError("a transient film needs quadrature='gauss'")
+        if lumped and self.lam is None:
+            raise ValueError("a lumped transient film is for cavitation='jfo'")
         self.scheme = scheme
+        # the vertex rule's share in the cavitated zone: 0 in the steady start, 1 in time
+        self.lumped = fem.Constant(self.sub, 0.0) if lumped else False
         sub, body, gdim = self.sub, self.body, self.body.gdim
         deg = md["quadrature_degree"]
-        Cq = fem.functionspace(sub, basix.ufl.quadrature_element(sub.basix_cell(), (),
-                                                                 degree=deg))
+        Cq = fem.functionspace(sub, ("DG", 1) if lumped else basix.ufl.quadrature_element(
+            sub.basix_cell(), (), degree=deg))
         n = self.name
         self._hist = {
             "c": [fem.Function(Cq, name=f"{n}_content_{k}") for k in ("n", "nm1")],
@@ -91,6 +98,9 @@ class TransientFilm:
                                               body.u, *H["u"], *self.time_weights))
         self._tractions()
         self._expr = fem.Expression(self._content(), Cq.element.interpolation_points)
+        cells = sub.topology.index_map(sub.topology.dim).size_global
+        one = fem.form(fem.Constant(sub, 1.0) * self.dx)
+        self._cell_size = (self._sum(one) / cells) ** (1 / sub.topology.dim)
         return self
 
     def history_fields(self):
@@ -135,6 +145,10 @@ class TransientFilm:
         for c, v in zip(self.time_weights, (1.0 / dt, c0, c1)):
             c.value = v
         self.dt_prev.value = float(dt)
+        self._rate_speed = self._cell_size / dt      # the Reynolds rows' tolerance
+        if self.lumped is not False:
+            self.lumped.value = 1.0
+        self.set_scales()
 
     def end_step(self):
         """Nothing: the outputs of the step keep its rates (the next step resets them)."""

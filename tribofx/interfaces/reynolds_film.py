@@ -13,7 +13,11 @@ unit length on a curve, mm³/s on a surface) ≤ rtol·U·h_ref·b, b the width 
 the film (1, the diameter ℓ_l of Γ_l, or 2πr), i.e. rtol of the Couette flux
 through the film; trace rows as a displacement (mm) ≤ rtol·h_ref, g rows (MPa/mm)
 ≤ rtol·p_c/ℓ_l, complementarity rows (dimensionless) ≤ rtol; U, h_ref and p_c are
-the speed, film and pressure scales of :meth:`Film.set_scales`.
+the speed, film and pressure scales of :meth:`Film.set_scales`.  A transient
+film adds to U the speed ℓ_e/Δt of its mean element ℓ_e over the step
+(:meth:`tribofx.interfaces.film_transient.TransientFilm.begin_step`): a content
+error of rtol·h_ref at a node is a flux imbalance of that size, and the
+rounding of the content's rate grows like 1/Δt as a step is cut.
 """
 
 import numpy as np
@@ -23,7 +27,7 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..forms import ehl as ef
-from ..forms import mixed
+from ..forms import jfo, mixed
 from ..laws import density_law, is_constant
 from ..problem import BlockTolerance
 
@@ -44,6 +48,9 @@ class ReynoldsFilm:
 
     kin_reynolds = None      # a transient film's kinematics relative to S(t)
     film_rate = None         # a transient film's rate of the fluid content
+    lumped = False           # a transient JFO film's monotone transport (forms.ehl)
+    _inflow = None           # (where, c_in) of the weak inflow end (add_inflow)
+    _rate_speed = 0.0        # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
 
     def _init_rows(self):
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
@@ -114,6 +121,20 @@ class ReynoldsFilm:
         self._inlet, self._void_in = where, float(void)
         return self.add_pressure_bc(where, pressure) if void == 0 else None
 
+    def add_inflow(self, where, content=0.0):
+        """Weak JFO inflow at the end(s) ``where`` of a curve: the supplied content c_in (mm).
+
+        Where the Couette flux enters, c_in replaces the end node's own content
+        θh in the flux (:func:`tribofx.forms.jfo.jfo_inflow`); where it leaves,
+        the end is a natural outlet.  For a film whose flow reverses (a
+        reciprocating rod).  Call before the Problem is built; returns c_in's
+        Constant (mm).
+        """
+        if self.lam is None or self.sub.topology.dim != 1:
+            raise ValueError("a weak inflow is for a JFO film on a curve")
+        self._inflow = (where, fem.Constant(self.sub, float(content)))
+        return self._inflow[1]
+
     def add_reservoir(self, where, pressure):
         """JFO outlet into a reservoir: the end is flooded, p = ``pressure`` and λ = 0.
 
@@ -157,7 +178,8 @@ class ReynoldsFilm:
             self.h_ref = float(film_scale)
         if speed_scale is not None:
             self.U_ref = float(speed_scale)
-        atol = {"p": self.rtol * self.U_ref * self.h_ref * self._flux_width(),
+        atol = {"p": self.rtol * (self.U_ref + self._rate_speed) * self.h_ref
+                * self._flux_width(),
                 "u_s": self.rtol * self.h_ref,
                 "g": self.rtol * float(self.p_c.value) / self.length, "lam": self.rtol}
         for key, a in atol.items():
@@ -179,8 +201,12 @@ class ReynoldsFilm:
         self.density = law.bind(mesh)
         self.rho_p = self.density(self.p)
 
-    def _reynolds(self, dp):
-        """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint."""
+    def _reynolds(self, dp, open_end=True):
+        """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint.
+
+        ``open_end=False`` leaves out the terms of :meth:`add_inflow` (the fluxes
+        through the open end, for :meth:`consistent_fluxes`).
+        """
         h_e = ufl.CellDiameter(self.sub)
         # a transient film (TransientFilm): kinematics relative to S(t), the content's rate
         kin, rate, mu = self.kin_reynolds or self.kin, self.film_rate, self.mu_p
@@ -198,11 +224,14 @@ class ReynoldsFilm:
                                           grad_gamma=self.grad_gamma, rho=self.rho_p,
                                           rate=rate), None
         # JFO: the weight (2π r_S, axisymmetric) enters the divergence of the fluxes
-        return ef.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), kin,
+        ds_ends, ds_in = self._ds_ends()
+        inflow = None if self._inflow is None or not open_end else (ds_in, self._inflow[1])
+        return jfo.jfo_on_surface(self.p, self.lam, dp, ufl.TestFunction(self.Ql), kin,
                                  mu, self.dx, self.p_c, self._q_ref, h_e, self.nodal_dx,
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
-                                 ds_ends=self._ds_ends() if self._jumps else None,
-                                 weight=self.w_film, rate=rate)
+                                 ds_ends=ds_ends if self._jumps else None,
+                                 weight=self.w_film, rate=rate, lumped=self.lumped,
+                                 inflow=inflow)
 
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""
@@ -264,17 +293,24 @@ class ReynoldsFilm:
 
     # -- JFO -----------------------------------------------------------------------------
     def _ds_ends(self):
-        """Measure of the end points of Γ_l (the submesh's true boundary, tagged explicitly).
+        """Measures of the end points of Γ_l and of the weak inflow's ends among them.
 
-        In parallel the untagged ``ds`` of the facet submesh also contains the
-        vertices on the partition boundary.
+        The ends are the submesh's true boundary, tagged explicitly (in parallel
+        the untagged ``ds`` of the facet submesh also contains the vertices on
+        the partition boundary); one tag set for both (one form takes one), the
+        inflow ends tagged 2, the others 1.
         """
         sub = self.sub
         ends = self.boundary_facets()
-        tags = dmesh.meshtags(sub, 0, ends, np.full(len(ends), 1, dtype=np.int32))
+        values = np.full(len(ends), 1, dtype=np.int32)
+        if self._inflow is not None and len(ends):
+            X = sub.geometry.x[dmesh.entities_to_geometry(sub, 0, ends, False)][:, 0, :]
+            values[np.asarray(self._inflow[0](X.T), dtype=bool)] = 2
+        tags = dmesh.meshtags(sub, 0, ends, values)
         # a point's integral is its value: the vertex rule (no points on a point) is not needed
         md = {k: v for k, v in self.dx.metadata().items() if k != "quadrature_rule"}
-        return ufl.Measure("ds", sub, subdomain_data=tags, subdomain_id=1, metadata=md)
+        ds = ufl.Measure("ds", sub, subdomain_data=tags, metadata=md)
+        return ds((1, 2)), ds(2)
 
     def _at_dofs(self, values, dofs):
         """Value of a nodal array at the first of ``dofs`` owned by some rank (all ranks)."""
@@ -305,6 +341,8 @@ class ReynoldsFilm:
         if self._inlet is not None:
             supplied = (1 - self._void_in) * self._at_dofs(
                 h, self._boundary_dofs(self.Q, self._inlet))
+        elif self._inflow is not None:
+            supplied = float(self._inflow[1].value)
         # λ and p share the P1 layout of the same mesh; λ = 0 where p > 0 (complementarity)
         lam = np.maximum(np.where(X > X_m, 1 - h_m / h, 1 - supplied / h), 0.0)
         self.lam.x.array[:] = np.where(self.p.x.array > 0, 0.0, lam)
@@ -316,13 +354,17 @@ class ReynoldsFilm:
         φ are the hat functions of the end nodes (``inlet``: where the flow enters,
         default the JFO inlet), R(φ) the Reynolds rows tested by them.  JFO (57),
         Couette part in divergence form, w = θ h v̄·t_S the Couette flux along S
-        (:func:`tribofx.forms.ehl.couette_flux`): q_in = w(inlet) + R(φ_in),
+        (:func:`tribofx.forms.jfo.couette_flux`): q_in = w(inlet) + R(φ_in),
         q_out = w(outlet) − R(φ_out); the weak form (49) carries the whole flux in
         its rows: q_in = R(φ_in), q_out = −R(φ_out).  The hat functions sum to one,
         so q_out − q_in is the sum of the interior rows: zero to solver tolerance
-        for a conservative model (the penalty is not).
+        for a conservative model (the penalty is not).  At an open end
+        (:meth:`add_inflow`, the default inlet without an :meth:`add_inlet`) R
+        leaves out the end's own terms: q_in is what the supply and the leak carry.
         """
-        inlet = self._inlet if inlet is None else inlet
+        if inlet is None:
+            inlet = self._inlet if self._inlet is not None or self._inflow is None \
+                else self._inflow[0]
         if inlet is None:
             raise ValueError("consistent fluxes need the inlet (add_inlet or inlet=)")
         self.refresh()
@@ -330,7 +372,7 @@ class ReynoldsFilm:
         w = np.zeros(len(self.p.x.array))
         if self.lam is not None:
             wf = fem.Function(self.Q)
-            wf.interpolate(fem.Expression(ef.couette_flux(
+            wf.interpolate(fem.Expression(jfo.couette_flux(
                 self.kin, ufl.min_value(self.lam, 1.0), self.T),
                 self.Q.element.interpolation_points))
             w = wf.x.array
@@ -338,7 +380,7 @@ class ReynoldsFilm:
         for dofs in (dofs_in, np.setdiff1d(ends, dofs_in)):
             phi = fem.Function(self.Q)
             phi.x.array[dofs] = 1.0
-            R = self._sum(fem.form(self._reynolds(phi)[0],
+            R = self._sum(fem.form(self._reynolds(phi, open_end=False)[0],
                                    entity_maps=self.entity_maps() or None))
             out.append((self._at_dofs(w, dofs), R))
         return out[0][0] + out[0][1], out[1][0] - out[1][1]

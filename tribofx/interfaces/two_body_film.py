@@ -128,14 +128,14 @@ class TwoBodyFilm(KernelAssembly, Film):
         return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
 
     # -- time: the master's nodes move too ------------------------------------------------
-    def transient(self, scheme="bdf2"):
+    def transient(self, scheme="bdf2", lumped=False):
         """Make the film transient (:meth:`Film.transient`); the master's history is kept too.
 
         The master's surface velocity at the projection gains its nodes' rates,
         ẋ_k = (c₀ (u_k − u_kⁿ) + c₁ (u_kⁿ − u_kⁿ⁻¹))/Δt, through the kernel's data
         k₀ = c₀/Δt, z_k = −k₀ (X_k + u_kⁿ) + (c₁/Δt)(u_kⁿ − u_kⁿ⁻¹).
         """
-        super().transient(scheme)
+        super().transient(scheme, lumped)
         self._master_hist = [fem.Function(self.master.V, name=f"{self.name}_master_u_{k}")
                              for k in ("n", "nm1")]
         return self

@@ -1,0 +1,155 @@
+"""JFO mass-conserving Reynolds rows (57) on the lubrication surface S, pulled back to Γ_l.
+
+The transport and complementarity rows of a film with cavitation (§6.5) on S
+(:class:`forms.ehl.LubricationKinematics`), their SUPG (Remark 3.2), the
+Couette flux and the open end of a curve supplied with lubricant (the air end of
+a reciprocating seal).  The Reynolds rows without cavitation and the
+kinematics are in :mod:`forms.ehl`.  Units: mm, s, MPa.
+"""
+
+import ufl
+
+from . import reynolds as rf
+from .ehl import WeightedMeasure
+
+__all__ = ["couette_flux", "jfo_inflow", "jfo_on_surface"]
+
+
+def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
+                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1, rate=None,
+                   lumped=False, inflow=None):
+    """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l.
+
+    Returns (transport, constraint): the transport residual
+
+        ∫_S ( θ h³/(12μ) grad_S p·grad_S δp + div_S(θ h v̄) δp ) ds  (+ SUPG),  θ = 1 − min(λ, 1),
+
+    (ds = ds_S, grad_S, div_S through A, continuous P1 λ so the jump term on Σ
+    vanishes) and the nodal complementarity (52) ∫ (q_ref/h_e) min(p/p_c, λ) δλ dS
+    with the vertex quadrature ``nodal_dx`` (C = 0 node by node; semismooth Newton
+    through ``ufl.derivative`` of ``min_value``).  SUPG (Remark 3.2) uses the
+    diffusivity D = s h² p_c/(12μ) blended by the full-film fraction s(p, λ)
+    (:func:`forms.reynolds.jfo_diffusivity`), element size h_e scaled to S.
+    ``ds_ends`` (the end points of Γ_l, with the reference tangent ``T``) adds
+    the jumps of the Couette flux between elements (see the code), so that the
+    discrete form is conservative node by node.
+
+    ``weight`` w: the area factor of a surface of revolution, ds_S = w dl with
+    w = 2π r_S (1 in the plane).  ``dx``, ``nodal_dx`` and ``ds_ends`` are then
+    unweighted: w multiplies the fluxes, and the divergence is the one of the
+    surface of revolution, div_S q = (1/w) d(w q)/dl for a meridional q (the hoop
+    term included), so that the balance stays exact when r_S varies.
+
+    ``rate``: the transient film (:mod:`forms.squeeze`), d(θ h J_S w)/dt per unit
+    reference measure ``dx``, with ``kin`` relative to the moving S; None: steady.
+    ``lumped`` (False, or a Constant ω ∈ [0, 1]): the transport of a starved film
+    that keeps its content θh ≥ 0.  The rate is taken on the vertex rule
+    ``nodal_dx`` (its history then lives at the nodes of each cell) and, in the
+    SUPG residual, weighted by the full-film fraction s; the Couette flux is
+    written in conservative form, −∫ w_t dδp/dX + [w_t δp] at the ends, and
+    integrated by the vertex rule with the weight ω(1 − s) (Gauss elsewhere).
+    In the cavitated zone (p = 0, s ≈ 0, ω = 1) the rows are then lumped
+    backward differences of the nodal contents, the central differences of the
+    interpolated Couette flux and the streamline diffusion τ|v̄|² = |v̄|h_e/2 of
+    SUPG: first-order upwinding on a curve, an M-matrix in θh.  With Gauss
+    points and a consistent mass instead, the product of θ and h adds the cross
+    term −ΔθΔh/6 per element and the mass off-diagonal terms of either sign,
+    which drain the cavitated node next to a full one.  In the full film s ≈ 1
+    keeps the steady form and SUPG consistent; ω = 0 (the steady start) is the
+    Gauss form throughout, where the semismooth start converges.
+
+    ``inflow`` (ds_in, c_in): the open ends of :func:`jfo_inflow` (supply c_in, p = 0
+    weakly) at the end points of ``ds_in``.
+    """
+    dS = WeightedMeasure(kin.stretch * weight, dx)
+
+    def grad(f):
+        return kin.grad(f, grad_gamma)
+
+    def div(w):
+        return kin.div(weight * w, grad_gamma) / weight
+
+    lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
+    if lumped is not False:
+        F = (1 - lam_c) * rf.poiseuille_conductance(kin.h, mu) * ufl.inner(
+            grad(p), grad(dp)) * dS
+    else:
+        F = rf.jfo_residual(p, lam_c, dp, kin.h, kin.vbar, mu, dS, grad=grad, div=div)
+    if rate is not None:
+        F += rate * dp * (dx if lumped is False else nodal_dx)
+    if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
+        D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
+        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
+        r_supg = None if rate is None else rate / (kin.stretch * weight)
+        if lumped is not False and rate is not None:
+            r_supg = rf.jfo_film_fraction(p, lam, p_c) * r_supg
+        F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
+                                   div=div, rate=r_supg)
+    if lumped is not False:
+        # the Couette flux in conservative form, −∫ w_t dδp/dX dX + [w_t δp] at the ends
+        # (the divergence form with its jumps below), integrated by the vertex rule in
+        # the cavitated zone (weight 1 − s): there it sees the interpolant of the content
+        # θh, not the Gauss-point product of θ and h, whose cross term −ΔθΔh/6 drains
+        # the cavitated node next to a full one (a starved front undershoots)
+        w_t = weight * couette_flux(kin, lam_c, T)
+        w_v = weight * couette_flux(kin, lam, T)    # unclamped: a nodal θ < 0 keeps its row
+        dw = w_t * ufl.dot(grad_gamma(dp), T)
+        dw_v = w_v * ufl.dot(grad_gamma(dp), T)
+        s_full = 1 - lumped * (1 - rf.jfo_film_fraction(p, lam, p_c))
+        F -= s_full * dw * dx + (1 - s_full) * dw_v * nodal_dx
+        F += w_t * ufl.dot(T, ufl.FacetNormal(ds_ends.ufl_domain())) * dp * ds_ends
+    elif ds_ends is not None:
+        # v̄ = ½(I − ν⊗ν)FV is discontinuous between elements for a C⁰ displacement:
+        # the element-wise divergence theorem leaves the jumps of the Couette flux
+        # w_t = θ h v̄·t_S at the nodes, −Σ_F [[w_t]] δp (zero for the exact solution).
+        # They are added element by element, without interior-facet integrals:
+        # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
+        # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
+        w_t = weight * couette_flux(kin, lam_c, T)
+        n = ufl.FacetNormal(ds_ends.ufl_domain())
+        F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
+        F += w_t * ufl.dot(T, n) * dp * ds_ends
+    if inflow is not None:
+        F += jfo_inflow(kin, lam_c, p, dp, inflow[1], T, inflow[0], mu, h_e, weight)
+    C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=weight * q_ref / h_e)
+    return F, C
+
+
+def jfo_inflow(kin, lam, p, dp, supply, T, ds_in, mu, h_e, weight=1, leak=1e3):
+    """Open end of a curve Γ_l (gdim = 2) to a reservoir at p = 0 with a lubricant supply, JFO.
+
+    The divergence form of the transport rows carries the Couette flux w θ h v_n
+    through an end (v_n = v̄·t_S (T·n), n the end's outward normal) with the
+    end node's own content θh.  Where the flow enters (v_n < 0)
+
+        ∫_ds_in w min(v_n, 0) (c_in − θ h) δp,   θ = 1 − λ,
+
+    lets the supplied content c_in (mm; a layer of thickness t on a surface
+    moving at 2v̄ brings c_in = 2t) enter in its place, an upwind inflow
+    condition; where the flow leaves (v_n ≥ 0) it vanishes, a natural outlet.
+    A film that arrives full at the end (p > 0 there: a pressure flow towards
+    the reservoir) leaves through it,
+
+        ∫_ds_in κ p δp,   κ = ``leak`` · w h³/(12μ h_e),
+
+    a Robin condition for p = 0 with ``leak`` times the conductance of the end
+    element (p at the end is then 1/leak of the last element's pressure drop);
+    in a cavitated end p = 0 and the term vanishes.  One form serves both
+    directions of a reciprocating film.  ``lam`` is the clamped λ, ``mu`` μ(p).
+    """
+    tS = kin.A * T
+    v_n = ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS))) * ufl.dot(
+        T, ufl.FacetNormal(ds_in.ufl_domain()))
+    kappa = leak * rf.poiseuille_conductance(kin.h, mu) / (h_e * kin.stretch)
+    return weight * (ufl.min_value(v_n, 0) * (supply - (1 - lam) * kin.h)
+                     + kappa * p) * dp * ds_in
+
+
+def couette_flux(kin, lam, T):
+    """Couette volume flux θ h v̄·t_S along S (mm²/s), θ = 1 − λ, gdim = 2 (eq. 40).
+
+    t_S = A T/|A T| is the unit tangent of S in the direction of the reference
+    tangent T of Γ_l; ``lam`` is the void fraction (0 without cavitation).
+    """
+    tS = kin.A * T
+    return (1 - lam) * kin.h * ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS)))
