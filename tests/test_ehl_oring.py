@@ -243,9 +243,12 @@ def test_jfo_film_carries_its_flux_through_the_cavitated_outlet():
 
 
 def test_bad_input():
-    """Non-positive or decreasing p_s and U = 0 are rejected (exit 2)."""
+    """Non-positive or decreasing p_s and U = 0 are rejected (exit 2); so is a cycle that
+    starts in the instroke or has no mass-conserving film."""
     for bad in ({"p_s": "0"}, {"p_s": "2,1"}, {"U": "0"}, {"mesh_levels": "1,x"},
-                {"mesh_file": "ring.msh", "arc_refine": "1"}):
+                {"mesh_file": "ring.msh", "arc_refine": "1"},
+                {"stroke": "cycle", "U": "-400", "cavitation": "jfo", "formulation": "mixed"},
+                {"stroke": "cycle"}):      # FAST's penalty cavitation
         v = resolve(Case.params, {**{k: str(x) for k, x in FAST.items()}, **bad})
         with pytest.raises(InputError):
             Case.validate(v)

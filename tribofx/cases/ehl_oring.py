@@ -44,6 +44,11 @@ is accepted when it keeps the film open, h > 0, and R finite: ‖R‖ is a poor
 merit function with the thick-film flanks of Γ_l) and
 :class:`~tribofx.continuation.Continuation` in the groove offset, p_s and U.
 
+``stroke=cycle``: the transient film over a reciprocating stroke,
+U(t) = U cos(2πt/``period``), from the steady outstroke at the first p_s, with
+an open air end supplied by the layer the rod carried out and an optional rough
+rod (``sigma``); :mod:`tribofx.cases.oring_cycle`.
+
 Default data (mm, N, s, MPa), after Stupkiewicz (2009) and Stupkiewicz &
 Marciniszyn (Tribol. Int. 42, 2009) where the chapter fixes them:
 
@@ -117,8 +122,20 @@ class EHLORingCase(ORingRun):
     params = (
         Param("p_s", str, "1", "MPa", "sealed pressures (comma-separated, increasing)"),
         Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
-        Param("stroke", str, "single", "-", "single (sign of U) or both (U and −U)",
-              choices=("single", "both")),
+        Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
+              "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
+              "tribofx.cases.oring_cycle)", choices=("single", "both", "cycle")),
+        Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
+        Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
+              "Newton failure)", lower=4),
+        Param("cycles", float, 1.0, "-", "stroke=cycle: periods to run", lower=0),
+        Param("scheme", str, "bdf2", "-", "stroke=cycle: time scheme of the film (euler or "
+              "bdf2)", choices=("euler", "bdf2")),
+        Param("sigma", float, 0.0, "mm", "RMS roughness σ of the rod (0: smooth; > 0: mixed "
+              "film, Patir–Cheng flow, Greenwood–Tripp asperities, ηβσ = σ/β = 0.1)",
+              lower=0, closed=True),
+        Param("mu_b", float, 0.1, "-", "boundary friction of the asperities (sigma > 0)",
+              lower=0, closed=True),
         Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
         Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
               lower=1, upper=32, closed=True),
@@ -167,6 +184,10 @@ class EHLORingCase(ORingRun):
             raise InputError("p_s must be increasing")
         if v["U"] == 0:
             raise InputError("U must be nonzero (mm/s)")
+        if v["stroke"] == "cycle" and (v["U"] < 0 or cavitation_model(v) != "jfo"
+                                       or v["study"] != "none"):
+            raise InputError("stroke=cycle starts from the outstroke (U > 0) and needs "
+                             "cavitation=jfo (mass-conserving) and study=none")
         levels = number_list(v["mesh_levels"], "mesh_levels")
         if any(k < 1 or k != int(k) for k in levels):
             raise InputError("mesh_levels must be positive integers")

@@ -9,10 +9,12 @@ import time
 from mpi4py import MPI
 
 from ..params import number_list
-from ..plots import plot_oring
+from ..plots import plot_oring, plot_oring_cycle
 from ..problem import options_name
 from ..restart import SweepJournal
+from ..stepper import nominal_steps
 from ..sweep import SweepVariant
+from .oring_cycle import run_cycle
 from .oring_seal import axial_balance, build, solve_to
 
 __all__ = ["ORingRun"]
@@ -23,7 +25,9 @@ class ORingRun:
 
     @staticmethod
     def progress_total(v):
-        """Points the progress bar counts: the sealed pressures of every stroke."""
+        """Points the progress bar counts: the sealed pressures of every stroke, or the steps."""
+        if v["stroke"] == "cycle":
+            return nominal_steps(v["cycles"] * v["period"], v["period"] / v["cycle_steps"])
         return len(number_list(v["p_s"], "p_s")) * (1 if v["stroke"] == "single" else 2)
 
     @classmethod
@@ -36,6 +40,8 @@ class ORingRun:
         ``resume``: continue from it (a stroke restarts at its next pressure,
         ramped from the saved state; ``study=mesh`` is run again whole).
         """
+        if v["stroke"] == "cycle":
+            return run_cycle(cls, v, record, progress, verbose, checkpoint, resume)
         comm = MPI.COMM_WORLD
         U = v["U"]
         p_targets = number_list(v["p_s"], "p_s")
@@ -125,10 +131,14 @@ class ORingRun:
 
     @staticmethod
     def vtx_fields(seal):
-        """Displacement (bulk) and film pressure (Γ_l submesh)."""
+        """Displacement (bulk) and film pressure (Γ_l submesh) of the seal (or its cycle's)."""
+        seal = getattr(seal, "seal", seal)
         return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
 
     @staticmethod
     def plot(profile, outdir):
-        """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19)."""
-        plot_oring(profile, outdir)
+        """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19), or ``cycle.png``."""
+        if "cycle" in profile:
+            plot_oring_cycle(profile["cycle"], outdir)
+        else:
+            plot_oring(profile, outdir)

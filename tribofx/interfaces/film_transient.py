@@ -62,9 +62,7 @@ class TransientFilm:
             raise ValueError("a transient film needs quadrature='gauss'")
         if lumped and self.lam is None:
             raise ValueError("a lumped transient film is for cavitation='jfo'")
-        self.scheme = scheme
-        # the vertex rule's share in the cavitated zone: 0 in the steady start, 1 in time
-        self.lumped = fem.Constant(self.sub, 0.0) if lumped else False
+        self.scheme, self.lumped = scheme, bool(lumped)
         sub, body, gdim = self.sub, self.body, self.body.gdim
         deg = md["quadrature_degree"]
         Cq = fem.functionspace(sub, ("DG", 1) if lumped else basix.ufl.quadrature_element(
@@ -146,8 +144,6 @@ class TransientFilm:
             c.value = v
         self.dt_prev.value = float(dt)
         self._rate_speed = self._cell_size / dt      # the Reynolds rows' tolerance
-        if self.lumped is not False:
-            self.lumped.value = 1.0
         self.set_scales()
 
     def end_step(self):

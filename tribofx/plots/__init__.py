@@ -7,6 +7,7 @@ from .film import (
     plot_film_profiles,
     plot_friction_vs_speed,
     plot_oring,
+    plot_oring_cycle,
     plot_reynolds_cylinder,
     plot_slider,
 )
@@ -15,6 +16,7 @@ from .wear import plot_dt_study, plot_wear_ball, plot_wear_pin
 
 __all__ = [
     "plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
+    "plot_oring_cycle",
     "plot_reynolds_cylinder",
     "plot_slider",
     "plot_dt_study", "plot_hertz_pressure", "plot_wear_ball", "plot_wear_pin", "pyplot"]

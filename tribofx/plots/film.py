@@ -7,6 +7,7 @@ import numpy as np
 from .common import pyplot
 
 __all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "plot_oring",
+           "plot_oring_cycle",
            "plot_reynolds_cylinder", "plot_slider", "plot_squeeze", "plot_stribeck"]
 
 
@@ -183,6 +184,26 @@ def _oring_axes(plt, groups, title):
     a2.set_xlabel("z (mm, position on the rod; air side > 0)")
     a2.grid(alpha=0.3)
     return fig
+
+
+def plot_oring_cycle(hist, outdir):
+    """O-ring over a reciprocating stroke: ``cycle.png``, rod speed, h_min, friction, air flux.
+
+    ``hist``: the per-step lists of :mod:`tribofx.cases.oring_cycle` (time in s).
+    """
+    plt = pyplot()
+    t = 1e3 * np.asarray(hist["time"])
+    rows = (("rod_speed", 1.0, "rod speed (mm/s)"), ("h_min", 1e3, "h_min (µm)"),
+            ("friction_force", 1.0, "friction on the ring (N)"),
+            ("flux_air", 1.0, "flux to the air side (mm³/s)"))
+    fig, axes = plt.subplots(len(rows), 1, figsize=(6.4, 8.0), sharex=True)
+    for ax, (key, scale, label) in zip(axes, rows):
+        ax.plot(t, scale * np.asarray(hist[key]), ".-", ms=3)
+        ax.set_ylabel(label)
+        ax.axhline(0.0, color="0.7", lw=0.8)
+    axes[-1].set_xlabel("time (ms)")
+    axes[0].set_title("O-ring over a reciprocating stroke")
+    _save(plt, fig, Path(outdir) / "cycle.png")
 
 
 def plot_oring(profile, outdir):

@@ -1,0 +1,144 @@
+"""The O-ring over a reciprocating stroke (``ehl-oring stroke=cycle``, issue 31).
+
+The chapter (§8.1) solves the outstroke and the instroke as two steady states.
+Here the rod runs U(t) = U cos(2πt/T) (T = ``period``): the cycle starts from
+the steady outstroke at its peak speed (t = 0), reverses at T/4 (U = 0), runs
+the instroke to T/2 … 3T/4 and the outstroke again.  The film is the seal's
+transient JFO film (:mod:`tribofx.forms.squeeze`, ``scheme`` backward Euler or
+BDF2) with the lumped transport of :func:`tribofx.forms.jfo.jfo_on_surface`
+(a starved film keeps θh ≥ 0), stepped by :class:`tribofx.stepper.Stepper`
+(Δt = T/``cycle_steps``, halved on Newton failure; a run that fails keeps and
+writes its last converged step).
+
+The ends of the film:
+
+* the sealed end is flooded (p = p_s, λ = 0) in both strokes: an inlet in the
+  outstroke, an outlet into the sealed fluid in the instroke;
+* the air end is an open end (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`):
+  a natural outlet in the outstroke; in the instroke an inlet supplied with the
+  layer the rod carried out.  A rod point that passes the air end at time t in
+  the instroke passed it at the mirror time 2t_r − t of the outstroke (t_r the
+  reversal, the stroke being symmetric), carrying the content c = θh of the
+  film there (the layer t = c/2 on the rod, brought back as c): the supply is
+  the air end's content at the mirror time (the steady outstroke's before t = 0).
+
+A rough rod (``sigma`` > 0: Patir–Cheng flow factors and Greenwood–Tripp
+asperities, :func:`tribofx.roughness.rough_pair`, boundary friction ``mu_b``)
+carries the seal where the film collapses: at the reversal only the squeeze
+holds a smooth film, and the starved instroke thins it further.
+
+Records per step: ``time``, ``rod_speed``, ``h_min``, ``friction_force`` (N on the
+whole rod, axial, on the ring: the rod feels the opposite), ``flux_air`` (the
+volume flux through the air end, mm³/s, > 0 out to the air: the Couette flux
+2π r θh v̄ there), ``content`` (the oil in the film, mm³); per completed cycle the
+net leakage ∫ flux_air dt (mm³, > 0 lost to the air side).
+"""
+
+import math
+
+import numpy as np
+from mpi4py import MPI
+
+from ..params import number_list
+from ..roughness import rough_pair
+from ..slow_run import SlowRun
+from ..stepper import Stepper
+from .oring_seal import build, solve_to
+
+__all__ = ["AirLayer", "rod_speed", "run_cycle"]
+
+
+def rod_speed(U, period):
+    """Return t ↦ (0, U cos(2πt/T)) (mm/s), the rod's velocity in (r, z)."""
+    return lambda t: np.array([0.0, U * math.cos(2 * math.pi * t / period)])
+
+
+class AirLayer:
+    """The layer the rod carries out at the air end and brings back (see the module docstring).
+
+    ``history`` holds the outstroke's (t, c) at the air end, c = θh (mm); kept in
+    the stepper's history, so a checkpoint carries it.
+    """
+
+    def __init__(self, history, period):
+        self.h, self.period = history, float(period)
+        self.h.setdefault("t", [])
+        self.h.setdefault("c", [])
+
+    def record(self, t, c, U):
+        """Keep the content c (mm) at the air end at time t (s) while U > 0 (outstroke)."""
+        if U > 0:
+            self.h["t"].append(float(t))
+            self.h["c"].append(float(c))
+
+    def supply(self, t):
+        """Content brought back at time t (mm): the air end's at the mirror time 2t_r − t."""
+        if not self.h["t"]:
+            return 0.0       # nothing carried out yet (the supply only acts in an instroke)
+        T = self.period
+        t_rev = (math.floor(t / T - 0.25) + 0.25) * T    # the last reversal out → in
+        return float(np.interp(2 * t_rev - t, self.h["t"], self.h["c"]))
+
+
+def _air_end(seal):
+    """(θh, h, 2π r) at the air end of the film (the highest z of Γ_l), every rank."""
+    prof = seal.film.profile(everywhere=True)
+    k = int(np.argmax(prof["X"][:, 1]))
+    return (1 - prof["lam"][k]) * prof["h"][k], prof["h"][k], 2 * math.pi * prof["x"][k, 0]
+
+
+def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
+    U, T = v["U"], v["period"]
+    E_star = 3 * (v["mu1"] + v["mu2"]) / 0.75      # ν = 1/2, the rod rigid
+    rough = rough_pair(v["sigma"], E_star, v["mu_b"]) if v["sigma"] > 0 else None
+    seal = build(v, U, roughness=rough, transient=v["scheme"], name="ehl_oring_cycle")
+    if not resume:
+        solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
+    film = seal.film
+    layer = AirLayer({}, T)
+    # the rod speed and the air end's supply: set at t_{n+1} each step, part of the state
+    stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end],
+                      checkpoint=checkpoint, name="ehl_oring_cycle", verbose=verbose,
+                      problem_kw={"max_it": 40, "max_backtracks": 10,
+                                  "line_search": "admissible", "stall_window": 10},
+                      schedule=[(film.V_counter, rod_speed(U, T)),
+                                (seal.supply, lambda t: layer.supply(t))])
+    keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "content",
+            "supply")
+    sr = SlowRun(stepper, v, record, keys, case.vtx_fields(seal), resume)
+    layer.h = stepper.history.setdefault("air_layer", layer.h)
+    stepper.seal = seal      # the outputs' (ehl_oring_run.vtx_fields)
+
+    def log(st, its):
+        c, _, width = _air_end(seal)
+        u = float(film.V_counter.value[1])
+        layer.record(st.t, c, u)
+        m = seal.measures()
+        sr.log(its, {"time": st.t, "rod_speed": u, "h_min": m["h_min"],
+                     "friction_force": m["friction_force_per_circumference"] * 2 * math.pi
+                     * seal.r_rod, "flux_air": width * c * 0.5 * u,
+                     "content": film.content(), "supply": float(seal.supply.value)})
+
+    if not resume:
+        log(stepper, 0)
+    sr.run(v["cycles"] * T, T / v["cycle_steps"], lambda st, rep: log(st, rep.iterations),
+           progress, report=lambda: _report(sr.hist, record, T))
+    return stepper
+
+
+def _report(hist, record, T):
+    """Per-step series and the net leakage of each completed cycle (trapezoid in time)."""
+    units = {"time": "s", "rod_speed": "mm/s", "h_min": "mm", "friction_force": "N",
+             "flux_air": "mm^3/s", "content": "mm^3", "supply": "mm"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    t, q = np.asarray(hist["time"]), np.asarray(hist["flux_air"])
+    leak = []
+    for k in range(int(t[-1] / T + 1e-9) if len(t) else 0):
+        sel = (t >= k * T - 1e-12) & (t <= (k + 1) * T + 1e-12)
+        leak.append(float(np.trapezoid(q[sel], t[sel])))
+    record.result("leakage_per_cycle", leak, "mm^3")
+    if MPI.COMM_WORLD.rank == 0:
+        record.profile = {"cycle": hist}
+    record.result("time_reached", float(t[-1]) if len(t) else 0.0, "s")
