@@ -5,8 +5,8 @@ Here the rod runs U(t) = U cos(2πt/T) (T = ``period``): the cycle starts from
 the steady outstroke at its peak speed (t = 0), reverses at T/4 (U = 0), runs
 the instroke to T/2 … 3T/4 and the outstroke again.  The film is the seal's
 transient JFO film (:mod:`tribofx.forms.squeeze`, ``scheme`` backward Euler or
-BDF2) with the lumped transport of :func:`tribofx.forms.jfo.jfo_on_surface`
-(a starved film keeps θh ≥ 0), stepped by :class:`tribofx.stepper.Stepper`
+BDF2) with the content's rate at the nodes (``lumped``,
+:func:`tribofx.forms.jfo.jfo_on_surface`), stepped by :class:`tribofx.stepper.Stepper`
 (Δt = T/``cycle_steps``, halved on Newton failure; a run that fails keeps and
 writes its last converged step).
 
@@ -27,8 +27,9 @@ asperities, :func:`tribofx.roughness.rough_pair`, boundary friction ``mu_b``)
 carries the seal where the film collapses: at the reversal only the squeeze
 holds a smooth film, and the starved instroke thins it further.
 
-Records per step: ``time``, ``rod_speed``, ``h_min``, ``friction_force`` (N on the
-whole rod, axial, on the ring: the rod feels the opposite), ``flux_air`` (the
+Records per step: ``time``, ``rod_speed``, ``h_min``, ``friction_force`` (the
+film's axial force on the ring, pressure and shear, N on the whole circumference:
+the steady strokes' ``friction_force_per_circumference`` × 2πr_rod), ``flux_air`` (the
 volume flux through the air end, mm³/s, > 0 out to the air: the Couette flux
 2π r θh v̄ there), ``content`` (the oil in the film, mm³); per completed cycle the
 net leakage ∫ flux_air dt (mm³, > 0 lost to the air side).

@@ -50,8 +50,8 @@ class TransientFilm:
         built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
         the content c lives at its points).  ``lumped`` (JFO): the content's rate
         on the vertex rule, its history at the nodes of each cell (discontinuous
-        P1), and the monotone transport of :func:`tribofx.forms.jfo.jfo_on_surface`
-        (a starved film keeps θ ≥ 0).
+        P1), and weighted by the full-film fraction in SUPG
+        (:func:`tribofx.forms.jfo.jfo_on_surface`).
         """
         if scheme not in SCHEMES:
             raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
