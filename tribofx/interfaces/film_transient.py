@@ -50,8 +50,9 @@ class TransientFilm:
         built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
         the content c lives at its points).  ``lumped`` (JFO): the content's rate
         on the vertex rule, its history at the nodes of each cell (discontinuous
-        P1), and weighted by the full-film fraction in SUPG
-        (:func:`tribofx.forms.jfo.jfo_on_surface`).
+        P1), and weighted by the full-film fraction in SUPG; on a curve also the
+        Constant ``vertex_couette`` ω (0 until set), the vertex rule's share of
+        the cavitated Couette flux (:func:`tribofx.forms.jfo.jfo_on_surface`).
         """
         if scheme not in SCHEMES:
             raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
@@ -63,6 +64,8 @@ class TransientFilm:
         if lumped and self.lam is None:
             raise ValueError("a lumped transient film is for cavitation='jfo'")
         self.scheme, self.lumped = scheme, bool(lumped)
+        if lumped and self._jumps:   # ω of jfo_on_surface(vertex=): 0 until set (reforming films)
+            self.vertex_couette = fem.Constant(self.sub, 0.0)
         sub, body, gdim = self.sub, self.body, self.body.gdim
         deg = md["quadrature_degree"]
         Cq = fem.functionspace(sub, ("DG", 1) if lumped else basix.ufl.quadrature_element(

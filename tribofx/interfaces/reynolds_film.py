@@ -48,7 +48,8 @@ class ReynoldsFilm:
 
     kin_reynolds = None      # a transient film's kinematics relative to S(t)
     film_rate = None         # a transient film's rate of the fluid content
-    lumped = False           # a transient JFO film's monotone transport (forms.ehl)
+    lumped = False           # a transient JFO film's nodal content rate (forms.jfo)
+    vertex_couette = None    # its vertex-rule share of the cavitated Couette flux
     _inflow = None           # (where, c_in) of the weak inflow end (add_inflow)
     _rate_speed = 0.0        # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
 
@@ -231,7 +232,7 @@ class ReynoldsFilm:
                                  supg=self._supg, grad_gamma=self.grad_gamma, T=self.T,
                                  ds_ends=ds_ends if self._jumps else None,
                                  weight=self.w_film, rate=rate, lumped=self.lumped,
-                                 inflow=inflow)
+                                 inflow=inflow, vertex=self.vertex_couette)
 
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""

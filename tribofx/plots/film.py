@@ -194,8 +194,8 @@ def plot_oring_cycle(hist, outdir):
     plt = pyplot()
     t = 1e3 * np.asarray(hist["time"])
     rows = (("rod_speed", 1.0, "rod speed (mm/s)"), ("h_min", 1e3, "h_min (µm)"),
-            ("friction_force", 1.0, "axial film force on the ring (N)"),
-            ("flux_air", 1.0, "flux to the air side (mm³/s)"))
+            ("friction_force", 1.0, "film force, axial (N)"),
+            ("flux_air", 1.0, "flux to air (mm³/s)"))
     fig, axes = plt.subplots(len(rows), 1, figsize=(6.4, 8.0), sharex=True)
     for ax, (key, scale, label) in zip(axes, rows):
         ax.plot(t, scale * np.asarray(hist[key]), ".-", ms=3)
