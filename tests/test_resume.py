@@ -60,6 +60,12 @@ CASES = {
                      "dt=5e-4", "--quiet"], 5e-3, 3,
                     ("h_center", "h_min", "p_center", "approach"), "final_film",
                     "displacement"),
+    # the O-ring over a stroke: the film's histories, the rod speed, the air end's
+    # supply and its outstroke record (the stepper's history), the mounted housing
+    "ehl-oring-cycle": (["run", "ehl-oring", "--set", "stroke=cycle", "--set", "mesh=2",
+                         "--set", "cycles=0.2", "--set", "cycle_steps=40", "--quiet"], 0.02,
+                        2, ("h_min", "flux_air", "content", "supply"), "final_film",
+                        "displacement"),
 }
 
 
@@ -133,7 +139,8 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
     pytest.param("wear-ball-flat", 1, signal.SIGTERM, marks=pytest.mark.slow),
     pytest.param("wear-ball-halfspace", 2, signal.SIGINT, marks=MPIEXEC),
     ("wear-reciprocating", 1, signal.SIGTERM),
-    ("ehl-squeeze", 1, signal.SIGTERM)])
+    ("ehl-squeeze", 1, signal.SIGTERM),
+    pytest.param("ehl-oring-cycle", 1, signal.SIGTERM, marks=pytest.mark.slow)])
 def test_interrupted_run_resumes_to_the_same_result(tmp_path, case, ranks, sig):
     if ranks > 1 and not (Path(sys.executable).parent / "mpiexec").exists():
         pytest.skip("no mpiexec next to the interpreter")

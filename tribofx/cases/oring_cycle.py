@@ -143,12 +143,12 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
     if not resume:
         log(stepper, 0)
     sr.run(v["cycles"] * T, T / v["cycle_steps"], lambda st, rep: log(st, rep.iterations),
-           progress, report=lambda: _report(sr.hist, record, T))
+           progress, report=lambda: _report(sr.hist, record, T, seal))
     return stepper
 
 
-def _report(hist, record, T):
-    """Per-step series and the net leakage of each completed cycle (trapezoid in time)."""
+def _report(hist, record, T, seal):
+    """Per-step series, the net leakage of each completed cycle (trapezoid in time), the film."""
     units = {"time": "s", "rod_speed": "mm/s", "h_min": "mm", "friction_force": "N",
              "flux_air": "mm^3/s", "content": "mm^3", "supply": "mm"}
     for key, vals in hist.items():
@@ -162,3 +162,7 @@ def _report(hist, record, T):
     if MPI.COMM_WORLD.rank == 0:
         record.profile = {"cycle": hist}
     record.result("time_reached", float(t[-1]) if len(t) else 0.0, "s")
+    prof = seal.film.profile(everywhere=True)
+    record.result("final_film", np.column_stack([prof["X"][:, 1], prof["h"], prof["p"],
+                                                 prof["lam"]]).tolist(),
+                  "mm (z), mm (h), MPa (p), - (λ) per node of the film at the last step")

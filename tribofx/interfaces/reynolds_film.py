@@ -123,12 +123,13 @@ class ReynoldsFilm:
         return self.add_pressure_bc(where, pressure) if void == 0 else None
 
     def add_inflow(self, where, content=0.0):
-        """Weak JFO inflow at the end(s) ``where`` of a curve: the supplied content c_in (mm).
+        """Open end(s) ``where`` of a JFO film on a curve, supplied with the content c_in (mm).
 
         Where the Couette flux enters, c_in replaces the end node's own content
-        θh in the flux (:func:`tribofx.forms.jfo.jfo_inflow`); where it leaves,
-        the end is a natural outlet.  For a film whose flow reverses (a
-        reciprocating rod).  Call before the Problem is built; returns c_in's
+        θh in the flux; where it leaves, the end is a natural outlet; a film that
+        arrives full leaves through a Robin leak κp, p = 0 weakly
+        (:func:`tribofx.forms.jfo.jfo_inflow`).  For a film whose flow reverses
+        (a reciprocating rod).  Call before the Problem is built; returns c_in's
         Constant (mm).
         """
         if self.lam is None or self.sub.topology.dim != 1:
