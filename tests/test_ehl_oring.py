@@ -248,7 +248,8 @@ def test_bad_input():
     for bad in ({"p_s": "0"}, {"p_s": "2,1"}, {"U": "0"}, {"mesh_levels": "1,x"},
                 {"mesh_file": "ring.msh", "arc_refine": "1"},
                 {"stroke": "cycle", "U": "-400", "cavitation": "jfo", "formulation": "mixed"},
-                {"stroke": "cycle"}):      # FAST's penalty cavitation
+                {"stroke": "cycle"},       # FAST's penalty cavitation
+                {"sigma": "2e-4"}):        # a rough rod in a steady stroke
         v = resolve(Case.params, {**{k: str(x) for k, x in FAST.items()}, **bad})
         with pytest.raises(InputError):
             Case.validate(v)

@@ -132,8 +132,9 @@ class EHLORingCase(ORingRun):
         Param("scheme", str, "euler", "-", "stroke=cycle: time scheme of the film, euler "
               "(runs the whole cycle) or bdf2 (stops after the second reversal at density 4)",
               choices=("euler", "bdf2")),
-        Param("sigma", float, 0.0, "mm", "RMS roughness σ of the rod (0: smooth; > 0: mixed "
-              "film, Patir–Cheng flow, Greenwood–Tripp asperities, ηβσ = σ/β = 0.1)",
+        Param("sigma", float, 0.0, "mm", "stroke=cycle: RMS roughness σ of the rod (0: "
+              "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
+              "ηβσ = σ/β = 0.1)",
               lower=0, closed=True),
         Param("mu_b", float, 0.1, "-", "boundary friction of the asperities (sigma > 0)",
               lower=0, closed=True),
@@ -189,6 +190,8 @@ class EHLORingCase(ORingRun):
                                        or v["study"] != "none"):
             raise InputError("stroke=cycle starts from the outstroke (U > 0) and needs "
                              "cavitation=jfo (mass-conserving) and study=none")
+        if v["sigma"] > 0 and v["stroke"] != "cycle":
+            raise InputError("sigma (a rough rod) is built for stroke=cycle")
         levels = number_list(v["mesh_levels"], "mesh_levels")
         if any(k < 1 or k != int(k) for k in levels):
             raise InputError("mesh_levels must be positive integers")

@@ -79,8 +79,8 @@ class ORingSeal(SealOutputs):
     Dirichlet value at the sealed end; the groove bottom moves by the offset of
     ``bottom.counterpart``; the rod speed is ``film.V_counter[1]`` (mm/s).
     ``roughness``: a rough rod (mixed film); ``transient``: the time scheme of a
-    reciprocating film (:mod:`.oring_cycle`: lumped JFO transport, a weak inflow
-    at the air end whose content is ``supply``).
+    reciprocating film (:mod:`.oring_cycle`: the lumped content rate, an open air
+    end supplied with the content ``supply``).
     """
 
     def __init__(self, v, U, mesh, comm, name="ehl_oring", roughness=None, transient=None):
