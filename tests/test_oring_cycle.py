@@ -13,7 +13,7 @@ import pytest
 from test_ehl_oring import _seal_taylor_orders
 
 from tribofx.cases.ehl_oring import EHLORingCase as Case
-from tribofx.cases.oring_cycle import AirLayer, _air_end, rod_speed
+from tribofx.cases.oring_cycle import AirLayer, air_end, rod_speed
 from tribofx.cases.oring_seal import build, solve_to
 from tribofx.params import resolve
 from tribofx.roughness import rough_pair
@@ -34,7 +34,7 @@ def cycle(v, steps):
     seal = build(v, U0, roughness=rough, transient=v["scheme"])
     solve_to(seal, v, U0, [1.0])
     layer = AirLayer({}, v["period"])
-    layer.record(0.0, _air_end(seal)[0], U0)
+    layer.record(0.0, air_end(seal)[0], U0)
     st = Stepper(seal.components, seal.film, parameters=[seal.p_s, seal.p_end],
                  name="cycle_test", problem_kw={"max_it": 40, "max_backtracks": 10,
                                                 "line_search": "admissible", "stall_window": 10},
@@ -64,14 +64,14 @@ def test_long_period_follows_the_steady_outstroke():
     ref = build(values(U=U), 1000.0)
     solve_to(ref, values(U=U), U, [1.0])
     m_ref = ref.measures()
-    q_ref = _air_end(ref)[0]
+    q_ref = air_end(ref)[0]
     dev = {}
     for T in (10.0, 100.0):
         seal, st = cycle(values(stroke="cycle", period=T, scheme="bdf2"), 5)
         assert st.t == pytest.approx(T / 8) and seal.U == pytest.approx(U)
         m = seal.measures()
         dev[T] = np.array([m["h_min"] / m_ref["h_min"] - 1, m["h_mean"] / m_ref["h_mean"] - 1,
-                           _air_end(seal)[0] / q_ref - 1])
+                           air_end(seal)[0] / q_ref - 1])
     print("departures", dev)
     assert np.all(np.abs(dev[10.0]) < 1e-2)
     assert np.all(np.abs(dev[10.0] / dev[100.0] - 10) < 1.5)

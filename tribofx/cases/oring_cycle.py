@@ -54,7 +54,7 @@ from ..slow_run import SlowRun
 from ..stepper import Stepper
 from .oring_seal import build, solve_to
 
-__all__ = ["AirLayer", "reforming", "rod_speed", "run_cycle"]
+__all__ = ["AirLayer", "air_end", "reforming", "rod_speed", "run_cycle"]
 
 
 def rod_speed(U, period):
@@ -99,7 +99,7 @@ def reforming(U, T, t):
     return 1.0 if rod_speed(U, T)(t)[1] < 0 else 0.0
 
 
-def _air_end(seal):
+def air_end(seal):
     """(θh, h, 2π r) at the air end of the film (the highest z of Γ_l), every rank."""
     prof = seal.film.profile(everywhere=True)
     k = int(np.argmax(prof["X"][:, 1]))
@@ -131,7 +131,7 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
     stepper.seal = seal      # the outputs' (ehl_oring_run.vtx_fields)
 
     def log(st, its):
-        c, _, width = _air_end(seal)
+        c, _, width = air_end(seal)
         u = float(film.V_counter.value[1])
         layer.record(st.t, c, u)
         m = seal.measures()
