@@ -53,11 +53,10 @@ import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
 from mpi4py import MPI
 
 from tribofx.cases.ehl_oring import EHLORingCase
-from tribofx.cases.oring_cycle import AirLayer, air_end, rod_speed
+from tribofx.cases.oring_cycle import air_end, cycle_stepper
 from tribofx.cases.oring_seal import build, solve_to
 from tribofx.output import write_summary
 from tribofx.params import resolve
-from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="O-ring over a reciprocating stroke")
 parser.add_argument("--quick", action="store_true", help="density 2 (CI)")
@@ -77,15 +76,11 @@ comm = MPI.COMM_WORLD
 U0, T = 400.0, 10.0
 v = resolve(EHLORingCase.params, {"mesh": "2" if args.quick else "4", "stroke": "cycle",
                                   "period": str(T), "scheme": "bdf2"})
-seal = build(v, U0, transient="bdf2")
-solve_to(seal, v, U0, [1.0])
-film = seal.film
-layer = AirLayer({}, T)
-layer.record(0.0, air_end(seal)[0], U0)
-stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end], name="demo",
-                  problem_kw={"max_it": 40, "max_backtracks": 10,
-                              "line_search": "admissible", "stall_window": 10},
-                  schedule=[(film.V_counter, rod_speed(U0, T)), (seal.supply, layer.supply)])
+# the seal at U0, transient, its steady outstroke, and the Stepper whose schedule sets
+# the rod speed, the air end's supply and the vertex-rule share ω at each step
+stepper = cycle_stepper(v)
+seal = stepper.seal
+stepper.layer.record(0.0, air_end(seal)[0], U0)     # the content the rod carries out
 stepper.run(T / 8, T / 40)            # to U = 400 cos 45° = 282.8 mm/s, 5 steps
 cycle = seal.measures()
 # -

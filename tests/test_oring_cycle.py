@@ -13,11 +13,9 @@ import pytest
 from test_ehl_oring import _seal_taylor_orders
 
 from tribofx.cases.ehl_oring import EHLORingCase as Case
-from tribofx.cases.oring_cycle import AirLayer, air_end, rod_speed
+from tribofx.cases.oring_cycle import AirLayer, air_end, cycle_stepper
 from tribofx.cases.oring_seal import build, solve_to
 from tribofx.params import resolve
-from tribofx.roughness import rough_pair
-from tribofx.stepper import Stepper
 
 U0 = 400.0
 
@@ -28,18 +26,9 @@ def values(**over):
 
 def cycle(v, steps):
     """The seal at U0, its steady outstroke at p_s = 1 MPa, then ``steps`` steps of the cycle."""
-    rough = None
-    if v["sigma"] > 0:
-        rough = rough_pair(v["sigma"], 3 * (v["mu1"] + v["mu2"]) / 0.75, v["mu_b"])
-    seal = build(v, U0, roughness=rough, transient=v["scheme"])
-    solve_to(seal, v, U0, [1.0])
-    layer = AirLayer({}, v["period"])
-    layer.record(0.0, air_end(seal)[0], U0)
-    st = Stepper(seal.components, seal.film, parameters=[seal.p_s, seal.p_end],
-                 name="cycle_test", problem_kw={"max_it": 40, "max_backtracks": 10,
-                                                "line_search": "admissible", "stall_window": 10},
-                 schedule=[(seal.film.V_counter, rod_speed(U0, v["period"])),
-                           (seal.supply, layer.supply)])
+    st = cycle_stepper(v)
+    seal = st.seal
+    st.layer.record(0.0, air_end(seal)[0], U0)
     dt = v["period"] / v["cycle_steps"]
     st.run(steps * dt, dt)
     return seal, st

@@ -54,7 +54,7 @@ from ..slow_run import SlowRun
 from ..stepper import Stepper
 from .oring_seal import build, solve_to
 
-__all__ = ["AirLayer", "air_end", "reforming", "rod_speed", "run_cycle"]
+__all__ = ["AirLayer", "air_end", "cycle_stepper", "reforming", "rod_speed", "run_cycle"]
 
 
 def rod_speed(U, period):
@@ -106,17 +106,23 @@ def air_end(seal):
     return (1 - prof["lam"][k]) * prof["h"][k], prof["h"][k], 2 * math.pi * prof["x"][k, 0]
 
 
-def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-    """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
+def cycle_stepper(v, checkpoint=None, verbose=False, start=True):
+    """Build the seal of ``v`` at U, transient, solve its steady outstroke; return the Stepper.
+
+    ``start``: mount and pressurise to the first p_s at U (False: a state to be
+    restored from a checkpoint).  The schedule sets, at t_{n+1} of each step, the
+    rod speed, the air end's supply (``stepper.layer``, an :class:`AirLayer`) and ω
+    of :func:`reforming`; they are part of the state.  Returns the Stepper, with
+    ``stepper.seal`` the :class:`~tribofx.cases.oring_seal.ORingSeal`.
+    """
     U, T = v["U"], v["period"]
     E_star = 3 * (v["mu1"] + v["mu2"]) / 0.75      # ν = 1/2, the rod rigid
     rough = rough_pair(v["sigma"], E_star, v["mu_b"]) if v["sigma"] > 0 else None
     seal = build(v, U, roughness=rough, transient=v["scheme"], name="ehl_oring_cycle")
-    if not resume:
+    if start:
         solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
     film = seal.film
     layer = AirLayer({}, T)
-    # the rod speed and the air end's supply: set at t_{n+1} each step, part of the state
     stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end],
                       checkpoint=checkpoint, name="ehl_oring_cycle", verbose=verbose,
                       problem_kw={"max_it": 40, "max_backtracks": 10,
@@ -124,11 +130,19 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
                       schedule=[(film.V_counter, rod_speed(U, T)),
                                 (seal.supply, lambda t: layer.supply(t)),
                                 (film.vertex_couette, lambda t: reforming(U, T, t))])
+    stepper.seal, stepper.layer = seal, layer
+    return stepper
+
+
+def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
+    T = v["period"]
+    stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
+    seal, layer, film = stepper.seal, stepper.layer, stepper.seal.film
     keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "content",
             "supply")
     sr = SlowRun(stepper, v, record, keys, case.vtx_fields(seal), resume)
-    layer.h = stepper.history.setdefault("air_layer", layer.h)
-    stepper.seal = seal      # the outputs' (ehl_oring_run.vtx_fields)
+    layer.h = stepper.history.setdefault("air_layer", layer.h)   # restored on resume
 
     def log(st, its):
         c, _, width = air_end(seal)
