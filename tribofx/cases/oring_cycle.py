@@ -37,10 +37,15 @@ holds a smooth film, and the starved instroke thins it further.
 
 Records per step: ``time``, ``rod_speed``, ``h_min``, ``friction_force`` (the
 film's axial force on the ring, pressure and shear, N on the whole circumference:
-the steady strokes' ``friction_force_per_circumference`` × 2πr_rod), ``flux_air`` (the
-volume flux through the air end, mm³/s, > 0 out to the air: the Couette flux
-2π r θh v̄ there), ``content`` (the oil in the film, mm³); per completed cycle the
-net leakage ∫ flux_air dt (mm³, > 0 lost to the air side).
+the steady strokes' ``friction_force_per_circumference`` × 2πr_rod), ``flux_air`` and
+``flux_sealed`` (the volume fluxes out through the air end and in through the
+sealed end, mm³/s, from the discrete rows:
+:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.consistent_fluxes`),
+``content`` (the oil in the film, mm³; its change over a step is the net flux
+of the step, to the solver's tolerance); per completed cycle the net leakage
+∫ flux_air dt (mm³, > 0 lost to the air side), the intake ∫ flux_sealed dt and
+the change of the content (trapezoids in time: intake − leakage − change is
+their time error).
 """
 
 import math
@@ -139,19 +144,19 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
     T = v["period"]
     stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
     seal, layer, film = stepper.seal, stepper.layer, stepper.seal.film
-    keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "content",
-            "supply")
+    keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "flux_sealed",
+            "content", "supply")
     sr = SlowRun(stepper, v, record, keys, case.vtx_fields(seal), resume)
     layer.h = stepper.history.setdefault("air_layer", layer.h)   # restored on resume
 
     def log(st, its):
-        c, _, width = air_end(seal)
         u = float(film.V_counter.value[1])
-        layer.record(st.t, c, u)
+        layer.record(st.t, air_end(seal)[0], u)
         m = seal.measures()
+        q_sealed, q_air = film.consistent_fluxes()
         sr.log(its, {"time": st.t, "rod_speed": u, "h_min": m["h_min"],
                      "friction_force": m["friction_force_per_circumference"] * 2 * math.pi
-                     * seal.r_rod, "flux_air": width * c * 0.5 * u,
+                     * seal.r_rod, "flux_air": q_air, "flux_sealed": q_sealed,
                      "content": film.content(), "supply": float(seal.supply.value)})
 
     if not resume:
@@ -164,15 +169,19 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
 def _report(hist, record, T, seal):
     """Per-step series, the net leakage of each completed cycle (trapezoid in time), the film."""
     units = {"time": "s", "rod_speed": "mm/s", "h_min": "mm", "friction_force": "N",
-             "flux_air": "mm^3/s", "content": "mm^3", "supply": "mm"}
+             "flux_air": "mm^3/s", "flux_sealed": "mm^3/s", "content": "mm^3",
+             "supply": "mm"}
     for key, vals in hist.items():
         record.result(key, vals, units[key])
-    t, q = np.asarray(hist["time"]), np.asarray(hist["flux_air"])
-    leak = []
+    t = np.asarray(hist["time"])
+    per = {"leakage": [], "intake": [], "content_change": []}
     for k in range(int(t[-1] / T + 1e-9) if len(t) else 0):
-        sel = (t >= k * T - 1e-12) & (t <= (k + 1) * T + 1e-12)
-        leak.append(float(np.trapezoid(q[sel], t[sel])))
-    record.result("leakage_per_cycle", leak, "mm^3")
+        sel = np.flatnonzero((t >= k * T - 1e-12) & (t <= (k + 1) * T + 1e-12))
+        for key, f in (("leakage", "flux_air"), ("intake", "flux_sealed")):
+            per[key].append(float(np.trapezoid(np.asarray(hist[f])[sel], t[sel])))
+        per["content_change"].append(hist["content"][sel[-1]] - hist["content"][sel[0]])
+    for key, vals in per.items():
+        record.result(f"{key}_per_cycle", vals, "mm^3")
     if MPI.COMM_WORLD.rank == 0:
         record.profile = {"cycle": hist}
     record.result("time_reached", float(t[-1]) if len(t) else 0.0, "s")

@@ -166,8 +166,12 @@ class TransientFilm:
     def content(self):
         """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks; form compiled once).
 
-        mm² per unit length in the plane, mm³ in 3D and revolved.
+        mm² per unit length in the plane, mm³ in 3D and revolved.  A lumped film
+        integrates it by the vertex rule of its rate: the content the discrete
+        rows conserve (its change over a step is the net flux of
+        :meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.consistent_fluxes`).
         """
         if self._content_form is None:
-            self._content_form = fem.form(self._content() * self.dx)
+            dx = self.nodal_dx if getattr(self, "lumped", False) else self.dx
+            self._content_form = fem.form(self._content() * dx)
         return self._sum(self._content_form)

@@ -210,12 +210,8 @@ class ReynoldsFilm:
         through the open end, for :meth:`consistent_fluxes`).
         """
         h_e = ufl.CellDiameter(self.sub)
-        # a transient film (TransientFilm): kinematics relative to S(t), the content's rate
-        kin, rate, mu = self.kin_reynolds or self.kin, self.film_rate, self.mu_p
-        rough = getattr(self, "_rough", None)
-        if rough is not None and rough[0] is not None:   # mixed: the average-flow rows
-            kin, mu = mixed.average_flow(kin, mu, self.roughness.sigma, rough[0], rough[1],
-                                         self.roughness.share)
+        kin, mu = self._flux_kinematics()
+        rate = self.film_rate
         if self.lam is None:
             def weighted(measure):
                 return measure if self.w_film == 1 else ef.WeightedMeasure(self.w_film, measure)
@@ -234,6 +230,20 @@ class ReynoldsFilm:
                                  ds_ends=ds_ends if self._jumps else None,
                                  weight=self.w_film, rate=rate, lumped=self.lumped,
                                  inflow=inflow, vertex=self.vertex_couette)
+
+    def _flux_kinematics(self):
+        """Kinematics and viscosity of the fluxes in the rows: (kin, μ).
+
+        A transient film (:class:`~tribofx.interfaces.film_transient.TransientFilm`)
+        takes the mean velocity relative to the moving surface S(t); a mixed film
+        the average-flow gap and velocity (:func:`tribofx.forms.mixed.average_flow`).
+        """
+        kin, mu = self.kin_reynolds or self.kin, self.mu_p
+        rough = getattr(self, "_rough", None)
+        if rough is not None and rough[0] is not None:
+            kin, mu = mixed.average_flow(kin, mu, self.roughness.sigma, rough[0], rough[1],
+                                         self.roughness.share)
+        return kin, mu
 
     def bcs(self):
         """Pressure (and inlet void fraction) Dirichlet conditions."""
@@ -351,12 +361,13 @@ class ReynoldsFilm:
         self.lam.x.scatter_forward()
 
     def consistent_fluxes(self, inlet=None):
-        """Volume fluxes (mm²/s) into and out of the film from the discrete residual.
+        """Volume fluxes (mm²/s, mm³/s revolved) into and out of the film from the residual.
 
         φ are the hat functions of the end nodes (``inlet``: where the flow enters,
         default the JFO inlet), R(φ) the Reynolds rows tested by them.  JFO (57),
         Couette part in divergence form, w = θ h v̄·t_S the Couette flux along S
-        (:func:`tribofx.forms.jfo.couette_flux`): q_in = w(inlet) + R(φ_in),
+        (:func:`tribofx.forms.jfo.couette_flux`; times 2π r_S on an axisymmetric
+        film, whose rows are weighted by it: fluxes in mm³/s): q_in = w(inlet) + R(φ_in),
         q_out = w(outlet) − R(φ_out); the weak form (49) carries the whole flux in
         its rows: q_in = R(φ_in), q_out = −R(φ_out).  The hat functions sum to one,
         so q_out − q_in is the sum of the interior rows: zero to solver tolerance
@@ -374,8 +385,8 @@ class ReynoldsFilm:
         w = np.zeros(len(self.p.x.array))
         if self.lam is not None:
             wf = fem.Function(self.Q)
-            wf.interpolate(fem.Expression(jfo.couette_flux(
-                self.kin, ufl.min_value(self.lam, 1.0), self.T),
+            wf.interpolate(fem.Expression(self.w_film * jfo.couette_flux(
+                self._flux_kinematics()[0], ufl.min_value(self.lam, 1.0), self.T),
                 self.Q.element.interpolation_points))
             w = wf.x.array
         out = []
