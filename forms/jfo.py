@@ -12,7 +12,12 @@ import ufl
 from . import reynolds as rf
 from .ehl import WeightedMeasure
 
-__all__ = ["couette_flux", "jfo_inflow", "jfo_on_surface"]
+__all__ = ["VERTEX_DELTA", "couette_flux", "jfo_inflow", "jfo_on_surface"]
+
+# δ of the full-film fraction that switches the vertex-rule share of the Couette flux
+# (p/p_c and λ): a transition over a few hundredths, where the iterates of a front at
+# ambient pressure move (λ from −0.04 to 0.3, p/p_c below 0.01: the seal's instroke)
+VERTEX_DELTA = 0.05
 
 
 def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
@@ -51,15 +56,22 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     starved front is not undershot by the mass terms.  In the full film s ≈ 1
     keeps SUPG consistent.
 
-    ``vertex`` (None or a Constant ω ∈ [0, 1], with ``ds_ends``): the Couette flux,
-    whose divergence form with its jumps is −∫ w_t dδp/dX + [w_t δp] at the ends,
-    integrated by the vertex rule with the weight ω(1 − s) in the cavitated zone
-    (ω = 0: the form without it): there it sees the interpolant of the content θh, not the
+    ``vertex`` (None or a Constant ω ∈ [0, 1], with ``ds_ends``): the share ω of the
+    Couette flux, whose divergence form with its jumps is −∫ w_t dδp/dX + [w_t δp]
+    at the ends, integrated by the vertex rule (ω = 0: the form without it).  In
+    the cavitated zone it then sees the interpolant of the content θh, not the
     Gauss-point product of θ and h, whose cross term −ΔθΔh/6 per element drains
     the cavitated node in front of a reformation (a starved inlet filling: the
-    node is asked to dry, λ > 1).  At a rupture the vertex rule moved the O-ring's
-    h_min at its outlet by 21 % at density 2: set ω = 1 only where films reform
-    (the seal's instroke), 0 where they rupture.
+    node is asked to dry, λ > 1); in the full film both rules are second order.
+    At a rupture the vertex rule moved the O-ring's h_min at its outlet by 21 % at
+    density 2: set ω = 1 only where films reform (the seal's instroke, whose
+    outlet is flooded), 0 where they rupture.  In the full film the share is
+    ω(1 − s), s the full-film fraction of :func:`~forms.reynolds.jfo_film_fraction`
+    with δ = ``VERTEX_DELTA``: across a front where p and λ both vanish over
+    several nodes (a film that empties at ambient pressure) s with its default δ
+    = 1e-6 jumps between the rules, and Newton cycled (the seal's instroke near
+    its reversal, measured); with ω alone (the full film on the vertex rule too)
+    the line search stalled in the first instroke.
 
     ``inflow`` (ds_in, c_in): the open ends of :func:`jfo_inflow` (supply c_in, p = 0
     weakly) at the end points of ``ds_in``.
@@ -99,8 +111,8 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
         # the divergence form with its jumps is −∫ w_t dδp/dX dX + [w_t δp] (above);
         # the share ω(1 − s) of its integral moves from the Gauss to the vertex rule
         w_t = weight * couette_flux(kin, lam_c, T)
-        dw = vertex * (1 - rf.jfo_film_fraction(p, lam, p_c)) * w_t * ufl.dot(
-            grad_gamma(dp), T)
+        s = rf.jfo_film_fraction(p, lam, p_c, delta=VERTEX_DELTA)
+        dw = vertex * (1 - s) * w_t * ufl.dot(grad_gamma(dp), T)
         F += dw * dx - dw * nodal_dx
     if inflow is not None:
         F += jfo_inflow(kin, lam_c, p, dp, inflow[1], T, inflow[0], mu, h_e, weight)

@@ -130,8 +130,7 @@ class EHLORingCase(ORingRun):
               "Newton failure)", lower=4),
         Param("cycles", float, 1.0, "-", "stroke=cycle: periods to run", lower=0),
         Param("scheme", str, "euler", "-", "stroke=cycle: time scheme of the film, euler "
-              "(runs the whole cycle) or bdf2 (stops after the second reversal at density 4)",
-              choices=("euler", "bdf2")),
+              "or bdf2", choices=("euler", "bdf2")),
         Param("sigma", float, 0.0, "mm", "stroke=cycle: RMS roughness σ of the rod (0: "
               "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
               "ηβσ = σ/β = 0.1)",

@@ -100,6 +100,8 @@ class SealOutputs:
             thr = ps + 0.5 * (p[k] - ps)      # loaded zone: half the rise above p_s
             hot = z[p > thr]
             qz = prof["q"][(prof["z_cell"] > hot.min()) & (prof["z_cell"] < hot.max())]
+            if not qz.size:    # a loaded zone of one node (near a reversal): no cell inside
+                qz = np.array([np.nan])
             res = {"p_max": float(p[k]), "z_p_max": parabolic_vertex(z, p),
                    "h_at_p_max": float(h[k]),
                    "h_min": float(h[i]), "z_h_min": parabolic_vertex(z, h, "min"),

@@ -52,6 +52,7 @@ class ReynoldsFilm:
     vertex_couette = None    # its vertex-rule share of the cavitated Couette flux
     _inflow = None           # (where, c_in) of the weak inflow end (add_inflow)
     _rate_speed = 0.0        # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
+    _round_off = 0.0         # the Reynolds rows' round-off floor (a transient film's step)
 
     def _init_rows(self):
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
@@ -181,7 +182,7 @@ class ReynoldsFilm:
         if speed_scale is not None:
             self.U_ref = float(speed_scale)
         atol = {"p": self.rtol * (self.U_ref + self._rate_speed) * self.h_ref
-                * self._flux_width(),
+                * self._flux_width() + self._round_off,
                 "u_s": self.rtol * self.h_ref,
                 "g": self.rtol * float(self.p_c.value) / self.length, "lam": self.rtol}
         for key, a in atol.items():
