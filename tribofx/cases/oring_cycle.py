@@ -65,7 +65,7 @@ from ..stepper import Stepper
 from .oring_seal import build, solve_to
 
 __all__ = ["AirLayer", "air_end", "cycle_stepper", "integral", "reforming", "rod_speed",
-           "run_cycle"]
+           "run_cycle", "transient_seal"]
 
 
 def rod_speed(U, period):
@@ -117,21 +117,29 @@ def air_end(seal):
     return (1 - prof["lam"][k]) * prof["h"][k], prof["h"][k], 2 * math.pi * prof["x"][k, 0]
 
 
-def cycle_stepper(v, checkpoint=None, verbose=False, start=True):
+def transient_seal(v, U):
+    """Build the seal of ``v`` at rod speed U (mm/s), its film transient (``scheme``), unsolved."""
+    E_star = 3 * (v["mu1"] + v["mu2"]) / 0.75      # ν = 1/2, the rod rigid
+    rough = rough_pair(v["sigma"], E_star, v["mu_b"]) if v["sigma"] > 0 else None
+    return build(v, U, roughness=rough, transient=v["scheme"], name="ehl_oring_cycle")
+
+
+def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
     """Build the seal of ``v`` at U, transient, solve its steady outstroke; return the Stepper.
 
     ``start``: mount and pressurise to the first p_s at U (False: a state to be
-    restored from a checkpoint).  The schedule sets, at t_{n+1} of each step, the
-    rod speed, the air end's supply (``stepper.layer``, an :class:`AirLayer`) and ω
-    of :func:`reforming`; they are part of the state.  Returns the Stepper, with
-    ``stepper.seal`` the :class:`~tribofx.cases.oring_seal.ORingSeal`.
+    restored from a checkpoint).  ``seal``: a seal of :func:`transient_seal` in
+    the state to start from instead (nothing built or solved).  The schedule
+    sets, at t_{n+1} of each step, the rod speed, the air end's supply
+    (``stepper.layer``, an :class:`AirLayer`) and ω of :func:`reforming`; they are
+    part of the state.  Returns the Stepper, with ``stepper.seal`` the
+    :class:`~tribofx.cases.oring_seal.ORingSeal`.
     """
     U, T = v["U"], v["period"]
-    E_star = 3 * (v["mu1"] + v["mu2"]) / 0.75      # ν = 1/2, the rod rigid
-    rough = rough_pair(v["sigma"], E_star, v["mu_b"]) if v["sigma"] > 0 else None
-    seal = build(v, U, roughness=rough, transient=v["scheme"], name="ehl_oring_cycle")
-    if start:
-        solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
+    if seal is None:
+        seal = transient_seal(v, U)
+        if start:
+            solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
     film = seal.film
     layer = AirLayer({}, T)
     stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end],

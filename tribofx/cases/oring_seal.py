@@ -131,15 +131,15 @@ class ORingSeal(SealOutputs):
             self._check_ends(film, z_lo, z_hi, tol, v["mesh_file"])
         sealed = lambda y: np.isclose(y[1], z_lo, atol=tol)   # noqa: E731
         air = lambda y: np.isclose(y[1], z_hi, atol=tol)      # noqa: E731
-        if transient is not None:
+        if transient is not None:      # reciprocating: the air end open in both strokes
             film.transient(transient, lumped=True)
             self.supply = film.add_inflow(air)
         if cav == "penalty":
             self.p_end = film.add_pressure_bc(sealed, p0)
             film.add_pressure_bc(air, 0.0)
-        elif U > 0:
-            # JFO outstroke: flooded inlet at p_s on the sealed side, natural outlet
-            # (cavitated, p = 0 by complementarity) on the air side
+        elif U > 0 or transient is not None:
+            # JFO outstroke (a reciprocating film's both strokes): flooded inlet at p_s
+            # on the sealed side, an outlet (p = 0 where cavitated) on the air side
             self.p_end = film.add_inlet(sealed, pressure=p0)
         else:
             # JFO instroke: flooded inlet from the air side, outlet into the sealed fluid
