@@ -124,7 +124,8 @@ class EHLORingCase(ORingRun):
         Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
         Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
               "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
-              "tribofx.cases.oring_cycle)", choices=("single", "both", "cycle")),
+              "with arc_refine=1: tribofx.cases.oring_cycle)",
+              choices=("single", "both", "cycle")),
         Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
         Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
               "Newton failure)", lower=4),
