@@ -38,7 +38,8 @@
 # ## Changing it
 #
 #     tribofx run ehl-oring --set stroke=cycle --set sigma=2e-4 --set arc_refine=1   # a cycle
-#     tribofx run ehl-oring --set stroke=cycle --set period=1 --set cycles=2
+#     tribofx run ehl-oring --set stroke=cycle --set sigma=2e-4 --set arc_refine=1 \
+#         --set scheme=bdf2 --set cycles=2                                  # two, BDF2
 #
 # A smooth rod's film closes just after the reversal (at U = 0 only the squeeze
 # holds it); ``sigma`` makes the rod rough (Greenwood–Tripp asperities carry
