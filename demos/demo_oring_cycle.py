@@ -57,7 +57,7 @@ import numpy as np
 from mpi4py import MPI
 
 from tribofx.cases.ehl_oring import EHLORingCase
-from tribofx.cases.oring_cycle import air_end, cycle_stepper
+from tribofx.cases.oring_cycle import cycle_stepper
 from tribofx.cases.oring_seal import build, solve_to
 from tribofx.output import write_summary
 from tribofx.params import resolve
@@ -85,7 +85,6 @@ v = resolve(EHLORingCase.params, {"mesh": "2" if args.quick else "4", "stroke": 
 # the rod speed, the air end's supply and the vertex-rule share ω at each step
 stepper = cycle_stepper(v)
 seal = stepper.seal
-stepper.layer.record(0.0, air_end(seal)[0], U0)     # the content the rod carries out
 stepper.run(T / 8, T / 40)            # to U = 400 cos 45° = 282.8 mm/s, 5 steps
 cycle = seal.measures()
 # -
@@ -132,14 +131,12 @@ vc = resolve(EHLORingCase.params, {"stroke": "cycle", "scheme": "euler",
                                       {"sigma": "2e-4", "arc_refine": "1"})})
 cyc = cycle_stepper(vc)
 film, Tc = cyc.seal.film, vc["period"]
-cyc.layer.record(0.0, air_end(cyc.seal)[0], U0)
 books = [(0.0, film.content(), 0.0, 0.0, 0.0)]
 
 
 def keep_books(st, report):
-    """After each step: the layer the rod carries out, the oil, the end fluxes, and the
-    bound of the books: N nodes × the rows' stopping tolerance (mm³/s)."""
-    st.layer.record(st.t, air_end(st.seal)[0], st.seal.U)
+    """After each step: the oil, the end fluxes, and the bound of the books: N nodes ×
+    the rows' stopping tolerance (mm³/s)."""
     q_sealed, q_air = film.consistent_fluxes()
     bound = film.Q.dofmap.index_map.size_global * film.tolerances()[film.p].atol
     books.append((st.t, film.content(), q_sealed, q_air, bound))

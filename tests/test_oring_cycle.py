@@ -40,7 +40,6 @@ def cycle(v, steps):
     """The seal at U0, its steady outstroke at p_s = 1 MPa, then ``steps`` steps of the cycle."""
     st = cycle_stepper(v)
     seal = st.seal
-    st.layer.record(0.0, air_end(seal)[0], U0)
     dt = v["period"] / v["cycle_steps"]
     st.run(steps * dt, dt)
     return seal, st
@@ -148,7 +147,6 @@ def test_film_content_changes_by_the_net_flux_of_each_step(scheme):
     v = values(stroke="cycle", scheme=scheme)
     st = cycle_stepper(v)
     film = st.seal.film
-    st.layer.record(0.0, air_end(st.seal)[0], U0)
     dt = v["period"] / v["cycle_steps"]
     C = [film.content()]
     for k in range(4):
@@ -197,11 +195,9 @@ def test_whole_cycle_keeps_the_oil_balance():
     v = values(stroke="cycle", sigma=2e-4, mesh=4, arc_refine=1, scheme="euler")
     st = cycle_stepper(v)
     film, T = st.seal.film, v["period"]
-    st.layer.record(0.0, air_end(st.seal)[0], U0)
     C0, rec = film.content(), []
 
     def on_step(stepper, report):
-        stepper.layer.record(stepper.t, air_end(stepper.seal)[0], stepper.seal.U)
         q_in, q_out = film.consistent_fluxes()
         rec.append((report.dt, q_in, q_out, _interior_row_bound(film)))
 

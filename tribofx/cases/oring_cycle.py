@@ -88,8 +88,12 @@ class AirLayer:
         self.h.setdefault("c", [])
 
     def record(self, t, c, U):
-        """Keep the content c (mm) at the air end at time t (s) while U > 0 (outstroke)."""
-        if U > 0:
+        """Keep the content c (mm) at the air end at time t (s) while U > 0 (outstroke).
+
+        A time not after the last one kept is skipped (a step cut and tried again
+        records its start once).
+        """
+        if U > 0 and (not self.h["t"] or t > self.h["t"][-1]):
             self.h["t"].append(float(t))
             self.h["c"].append(float(c))
 
@@ -133,8 +137,9 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
     restored from a checkpoint).  ``seal``: a seal of :func:`transient_seal` in
     the state to start from instead (nothing built or solved).  The schedule
     sets, at t_{n+1} of each step, the rod speed, the air end's supply
-    (``stepper.layer``, an :class:`AirLayer`) and ω of :func:`reforming`; they are
-    part of the state.  Returns the Stepper, with ``stepper.seal`` the
+    (``stepper.layer``, an :class:`AirLayer`, which first records the air end's
+    content of the state at t_n) and ω of :func:`reforming`; they are part of the
+    state.  Returns the Stepper, with ``stepper.seal`` the
     :class:`~tribofx.cases.oring_seal.ORingSeal`.
     """
     U, T = v["U"], v["period"]
@@ -144,12 +149,18 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
             solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
     film = seal.film
     layer = AirLayer({}, T)
+
+    def supply(t):
+        """Keep the layer of the state at t_n; return the supply brought back at t (s)."""
+        layer.record(stepper.t, air_end(seal)[0], rod_speed(U, T)(stepper.t)[1])
+        return layer.supply(t)
+
     stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end],
                       checkpoint=checkpoint, name="ehl_oring_cycle", verbose=verbose,
                       problem_kw={"max_it": 40, "max_backtracks": 10,
                                   "line_search": "admissible", "stall_window": 10},
                       schedule=[(film.V_counter, rod_speed(U, T)),
-                                (seal.supply, lambda t: layer.supply(t)),
+                                (seal.supply, supply),
                                 (film.vertex_couette, lambda t: reforming(U, T, t))])
     stepper.seal, stepper.layer = seal, layer
     return stepper
@@ -159,15 +170,14 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
     """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
     T = v["period"]
     stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
-    seal, layer, film = stepper.seal, stepper.layer, stepper.seal.film
+    seal, film = stepper.seal, stepper.seal.film
     keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "flux_sealed",
             "content", "supply")
     sr = SlowRun(stepper, v, record, keys, case.vtx_fields(seal), resume)
-    layer.h = stepper.history.setdefault("air_layer", layer.h)   # restored on resume
+    stepper.layer.h = stepper.history.setdefault("air_layer", stepper.layer.h)  # on resume
 
     def log(st, its):
         u = float(film.V_counter.value[1])
-        layer.record(st.t, air_end(seal)[0], u)
         m = seal.measures()
         q_sealed, q_air = film.consistent_fluxes()
         sr.log(its, {"time": st.t, "rod_speed": u, "h_min": m["h_min"],

@@ -198,6 +198,6 @@ class TransientFilm:
         :meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.consistent_fluxes`).
         """
         if self._content_form is None:
-            dx = self.nodal_dx if getattr(self, "lumped", False) else self.dx
+            dx = self.nodal_dx if self.lumped else self.dx
             self._content_form = fem.form(self._content() * dx)
         return self._sum(self._content_form)

@@ -53,6 +53,7 @@ class ReynoldsFilm:
     _inflow = None           # (where, c_in) of the weak inflow end (add_inflow)
     _rate_speed = 0.0        # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
     _round_off = 0.0         # the Reynolds rows' round-off floor (a transient film's step)
+    _flux_forms = None       # {inlet: compiled rows and Couette flux of consistent_fluxes}
 
     def _init_rows(self):
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
@@ -382,22 +383,28 @@ class ReynoldsFilm:
         if inlet is None:
             raise ValueError("consistent fluxes need the inlet (add_inlet or inlet=)")
         self.refresh()
-        ends, dofs_in = self._boundary_dofs(self.Q, None), self._boundary_dofs(self.Q, inlet)
-        w = np.zeros(len(self.p.x.array))
-        if self.lam is not None:
-            wf = fem.Function(self.Q)
-            wf.interpolate(fem.Expression(self.w_film * jfo.couette_flux(
-                self._flux_kinematics()[0], ufl.min_value(self.lam, 1.0), self.T),
-                self.Q.element.interpolation_points))
-            w = wf.x.array
-        out = []
-        for dofs in (dofs_in, np.setdiff1d(ends, dofs_in)):
-            phi = fem.Function(self.Q)
-            phi.x.array[dofs] = 1.0
-            R = self._sum(fem.form(self._reynolds(phi, open_end=False)[0],
-                                   entity_maps=self.entity_maps() or None))
-            out.append((self._at_dofs(w, dofs), R))
-        return out[0][0] + out[0][1], out[1][0] - out[1][1]
+        if self._flux_forms is None:
+            self._flux_forms = {}
+        if inlet not in self._flux_forms:     # compiled once per inlet (called every step)
+            ends, dofs_in = self._boundary_dofs(self.Q, None), self._boundary_dofs(self.Q, inlet)
+            rows = []
+            for dofs in (dofs_in, np.setdiff1d(ends, dofs_in)):
+                phi = fem.Function(self.Q)
+                phi.x.array[dofs] = 1.0
+                rows.append((dofs, fem.form(self._reynolds(phi, open_end=False)[0],
+                                            entity_maps=self.entity_maps() or None)))
+            couette = None if self.lam is None else fem.Expression(
+                self.w_film * jfo.couette_flux(self._flux_kinematics()[0],
+                                               ufl.min_value(self.lam, 1.0), self.T),
+                self.Q.element.interpolation_points)
+            self._flux_forms[inlet] = (rows, couette)
+        rows, couette = self._flux_forms[inlet]
+        wf = fem.Function(self.Q)
+        if couette is not None:
+            wf.interpolate(couette)
+        (d_in, R_in), (d_out, R_out) = [(d, self._sum(form)) for d, form in rows]
+        return (self._at_dofs(wf.x.array, d_in) + R_in,
+                self._at_dofs(wf.x.array, d_out) - R_out)
 
     def _gather(self, data, key, everywhere):
         """Concatenate the ranks' nodal ``data`` on rank 0 (or everywhere), sorted by ``key``."""
