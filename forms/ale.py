@@ -135,14 +135,17 @@ def shape_multiplier_work(zeta, dw, a, ds):
 
     The discrete shape evolution law (28), (w − w_n)·a = −Δt Ẇ j_w on Γ̂_c, is
     imposed nodally (vertex quadrature ``ds``) by a multiplier ζ; its reaction
-    on the auxiliary elasticity of w acts along the (swept) Nanson vector ``a``
-    (:func:`swept_nanson_vector`), so the tangential component of w on Γ̂_c stays
-    free (chapter §4.1, after eq. 20).
+    on the auxiliary elasticity of w acts along ``a``, so the tangential component
+    of w on Γ̂_c stays free (chapter §4.1, after eq. 20).  :class:`tribofx.interfaces.Wear`
+    takes a = :func:`nanson_vector` of w, normal to the worn boundary at the step's
+    end: the nodes' tangential positions are then a function of the worn shape
+    alone (along the step average :func:`swept_nanson_vector` they depend on the
+    step history by O(Δt)).
 
     Args:
         zeta: multiplier of the nodal constraint (on the contact submesh).
         dw: test function of the shape change w.
-        a: the normal of the constraint, e.g. :func:`swept_nanson_vector`.
+        a: the direction of the reaction, e.g. :func:`nanson_vector`.
         ds: (vertex-rule) measure over the initial contact boundary Γ̂_c.
     """
     return zeta * ufl.dot(dw, a) * ds

@@ -26,6 +26,8 @@ def run_controlled(stepper, T, dt, on_step, progress, tol):
     if not stepper.steps:
         stepper.dt = dt            # a resumed run goes on with its proposed step
     dt_min = 1e-6 * T
+    stepper._bar = (T, dt)
+    stepper._progress(progress)     # resumed from a checkpoint: the bar goes on
     interrupt.arm()
     rejected = 0
     while stepper.t < T * (1 - 1e-12):

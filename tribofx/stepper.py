@@ -156,6 +156,7 @@ class Stepper:
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
         self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
+        self._bar = (1.0, 1.0)          # (T, Δt) of the progress bar (set by run)
         self.history = {}     # the case's JSON-able records, kept in the checkpoint
         self.last_increment = None
         self.last_increments = None
@@ -367,8 +368,8 @@ class Stepper:
         if tol:
             return run_controlled(self, T, dt, on_step, progress, tol)
         self.dt = dt
-        if progress is not None and getattr(progress, "n", None) == 0 and self.steps:
-            progress.update(self.steps)    # resumed from a checkpoint: the bar goes on
+        self._bar = (T, dt)
+        self._progress(progress)   # resumed from a checkpoint: the bar goes on
         interrupt.arm()
         while self.t < T * (1 - 1e-12):
             h = min(dt / 2**self.cuts, T - self.t)
@@ -390,9 +391,21 @@ class Stepper:
             on_step(self, report)
         if self.checkpoint is not None:
             self.checkpoint.write(self.state(), self.field_names(), self.history)
-        if progress is not None:
-            progress.update(1)
+        self._progress(progress)
         interrupt.check(self.comm, self.t)
+
+    def _progress(self, progress):
+        """Move the bar to the nominal steps (``run``'s Δt) that t has completed.
+
+        By time, so that cut steps and the steps of error control count as the
+        nominal steps they make up: the bar ends at its total, ⌈T/Δt⌉.
+        """
+        if progress is None or not hasattr(progress, "n"):
+            return
+        T, d = self._bar
+        n = nominal_steps(T, d) if self.t >= T * (1 - 1e-12) else math.floor(self.t / d + 1e-9)
+        if n > progress.n:
+            progress.update(n - progress.n)
 
 def nominal_steps(T, dt):
     """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""

@@ -8,8 +8,13 @@ tractions per unit *initial* area.
 
 Residual contributions (all built by :mod:`tribofx.forms`):
 
-* the shape row of w: ∫_Γ̂c ζ δw·a dŜ (:func:`tribofx.forms.ale.shape_multiplier_work`),
-  the reaction of the nodal constraint below on the auxiliary elasticity;
+* the shape row of w: ∫_Γ̂c ζ δw·a(w) dŜ (:func:`tribofx.forms.ale.shape_multiplier_work`),
+  the reaction of the nodal constraint below on the auxiliary elasticity, along the
+  Nanson vector of the worn boundary at the step's end (:func:`tribofx.forms.ale.nanson_vector`):
+  normal to the current worn boundary, so that the tangential positions of its nodes (the
+  ALE's freedom) are a function of the worn shape alone, not of the step history (along
+  the swept vector below they drift by O(Δt) from step to step: BDF2's nodal error was
+  first order under cycles, its shape error second order);
 * the row of the multiplier ζ (P1 on the contact submesh, vertex quadrature):
   the discrete shape evolution law (28),
 
@@ -155,6 +160,7 @@ class Wear:
         self.N_hat = ufl.FacetNormal(msh)
         w, w_n = body.w, body.w_n
         self.a = ale.swept_nanson_vector(w, w_n, self.N_hat)
+        self.a_end = ale.nanson_vector(w, self.N_hat)    # the reaction's direction
         if averaged:
             self.rate_density = self.rate_bar
         else:  # t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit the known state and w_n
@@ -207,7 +213,7 @@ class Wear:
         dw = ufl.TestFunction(self.body.Vw)
         eta = ufl.TestFunction(c.Q)
         bdf2 = (self.c0, self.c1, self.swept_old) if self.scheme == "bdf2" else None
-        return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a, c.dsc)),
+        return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a_end, c.dsc)),
                 (self.zeta, wf.shape_update_residual(self.body.w, self.body.w_n, self.a,
                                                      self.rate_density, self.dt, eta,
                                                      c.dsc, bdf2=bdf2))]
