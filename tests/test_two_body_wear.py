@@ -121,6 +121,54 @@ def test_wear_reciprocating_both_bodies(tmp_path, scheme):
         assert bp4_steps(tmp_path / scheme / f"{body}_series.bp") == len(a_pin)
 
 
+def test_wear_reciprocating_bdf2_under_error_control(tmp_path):
+    """scheme=bdf2 with tol = 1e-4 mm on the cycles (first step 2 s, 100 cycles, T = 20
+    s): the controller varies the step (measured 2, 4, 8, 6 s, no rejection), and
+    each body's worn area obeys the variable-step BDF2 recurrence of its recorded
+    cycle-averaged rate integrals, c₀ Δa_{n+1} + c₁ Δa_n = Δt_{n+1} ∫W̄̇ dŜ
+    (forms.wear.bdf2_coefficients, ω = Δt_{n+1}/Δt_n; backward Euler first), to the
+    relative 1e-7 of test_wear_reciprocating_both_bodies."""
+    from tribofx.forms.wear import bdf2_coefficients
+
+    s = _run(tmp_path, "tol", "scheme=bdf2", "tol=1e-4", "dt=2")
+    assert s["status"] == "ok"
+    r = {k: v["value"] for k, v in s["results"].items()}
+    dt = np.array(r["dt"])
+    print("steps", dt[1:], "rejected", r["rejected_steps"], "estimates", r["error_estimate"][1:])
+    assert len(set(np.round(dt[2:], 6))) > 1          # the controller changed the step
+    for a, rate in ((r["worn_area_pin"], r["rate_integral_pin"]),
+                    (r["worn_area_block"], r["rate_integral_block"])):
+        da, rate = np.diff(a), np.array(rate)
+        assert da[0] == pytest.approx(dt[1] * rate[1], rel=1e-7)
+        for n in range(1, len(da)):
+            c0, c1 = bdf2_coefficients(dt[n + 1] / dt[n])
+            assert c0 * da[n] + c1 * da[n - 1] == pytest.approx(dt[n + 1] * rate[n + 1],
+                                                                rel=1e-7)
+
+
+@pytest.mark.slow
+def test_wear_reciprocating_bdf2_error_follows_tol(tmp_path):
+    """Error control on the cycles: the final worn profiles of pin and block under
+    tol = 1e-5 and 1e-6 mm (first step 2 s, T = 20 s) against a fixed-step BDF2
+    reference at Δt = 0.5 s (its own error: 7.6e-8 mm against Δt = 0.25 s, ≤ 1/10
+    of the smaller tol) are within 2 tol, the factor of
+    test_wear.test_bdf2_error_control_follows_the_tolerance (the controller holds
+    Milne's estimate at tol·Δt/T per step, so the steps' errors add up to about
+    tol).  Measured against Δt = 0.25 s: pin 1.5e-6, 1.0e-6 mm (7 and 12 steps, 2
+    and 4 rejected), block 3.4e-8, 3.6e-8 mm;
+    at tol = 1e-4 the step is limited by its growth ×2 (2, 4, 8, 6 s) and the pin's
+    error is 2.0e-6.  Slow (2.5 min, ``--runslow``)."""
+    ref = _run(tmp_path, "ref", "scheme=bdf2", "dt=0.5")["results"]
+    for tol in (1e-5, 1e-6):
+        r = _run(tmp_path, f"tol{tol:g}", "scheme=bdf2", f"tol={tol}", "dt=2")["results"]
+        err = [float(np.abs(np.array(r[f"final_profile_{b}"]["value"])
+                            - np.array(ref[f"final_profile_{b}"]["value"])).max())
+               for b in ("pin", "block")]
+        print(f"tol {tol:g}: errors {err}, accepted {r['accepted_steps']['value']}, "
+              f"rejected {r['rejected_steps']['value']}")
+        assert max(err) <= 2 * tol
+
+
 def test_both_bodies_worn_tangent_taylor():
     """Exact tangent with both bodies worn (eqs. 17-18): after one slow step of the
     §5.1 case, the fast-time problem (pin and block displacements on their worn shapes,

@@ -816,8 +816,8 @@ def test_bdf2_wear_tangent_taylor():
     stepper.step(100.0)
     wear = stepper.wear
     wear.begin_step(50.0)    # the residual of a third step: BDF2 weights, previous volume
-    assert wear.c0.value == pytest.approx(4 / 3) and wear.c1.value == pytest.approx(-1 / 6)
-    assert np.abs(wear.swept_old.x.array).max() > 0
+    assert wear.bdf.c0.value == pytest.approx(4 / 3) and wear.bdf.c1.value == pytest.approx(-1 / 6)
+    assert np.abs(wear.bdf.swept_old.x.array).max() > 0
     lam = wear.contact.lam_n.x.array
     lam[lam > -1e-9] = 0.05
     _exact_per_block(stepper.problem)

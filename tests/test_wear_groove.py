@@ -235,6 +235,57 @@ def test_explicit_step_uses_the_old_rate():
                        rep.reports[-1].residuals[-1])
 
 
+def _coarse(v, comm=MPI.COMM_WORLD):
+    """Stepper on the coarse block of :func:`_small_run` (h = 0.9 a), in initial contact."""
+    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    h = 0.9 * a
+    stepper, info = CASE.build(v, comm, h=h, mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
+    rep0 = CASE.initial_contact(stepper, info)
+    return stepper, info, rep0
+
+
+@serial
+def test_bdf2_groove_balance_and_tangent():
+    """scheme=bdf2 on the groove (coarse block), steps of 50, 50, 25 s: the groove area
+    obeys the variable-step BDF2 recurrence of the recorded path-averaged rates,
+    c₀ ΔA_{n+1} + c₁ ΔA_n = Δt_{n+1} (1/L)∫Ẇ dA (forms.wear.bdf2_coefficients; backward
+    Euler first), to the 1e-8 of test_groove_area_balance; the error estimates have the
+    orders 2, 2, 3 (forward Euler, linear, Milne predictors); and the monolithic
+    Jacobian of a fourth step (ω = 1/2: c₀ = 4/3, c₁ = −1/6, a nonzero previous swept
+    area) passes the Taylor test of test_monolithic_tangent_taylor."""
+    from tribofx.forms.wear import bdf2_coefficients
+
+    stepper, _, _ = _coarse(_values(scheme="bdf2"))
+    wear = stepper.wear
+    dts, dA, rate, orders = (50.0, 50.0, 25.0), [], [], []
+    for dt in dts:
+        a0 = wear.groove_area()
+        stepper.step(dt)
+        dA.append(wear.groove_area() - a0)
+        rate.append(wear.averaged_rate_integral())
+        assert wear.step_error() > 0
+        orders.append(wear.error_order)
+    print("ΔA", dA, "Δt rate", [d * r for d, r in zip(dts, rate)], "orders", orders)
+    assert orders == [2, 2, 3]
+    assert dA[0] == pytest.approx(dts[0] * rate[0], rel=1e-8)
+    for n in (1, 2):
+        c0, c1 = bdf2_coefficients(dts[n] / dts[n - 1])
+        assert c0 * dA[n] + c1 * dA[n - 1] == pytest.approx(dts[n] * rate[n], rel=1e-8)
+    problem = stepper.problem
+    wear.begin_step(12.5)
+    assert wear.bdf.c1.value == pytest.approx(-1 / 6)
+    assert np.abs(wear.bdf.swept_old.x.array).max() > 0
+    try:
+        rng = np.random.default_rng(1)
+        scale = [1e-4, 10.0, 1e-4, 1e3]  # u (mm), λ (MPa), w₂ (mm), ζ
+        d = [s * rng.standard_normal(len(b)) for s, b in zip(scale, owned_arrays(problem))]
+        t_orders, rel = taylor_orders(problem, d, eps0=1e-3)
+        print("Taylor orders", t_orders, "relative remainders", rel)
+    finally:
+        wear.end_step()
+    assert np.all(t_orders > 1.8)
+
+
 def _small_run(comm):
     """Initial contact and one implicit step of 50 s on a coarse block (h = 0.9 a).
 
@@ -242,11 +293,8 @@ def _small_run(comm):
     force, contact extent (x, y), Newton iterations) — identical on every rank.
     """
     v = _values()
-    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-    h = 0.9 * a
-    stepper, info = CASE.build(v, comm, h=h, mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
+    stepper, _, rep0 = _coarse(v, comm)
     wear, contact = stepper.wear, stepper.wear.contact
-    rep0 = CASE.initial_contact(stepper, info)
     rep1 = stepper.step(50.0)
     lp = wear.line_profile()
     d = surface_data(contact)

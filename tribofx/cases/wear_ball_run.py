@@ -26,7 +26,7 @@ class BallWearRun:
 
     @staticmethod
     def progress_total(v):
-        """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
+        """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
         return nominal_steps(v["T"], v["dt"])
 
     @staticmethod

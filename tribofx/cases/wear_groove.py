@@ -64,9 +64,11 @@ class WearBallHalfspaceCase(GrooveRun):
     doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
     REGIMES = REGIMES
     params = (
-        Param("scheme", str, "implicit", "-", "θ-scheme: explicit (θ=0) or implicit (θ=1)",
-              choices=("explicit", "implicit")),
-        Param("dt", float, 100.0, "s", "time step Δt", lower=0.0),
+        Param("scheme", str, "implicit", "-", "explicit (θ=0), implicit (θ=1) or bdf2 "
+              "(second order, implicit)", choices=("explicit", "implicit", "bdf2")),
+        Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
+        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
+              lower=0.0, closed=True),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("regime", str, "small", "-", "material set: small (E=200 GPa) or finite (E=10 MPa)",
               choices=("small", "finite")),
@@ -108,6 +110,8 @@ class WearBallHalfspaceCase(GrooveRun):
         v = cls.resolved(v)
         if v["dt"] > v["T"]:
             raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+        if v["tol"] > 0 and v["scheme"] != "bdf2":
+            raise InputError("tol > 0 (error control) needs scheme=bdf2")
         a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         if a > 0.5 * v["R"]:
             raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
@@ -149,7 +153,8 @@ class WearBallHalfspaceCase(GrooveRun):
         wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v["k"] * fg,
                           v["V"], v["L"], law=v["law"], aux=(v["E"], 0.3),
                           fixed={"sym": [0], "far": [0], "bottom": [0, 1]},
-                          theta=1.0 if v["scheme"] == "implicit" else 0.0, rtol=1e-12)
+                          theta=0.0 if v["scheme"] == "explicit" else 1.0, rtol=1e-12,
+                          scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
         stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
                           checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
         return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}

@@ -35,7 +35,7 @@ class GrooveRun:
 
     @staticmethod
     def progress_total(v):
-        """Return the steps the progress bar counts: nominal steps to T (a cut one counts 2)."""
+        """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
         return nominal_steps(v["T"], v["dt"])
 
     @staticmethod
@@ -76,14 +76,15 @@ class GrooveRun:
         # step (ParaView time series)
         sr = SlowRun(stepper, v, record, (
             "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
-            "newton_iterations", "averaged_rate", "max_pressure", "dt"),
+            "newton_iterations", "averaged_rate", "max_pressure", "dt", "error_estimate",
+            "rejected"),
             cls.vtx_fields(stepper), resume)
         record.data["num_dofs"] = sum(n.values())
         h, hist = sr.history, sr.hist
         prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
         residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
-        def log(t, its, dt):
+        def log(t, its, dt, error=None, rejected=0):
             d = surface_data(contact)
             X = d["X"][d["active"]]
             ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
@@ -91,7 +92,7 @@ class GrooveRun:
             lp = wear.line_profile()
             sr.log(its, zip(hist, (t, 2 * wear.groove_area(), float(lp["depth"].max()),
                                    ext[1], ext[0], its, 2 * wear.averaged_rate_integral(),
-                                   ext[2], dt)))
+                                   ext[2], dt, error, rejected)))
             g = surface_data(contact, root=0)
             if g is not None:
                 prof["times"].append(t)
@@ -99,13 +100,14 @@ class GrooveRun:
                 prof["maps"].append(np.column_stack([g["X"], g["p"]]).tolist())
 
         def on_step(st, rep):
-            log(st.t, rep.iterations, rep.dt)
+            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
             residuals.append([float(x) for x in rep.reports[0].residuals])
 
         if not resume:
             log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
         sr.run(v["T"], v["dt"], on_step, progress, report=lambda: cls._report(
-            stepper, v, record, hist, prof, time.perf_counter() - t_start))
+            stepper, v, record, hist, prof, time.perf_counter() - t_start),
+            tol=v["tol"] or None)
         return stepper
 
     @staticmethod
@@ -114,9 +116,12 @@ class GrooveRun:
                  "max_wear_depth": "mm", "contact_radius": "mm (half-width across the groove)",
                  "contact_half_length": "mm (along the sliding direction)",
                  "newton_iterations": "-", "averaged_rate": "mm^3/(mm*s) ((2/L) ∫ k p v dA)",
-                 "max_pressure": "MPa (nominal)", "dt": "s"}
+                 "max_pressure": "MPa (nominal)", "dt": "s",
+                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
+        record.result("accepted_steps", len(hist["time"]) - 1, "-")
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
         wear = stepper.wear
         w = wear.line_profile()["worn"]
         record.result("final_profile", np.vstack([w[::-1] * [-1, 1], w[1:]]).tolist(),

@@ -113,8 +113,10 @@ class WearReciprocatingCase(ReciprocatingRun):
         Param("F", float, 1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0),
         Param("cycles", float, 2000.0, "-", "loading cycles of the run (T = cycles·4A/V)",
               lower=0.0),
-        Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step)",
-              lower=0.0),
+        Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step; "
+              "with tol: the first step)", lower=0.0),
+        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control of the cycle-averaged "
+              "shapes (0: the fixed step dt)", lower=0.0, closed=True),
         Param("W", float, 2.0, "mm", "pin width", lower=0.0),
         Param("H", float, 2.0, "mm", "pin height", lower=0.0),
         Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
@@ -148,6 +150,8 @@ class WearReciprocatingCase(ReciprocatingRun):
             if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
                 raise InputError("the rounded tip must be lower than half the pin height")
             WearReciprocatingCase.check_stroke(v, v["W"])
+        if v["tol"] > 0 and v["scheme"] != "bdf2":
+            raise InputError("tol > 0 (error control) needs scheme=bdf2")
         if v["fast_steps"] % 4:
             raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
         if v["dt"] > WearReciprocatingCase.period(v) * v["cycles"]:

@@ -155,12 +155,13 @@ class ReciprocatingRun:
             "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
             "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
             "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
-            "picard_iterations", "dt"), cls.vtx_fields(run), resume)
+            "picard_iterations", "dt", "error_estimate", "rejected"), cls.vtx_fields(run),
+            resume)
         h, hist = sr.history, sr.hist
         energy = [hist["dissipated_energy"][-1] if resume else 0.0]
         w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
-        def log(t, dt, its, picard=0):
+        def log(t, dt, its, picard=0, error=None, rejected=0):
             comm = contact.slave.mesh.comm
             if st.last_increments is not None:   # dissipation of the step's (last) cycle
                 d_pin = st.last_increments[0]
@@ -179,7 +180,7 @@ class ReciprocatingRun:
                          ("rate_integral_block", wb.wear_rate_integral()),
                          ("normal_force", float(contact.forces()[0][1])),
                          ("newton_iterations", its), ("picard_iterations", picard),
-                         ("dt", dt)))
+                         ("dt", dt), ("error_estimate", error), ("rejected", rejected)))
 
         if not resume:
             log(0.0, 0.0, cls.load_up(run, v, verbose))
@@ -193,8 +194,9 @@ class ReciprocatingRun:
                 record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
 
         sr.run(v["cycles"] * tau, v["dt"],
-               lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard), progress,
-               report=report, problem=run,
+               lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard, rep.error,
+                                  rep.rejected), progress,
+               report=report, problem=run, tol=v["tol"] or None,
                after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
         return run
 
@@ -206,9 +208,12 @@ class ReciprocatingRun:
                  "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
                  "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
                  "normal_force": "N/mm", "newton_iterations": "-", "picard_iterations": "-",
-                 "dt": "s"}
+                 "dt": "s", "error_estimate": "mm (per step, error control)",
+                 "rejected": "-"}
         for key, vals in hist.items():
             record.result(key, vals, units[key])
+        record.result("accepted_steps", len(hist["time"]) - 1, "-")
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
         prof = {}
         for key in ("wear_pin", "wear_block"):
             d = run[key].gather_shape()

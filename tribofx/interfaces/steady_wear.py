@@ -18,13 +18,17 @@ Residuals (all from :mod:`tribofx.forms`):
   without its rate term, and an :class:`tribofx.reduced.AlgebraicRow` with the
   nodal wear rate r_i = ∫_Γ̂c Ẇ j_w φ_i dŜ, Ẇ j_w = k(d) |T_N| ‖v_T‖, eq. 14, v = F V,
   eqs. 26–27; ``law="spatial"``: divided by J, eqs. 15–16); a is the mid-step
-  Nanson vector of the line (exact swept area).
+  Nanson vector of the line (exact swept area), while ζ's reaction acts along
+  the line's Nanson vector at the step's end (as in :class:`tribofx.interfaces.Wear`:
+  the nodes' positions along the line depend on the groove's shape alone);
+  ``scheme="bdf2"``: the variable-step BDF2 law in swept areas
+  (:class:`tribofx.bdf2.SweptHistory`, with its error estimate ``step_error``).
 
 The cross-section mesh is replicated on every rank (``COMM_SELF``); its
 unknowns are owned by rank 0 in the :class:`tribofx.reduced.ReducedProblem`
 (``problem_class``, which the slow-time stepper :class:`tribofx.stepper.Stepper`
 builds for this interface).  Stepper protocol: ``theta`` (1 implicit, 0
-explicit: the rate of the known state, frozen by :meth:`begin_step`),
+explicit: the rate of the known state, frozen by :meth:`begin_step`), ``scheme``,
 ``averaged = False``, :meth:`shape_unknowns`, :meth:`begin_step`,
 :meth:`end_step`, :meth:`min_volume_factor`, ``body``.
 Units: mm, N, s, MPa.
@@ -36,6 +40,7 @@ from dolfinx import fem, la
 from mpi4py import MPI
 from petsc4py import PETSc
 
+from ..bdf2 import SweptHistory
 from ..forms import ale
 from ..forms import hyperelastic as hf
 from ..forms import wear as wf
@@ -126,10 +131,13 @@ class SteadyWear:
     averaged = False  # no fast-time cycles: the rate is path-averaged in closed form
 
     def __init__(self, contact, section, section_tags, section_names, prolongation, k, V, L,
-                 law="nominal", aux=(1.0, 0.3), fixed=None, theta=1.0, rtol=1e-10):
+                 law="nominal", aux=(1.0, 0.3), fixed=None, theta=1.0, rtol=1e-10,
+                 scheme="theta"):
         if theta not in (0, 1):
             raise ValueError(f"theta = {theta}: 0 (explicit) or 1 (implicit)")
-        self.theta = float(theta)
+        if scheme not in ("theta", "bdf2") or (scheme == "bdf2" and theta != 1):
+            raise ValueError(f"scheme = {scheme!r}: theta, or bdf2 with theta = 1")
+        self.theta, self.scheme = float(theta), scheme
         body = contact.body
         if body.w is None or body.shape_is_unknown:
             raise ValueError("SteadyWear needs a body with an image shape field (shape='image')")
@@ -150,6 +158,8 @@ class SteadyWear:
                                metadata={"quadrature_rule": "vertex", "quadrature_degree": 1})
         self.dx2 = ufl.Measure("dx", section)
         self.a = ale.nanson_vector(0.5 * (self.w2 + self.w2n), ufl.FacetNormal(section))
+        self.a_end = ale.nanson_vector(self.w2, ufl.FacetNormal(section))   # the reaction's
+        self.bdf = SweptHistory(self.Q2, "groove")
         self._aux = hf.lame_parameters(*aux)
         # wear rate per unit initial area (eq. 14, Eulerian slip speed, eqs. 26-27)
         t_n, _ = contact.tractions()
@@ -191,10 +201,19 @@ class SteadyWear:
         self._X_line = self.Q2.tabulate_dof_coordinates()[:, 0]
         self._rate_compiled = fem.form(self.rate_form, entity_maps=[contact.emap])
         self._lumped = None
+        eta = ufl.TestFunction(self.Q2)
+        self._line_forms = [fem.form(eta * f * self.dsl, entity_maps=[self.emap2]) for f in (
+            ufl.dot(self.w2 - self.w2n, self.a), fem.Constant(section, 1.0))]
 
     # -- scheme controls ---------------------------------------------------------------
     def begin_step(self, dt, freeze=None):
-        """Start a step of Δt (s): w₂ₙ ← w₂; ``freeze`` (default: θ = 0) the current rate."""
+        """Start a step of Δt (s): w₂ₙ ← w₂; ``freeze`` (default: θ = 0) the current rate.
+
+        BDF2: the area swept in the previous step is kept before w₂ₙ moves on
+        (:class:`tribofx.bdf2.SweptHistory`).
+        """
+        if self.scheme == "bdf2":
+            self.bdf.begin_step(dt, self._swept, self._nodal_rate)
         self.w2n.x.array[:] = self.w2.x.array
         freeze = self.theta == 0 if freeze is None else freeze
         self._rate_fixed = self.rate_vector() if freeze else None
@@ -215,8 +234,9 @@ class SteadyWear:
         dw, eta = ufl.TestFunction(self.V2), ufl.TestFunction(self.Q2)
         mu_a, lmbda_a = self._aux
         R_w = (ale.aux_elasticity(self.w2, dw, mu_a, lmbda_a, self.dx2)
-               + ale.shape_multiplier_work(self.zeta, dw, self.a, self.dsl))
-        R_z = wf.shape_update_residual(self.w2, self.w2n, self.a, 0.0, 0.0, eta, self.dsl)
+               + ale.shape_multiplier_work(self.zeta, dw, self.a_end, self.dsl))
+        R_z = wf.shape_update_residual(self.w2, self.w2n, self.a, 0.0, 0.0, eta, self.dsl,
+                                       bdf2=self.bdf.weights if self.scheme == "bdf2" else None)
         return [(self.w2, R_w), (self.zeta, R_z)]
 
     def shape_unknowns(self):
@@ -256,11 +276,40 @@ class SteadyWear:
                 self.zeta: BlockTolerance(self.rtol * Lb, "mm", w)}
 
     def state_fields(self):
-        """Shape, its history and the multiplier."""
-        return [self.w2, self.w2n, self.zeta]
+        """Shape, its history, the multiplier and the BDF2 history."""
+        return [self.w2, self.w2n, self.zeta] + self.bdf.state_fields()
 
     def commit(self):
         """Nothing beyond the state."""
+
+    # -- BDF2 -------------------------------------------------------------------------
+    def _line_nodal(self, k):
+        return fem.assemble_vector(self._line_forms[k]).array   # the line is replicated
+
+    def _swept(self):
+        """Nodal area swept per unit initial line length, ∫η(w₂ − w₂ₙ)·a dŝ / ∫η dŝ."""
+        num, den = self._line_nodal(0), self._line_nodal(1)
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def _nodal_rate(self):
+        """Nodal rate of the swept area per unit line length, (1/L)(P_cᵀ r)_j / ∫η_j dŝ."""
+        num, den = self.Pc.transpose(self.rate_vector()) / self.L, self._line_nodal(1)
+        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+
+    def step_error(self):
+        """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
+
+        :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept areas per unit
+        line length (the groove's depth where it is flat).
+        """
+        if self.scheme != "bdf2":
+            return None
+        return self.bdf.error(self._swept(), self.body.mesh.comm)
+
+    @property
+    def error_order(self):
+        """Order in Δt of the last :meth:`step_error`."""
+        return self.bdf.error_order
 
     # -- outputs -----------------------------------------------------------------------
     def rate_vector(self):

@@ -63,6 +63,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from ..bdf2 import SweptHistory
 from ..forms import ale
 from ..forms import wear as wf
 from ..laws import is_constant, wear_coefficient_law
@@ -144,13 +145,9 @@ class Wear:
         self.zeta = fem.Function(Q, name=f"{name}_shape_multiplier")
         self.rate_bar = fem.Function(Q, name=f"{name}_cycle_averaged_rate")
         self.dt = fem.Constant(msh, 0.0)  # 0: a plain contact solve does not wear
-        # BDF2: weights, the volume swept in the previous step (nodal, per unit
-        # initial area) and that step's Δt (state: restored with a failed step)
-        self.c0, self.c1 = fem.Constant(msh, 1.0), fem.Constant(msh, 0.0)
-        self.swept_old = fem.Function(Q, name=f"{name}_previous_swept_volume")
-        self.swept_old2 = fem.Function(Q, name=f"{name}_second_previous_swept_volume")
-        self.dt_prev = fem.Constant(msh, 0.0)
-        self.dt_prev2 = fem.Constant(msh, 0.0)
+        # BDF2: weights, the volumes swept in the last two steps (nodal, per unit
+        # initial area) and their Δt (state: restored with a failed step)
+        self.bdf = SweptHistory(Q, name)
         self.k_law = wear_coefficient_law(k).bind(msh)   # k(p), p = −T_N; a number: constant
         if hasattr(contact, "wear_increment") and not is_constant(self.k_law.law):
             raise ValueError("a two-body contact's wear takes a constant coefficient")
@@ -172,8 +169,6 @@ class Wear:
         self._bulk_dofs_w = gmap_w[node_of_bulk[self.surface.bulk_dofs]]
         self._post = None
         self._bdf_forms = {}
-        self._omega = self._rate0 = self._pred = None
-        self.error_order = 2
 
     # -- the wear law ------------------------------------------------------------
     def rate(self, w, slip=None):
@@ -212,7 +207,7 @@ class Wear:
         c = self.surface
         dw = ufl.TestFunction(self.body.Vw)
         eta = ufl.TestFunction(c.Q)
-        bdf2 = (self.c0, self.c1, self.swept_old) if self.scheme == "bdf2" else None
+        bdf2 = self.bdf.weights if self.scheme == "bdf2" else None
         return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a_end, c.dsc)),
                 (self.zeta, wf.shape_update_residual(self.body.w, self.body.w_n, self.a,
                                                      self.rate_density, self.dt, eta,
@@ -248,8 +243,7 @@ class Wear:
 
         (w, w_n: the body's.)
         """
-        return ([self.zeta, self.rate_bar, self.swept_old, self.dt_prev, self.swept_old2,
-                 self.dt_prev2] + self.k_law.state_fields())
+        return [self.zeta, self.rate_bar] + self.bdf.state_fields() + self.k_law.state_fields()
 
     def commit(self):
         """Nothing: the shape history moves on in :meth:`begin_step` of the slow time."""
@@ -263,23 +257,7 @@ class Wear:
         when there is no previous step).
         """
         if self.scheme == "bdf2":
-            prev, prev2 = float(self.dt_prev.value), float(self.dt_prev2.value)
-            self._pred = None
-            if prev > 0:
-                self.swept_old2.x.array[:] = self.swept_old.x.array
-                self.swept_old.x.array[:] = self._swept_volume()
-                if prev2 > 0:   # rates of the last two steps, linear in time: O(Δt³)
-                    r1 = self.swept_old.x.array / prev
-                    r0 = self.swept_old2.x.array / prev2
-                    self._pred = dt * (r1 + (r1 - r0) * (dt + prev) / (prev + prev2))
-            self.dt_prev2.value = prev
-            self._omega = dt / prev if prev > 0 else None
-            # the first (backward Euler) step is checked against forward Euler: the
-            # nodal rate at the step's start
-            self._rate0 = None if prev > 0 else self._nodal_rate()
-            c0, c1 = wf.bdf2_coefficients(self._omega or 0.0)
-            self.c0.value, self.c1.value = c0, c1
-            self.dt_prev.value = float(dt)
+            self.bdf.begin_step(dt, self._swept_volume, self._nodal_rate)
         self.dt.value = float(dt)
         self.body.w_n.x.array[:] = self.body.w.x.array
 
@@ -303,26 +281,17 @@ class Wear:
     def step_error(self):
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
 
-        The max over the nodes of the swept volume per unit area s_{n+1} against a
-        predictor, with its order in ``error_order``: from the third step Milne's
-        device, (2/11)|s_{n+1} − s^P| with s^P from the rates of the last two
-        steps extrapolated linearly in time (2/11: BDF2's error constant 2/9
-        against the predictor's 1, constant steps), O(Δt³); the first step
-        (backward Euler) ½|s₁ + Δt Ẇ₀| against forward Euler and the second
-        |s₂ − ω s₁| against the linear predictor, O(Δt²).
+        :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept volumes per unit
+        initial area (its order in :attr:`error_order`).
         """
-        if self.scheme != "bdf2" or (self._omega is None and self._rate0 is None):
+        if self.scheme != "bdf2":
             return None
-        n = self.surface.n_own
-        s = self._swept_volume()[:n]
-        if self._omega is None:   # first step: s₁ against −Δt Ẇ₀ (forward Euler)
-            d, self.error_order = 0.5 * (s + float(self.dt_prev.value) * self._rate0[:n]), 2
-        elif self._pred is None:  # second step: against the linear predictor
-            d, self.error_order = s - self._omega * self.swept_old.x.array[:n], 2
-        else:                     # Milne: BDF2's error is 2/11 of the difference
-            d, self.error_order = (2 / 11) * (s - self._pred[:n]), 3
-        return self.body.mesh.comm.allreduce(float(np.max(np.abs(d), initial=0.0)),
-                                             op=MPI.MAX)
+        return self.bdf.error(self._swept_volume()[:self.surface.n_own], self.body.mesh.comm)
+
+    @property
+    def error_order(self):
+        """Order in Δt of the last :meth:`step_error`."""
+        return self.bdf.error_order
 
     def set_start_rate(self, rate):
         """Nodal rate Ẇ j_w (mm/s) at the start of a cycle-driven step (``rate_bar``'s layout).
@@ -331,8 +300,8 @@ class Wear:
         driven by cycles, that rate is the first cycle's (``rate_bar`` at
         :meth:`begin_step` is the last step's).  No effect otherwise.
         """
-        if self.scheme == "bdf2" and self._rate0 is not None:
-            self._rate0 = np.array(rate, dtype=float)
+        if self.scheme == "bdf2":
+            self.bdf.set_start_rate(rate)
 
     def _nodal_rate(self):
         """Nodal Ẇ j_w (mm/s) of the current state."""
