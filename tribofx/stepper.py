@@ -407,6 +407,7 @@ class Stepper:
         if n > progress.n:
             progress.update(n - progress.n)
 
+
 def nominal_steps(T, dt):
     """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""
     return math.ceil(T / dt - 1e-9)

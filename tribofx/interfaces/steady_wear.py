@@ -200,10 +200,7 @@ class SteadyWear:
         self._X2 = X2
         self._X_line = self.Q2.tabulate_dof_coordinates()[:, 0]
         self._rate_compiled = fem.form(self.rate_form, entity_maps=[contact.emap])
-        self._lumped = None
-        eta = ufl.TestFunction(self.Q2)
-        self._line_forms = [fem.form(eta * f * self.dsl, entity_maps=[self.emap2]) for f in (
-            ufl.dot(self.w2 - self.w2n, self.a), fem.Constant(section, 1.0))]
+        self._lumped = self._line_forms = None
 
     # -- scheme controls ---------------------------------------------------------------
     def begin_step(self, dt, freeze=None):
@@ -284,6 +281,12 @@ class SteadyWear:
 
     # -- BDF2 -------------------------------------------------------------------------
     def _line_nodal(self, k):
+        """∫η (w₂ − w₂ₙ)·a dŝ (k = 0) or ∫η dŝ (k = 1) per line node (compiled once)."""
+        if self._line_forms is None:
+            eta = ufl.TestFunction(self.Q2)
+            self._line_forms = [
+                fem.form(eta * f * self.dsl, entity_maps=[self.emap2]) for f in
+                (ufl.dot(self.w2 - self.w2n, self.a), fem.Constant(self.section, 1.0))]
         return fem.assemble_vector(self._line_forms[k]).array   # the line is replicated
 
     def _swept(self):
