@@ -63,6 +63,7 @@ CASES = {
     # the O-ring over a stroke: the film's histories, the rod speed, the air end's
     # supply and its outstroke record (the stepper's history), the mounted housing
     "ehl-oring-cycle": (["run", "ehl-oring", "--set", "stroke=cycle", "--set", "mesh=2",
+                         "--set", "arc_refine=0",
                          "--set", "cycles=0.2", "--set", "cycle_steps=40", "--quiet"], 0.02,
                         2, ("h_min", "flux_air", "content", "supply"), "final_film",
                         "displacement"),

@@ -124,7 +124,7 @@ class EHLORingCase(ORingRun):
         Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
         Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
               "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
-              "with arc_refine=1: tribofx.cases.oring_cycle)",
+              "tribofx.cases.oring_cycle)",
               choices=("single", "both", "cycle")),
         Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
         Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
@@ -141,8 +141,9 @@ class EHLORingCase(ORingRun):
         Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
         Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
               lower=1, upper=32, closed=True),
-        Param("arc_refine", int, 0, "-", "halvings of the element size on the film arc "
-              "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm)", lower=0, upper=3, closed=True),
+        Param("arc_refine", int, None, "-", "halvings of the element size on the film arc "
+              "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm; default: 1 with stroke=cycle, "
+              "else 0)", lower=0, upper=3, closed=True),
         Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
         formulation_param("mixed"),
         Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,

@@ -14,6 +14,7 @@ from ..problem import options_name
 from ..restart import SweepJournal
 from ..stepper import nominal_steps
 from ..sweep import SweepVariant
+from .film_setup import arc_halvings
 from .oring_cycle import run_cycle
 from .oring_seal import axial_balance, build, solve_to
 
@@ -40,6 +41,7 @@ class ORingRun:
         ``resume``: continue from it (a stroke restarts at its next pressure,
         ramped from the saved state; ``study=mesh`` is run again whole).
         """
+        record.data["parameters"]["arc_refine"]["value"] = arc_halvings(v)   # as used
         if v["stroke"] == "cycle":
             return run_cycle(cls, v, record, progress, verbose, checkpoint, resume)
         comm = MPI.COMM_WORLD

@@ -27,10 +27,10 @@ instroke (``vertex_couette`` ω = 1, :func:`reforming`): there the oil brought
 back fills the film from the air end, and the Gauss-point product of θ and h
 drains the node in front of the reforming film.  In the outstroke (ω = 0) the
 film ruptures at the air-side outlet, where the vertex rule costs accuracy.
-On the film arc refined once (``arc_refine=1``, 12.5 µm) backward Euler and BDF2
-run two cycles, periodic from the second; at 25 µm the instroke's outlet
-constriction is one node wide, h_min jumps from step to step and Newton may
-stall there.
+On the film arc refined once (``arc_refine=1``, 12.5 µm, the cycle's default:
+:func:`tribofx.cases.film_setup.arc_halvings`) backward Euler and BDF2 run two
+cycles, periodic from the second; at 25 µm the instroke's outlet constriction
+is one node wide, h_min jumps from step to step and Newton may stall there.
 
 A rough rod (``sigma`` > 0: Patir–Cheng flow factors and Greenwood–Tripp
 asperities, :func:`tribofx.roughness.rough_pair`, boundary friction ``mu_b``)

@@ -25,7 +25,7 @@ from ..obstacles import rigid_plane
 from ..params import InputError, number_list
 from ..problem import Problem
 from ..references import inverse_film
-from .film_setup import cavitation_model, density, film_boundary, viscosity
+from .film_setup import arc_halvings, cavitation_model, density, film_boundary, viscosity
 from .oring_outputs import SealOutputs
 
 __all__ = ["NAMES", "USER_GROUPS", "ORingSeal", "axial_balance", "build", "geometry", "solve_to"]
@@ -92,7 +92,7 @@ class ORingSeal(SealOutputs):
         center, a, r_rod, r_g, z_w = geometry(v, extent)
         self.center, self.a, self.r_rod = center, a, r_rod
         if not self.user:
-            msh, _, ft = oring_section(*center, a, mesh, h_l=0.1 / 2 ** v["arc_refine"],
+            msh, _, ft = oring_section(*center, a, mesh, h_l=0.1 / 2 ** arc_halvings(v),
                                        comm=comm)
         mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
         E = 3 * (mat["mu1"] + mat["mu2"])
