@@ -36,7 +36,9 @@
 # - \int_{\hat\Gamma_t} T^*\!\cdot\delta u\, j_w\, d\hat S + G_c(u, \lambda_N) = 0,
 # $$
 #
-# the auxiliary elasticity of w with the reaction ∫ ζ δw·a dŜ, and the discrete
+# the auxiliary elasticity of w with the reaction ∫ ζ δw·a(w) dŜ (along the worn
+# boundary's Nanson vector at the step's end, so that the nodes' positions along
+# the boundary depend on its shape alone), and the discrete
 # shape evolution law (28) with the nominal Archard rate (14) in pressure form,
 # Ẇ j_w = k V |λ_N|, imposed nodally on Γ̂_c:
 #

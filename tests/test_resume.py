@@ -42,9 +42,10 @@ CASES = {
                         "--quiet"], 300.0, 1,
                        ("wear_volume", "max_wear_depth", "approach", "contact_radius"),
                        "final_profile", "displacement"),
-    # monolithic ALE with the replicated cross-section unknowns Ψ and ζ (ReducedProblem)
+    # monolithic ALE with the replicated cross-section unknowns Ψ and ζ (ReducedProblem),
+    # BDF2: the line's swept areas and their Δt are in the state (c₁ ≠ 0 from step 2)
     "wear-ball-halfspace": (["run", "wear-ball-halfspace", "--set", "dt=100", "--set",
-                             "T=300", "--quiet"], 300.0, 1,
+                             "T=300", "--set", "scheme=bdf2", "--quiet"], 300.0, 1,
                             ("wear_volume", "max_wear_depth", "contact_radius",
                              "averaged_rate"), "final_profile", "displacement"),
     # two worn bodies, fast-time cycles (time-scale separation), Picard iteration

@@ -61,7 +61,8 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     state, as attribute ``problem``), ``vtx_fields(problem)`` ({file stem:
     [Functions on one mesh]}) and ``plot(profile, outdir)`` (rank 0; ``profile``
     is what ``run`` stored in ``record.profile``).  ``run`` advances ``progress``
-    once per load/time step; the bar length is ``values["steps"]`` when present.
+    once per load/time step (a slow-time stepper by time, in nominal steps of its
+    Δt); the bar length is ``values["steps"]`` when present.
     """
     case = get_case(name)
     if resume and not resumable(name):

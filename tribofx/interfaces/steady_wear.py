@@ -125,6 +125,8 @@ class SteadyWear:
         theta: θ of the scheme (28): 1 implicit (rate at the unknown state), 0
             explicit (rate of the known state, frozen at :meth:`begin_step`).
         rtol: relative size of the stopping tolerances.
+        scheme: "theta", or "bdf2" (θ = 1): the variable-step BDF2 law in swept
+            areas with its error estimate (:class:`tribofx.bdf2.SweptHistory`).
     """
 
     problem_class = ReducedProblem  # the problem class the stepper builds
