@@ -41,7 +41,9 @@ the implicit accuracy (the early Hertzian stage limits it below the late-time
 tolerances (mm), against a BDF2 reference.  Measured at the defaults (mesh 0, to
 t = 300 s, BDF2 reference at 2.5 s; one core): implicit 100 s: 3 steps, 19 s, 1.25e-4
 mm; explicit 5 s: 60 steps, 32 s, 6.6e-5 mm (10 s fails); BDF2 tol 1e-2, 1e-3, 1e-4:
-9, 39, 241 steps, 62, 123, 565 s, 9.9e-5, 9.7e-6, 1.1e-6 mm.  The controller's final
+9, 39, 241 steps, 62, 123, 565 s, 9.9e-5, 9.7e-6, 1.1e-6 mm (re-run with the shape
+reaction along the end-of-step Nanson vector, one core shared: 9, 39, 242 steps, 57,
+114, 681 s, 9.8e-5, 1.0e-5, 6.7e-7 mm).  The controller's final
 error is about tol/100 here, and at equal accuracy BDF2 costs 2× the explicit run
 on this coarse mesh; the chapter's element size (Δt_cr ≈ 0.1 s) is not yet measured
 with BDF2.
