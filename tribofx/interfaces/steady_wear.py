@@ -282,24 +282,33 @@ class SteadyWear:
         """Nothing beyond the state."""
 
     # -- BDF2 -------------------------------------------------------------------------
-    def _line_nodal(self, k):
-        """∫η (w₂ − w₂ₙ)·a dŝ (k = 0) or ∫η dŝ (k = 1) per line node (compiled once)."""
+    def _line(self):
+        """Return the compiled swept-area form ∫η (w₂ − w₂ₙ)·a dŝ and the weights ∫η dŝ.
+
+        Compiled on first use; the weights once (the initial line does not move;
+        the line is replicated, so its vectors are whole on every rank).
+        """
         if self._line_forms is None:
             eta = ufl.TestFunction(self.Q2)
-            self._line_forms = [
-                fem.form(eta * f * self.dsl, entity_maps=[self.emap2]) for f in
-                (ufl.dot(self.w2 - self.w2n, self.a), fem.Constant(self.section, 1.0))]
-        return fem.assemble_vector(self._line_forms[k]).array   # the line is replicated
+            swept = fem.form(eta * ufl.dot(self.w2 - self.w2n, self.a) * self.dsl,
+                             entity_maps=[self.emap2])
+            ones = fem.form(eta * fem.Constant(self.section, 1.0) * self.dsl,
+                            entity_maps=[self.emap2])
+            self._line_forms = (swept, fem.assemble_vector(ones).array)
+        return self._line_forms
+
+    def _per_length(self, num):
+        """Return ``num`` per unit initial line length, num_j / ∫η_j dŝ."""
+        w = self._line()[1]
+        return np.divide(num, w, out=np.zeros_like(num), where=w > 0)
 
     def _swept(self):
         """Nodal area swept per unit initial line length, ∫η(w₂ − w₂ₙ)·a dŝ / ∫η dŝ."""
-        num, den = self._line_nodal(0), self._line_nodal(1)
-        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+        return self._per_length(fem.assemble_vector(self._line()[0]).array)
 
     def _nodal_rate(self):
         """Nodal rate of the swept area per unit line length, (1/L)(P_cᵀ r)_j / ∫η_j dŝ."""
-        num, den = self.Pc.transpose(self.rate_vector()) / self.L, self._line_nodal(1)
-        return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
+        return self._per_length(self.Pc.transpose(self.rate_vector()) / self.L)
 
     def step_error(self):
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
