@@ -70,6 +70,7 @@ from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..stepper import ReciprocatingCycle, Stepper
+from .slow_time import check_scheme, scheme_params
 from .wear_pin_run import PinRun
 from .wear_pin_setup import PinSetup
 
@@ -82,13 +83,7 @@ class WearPinCase(PinSetup, PinRun):
     name = "wear-pin"
     doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
     params = (
-        Param("scheme", str, "implicit", "-",
-              "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
-              "started by one implicit step)", choices=("explicit", "implicit", "bdf2")),
-        Param("tol", float, 0.0, "mm",
-              "scheme=bdf2: error control, each step's estimate of the worn-surface "
-              "error held at tol (dt the first step); 0: the fixed step dt", lower=0.0,
-              closed=True),
+        *scheme_params(),
         Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 5e-6, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
@@ -168,8 +163,9 @@ class WearPinCase(PinSetup, PinRun):
                 raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
             if v["V"] <= 0:
                 raise InputError("mode=cyclic needs V > 0")
-        if v["tol"] > 0 and (v["scheme"] != "bdf2" or v["study"] == "dt"):
-            raise InputError("tol > 0 (error control) needs scheme=bdf2 (and no study=dt)")
+        check_scheme(v)
+        if v["tol"] > 0 and v["study"] == "dt":
+            raise InputError("tol > 0 (error control) is not for study=dt (fixed steps)")
         if WearPinCase.slow_step(v) > v["T"]:
             raise InputError(f"time step {WearPinCase.slow_step(v)} s exceeds T = {v['T']} s")
         if v["study"] == "dt":

@@ -71,6 +71,7 @@ from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
 from ..stepper import Stepper
+from .slow_time import check_scheme, scheme_params
 from .wear_ball_run import MODEL_FRACTION, BallWearRun
 
 __all__ = ["MODEL_FRACTION", "WearBallCase"]
@@ -83,12 +84,8 @@ class WearBallCase(BallWearRun):
     name = "wear-ball-flat"
     doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
     params = (
-        Param("scheme", str, "implicit", "-",
-              "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order)",
-              choices=("explicit", "implicit", "bdf2")),
+        *scheme_params(),
         Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
-              lower=0.0, closed=True),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
               lower=0.0, closed=True),
@@ -118,8 +115,7 @@ class WearBallCase(BallWearRun):
         """Check cross-parameter consistency."""
         if v["dt"] > v["T"]:
             raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
-        if v["tol"] > 0 and v["scheme"] != "bdf2":
-            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        check_scheme(v)
         if v["mesh_file"] and v["h_contact"]:
             raise InputError("h_contact sets the built mesh: not with mesh_file")
         aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a

@@ -41,6 +41,7 @@ from ..obstacles import rigid_sphere
 from ..params import InputError, Param
 from ..references import hertz, rigid_groove_halfwidth
 from ..stepper import Stepper
+from .slow_time import check_scheme, scheme_params
 from .wear_groove_run import GrooveRun
 
 __all__ = ["WearBallHalfspaceCase", "groove_mesh"]
@@ -64,11 +65,8 @@ class WearBallHalfspaceCase(GrooveRun):
     doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
     REGIMES = REGIMES
     params = (
-        Param("scheme", str, "implicit", "-", "explicit (θ=0), implicit (θ=1) or bdf2 "
-              "(second order, implicit)", choices=("explicit", "implicit", "bdf2")),
+        *scheme_params(),
         Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
-              lower=0.0, closed=True),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("regime", str, "small", "-", "material set: small (E=200 GPa) or finite (E=10 MPa)",
               choices=("small", "finite")),
@@ -110,8 +108,7 @@ class WearBallHalfspaceCase(GrooveRun):
         v = cls.resolved(v)
         if v["dt"] > v["T"]:
             raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
-        if v["tol"] > 0 and v["scheme"] != "bdf2":
-            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        check_scheme(v)
         a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
         if a > 0.5 * v["R"]:
             raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")

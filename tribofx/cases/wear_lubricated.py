@@ -37,6 +37,7 @@ from ..interfaces import Wear
 from ..params import InputError, Param
 from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
+from .slow_time import check_scheme, scheme_params
 from .stribeck import StribeckCase
 
 __all__ = ["WearLubricatedCase"]
@@ -59,11 +60,7 @@ class WearLubricatedCase:
                     "on a rough counterface)", lower=0.0),
               Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
               Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
-              Param("scheme", str, "implicit", "-",
-                    "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order)",
-                    choices=("explicit", "implicit", "bdf2")),
-              Param("tol", float, 0.0, "mm", "scheme=bdf2: error control (0: the fixed step dt)",
-                    lower=0.0, closed=True),
+              *scheme_params(),
               Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
                     upper=20, closed=True))
 
@@ -72,8 +69,7 @@ class WearLubricatedCase:
         """Bad input: a one-line error."""
         if v["V"] >= v["U_start"]:
             raise InputError("V must be below U_start (W is reached at U_start)")
-        if v["tol"] > 0 and v["scheme"] != "bdf2":
-            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        check_scheme(v)
         StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
 
     @staticmethod

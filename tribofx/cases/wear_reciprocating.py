@@ -71,6 +71,7 @@ from ..meshes.pin import pin_body, tip_height
 from ..meshes.user import read_user_mesh
 from ..params import InputError, Param
 from ..stepper import ReciprocatingCycle, Stepper
+from .slow_time import check_scheme, scheme_params
 from .wear import WearPinCase
 from .wear_reciprocating_run import ReciprocatingRun
 
@@ -96,9 +97,8 @@ class WearReciprocatingCase(ReciprocatingRun):
     name = "wear-reciprocating"
     doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
     params = (
-        Param("scheme", str, "explicit", "-", "slow time: explicit (θ=0), implicit (θ=1) or "
-              "bdf2 (second order; both with the Picard iteration of cycles)",
-              choices=("explicit", "implicit", "bdf2")),
+        *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
+                       "tol on the cycle-averaged shapes"),
         Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
         Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
         Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
@@ -115,8 +115,6 @@ class WearReciprocatingCase(ReciprocatingRun):
               lower=0.0),
         Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step; "
               "with tol: the first step)", lower=0.0),
-        Param("tol", float, 0.0, "mm", "scheme=bdf2: error control of the cycle-averaged "
-              "shapes (0: the fixed step dt)", lower=0.0, closed=True),
         Param("W", float, 2.0, "mm", "pin width", lower=0.0),
         Param("H", float, 2.0, "mm", "pin height", lower=0.0),
         Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
@@ -150,8 +148,7 @@ class WearReciprocatingCase(ReciprocatingRun):
             if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
                 raise InputError("the rounded tip must be lower than half the pin height")
             WearReciprocatingCase.check_stroke(v, v["W"])
-        if v["tol"] > 0 and v["scheme"] != "bdf2":
-            raise InputError("tol > 0 (error control) needs scheme=bdf2")
+        check_scheme(v)
         if v["fast_steps"] % 4:
             raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
         if v["dt"] > WearReciprocatingCase.period(v) * v["cycles"]:

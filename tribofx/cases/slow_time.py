@@ -1,0 +1,31 @@
+"""The slow-time parameters of the wear cases: the scheme and its error control.
+
+Every wear case (``wear-pin``, ``wear-ball-flat``, ``wear-ball-halfspace``,
+``wear-reciprocating``, ``wear-lubricated``) takes ``scheme`` (explicit θ = 0,
+implicit θ = 1, or the second-order BDF2 of :mod:`tribofx.bdf2`) and ``tol``, the
+error control of :func:`tribofx.step_control.run_controlled` (mm; 0: the fixed
+step ``dt``, else ``dt`` is the first step).
+"""
+
+from ..params import InputError, Param
+
+__all__ = ["SCHEMES", "check_scheme", "scheme_params"]
+
+SCHEMES = ("explicit", "implicit", "bdf2")
+
+
+def scheme_params(default="implicit", note=""):
+    """Return the ``scheme`` and ``tol`` parameters; ``note`` ends the scheme's help."""
+    return (Param("scheme", str, default, "-",
+                  "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
+                  f"started by one implicit step){note}", choices=SCHEMES),
+            Param("tol", float, 0.0, "mm",
+                  "scheme=bdf2: error control, each step's estimate held at tol·Δt/T so "
+                  "that they add up to tol (dt: the first step); 0: the fixed step dt",
+                  lower=0.0, closed=True))
+
+
+def check_scheme(v):
+    """One-line error for ``tol`` > 0 without ``scheme=bdf2``."""
+    if v["tol"] > 0 and v["scheme"] != "bdf2":
+        raise InputError("tol > 0 (error control) needs scheme=bdf2")
