@@ -82,6 +82,13 @@ parser.add_argument("--accuracy-dts", default="",
 parser.add_argument("--bdf2-tols", default="",
                     help="with --accuracy-dts: also BDF2 with error control at these "
                          "comma-separated tol (mm) to --t-explicit; the reference is then BDF2")
+parser.add_argument("--to-T-tols", default="",
+                    help="with --accuracy-dts and --bdf2-tols: also BDF2 under error control "
+                         "to T at these comma-separated tol (mm; the tightest is the others' "
+                         "reference), against the explicit legs extrapolated to T")
+parser.add_argument("--explicit-cuts", type=int, default=0,
+                    help="step halvings allowed to the explicit legs of --accuracy-dts (a "
+                         "Newton failure at a node entering contact, not an instability)")
 parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="case parameter (repeatable), e.g. --set k=1e-7 --set V=100")
 parser.add_argument("--dt-cr-range", default="3,30",
@@ -114,6 +121,13 @@ def profile_at(rec):
     return np.asarray(rec.stepper.wear.gather_shape(root_only=False)["X_worn"])
 
 
+def worn_nodes(rec):
+    """Contact-surface nodes worn by more than 1e-9 mm: each entered the contact once, a
+    kink of its rate in time (the discrete contact's edge jumps from node to node)."""
+    d = rec.stepper.wear.gather_shape(root_only=False)
+    return int(np.count_nonzero(np.linalg.norm(d["X_worn"] - d["X_hat"], axis=1) > 1e-9))
+
+
 def accuracy_study(t_e, dts, tols=()):
     """Errors at t_e of implicit Δt = 100 s (or t_e), explicit and BDF2 (tol) runs.
 
@@ -126,12 +140,13 @@ def accuracy_study(t_e, dts, tols=()):
         _, rec_r, wall_r = run(tmp, t_stop=t_e, scheme=ref_scheme, dt=args.ref_dt)
         p_ref = profile_at(rec_r)
         res["reference_wall_time_s"] = wall_r
+        res["reference_worn_nodes"] = worn_nodes(rec_r)
         legs = [("implicit", min(100.0, t_e), 0.0)] + [("explicit", d, 0.0) for d in dts] \
             + [("bdf2", min(100.0, t_e), tol) for tol in tols]
         for scheme, dt, tol in legs:
             try:
                 r, rec, wall = run(tmp, t_stop=t_e, scheme=scheme, dt=dt, tol=tol,
-                                   max_cuts=0 if scheme == "explicit" else 6)
+                                   max_cuts=args.explicit_cuts if scheme == "explicit" else 6)
                 e = float(np.max(np.linalg.norm(profile_at(rec) - p_ref, axis=1)))
                 row = {"scheme": scheme, "dt": dt, "tol": tol, "steps": r["steps"],
                        "wall_time_s": wall,
@@ -146,11 +161,59 @@ def accuracy_study(t_e, dts, tols=()):
     return res
 
 
+def to_T_study(tols, acc):
+    """BDF2 under error control to T at ``tols``, against the explicit legs of ``acc`` to T.
+
+    The tightest tol is the reference of the others at T.  An explicit leg's cost
+    to T is its wall time per step times ⌈T/Δt⌉ (EXTRAPOLATED: its run stops at the
+    horizon of ``acc``).  At equal accuracy: for each explicit leg the loosest tol
+    whose BDF2 error at the horizon is no larger than the explicit one's; its cost to
+    T against the explicit's.  That the explicit error at T is no larger than at
+    the horizon is an assumption (its local errors follow the wear's slowing rate).
+    """
+    rows, profiles = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for tol in sorted(tols, reverse=True):
+            r, rec, wall = run(tmp, scheme="bdf2", dt=min(100.0, T), tol=tol)
+            profiles.append(profile_at(rec))
+            rows.append({"tol": tol, "steps": r["steps"], "rejected": r["rejected_steps"],
+                         "wall_time_s": wall,
+                         "newton_iterations": int(sum(r["newton_iterations"][1:])),
+                         "max_depth_T": r["max_wear_depth"][-1], "worn_nodes_T": worn_nodes(rec),
+                         "scar_radius_T": r["scar_radius"][-1]})
+            if comm.rank == 0:
+                print("to T:", rows[-1], flush=True)
+    for row, p in zip(rows[:-1], profiles[:-1]):
+        row["profile_error_mm"] = float(np.max(np.linalg.norm(p - profiles[-1], axis=1)))
+    res = {"T": T, "bdf2": rows, "equal_accuracy": []}
+    window = {x["tol"]: x for x in acc["runs"] if x["scheme"] == "bdf2" and "failed" not in x}
+    for e in (x for x in acc["runs"] if x["scheme"] == "explicit" and "failed" not in x):
+        steps_T = math.ceil(T / e["dt"])
+        wall_T = e["wall_time_s"] / e["steps"] * steps_T
+        ok = [tol for tol in window if window[tol]["profile_error_mm"] <= e["profile_error_mm"]]
+        row = {"explicit_dt": e["dt"], "explicit_steps_T": steps_T,
+               "explicit_wall_time_T_s": wall_T, "extrapolated": True,
+               "explicit_error_horizon_mm": e["profile_error_mm"]}
+        tol = max(ok) if ok else None
+        hit = next((b for b in rows if b["tol"] == tol), None)
+        if hit is not None:
+            row.update(tol=tol, bdf2_error_horizon_mm=window[tol]["profile_error_mm"],
+                       bdf2_steps_T=hit["steps"], bdf2_wall_time_T_s=hit["wall_time_s"],
+                       cost_ratio=wall_T / hit["wall_time_s"])
+        res["equal_accuracy"].append(row)
+        if comm.rank == 0:
+            print("equal accuracy:", row, flush=True)
+    return res
+
+
 out = {}
 if args.accuracy_dts:
     dts = [float(x) for x in args.accuracy_dts.split(",")]
     tols = [float(x) for x in args.bdf2_tols.split(",") if x.strip()]
     out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts, tols)
+    if args.to_T_tols:
+        out["to_T"] = to_T_study([float(x) for x in args.to_T_tols.split(",")],
+                                 out["accuracy_study"])
     if comm.rank == 0:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         with open(args.out, "w") as f:

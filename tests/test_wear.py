@@ -727,11 +727,11 @@ def test_pressure_dependent_wear_coefficient():
 
 # -- second-order slow time (BDF2) -------------------------------------------------------
 
-def _pin_run(scheme, dt, tol=0.0, T=400.0, n=6):
+def _pin_run(scheme, dt, tol=0.0, T=400.0, n=6, per="unit_step"):
     from tribofx.cases.wear_stability import SubRecord
 
     v = resolve(WearPinCase.params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
-                                     "R_tip": "20", "tol": str(tol)})
+                                     "R_tip": "20", "tol": str(tol), "tol_per": per})
     WearPinCase.validate(v)
     rec = SubRecord()
     stepper = WearPinCase.run(v, rec, n=n)
@@ -848,6 +848,32 @@ def test_bdf2_error_control_follows_the_tolerance():
         assert max(est) <= tol                 # every accepted step within tol
     assert all(0.05 <= r <= 2 for r in ratios), ratios
     assert steps[0] < steps[1] < steps[2] <= 15 * steps[0]
+
+
+def test_bdf2_error_control_per_step():
+    """tol_per=step (each step's Milne estimate within tol, the local error control of
+    ODE codes) on the pin of test_bdf2_error_control_follows_the_tolerance, tol = 1e-5,
+    1e-6, 1e-7 mm, against the same reference.  Milne's estimate of the O(Δt³) local
+    error is asymptotically exact and this pin hardly damps its errors (its face wears
+    evenly), so the final error is at most the sum of the steps' estimates (measured
+    0.61, 0.71, 0.76 of it; bound 1.2: the estimate's O(Δt) relative error at the
+    largest steps), which here is a multiple of tol (measured error/tol 5.4, 13, 31:
+    where wear does not damp its errors, per unit step is the control that holds
+    tol).  The steps grow like tol^(−1/3) (measured 16, 31, 61, ×3.8 over two decades;
+    bound ×7, 1.5 × 100^(1/3)), slower than per unit step's tol^(−1/2) (50, 139, 417)."""
+    ref = _pin_profile("bdf2", 0.78125)
+    steps = []
+    for tol in (1e-5, 1e-6, 1e-7):
+        X, res = _pin_run("bdf2", 50.0, tol, per="step")
+        err = float(np.linalg.norm(X - ref))
+        est = [e for e in res["error_estimate"]["value"] if e is not None]
+        steps.append(res["accepted_steps"]["value"])
+        print(f"tol {tol:g}: error {err:.3e} ({err / tol:.1f} tol, {err / sum(est):.2f} of "
+              f"the estimates' sum), accepted {steps[-1]}, rejected "
+              f"{res['rejected_steps']['value']}")
+        assert max(est) <= tol
+        assert err <= 1.2 * sum(est)
+    assert steps[0] < steps[1] < steps[2] <= 1.5 * 100 ** (1 / 3) * steps[0]
 
 
 def test_error_control_needs_bdf2_and_no_dt_study():

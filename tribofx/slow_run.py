@@ -62,12 +62,12 @@ class SlowRun:
         self.record.data["newton_iterations"].append(iterations)
 
     def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None,
-            after=None):
+            after=None, per="unit_step"):
         """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
 
         ``on_step(stepper, report)`` after every accepted step (before its
         series entry); ``report()`` at the end whatever happens; ``problem``:
-        what a failure carries (default the stepper); ``tol`` (mm): error
+        what a failure carries (default the stepper); ``tol`` (mm) and ``per``: error
         control of the steps (:meth:`tribofx.stepper.Stepper.run`); ``after()``
         once the run has reached T, before the report (a failure there carries
         ``problem`` too).
@@ -81,7 +81,7 @@ class SlowRun:
             self.series.write(s.t)
 
         try:
-            st.run(T, dt, on_step=step, progress=progress, tol=tol)
+            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per)
             if after is not None:
                 after()
         except (NewtonDivergence, interrupt.Interrupted) as err:

@@ -2,8 +2,9 @@
 
 Each evolving interface gives the error estimate of its last step
 (``step_error()``, of order ``error_order``); a step whose estimate per unit
-step exceeds tol/T is rejected and retried with a smaller step, an accepted
-one proposes the next (see :meth:`tribofx.stepper.Stepper.run`).
+step exceeds tol/T (``per="unit_step"``; ``per="step"``: whose estimate exceeds
+tol) is rejected and retried with a smaller step, an accepted one proposes the
+next (see :meth:`tribofx.stepper.Stepper.run`).
 """
 
 from . import interrupt
@@ -12,7 +13,7 @@ from .problem import NewtonDivergence
 __all__ = ["run_controlled"]
 
 
-def run_controlled(stepper, T, dt, on_step, progress, tol):
+def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step"):
     """Run the error-controlled loop of :meth:`tribofx.stepper.Stepper.run` (``stepper``).
 
     A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
@@ -21,6 +22,8 @@ def run_controlled(stepper, T, dt, on_step, progress, tol):
     boundary at the jump is the best the scheme can do.  A NaN estimate is
     a rejection.
     """
+    if per not in ("unit_step", "step"):
+        raise ValueError(f"unknown error control per {per!r}: unit_step or step")
     if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
         raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
     if not stepper.steps:
@@ -46,15 +49,17 @@ def run_controlled(stepper, T, dt, on_step, progress, tol):
                 if e is not None]
         err, order = max(errs) if errs else (None, 2)
         # error per unit step: a step may err by tol·Δt/T, so the errors of all
-        # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1)
-        allowed = tol * h / T
+        # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1).  Per step: E ≤ tol
+        unit = per == "unit_step"
+        allowed = tol * h / T if unit else tol
+        p_eff = order - 1 if unit else order
         bad = err is not None and not err <= allowed        # NaN: rejected
         if err is None or err == 0:
             factor = 2.0
         elif err != err:
             factor = 0.2
         else:
-            factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / (order - 1))))
+            factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / p_eff)))
         forced = bad and err == err and h <= dt_min * (1 + 1e-9)
         if bad and err != err and h <= dt_min * (1 + 1e-9):
             stepper.restore(saved)

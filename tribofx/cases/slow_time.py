@@ -4,12 +4,13 @@ Every wear case (``wear-pin``, ``wear-ball-flat``, ``wear-ball-halfspace``,
 ``wear-reciprocating``, ``wear-lubricated``) takes ``scheme`` (explicit θ = 0,
 implicit θ = 1, or the second-order BDF2 of :mod:`tribofx.bdf2`) and ``tol``, the
 error control of :func:`tribofx.step_control.run_controlled` (mm; 0: the fixed
-step ``dt``, else ``dt`` is the first step).
+step ``dt``, else ``dt`` is the first step) with ``tol_per``: ``unit_step`` (the
+steps' estimates add up to tol) or ``step`` (each step's estimate within tol).
 """
 
 from ..params import InputError, Param
 
-__all__ = ["SCHEMES", "check_scheme", "scheme_params"]
+__all__ = ["SCHEMES", "check_scheme", "control", "scheme_params"]
 
 SCHEMES = ("explicit", "implicit", "bdf2")
 
@@ -22,7 +23,16 @@ def scheme_params(default="implicit", note=""):
             Param("tol", float, 0.0, "mm",
                   "scheme=bdf2: error control, each step's estimate held at tol·Δt/T so "
                   "that they add up to tol (dt: the first step); 0: the fixed step dt",
-                  lower=0.0, closed=True))
+                  lower=0.0, closed=True),
+            Param("tol_per", str, "unit_step", "-",
+                  "tol per unit_step (the steps' estimates add up to tol over T) or per "
+                  "step (each step's estimate within tol, as ODE codes: for wear that "
+                  "damps its own errors, e.g. wear-ball-flat)", choices=("unit_step", "step")))
+
+
+def control(v):
+    """Keyword arguments ``tol`` and ``per`` of :meth:`tribofx.slow_run.SlowRun.run`."""
+    return {"tol": v["tol"] or None, "per": v["tol_per"]}
 
 
 def check_scheme(v):

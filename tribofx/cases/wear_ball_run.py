@@ -15,6 +15,7 @@ from mpi4py import MPI
 from ..references import hertz, rigid_cap_radius
 from ..slow_run import SlowRun, wear_fields
 from ..stepper import nominal_steps
+from . import slow_time
 
 __all__ = ["MODEL_FRACTION", "BallWearRun"]
 
@@ -126,7 +127,7 @@ class BallWearRun:
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
         sr.run(T, v["dt"], step_done, progress, report=lambda: cls._report(
             stepper, v, record, sr.hist, state, time.perf_counter() - t_wall),
-            tol=v["tol"] or None)
+            **slow_time.control(v))
         return stepper
 
     @staticmethod

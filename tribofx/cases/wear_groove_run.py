@@ -12,6 +12,7 @@ from mpi4py import MPI
 
 from ..slow_run import SlowRun
 from ..stepper import nominal_steps
+from . import slow_time
 
 __all__ = ["GrooveRun", "surface_data"]
 
@@ -107,7 +108,7 @@ class GrooveRun:
             log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
         sr.run(v["T"], v["dt"], on_step, progress, report=lambda: cls._report(
             stepper, v, record, hist, prof, time.perf_counter() - t_start),
-            tol=v["tol"] or None)
+            **slow_time.control(v))
         return stepper
 
     @staticmethod

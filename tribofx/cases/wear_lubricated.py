@@ -37,6 +37,7 @@ from ..interfaces import Wear
 from ..params import InputError, Param
 from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
+from . import slow_time
 from .slow_time import check_scheme, scheme_params
 from .stribeck import StribeckCase
 
@@ -151,7 +152,7 @@ class WearLubricatedCase:
         sr.run(v["T"], v["dt"],
                lambda st, rep: log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected),
                progress, report=lambda: cls.report(run, v, record, sr.hist, state),
-               problem=run, tol=v["tol"] or None)
+               problem=run, **slow_time.control(v))
         return run
 
     @staticmethod

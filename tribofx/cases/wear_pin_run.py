@@ -9,6 +9,7 @@ and the results.
 from ..params import InputError, number_list
 from ..slow_run import SlowRun, wear_fields
 from ..stepper import nominal_steps
+from . import slow_time
 from .wear_dt_study import run_dt_study
 
 __all__ = ["PinRun"]
@@ -103,7 +104,7 @@ class PinRun:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
         sr.run(v["T"], cls.slow_step(v), on_step, progress,
                report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes),
-               tol=v["tol"] or None)
+               **slow_time.control(v))
         return stepper
 
     @classmethod

@@ -30,6 +30,7 @@ from ..continuation import ConstantParameter, Continuation
 from ..references import hertz
 from ..slow_run import SlowRun
 from ..stepper import nominal_steps
+from . import slow_time
 from .wear import WearPinCase
 
 __all__ = ["ReciprocatingRun", "cell_coordinates"]
@@ -196,7 +197,7 @@ class ReciprocatingRun:
         sr.run(v["cycles"] * tau, v["dt"],
                lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard, rep.error,
                                   rep.rejected), progress,
-               report=report, problem=run, tol=v["tol"] or None,
+               report=report, problem=run, **slow_time.control(v),
                after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
         return run
 
