@@ -38,7 +38,6 @@ from ..params import InputError, Param
 from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
-from .slow_time import check_scheme, scheme_params
 from .stribeck import StribeckCase
 
 __all__ = ["WearLubricatedCase"]
@@ -61,7 +60,7 @@ class WearLubricatedCase:
                     "on a rough counterface)", lower=0.0),
               Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
               Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
-              *scheme_params(),
+              *slow_time.scheme_params(),
               Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
                     upper=20, closed=True))
 
@@ -70,7 +69,7 @@ class WearLubricatedCase:
         """Bad input: a one-line error."""
         if v["V"] >= v["U_start"]:
             raise InputError("V must be below U_start (W is reached at U_start)")
-        check_scheme(v)
+        slow_time.check_scheme(v)
         StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
 
     @staticmethod
