@@ -45,8 +45,25 @@ mm; explicit 5 s: 60 steps, 32 s, 6.6e-5 mm (10 s fails); BDF2 tol 1e-2, 1e-3, 1
 reaction along the end-of-step Nanson vector, one core shared: 9, 39, 242 steps, 57,
 114, 681 s, 9.8e-5, 1.0e-5, 6.7e-7 mm).  The controller's final
 error is about tol/100 here, and at equal accuracy BDF2 costs 2× the explicit run
-on this coarse mesh; the chapter's element size (Δt_cr ≈ 0.1 s) is not yet measured
-with BDF2.
+on this coarse mesh.  With ``--set tol_per=step`` (each step's estimate within tol):
+tol 1e-4, 1e-5, 1e-6: 20, 60, 161 steps, 62, 144, 317 s, 1.1e-5, 3.7e-6, 4.5e-7 mm.
+
+At the chapter's element size (``--set k=1e-7 --set V=100 --set h_contact=0.125``,
+28,932 unknowns), over the first 20 s (``--accuracy-dts 0.08 --explicit-cuts 4
+--t-explicit 20 --ref-dt 0.25 --bdf2-tols ... --set tol_per=step``; the legs were run
+one by one, each alone on a core), against BDF2 at Δt = 0.25 s (80 steps, 682 s):
+explicit Δt = 0.08 s (below Δt_cr): 251 steps, 1997 Newton iterations, 740 s, 4.1e-5
+mm; implicit 20 s: 1 step, 59 s, 2.6e-4 mm; BDF2 per step at tol 1e-3, 3e-4, 1e-4:
+15, 26, 48 steps, 134, 203, 292 iterations, 391, 526, 795 s, 7.6e-5, 3.0e-5, 2.1e-5
+mm (against BDF2 per step at 1e-4 instead: explicit 4.1e-5, tol 3e-4 3.2e-5).  Per unit
+step, tol 1e-2 took 26 steps and 493 s for 8.6e-5 mm.  To T = 1000 s BDF2 per step:
+tol 1e-3: 76 steps (5 rejected), 684 iterations, 1361 s, scar radius 1.5748 mm;
+tol 3e-4: N3_STEPS steps, N3_ITS iterations, N3_WALL s (a test run shared the cores).  The
+explicit run to T at its window cost: 12,500 steps, ≈ 99,500 iterations, ≈ 36,900 s
+(EXTRAPOLATED; 50,700 s at the 0–50 s cost of the run above): RATIO_3 at
+the accuracy of the explicit scheme in the window (tol 3e-4), RATIO_1 at twice its
+error (tol 1e-3).  Per unit step at T = 1000 s the Hertzian start alone holds the
+steps near 0.01 s (39 steps to t = 0.22 s): that control is for errors that add up.
 """
 
 import argparse
