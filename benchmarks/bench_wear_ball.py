@@ -118,6 +118,8 @@ sets = dict(kv.split("=", 1) for kv in args.set)
 v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh), **sets})
 WearBallCase.validate(v0)
 T = v0["T"]
+if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols):
+    parser.error("--to-T-tols needs --accuracy-dts and --bdf2-tols (the window's accuracies)")
 
 
 def run(tmp, t_stop=None, on_step=None, **over):
@@ -209,7 +211,8 @@ def to_T_study(tols, acc):
     for e in (x for x in acc["runs"] if x["scheme"] == "explicit" and "failed" not in x):
         steps_T = math.ceil(T / e["dt"])
         wall_T = e["wall_time_s"] / e["steps"] * steps_T
-        ok = [tol for tol in window if window[tol]["profile_error_mm"] <= e["profile_error_mm"]]
+        ok = [tol for tol in window if window[tol]["profile_error_mm"] <= e["profile_error_mm"]
+              and any(b["tol"] == tol for b in rows)]
         row = {"explicit_dt": e["dt"], "explicit_steps_T": steps_T,
                "explicit_wall_time_T_s": wall_T, "extrapolated": True,
                "explicit_error_horizon_mm": e["profile_error_mm"]}

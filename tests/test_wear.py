@@ -850,6 +850,7 @@ def test_bdf2_error_control_follows_the_tolerance():
     assert steps[0] < steps[1] < steps[2] <= 15 * steps[0]
 
 
+@pytest.mark.mpi
 def test_bdf2_error_control_per_step():
     """tol_per=step (each step's Milne estimate within tol, the local error control of
     ODE codes) on the pin of test_bdf2_error_control_follows_the_tolerance, tol = 1e-5,

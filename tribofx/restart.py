@@ -38,6 +38,8 @@ __all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "s
 
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver",)
+# parameters added after checkpoints were written, with the value the older runs used
+ADDED_PARAMETERS = {"tol_per": "unit_step"}
 
 
 def open_history(stepper, v, resume):
@@ -55,7 +57,9 @@ def open_history(stepper, v, resume):
             raise InputError(f"cannot resume: {err}") from None
         saved = stepper.history.get("parameters")
         if saved is not None:
-            check_parameters(saved, json.loads(json.dumps(params)))  # as the checkpoint holds them
+            added = {k: x for k, x in ADDED_PARAMETERS.items() if k in params}
+            # as the checkpoint holds them
+            check_parameters({**added, **saved}, json.loads(json.dumps(params)))
     stepper.history.setdefault("parameters", params)
     return stepper.history
 

@@ -16,13 +16,14 @@ SCHEMES = ("explicit", "implicit", "bdf2")
 
 
 def scheme_params(default="implicit", note=""):
-    """Return the ``scheme`` and ``tol`` parameters; ``note`` ends the scheme's help."""
+    """Return the ``scheme``, ``tol`` and ``tol_per`` parameters (``note`` ends scheme's help)."""
     return (Param("scheme", str, default, "-",
                   "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
                   f"started by one implicit step){note}", choices=SCHEMES),
             Param("tol", float, 0.0, "mm",
                   "scheme=bdf2: error control, each step's estimate held at tol·Δt/T so "
-                  "that they add up to tol (dt: the first step); 0: the fixed step dt",
+                  "that they add up to tol (tol_per=step: at tol; dt: the first step); 0: "
+                  "the fixed step dt",
                   lower=0.0, closed=True),
             Param("tol_per", str, "unit_step", "-",
                   "tol per unit_step (the steps' estimates add up to tol over T) or per "
