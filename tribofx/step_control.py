@@ -10,7 +10,10 @@ next (see :meth:`tribofx.stepper.Stepper.run`).
 from . import interrupt
 from .problem import NewtonDivergence
 
-__all__ = ["run_controlled"]
+__all__ = ["CONTROLS", "run_controlled"]
+
+#: what tol bounds: the sum of the steps' estimates, or each one
+CONTROLS = ("unit_step", "step")
 
 
 def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step"):
@@ -22,7 +25,7 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step"):
     boundary at the jump is the best the scheme can do.  A NaN estimate is
     a rejection.
     """
-    if per not in ("unit_step", "step"):
+    if per not in CONTROLS:
         raise ValueError(f"unknown error control per {per!r}: unit_step or step")
     if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
         raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")

@@ -9,6 +9,7 @@ steps' estimates add up to tol) or ``step`` (each step's estimate within tol).
 """
 
 from ..params import InputError, Param
+from ..step_control import CONTROLS
 
 __all__ = ["SCHEMES", "check_scheme", "control", "scheme_params"]
 
@@ -28,7 +29,7 @@ def scheme_params(default="implicit", note=""):
             Param("tol_per", str, "unit_step", "-",
                   "tol per unit_step (the steps' estimates add up to tol over T) or per "
                   "step (each step's estimate within tol, as ODE codes: for wear that "
-                  "damps its own errors, e.g. wear-ball-flat)", choices=("unit_step", "step")))
+                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS))
 
 
 def control(v):
