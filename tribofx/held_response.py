@@ -6,9 +6,12 @@
   the load or another parameter with the response held;
 * :class:`ResponseControl` — the same through the slow time of
   :class:`tribofx.stepper.Stepper` (force control of a wear run), with a
-  predictor and a slope evaluated at each step's entry.
+  predictor and a slope evaluated at each step's entry; with a ``border`` the
+  parameter is instead an unknown of each Newton solve
+  (:class:`tribofx.bordered.Border`), the secant its fallback.
 """
 
+from .bordered import Border
 from .continuation import Continuation
 from .problem import NewtonDivergence
 
@@ -130,11 +133,17 @@ class ResponseControl(HeldResponse):
         response: callable → float.
         target: the value the response is held at.
         predictor, slope: callables of Δt (s), or None.
-        rtol, max_trials: of :meth:`Continuation.reach`.
+        rtol, max_trials: of :meth:`Continuation.reach` (and rtol of the border).
+        border: ``(functional, mesh)``: the response as a UFL functional of the
+            unknowns and of the parameter's Constant, and a mesh of its forms.
+            Each solve is then one Newton solve with the parameter an unknown
+            (:class:`tribofx.bordered.Border`), started from the guess; if it
+            fails, the secant of complete solves runs from the entry state
+            (counted in :attr:`fallbacks`).  None: the secant alone.
     """
 
     def __init__(self, problem, parameter, response, target, predictor=None, slope=None,
-                 rtol=1e-8, max_trials=12, verbose=False):
+                 rtol=1e-8, max_trials=12, verbose=False, border=None):
         self._rec = _Recorder(problem)
         super().__init__(Continuation(self._rec, parameter, response=response,
                                       verbose=verbose, rtol=rtol, max_trials=max_trials),
@@ -142,6 +151,9 @@ class ResponseControl(HeldResponse):
         self.parameter = parameter
         self.predictor, self.step_slope = predictor, slope
         self._guess = self._step_slope = None
+        self.border = None if border is None else Border(
+            problem, parameter, border[0], target, border[1], rtol=rtol)
+        self.fallbacks = 0
 
     @property
     def trials(self):
@@ -160,5 +172,27 @@ class ResponseControl(HeldResponse):
         guess = self._guess if guess is None else guess
         slope = self._step_slope if slope is None else slope
         self._guess = self._step_slope = None
+        if self.border is not None:
+            try:
+                self._bordered(guess)
+                return self._rec.reports[n0:]
+            except NewtonDivergence:
+                self.fallbacks += 1
         self.inner.reach(self.target, guess=guess, slope=slope)
         return self._rec.reports[n0:]
+
+    def _bordered(self, guess):
+        """One Newton solve with the parameter an unknown, from ``guess``; restored on failure."""
+        problem, entry = self._rec.problem, self.parameter.get()
+        if guess is not None:
+            self.parameter.set(guess)
+        self.border.target = self.target
+        problem.border = self.border
+        try:
+            report = self._rec.solve(verbose=self.inner.verbose)
+        except NewtonDivergence:
+            self.parameter.set(entry)
+            raise
+        finally:
+            problem.border = None
+        self.inner._accept([report.iterations])

@@ -26,7 +26,13 @@ class NewtonControl:
     report being filled (``_report``); row weights are assembled with
     ``_emaps()`` and cut by ``_owned``/``_owned_size``; trial residuals go
     through ``_residual`` and its cache ``_cache``.
+
+    ``border`` (a :class:`tribofx.bordered.Border`, or None): a scalar unknown
+    and its equation beside the system; its correction of each Newton step runs
+    before the line search, its equation joins the stopping test.
     """
+
+    border = None
 
     def _collect_tolerances(self, overrides):
         """Per block: (name, slice of owned rows, BlockTolerance, row weights or None)."""
@@ -104,7 +110,11 @@ class NewtonControl:
             print(f"  {self.name} newton {it:2d}: |R| = {fnorm:.3e}   {parts}")
         if not np.isfinite(fnorm):
             return PETSc.SNES.ConvergedReason.DIVERGED_FNORM_NAN
-        if all(v <= t.atol for v, (_, _, t, _) in zip(blocks, self._tolerances)):
+        held = self.border is None or self.border.converged()
+        if self._verbose and self.border is not None and snes.comm.rank == 0:
+            print(f"  {self.name} newton {it:2d}: |G - G*|/|G*| = {self.border.history[-1]:.2e}"
+                  f"  δ = {self.border.parameter.get():.10g}")
+        if held and all(v <= t.atol for v, (_, _, t, _) in zip(blocks, self._tolerances)):
             return PETSc.SNES.ConvergedReason.CONVERGED_FNORM_ABS
         if it >= self.max_it:
             return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
@@ -129,14 +139,23 @@ class NewtonControl:
         With ``line_search="admissible"`` a trial is accepted when every
         component's ``admissible()`` holds and R is finite; if none is, the
         smallest trial is taken.  The accepted trial's residual is cached, so SNES
-        does not assemble it again.
+        does not assemble it again.  With a :attr:`border` the step is bordered
+        first and each trial moves its scalar unknown by the same fraction.
         """
+        border = self.border
+        if border is not None:
+            border.correct(x, y)
+            border.trial(1.0)
+        if self.max_backtracks == 0:
+            return
         b0 = self.snes.getFunction()[0]
         done = [v <= t.atol for v, (_, _, t, _) in zip(self._block_norms(b0), self._tolerances)]
         r0, r0_all = self._merit(b0, done), self.snes.getFunctionNorm()
         xt, bt = x.duplicate(), x.duplicate()
         alpha = 1.0
         for _ in range(self.max_backtracks + 1):
+            if border is not None:
+                border.trial(alpha)
             xt.waxpy(-alpha, y, x)
             self._cache = None
             self._residual(self.snes, xt, bt)
@@ -151,7 +170,11 @@ class NewtonControl:
             alpha *= 0.5
         if self.line_search == "admissible":  # the last (smallest) trial step
             y.scale(2 * alpha)
+            if border is not None:
+                border.trial(2 * alpha)
         else:  # Armijo found no decrease: the full step
+            if border is not None:
+                border.trial(1.0)
             self._cache = None
             bt.destroy()
         xt.destroy()

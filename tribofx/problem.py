@@ -156,9 +156,9 @@ class Problem(NewtonControl):
         self.snes.setFromOptions()
         self.solver.configure(self)
         self.snes.setConvergenceTest(weak_callback(self._converged))
-        # the backtracking of _backtrack rides on the "basic" line search; another
-        # type chosen on the command line (e.g. bt) replaces it
-        if self.max_backtracks > 0 and self.snes.getLineSearch().getType() == "basic":
+        # the backtracking of _backtrack (and a border's step) rides on the "basic"
+        # line search; another type chosen on the command line (e.g. bt) replaces it
+        if self.snes.getLineSearch().getType() == "basic":
             self.snes.setLineSearchPreCheck(weak_callback(self._backtrack))
         self._tolerances = self._collect_tolerances(tolerances or {})
         self._cache = None
@@ -334,6 +334,8 @@ class Problem(NewtonControl):
         self._report = NewtonReport(names=[n for n, _, _, _ in self._tolerances])
         self._verbose = verbose
         self._cache = None
+        if self.border is not None:
+            self.border.history = []
         failure = None
         self._reset_iterates()
         try:

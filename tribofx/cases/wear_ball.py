@@ -22,10 +22,13 @@ rigid-cap scar radius at T, at least 2 a_H) of the initial contact point, R/4
 far away.  Loading (chapter: at the mid-plane, which moves vertically as a
 rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
 supports the friction force and its moment) and the rigid flat is translated
-vertically by δ (``approach``), found in every solve by the secant iteration of
-:meth:`tribofx.continuation.Continuation.reach` around the Newton solve of the
-step (:class:`tribofx.held_response.ResponseControl`) so that the contact force of the
-half contact is F/2 to 10⁻⁸.  A uniform traction on a
+vertically by δ (``approach``) so that the contact force of the half contact is
+F/2 to 10⁻⁸ (:class:`tribofx.held_response.ResponseControl`): by default δ is an
+unknown of the step's Newton solve, with the force equation beside the system
+(``force_control=bordered``, :class:`tribofx.bordered.Border`; 3–4 iterations a
+step); ``secant`` finds it by the secant iteration of
+:meth:`tribofx.continuation.Continuation.reach` around complete Newton solves
+(3–4 trials of 2–3 iterations).  A uniform traction on a
 free mid-plane is not used: the friction moment μ F R would tilt the ball.
 Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
 the mid-plane (w_z = 0).
@@ -101,6 +104,9 @@ class WearBallCase(BallWearRun):
         Param("h_contact", float, 0.0, "mm",
               "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
               lower=0.0, closed=True),
+        Param("force_control", str, "bordered", "-",
+              "the flat's position δ: an unknown of each Newton solve (bordered) or found "
+              "by a secant of complete solves (secant)", choices=("bordered", "secant")),
         Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
               closed=True),
         Param("mesh_file", str, "", "-",
@@ -185,7 +191,9 @@ class WearBallCase(BallWearRun):
 
         stepper.set_control(ResponseControl(
             stepper.problem, ConstantParameter(offset, 2), lambda: float(contact.force()[2]),
-            MODEL_FRACTION * v["F"], predictor=predictor, slope=stiffness))
+            MODEL_FRACTION * v["F"], predictor=predictor, slope=stiffness,
+            border=((contact.force_functional(2), contact.sub)
+                    if v["force_control"] == "bordered" else None)))
         stepper.h_fine = h_fine
         return stepper
 

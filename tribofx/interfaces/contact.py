@@ -212,23 +212,29 @@ class Contact:
         """Return slave-node positions x = X + u, shape (n_sub_dofs, gdim), dof order."""
         return self.X_sub + self.u_sub.x.array.reshape(-1, self.body.gdim)
 
+    def force_functional(self, i):
+        """Component ``i`` of :meth:`force` as a UFL functional of the unknowns (N)."""
+        tn, tt = self.tractions()
+        n = self.geometry.normal
+        force = -tn * n - (tt if tt is not None else 0 * n)
+        return force[i] * self.surface.weight * self.dsc
+
     def _forms(self):
         if self._post is None:
             tn, tt = self.tractions()
-            w, n = self.surface.weight, self.geometry.normal
-            force = -tn * n - (tt if tt is not None else 0 * n)
             em = [self.emap]
             q = ufl.TestFunction(self.Q)
             j = kin.area_ratio(kin.deformation_gradient(self.body.u, self.body.kind),
                                ufl.FacetNormal(self.body.mesh), self.body.kind)
             tmag = ufl.sqrt(ufl.dot(tt, tt)) if tt is not None else 0 * tn
             self._post = {
-                "force": [fem.form(force[i] * w * self.dsc, entity_maps=em)
+                "force": [fem.form(self.force_functional(i), entity_maps=em)
                           for i in range(self.body.gdim)],
-                "magnitudes": [fem.form(-tn * w * self.dsc, entity_maps=em),
-                               fem.form(tmag * w * self.dsc, entity_maps=em)],
-                "lumped": fem.form(q * w * self.dsc, entity_maps=em),
-                "lumped_j": fem.form(j * q * w * self.dsc, entity_maps=em),
+                "magnitudes": [fem.form(-tn * self.surface.weight * self.dsc, entity_maps=em),
+                               fem.form(tmag * self.surface.weight * self.dsc,
+                                        entity_maps=em)],
+                "lumped": fem.form(q * self.surface.weight * self.dsc, entity_maps=em),
+                "lumped_j": fem.form(j * q * self.surface.weight * self.dsc, entity_maps=em),
                 "active": fem.form(ufl.conditional(ufl.lt(tn, 0), 1.0, 0.0) * q * self.dsc,
                                    entity_maps=em),
             }

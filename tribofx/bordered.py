@@ -1,0 +1,157 @@
+"""The bordered Newton system: one scalar unknown and its equation beside a Problem.
+
+Force control inside the Newton iteration: the position δ of a rigid
+countersurface (a parameter held by a ``dolfinx.fem.Constant``) is an unknown
+of the deformation problem's Newton iteration, with the equation
+g = G(x, δ) − G* = 0 (G the contact force, a UFL functional), instead of a
+secant of complete Newton solves around it.  The Newton system is bordered,
+
+    [ K   b ] [Δx]     [ R ]      b = ∂R/∂δ,  c = ∂G/∂x,  d = ∂G/∂δ,
+    [ cᵀ  d ] [Δδ] = − [ g ],
+
+and solved by block elimination with the factorization of K that the
+problem's SNES has just used (one more back-substitution per iteration):
+y = K⁻¹R (the SNES step), z = K⁻¹b, Δδ = (c·y − g)/(d − c·z),
+Δx = −(y + Δδ z).  The correction of y rides on the problem's line-search
+pre-check (:meth:`tribofx.newton_control.NewtonControl._backtrack`), the test
+|g| ≤ rtol |G*| on its stopping test; a backtracked step scales Δδ with Δx.
+
+b, c and d are exact: UFL derivatives of the residual forms and of G, with
+the Constant replaced by Constant + s·e (s a DG0 field at 0, differentiated
+along s = 1).  δ must therefore enter the residual only through UFL (a
+closed-form countersurface, :class:`tribofx.obstacles.AnalyticObstacle`), not
+through data a component's ``refresh`` computes outside UFL.
+
+Dirichlet rows of b are zero (δ moves no prescribed dof); c keeps them, so
+that c·Δx is the exact linearization also while prescribed values are being
+reached.  Units: those of the parameter (mm) and of G (N).
+"""
+
+import numpy as np
+import ufl
+from dolfinx import fem, la
+from mpi4py import MPI
+from ufl.algorithms import expand_derivatives
+
+__all__ = ["Border"]
+
+
+def _compiled(form, emaps):
+    """Compiled ``form`` (None if its derivative expanded to nothing)."""
+    form = expand_derivatives(form)
+    return None if form.empty() else fem.form(form, entity_maps=emaps)
+
+
+class Border:
+    """The scalar unknown δ (``parameter``) and its equation G(x, δ) = ``target``.
+
+    Args:
+        problem: the :class:`tribofx.problem.Problem` whose Newton iteration is bordered.
+        parameter: :class:`tribofx.continuation.ConstantParameter` holding δ.
+        functional: G, a rank-0 UFL form of the problem's unknowns and of the
+            parameter's Constant (e.g. the contact force, N).
+        target: G* (same units).
+        mesh: a mesh of the forms (the DG0 field s lives on it; the Constant's mesh).
+        rtol: the equation is solved when |G − G*| ≤ rtol |G*|.
+    """
+
+    def __init__(self, problem, parameter, functional, target, mesh, rtol=1e-8):
+        self.problem, self.parameter = problem, parameter
+        self.target, self.rtol = float(target), float(rtol)
+        const = parameter.constant
+        s = fem.Function(fem.functionspace(mesh, ("DG", 0)), name="border_s")
+        if parameter.index is None:
+            moved = const + parameter.scale * s
+        else:
+            e = np.zeros(const.value.shape)
+            e[parameter.index] = parameter.scale
+            moved = const + s * ufl.as_vector(e.tolist())
+        one = ufl.as_ufl(1.0)
+        emaps = problem.entity_maps or None
+        self._G = fem.form(functional, entity_maps=emaps)
+        self._d = _compiled(ufl.derivative(ufl.replace(functional, {const: moved}), s, one),
+                            emaps)
+        self._b = [_compiled(ufl.derivative(ufl.replace(F, {const: moved}), s, one), emaps)
+                   for F in problem.residual_forms]
+        self._c = [_compiled(ufl.derivative(functional, u, ufl.TestFunction(u.function_space)),
+                             emaps) for u in problem.u]
+        # owned Dirichlet dofs of each unknown (zero rows of b)
+        self._fixed = []
+        for u in problem.u:
+            n_own = problem._owned_size(u)
+            dofs = [bc.dof_indices()[0] for c in problem.components
+                    for v, bcs in c.bcs_by_unknown().items() if v is u for bc in bcs]
+            dofs = np.concatenate(dofs) if dofs else np.zeros(0, dtype=np.int32)
+            self._fixed.append(dofs[dofs < n_own])
+        self.step = (0.0, 0.0)       # (δ at the iterate, Δδ of its Newton step)
+        self.history = []            # |g|/|G*| at each iterate of the last solve
+
+    # -- the functional and its derivatives --------------------------------------------
+    def _scalar(self, form):
+        comm = self.problem.snes.comm.tompi4py()
+        return 0.0 if form is None else comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
+
+    def value(self):
+        """G at the current unknowns and δ."""
+        return self._scalar(self._G)
+
+    def derivative(self):
+        """d = ∂G/∂δ at the current unknowns and δ."""
+        return self._scalar(self._d)
+
+    def _block_vector(self, forms, zero_fixed):
+        """PETSc vector of the problem's layout assembled from one form per unknown."""
+        P = self.problem
+        out = P.snes.getFunction()[0].duplicate()
+        parts = []
+        for u, form, fixed in zip(P.u, forms, self._fixed):
+            n_own = P._owned_size(u)
+            if form is None:
+                parts.append(np.zeros(n_own))
+                continue
+            vec = fem.assemble_vector(form)
+            vec.scatter_reverse(la.InsertMode.add)
+            a = vec.array[:n_own].copy()
+            if zero_fixed:
+                a[fixed] = 0.0
+            parts.append(a)
+        out.setArray(np.concatenate(parts))
+        return out
+
+    def vectors(self):
+        """(b, c): ∂R/∂δ (Dirichlet rows zero) and ∂G/∂x at the current unknowns (PETSc)."""
+        return self._block_vector(self._b, True), self._block_vector(self._c, False)
+
+    # -- the Newton step (called by NewtonControl) -------------------------------------
+    def correct(self, x, y):
+        """Border the SNES step ``y`` (K y = R at ``x``): y ← y + Δδ z; remember Δδ.
+
+        An iterate without contact (d − c·z = 0: G does not depend on δ) leaves
+        δ and y as they are.
+        """
+        P = self.problem
+        P._set_unknowns(x)
+        P.refresh()
+        b, c = self.vectors()
+        z = b.duplicate()
+        P.snes.getKSP().solve(b, z)
+        g = self.value() - self.target
+        schur = self.derivative() - c.dot(z)
+        delta = self.parameter.get()
+        step = (c.dot(y) - g) / schur if schur != 0 and np.isfinite(schur) else 0.0
+        if step != 0.0:
+            y.axpy(step, z)
+        self.step = (delta, step)
+        for v in (b, c, z):
+            v.destroy()
+
+    def trial(self, alpha):
+        """Set δ to that of the trial x − α y of the line search."""
+        delta, step = self.step
+        self.parameter.set(delta + alpha * step)
+
+    def converged(self):
+        """Whether |g| ≤ rtol |G*| at the current unknowns and δ (recorded in :attr:`history`)."""
+        r = abs(self.value() - self.target) / max(abs(self.target), 1e-300)
+        self.history.append(r)
+        return r <= self.rtol
