@@ -96,7 +96,7 @@ class Border:
         return self._scalar(self._G)
 
     def derivative(self):
-        """d = ∂G/∂δ at the current unknowns and δ."""
+        """Return d = ∂G/∂δ at the current unknowns and δ."""
         return self._scalar(self._d)
 
     def _block_vector(self, forms, zero_fixed):
