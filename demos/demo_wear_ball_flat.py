@@ -16,8 +16,10 @@
 #   v_T = −V e_x) and a **Wear** interface in the dissipation form of Archard's
 #   law;
 # * hold the normal force at F during the slow time: a **ResponseControl**
-#   runs a ``Continuation.reach`` on the position of the flat inside every
-#   implicit step, started from a rigid-cap predictor;
+#   makes the position δ of the flat an unknown of every implicit step's Newton
+#   solve, with the force equation G(x, δ) = F/2 beside the system (a bordered
+#   Newton system, :class:`tribofx.bordered.Border`), started from a rigid-cap
+#   predictor;
 # * integrate with the **Stepper** (θ = 1: one Newton problem in
 #   (u, λ_N, λ_T, w, ζ)) and check against Hertz at t = 0, Archard's law
 #   integrated over the contact and the rigid-cap scar law at late times.
@@ -110,9 +112,21 @@ stepper = Stepper([body, contact, wear], wear, checkpoint=checkpoint, name="demo
 # ## Force control
 #
 # The flat's position δ (``offset`` of the counterpart, z) is the parameter; the
-# response is the normal force on the half contact.  The predictor adds the
-# rigid-cap depth increment over Δt to δ (h² ∝ s); the first secant update uses
-# the stiffness of a flat punch of radius a, in series with the wear compliance
+# response is the normal force G on the half contact, a UFL functional of the
+# unknowns and of δ.  With ``border=(G, mesh)`` each Newton iteration solves
+#
+# $$
+# \begin{bmatrix} K & \partial R/\partial\delta \\ (\partial G/\partial x)^T &
+# \partial G/\partial\delta \end{bmatrix}
+# \begin{bmatrix} \Delta x \\ \Delta\delta \end{bmatrix}
+# = -\begin{bmatrix} R \\ G - F/2 \end{bmatrix}
+# $$
+#
+# by block elimination with K's factorization; the border is the exact UFL
+# derivative.  The predictor adds the rigid-cap depth increment over Δt to δ
+# (h² ∝ s).  Without ``border`` (or if the bordered solve fails) a secant
+# iteration of complete Newton solves finds δ; its first update uses the
+# stiffness of a flat punch of radius a, in series with the wear compliance
 # k V Δt of the implicit step.
 
 # +
@@ -132,7 +146,7 @@ def stiffness(dt):
 
 control = ResponseControl(stepper.problem, ConstantParameter(offset, 2),
                           lambda: float(contact.force()[2]), F / 2, predictor=predictor,
-                          slope=stiffness)
+                          slope=stiffness, border=(contact.force_functional(2), contact.sub))
 stepper.set_control(control)
 # -
 

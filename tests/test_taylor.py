@@ -264,3 +264,35 @@ def test_axisymmetric_contact_with_a_node_on_the_axis():
     print("axis", orders, rem)
     assert_exact_jacobian(orders, rem)
     assert np.all(np.isfinite(contact.nodal_data()["p"]))
+
+
+@pytest.mark.mpi
+def test_bordered_force_control_tangent():
+    # the border of the force control of wear-ball-flat (tribofx.bordered): ∂R/∂δ of
+    # every row (u, λ_N, λ_T and the wear rows w, ζ of a step in progress), ∂G/∂x and
+    # ∂G/∂δ of the contact force, at an iterate off the solution (flat 10 % further in)
+    from tribofx.cases.wear_ball import WearBallCase
+    from tribofx.params import resolve
+    from tribofx.references import hertz
+    from tribofx.testing import border_taylor_orders, smooth_direction
+
+    v = resolve(WearBallCase.params, {"scheme": "implicit", "T": "100", "dt": "100"})
+    stepper = WearBallCase.build(v)
+    control = stepper.control
+    control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    for w in stepper.wears:
+        w.begin_step(50.0)
+    control.parameter.set(1.1 * control.parameter.get())
+    problem = stepper.problem
+    # unit steps of the unknowns' scales: 1 mm of u and w, 1 GPa of the tractions;
+    # ε₀ = 1e-6 keeps the active set (δ moves by 1e-6 mm, 2.5e-4 of the approach)
+    dirs = [smooth_direction(f, 1.0 if "displacement" in f.name or "shape_change" in f.name
+                             else 1e3, 20 + k) for k, f in enumerate(problem.u)]
+    out = border_taylor_orders(control.border, dirs, eps0=1e-6)
+    for key, (orders, rem) in out.items():
+        print(key, orders, rem)
+        # exact derivatives: second-order remainders, or round-off where the force and
+        # the residual are linear in the step (the plane's gap within one active set)
+        assert_exact_jacobian(orders, rem)
+    for w in stepper.wears:
+        w.end_step()

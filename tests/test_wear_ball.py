@@ -90,6 +90,49 @@ def test_monolithic_newton_quadratic(short_implicit):
     assert len(orders) >= 2 and orders[-1] > 1.8
 
 
+def _one_step(force_control, scheme="implicit", dt=100.0):
+    """Build the short case, reach F on the unworn ball and take one step of Δt."""
+    v = resolve(WearBallCase.params, {"scheme": scheme, "T": "100", "dt": str(dt),
+                                      "force_control": force_control})
+    stepper = WearBallCase.build(v)
+    stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    report = stepper.step(dt)
+    return stepper, report
+
+
+@pytest.mark.mpi
+def test_bordered_force_control_quadratic_and_as_the_secant():
+    # the flat's position δ as an unknown of the step's Newton solve (tribofx.bordered)
+    bordered, rep_b = _one_step("bordered")
+    secant, rep_s = _one_step("secant")
+    control = bordered.control
+    (report,) = rep_b.reports
+    g = control.border.history
+    print("bordered: residuals", ["%.2e" % x for x in report.residuals],
+          "|G - G*|/G*", ["%.2e" % x for x in g], "fallbacks", control.fallbacks)
+    print("secant: trials", [len(r.residuals) - 1 for r in rep_s.reports])
+    assert control.fallbacks == 0
+    # exact bordered tangent: the residual ends at the asymptotic rate (below 1e-9 of
+    # the first it is round-off, E = 1e5 MPa); a wrong b, c or d leaves a linear rate
+    orders = convergence_orders(report.residuals, 1e-9 / report.residuals[0])
+    assert len(orders) >= 1 and orders[-1] > 1.8, (report.residuals, orders)
+    # the force is linear in (x, δ) on a fixed active set (the plane's gap): an exact
+    # border satisfies the linearized force equation, so one full step after the
+    # active set has settled |G − G*| is at round-off (≤ 1e-12 of G*, ~1e3 ε_mach
+    # for the sum over ~300 contact nodes); a border off by a relative error e would
+    # leave e times the previous |G − G*| (here ≥ 0.1 G*)
+    assert min(g) <= 1e-12 and g[-1] <= 1e-8
+    # the same discrete problem at the held force: the secant holds F to 1e-8, so δ
+    # and the worn depth (∝ F) agree to ~1e-8 relative; the Newton tolerances
+    # (1e-10) are below that
+    for a, b in ((bordered, secant),):
+        da, db = (float(s.control.parameter.get()) for s in (a, b))
+        ha, hb = (s.wear.max_depth() for s in (a, b))
+        print("approach", da, db, "max depth", ha, hb)
+        assert da == pytest.approx(db, rel=1e-6)
+        assert ha == pytest.approx(hb, rel=1e-6)
+
+
 @pytest.mark.mpi
 def test_serial_and_two_processes_agree(tmp_path):
     comm = MPI.COMM_WORLD

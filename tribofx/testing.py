@@ -21,13 +21,16 @@ log₂(r(ε)/r(ε/2)) are returned with the remainders relative to the linear te
   The directions are Functions or the owned arrays of the problem's own layout,
   so a :class:`tribofx.reduced.ReducedProblem` with replicated unknowns (owned
   by rank 0) is tested on several ranks too;
-* :func:`form_taylor_orders` — one bare residual form of one field.
+* :func:`form_taylor_orders` — one bare residual form of one field;
+* :func:`border_taylor_orders` — the border of a bordered Newton system
+  (:class:`tribofx.bordered.Border`: ∂R/∂δ, ∂G/∂x, ∂G/∂δ).
 """
 
 import numpy as np
 from petsc4py import PETSc
 
-__all__ = ["block_taylor_orders", "block_vector", "exact_tangent", "form_taylor_orders",
+__all__ = ["block_taylor_orders", "block_vector", "border_taylor_orders", "exact_tangent",
+           "form_taylor_orders",
            "owned_arrays", "penalty_film_directions", "residual_floor", "smooth_direction",
            "taylor_orders"]
 
@@ -231,3 +234,52 @@ def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
     u.x.array[:] = base
     rem = np.array(rem)
     return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())
+
+
+def border_taylor_orders(border, direction, eps0=1e-3, n=4):
+    """Taylor orders of a :class:`tribofx.bordered.Border`'s b, c and d at the current state.
+
+    b = ∂R/∂δ and d = ∂G/∂δ along δ (steps ε·``eps0`` in the parameter's units),
+    c = ∂G/∂x along ``direction`` (as for :func:`taylor_orders`), with the
+    remainders ‖R(x, δ + ε) − R − ε b‖, |G(x, δ + ε) − G − ε d| and
+    |G(x + ε dx, δ) − G − ε c·dx|.  Returns ``{"b"|"c"|"d": (orders, remainders
+    relative to the linear term at ε₀)}``; unknowns and δ are restored.
+    """
+    problem, par = border.problem, border.parameter
+    if all(hasattr(d, "x") for d in direction):
+        direction = owned_arrays(problem, direction)
+    saved, delta0 = [ui.x.array.copy() for ui in problem.u], par.get()
+    R0 = problem.assemble()[0].copy()
+    G0, d = border.value(), border.derivative()
+    b, c = border.vectors()
+    x0 = block_vector(problem, owned_arrays(problem))
+    dx = block_vector(problem, direction)
+    cdx = c.dot(dx)
+    rem = {"b": [], "c": [], "d": []}
+    for k in range(n):
+        eps = eps0 * 2.0**-k
+        par.set(delta0 + eps)
+        r = problem.residual_at(x0)
+        r.axpy(-1.0, R0)
+        r.axpy(-eps, b)
+        rem["b"].append(r.norm())
+        rem["d"].append(abs(border.value() - G0 - eps * d))
+        par.set(delta0)
+        x = x0.copy()
+        x.axpy(eps, dx)
+        problem.residual_at(x).destroy()
+        rem["c"].append(abs(border.value() - G0 - eps * cdx))
+        for v in (x, r):
+            v.destroy()
+    scale = {"b": eps0 * b.norm(), "c": eps0 * abs(cdx), "d": eps0 * abs(d)}
+    for ui, a in zip(problem.u, saved):
+        ui.x.array[:] = a
+    problem.refresh()
+    for v in (R0, b, c, x0, dx):
+        v.destroy()
+    out = {}
+    for key, r in rem.items():
+        r = np.array(r)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out[key] = (np.log2(r[:-1] / r[1:]), r / max(scale[key], 1e-300))
+    return out
