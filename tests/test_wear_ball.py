@@ -134,6 +134,53 @@ def test_bordered_force_control_quadratic_and_as_the_secant():
 
 
 @pytest.mark.mpi
+def test_filtered_error_estimate_is_the_linearized_response():
+    # tribofx.error_filter: e = (c₀ I + Δt ∂Ẇ/∂s)⁻¹ c₀ d, the linear response of the
+    # coupled step (deformation, contact, force held by the border) to c₀ d on the
+    # right of the nodal law c₀ s + c₁ s_n + Δt Ẇ = 0.  Independent check: solve the
+    # step again, nonlinearly, with s_n shifted by −ε c₀ d/c₁ (the same right side)
+    from tribofx.error_filter import filtered_defect
+
+    v = resolve(WearBallCase.params, {"scheme": "bdf2", "T": "100", "dt": "20"})
+    stepper = WearBallCase.build(v)
+    control, wear = stepper.control, stepper.wear
+    control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    stepper.step(20.0)
+    stepper.step(20.0)
+    saved = stepper.state()
+    stepper.step(20.0)                       # a BDF2 step (c₁ ≠ 0), from `saved`
+    n = wear.surface.n_own
+    s0 = wear._swept_volume()[:n]
+    raw = []
+    wear.step_error(lambda d: raw.append(d) or d)
+    (d,) = raw
+    e = filtered_defect(stepper.problem, wear, d, control.border)
+    comm = MPI.COMM_WORLD
+    dmax = comm.allreduce(float(np.max(np.abs(d), initial=0.0)), op=MPI.MAX)
+    # a right side of 1e-8 mm: far above the Newton tolerance of the swept volumes
+    # (~1e-16 mm), small enough that no node changes its contact status
+    eps = 1e-8 / dmax
+    stepper.restore(saved)
+    wear.begin_step(20.0)
+    control.begin(20.0)
+    c0, c1 = float(wear.bdf.c0.value), float(wear.bdf.c1.value)
+    wear.bdf.swept_old.x.array[:n] -= eps * c0 * d / c1
+    wear.bdf.swept_old.x.scatter_forward()
+    control.solve()
+    response = (wear._swept_volume()[:n] - s0) / eps
+    wear.end_step()
+    emax = comm.allreduce(float(np.max(np.abs(e), initial=0.0)), op=MPI.MAX)
+    gap = comm.allreduce(float(np.max(np.abs(response - e), initial=0.0)), op=MPI.MAX)
+    print("max |d|", dmax, "max |e|", emax, "max |response − e|", gap)
+    # the filter damps (wear unloads a node worn too deep): |e| < |d|
+    assert emax < dmax
+    # linearization: O(ε) of the response (1e-8 mm against swept volumes ~1e-3 mm) and
+    # the factorization of the last Newton iterate, not of the solution (its
+    # correction ~1e-6 relative): 1e-4 of max |e|
+    assert gap <= 1e-4 * emax
+
+
+@pytest.mark.mpi
 def test_serial_and_two_processes_agree(tmp_path):
     comm = MPI.COMM_WORLD
     if comm.size == 1:

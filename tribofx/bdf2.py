@@ -78,10 +78,12 @@ class SweptHistory:
         if self._rate0 is not None:
             self._rate0 = np.array(rate, dtype=float)
 
-    def error(self, swept, comm):
+    def error(self, swept, comm, filter=None):
         """Return the error estimate (mm) of the step just solved (all ranks), or None.
 
-        ``swept``: the step's nodal swept volumes (owned entries).  The max over
+        ``swept``: the step's nodal swept volumes (owned entries); ``filter``: None,
+        or a callable taking the nodal defect d below to the filtered one
+        (:func:`tribofx.error_filter.filtered_defect`).  The max over
         the nodes of s_{n+1} against a predictor, with its order in
         :attr:`error_order`: from the third step Milne's device, (2/11)|s_{n+1} − s^P|
         with s^P from the rates of the last two steps extrapolated linearly in time
@@ -98,4 +100,6 @@ class SweptHistory:
             d, self.error_order = swept - self._omega * self.swept_old.x.array[:n], 2
         else:
             d, self.error_order = (2 / 11) * (swept - self._pred[:n]), 3
+        if filter is not None:
+            d = filter(d)
         return comm.allreduce(float(np.max(np.abs(d), initial=0.0)), op=MPI.MAX)

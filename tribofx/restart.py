@@ -39,7 +39,8 @@ __all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "s
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver",)
 # parameters added after checkpoints were written, with the value the older runs used
-ADDED_PARAMETERS = {"tol_per": "unit_step", "force_control": "secant"}
+ADDED_PARAMETERS = {"tol_per": "unit_step", "force_control": "secant",
+                    "error_filter": False}
 
 
 def open_history(stepper, v, resume):

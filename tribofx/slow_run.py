@@ -62,7 +62,7 @@ class SlowRun:
         self.record.data["newton_iterations"].append(iterations)
 
     def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None,
-            after=None, per="unit_step"):
+            after=None, per="unit_step", filtered=False):
         """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
 
         ``on_step(stepper, report)`` after every accepted step (before its
@@ -81,7 +81,7 @@ class SlowRun:
             self.series.write(s.t)
 
         try:
-            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per)
+            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per, filtered=filtered)
             if after is not None:
                 after()
         except (NewtonDivergence, interrupt.Interrupted) as err:

@@ -16,8 +16,11 @@ __all__ = ["CONTROLS", "run_controlled"]
 CONTROLS = ("unit_step", "step")
 
 
-def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step"):
+def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filtered=False):
     """Run the error-controlled loop of :meth:`tribofx.stepper.Stepper.run` (``stepper``).
+
+    ``filtered``: the estimates are filtered through each step's implicit
+    operator (:meth:`tribofx.stepper.Stepper.defect_filter`).
 
     A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
     estimate (``report.forced``): across a jump of the rate (a node entering
@@ -48,8 +51,9 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step"):
                 raise
             stepper.dt = h / 2
             continue
-        errs = [(e, w.error_order) for w, e in ((w, w.step_error()) for w in stepper.wears)
-                if e is not None]
+        errs = [(e, w.error_order) for w, e in
+                ((w, w.step_error(stepper.defect_filter(w) if filtered else None))
+                 for w in stepper.wears) if e is not None]
         err, order = max(errs) if errs else (None, 2)
         # error per unit step: a step may err by tol·Δt/T, so the errors of all
         # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1).  Per step: E ≤ tol

@@ -64,6 +64,7 @@ from mpi4py import MPI
 from . import interrupt
 from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
 from .cycles import ReciprocatingCycle
+from .error_filter import filtered_defect
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 from .step_control import run_controlled
@@ -347,7 +348,8 @@ class Stepper:
         self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
-    def run(self, T, dt, on_step=None, progress=None, tol=None, per="unit_step"):
+    def run(self, T, dt, on_step=None, progress=None, tol=None, per="unit_step",
+            filtered=False):
         """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
 
         ``on_step(stepper, report)`` is called after every accepted step, then
@@ -367,9 +369,10 @@ class Stepper:
         step's estimate at tol itself (retry factor (tol/E)^(1/p)), the local error
         control of ODE codes: where wear damps its own errors the final error stays
         near tol at far fewer steps, elsewhere it may add up to a multiple of tol.
+        ``filtered``: each estimate is that of :meth:`defect_filter`.
         """
         if tol:
-            return run_controlled(self, T, dt, on_step, progress, tol, per)
+            return run_controlled(self, T, dt, on_step, progress, tol, per, filtered)
         self.dt = dt
         self._bar = (T, dt)
         self._progress(progress)   # resumed from a checkpoint: the bar goes on
@@ -388,6 +391,17 @@ class Stepper:
             while self.cuts > 0 and _aligned(self.t, dt / 2 ** (self.cuts - 1)):
                 self.cuts -= 1
             self._accepted(report, on_step, progress)
+
+    def defect_filter(self, wear):
+        """Return the filter of ``wear``'s error estimate through the step's implicit operator.
+
+        A callable taking the nodal defect to :func:`tribofx.error_filter.filtered_defect`
+        (the force held by the control's border, if any); monolithic steps only.
+        """
+        if not self.monolithic or self.cycle is not None:
+            raise ValueError("the filtered error estimate needs a monolithic implicit step")
+        border = getattr(self.control, "border", None)
+        return lambda d: filtered_defect(self.problem, wear, d, border)
 
     def _accepted(self, report, on_step, progress):
         if on_step is not None:

@@ -16,8 +16,15 @@ __all__ = ["SCHEMES", "check_scheme", "control", "scheme_params"]
 SCHEMES = ("explicit", "implicit", "bdf2")
 
 
-def scheme_params(default="implicit", note=""):
-    """Return the ``scheme``, ``tol`` and ``tol_per`` parameters (``note`` ends scheme's help)."""
+def scheme_params(default="implicit", note="", filtered=False):
+    """Return the ``scheme``, ``tol`` and ``tol_per`` parameters (``note`` ends scheme's help).
+
+    ``filtered``: also ``error_filter`` (a case whose wear step is one monolithic
+    Newton problem, :func:`tribofx.error_filter.filtered_defect`).
+    """
+    extra = (Param("error_filter", bool, False, "-",
+                   "tol: filter each step's estimate through the step's implicit operator "
+                   "(the error wear damps within the step is not charged)"),) if filtered else ()
     return (Param("scheme", str, default, "-",
                   "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
                   f"started by one implicit step){note}", choices=SCHEMES),
@@ -29,12 +36,13 @@ def scheme_params(default="implicit", note=""):
             Param("tol_per", str, "unit_step", "-",
                   "tol per unit_step (the steps' estimates add up to tol over T) or per "
                   "step (each step's estimate within tol, as ODE codes: for wear that "
-                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS))
+                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS), *extra)
 
 
 def control(v):
-    """Keyword arguments ``tol`` and ``per`` of :meth:`tribofx.slow_run.SlowRun.run`."""
-    return {"tol": v["tol"] or None, "per": v["tol_per"]}
+    """Return the keywords tol, per and filtered of :meth:`tribofx.slow_run.SlowRun.run`."""
+    return {"tol": v["tol"] or None, "per": v["tol_per"],
+            "filtered": bool(v.get("error_filter", False))}
 
 
 def check_scheme(v):

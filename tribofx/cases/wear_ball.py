@@ -87,7 +87,7 @@ class WearBallCase(BallWearRun):
     name = "wear-ball-flat"
     doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
     params = (
-        *scheme_params(),
+        *scheme_params(filtered=True),
         Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
         Param("T", float, 1000.0, "s", "end time", lower=0.0),
         Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",

@@ -310,12 +310,15 @@ class SteadyWear:
         """Nodal rate of the swept area per unit line length, (1/L)(P_cᵀ r)_j / ∫η_j dŝ."""
         return self._per_length(self.Pc.transpose(self.rate_vector()) / self.L)
 
-    def step_error(self):
+    def step_error(self, filter=None):
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
 
         :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept areas per unit
-        line length (the groove's depth where it is flat).
+        line length (the groove's depth where it is flat).  No ``filter``: the
+        shape unknowns are not those of one monolithic problem here.
         """
+        if filter is not None:
+            raise ValueError("the filtered error estimate needs a monolithic Wear step")
         if self.scheme != "bdf2":
             return None
         return self.bdf.error(self._swept(), self.body.mesh.comm)

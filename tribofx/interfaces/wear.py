@@ -278,15 +278,16 @@ class Wear:
         """Nodal (w − w_n)·a(w, w_n) per unit initial area."""
         return self._nodal_value("swept", ufl.dot(self.body.w - self.body.w_n, self.a))
 
-    def step_error(self):
+    def step_error(self, filter=None):
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
 
         :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept volumes per unit
-        initial area (its order in :attr:`error_order`).
+        initial area (its order in :attr:`error_order`), ``filter``-ed if given.
         """
         if self.scheme != "bdf2":
             return None
-        return self.bdf.error(self._swept_volume()[:self.surface.n_own], self.body.mesh.comm)
+        return self.bdf.error(self._swept_volume()[:self.surface.n_own], self.body.mesh.comm,
+                              filter)
 
     @property
     def error_order(self):

@@ -1,0 +1,89 @@
+"""Damping-aware (filtered) error estimate of a monolithic implicit wear step.
+
+The BDF2 estimate d of :class:`tribofx.bdf2.SweptHistory` (Milne's device, per
+node, in swept volume per unit initial area) is the local error of the step as if
+it persisted.  Wear damps its own errors: a node worn too deep carries less
+pressure and wears slower, within a relaxation time τ of the order of the
+explicit critical step (eq. 31, ≈ 0.1 s for §5.2).  A node entering the contact
+gives a large d that is gone a few τ later, while the scar's overall shape
+relaxes slowly and keeps its error.  As in the estimate of stiff integrators
+(Hairer & Wanner, *Solving ODEs II*, §IV.8, after Shampine: RADAU5's
+(I − hγJ)⁻¹ filter), d is filtered through the step's own implicit operator.
+The converged step's nodal law c₀ s + c₁ s_n + Δt Ẇ = 0 is given c₀ d on its
+right side, and the linearized response of the whole coupled system
+(deformation, contact, the force held by a :class:`tribofx.bordered.Border`) is
+the filtered estimate e = Δs:
+
+    (c₀ I + Δt ∂Ẇ/∂s) e = c₀ d,
+
+∂Ẇ/∂s the sensitivity of the rate through the coupled system.  Components that
+the wear damps within the step (Δt ≫ τ) are reduced by about τ/Δt; those it
+does not damp keep d.  Cost: one back-substitution with the factorization of the
+problem's last Newton iteration (two with a border), one assembly of the swept
+volume.  Units: mm.
+"""
+
+import numpy as np
+from dolfinx import fem
+
+__all__ = ["filtered_defect"]
+
+
+def _block(problem, f):
+    k = next(i for i, u in enumerate(problem.u) if u is f)
+    return problem._tolerances[k][1]
+
+
+def filtered_defect(problem, wear, defect, border=None):
+    """Return the filtered estimate e (owned nodal swept volumes, mm) of the ``defect`` d.
+
+    ``problem``: the monolithic :class:`tribofx.problem.Problem` just converged
+    (unknowns at the step's solution, its KSP holding the last factorization);
+    ``wear``: the :class:`tribofx.interfaces.Wear` whose shape law and w are
+    unknowns of it; ``defect``: d at the owned nodes of the worn surface (its ζ
+    rows' order); ``border``: the force control's border, if the force is held.
+    The forms see the step's Δt (:attr:`SweptHistory.dt_prev`) meanwhile.
+    """
+    # the step has ended (Δt = 0 in the forms): its Δt again for the border's ∂R/∂δ
+    dt_end = float(wear.dt.value)
+    wear.dt.value = float(wear.bdf.dt_prev.value)
+    try:
+        return _filtered(problem, wear, defect, border)
+    finally:
+        wear.dt.value = dt_end
+
+
+def _filtered(problem, wear, defect, border):
+    zeta, w = wear.zeta, wear.body.w
+    n = problem._owned_size(zeta)
+    weight = wear.surface.nodal(wear._forms()["lumped"])[:n]
+    rhs = problem.snes.getFunction()[0].duplicate()
+    rhs.set(0.0)
+    arr = rhs.getArray()
+    arr[_block(problem, zeta)] = weight * float(wear.bdf.c0.value) * defect[:n]
+    del arr
+    ksp = problem.snes.getKSP()
+    dx = rhs.duplicate()
+    ksp.solve(rhs, dx)
+    if border is not None:
+        b, c = border.vectors()
+        z = b.duplicate()
+        ksp.solve(b, z)
+        schur = c.dot(z) - border.derivative()
+        if schur != 0 and np.isfinite(schur):
+            dx.axpy(-c.dot(dx) / schur, z)
+        for v in (b, c, z):
+            v.destroy()
+    dw = fem.Function(w.function_space)
+    nw = problem._owned_size(w)
+    dw.x.array[:nw] = dx.getArray(readonly=True)[_block(problem, w)]
+    dw.x.scatter_forward()
+    for v in (rhs, dx):
+        v.destroy()
+    s0 = wear._swept_volume()[:n]
+    w.x.array[:] += dw.x.array
+    try:
+        s1 = wear._swept_volume()[:n]
+    finally:
+        w.x.array[:] -= dw.x.array
+    return s1 - s0
