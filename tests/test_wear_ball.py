@@ -284,6 +284,8 @@ def test_explicit_conditionally_implicit_unconditionally_stable(tmp_path):
     ({"k": "1e-4"}, "beyond 0.6 R"),
     ({"F": "1e7"}, "load too large"),
     ({"scheme": "trapezoidal"}, "must be one of"),
+    ({"error_filter": "true"}, "set tol > 0"),
+    ({"force_control": "newton"}, "must be one of"),
 ])
 def test_bad_input_is_rejected(over, fragment):
     from tribofx.cases import get_case

@@ -46,6 +46,8 @@ def control(v):
 
 
 def check_scheme(v):
-    """One-line error for ``tol`` > 0 without ``scheme=bdf2``."""
+    """One-line error for ``tol`` > 0 without ``scheme=bdf2``, or a filter without ``tol``."""
     if v["tol"] > 0 and v["scheme"] != "bdf2":
         raise InputError("tol > 0 (error control) needs scheme=bdf2")
+    if v.get("error_filter") and not v["tol"] > 0:
+        raise InputError("error_filter filters the estimates of the error control: set tol > 0")
