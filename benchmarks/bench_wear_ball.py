@@ -104,6 +104,9 @@ parser.add_argument("--to-T-tols", default="",
                     help="with --accuracy-dts and --bdf2-tols: also BDF2 under error control "
                          "to T at these comma-separated tol (mm; the tightest is the others' "
                          "reference), against the explicit legs extrapolated to T")
+parser.add_argument("--to-T-ref", type=float, default=0.0,
+                    help="with --to-T-tols: the reference at T is a BDF2 run at this tol "
+                         "with the raw (unfiltered) per-step estimate, not the tightest tol")
 parser.add_argument("--explicit-cuts", type=int, default=0,
                     help="step halvings allowed to the explicit legs of --accuracy-dts (a "
                          "Newton failure at a node entering contact, not an instability)")
@@ -116,7 +119,8 @@ args = parser.parse_args()
 comm = MPI.COMM_WORLD
 units = {p.name: p.unit for p in WearBallCase.params}
 sets = dict(kv.split("=", 1) for kv in args.set)
-v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh), **sets})
+v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh),
+                                   **{k: x for k, x in sets.items() if k != "error_filter"}})
 WearBallCase.validate(v0)
 T = v0["T"]
 if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols):
@@ -124,9 +128,14 @@ if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols):
 
 
 def run(tmp, t_stop=None, on_step=None, **over):
-    """One run; returns (results, record, wall time)."""
-    values = resolve(WearBallCase.params, {"mesh": str(args.mesh), **sets,
-                                           **{k: str(x) for k, x in over.items()}})
+    """One run; returns (results, record, wall time).
+
+    ``error_filter`` of ``--set`` applies to the runs under error control only.
+    """
+    given = {**sets, **{k: str(x) for k, x in over.items()}}
+    if not float(given.get("tol", 0) or 0):
+        given.pop("error_filter", None)
+    values = resolve(WearBallCase.params, {"mesh": str(args.mesh), **given})
     WearBallCase.validate(values)
     rec = RunRecord("wear-ball-flat", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
     rec.profile = None
@@ -185,7 +194,8 @@ def accuracy_study(t_e, dts, tols=()):
 def to_T_study(tols, acc):
     """BDF2 under error control to T at ``tols``, against the explicit legs of ``acc`` to T.
 
-    The tightest tol is the reference of the others at T.  An explicit leg's cost
+    The tightest tol is the reference of the others at T (or, with ``--to-T-ref``,
+    a BDF2 run at that tol with the unfiltered estimate).  An explicit leg's cost
     to T is its wall time per step times ⌈T/Δt⌉ (EXTRAPOLATED: its run stops at the
     horizon of ``acc``).  At equal accuracy: for each explicit leg the loosest tol
     whose BDF2 error at the horizon is no larger than the explicit one's; its cost to
@@ -194,6 +204,14 @@ def to_T_study(tols, acc):
     """
     rows, profiles = [], []
     with tempfile.TemporaryDirectory() as tmp:
+        if args.to_T_ref:
+            r, rec, wall = run(tmp, scheme="bdf2", dt=min(100.0, T), tol=args.to_T_ref,
+                               error_filter="false")
+            ref_T = {"tol": args.to_T_ref, "filtered": False, "steps": r["steps"],
+                     "wall_time_s": wall, "profile": profile_at(rec)}
+            if comm.rank == 0:
+                print("reference to T:", {k: x for k, x in ref_T.items() if k != "profile"},
+                      flush=True)
         for tol in sorted(tols, reverse=True):
             r, rec, wall = run(tmp, scheme="bdf2", dt=min(100.0, T), tol=tol)
             profiles.append(profile_at(rec))
@@ -205,9 +223,13 @@ def to_T_study(tols, acc):
                          "scar_radius_T": r["scar_radius"][-1]})
             if comm.rank == 0:
                 print("to T:", rows[-1], flush=True)
-    for row, p in zip(rows[:-1], profiles[:-1]):
-        row["profile_error_mm"] = float(np.max(np.linalg.norm(p - profiles[-1], axis=1)))
+    ref = ref_T.pop("profile") if args.to_T_ref else profiles[-1]
+    for row, p in zip(rows, profiles):
+        if p is not ref:
+            row["profile_error_mm"] = float(np.max(np.linalg.norm(p - ref, axis=1)))
     res = {"T": T, "bdf2": rows, "equal_accuracy": []}
+    if args.to_T_ref:
+        res["reference"] = ref_T
     window = {x["tol"]: x for x in acc["runs"] if x["scheme"] == "bdf2" and "failed" not in x}
     for e in (x for x in acc["runs"] if x["scheme"] == "explicit" and "failed" not in x):
         steps_T = math.ceil(T / e["dt"])
