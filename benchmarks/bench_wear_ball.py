@@ -69,22 +69,22 @@ steps near 0.01 s (39 steps to t = 0.22 s): that control is for errors that add 
 a step.)
 
 With the force held inside each Newton solve (``force_control=bordered``, now the
-default: the flat's position an unknown beside the system, 3 iterations a step;
-every leg uses it), same window and reference (BDF2 Δt = 0.25 s: 80 steps, 317 s),
-the legs run one by one, two at a time on the 2 cores: explicit Δt = 0.08 s: 251 steps, 1435 iterations, 508 s, 4.1e-5 mm;
-BDF2 per step at 3e-4: 26 steps, 75 iterations, 184 s, 3.0e-5 mm; with the filtered
-estimate (``--set error_filter=true``, :mod:`tribofx.error_filter`) at 3e-4 and 1e-3:
-12 and 5 steps (9 and 10 rejected: the first step is 20 s), 129 and 109 s, 4.0e-5
-and 9.1e-5 mm.  To T (``--to-T-tols ... --to-T-ref 3e-4``: the reference is BDF2 per
-step at 3e-4 with the raw estimate, 182 steps, 533 iterations, 1081 s; errors over
-every node of the worn boundary at T): raw estimate at 1e-3: 76 steps, 228
-iterations, 434 s, 1.2e-5 mm; filtered at 3e-4, 1e-4, 3e-5: 19, 31, 72 steps, 188,
-259, 414 s, 6.7e-5, 2.8e-5, 2.3e-5 mm.  The explicit run to T: 12,500 steps at 2.0 s
-(the window) to 3.0 s (the 0–50 s run above, with the bordered speed-up of the
-window), ≈ 25,300–37,600 s, EXTRAPOLATED.  At the explicit scheme's window error
-(4.1e-5 mm), BDF2 filtered at tol 1e-4 costs 259 s: 98–145× less; at a 3× smaller
-error (raw, tol 1e-3) 58–87×; assuming the explicit error at T is no smaller than at
-20 s (the explicit run to T is 7–10 h).
+default: the flat's position an unknown beside the system, 3 iterations a step; every
+leg uses it), same window and reference (BDF2 Δt = 0.25 s: 80 steps, 317 s), the legs
+run one by one, two at a time on the 2 cores: explicit Δt = 0.08 s: 251 steps, 1435
+iterations, 508 s, 4.1e-5 mm; BDF2 per step at 3e-4: 26 steps, 75 iterations, 184 s,
+3.0e-5 mm; with the filtered estimate (``--set error_filter=true``,
+:mod:`tribofx.error_filter`) at 3e-4 and 1e-3: 12 and 5 steps (9 and 10 rejected: the
+first step is 20 s), 129 and 109 s, 4.0e-5 and 9.1e-5 mm. To T (``--to-T-tols ...
+--to-T-ref 3e-4``: the reference is BDF2 per step at 3e-4 with the raw estimate, 182
+steps, 533 iterations, 1081 s; errors over every node of the worn boundary at T): raw
+estimate at 1e-3: 76 steps, 228 iterations, 434 s, 1.2e-5 mm; filtered at 3e-4, 1e-4,
+3e-5: 19, 31, 72 steps, 188, 259, 414 s, 6.7e-5, 2.8e-5, 2.3e-5 mm. The explicit run
+to T: 12,500 steps at 2.0 s (the window) to 3.0 s (the 0–50 s run above, with the
+bordered speed-up of the window), ≈ 25,300–37,600 s, EXTRAPOLATED. At the explicit
+scheme's window error (4.1e-5 mm), BDF2 filtered at tol 1e-4 costs 259 s: 98–145×
+less; at a 3× smaller error (raw, tol 1e-3) 58–87×; assuming the explicit error at T
+is no smaller than at 20 s (the explicit run to T is 7–10 h).
 """
 
 import argparse

@@ -133,6 +133,23 @@ def test_bordered_force_control_quadratic_and_as_the_secant():
         assert ha == pytest.approx(hb, rel=1e-6)
 
 
+def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
+    # a bordered solve that fails (here: its force equation never declared solved, so
+    # Newton stops at max_it) restores the entry state and the flat's position, and the
+    # secant of complete solves then holds the force: the same state as the secant alone
+    from tribofx.bordered import Border
+
+    monkeypatch.setattr(Border, "converged", lambda self: False)
+    fallen, _ = _one_step("bordered")
+    monkeypatch.undo()
+    secant, _ = _one_step("secant")
+    assert fallen.control.fallbacks == 2           # the unworn contact and the step
+    for a, b in ((fallen.control.parameter.get(), secant.control.parameter.get()),
+                 (fallen.wear.max_depth(), secant.wear.max_depth())):
+        # the same secant from the same states: equal to its tolerances (1e-8 of F)
+        assert a == pytest.approx(b, rel=1e-6)
+
+
 @pytest.mark.mpi
 def test_filtered_error_estimate_is_the_linearized_response():
     # tribofx.error_filter: e = (c₀ I + Δt ∂Ẇ/∂s)⁻¹ c₀ d, the linear response of the
