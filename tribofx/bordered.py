@@ -9,8 +9,11 @@ secant of complete Newton solves around it.  The Newton system is bordered,
     [ K   b ] [Δx]     [ R ]      b = ∂R/∂δ,  c = ∂G/∂x,  d = ∂G/∂δ,
     [ cᵀ  d ] [Δδ] = − [ g ],
 
-and solved by block elimination with the factorization of K that the
-problem's SNES has just used (one more back-substitution per iteration):
+and solved by block elimination with the preconditioner of K that the
+problem's SNES has just set up (with a direct solver one more back-substitution
+per iteration, else one more Krylov solve; :func:`solve_like`, a KSP of its own
+that shares the PC, so the SNES's linear-solve counters and fallbacks see only
+their own solves):
 y = K⁻¹R (the SNES step), z = K⁻¹b, Δδ = (c·y − g)/(d − c·z),
 Δx = −(y + Δδ z).  The correction of y rides on the problem's line-search
 pre-check (:meth:`tribofx.newton_control.NewtonControl._backtrack`), the test
@@ -31,9 +34,29 @@ import numpy as np
 import ufl
 from dolfinx import fem, la
 from mpi4py import MPI
+from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
-__all__ = ["Border"]
+__all__ = ["Border", "solve_like"]
+
+
+def solve_like(ksp, b, x):
+    """Solve K x = b as ``ksp`` does (its operators, type, tolerances and set-up PC).
+
+    A second KSP that shares ``ksp``'s PC: no new factorization, and ``ksp``'s
+    iteration counts and reasons stay those of the SNES's own solves.  Returns
+    whether the solve converged.
+    """
+    other = PETSc.KSP().create(ksp.comm)
+    other.setOperators(*ksp.getOperators())
+    other.setType(ksp.getType())
+    other.setTolerances(*ksp.getTolerances())
+    other.setPC(ksp.getPC())
+    try:
+        other.solve(b, x)
+        return other.getConvergedReason() > 0
+    finally:
+        other.destroy()
 
 
 def _compiled(form, emaps):
@@ -56,6 +79,8 @@ class Border:
     """
 
     def __init__(self, problem, parameter, functional, target, mesh, rtol=1e-8):
+        if getattr(problem, "_assemblers", None):
+            raise ValueError("a border needs a residual in UFL alone (no assembled terms)")
         self.problem, self.parameter = problem, parameter
         self.target, self.rtol = float(target), float(rtol)
         const = parameter.constant
@@ -126,19 +151,21 @@ class Border:
     def correct(self, x, y):
         """Border the SNES step ``y`` (K y = R at ``x``): y ← y + Δδ z; remember Δδ.
 
-        An iterate without contact (d − c·z = 0: G does not depend on δ) leaves
-        δ and y as they are.
+        An iterate without contact (d − c·z = 0: G does not depend on δ), or a
+        failed solve for z, leaves δ and y as they are (the force equation then
+        stays unsolved and Newton fails at ``max_it``: the caller's fallback).
         """
         P = self.problem
         P._set_unknowns(x)
         P.refresh()
         b, c = self.vectors()
         z = b.duplicate()
-        P.snes.getKSP().solve(b, z)
+        solved = solve_like(P.snes.getKSP(), b, z)
         g = self.value() - self.target
         schur = self.derivative() - c.dot(z)
         delta = self.parameter.get()
-        step = (c.dot(y) - g) / schur if schur != 0 and np.isfinite(schur) else 0.0
+        ok = solved and schur != 0 and np.isfinite(schur)
+        step = (c.dot(y) - g) / schur if ok else 0.0
         if step != 0.0:
             y.axpy(step, z)
         self.step = (delta, step)

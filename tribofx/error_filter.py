@@ -18,13 +18,19 @@ the filtered estimate e = Δs:
 
 ∂Ẇ/∂s the sensitivity of the rate through the coupled system.  Components that
 the wear damps within the step (Δt ≫ τ) are reduced by about τ/Δt; those it
-does not damp keep d.  Cost: one back-substitution with the factorization of the
-problem's last Newton iteration (two with a border), one assembly of the swept
-volume.  Units: mm.
+does not damp keep d.  Cost: a solve with the preconditioner of the problem's
+last Newton iteration (:func:`tribofx.bordered.solve_like`: with a direct solver
+a back-substitution; two with a border, and its vectors), the swept volume twice
+and the lumped weights.  If a solve fails the raw d is returned.  The border is
+evaluated at the committed state: exact where the slip history does not enter
+the residual (Eulerian slip, frictionless contact), an approximation with
+Lagrangian slip.  Units: mm.
 """
 
 import numpy as np
 from dolfinx import fem
+
+from .bordered import solve_like
 
 __all__ = ["filtered_defect"]
 
@@ -34,23 +40,27 @@ def _block(problem, f):
     return problem._tolerances[k][1]
 
 
-def filtered_defect(problem, wear, defect, border=None):
+def filtered_defect(problem, wear, defect, border=None, wears=None):
     """Return the filtered estimate e (owned nodal swept volumes, mm) of the ``defect`` d.
 
     ``problem``: the monolithic :class:`tribofx.problem.Problem` just converged
     (unknowns at the step's solution, its KSP holding the last factorization);
     ``wear``: the :class:`tribofx.interfaces.Wear` whose shape law and w are
     unknowns of it; ``defect``: d at the owned nodes of the worn surface (its ζ
-    rows' order); ``border``: the force control's border, if the force is held.
-    The forms see the step's Δt (:attr:`SweptHistory.dt_prev`) meanwhile.
+    rows' order); ``border``: the force control's border, if the force is held;
+    ``wears``: every evolving interface of the step (default: ``wear``).  The
+    forms see the step's Δt (:attr:`SweptHistory.dt_prev`) meanwhile.
     """
     # the step has ended (Δt = 0 in the forms): its Δt again for the border's ∂R/∂δ
-    dt_end = float(wear.dt.value)
-    wear.dt.value = float(wear.bdf.dt_prev.value)
+    wears = [wear] if wears is None else list(wears)
+    ended = [float(w.dt.value) for w in wears]
+    for w in wears:
+        w.dt.value = float(w.bdf.dt_prev.value)
     try:
         return _filtered(problem, wear, defect, border)
     finally:
-        wear.dt.value = dt_end
+        for w, dt in zip(wears, ended):
+            w.dt.value = dt
 
 
 def _filtered(problem, wear, defect, border):
@@ -64,16 +74,20 @@ def _filtered(problem, wear, defect, border):
     del arr
     ksp = problem.snes.getKSP()
     dx = rhs.duplicate()
-    ksp.solve(rhs, dx)
-    if border is not None:
+    solved = solve_like(ksp, rhs, dx)
+    if border is not None and solved:
         b, c = border.vectors()
         z = b.duplicate()
-        ksp.solve(b, z)
+        solved = solve_like(ksp, b, z)
         schur = c.dot(z) - border.derivative()
-        if schur != 0 and np.isfinite(schur):
+        if solved and schur != 0 and np.isfinite(schur):
             dx.axpy(-c.dot(dx) / schur, z)
         for v in (b, c, z):
             v.destroy()
+    if not solved:
+        for v in (rhs, dx):
+            v.destroy()
+        return defect[:n]
     dw = fem.Function(w.function_space)
     nw = problem._owned_size(w)
     dw.x.array[:nw] = dx.getArray(readonly=True)[_block(problem, w)]
@@ -81,9 +95,10 @@ def _filtered(problem, wear, defect, border):
     for v in (rhs, dx):
         v.destroy()
     s0 = wear._swept_volume()[:n]
+    kept = w.x.array.copy()
     w.x.array[:] += dw.x.array
     try:
         s1 = wear._swept_volume()[:n]
     finally:
-        w.x.array[:] -= dw.x.array
+        w.x.array[:] = kept          # bit for bit: the accepted step stays as solved
     return s1 - s0

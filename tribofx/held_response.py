@@ -184,6 +184,8 @@ class ResponseControl(HeldResponse):
     def _bordered(self, guess):
         """One Newton solve with the parameter an unknown, from ``guess``; restored on failure."""
         problem, entry = self._rec.problem, self.parameter.get()
+        if problem.snes.getLineSearch().getType() != "basic":
+            raise NewtonDivergence("the bordered solve needs SNES's basic line search")
         if guess is not None:
             self.parameter.set(guess)
         self.border.target = self.target
@@ -192,6 +194,7 @@ class ResponseControl(HeldResponse):
             report = self._rec.solve(verbose=self.inner.verbose)
         except NewtonDivergence:
             self.parameter.set(entry)
+            problem.refresh()
             raise
         finally:
             problem.border = None

@@ -37,10 +37,9 @@ from .params import InputError
 __all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "sweep_stem"]
 
 #: parameters that select how the problem is solved, not which problem
-SOLVER_PARAMETERS = ("solver",)
+SOLVER_PARAMETERS = ("solver", "force_control")
 # parameters added after checkpoints were written, with the value the older runs used
-ADDED_PARAMETERS = {"tol_per": "unit_step", "force_control": "secant",
-                    "error_filter": False}
+ADDED_PARAMETERS = {"tol_per": "unit_step", "error_filter": False}
 
 
 def open_history(stepper, v, resume):

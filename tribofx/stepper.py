@@ -401,7 +401,10 @@ class Stepper:
         if not self.monolithic or self.cycle is not None:
             raise ValueError("the filtered error estimate needs a monolithic implicit step")
         border = getattr(self.control, "border", None)
-        return lambda d: filtered_defect(self.problem, wear, d, border)
+        if self.control is not None and border is None:
+            raise ValueError("the filtered error estimate needs the control's border "
+                             "(the response held in the filter's solve)")
+        return lambda d: filtered_defect(self.problem, wear, d, border, self.wears)
 
     def _accepted(self, report, on_step, progress):
         if on_step is not None:

@@ -28,7 +28,7 @@ unknown of the step's Newton solve, with the force equation beside the system
 (``force_control=bordered``, :class:`tribofx.bordered.Border`; 3–4 iterations a
 step); ``secant`` finds it by the secant iteration of
 :meth:`tribofx.continuation.Continuation.reach` around complete Newton solves
-(3–4 trials of 2–3 iterations).  A uniform traction on a
+(3–4 trials of 2–3 iterations, 7–9 a step; more on a first step).  A uniform traction on a
 free mid-plane is not used: the friction moment μ F R would tilt the ball.
 Symmetry: u_y = 0, w_y = 0 on y = 0; the shape change has no normal motion on
 the mid-plane (w_z = 0).
@@ -122,6 +122,9 @@ class WearBallCase(BallWearRun):
         if v["dt"] > v["T"]:
             raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
         check_scheme(v)
+        if v["error_filter"] and v["force_control"] != "bordered":
+            raise InputError("error_filter holds the force by the border: "
+                             "force_control=bordered")
         if v["mesh_file"] and v["h_contact"]:
             raise InputError("h_contact sets the built mesh: not with mesh_file")
         aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a

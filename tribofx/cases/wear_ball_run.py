@@ -151,6 +151,7 @@ class BallWearRun:
         for key, vals in hist.items():
             record.result(key, vals, units[key])
         record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+        record.result("force_fallbacks", getattr(stepper.control, "fallbacks", 0), "-")
         record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
         record.result("steps", len(hist["time"]) - 1, "-")
         s = v["V"] * np.asarray(hist["time"])
