@@ -133,9 +133,10 @@ def test_bordered_force_control_quadratic_and_as_the_secant():
 
 
 def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
-    # a bordered solve that fails (here: its force equation never declared solved, so
-    # Newton stops at max_it) restores the entry state and the flat's position, and the
-    # secant of complete solves then holds the force: the same state as the secant alone
+    # a bordered solve that fails (here: its force equation never declared solved, and
+    # a Newton of 3 iterations at most) restores the entry state and the flat's
+    # position, and the secant of complete solves then holds the force: the same
+    # state as the secant alone
     from tribofx.bordered import Border
     from tribofx.continuation import Continuation
     from tribofx.held_response import ResponseControl
@@ -155,11 +156,23 @@ def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
         return reach(self, *a, **k)
 
     monkeypatch.setattr(Border, "converged", lambda self: False)
+    bordered = ResponseControl._bordered
+
+    def short(self, guess):
+        problem, keep = self._rec.problem, self._rec.problem.max_it
+        problem.max_it = 3
+        try:
+            return bordered(self, guess)
+        finally:
+            problem.max_it = keep
+
+    monkeypatch.setattr(ResponseControl, "_bordered", short)
     monkeypatch.setattr(ResponseControl, "solve", solve_recorded)
     monkeypatch.setattr(Continuation, "reach", reach_recorded)
     fallen, _ = _one_step("bordered")
     monkeypatch.undo()
     # the secant starts where the failed bordered solve did: δ and every unknown
+    assert len(entries) == len(starts) == 2
     for (d0, u0), (d1, u1) in zip(entries, starts):
         assert d1 == d0 and all(np.array_equal(a, b) for a, b in zip(u0, u1))
     secant, _ = _one_step("secant")
