@@ -158,19 +158,31 @@ class Border:
         P = self.problem
         P._set_unknowns(x)
         P.refresh()
+        step = self.condense(y, self.value() - self.target)
+        self.step = (self.parameter.get(), step or 0.0)
+
+    def condense(self, y, g=0.0):
+        """Eliminate δ from a solve ``y`` = K⁻¹r at the current state: y ← y + Δδ z.
+
+        Δδ = (c·y − g)/(d − c·z), z = K⁻¹b: with r = R the bordered Newton step
+        (−Δx = y), with r a right side f and g = 0 the solution Δx = y of
+        [K b; cᵀ d][Δx; −Δδ] = [f; 0] (the response with G held).  Returns Δδ, or
+        None (y unchanged) when the solve for z fails or d − c·z = 0.
+        """
         b, c = self.vectors()
         z = b.duplicate()
-        solved = solve_like(P.snes.getKSP(), b, z)
-        g = self.value() - self.target
-        schur = self.derivative() - c.dot(z)
-        delta = self.parameter.get()
-        ok = solved and schur != 0 and np.isfinite(schur)
-        step = (c.dot(y) - g) / schur if ok else 0.0
-        if step != 0.0:
+        try:
+            if not solve_like(self.problem.snes.getKSP(), b, z):
+                return None
+            schur = self.derivative() - c.dot(z)
+            if schur == 0 or not np.isfinite(schur):
+                return None
+            step = (c.dot(y) - g) / schur
             y.axpy(step, z)
-        self.step = (delta, step)
-        for v in (b, c, z):
-            v.destroy()
+            return step
+        finally:
+            for v in (b, c, z):
+                v.destroy()
 
     def trial(self, alpha):
         """Set δ to that of the trial x − α y of the line search."""
