@@ -32,9 +32,10 @@ ARGS = ["run", "wear-pin", "--set", "mesh=0", "--set", "dt=100", "--quiet"]
 CASES = {
     "wear-pin": (ARGS, 1000.0, 3, ("wear_volume", "max_wear_depth", "contact_radius",
                                    "wear_rate_integral"), "final_profile", "displacement"),
-    # BDF2 with error control: the previous swept volume, its Δt and the proposed next
-    # step are in the state
-    "wear-pin-bdf2": (ARGS + ["--set", "scheme=bdf2", "--set", "tol=1e-5"], 1000.0, 3,
+    # BDF2 with error control: the previous swept volume, its Δt, the proposed next
+    # step and the PI controller's memory (the last accepted estimate) are in the state
+    "wear-pin-bdf2": (ARGS + ["--set", "scheme=bdf2", "--set", "tol=1e-5", "--set",
+                              "controller=pi"], 1000.0, 3,
                       ("wear_volume", "max_wear_depth", "dt", "error_estimate"),
                       "final_profile", "displacement"),
     # the flat's position (held at the force F/2 by a secant iteration) is in the state

@@ -62,13 +62,14 @@ class SlowRun:
         self.record.data["newton_iterations"].append(iterations)
 
     def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None,
-            after=None, per="unit_step", filtered=False):
+            after=None, per="unit_step", filtered=False, controller="i"):
         """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
 
         ``on_step(stepper, report)`` after every accepted step (before its
         series entry); ``report()`` at the end whatever happens; ``problem``:
         what a failure carries (default the stepper); ``tol`` (mm) and ``per``: error
-        control of the steps (:meth:`tribofx.stepper.Stepper.run`); ``after()``
+        control of the steps, ``filtered`` and ``controller`` its estimate and step rule
+        (:meth:`tribofx.stepper.Stepper.run`); ``after()``
         once the run has reached T, before the report (a failure there carries
         ``problem`` too).
         """
@@ -81,7 +82,8 @@ class SlowRun:
             self.series.write(s.t)
 
         try:
-            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per, filtered=filtered)
+            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per, filtered=filtered,
+                   controller=controller)
             if after is not None:
                 after()
         except (NewtonDivergence, interrupt.Interrupted) as err:

@@ -4,23 +4,54 @@ Each evolving interface gives the error estimate of its last step
 (``step_error()``, of order ``error_order``); a step whose estimate per unit
 step exceeds tol/T (``per="unit_step"``; ``per="step"``: whose estimate exceeds
 tol) is rejected and retried with a smaller step, an accepted one proposes the
-next (see :meth:`tribofx.stepper.Stepper.run`).
+next (see :meth:`tribofx.stepper.Stepper.run`), by the elementary controller
+(``"i"``: the last estimate alone) or Gustafsson's PI controller (``"pi"``: the
+last two accepted estimates, which damps the oscillating step sequences of the
+elementary one near its stability limit; Gustafsson, ACM TOMS 17 (1991) 533;
+Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.4).
 """
 
 from . import interrupt
 from .problem import NewtonDivergence
 
-__all__ = ["CONTROLS", "run_controlled"]
+__all__ = ["CONTROLLERS", "CONTROLS", "run_controlled", "step_factor"]
 
 #: what tol bounds: the sum of the steps' estimates, or each one
 CONTROLS = ("unit_step", "step")
+#: step-size controllers: elementary (integral) or proportional-integral
+CONTROLLERS = ("i", "pi")
 
 
-def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filtered=False):
+def step_factor(r, p, r_prev=None):
+    """Return the factor of the next step from the normalized estimate ``r`` = E/allowed.
+
+    ``p``: the order of r in Δt.  Both rules aim at r = 0.9^p (the safety factor
+    0.9 on the step): with ρ = r/0.9^p, elementary ρ^(−1/p) = 0.9 r^(−1/p); with
+    ``r_prev`` (the previous accepted step's r) Gustafsson's PI rule
+    ρ^(−0.7/p) ρ_prev^(0.4/p).  Limited to [0.2, 2]; r = 0 gives 2, a NaN 0.2.
+    """
+    if r == 0:
+        return 2.0
+    if r != r:
+        return 0.2
+    if r_prev is None:
+        f = 0.9 * r ** (-1 / p)
+    else:
+        target = 0.9 ** p
+        f = (r / target) ** (-0.7 / p) * max(r_prev / target, 1e-4) ** (0.4 / p)
+    return min(2.0, max(0.2, f))
+
+
+def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filtered=False,
+                   controller="i"):
     """Run the error-controlled loop of :meth:`tribofx.stepper.Stepper.run` (``stepper``).
 
     ``filtered``: the estimates are filtered through each step's implicit
-    operator (:meth:`tribofx.stepper.Stepper.defect_filter`).
+    operator (:meth:`tribofx.stepper.Stepper.defect_filter`).  ``controller``:
+    ``"i"`` or ``"pi"`` (:func:`step_factor`); the PI controller's memory, the
+    last accepted step's normalized estimate, is the stepper's ``err_prev`` (in
+    its state and checkpoint); a rejected step is retried by the elementary
+    rule, and the step after a rejection does not grow (Gustafsson).
 
     A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
     estimate (``report.forced``): across a jump of the rate (a node entering
@@ -30,6 +61,8 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
     """
     if per not in CONTROLS:
         raise ValueError(f"unknown error control per {per!r}: unit_step or step")
+    if controller not in CONTROLLERS:
+        raise ValueError(f"unknown step-size controller {controller!r}: i or pi")
     if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
         raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
     if not stepper.steps:
@@ -61,12 +94,11 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
         allowed = tol * h / T if unit else tol
         p_eff = order - 1 if unit else order
         bad = err is not None and not err <= allowed        # NaN: rejected
-        if err is None or err == 0:
-            factor = 2.0
-        elif err != err:
-            factor = 0.2
-        else:
-            factor = min(2.0, max(0.2, 0.9 * (allowed / err) ** (1 / p_eff)))
+        r = 0.0 if err is None else err / allowed
+        pi = controller == "pi" and not bad and not rejected
+        factor = step_factor(r, p_eff, stepper.err_prev if pi else None)
+        if controller == "pi" and rejected and not bad:
+            factor = min(factor, 1.0)
         forced = bad and err == err and h <= dt_min * (1 + 1e-9)
         if bad and err != err and h <= dt_min * (1 + 1e-9):
             stepper.restore(saved)
@@ -77,6 +109,7 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
             stepper.dt = max(h * factor, dt_min)
             continue
         stepper.cuts = 0
+        stepper.err_prev = None if forced or err is None else r
         report.error, report.rejected, rejected = err, rejected, 0
         report.forced = forced
         if h == stepper.dt or factor < 1:   # a last, shortened step keeps the proposal

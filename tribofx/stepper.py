@@ -157,6 +157,7 @@ class Stepper:
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
         self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
+        self.err_prev = None      # the PI controller's memory (step_control.run_controlled)
         self._bar = (1.0, 1.0)          # (T, Δt) of the progress bar (set by run)
         self.history = {}     # the case's JSON-able records, kept in the checkpoint
         self.last_increment = None
@@ -185,9 +186,9 @@ class Stepper:
         return field_names(self._fields())
 
     def state(self):
-        """Copy of the full state: time, Δt, cut level, step count and every field."""
+        """Copy of the full state: t, Δt, cut level, steps, PI memory and every field."""
         return {"t": self.t, "dt": self.dt, "cuts": self.cuts, "steps": self.steps,
-                "fields": field_arrays(self._fields())}
+                "err_prev": self.err_prev, "fields": field_arrays(self._fields())}
 
     def restore(self, state):
         """Restore a state from :meth:`state` (or :meth:`Checkpoint.read`)."""
@@ -200,6 +201,7 @@ class Stepper:
         assign_fields(fields, state["fields"])
         self.t, self.dt, self.cuts, self.steps = (state["t"], state["dt"], state["cuts"],
                                                   state["steps"])
+        self.err_prev = state.get("err_prev")     # None in checkpoints before the PI control
         self.problem.refresh()
 
     def load_checkpoint(self, directory=None):
@@ -349,7 +351,7 @@ class Stepper:
 
     # -- slow time -------------------------------------------------------------------
     def run(self, T, dt, on_step=None, progress=None, tol=None, per="unit_step",
-            filtered=False):
+            filtered=False, controller="i"):
         """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
 
         ``on_step(stepper, report)`` is called after every accepted step, then
@@ -369,10 +371,13 @@ class Stepper:
         step's estimate at tol itself (retry factor (tol/E)^(1/p)), the local error
         control of ODE codes: where wear damps its own errors the final error stays
         near tol at far fewer steps, elsewhere it may add up to a multiple of tol.
-        ``filtered``: each estimate is that of :meth:`defect_filter`.
+        ``filtered``: each estimate is that of :meth:`defect_filter`; ``controller``:
+        ``"pi"`` proposes the next step by Gustafsson's PI rule instead
+        (:func:`tribofx.step_control.step_factor`).
         """
         if tol:
-            return run_controlled(self, T, dt, on_step, progress, tol, per, filtered)
+            return run_controlled(self, T, dt, on_step, progress, tol, per, filtered,
+                                  controller)
         self.dt = dt
         self._bar = (T, dt)
         self._progress(progress)   # resumed from a checkpoint: the bar goes on

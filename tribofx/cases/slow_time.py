@@ -5,11 +5,12 @@ Every wear case (``wear-pin``, ``wear-ball-flat``, ``wear-ball-halfspace``,
 implicit θ = 1, or the second-order BDF2 of :mod:`tribofx.bdf2`) and ``tol``, the
 error control of :func:`tribofx.step_control.run_controlled` (mm; 0: the fixed
 step ``dt``, else ``dt`` is the first step) with ``tol_per``: ``unit_step`` (the
-steps' estimates add up to tol) or ``step`` (each step's estimate within tol).
+steps' estimates add up to tol) or ``step`` (each step's estimate within tol), and
+``controller``: the step-size rule, elementary (``i``) or Gustafsson's PI (``pi``).
 """
 
 from ..params import InputError, Param
-from ..step_control import CONTROLS
+from ..step_control import CONTROLLERS, CONTROLS
 
 __all__ = ["SCHEMES", "check_scheme", "control", "scheme_params"]
 
@@ -17,7 +18,7 @@ SCHEMES = ("explicit", "implicit", "bdf2")
 
 
 def scheme_params(default="implicit", note="", filtered=False):
-    """Return the ``scheme``, ``tol`` and ``tol_per`` parameters (``note`` ends scheme's help).
+    """Return ``scheme``, ``tol``, ``tol_per`` and ``controller`` (``note`` ends scheme's help).
 
     ``filtered``: also ``error_filter`` (a case whose wear step is one monolithic
     Newton problem, :func:`tribofx.error_filter.filtered_defect`).
@@ -36,18 +37,24 @@ def scheme_params(default="implicit", note="", filtered=False):
             Param("tol_per", str, "unit_step", "-",
                   "tol per unit_step (the steps' estimates add up to tol over T) or per "
                   "step (each step's estimate within tol, as ODE codes: for wear that "
-                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS), *extra)
+                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS),
+            Param("controller", str, "i", "-",
+                  "tol: the step-size rule, elementary i (the last estimate) or pi "
+                  "(Gustafsson's proportional-integral rule: the last two)",
+                  choices=CONTROLLERS), *extra)
 
 
 def control(v):
-    """Return the keywords tol, per and filtered of :meth:`tribofx.slow_run.SlowRun.run`."""
+    """Return the error control's keywords of :meth:`tribofx.slow_run.SlowRun.run`."""
     return {"tol": v["tol"] or None, "per": v["tol_per"],
-            "filtered": bool(v.get("error_filter", False))}
+            "filtered": bool(v.get("error_filter", False)), "controller": v["controller"]}
 
 
 def check_scheme(v):
-    """One-line error for ``tol`` > 0 without ``scheme=bdf2``, or a filter without ``tol``."""
+    """One-line error for tol > 0 without bdf2, or a filter or PI controller without tol."""
     if v["tol"] > 0 and v["scheme"] != "bdf2":
         raise InputError("tol > 0 (error control) needs scheme=bdf2")
     if v.get("error_filter") and not v["tol"] > 0:
         raise InputError("error_filter filters the estimates of the error control: set tol > 0")
+    if v["controller"] != "i" and not v["tol"] > 0:
+        raise InputError("controller chooses the steps of the error control: set tol > 0")
