@@ -129,9 +129,10 @@ parser.add_argument("--bdf2-tols", default="",
                     help="with --accuracy-dts: also BDF2 with error control at these "
                          "comma-separated tol (mm) to --t-explicit; the reference is then BDF2")
 parser.add_argument("--to-T-tols", default="",
-                    help="with --accuracy-dts and --bdf2-tols: also BDF2 under error control "
-                         "to T at these comma-separated tol (mm; the tightest is the others' "
-                         "reference), against the explicit legs extrapolated to T")
+                    help="BDF2 under error control to T at these comma-separated tol (mm; the "
+                         "tightest is the others' reference), with --accuracy-dts and "
+                         "--bdf2-tols against the explicit legs extrapolated to T, with "
+                         "--late-window and --to-T-ref against the explicit error at T")
 parser.add_argument("--to-T-ref", type=float, default=0.0,
                     help="with --to-T-tols: the reference at T is a BDF2 run at this tol "
                          "with the raw (unfiltered) per-step estimate, not the tightest tol")
@@ -154,22 +155,26 @@ args = parser.parse_args()
 comm = MPI.COMM_WORLD
 units = {p.name: p.unit for p in WearBallCase.params}
 sets = dict(kv.split("=", 1) for kv in args.set)
+SOLVE_ONLY = ("error_filter", "controller")     # of the error control: runs with tol only
 v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh),
-                                   **{k: x for k, x in sets.items() if k != "error_filter"}})
+                                   **{k: x for k, x in sets.items() if k not in SOLVE_ONLY}})
 WearBallCase.validate(v0)
 T = v0["T"]
-if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols):
-    parser.error("--to-T-tols needs --accuracy-dts and --bdf2-tols (the window's accuracies)")
+if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols or args.to_T_ref):
+    parser.error("--to-T-tols needs --to-T-ref, or --accuracy-dts and --bdf2-tols (the "
+                 "window's accuracies)")
 
 
 def run(tmp, t_stop=None, on_step=None, **over):
     """One run; returns (results, record, wall time).
 
-    ``error_filter`` of ``--set`` applies to the runs under error control only.
+    ``error_filter`` and ``controller`` of ``--set`` apply to the runs under error
+    control only.
     """
     given = {**sets, **{k: str(x) for k, x in over.items()}}
     if not float(given.get("tol", 0) or 0):
-        given.pop("error_filter", None)
+        for k in SOLVE_ONLY:
+            given.pop(k, None)
     values = resolve(WearBallCase.params, {"mesh": str(args.mesh), **given})
     WearBallCase.validate(values)
     rec = RunRecord("wear-ball-flat", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
@@ -229,8 +234,12 @@ def accuracy_study(t_e, dts, tols=()):
     return res
 
 
-def to_T_study(tols, acc):
+def to_T_study(tols, acc=None, late=None):
     """BDF2 under error control to T at ``tols``, against the explicit legs of ``acc`` to T.
+
+    With ``late`` (the result of :func:`late_window`) instead: against the explicit
+    error at T that the late window measures and its cost per step times ⌈T/Δt⌉
+    (EXTRAPOLATED); at equal accuracy the loosest tol whose error at T is within it.
 
     The tightest tol is the reference of the others at T (or, with ``--to-T-ref``,
     a BDF2 run at that tol with the unfiltered estimate).  An explicit leg's cost
@@ -268,6 +277,24 @@ def to_T_study(tols, acc):
     res = {"T": T, "bdf2": rows, "equal_accuracy": []}
     if args.to_T_ref:
         res["reference"] = ref_T
+    if late is not None:
+        steps_T = math.ceil(T / late["explicit_dt"])
+        wall_T = late["explicit_wall_per_step_s"] * steps_T
+        e_T = late["explicit_error_T_mm"]
+        ok = [b for b in rows if b.get("profile_error_mm", math.inf) <= e_T]
+        row = {"explicit_dt": late["explicit_dt"], "explicit_error_T_mm": e_T,
+               "explicit_steps_T": steps_T, "explicit_wall_time_T_s": wall_T,
+               "extrapolated": True}
+        if ok:
+            hit = max(ok, key=lambda b: b["tol"])
+            row.update(tol=hit["tol"], bdf2_error_T_mm=hit["profile_error_mm"],
+                       bdf2_steps_T=hit["steps"], bdf2_wall_time_T_s=hit["wall_time_s"],
+                       cost_ratio=wall_T / hit["wall_time_s"])
+        res["equal_accuracy"].append(row)
+        if comm.rank == 0:
+            print("equal accuracy at T:", row, flush=True)
+    if acc is None:
+        return res
     window = {x["tol"]: x for x in acc["runs"] if x["scheme"] == "bdf2" and "failed" not in x}
     for e in (x for x in acc["runs"] if x["scheme"] == "explicit" and "failed" not in x):
         steps_T = math.ceil(T / e["dt"])
@@ -295,7 +322,7 @@ def late_window(t1, dt_e, tol):
 
     def build(**over):
         v = resolve(WearBallCase.params, {"mesh": str(args.mesh), **{
-            k: x for k, x in sets.items() if k != "error_filter"}, **over})
+            k: x for k, x in sets.items() if k not in SOLVE_ONLY}, **over})
         st = WearBallCase.build(v)
         return v, st
 
@@ -341,9 +368,9 @@ if args.accuracy_dts:
     dts = [float(x) for x in args.accuracy_dts.split(",")]
     tols = [float(x) for x in args.bdf2_tols.split(",") if x.strip()]
     out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts, tols)
-    if args.to_T_tols:
-        out["to_T"] = to_T_study([float(x) for x in args.to_T_tols.split(",")],
-                                 out["accuracy_study"])
+if args.to_T_tols:
+    out["to_T"] = to_T_study([float(x) for x in args.to_T_tols.split(",")],
+                             out.get("accuracy_study"), out.get("late_window"))
 if out:
     if comm.rank == 0:
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
