@@ -84,15 +84,37 @@ estimate at 1e-3: 76 steps, 228 iterations, 434 s, 1.2e-5 mm; filtered at 3e-4, 
 3e-5: 19, 31, 72 steps, 188, 259, 414 s, 6.7e-5, 2.8e-5, 2.3e-5 mm (the largest errors
 at the nodes that enter the contact within the last, longest steps). ``--late-window
 980,0.08,1e-6``: from the state of BDF2 at 980 s the explicit run errs at T by 6.0e-6
-mm against BDF2 per step at 1e-6 from the same state (250 steps, 428 s): a lower bound
-of its error at T. The explicit run to T: 12,500 steps at 1.7–2.0 s (the late and the
-early window), ≈ 21,400–25,300 s, EXTRAPOLATED. BDF2 per step at 3e-4 is the reference
-at T, its own error there unmeasured (at 20 s: 4.5e-5 mm against the explicit's
-4.1e-5): if within the explicit's error at T (at least 6.0e-6 mm), BDF2 is about
-20–23× cheaper at equal accuracy; 49–58× at tol 1e-3 (1.2e-5 mm from the reference),
-83–98× filtered at 1e-4 (2.8e-5 mm). Not the issue's 100×: the explicit scheme at its
-critical step is accurate, since the wear damps the fast modes that limit its
-stability, and BDF2's steps follow the scar's growth (Δt ≈ 0.03 t at tol 1e-3).
+mm against BDF2 per step at 1e-6 from the same state (250 steps, 428 s); from 900 s
+(``--late-window 900,0.08,1e-6``: 1250 explicit steps, 2170 s, 1.74 s a step) by
+6.02e-6 mm: the same, so the errors the explicit run makes before the last ~20 s are
+damped away by T and 6.0e-6 mm is its error at T.  The explicit run to T: 12,500
+steps at 1.74–2.0 s (the late and the early window), ≈ 21,700–25,300 s, EXTRAPOLATED.
+
+At T against BDF2 per step at 1e-4 (``--to-T-ref 1e-4``: 391 steps, 150 rejected,
+805 iterations, 2356 s), the legs run two at a time on the 2 cores (scratch drivers of
+the same calls; ``--late-window 900,0.08,1e-6 --to-T-tols ... --to-T-ref 1e-4`` runs
+them in one go and picks the loosest tol within the explicit error at T):
+
+=====================  =====  ========  ===========  ==================
+BDF2 to T              steps  wall (s)  error at T   at equal accuracy
+=====================  =====  ========  ===========  ==================
+per step 1e-3          76     511       9.7e-6 mm    no (> 6.0e-6)
+per step 5e-4          124    713       3.2e-6 mm    30–35×
+per step 3e-4          182    1101      2.5e-6 mm    20–23×
+per step 1e-3, PI      95     579       4.9e-6 mm    **38–44×**
+filtered 1e-4          31     254       2.8e-5 mm    no
+filtered 3e-5          72     393       2.3e-5 mm    no
+=====================  =====  ========  ===========  ==================
+
+(PI: ``--set controller=pi``, Gustafsson's step rule.)  About 40× cheaper at equal
+accuracy, not the issue's 100×: the explicit scheme at its critical step is accurate,
+since the wear damps the fast modes that limit its stability (its error at T is the
+error of its last ~20 s), while BDF2's error at T is set by the nodes that enter the
+contact within its last steps: per step, the largest error sits at the scar's edge at
+T (r ≈ 1.57 mm; 3–8× the next largest), and the steps stay near 0.01–0.03 t (tol 3e-4
+to 1e-3); filtered, the largest errors sit at the nodes just outside (r ≈ 1.58–1.62
+mm) and stall at 2.3e-5 mm.  At ≈ 6 s a step (3 Newton iterations, the LU 73 % of
+it) 100× would need ≤ 38 steps to T.
 """
 
 import argparse
