@@ -157,7 +157,8 @@ parser.add_argument("--to-T-tols", default="",
                          "--late-window and --to-T-ref against the explicit error at T")
 parser.add_argument("--to-T-ref", type=float, default=0.0,
                     help="with --to-T-tols: the reference at T is a BDF2 run at this tol "
-                         "with the raw (unfiltered) per-step estimate, not the tightest tol")
+                         "with the raw (unfiltered) per-step estimate and the elementary "
+                         "step rule, not the tightest tol")
 parser.add_argument("--ref-tol", type=float, default=0.0,
                     help="with --bdf2-tols: the window's reference is BDF2 per step at this "
                          "tol (raw estimate), not the fixed --ref-dt")
@@ -275,7 +276,7 @@ def to_T_study(tols, acc=None, late=None):
     with tempfile.TemporaryDirectory() as tmp:
         if args.to_T_ref:
             r, rec, wall = run(tmp, scheme="bdf2", dt=min(100.0, T), tol=args.to_T_ref,
-                               error_filter="false")
+                               tol_per="step", error_filter="false", controller="i")
             ref_T = {"tol": args.to_T_ref, "filtered": False, "steps": r["steps"],
                      "wall_time_s": wall, "profile": profile_at(rec)}
             if comm.rank == 0:

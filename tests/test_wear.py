@@ -862,6 +862,33 @@ def test_bdf2_error_control_follows_the_tolerance(controller):
     assert steps[0] < steps[1] < steps[2] <= 15 * steps[0]
 
 
+@pytest.mark.parametrize("p", [1, 2, 3])
+def test_step_rules_settle_at_their_set_point(p):
+    """The step rules of :func:`tribofx.step_control.step_factor` on the model of a
+    smooth solution, a step's normalized estimate r = C Δt^p with C fixed, from r₀ =
+    0.5 (within the growth limit 2 for p ≤ 3): the elementary rule lands on its set
+    point r = 0.9^p (the safety factor 0.9 on the step) in one step; Gustafsson's PI
+    rule settles at the same set point, its
+    deviation x = log(r/0.9^p) following x_{n+1} = 0.3 x_n + 0.4 x_{n−1} (p log Δt of
+    the rule's exponents −0.7/p, 0.4/p), whose poles are 0.8 and −0.5: the deviation
+    falls by 0.8 a step (checked to 1e-6 from step 20 on, where the −0.5 mode is below
+    0.5^20/0.8^20 ≈ 1e-4 of it), and is below 1e-6 after 80 steps (0.8^80 ≈ 2e-8 of
+    the start's |x₀| ≤ 0.6).  A rule with the 0.9 outside the PI product would settle
+    at 0.9^(p/0.3) instead."""
+    from tribofx.step_control import step_factor
+
+    C, target = 0.5, 0.9 ** p          # Δt₀ = 1
+    h = step_factor(C, p)
+    assert C * h ** p == pytest.approx(target, rel=1e-12)
+    hs, rs = [1.0], [C]
+    for _ in range(80):
+        hs.append(hs[-1] * step_factor(rs[-1], p, rs[-2] if len(rs) > 1 else None))
+        rs.append(C * hs[-1] ** p)
+    x = np.log(np.array(rs) / target)
+    assert abs(x[-1]) < 1e-6
+    assert np.allclose(x[21:61] / x[20:60], 0.8, rtol=0, atol=1e-3)
+
+
 @pytest.mark.mpi
 def test_bdf2_error_control_per_step():
     """tol_per=step (each step's Milne estimate within tol, the local error control of

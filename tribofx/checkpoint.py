@@ -36,8 +36,8 @@ def field_names(objects):
 class Checkpoint:
     """The latest accepted state on disk: ``state_r<rank>.npz`` per rank and ``state.json``.
 
-    The JSON holds the scalars of the state (a stepper's time, Δt, cut level
-    and step count; a sweep's position, :mod:`tribofx.restart`), the MPI size
+    The JSON holds the scalars of the state (a stepper's time, Δt, cut level,
+    step count and PI memory; a sweep's position, :mod:`tribofx.restart`), the MPI size
     and the names and shapes of the arrays; the npz the local arrays (ghosts
     included) of every state field, in the order given.  ``state["steps"]``
     counts the writes (it detects a torn write).  Files are

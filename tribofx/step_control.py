@@ -28,7 +28,9 @@ def step_factor(r, p, r_prev=None):
     ``p``: the order of r in Δt.  Both rules aim at r = 0.9^p (the safety factor
     0.9 on the step): with ρ = r/0.9^p, elementary ρ^(−1/p) = 0.9 r^(−1/p); with
     ``r_prev`` (the previous accepted step's r) Gustafsson's PI rule
-    ρ^(−0.7/p) ρ_prev^(0.4/p).  Limited to [0.2, 2]; r = 0 gives 2, a NaN 0.2.
+    ρ^(−0.7/p) ρ_prev^(0.4/p), ρ_prev floored at 0.01 (a far smaller previous
+    estimate, e.g. of a start-up step, would cut an accepted step by up to 5×).
+    Limited to [0.2, 2]; r = 0 gives 2, a NaN 0.2.
     """
     if r == 0:
         return 2.0
@@ -38,7 +40,7 @@ def step_factor(r, p, r_prev=None):
         f = 0.9 * r ** (-1 / p)
     else:
         target = 0.9 ** p
-        f = (r / target) ** (-0.7 / p) * max(r_prev / target, 1e-4) ** (0.4 / p)
+        f = (r / target) ** (-0.7 / p) * max(r_prev / target, 1e-2) ** (0.4 / p)
     return min(2.0, max(0.2, f))
 
 
@@ -49,9 +51,12 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
     ``filtered``: the estimates are filtered through each step's implicit
     operator (:meth:`tribofx.stepper.Stepper.defect_filter`).  ``controller``:
     ``"i"`` or ``"pi"`` (:func:`step_factor`); the PI controller's memory, the
-    last accepted step's normalized estimate, is the stepper's ``err_prev`` (in
-    its state and checkpoint); a rejected step is retried by the elementary
-    rule, and the step after a rejection does not grow (Gustafsson).
+    last accepted step's normalized estimate and its order ``[r, p]``, is the
+    stepper's ``err_prev`` (in its state and checkpoint; None after a forced
+    step or a zero estimate, and unused when the order changes, e.g. from the
+    start-up estimate to Milne's); a rejected step is retried by the elementary
+    rule, and the step after a rejection or a Newton failure's halving does not
+    grow (Gustafsson).
 
     A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
     estimate (``report.forced``): across a jump of the rate (a node entering
@@ -95,9 +100,14 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
         p_eff = order - 1 if unit else order
         bad = err is not None and not err <= allowed        # NaN: rejected
         r = 0.0 if err is None else err / allowed
-        pi = controller == "pi" and not bad and not rejected
-        factor = step_factor(r, p_eff, stepper.err_prev if pi else None)
-        if controller == "pi" and rejected and not bad:
+        # PI: the memory of the last accepted step of the same estimator (its order p)
+        # on a step that follows neither a rejection nor a Newton failure's halving
+        after_cut = rejected or stepper.cuts
+        memory = stepper.err_prev
+        pi = (controller == "pi" and not bad and not after_cut and memory is not None
+              and memory[1] == p_eff)
+        factor = step_factor(r, p_eff, memory[0] if pi else None)
+        if controller == "pi" and after_cut and not bad:
             factor = min(factor, 1.0)
         forced = bad and err == err and h <= dt_min * (1 + 1e-9)
         if bad and err != err and h <= dt_min * (1 + 1e-9):
@@ -109,9 +119,10 @@ def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filt
             stepper.dt = max(h * factor, dt_min)
             continue
         stepper.cuts = 0
-        stepper.err_prev = None if forced or err is None else r
+        if h == stepper.dt:       # a last, shortened step keeps the memory as the proposal
+            stepper.err_prev = None if forced or not r > 0 else [r, p_eff]
         report.error, report.rejected, rejected = err, rejected, 0
         report.forced = forced
         if h == stepper.dt or factor < 1:   # a last, shortened step keeps the proposal
-            stepper.dt = h * factor
+            stepper.dt = max(h * factor, dt_min)
         stepper._accepted(report, on_step, progress)

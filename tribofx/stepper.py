@@ -48,10 +48,11 @@ a different assembly, a ``problem_class`` with the constructor of
 :class:`tribofx.problem.Problem`.
 
 State: :meth:`Stepper.state` holds the time, the nominal Δt, the cut level, the
-step count, every Function and Constant of the components (unknowns,
-histories, countersurface positions) and the extra ``parameters`` (e.g. load
-factors).  A :class:`tribofx.checkpoint.Checkpoint` writes it after every accepted step: one NumPy
-``.npz`` of the local arrays per rank and a JSON file of the scalars; a restore
+step count, the PI step rule's memory (``err_prev``), every Function and Constant
+of the components (unknowns, histories, countersurface positions) and the extra
+``parameters`` (e.g. load factors).  A :class:`tribofx.checkpoint.Checkpoint`
+writes it after every accepted step: one NumPy ``.npz`` of the local arrays per
+rank and a JSON file of the scalars; a restore
 needs the same mesh partition (the same number of ranks).  Units: s, mm.
 """
 
