@@ -399,7 +399,7 @@ if args.accuracy_dts:
     tols = [float(x) for x in args.bdf2_tols.split(",") if x.strip()]
     out["accuracy_study"] = accuracy_study(min(args.t_explicit, T), dts, tols)
 if args.to_T_tols:
-    out["to_T"] = to_T_study([float(x) for x in args.to_T_tols.split(",")],
+    out["to_T"] = to_T_study([float(x) for x in args.to_T_tols.split(",") if x.strip()],
                              out.get("accuracy_study"), out.get("late_window"))
 if out:
     if comm.rank == 0:
