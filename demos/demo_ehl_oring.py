@@ -149,12 +149,15 @@ problem = Problem(components, name="oring", max_it=40, max_backtracks=10,
 # geometry, so that the coupled Newton method starts from a film pressure
 # consistent with the gap; then the groove bottom moves to r_g (squeeze), p_s
 # rises to its targets.  The sealed pressure drives both the follower load and
-# the film's pressure at the sealed end (``on_set``).
+# the film's pressure at the sealed end (``on_set``).  The first coupled solve
+# has no physical parameter to cut if it fails (its active sets of contact and
+# cavitation may cycle from the decoupled start): ``solve_by_homotopy`` then
+# marches s from 0 to 1 in R(u) − (1 − s) R(u₀) = 0, cutting s on failure.
 
 # +
 for unknowns in ([film.u_s], [film.p, film.lam]):
-    Problem(components, unknowns=unknowns, name="oring_start").solve()
-problem.solve()
+    Problem(components, unknowns=unknowns, name="oring_start").solve_by_homotopy()
+problem.solve_by_homotopy()
 iterations = []
 
 

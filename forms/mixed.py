@@ -35,8 +35,8 @@ the film parameter H = h/σ:
 
 The asperities' traction on the layer is the normal pressure p_a on the
 current surface and a boundary friction μ_b p_a against the relative slip
-(:func:`asperity_traction`, regularised by a slip speed ε_v).  The asperities,
-not the film, wear the surface: Archard's law driven by p_a
+(:func:`asperity_traction`, regularised by a slip speed ε_v relative to the
+surfaces' speeds).  The asperities, not the film, wear the surface: Archard's law driven by p_a
 (:func:`asperity_wear_load`).  Units: mm, N, s, MPa.
 """
 
@@ -211,19 +211,30 @@ def average_flow(kin, mu, sigma, phi_x, phi_s, share):
         mu / phi_x(H)
 
 
-def asperity_traction(p_a, kin, F, N, mu_b=0.0, eps_v=1e-3):
+def asperity_traction(p_a, kin, F, N, mu_b=0.0, delta_v=1e-3, floor_v=1e-12):
     """Nominal traction of the asperities on the layer (MPa per reference area).
 
     −p_a J F⁻ᵀN (the normal pressure on the current surface, Nanson) and the
-    boundary friction −μ_b p_a j v_rel/√(|v_rel|² + ε_v²) against the slip
-    (ε_v in mm/s regularises the direction at rest).
+    boundary friction against the slip v_rel = v_layer − v_counter,
+
+        −μ_b p_a j v_rel/√(|v_rel|² + ε_v²),   ε_v² = δ_v² (|v_layer|² + |v_counter|²) + ε_0²,
+
+    regularised at rest over a slip speed ε_v that follows the speeds of the two
+    surfaces (δ_v = ``delta_v``, relative), not a constant in mm/s: in sliding at
+    any speed U the friction is μ_b p_a (1 − δ_v²/2 + …), so a Stribeck curve
+    levels at μ_b in the boundary regime however slow the rig; in pure rolling
+    (v_rel = 0) it vanishes.  ε_0 = ``floor_v`` (mm/s) keeps the tangent finite
+    when both surfaces are at rest.
     """
     nJ = ufl.det(F) * ufl.inv(F).T * N
     T = -p_a * nJ
     if mu_b:
-        v_rel = kin.v_layer if kin.v_counter is None else kin.v_layer - kin.v_counter
+        v_l = kin.v_layer
+        v_c = ufl.zero(len(v_l)) if kin.v_counter is None else kin.v_counter
+        v_rel = v_l - v_c
+        eps2 = delta_v**2 * (ufl.dot(v_l, v_l) + ufl.dot(v_c, v_c)) + floor_v**2
         j = ufl.sqrt(ufl.dot(nJ, nJ))
-        T = T - mu_b * p_a * j * v_rel / ufl.sqrt(ufl.dot(v_rel, v_rel) + eps_v**2)
+        T = T - mu_b * p_a * j * v_rel / ufl.sqrt(ufl.dot(v_rel, v_rel) + eps2)
     return T
 
 

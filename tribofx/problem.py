@@ -164,6 +164,7 @@ class Problem(NewtonControl):
         self._cache = None
         self._report = None
         self.report = None
+        self._homotopy = None   # (s, R(u₀)) of solve_by_homotopy, None outside it
 
     def _create_snes(self):
         """SNES of the blocked UFL system (public NonlinearProblem), residual wrapped."""
@@ -320,6 +321,9 @@ class Problem(NewtonControl):
                 c.add_residual(b, self)
             b.assemblyBegin()
             b.assemblyEnd()
+        if self._homotopy is not None and self._homotopy[0] != 1.0:
+            s, r0 = self._homotopy
+            b.axpy(-(1.0 - s), r0)
 
     # -- solve ---------------------------------------------------------------
     def solve(self, verbose=False):
@@ -370,6 +374,70 @@ class Problem(NewtonControl):
             ui.x.scatter_forward()
         self.refresh()
         return report
+
+    def solve_by_homotopy(self, verbose=False, min_step=2.0**-8, direct=True):
+        """Newton from the current state; if it fails, the Newton homotopy with step cuts.
+
+        The first trial is :meth:`solve` itself (a solve that converges is
+        unchanged).  If it fails, the state at entry u₀ is the solution at s = 0 of
+
+            H(u, s) = R(u) − (1 − s) R(u₀) = 0,
+
+        (on a Dirichlet row R = x − g: the prescribed value moves from x₀ to g),
+        and s is marched to 1: a converged step doubles the increment (up to
+        the rest), a failed one restores the last converged s and halves it.
+        The tangent of H is that of R, so every step is an exact Newton solve;
+        no intermediate state is committed (histories do not move).  This is
+        the cut-and-retry of a solve that has no physical parameter to cut: a
+        first coupled solve from a decoupled start, a step's solve of a
+        prescribed history.  Raises :class:`NewtonDivergence` (state at entry)
+        when the increment falls below ``min_step``.  Returns the report of the
+        last solve, with ``iterations`` the total over the trials.  ``direct``
+        False: march s from the start, without the first trial.
+        """
+        if self.border is not None:
+            raise ValueError("the Newton homotopy does not apply to a bordered (held) solve")
+        entry = self.state()
+        first, spent = "started at s = 0", 0
+        if direct:
+            try:
+                return self.solve(verbose=verbose)
+            except NewtonDivergence as err:
+                first = str(err)
+            spent = self.report.iterations
+        x0 = self._x
+        self._get_unknowns(x0)
+        r0 = x0.duplicate()
+        self._cache = None
+        self._evaluate(self.snes, x0, r0)
+        s, ds, last = 0.0, 0.5, None
+        try:
+            while s < 1.0:
+                trial = min(1.0, s + ds)
+                saved = self.state()
+                self._homotopy = (trial, r0)
+                try:
+                    last = self.solve(verbose=verbose)
+                except NewtonDivergence:
+                    spent += self.report.iterations
+                    self.restore(saved)
+                    ds *= 0.5
+                    if ds < min_step:
+                        self.restore(entry)
+                        raise NewtonDivergence(
+                            f"{first}; the Newton homotopy stalled at s = {s:.4g} "
+                            f"(increment {ds:.1e})") from None
+                    continue
+                spent += last.iterations
+                s = trial
+                ds = min(2 * ds, 1.0 - s) if s < 1.0 else ds
+        finally:
+            self._homotopy = None
+            self._cache = None
+            r0.destroy()
+        last.iterations = spent
+        self.report = last
+        return last
 
     def _linear_state(self):
         """Describe the last linear solve's failure for an error message ('' if it converged).

@@ -76,13 +76,14 @@ class Roughness:
             :func:`forms.mixed.rough_shear_factors`; Φ_fs may be None), or None
             (the smooth shear μ/h, h/2 on the nominal gap).
         mu_b: boundary friction coefficient of the asperity contact.
-        eps_v: slip speed (mm/s) regularising the boundary friction's direction.
+        delta_v: relative slip speed δ_v regularising the boundary friction's direction,
+            ε_v = δ_v (|v_layer|² + |v_counter|²)^½ (:func:`forms.mixed.asperity_traction`).
     """
 
     def __init__(self, sigma, asperity=None, flow="patir-cheng", share=-1.0, mu_b=0.0,
-                 eps_v=1e-3, shear="patir-cheng"):
-        self.sigma, self.share, self.mu_b, self.eps_v = float(sigma), float(share), \
-            float(mu_b), float(eps_v)
+                 delta_v=1e-3, shear="patir-cheng"):
+        self.sigma, self.share, self.mu_b, self.delta_v = float(sigma), float(share), \
+            float(mu_b), float(delta_v)
         self.asperity = asperity
         self.flow = (patir_cheng_pressure(), patir_cheng_shear()) if flow == "patir-cheng" \
             else flow

@@ -276,11 +276,11 @@ class Stepper:
         P, cyc = self.problem, self.cycle
         cyc.start()
         P.commit()
-        its = P.solve(verbose=self.verbose).iterations
+        its = P.solve_by_homotopy(verbose=self.verbose).iterations
         P.commit()
         for pos in cyc.run_in:
             cyc.move(pos)
-            its += P.solve(verbose=self.verbose).iterations
+            its += P.solve_by_homotopy(verbose=self.verbose).iterations
             P.commit()
         return its
 
@@ -296,7 +296,7 @@ class Stepper:
         dW = [np.zeros_like(w.rate_bar.x.array) for w in self.wears]
         for pos in cyc.positions:
             cyc.move(pos)
-            its += P.solve(verbose=self.verbose).iterations
+            its += P.solve_by_homotopy(verbose=self.verbose).iterations
             cyc.record_work()
             for d, w in zip(dW, self.wears):
                 d += w.nodal_increment()

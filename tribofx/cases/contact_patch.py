@@ -95,7 +95,7 @@ class ContactPatchCase:
         run = cls.build(v)
         contact, problem = run["contact"], run["problem"]
         record.data["num_dofs"] = problem.num_dofs
-        record.data["newton_iterations"].append(problem.solve(verbose=verbose).iterations)
+        record.data["newton_iterations"].append(problem.solve_by_homotopy(verbose=verbose).iterations)
         d = contact.nodal_data(problem)
         comm = contact.slave.mesh.comm
         w, t = d["weight_ref"], -d["T_n"]

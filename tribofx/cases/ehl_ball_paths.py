@@ -97,7 +97,7 @@ class BallPaths:
         held = HeldResponse(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
         if start is None:
             cls.hertz_start(run, v, W1, v["U"])
-            its0 = problem.solve(verbose=verbose).iterations
+            its0 = problem.solve_by_homotopy(verbose=verbose).iterations
             if not film.min_film() > 0:
                 raise NewtonDivergence(
                     f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "

@@ -198,8 +198,8 @@ class ORingSeal(SealOutputs):
         """
         film = self.film
         for sub in ([film.u_s], [film.p] + ([film.lam] if film.lam is not None else [])):
-            Problem(self.components, unknowns=sub, name="oring_start").solve()
-        self.iterations.append(self.problem.solve().iterations)
+            Problem(self.components, unknowns=sub, name="oring_start").solve_by_homotopy()
+        self.iterations.append(self.problem.solve_by_homotopy().iterations)
         self._march(ConstantParameter(self.bottom.counterpart.offset, 0),
                     self.r_g - self.r_g0, steps)
 

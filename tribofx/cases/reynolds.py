@@ -108,7 +108,7 @@ class SliderCase:
         run = film, problem = cls.build(v)
         record.data["num_dofs"] = problem.num_dofs
         try:
-            report = problem.solve(verbose=verbose)
+            report = problem.solve_by_homotopy(verbose=verbose)
         except NewtonDivergence as err:
             err.problem = run
             raise

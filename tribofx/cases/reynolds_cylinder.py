@@ -171,7 +171,7 @@ class CylinderCase:
                 run = film, problem = cls.build(dict(v, mesh=n))
                 if prev is not None:
                     film.set_from_profile(prev)
-                report = problem.solve(verbose=verbose)
+                report = problem.solve_by_homotopy(verbose=verbose)
                 its.append(report.iterations)
                 prev = film.sub.comm.bcast(film.profile(), root=0)
         except NewtonDivergence as err:

@@ -164,7 +164,7 @@ class WearBallHalfspaceCase(GrooveRun):
         stepper's deformation problem (implicit: all unknowns, Δt = 0 keeps w₂ = 0).
         """
         stepper.wear.body.u.x.array.reshape(-1, 3)[:, 2] = info["delta"]
-        rep = stepper.problem.solve(verbose)
+        rep = stepper.problem.solve_by_homotopy(verbose)
         stepper.problem.commit()
         return rep
 

@@ -114,17 +114,17 @@ class ReciprocatingRun:
         shots = []
         cyc.start()
         P.commit()
-        P.solve()
+        P.solve_by_homotopy()
         P.commit()
         shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
         for pos in cyc.run_in:
             cyc.move(pos)
-            P.solve()
+            P.solve_by_homotopy()
             P.commit()
         shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
         for pos in cyc.positions[:cyc.fast_steps // 4]:
             cyc.move(pos)
-            P.solve()
+            P.solve_by_homotopy()
             P.commit()
         shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
         st.restart()

@@ -81,7 +81,7 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     stepper, load = case.build(v, n=n)
     case.load_up(stepper, load, v)
     seed_checkerboard(stepper.wear, v["W"], n, eps)
-    stepper.problem.solve()
+    stepper.problem.solve_by_homotopy()
     stepper.problem.commit()
     start = stepper.state()
     a0 = checkerboard_amplitude(stepper.wear)

@@ -309,7 +309,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
             r = self.roughness
             self.asperity = mixed.asperity_traction(self._rough[2](self.kin_bulk.h),
                                                     self.kin_bulk, self._F, self._N_b,
-                                                    r.mu_b, r.eps_v)
+                                                    r.mu_b, r.delta_v)
             self.traction = self.traction + self.asperity
 
     def shear_factors(self, h):
