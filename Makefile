@@ -33,6 +33,7 @@ test-slow: setup
 
 lint: setup
 	$(VENV)/bin/ruff check .
+	$(VENV)/bin/mypy
 
 # the full Fig. 4 wear study (benchmarks/bench_wear_study.py) takes hours, and the
 # direct/iterative size sweep (benchmarks/bench_solvers.py --ranks2) about an hour: run them by hand

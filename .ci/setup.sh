@@ -46,6 +46,6 @@ LOCK=(-c constraints.txt)
 [ "${UNLOCKED:-0}" = 1 ] && LOCK=()
 "$VENV/bin/python" -m pip install -q "${LOCK[@]}" --upgrade pip
 "$VENV/bin/python" -m pip install -q "${LOCK[@]}" "dolfinx-solver-real==0.11.0.post0" gmsh meshio \
-  matplotlib tqdm pytest pytest-xdist ruff nanobind scikit-build-core numpy cmake ninja
+  matplotlib tqdm pytest pytest-xdist ruff mypy nanobind scikit-build-core numpy cmake ninja
 "$VENV/bin/python" -m pip install -q "${LOCK[@]}" --no-build-isolation -e .
 UCX_TLS=self,sm,tcp "$VENV/bin/python" -c "import dolfinx_solver, dolfinx, gmsh, tribofx._cpp; print('setup: dolfinx', dolfinx.__version__, 'gmsh', gmsh.__version__, 'tribofx ok')"

@@ -55,7 +55,7 @@ def build(problem, level, comm):
     from tribofx.params import resolve
 
     if problem == "groove":
-        from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
+        from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
 
         v = Case.resolved(resolve(Case.params, {"mesh": str(level)}))
         stepper, info = Case.build(v, comm)

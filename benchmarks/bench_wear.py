@@ -5,7 +5,7 @@ small-deformation regime):
 
 1. the critical step Δt_cr of the explicit scheme on this mesh and modulus, by
    bisection with the flat-pin stability probe
-   (:func:`tribofx.cases.wear_stability.pin_critical_step`);
+   (:func:`tribofx.studies.wear_stability.pin_critical_step`);
 2. a reference worn profile: Richardson extrapolation 2 p(Δt/2) − p(Δt) of two
    implicit runs with Δt = 10 s and 5 s (second order);
 3. implicit, Δt = 200 s (5 steps), and explicit at its largest stable step
@@ -36,11 +36,11 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear import WearPinCase
-from tribofx.cases.wear_stability import pin_critical_step
+from tribofx.cases.wear_pin import WearPinCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
+from tribofx.studies.wear_stability import pin_critical_step
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--E", type=float, default=640.0)

@@ -4,7 +4,7 @@ In one run, for the ``wear-ball-flat`` defaults (R = 5 mm, E = 100 GPa, F = 100 
 k = 1e-8 mm³/(N·mm), V = 10 mm/s, μ = 0.4, T = 1000 s, mesh level 0):
 
 1. the critical step Δt_cr of the explicit scheme on this mesh, by experiment:
-   bisection with :func:`tribofx.cases.wear_stability.ball_critical_step` (5
+   bisection with :func:`tribofx.studies.wear_stability.ball_critical_step` (5
    explicit steps from the implicit state at t0 = 0.3 T; unstable = the pressure
    nonuniformity over the scar more than doubles, or a step fails);
 2. implicit, Δt = 100 s, to T: wall time, steps, Newton iterations (all outer
@@ -138,12 +138,12 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball import WearBallCase
-from tribofx.cases.wear_stability import ball_critical_step
+from tribofx.cases.wear_ball_flat import WearBallCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
 from tribofx.references import rigid_cap_radius
+from tribofx.studies.wear_stability import ball_critical_step
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--mesh", type=int, default=0)

@@ -44,8 +44,8 @@ import numpy as np
 from mpi4py import MPI
 
 from tribofx import solvers
-from tribofx.cases.wear_groove import WearBallHalfspaceCase as Case
-from tribofx.cases.wear_groove_run import surface_data
+from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
+from tribofx.cases.wear_ball_halfspace import surface_data
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
 from tribofx.stepper import Stepper
@@ -102,7 +102,7 @@ n = {"u": wear.body.u.function_space.dofmap.index_map.size_global * 3,
      "w": len(wear.w2.x.array), "z": len(wear.zeta.x.array)}
 out["dofs"] = n
 out["psi_fraction"] = (n["w"] + n["z"]) / sum(n.values())
-out["linear_solver"] = dict(solvers.used)
+out["linear_solver"] = dict(solvers.current_run().used)
 out["implicit"] = {"dt": args.dt, "steps": stepper.steps, "newton_iterations": int(its),
                    "newton_per_step": newton_per_step,
                    "factorisations": getattr(stepper.problem.solver, "factorisations", None),

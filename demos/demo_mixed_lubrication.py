@@ -53,6 +53,7 @@ import numpy as np
 from mpi4py import MPI
 from tribofx.forms.mixed import GT_FIT
 
+from tribofx.cases import rough_contact
 from tribofx.cases.stribeck import StribeckCase
 from tribofx.continuation import ConstantParameter
 from tribofx.held_response import ResponseControl
@@ -74,7 +75,7 @@ v = resolve(StribeckCase.params, {"speeds": ",".join(map(str, speeds))})
 
 # ## 1. The Stribeck curve
 #
-# ``StribeckCase.roughness`` is the pair's roughness: σ, K E* from the asperity
+# ``rough_contact.roughness`` is the pair's roughness: σ, K E* from the asperity
 # density and radius (ηβσ = 0.1, σ/β = 0.1), the Patir–Cheng flow factors.  The
 # cylinder is at rest on the plane, which slides at U; W is reached at the
 # highest speed by the plane's approach (a secant on log W), then the speed is
@@ -87,19 +88,19 @@ v = resolve(StribeckCase.params, {"speeds": ",".join(map(str, speeds))})
 # law (28); with Δt = 0 (no step yet) it is the plain mixed-EHL problem.
 
 # +
-rough = StribeckCase.roughness(v)
+rough = rough_contact.roughness(v)
 print(f"K E* = {rough.asperity.parameters['KE']:.4g} MPa, σ = {rough.sigma} mm") \
     if comm.rank == 0 else None
 V, k, dt = speeds[-1], 1e-5, 720.0          # mm/s, mm³/(N·mm), s
-run = StribeckCase.build(v, comm, shape=True)
+run = rough_contact.build(v, comm, shape=True)
 film = run["film"]
 wear = Wear(film, k=k, speed=V)
 stepper = Stepper([run["body"], film, wear], wear, name="running_in",
                   problem_kw={"max_it": 30})
 run["problem"] = stepper.problem
 rows = []
-StribeckCase.load_and_slow(run, v, speeds, on_speed=lambda U, n: rows.append(
-    dict(StribeckCase.measures(run, v), U=U, newton_iterations=n)))
+rough_contact.load_and_slow(run, v, speeds, on_speed=lambda U, n: rows.append(
+    dict(rough_contact.measures(run, v), U=U, newton_iterations=n)))
 if comm.rank == 0:
     print("   U (mm/s)   f        film/W   λ = h_c/σ")
     for r in rows:
@@ -123,7 +124,7 @@ history = []
 for n in range(nsteps + 1):
     if n:
         stepper.step(dt)
-    m = StribeckCase.measures(run, v)
+    m = rough_contact.measures(run, v)
     # Archard's k V ∫ p_a ds over the current surface, by hand: the trapezoidal sum
     # of p_a(h) at the nodes (the wear rows' vertex rule; j = ds/dŜ per facet)
     prof = film.profile(everywhere=True)
@@ -157,10 +158,10 @@ if comm.rank == 0:
 ball_speeds = [10.0] if args.quick else [1000.0, 100.0, 10.0, 1.0, 0.1]
 vb = resolve(StribeckCase.params, {"geometry": "ball", "W": "0.5", "steps": "1",
                                    "speeds": ",".join(map(str, ball_speeds))})
-run_b = StribeckCase.build(vb, comm)
+run_b = rough_contact.build(vb, comm)
 ball_rows = []
-StribeckCase.load_and_slow(run_b, vb, ball_speeds, on_speed=lambda U, n: ball_rows.append(
-    dict(StribeckCase.measures(run_b, vb), U=U, newton_iterations=n)))
+rough_contact.load_and_slow(run_b, vb, ball_speeds, on_speed=lambda U, n: ball_rows.append(
+    dict(rough_contact.measures(run_b, vb), U=U, newton_iterations=n)))
 if comm.rank == 0:
     print("ball (W = 0.5 N):  U (mm/s)   f        film/W   λ = h_c/σ")
     for r in ball_rows:

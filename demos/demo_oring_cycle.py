@@ -33,7 +33,7 @@
 # (w = 2πr, v̄ = U/2) with backward differences in time.  At the air end the
 # Couette flux w θ h v_n is replaced, where it enters (v_n < 0), by w c_in v_n:
 # c_in is the content the rod carried out there at the mirror time of the
-# outstroke (``tribofx.cases.oring_cycle.AirLayer``).
+# outstroke (``tribofx.cases.ehl_oring.AirLayer``).
 #
 # ## Changing it
 #
@@ -56,9 +56,7 @@ import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.ehl_oring import EHLORingCase
-from tribofx.cases.oring_cycle import cycle_stepper
-from tribofx.cases.oring_seal import build, solve_to
+from tribofx.cases.ehl_oring import EHLORingCase, build, cycle_stepper, solve_to
 from tribofx.output import write_summary
 from tribofx.params import resolve
 
@@ -72,7 +70,7 @@ comm = MPI.COMM_WORLD
 
 # ## The seal, made transient
 #
-# The case's seal (``tribofx.cases.oring_seal``) at U = 400 mm/s and
+# The case's seal (``tribofx.cases.ehl_oring``) at U = 400 mm/s and
 # p_s = 1 MPa, its film transient with the lumped rate and the air end open;
 # the steady outstroke is the state at t = 0.  The period is long (T = 10 s), so
 # that the film should follow the rod's slow deceleration.

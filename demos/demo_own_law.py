@@ -44,7 +44,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from tribofx.cases.reynolds import rigid_film
+from tribofx.cases.film_setup import rigid_film
 from tribofx.laws import Law, named_viscosity
 from tribofx.references import barus_pressure, slider_reference
 from tribofx.testing import taylor_orders

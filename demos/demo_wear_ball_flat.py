@@ -44,7 +44,7 @@
 # ## Changing it
 #
 # ``theta=0.0`` in ``Wear`` gives the explicit scheme (stable only below
-# Δt_cr ≈ 7 s on this mesh, ``tribofx.cases.wear_stability.ball_critical_step``); a finer
+# Δt_cr ≈ 7 s on this mesh, ``tribofx.studies.wear_stability.ball_critical_step``); a finer
 # contact zone with ``h = a_H/4``.  The same configuration is the case
 # ``wear-ball-flat``.  Units: mm, N, s, MPa.
 

@@ -142,7 +142,7 @@ class LubricationKinematics:
     stretch: ufl.core.expr.Expr
     vbar: ufl.core.expr.Expr
     v_layer: ufl.core.expr.Expr
-    v_counter: ufl.core.expr.Expr = None
+    v_counter: ufl.core.expr.Expr | None = None
 
     def grad(self, f, grad_gamma=ufl.grad):
         """Surface gradient grad_S f = A^{-T} Grad_Γ f of a scalar field on Γ_l."""

@@ -26,13 +26,15 @@ import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
 
-__all__ = ["FREE", "GROUP_NAMES", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height",
+__all__ = ["BALL_NAMES", "FREE", "GROUP_NAMES", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height",
            "quarter_ball", "write_quarter_ball"]
 
 LUBRICATED, FREE, MIDPLANE, SYMMETRY = 1, 2, 3, 4
 #: names of the boundary groups (physical names in the gmsh model and a written .msh)
 GROUP_NAMES = {LUBRICATED: "lubricated", FREE: "free", MIDPLANE: "midplane",
                SYMMETRY: "symmetry"}
+#: the name map of a quarter ball's Body: the lubricated cap and its two symmetry planes
+BALL_NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
 
 
 def cap_height(R, theta_l):

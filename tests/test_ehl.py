@@ -13,7 +13,7 @@ import pytest
 from dolfinx import fem
 from mpi4py import MPI
 
-from tribofx.cases.ehl import EHLCylinderLayerCase as Case
+from tribofx.cases.ehl_cylinder_layer import EHLCylinderLayerCase as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import cylinder_references
@@ -425,7 +425,7 @@ def test_mesh_convergence_h_min_p_max():
     outlet kink of the cavitation boundary: the observed order must be the smooth
     one, i.e. nearer 2 than 1 (ratio of successive differences > 2^1.5).
     """
-    from tribofx.cases.ehl_convergence import mesh_convergence
+    from tribofx.studies.ehl_convergence import mesh_convergence
 
     rows = mesh_convergence(values(W=0.2, steps=1), levels=(0, 1, 2))
     for r in rows:

@@ -20,7 +20,7 @@ from tribofx.cases.ehl_ball import EHLBallCase as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hamrock_dowson, hertz
-from tribofx.testing import taylor_orders
+from tribofx.testing import block_taylor_orders, exact_tangent
 
 
 def values(**overrides):
@@ -125,11 +125,13 @@ def test_coupled_tangent_taylor(light_load):
         d.x.scatter_forward()
         dirs.append(d)
     dirs[2].x.array[rim] = 0.0
-    orders, rem = taylor_orders(problem, dirs, eps0=1e-2)
+    blocks = block_taylor_orders(problem, dirs, eps0=1e-2)
     problem.restore(saved)
-    print("ball EHL Taylor orders", orders, "remainders", rem)
-    # exact Jacobian: order 2 up to round-off; a missing dependence gives 1
-    assert orders.min() > 1.8
+    # exact Jacobian, each unknown's columns alone: order 2 up to round-off; a missing
+    # dependence gives 1
+    for name, (orders, rem, floor) in blocks.items():
+        print("ball EHL", name, orders, rem, floor)
+        assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 
 
 @pytest.mark.mpi
@@ -198,9 +200,15 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
         dirs.append(d)
     dirs[2].x.array[rim_dofs] = 0.0
     # ε down to 3e-5 of the state scales: a first-order error of 1e-5 relative shows
-    orders, rem = taylor_orders(twin_problem, dirs, eps0=1e-3, n=6)
-    print(surface, "meshed Taylor orders", orders, "remainders", rem)
-    assert orders.min() > 1.8
+    blocks = block_taylor_orders(twin_problem, dirs, eps0=1e-3, n=6)
+    for name, (orders, rem, floor) in blocks.items():
+        print(surface, "meshed", name, orders, rem, floor)
+    inexact = {n for n, (o, r, f) in blocks.items() if not exact_tangent(o, r, f)}
+    # per block, every column exact, but on the curved mesh (vertex rule) the trace's may
+    # show a first-order remainder of a relative 5e-9 (found when this test went per
+    # block, serially; at the round-off floor, so whether it shows depends on the
+    # direction): an open defect (issue 50)
+    assert inexact <= ({meshed.u_s.name} if surface == "curved" else set()), blocks
 
 
 @pytest.mark.mpi
@@ -569,7 +577,7 @@ def test_film_oscillation_warns_above_its_tolerance(tmp_path):
 
 
 def test_mesh_chosen_from_load_and_speed():
-    """``mesh``/``edge_refine`` by default from W and U (tribofx.cases.ehl_ball_mesh).
+    """``mesh``/``edge_refine`` by default from W and U (tribofx.cases.ehl_ball).
 
     Against the measured points of the module docstring: the default 10 N at 0.1 N/m
     keeps mesh=1 (resolved there, h_edge/ℓ = 1.6); the chapter's 40 N at 0.078 N/m gets
@@ -578,7 +586,7 @@ def test_mesh_chosen_from_load_and_speed():
     along the edge); both set, they are kept and flagged unresolved; a point no built
     mesh resolves (40 N at 10 mm/s: a film of 0.24 µm) is refused at validation with one
     line, before any mesh is built."""
-    from tribofx.cases.ehl_ball_mesh import edge_size, mesh_levels, outlet_width
+    from tribofx.cases.ehl_ball import edge_size, mesh_levels, outlet_width
     from tribofx.params import InputError
 
     default = values()

@@ -19,11 +19,12 @@ from dolfinx import fem, mesh
 from mpi4py import MPI
 
 from tribofx.problem import BlockTolerance, NewtonDivergence, Problem
+from tribofx.protocols import ComponentBase
 
 ATOL = 1e-10          # the rows' stopping test (max |r_i / w_i|, w_i the lumped row area)
 
 
-class Reaction:
+class Reaction(ComponentBase):
     """The rows ∫ (ε ∇u·∇v + arctan(u − g) v) dx of one P1 unknown u."""
 
     def __init__(self, g, eps=0.1):

@@ -16,6 +16,7 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.hertz import NAMES, hertz_body
 
 from tribofx.body import Body
+from tribofx.cases import rough_contact
 from tribofx.cases.stribeck import StribeckCase
 from tribofx.interfaces import Film
 from tribofx.obstacles import rigid_plane
@@ -171,7 +172,7 @@ def test_mixed_regime_against_the_jgp_load_sharing():
     _, smooth = stribeck(rough=False, speeds=speeds)
     v = resolve(StribeckCase.params, {"speeds": speeds})
     p0 = hertz(v["W"], v["R"], v["E"], v["nu"], line=True).p0
-    KE, (A, Hc, n) = StribeckCase.roughness(v).asperity.parameters["KE"], mixed.GT_FIT
+    KE, (A, Hc, n) = rough_contact.roughness(v).asperity.parameters["KE"], mixed.GT_FIT
 
     def p_a(h):
         return KE * A * max(Hc - h / v["sigma"], 0.0) ** n
@@ -245,7 +246,7 @@ def test_vanishing_roughness_is_the_smooth_film():
     out = []
     for rough in (True, False):
         v = resolve(StribeckCase.params, {"speeds": "1000", "sigma": "1e-9"})
-        run = StribeckCase.build(v, rough=rough)
+        run = rough_contact.build(v, rough=rough)
         film = run["film"]
         film.counterpart.offset.value[1] = -0.01
         run["problem"].solve()

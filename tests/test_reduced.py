@@ -30,13 +30,14 @@ from tribofx.meshes.halfspace import prolongation
 
 from tribofx.interfaces.steady_wear import Extrusion
 from tribofx.problem import BlockTolerance
+from tribofx.protocols import ComponentBase
 from tribofx.reduced import AlgebraicRow, ReducedProblem, Reduction
 from tribofx.testing import taylor_orders
 
 LX, N, NX, F = 2.0, 4, 3, 20.0
 
 
-class _Bulk:
+class _Bulk(ComponentBase):
     """u on Ω: ∫ ∇(u − s₃)·∇v + (1 + u² + s₃²)(u − s₃) v dV."""
 
     def __init__(self, box, s3):
@@ -73,7 +74,7 @@ class _Bulk:
         pass
 
 
-class _Section:
+class _Section(ComponentBase):
     """s on S: ∫ ∇s·∇q − f q dA + (1/L_x) Pᵀ r, r = ∫_Ω u s₃² φ dV; the reduction s₃ = P s."""
 
     def __init__(self, square, s3, bulk, P):

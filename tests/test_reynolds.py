@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.reynolds import SliderCase
 from tribofx.cases.reynolds_cylinder import CylinderCase, cylinder_references
+from tribofx.cases.reynolds_slider import SliderCase
 from tribofx.output import RunRecord
 from tribofx.params import InputError, resolve
 from tribofx.problem import NewtonDivergence, convergence_orders
@@ -452,7 +452,7 @@ def test_law_parameters_are_state():
     """A law's parameters are Constants in the film's state: restore() resets a changed
     α (a continuation may drive it; a failed step must not keep it), and the pressure
     follows the law the Constant holds (solved again: the Barus slider's peak)."""
-    from tribofx.cases.reynolds import rigid_film
+    from tribofx.cases.film_setup import rigid_film
     from tribofx.laws import named_viscosity
     from tribofx.references import barus_pressure, slider_reference
 

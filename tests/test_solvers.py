@@ -19,7 +19,7 @@ from petsc4py import PETSc
 
 from tribofx import solvers
 from tribofx.cases.hertz import HertzCase
-from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh
+from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase, groove_mesh
 from tribofx.continuation import ConstantParameter
 from tribofx.near_nullspace import rigid_body_modes
 from tribofx.params import resolve
@@ -336,14 +336,14 @@ def test_iterative_single_field_is_amg():
 
 def test_iterative_without_bulk_field_falls_back_to_direct():
     """A film alone (reynolds-slider) has nothing for AMG: solver=iterative gives LU."""
-    from tribofx.cases.reynolds import SliderCase
+    from tribofx.cases.reynolds_slider import SliderCase
 
     v = resolve(SliderCase.params, {})
     SliderCase.validate(v)
-    with solvers.run_settings("iterative"):
+    with solvers.run_settings("iterative") as run:
         _, problem = SliderCase.build(v)
         assert problem.solver.name == "direct"
-        assert "no bulk field" in solvers.used[problem.name]
+        assert "no bulk field" in run.used[problem.name]
 
 
 def _delayed_pivot_matrix(n=400, m=200, seed=0):

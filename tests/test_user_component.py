@@ -18,13 +18,13 @@ from mpi4py import MPI
 
 from tribofx.body import Body
 from tribofx.problem import Problem
-from tribofx.protocols import Component
+from tribofx.protocols import Component, ComponentBase
 from tribofx.testing import block_taylor_orders, exact_tangent, owned_arrays
 
 E, NU, H, Q = 10.0, 0.3, 1.0, 0.05
 
 
-class Foundation:
+class Foundation(ComponentBase):
     """Winkler springs under boundary ``name`` of ``body``: T = −(k u·N + k₃ (u·N)³) N."""
 
     def __init__(self, body, name, k, k3=0.0):
@@ -133,5 +133,5 @@ def test_a_component_missing_a_method_is_not_one():
             return []
 
     assert not isinstance(Half(), Component)
-    with pytest.raises(AttributeError):
+    with pytest.raises(TypeError, match="ComponentBase"):
         Problem([Half()], name="half")

@@ -223,7 +223,7 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch, t_c):
     """
     from tribofx.meshes.layer import coated_layer
 
-    from tribofx.cases import ehl
+    from tribofx.cases import ehl_cylinder_layer as ehl
 
     Case = ehl.EHLCylinderLayerCase
     values = dict(LAYER_FAST, t_c=t_c)
@@ -319,7 +319,7 @@ def test_user_oring_is_placed_with_its_end_conditions(tmp_path):
     z = ∓ a sin 45° exactly (vertices).  No solve.
     """
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.oring_seal import build
+    from tribofx.cases.ehl_oring import build
 
     mesh = _oring(tmp_path / "ring.msh")
     # the penalty film: a p condition at both ends (JFO: λ and p at the inlet only)
@@ -352,7 +352,7 @@ def test_built_section_as_user_mesh_gives_the_built_problem(tmp_path):
     from tribofx.meshes.oring import write_oring_section
 
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.oring_seal import build, geometry
+    from tribofx.cases.ehl_oring import build, geometry
 
     v = _values(Case, **ORING_FAST, mesh=2)
     center, a, *_ = geometry(v)
@@ -385,7 +385,7 @@ def test_user_oring_matches_built_section(tmp_path):
     user's ring holds to the Newton tolerance (measured ≈ 1e-12; bound 1e-6).
     """
     from tribofx.cases.ehl_oring import EHLORingCase as Case
-    from tribofx.cases.oring_seal import build, solve_to
+    from tribofx.cases.ehl_oring import build, solve_to
 
     mesh = _oring(tmp_path / "ring.msh", h_l=0.018, h_b=0.07, d_min=0.18, d_max=1.4,
                   center=(3.0, -1.0))

@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball import WearBallCase
-from tribofx.cases.wear_stability import ball_critical_step, pressure_nonuniformity
+from tribofx.cases.wear_ball_flat import WearBallCase
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence, convergence_orders
 from tribofx.references import hertz, rigid_cap_radius
+from tribofx.studies.wear_stability import ball_critical_step, pressure_nonuniformity
 
 
 def hertz_radius(F, R, E, nu):

@@ -18,8 +18,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from tribofx.cases.wear_groove import WearBallHalfspaceCase, groove_mesh
-from tribofx.cases.wear_groove_run import surface_data
+from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase, groove_mesh, surface_data
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hertz

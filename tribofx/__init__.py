@@ -2,5 +2,9 @@
 
 import dolfinx_solver  # noqa: F401  (loads the MPI/PETSc libraries; before dolfinx/petsc4py)
 
+from .jit import compiler_warnings
+
+compiler_warnings(show=False)  # quiet JIT compiles; `tribofx run -v` shows them (tribofx.jit)
+
 __all__ = ["__version__"]
 __version__ = "0.1.0"

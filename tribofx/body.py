@@ -33,6 +33,7 @@ from .forms import hyperelastic as hf
 from .forms import kinematics as kin
 from .params import InputError
 from .problem import BlockTolerance
+from .protocols import ComponentBase
 
 __all__ = ["FORMULATIONS", "Body", "shear_modulus"]
 
@@ -49,7 +50,7 @@ def shear_modulus(material, params):
     raise ValueError(f"no shear modulus in the parameters of {material!r}")
 
 
-class Body:
+class Body(ComponentBase):
     """A deformable body on the initial mesh ``mesh``.
 
     Args:

@@ -79,7 +79,7 @@ class Border:
     """
 
     def __init__(self, problem, parameter, functional, target, mesh, rtol=1e-8):
-        if getattr(problem, "_assemblers", None):
+        if problem.assembles_outside_ufl:
             raise ValueError("a border needs a residual in UFL alone (no assembled terms)")
         self.problem, self.parameter = problem, parameter
         self.target, self.rtol = float(target), float(rtol)

@@ -75,7 +75,8 @@ def main(argv=None):
     run.add_argument("--resume", action="store_true",
                      help="continue a stopped run from the checkpoint in --out (wear cases)")
     run.add_argument("-v", "--verbose", action="store_true",
-                     help="print the Newton residuals of every block")
+                     help="print the Newton residuals of every block, and the C "
+                     "compiler's warnings of JIT compiles")
     args = parser.parse_args(argv)
     if args.command == "list":
         _list()
@@ -107,7 +108,10 @@ def main(argv=None):
     try:
         import dolfinx_solver  # noqa: F401  (must precede dolfinx/petsc4py)
 
+        from .jit import compiler_warnings
         from .runner import run_case
+
+        compiler_warnings(show=args.verbose)
 
         summary = run_case(args.case, overrides, args.out or f"results/{args.case}",
                            progress=not args.quiet, verbose=args.verbose,

@@ -15,13 +15,15 @@ from contextlib import contextmanager
 
 from mpi4py import MPI
 
+from .reports import RunStop
+
 __all__ = ["Interrupted", "arm", "check", "watch"]
 
 _flag = {"signal": 0, "active": False}
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
-class Interrupted(RuntimeError):
+class Interrupted(RunStop):
     """A run stopped by SIGINT/SIGTERM after an accepted (checkpointed) step."""
 
 

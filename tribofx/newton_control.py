@@ -73,7 +73,7 @@ class NewtonControl:
         (The two-body pairing's hysteresis reference.)  If one moved on, the
         residual is evaluated again; returns its 2-norm, or None if nothing changed.
         """
-        movers = [c for c in self.components if hasattr(c, "accept_iterate")]
+        movers = [c for c in self.components if c.iterates]
         if not movers:
             return None
         x = snes.getSolution()
@@ -203,7 +203,7 @@ class NewtonControl:
 
     def _accept(self, r, r0, alpha):
         """Line-search test of a trial with residual 2-norm ``r`` (``r0`` at the iterate)."""
-        ok = all(getattr(c, "admissible", lambda: True)() for c in self.components)
+        ok = all(c.admissible() for c in self.components)
         if self.line_search == "admissible":
             return ok and np.isfinite(r)
         return ok and r < (1 - 1e-4 * alpha) * r0

@@ -5,7 +5,9 @@ it into exit status 2.
 """
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from .meshes.errors import InputError
 
@@ -18,7 +20,8 @@ class Param:
 
     Attributes:
         name: key used with ``--set``.
-        type: ``int``, ``float``, ``str`` or ``bool``.
+        type: ``int``, ``float``, ``str`` or ``bool``, or a function of the text
+            (e.g. ``hertz``'s ``dim``: 2, 3 or "axisymmetric").
         default: default value (None: derived by the case from the others).
         unit: unit string (``"-"`` for dimensionless).
         doc: one-line description.
@@ -29,7 +32,7 @@ class Param:
     """
 
     name: str
-    type: type
+    type: Callable[[str], Any]
     default: object
     unit: str
     doc: str

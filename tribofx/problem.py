@@ -47,6 +47,7 @@ from .checkpoint import assign_fields, field_arrays
 from .krylov_guard import reason_name
 from .lifetimes import LIFETIMES, weak_callback
 from .newton_control import NewtonControl
+from .protocols import ComponentBase
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 
 __all__ = [
@@ -109,7 +110,7 @@ class Problem(NewtonControl):
             film with thick flanks, where a step must only keep the film open).
     """
 
-    _names = {}
+    _names: dict[str, int] = {}
     _assemblers = ()      # components with add_residual/add_jacobian (see _create_snes)
 
     def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
@@ -120,6 +121,10 @@ class Problem(NewtonControl):
         self.line_search = line_search
         self.stall_window = stall_window
         self.components = list(components)
+        for c in self.components:
+            if not isinstance(c, ComponentBase):
+                raise TypeError(f"{type(c).__name__} is not a component: derive "
+                                "tribofx.protocols.ComponentBase (the optional hooks' defaults)")
         every = _unique([u for c in self.components for u in c.unknowns()])
         self.u = every if unknowns is None else list(unknowns)
         for ui in self.u:
@@ -185,7 +190,7 @@ class Problem(NewtonControl):
         self._assemble_residual = (fn, args, kargs)
         self.snes.setFunction(weak_callback(self._residual), b)
         # components that add assembled terms outside UFL (the two-body contact kernel)
-        self._assemblers = [c for c in self.components if hasattr(c, "add_residual")]
+        self._assemblers = [c for c in self.components if c.assembles]
         self._global = {}
         if self._assemblers:
             A, P, (fn, args, kargs) = self.snes.getJacobian()
@@ -216,6 +221,11 @@ class Problem(NewtonControl):
     def entity_maps(self):
         """Entity maps of the components' mixed-dimensional forms (a list)."""
         return self._emaps() or []
+
+    @property
+    def assembles_outside_ufl(self):
+        """Whether a component adds terms assembled outside UFL (the two-body kernels)."""
+        return bool(self._assemblers)
 
     @property
     def num_dofs(self):
@@ -253,7 +263,7 @@ class Problem(NewtonControl):
 
     def _grow_pattern(self):
         """Preallocate the couplings the assemblers may add in this solve (:mod:`.pattern`)."""
-        blocks = [c.couplings(self) for c in self._assemblers if hasattr(c, "couplings")]
+        blocks = [b for b in (c.couplings(self) for c in self._assemblers) if b is not None]
         if not blocks:
             return
         A = self._A
@@ -461,8 +471,7 @@ class Problem(NewtonControl):
     def _reset_iterates(self):
         """Components with a Newton-iterate history start from their committed one."""
         for c in self.components:
-            if hasattr(c, "reset_iterate"):
-                c.reset_iterate()
+            c.reset_iterate()
 
     def assemble(self):
         """Residual ``b`` and Jacobian ``A`` at the current unknowns (Taylor tests)."""

@@ -361,7 +361,7 @@ def closest_point_projection_ref(
             state[rows] = pst[sel][valid]
         ok = facet >= 0
         res = _results(el, points[ok], Xf[facet[ok]], xi[ok], state[ok])
-    out = {"facet": facet}
+    out: dict[str, np.ndarray] = {"facet": facet}
     for key, v in res.items():
         full = np.full((n, *v.shape[1:]), False if v.dtype == bool else np.nan, dtype=v.dtype)
         full[ok] = v

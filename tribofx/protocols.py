@@ -3,13 +3,13 @@
 :class:`Component` is what :class:`tribofx.problem.Problem` asks of a body or an
 interface (the module docstring of :mod:`tribofx.problem` explains each method);
 :class:`Counterpart` is what a contact or a film asks of its rigid countersurface
-(:mod:`tribofx.obstacles`).  They are ``typing.Protocol`` classes: a user's
-component needs no base class, only these methods (``isinstance`` checks them at
-run time).  Optional methods a component may add: ``reductions()`` and
-``algebraic_rows()`` (:class:`tribofx.reduced.ReducedProblem`), ``add_residual``
-/ ``add_jacobian`` / ``couplings`` (terms assembled outside UFL, as the two-body
-contact), ``reset_iterate`` / ``accept_iterate`` (a Newton-iterate history) and
-``admissible()`` (the "admissible" line search).  ``docs/architecture.md``,
+(:mod:`tribofx.obstacles`).  They are ``typing.Protocol`` classes
+(``isinstance`` checks them at run time).  A component derives
+:class:`ComponentBase`, which gives the optional hooks their defaults:
+``reductions()`` and ``algebraic_rows()`` (:class:`tribofx.reduced.ReducedProblem`),
+``add_residual`` / ``add_jacobian`` / ``couplings`` (terms assembled outside UFL,
+as the two-body contact), ``reset_iterate`` / ``accept_iterate`` (a Newton-iterate
+history) and ``admissible()`` (the "admissible" line search).  ``docs/architecture.md``,
 "Write your own component", walks through one.
 
 :class:`WearDriver` is what a :class:`tribofx.interfaces.Wear` asks of the
@@ -19,7 +19,7 @@ a side of a ``TwoBodyContact`` (cycle-averaged wear only) or the user's own.
 
 from typing import Protocol, runtime_checkable
 
-__all__ = ["Component", "Counterpart", "WearDriver"]
+__all__ = ["Component", "ComponentBase", "Counterpart", "WearDriver"]
 
 
 @runtime_checkable
@@ -52,6 +52,59 @@ class Component(Protocol):
 
     def commit(self) -> None:
         """Accept a converged step."""
+
+
+class ComponentBase:
+    """The optional hooks of a component, with their defaults; every component derives it.
+
+    A :class:`tribofx.problem.Problem` calls each hook on every component, so a
+    component overrides only what it does:
+
+    * ``assembles`` (class attribute, default False): it adds terms outside UFL,
+      ``add_residual(b, problem)`` / ``add_jacobian(A, problem)`` into the
+      assembled block vector and matrix (the two-body kernels), and
+      ``couplings(problem)``, the (rows, cols) of the entries it may add in the
+      next solve (None: none beyond UFL's pattern);
+    * ``iterates`` (class attribute, default False): it keeps a Newton-iterate
+      history, ``reset_iterate()`` at the start of a solve or a restore and
+      ``accept_iterate()`` → whether the accepted iterate moved it (the residual is
+      then evaluated again);
+    * ``admissible()``: the "admissible" line search's test of a trial (True);
+    * ``reductions()`` / ``algebraic_rows()``: the maps of a
+      :class:`tribofx.reduced.ReducedProblem` (none).
+    """
+
+    assembles = False
+    iterates = False
+
+    def add_residual(self, b, problem) -> None:
+        """Add terms assembled outside UFL to the block residual ``b`` (none)."""
+
+    def add_jacobian(self, A, problem) -> None:
+        """Add terms assembled outside UFL to the block Jacobian ``A`` (none)."""
+
+    def couplings(self, problem):
+        """Return (rows, cols) of the entries it may add in the next solve, or None."""
+        return None
+
+    def reset_iterate(self) -> None:
+        """Start a Newton solve (or a restore) from the committed iterate history."""
+
+    def accept_iterate(self) -> bool:
+        """Move the iterate history to the accepted iterate; whether it changed."""
+        return False
+
+    def admissible(self) -> bool:
+        """Whether the current state is admissible (the "admissible" line search)."""
+        return True
+
+    def reductions(self) -> list:
+        """Reductions of a :class:`tribofx.reduced.ReducedProblem` (none)."""
+        return []
+
+    def algebraic_rows(self) -> list:
+        """Algebraic rows of a :class:`tribofx.reduced.ReducedProblem` (none)."""
+        return []
 
 
 @runtime_checkable

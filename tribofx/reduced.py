@@ -75,7 +75,7 @@ class ReducedProblem(Problem):
     """
 
     def _create_snes(self):
-        self._red = [r for c in self.components for r in getattr(c, "reductions", list)()]
+        self._red = [r for c in self.components for r in c.reductions()]
         # the communicator of the distributed body (of the unknowns or of the images of
         # the reduced ones); a problem whose meshes are all on COMM_SELF runs serially
         comms = [f.function_space.mesh.comm for f in self.u + [r.image for r in self._red]]
@@ -83,7 +83,7 @@ class ReducedProblem(Problem):
         self.comm = comm
         self._replicated = {id(ui): ui.function_space.mesh.comm.size == 1 and comm.size > 1
                             for ui in self.u}
-        self._alg = [r for c in self.components for r in getattr(c, "algebraic_rows", list)()]
+        self._alg = [r for c in self.components for r in c.algebraic_rows()]
         by_image = {id(r.reduced): r for r in self._red}
         emaps = self._emaps()
         kw = {"entity_maps": emaps} if emaps else {}

@@ -27,8 +27,8 @@ Contents:
 
 Not here, because they are not closed forms: the critical step of the explicit
 wear scheme (chapter eq. 31 gives only the scaling Δt_cr ∼ h/E; tribofx measures
-it by bisection, :func:`tribofx.cases.wear_stability.pin_critical_step` and
-:func:`tribofx.cases.wear_stability.ball_critical_step`).
+it by bisection, :func:`tribofx.studies.wear_stability.pin_critical_step` and
+:func:`tribofx.studies.wear_stability.ball_critical_step`).
 """
 
 import math

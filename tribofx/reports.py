@@ -4,10 +4,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["BlockTolerance", "NewtonDivergence", "NewtonReport", "convergence_orders"]
+__all__ = ["BlockTolerance", "NewtonDivergence", "NewtonReport", "RunStop",
+           "convergence_orders"]
 
 
-class NewtonDivergence(RuntimeError):
+class RunStop(RuntimeError):
+    """An exception that ends a run before its end, with what the caller writes.
+
+    ``model``: the run's model (a case's run object, a stepper) at its last
+    converged state, set by the run that gives up, so that the runner writes
+    that state (VTX); None until then.
+    """
+
+    model: object = None
+
+
+class NewtonDivergence(RunStop):
     """Raised when the Newton iteration does not converge (the unknowns are restored)."""
 
 

@@ -10,7 +10,7 @@ from . import interrupt, solvers
 from .cases import get_case
 from .output import RunRecord, write_vtx
 from .params import InputError, Param, resolve
-from .problem import NewtonDivergence
+from .reports import RunStop
 
 __all__ = ["COMMON_PARAMS", "run_case"]
 
@@ -57,10 +57,11 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple) and
     the static/class methods ``validate(values)``, ``run(values, record, progress,
     verbose)`` (returns the problem object; on failure it raises
-    :class:`NewtonDivergence` with the problem, restored to its last converged
-    state, as attribute ``problem``), ``vtx_fields(problem)`` ({file stem:
-    [Functions on one mesh]}) and ``plot(profile, outdir)`` (rank 0; ``profile``
-    is what ``run`` stored in ``record.profile``).  ``run`` advances ``progress``
+    :class:`~tribofx.reports.NewtonDivergence`, a :class:`~tribofx.reports.RunStop`,
+    with the problem, restored to its last converged state, as ``model``),
+    ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and
+    ``plot(profile, outdir)`` (rank 0; ``profile`` is what ``run`` stored in
+    ``record.profile``).  ``run`` advances ``progress``
     once per load/time step (a slow-time stepper by time, in nominal steps of its
     Δt); the bar length is ``values["steps"]`` when present.
     """
@@ -87,23 +88,21 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     prob = None
     try:
         watch = interrupt.watch() if kwargs else contextlib.nullcontext()
-        with solvers.run_settings(values["solver"], petsc_options), watch:
+        with solvers.run_settings(values["solver"], petsc_options) as linear, watch:
             try:
                 prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:
-                record.data["linear_solver"] = dict(solvers.used)
-                fallbacks = {k: list(v) for k, v in solvers.fallbacks.items() if v}
+                record.data["linear_solver"] = dict(linear.used)
+                fallbacks = linear.failed_krylov()
                 if fallbacks:
                     record.data["linear_fallbacks"] = fallbacks
                     n = sum(map(len, fallbacks.values()))
                     record.warn(f"{n} Krylov solves failed and were solved by LU "
                                 f"(linear_fallbacks)")
-    except NewtonDivergence as err:
-        status = f"failed: {err}"
-        prob = getattr(err, "problem", None)
-    except interrupt.Interrupted as err:
-        status = f"interrupted: {err}"
-        prob = getattr(err, "problem", None)
+    except RunStop as err:
+        kind = "interrupted" if isinstance(err, interrupt.Interrupted) else "failed"
+        status = f"{kind}: {err}"
+        prob = err.model
     finally:
         if bar is not None:
             bar.close()

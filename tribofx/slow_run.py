@@ -87,7 +87,7 @@ class SlowRun:
             if after is not None:
                 after()
         except (NewtonDivergence, interrupt.Interrupted) as err:
-            err.problem = st if problem is None else problem
+            err.model = st if problem is None else problem
             raise
         finally:
             self.series.close()

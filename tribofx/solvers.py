@@ -46,6 +46,7 @@ with it is set as given.
 """
 
 from contextlib import contextmanager
+from dataclasses import dataclass, field
 
 import numpy as np
 from dolfinx.mesh import CellType
@@ -64,11 +65,12 @@ __all__ = [
     "LaggedSolver",
     "PRODUCT_CLEAR",
     "WORKSPACE_ERRORS",
+    "SolverRun",
     "choose",
-    "fallbacks",
+    "current_run",
     "grow_workspace",
+    "run_options",
     "run_settings",
-    "used",
 ]
 
 #: global PETSc option set by :class:`IterativeSolver`: matrix products free their
@@ -78,17 +80,43 @@ PRODUCT_CLEAR = "mat_product_clear"
 AUTO_THRESHOLD = 50_000
 STRATEGIES = ("direct", "lagged", "iterative", "auto")
 
-_run = {"strategy": "auto", "options": {}}
-#: ``{problem name: strategy description}`` of the problems built in this run
-used = {}
-#: ``{problem name: [event, ...]}``: Krylov solves of this run's problems that failed and
-#: were solved by LU (:class:`tribofx.krylov_guard.KrylovGuard`; shared lists)
-fallbacks = {}
+@dataclass
+class SolverRun:
+    """What one run asks of its linear solvers and what they did.
+
+    ``strategy`` ("direct", "lagged", "iterative" or "auto") and ``options`` (extra
+    PETSc options without prefix) apply to the problems built inside
+    :func:`run_settings`; ``used`` ``{problem name: strategy description}`` and
+    ``fallbacks`` ``{problem name: [event, ...]}`` (Krylov solves that failed and
+    were solved by LU, :class:`tribofx.krylov_guard.KrylovGuard`; shared lists)
+    record them.
+    """
+
+    strategy: str = "auto"
+    options: dict = field(default_factory=dict)
+    used: dict = field(default_factory=dict)
+    fallbacks: dict = field(default_factory=dict)
+
+    def failed_krylov(self) -> dict:
+        """Return ``{problem name: [event, ...]}`` of the problems with a fallback."""
+        return {k: list(v) for k, v in self.fallbacks.items() if v}
+
+
+# the runs in progress, innermost last; outside every run, a default one
+_runs = [SolverRun()]
+
+
+def current_run() -> SolverRun:
+    """Return the innermost run in progress (outside :func:`run_settings`: the default)."""
+    return _runs[-1]
 
 
 @contextmanager
 def run_settings(strategy="auto", petsc_options=None):
     """Strategy and extra PETSc options of the problems built inside the block.
+
+    Yields the block's :class:`SolverRun`, which records the linear solver of
+    every problem built inside it and their Krylov fallbacks.
 
     Args:
         strategy: "direct", "iterative" or "auto".
@@ -98,33 +126,30 @@ def run_settings(strategy="auto", petsc_options=None):
     """
     if strategy not in STRATEGIES:
         raise ValueError(f"unknown solver strategy {strategy!r}")
-    saved = dict(_run)
     opts = PETSc.Options()
     options = dict(petsc_options or {})
     verbatim = {k: v for k, v in options.items() if k.startswith("tribofx_")}
-    _run.update(strategy=strategy,
-                options={k: v for k, v in options.items() if k not in verbatim})
+    run = SolverRun(strategy, {k: v for k, v in options.items() if k not in verbatim})
     for k, v in verbatim.items():
         opts[k] = v
-    used.clear()
-    fallbacks.clear()
+    _runs.append(run)
     try:
-        yield
+        yield run
     finally:
-        _run.clear()
-        _run.update(saved)
+        _runs.remove(run)
         for k in verbatim:
             opts.delValue(k)
 
 
 def run_options():
     """Extra PETSc options of the current run (without prefix)."""
-    return dict(_run["options"])
+    return dict(current_run().options)
 
 
 def choose(problem):
     """Return the run's strategy for ``problem`` (``auto``: by dimension and size)."""
-    strategy = _run["strategy"]
+    run = current_run()
+    strategy = run.strategy
     if strategy == "auto":
         bulk = bulk_fields(problem)[0]
         tets = bool(bulk) and all(
@@ -135,12 +160,12 @@ def choose(problem):
                     else "iterative" if tets else "lagged")
     if strategy == "iterative" and not bulk_fields(problem)[0]:
         solver = DirectSolver()       # nothing for AMG (a film or cross-section alone)
-        used[problem.name] = solver.describe(problem) + "; iterative asked, no bulk field"
+        run.used[problem.name] = solver.describe(problem) + "; iterative asked, no bulk field"
         return solver
     solver = {"iterative": IterativeSolver, "lagged": LaggedSolver}.get(strategy, DirectSolver)()
-    used[problem.name] = solver.describe(problem)
+    run.used[problem.name] = solver.describe(problem)
     if hasattr(solver, "guard"):
-        fallbacks[problem.name] = solver.guard.fallbacks
+        run.fallbacks[problem.name] = solver.guard.fallbacks
     return solver
 
 

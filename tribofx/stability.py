@@ -3,7 +3,7 @@
 The chapter gives only the scaling of the explicit scheme's critical step,
 Δt_cr ∼ h/E (eq. 31); :func:`bisect_critical_step` finds it for a mesh and a
 state from a measured growth (:func:`growth_probe` of a
-:class:`tribofx.stepper.Stepper`).  Used by :mod:`tribofx.cases.wear_stability`.
+:class:`tribofx.stepper.Stepper`).  Used by :mod:`tribofx.studies.wear_stability`.
 """
 
 import math

@@ -98,7 +98,7 @@ class StepReport:
     iterations: int = 0
     cycle_iterations: int = 0
     picard: int = 0
-    error: float = None
+    error: float | None = None
     rejected: int = 0
     forced: bool = False
 

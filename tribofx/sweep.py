@@ -15,7 +15,7 @@ lives here:
   :meth:`SweepVariant.resume` (the saved state back into the problem);
 * the end of the variant as a context: the series closed, the Newton iterations
   recorded, and a failed or interrupted run (``NewtonDivergence``,
-  ``Interrupted``) carrying ``problem`` = the run at its last converged point.
+  ``Interrupted``) carrying ``model`` = the run at its last converged point.
 
 The case keeps only its physics: what a point measures, where it goes next.
 """
@@ -34,7 +34,7 @@ class SweepVariant:
     Args:
         journal: the sweep's :class:`tribofx.restart.SweepJournal`.
         key: the variant's name in the journal and in ``series_points``.
-        run: what a failed run reports (``err.problem``), e.g. ``(body, film, problem)``.
+        run: what a failed run reports (``err.model``), e.g. ``(body, film, problem)``.
         state: the objects of the variant's state (Functions, Constants) saved and restored.
         record: the run record (``data``, ``outdir``).
         fields: ``{name: [Function, ...]}`` of the VTX series, written as
@@ -92,5 +92,5 @@ class SweepVariant:
         if self.newton:
             self.record.data["newton_iterations"].extend(self.its)
         if isinstance(err, (NewtonDivergence, interrupt.Interrupted)):
-            err.problem = self.run    # restored to its last converged point
+            err.model = self.run    # restored to its last converged point
         return False

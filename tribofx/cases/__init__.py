@@ -1,21 +1,21 @@
 """Registry of runnable cases: ``tribofx run CASE``."""
 
+from .contact_ironing import IroningCase
 from .contact_patch import ContactPatchCase
-from .ehl import EHLCylinderLayerCase
+from .contact_two_cylinders import TwoCylindersCase
 from .ehl_ball import EHLBallCase
+from .ehl_cylinder_layer import EHLCylinderLayerCase
 from .ehl_oring import EHLORingCase
 from .ehl_squeeze import EHLSqueezeCase
 from .ehl_two_cylinders import EHLTwoCylindersCase
 from .hertz import HertzCase
-from .ironing import IroningCase
-from .reynolds import SliderCase
 from .reynolds_cylinder import CylinderCase
+from .reynolds_slider import SliderCase
 from .stribeck import StribeckCase
-from .two_cylinders import TwoCylindersCase
-from .wear import WearPinCase
-from .wear_ball import WearBallCase
-from .wear_groove import WearBallHalfspaceCase
+from .wear_ball_flat import WearBallCase
+from .wear_ball_halfspace import WearBallHalfspaceCase
 from .wear_lubricated import WearLubricatedCase
+from .wear_pin import WearPinCase
 from .wear_reciprocating import WearReciprocatingCase
 
 __all__ = ["CASES", "get_case"]

@@ -15,7 +15,7 @@ against :func:`~tribofx.obstacles.rigid_plane` moving with ``V_counter`` = 2U e_
 SUPG, traction (46), ``shear`` switching its shear part, ``model=linear`` the
 classical EHL model with a small-strain ball), one
 :class:`~tribofx.problem.Problem`, and :class:`~tribofx.continuation.Continuation`
-for the plane position along the paths of :mod:`tribofx.cases.ehl_ball_paths`
+for the plane position along the paths of :mod:`tribofx.cases.ehl_ball`
 (Hertz start and a secant on W; large loads by a thick film, then the speed
 marched down).
 
@@ -24,7 +24,7 @@ Defaults (mm, N, s, MPa; Stupkiewicz et al. 2016): R = 12.7, E = 1.19, ν = 0.45
 μ = 1e-8 (10 mPa·s), U = 1e4: μU = 1e-4 N/mm (0.1 N/m); W = 10 N in 3 steps;
 θ_l = 40°; element size a/(4·2^mesh) within 1.6 a.  ``mesh`` and ``edge_refine``
 default to the cheapest pair that resolves the film's outlet constriction at the
-run's W and U (:mod:`tribofx.cases.ehl_ball_mesh`: elements along the contact
+run's W and U (:mod:`tribofx.cases.ehl_ball`: elements along the contact
 edge ≤ 2ℓ, ℓ = a (h_c R/a²)^{2/3}); the default point keeps ``mesh=1`` (≈ 11k
 unknowns).  The chapter's point W = 40 N, μU = 0.078 N/m (Figs. 25–26) gets
 ``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge; 64k
@@ -38,7 +38,7 @@ with a warning.  A point no built mesh resolves is refused at validation:
     tribofx run ehl-ball --set W=40 --set U=7800 --set theta_l=60 --set compare=all
 
 Your own ball (``mesh_file``, a gmsh quarter ball with the groups ``lubricated``,
-``midplane``, ``symmetry``): :mod:`tribofx.cases.ehl_ball_user`.
+``midplane``, ``symmetry``): :mod:`tribofx.cases.ehl_ball`.
 
 ``compare=all``: full model, no shear tractions and geometrically linear in one
 run (Fig. 26; prefixes ``full_``, ``no-shear_``, ``linear_``); ``speeds`` (mm/s)
@@ -57,41 +57,192 @@ The position of h_min is the vertex of a quadratic fitted to the film nodes
 around the smallest nodal h (:func:`tribofx.positions.paraboloid_vertex`).
 
 ``film_oscillation`` (the node-to-node zig-zag of h) and the friction on the ball
-and on the plane: :mod:`tribofx.cases.ehl_ball_outputs`.
+and on the plane: :mod:`tribofx.cases.ehl_ball`.
 """
 
 import math
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
+from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
+from ..held_response import HeldResponse
 from ..interfaces import Film
-from ..meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
+from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
-from ..problem import Problem
+from ..positions import oscillation_indicator, paraboloid_vertex
+from ..problem import NewtonDivergence, Problem, options_name
 from ..references import composite_modulus, hamrock_dowson, hertz
+from ..restart import SweepJournal
+from ..sweep import SweepVariant
 from . import film_setup
-from .ehl_ball_mesh import checked_outlet_width, mesh_levels, outlet_width
-from .ehl_ball_outputs import BallOutputs
-from .ehl_ball_paths import BallPaths, Z
-from .ehl_ball_sweep import BallSweep
-from .ehl_ball_user import USER_GROUPS, place_user_ball, user_rim
-from .film_setup import VISCOSITY_PARAMS, at_points, density, speed_list, viscosity
+from .film_setup import VISCOSITY_PARAMS, at_points, density, film_boundary, speed_list, viscosity
 
-__all__ = ["EHLBallCase"]
-
-NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
+__all__ = [
+    "EHLBallCase", "LEVELS", "MAX_EDGE_RATIO", "USER_GROUPS", "Z", "check_curvature",
+    "checked_outlet_width", "edge_size", "mesh_levels", "outlet_width", "place_user_ball",
+    "user_rim",
+]
 
 
-class EHLBallCase(BallSweep, BallOutputs, BallPaths):
+#: largest element size along the contact edge, in units of the outlet width ℓ
+MAX_EDGE_RATIO = 2.0
+
+
+#: (mesh, edge_refine) in the order of their cost (unknowns: 12k, 64k, 120k, 230k)
+LEVELS = ((1, 0), (2, 1), (2, 2), (3, 2))
+
+
+def outlet_width(v):
+    """Width ℓ = a (h_c R / a²)^{2/3} (mm) of the outlet constriction at ``v``'s W and U."""
+    a = hertz(v["W"], v["R"], v["E"], v["nu"]).a
+    h_c = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], composite_modulus(v["E"], v["nu"]))[0]
+    return a * (h_c * v["R"] / a**2) ** (2 / 3)
+
+
+def checked_outlet_width(v):
+    """Return :func:`outlet_width`, or raise InputError (one line) if it is not finite."""
+    try:
+        ell = outlet_width(v)
+    except (ArithmeticError, ValueError):
+        ell = math.nan
+    if not 0 < ell < math.inf:
+        raise InputError(f"W = {v['W']:g} N, U = {v['U']:g} mm/s, R = {v['R']:g} mm, "
+                         f"E = {v['E']:g} MPa give no finite film scale (Hamrock–Dowson)")
+    return ell
+
+
+def edge_size(v, mesh, edge_refine):
+    """Element size (mm) along the contact edge: a/(4·2^mesh)/2^edge_refine."""
+    return hertz(v["W"], v["R"], v["E"], v["nu"]).a / (4 * 2**mesh) / 2**edge_refine
+
+
+def mesh_levels(v):
+    """``(mesh, edge_refine, resolved)`` of the run.
+
+    Both set by the user: those (``resolved`` says whether they meet the rule).
+    One set: the cheapest value of the other that resolves the outlet (h_edge ≤
+    2ℓ); none: the cheapest entry of :data:`LEVELS` that does.  If none does,
+    the finest candidate with ``resolved`` False.
+    """
+    mesh, refine = v["mesh"], v["edge_refine"]
+    if mesh is not None and refine is not None:
+        candidates = [(mesh, refine)]
+    elif mesh is not None:
+        candidates = [(mesh, e) for e in range(4)]
+    elif refine is not None:
+        candidates = [(m, refine) for m in (1, 2, 3)]
+    else:
+        candidates = list(LEVELS)
+    ell = outlet_width(v)
+    for m, e in candidates:
+        if edge_size(v, m, e) <= MAX_EDGE_RATIO * ell * (1 + 1e-12):
+            return m, e, True
+    return (*candidates[-1], False)
+
+
+Z = 2  # the plane's normal direction, index of its offset
+
+
+#: largest speed ratio of one step of a speed march (a larger one starts the held-load
+#: secant far from the new film: at 40 N the step 30U → U failed and was cut, 40 trials
+#: each time; steps of ratio 2 converge in 2–3 position trials each)
+MAX_SPEED_RATIO = 2.0
+
+
+USER_GROUPS = ("lubricated", "midplane", "symmetry")   # the groups of a user's ball
+
+
+def _group_nodes(msh, ft, tag):
+    """Return the local geometry nodes of the facets tagged ``tag``."""
+    msh.topology.create_connectivity(2, 3)
+    return np.unique(dmesh.entities_to_geometry(msh, 2, ft.find(tag), False).ravel())
+
+
+def place_user_ball(msh, ft, names, v, a):
+    """Move a user's ball: symmetry plane to y = 0, cap centred at x = 0, lowest at z = 0.
+
+    Raises InputError if the symmetry group is not a plane y = const (to 10⁻⁹ R).
+    """
+    comm, x = msh.comm, msh.geometry.x
+
+    def extent(nodes, k):
+        return (comm.allreduce(float(np.min(x[nodes, k], initial=np.inf)), op=MPI.MIN),
+                comm.allreduce(float(np.max(x[nodes, k], initial=-np.inf)), op=MPI.MAX))
+
+    y0, y1 = extent(_group_nodes(msh, ft, names["symmetry"]), 1)
+    if y1 - y0 > 1e-9 * v["R"]:
+        raise InputError(f"the group 'symmetry' of {v['mesh_file']!r} must be a plane "
+                         f"y = const (spans y = {y0:.6g} … {y1:.6g} mm)")
+    cap = _group_nodes(msh, ft, names["lubricated"])
+    x0, x1 = extent(cap, 0)
+    z0, _ = extent(cap, 2)
+    x -= np.array([0.5 * (x0 + x1), y0, z0])
+    check_curvature(msh, cap, v, a)
+
+
+def check_curvature(msh, cap, v, a):
+    """Raise InputError unless the cap's curvature at the contact is 1/R within 5 %.
+
+    Least squares z = c + k ρ²/2 over the cap's nodes within ρ = √(x² + y²) ≤ a
+    (Hertz a at W; owned nodes, summed over the ranks): R sets the Hertz start,
+    the scales and the references, so it must be the ball's radius where the
+    film forms.  A cap with fewer than 6 nodes there is too coarse to resolve
+    the contact.
+    """
+    comm = msh.comm
+    own = cap[cap < msh.geometry.index_map().size_local]
+    X = msh.geometry.x[own]
+    rho2 = X[:, 0] ** 2 + X[:, 1] ** 2
+    near = rho2 <= a * a
+    q, z = 0.5 * rho2[near], X[near, 2]
+    sums = comm.allreduce(np.array([len(q), q.sum(), (q * q).sum(), z.sum(),
+                                    (q * z).sum()]), op=MPI.SUM)
+    n, sq, sqq, sz, sqz = sums
+    det = n * sqq - sq * sq
+    if n < 6 or not det > 0:
+        raise InputError(f"the cap of {v['mesh_file']!r} has {int(n)} node(s) within the "
+                         f"Hertz radius a = {a:.3g} mm of the contact point (needs >= 6)")
+    k = (n * sqz - sq * sz) / det
+    if not abs(k * v["R"] - 1) <= 0.05:
+        raise InputError(f"the cap of {v['mesh_file']!r} has the radius of curvature "
+                         f"{1 / k if k else math.inf:.4g} mm at the contact: R = "
+                         f"{v['R']} mm must match it within 5 %")
+
+
+def user_rim(film, v, a):
+    """Return the nodes (k, 3) of the rim of a user's cap: ∂Γ_l less the edges on y = 0.
+
+    Raises InputError if there is none, or if the cap does not reach 1.5 a(W)
+    from the contact point (the least rim radius √(x² + y²)).
+    """
+    tol = 1e-9 * v["R"]
+    rim = film_boundary(film, keep=lambda X: ~np.all(np.abs(X[:, :, 1]) < tol, axis=1))
+    if not len(rim):
+        raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} has no rim off "
+                         "the symmetry plane (p = 0 there)")
+    r_cap = float(np.min(np.hypot(rim[:, 0], rim[:, 1])))
+    if r_cap < 1.5 * a:
+        raise InputError(f"the cap of {v['mesh_file']!r} reaches r = {r_cap:.3g} mm < "
+                         f"1.5 a = {1.5 * a:.3g} mm (Hertz a at W = {v['W']} N)")
+    return rim
+
+
+NAMES = BALL_NAMES
+
+
+class EHLBallCase:
     """Case ``ehl-ball``; see the module docstring."""
 
     name = "ehl-ball"
+
     doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
+
     params = (
         Param("W", float, 10.0, "N", "final load on the whole ball", lower=0.0),
         Param("steps", int, 3, "-", "load increments (W/steps, …, W)", lower=1, upper=100,
@@ -113,7 +264,7 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
               "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
               "Hamrock–Dowson h_c at W)", lower=0.0),
         Param("mesh", int, None, "-", "element size a/(4·2^mesh) near the contact (default: "
-              "chosen with edge_refine from W and U to resolve the outlet, ehl_ball_mesh)",
+              "chosen with edge_refine from W and U to resolve the outlet, edge_size)",
               lower=0, upper=3, closed=True),
         Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
         Param("edge_refine", int, None, "-",
@@ -145,11 +296,13 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
     VARIANTS = (("full", "finite deformation", {"model": "finite", "shear": True}),
                 ("no-shear", "finite, no shear tractions", {"model": "finite", "shear": False}),
                 ("linear", "geometrically linear", {"model": "linear", "shear": True}))
+
     UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
              "x_h_min": "mm (sub-element)", "y_h_min": "mm (sub-element)",
              "friction_coefficient": "-", "couette_friction_coefficient": "-",
              "plane_friction_coefficient": "-", "clearance": "mm", "U": "mm/s",
              "mu_U": "N/mm", "film_oscillation": "-"}
+
     #: film_oscillation above which the run warns (a zig-zag of ±5 % of the film)
     FILM_OSCILLATION_TOL = 0.05
 
@@ -247,3 +400,405 @@ class EHLBallCase(BallSweep, BallOutputs, BallPaths):
         problem = Problem([ball, film], name=name, max_it=25)
         return ball, film, problem
 
+    @classmethod
+    def progress_total(cls, v):
+        """Points the progress bar counts: the loads of every variant."""
+        return v["steps"] * (len(cls.VARIANTS) if v["compare"] == "all" else 1)
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
+
+        ``checkpoint``: directory of the sweep's checkpoint, written after every
+        converged load and speed step (:class:`tribofx.restart.SweepJournal`);
+        ``resume``: continue from it.
+        """
+        variants = cls.VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
+        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
+        record.result("mu_U", v["mu"] * v["U"], "N/mm")
+        a, p0, _, _ = cls.scales(v)
+        hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], cls.e_star(v))
+        for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
+                           ("hamrock_dowson_h_min", hm)):
+            record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
+        if not v["mesh_file"]:
+            level, refine, resolved = mesh_levels(v)
+            record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
+            if not resolved:
+                record.warn(f"mesh={level} edge_refine={refine}: elements of "
+                            f"{edge_size(v, level, refine):.3g} mm along the contact edge "
+                            f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
+                            "at this W and U: expect a zig-zag or a spurious dip of the film")
+        record.data["variant_newton_iterations"] = {}
+        record.profile = {"variants": {}, "W": v["W"]}
+        first = None
+        for name, label, over in variants:
+            run = cls.sweep(dict(v, **over), name, label, record, journal, progress, verbose)
+            first = first or run
+        return first
+
+    @classmethod
+    def sweep(cls, vv, name, label, record, journal, progress=None, verbose=False):
+        """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
+
+        After every converged load and speed step the variant's state, records
+        and position are written to ``journal`` (position: ``leg`` 0 the loads,
+        1 + j the march to the j-th speed; the secant state of the position
+        search; the march increments; the film scales); a resumed variant
+        restores them and continues on the same sequence of steps.
+        """
+        key = name or vv["model"]
+        run = cls.build(vv, name=options_name("ehl_ball", name))
+        film, problem = run[1], run[2]
+        record.data["num_dofs"] = problem.num_dofs
+        # (the plane's offset is state); the series' "time" is the point's index, its
+        # (W, U) in series_points
+        sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
+                          record, cls.vtx_fields(run), f"{name}_" if name else "",
+                          ("steps", "speed"), run[0].mesh.comm, progress)
+        steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
+        pos = sv.position
+        record.data["variant_newton_iterations"][key] = its_all
+        var = {"label": label, "shear": vv["shear"]}
+        record.profile["variants"][key] = var
+        at = {"leg": 0 if pos is None else pos["leg"]}
+
+        def write():
+            sv.write([cls.load(run), cls.speed(run).get()])
+
+        def save(position, arrays=None):
+            sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
+                    arrays=[] if arrays is None else arrays)
+
+        def on_step(W, its):
+            its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
+            if steps:   # the film map is kept for the last load only (checkpoint size)
+                steps[-1].pop("profile", None)
+            steps.append(cls.measures(run, vv))
+            write()
+            if progress is not None:
+                progress.update(1)
+
+        def on_speed(march=None):
+            m = cls.measures(run, vv)
+            m.pop("profile")
+            speed.append(dict(m, U=cls.speed(run).get()))
+            write()
+            if march is not None:
+                save({"increments": march.increments, "inner": inner.secant_state()})
+
+        start = None
+        if pos is not None:
+            carrier = sv.resume()
+            film.set_scales(**pos["scales"])
+            problem.refresh()
+            start = dict(pos, carrier=carrier)
+        with sv:
+            try:
+                if at["leg"] == 0:
+                    inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
+                    if cls.speed_list(vv):
+                        on_speed()
+                elif cls.large_load(vv):
+                    inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
+                    inner.set_secant_state(pos["inner"])
+                else:
+                    inner = cls.position_control(run, vv, verbose)
+                    inner.set_secant_state(pos["inner"])
+                for j, U in enumerate(cls.speed_list(vv)):
+                    if j + 1 < at["leg"]:
+                        continue
+                    increments = pos["increments"] if j + 1 == at["leg"] else None
+                    at["leg"] = j + 1
+                    cls.speed_march(run, vv, inner, vv["W"], U,
+                                    restart=not cls.large_load(vv), record=its_all,
+                                    on_speed=on_speed, increments=increments)
+            finally:
+                if steps:
+                    var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
+                cls._report(steps, speed, vv, record, f"{name}_" if name else "")
+                var["speed"] = {k: [m[k] for m in speed] for k in (
+                    "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                    "plane_friction_coefficient")}
+        return run
+
+    @staticmethod
+    def film_oscillation(h_axis, p_axis):
+        """Zig-zag of h on the centre line where p > p_max/2 (see the module docstring)."""
+        p_axis = np.asarray(p_axis)
+        return oscillation_indicator(np.asarray(h_axis), p_axis, 0.5 * p_axis.max(initial=0))
+
+    @classmethod
+    def measures(cls, run, v):
+        """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
+        film = run[1]
+        prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
+        f_plane = film.counter_force()
+        xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
+        on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
+        order = np.argsort(xy[on, 0])
+        xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
+        i = int(np.argmin(prof["h"]))
+        # where h is least, between nodes (tribofx.positions); y ≥ 0 in the quarter model
+        x_min, y_min = paraboloid_vertex(xy, prof["h"], "min")
+        per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
+        return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
+                "film_oscillation": cls.film_oscillation(hh, pp),
+                "x_h_min": x_min, "y_h_min": max(y_min, 0.0),
+                "p_max": float(prof["p"].max()),
+                "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
+                            "h_axis": hh, "p_axis": pp},
+                "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
+                "friction_coefficient": abs(float(f[0])) * per_load,
+                "couette_friction_coefficient": abs(float(fc[0])) * per_load,
+                "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
+                "clearance": -float(film.counterpart.offset.value[Z])}
+
+    @classmethod
+    def _report(cls, steps, speed, v, record, prefix):
+        keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
+                "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
+                "film_oscillation")
+        for m in steps:  # a journal written before film_oscillation was measured
+            if "film_oscillation" not in m:
+                m["film_oscillation"] = (cls.film_oscillation(m["profile"]["h_axis"],
+                                                              m["profile"]["p_axis"])
+                                         if "profile" in m else math.nan)
+        for m in steps + speed:   # ... or before the force on the plane was
+            m.setdefault("plane_friction_coefficient", math.nan)
+        if steps:
+            for k in keys:
+                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
+            if steps[-1]["film_oscillation"] > cls.FILM_OSCILLATION_TOL:
+                who = f"{prefix.rstrip('_')}: " if prefix else ""
+                record.warn(f"{who}film zig-zags node to node by ±"
+                            f"{100 * steps[-1]['film_oscillation']:.0f} % on the centre line "
+                            f"(W = {steps[-1]['W']:.3g} N): the mesh does not resolve it; "
+                            "refine (mesh, edge_refine)")
+            record.result(prefix + "W_reached", steps[-1]["W"], "N")
+        for k in ("W",) + keys:
+            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
+        for m in speed:
+            m["mu_U"] = v["mu"] * m["U"]
+        if len(speed) > 1:
+            for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                      "plane_friction_coefficient", "h_central", "h_min", "p_max"):
+                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacement (bulk) and film pressure (cap submesh)."""
+        ball, film, _ = run
+        return {"displacement": [ball.u], "pressure": [film.p]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """film_map.png, centerline.png and (with speeds) friction_vs_speed.png."""
+        from ..plots import plot_ball_film, plot_friction_vs_speed
+
+        variants = {k: var for k, var in profile["variants"].items() if "xy" in var}
+        if not variants:
+            return
+        plot_ball_film(variants, profile["W"], outdir)
+        # without shear tractions the film force has no drag: plot the Couette drag
+        curves = {var["label"] + ("" if var["shear"] else " (Couette drag)"): (
+            var["speed"]["mu_U"], var["speed"]["friction_coefficient" if var["shear"]
+                                               else "couette_friction_coefficient"])
+            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1}
+        curves.update({var["label"] + " (on the plane)": (
+            var["speed"]["mu_U"], var["speed"]["plane_friction_coefficient"])
+            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1
+            and np.isfinite(var["speed"]["plane_friction_coefficient"]).all()})
+        if curves:
+            plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
+
+    @staticmethod
+    def speed(run, on_set=None):
+        """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
+        return ConstantParameter(run[1].V_counter, 0, on_set=on_set, scale=2.0)
+
+    @classmethod
+    def hertz_start(cls, run, v, W, U):
+        """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
+        h = cls.hertz_contact(v, W)
+        run[1].start_from_pressure(
+            lambda x: h.pressure(np.hypot(x[0], x[1])),
+            cls.scales(v, W, U)[2], np.zeros(3))
+
+    @staticmethod
+    def load(run):
+        """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
+        return 2.0 * float(run[1].force()[Z])
+
+    @classmethod
+    def position_control(cls, run, v, verbose=False, on_set=None, record=None):
+        """Secant on the load W(z_p) in the plane position z_p (steps ≤ 0.1 δ_Hertz).
+
+        A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
+        """
+        film, problem = run[1], run[2]
+        return Continuation(problem, ConstantParameter(film.counterpart.offset, Z, on_set),
+                            response=lambda: cls.load(run), rtol=1e-4, max_trials=40,
+                            verbose=verbose, max_step=0.1 * cls.hertz_contact(v).delta,
+                            admissible=lambda: film.min_film() > 0 and cls.load(run) > 0,
+                            record=record)
+
+    @classmethod
+    def hertz_slope(cls, v):
+        """dW/dz_p = 1.5 W/δ(W) (N/mm) of a Hertz contact, as a function of W."""
+        return lambda W: 1.5 * W / cls.hertz_contact(v, W).delta
+
+    @classmethod
+    def load_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
+        """Reach W/steps, …, W at the speed U; returns the position controller.
+
+        ``on_step(W, iterations)`` after each load (the Newton trials of the
+        load), then ``on_accept(position, carrier)``: the JSON ``position`` a
+        resumed sweep starts from (``start=``, with the state of that load
+        restored) and the arrays of the state the next load starts from (or None).
+        """
+        if cls.large_load(v):
+            return cls.thick_film_sweep(run, v, on_step, verbose, start, on_accept)
+        film, problem = run[1], run[2]
+        W1 = v["W"] / v["steps"]
+        inner = cls.position_control(run, v, verbose)
+        offset = film.counterpart.offset.value
+        # each trial sequence starts at the current position: the converged first
+        # state, then the Hertz state predicted for each further load
+        held = HeldResponse(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
+        if start is None:
+            cls.hertz_start(run, v, W1, v["U"])
+            its0 = problem.solve_by_homotopy(verbose=verbose).iterations
+            if not film.min_film() > 0:
+                raise NewtonDivergence(
+                    f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
+                    "under-resolved by the mesh): raise mesh or use fewer load steps")
+        else:
+            inner.set_secant_state(start["inner"])
+        for k in range(0 if start is None else start["k"], v["steps"]):
+            if k > 0:
+                held.predict = lambda W: cls.hertz_start(run, v, W, v["U"])
+            held.target = v["W"] * (k + 1) / v["steps"]
+            its = held.solve(verbose).iterations
+            if on_step is not None:
+                on_step(held.target, [its0, *its] if k == 0 else its)
+            if on_accept is not None:
+                on_accept({"k": k + 1, "inner": inner.secant_state()}, None)
+        return inner
+
+    @classmethod
+    def thick_film_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
+        """Large loads: displacement control on a thick film at U_s, then continue down to U.
+
+        (i) At U_s = ``start_speed``·U the Hertz state at W_0 = min(W/steps, W/4)
+        is solved (if it fails: U_s ×0.3, ×3, ×0.1, ×10, never below U); (ii) the
+        plane is raised by displacement control until the film carries the next
+        load (:meth:`Continuation.advance`, scales following the load reached);
+        (iii) from that state U is marched down to U at fixed load
+        (:meth:`speed_march`) and the load recorded; (iv) the next load continues
+        from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
+        as for :meth:`load_sweep`, with the carrier state restored.
+        """
+        film, problem = run[1], run[2]
+        U, speed = v["U"], cls.speed(run)
+        if start is None:
+            its, k0 = [], 0
+            W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
+            for f in (1.0, 0.3, 3.0, 0.1, 10.0):
+                Us = max(U, f * v["start_speed"] * U)
+                speed.set(Us)
+                cls.set_scales(film, v, W0, Us)
+                cls.hertz_start(run, v, W0, Us)
+                try:
+                    its = [problem.solve(verbose=verbose).iterations]
+                except NewtonDivergence:
+                    continue
+                if film.min_film() > 0:
+                    break
+            else:
+                raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
+                                       "start_speed or mesh")
+            W_start = cls.load(run)
+        else:
+            its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
+            if k0 < v["steps"]:      # the next load starts from the thick-film state
+                problem.restore(start["carrier"])
+                speed.set(Us)
+                cls.set_scales(film, v, W_start, Us)
+            else:                    # all loads done: the last load's controller
+                inner = cls.follow_control(run, v, W_start, W_start, verbose, its)
+                inner.set_secant_state(start["inner"])
+        for k in range(k0, v["steps"]):
+            Wk = v["W"] * (k + 1) / v["steps"]
+            inner = cls.follow_control(run, v, Wk, W_start, verbose, its)
+            inner.advance(Wk, 0.05 * cls.hertz_contact(v).delta)
+            cls.set_scales(film, v, Wk, Us)
+            carrier = problem.state()
+            if Us != U:  # (``inner`` records the Newton trials of each speed step)
+                cls.speed_march(run, v, inner, Wk, U)
+            if on_step is not None:
+                on_step(Wk, its)
+            if on_accept is not None:
+                on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
+                           "inner": inner.secant_state()}, carrier)
+            its, W_start = [], Wk
+            if k + 1 < v["steps"] and Us != U:
+                problem.restore(carrier)
+                speed.set(Us)
+                cls.set_scales(film, v, Wk, Us)
+        return inner
+
+    @classmethod
+    def follow_control(cls, run, v, Wk, W_start, verbose=False, record=None):
+        """Position control towards the load Wk whose scales follow the load reached.
+
+        Every trial position sets the scales of the load reached last (≤ Wk;
+        ``W_start`` before the first) at the current speed.
+        """
+        film, speed = run[1], cls.speed(run)
+
+        def follow(z):
+            W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
+            cls.set_scales(film, v, W_ref, speed.get())
+
+        inner = cls.position_control(run, v, verbose, on_set=follow, record=record)
+        return inner
+
+    @classmethod
+    def speed_march(cls, run, v, inner, W, U, restart=False, record=None, on_speed=None,
+                    increments=None):
+        """Continue the converged state at load W in the entrainment speed to U (geometric).
+
+        Each speed step re-finds the plane position for W (``inner``), starting
+        from the Hertz state at the new speed (``restart``) or from the plane
+        shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
+        A failed step is cut (six times at most).  ``on_speed(march)`` after every
+        converged step; ``increments``: those of an interrupted march (resumed).
+        """
+        film = run[1]
+        offset = film.counterpart.offset.value
+        speed = cls.speed(run, on_set=lambda Uv: cls.set_scales(film, v, W, Uv))
+        last = {"U": speed.get()}
+
+        def shifted():
+            h_c = cls.measures(run, v)["h_central"]
+            return float(offset[Z]) - h_c * ((speed.get() / last["U"]) ** 0.64 - 1)
+
+        def response():
+            last["U"] = speed.get()
+            return on_speed(march) if on_speed is not None else None
+
+        held = HeldResponse(inner, W, slope=cls.hertz_slope(v),
+                            guess=(lambda: float(offset[Z])) if restart else shifted,
+                            predict=(lambda Wt: cls.hertz_start(run, v, Wt, speed.get()))
+                            if restart else None)
+        march = Continuation(held, speed, response=response, record=record)
+        # speed ratios of at most MAX_SPEED_RATIO per step (a failed step is cut further)
+        steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
+        march.march(U, steps=steps, predictor=False, geometric=True, min_fraction=2.0**-6,
+                    increments=increments)
+
+    @classmethod
+    def large_load(cls, v):
+        """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
+        return cls.hertz_contact(v).a > v["R"] / 3

@@ -45,17 +45,18 @@ from ..obstacles import rigid_cylinder, rigid_plane
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz, rigid_clearance
-from .ehl_two_cylinders_outputs import TwoCylinderOutputs
 
 __all__ = ["EHLTwoCylindersCase"]
 
 
-class EHLTwoCylindersCase(TwoCylinderOutputs):
+class EHLTwoCylindersCase:
     """Case ``ehl-two-cylinders``; see the module docstring."""
 
     name = "ehl-two-cylinders"
+
     doc = ("soft-EHL line contact of two elastic cylinders (or a cylinder on a block), "
            "rolling and sliding; either body may be rigid")
+
     params = (
         Param("R1", float, 10.0, "mm", "radius of the upper cylinder", lower=0.0),
         Param("R2", float, 10.0, "mm", "radius of the lower cylinder (inf: a block)",
@@ -206,8 +207,60 @@ class EHLTwoCylindersCase(TwoCylinderOutputs):
         try:
             outer.march(v["W"], v["steps"])
         except NewtonDivergence as err:
-            err.problem = run
+            err.model = run
             raise
         finally:
             cls.report(run, v, record, steps, ref)
         return run
+
+    @staticmethod
+    def measures(run, v):
+        """Return the film at the current load: h at x = 0, h_min, p_max, forces, profile."""
+        film = run["film"]
+        prof = film.profile(everywhere=True)
+        X = prof["X"][:, 0]
+        m = {"W": float(run["sign"] * film.force()[1]), "h_central": float(
+            prof["h"][np.argmin(np.abs(X))]), "h_min": float(prof["h"].min()),
+            "p_max": float(prof["p"].max()), "x": prof["x"][:, 0], "h": prof["h"],
+            "p": prof["p"]}
+        if isinstance(film, TwoBodyFilm):
+            on1, on2 = film.forces()
+        else:
+            on = film.force()
+            on1, on2 = (on, -on) if run["sign"] > 0 else (-on, on)
+        m["friction_force_upper"], m["friction_force_lower"] = float(on1[0]), float(on2[0])
+        m["approach"] = float(run["lift"].value[1]) * (1 if run["sign"] > 0 else -1)
+        return m
+
+    @staticmethod
+    def report(run, v, record, steps, ref):
+        """Results at the last converged load; profiles for the plot."""
+        if not steps:
+            return
+        m = steps[-1]
+        units = {"W": "N/mm", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
+                 "friction_force_upper": "N/mm", "friction_force_lower": "N/mm",
+                 "approach": "mm"}
+        for key, unit in units.items():
+            record.result("normal_load" if key == "W" else key, m[key], unit)
+        u_m = 0.5 * (v["U1"] + v["U2"])
+        record.result("hertz_half_width", ref.a, "mm")
+        record.result("hertz_p_max", ref.p0, "MPa")
+        record.result("rigid_film_martin", rigid_clearance(m["W"], v["mu"], 2 * u_m,
+                                                           ref.R_star), "mm")
+        if run["film"].sub.comm.rank == 0:
+            record.profile = {"steps": [{k: s[k] for k in ("W", "x", "p", "h")}
+                                        for s in steps]}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacements of the elastic bodies (one file per mesh)."""
+        return {b.name: [b.u] for b in run["bodies"].values()}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """``profiles.png``: p(x) and h(x) per load step."""
+        from ..plots.film import plot_film_profiles
+
+        plot_film_profiles(profile["steps"], outdir / "profiles.png",
+                           "two elastic cylinders: film per load step")

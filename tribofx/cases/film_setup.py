@@ -1,17 +1,23 @@
 """Film set-up shared by the EHL cases.
 
 The rim ∂Γ_l of the lubricated surface, point locators for pressure conditions,
-and the ``speeds`` parameter of a speed continuation.
+the ``speeds`` parameter of a speed continuation, the fluid's laws from the
+parameters, and the 1D film of a prescribed gap (:func:`rigid_film`).
 """
 
 import numpy as np
 from dolfinx import mesh as dmesh
 
+from ..interfaces import RigidFilm
 from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import InputError, Param, number_list
+from ..problem import Problem
 
-__all__ = ["VISCOSITY_PARAMS", "arc_halvings", "at_points", "cavitation_model", "density",
-           "film_boundary", "formulation_param", "quadrature_param", "speed_list", "viscosity"]
+__all__ = [
+    "rigid_film",
+    "VISCOSITY_PARAMS", "arc_halvings", "at_points", "cavitation_model", "density",
+    "film_boundary", "formulation_param", "quadrature_param", "speed_list", "viscosity",
+]
 
 
 def formulation_param(default):
@@ -146,3 +152,30 @@ def density(v):
         raise InputError("density=dowson-higginson is implemented with penalty or no "
                          "cavitation, not jfo")
     return named_density(v["density"])
+
+
+def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,
+               p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None, supply=False):
+    """Return the film of a 1D gap on [x0, x1] (flow entering at x0) and its :class:`Problem`.
+
+    Penalty or no cavitation: p = 0 at both ends.  JFO: inlet at x0 with void
+    fraction λ_in (flooded, λ_in = 0: also p = 0), natural outlet (no
+    Poiseuille flux, p = 0 there by complementarity).  ``h_ref`` (mm) is the
+    film scale of the tolerances and, times v̄, the flux scale of the JFO
+    complementarity rows.  ``supply`` (JFO): the inlet is an open end supplied with
+    the content (1 − λ_in) h(x0) (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`)
+    instead of the Dirichlet conditions on λ and p.  Returns ``(film, problem)``.
+    """
+    msh = dmesh.create_interval(comm, n, [x0, x1])
+    film = RigidFilm(msh, gap, vbar, mu, degree=degree, cavitation=cavitation, supg=supg,
+                     eps=eps, p_c=p_c, film_scale=h_ref, speed_scale=vbar, density=density)
+    if cavitation == "jfo":
+        at_inlet = lambda y: np.isclose(y[0], x0)   # noqa: E731
+        if supply:
+            film.add_inflow(at_inlet, (1 - lam_in) * gap(np.array(x0)))
+        else:
+            film.add_inlet(at_inlet, void=lam_in)
+        film.jfo_initial_guess()
+    else:
+        film.add_pressure_bc()
+    return film, Problem([film], name="reynolds", max_it=50, max_backtracks=8)

@@ -26,8 +26,7 @@ from ..params import InputError, Param
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence
 from ..references import cylinder_references
-from .film_setup import VISCOSITY_PARAMS, density, viscosity
-from .reynolds import rigid_film
+from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
 
 # cylinder_references is re-exported from tribofx.references
 __all__ = ["CylinderCase", "cylinder_references"]
@@ -175,7 +174,7 @@ class CylinderCase:
                 its.append(report.iterations)
                 prev = film.sub.comm.bcast(film.profile(), root=0)
         except NewtonDivergence as err:
-            err.problem = run
+            err.model = run
             raise
         record.data["num_dofs"] = problem.num_dofs
         record.data["mesh_levels"] = levels

@@ -37,12 +37,11 @@ from ..interfaces import Wear
 from ..params import InputError, Param
 from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
-from . import slow_time
-from .stribeck import StribeckCase
+from . import rough_contact, slow_time
 
 __all__ = ["WearLubricatedCase"]
 
-_SHARED = [p for p in StribeckCase.params if p.name not in ("speeds", "geometry")]
+_SHARED = [p for p in rough_contact.PARAMS if p.name not in ("speeds", "geometry")]
 
 
 class WearLubricatedCase:
@@ -70,7 +69,7 @@ class WearLubricatedCase:
         if v["V"] >= v["U_start"]:
             raise InputError("V must be below U_start (W is reached at U_start)")
         slow_time.check_scheme(v)
-        StribeckCase.validate(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
+        rough_contact.check(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
 
     @staticmethod
     def progress_total(v):
@@ -81,11 +80,11 @@ class WearLubricatedCase:
     def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
         """Cylinder with a shape field, rough film, wear, stepper and the load control.
 
-        Returns the run dict of :meth:`StribeckCase.build` with ``wear`` and
+        Returns the run dict of :func:`tribofx.cases.rough_contact.build` with ``wear`` and
         ``stepper``; ``problem`` is the stepper's monolithic Problem.
         """
         s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
-        run = StribeckCase.build(s, comm, shape=True)
+        run = rough_contact.build(s, comm, shape=True)
         film = run["film"]
         wear = Wear(film, k=v["k"], speed=v["V"],
                     theta=0.0 if v["scheme"] == "explicit" else 1.0,
@@ -127,7 +126,7 @@ class WearLubricatedCase:
         state = sr.history.setdefault("state", {"profiles": [], "times": []})
 
         def log(t, its, dt, error=None, rejected=0):
-            m = StribeckCase.measures(run, v)
+            m = rough_contact.measures(run, v)
             sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
                          "max_wear_depth": wear.max_depth(),
                          **{k: m[k] for k in ("asperity_load", "film_load_fraction",
@@ -142,10 +141,10 @@ class WearLubricatedCase:
                 state["times"].append(t)
 
         if resume:   # the state is the checkpoint's; the speed is V
-            StribeckCase.set_speed(run, v["V"])
+            rough_contact.set_speed(run, v["V"])
         else:
             its = []
-            StribeckCase.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
+            rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
                                        lambda U, n: its.append(n))
             log(0.0, sum(its) + stepper.start(), 0.0)
         sr.run(v["T"], v["dt"],

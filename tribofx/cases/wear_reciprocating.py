@@ -36,7 +36,7 @@ Your own pin (``mesh_file``): a 2D gmsh ``.msh`` whose physical groups are the
 case's own (:data:`tribofx.meshes.pin.NAMES`): ``contact`` (the tip, the slave
 surface), ``top`` (loaded) and ``sides`` (held laterally), read and checked by
 :func:`tribofx.meshes.user.read_user_mesh`.  It is moved as
-:meth:`tribofx.cases.wear.WearPinCase._user_pin` moves the pin of ``wear-pin``
+:func:`tribofx.cases.user_pin.place_user_pin` moves the pin of ``wear-pin``
 (its lowest tip point to y = 0, the block's top) and its x extent centred on
 x = 0 (the centre of the stroke); it replaces ``W``, ``H``, ``R_tip`` and the
 pin's mesh.  What the case takes from W, R_tip and n it then takes from the
@@ -45,7 +45,7 @@ traction is F/ℓ with ℓ the length of ``top`` (so that the pin carries F; ℓ
 for the case's pin), the element size h = W/n is the mean length of the tip
 facets (ρ_N = min(E_pin, E_block)/h and the block's element size 4h/3:
 ``mesh`` then refines nothing), and Newton's start on load-up is the approach
-of :meth:`~tribofx.cases.wear.WearPinCase._user_approach` (the tip's height at
+of :func:`~tribofx.cases.user_pin.user_pin_approach` (the tip's height at
 |x| = W/4, so that its middle half starts in contact, plus the pin's
 compression F H/(ℓ E_pin)) instead of the Hertz approach of R_tip.  The checks
 R_tip ≥ W/2 and tip height < H/2 are those of the built circular tip and do
@@ -53,8 +53,10 @@ not apply.  ``pin_width``, ``pin_height``, ``pin_top_length`` and
 ``contact_element_size`` report what was used (the built pin's W, H, W, W/n
 without ``mesh_file``).
 
-Results per slow step and outputs: :mod:`tribofx.cases.wear_reciprocating_run`.
+Results per slow step and outputs: :mod:`tribofx.cases.wear_reciprocating`.
 """
+
+import math
 
 import numpy as np
 import ufl
@@ -62,6 +64,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..body import Body
+from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact, Wear
 from ..meshes.block import NAMES as BLOCK_NAMES
@@ -70,12 +73,47 @@ from ..meshes.pin import NAMES as PIN_NAMES
 from ..meshes.pin import pin_body, tip_height
 from ..meshes.user import read_user_mesh
 from ..params import InputError, Param
-from ..stepper import ReciprocatingCycle, Stepper
+from ..references import hertz
+from ..slow_run import SlowRun
+from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
+from . import slow_time
 from .slow_time import check_scheme, scheme_params
-from .wear import WearPinCase
-from .wear_reciprocating_run import ReciprocatingRun
+from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["WearReciprocatingCase"]
+__all__ = ["WearReciprocatingCase", "cell_coordinates"]
+
+
+def cell_coordinates(body):
+    """Owned cells of ``body`` as (n, 3, 2) arrays of X̂, w and u at their vertices, on rank 0.
+
+    For pictures of the initial (X̂), worn (X̂ + w) and deformed (X̂ + w + u)
+    configurations; None on the other ranks.
+    """
+    msh = body.mesh
+    n = msh.topology.index_map(msh.topology.dim).size_local
+    geo = msh.geometry.dofmaps[0][:n]
+    dofs = body.V.dofmap.list[:n, :3]
+    X = msh.geometry.x[geo, :2]
+    u = body.u.x.array.reshape(-1, 2)[dofs]
+    w = body.w.x.array.reshape(-1, 2)[dofs]
+    parts = msh.comm.gather((X, w, u), root=0)
+    if msh.comm.rank != 0:
+        return None
+    return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
+
+
+def _jsonable(shot):
+    """Return a :meth:`WearReciprocatingCase.snapshot` as nested lists (None off rank 0)."""
+    if shot is None or any(body is None for part in shot for body in part):
+        return None
+    return [[[np.asarray(a).tolist() for a in body] for body in part] for part in shot]
+
+
+def _arrays(shot):
+    """Return the arrays of a :func:`_jsonable` snapshot."""
+    if shot is None:
+        return None
+    return [[tuple(np.asarray(a) for a in body) for body in part] for part in shot]
 
 
 def _centre_on_axis(msh):
@@ -91,11 +129,13 @@ def _centre_on_axis(msh):
     x[:, 0] -= 0.5 * (lo + hi)
 
 
-class WearReciprocatingCase(ReciprocatingRun):
+class WearReciprocatingCase:
     """Case ``wear-reciprocating``; see the module docstring."""
 
     name = "wear-reciprocating"
+
     doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
+
     params = (
         *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
                        "tol on the cycle-averaged shapes"),
@@ -183,7 +223,7 @@ class WearReciprocatingCase(ReciprocatingRun):
         """
         if v["mesh_file"]:
             msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(PIN_NAMES))
-            W, h = WearPinCase._user_pin(msh, ft, names)
+            W, h = place_user_pin(msh, ft, names)
             cls.check_stroke(v, W)
             _centre_on_axis(msh)
             H = comm.allreduce(float(np.max(msh.geometry.x[:, 1], initial=-np.inf)),
@@ -239,3 +279,169 @@ class WearReciprocatingCase(ReciprocatingRun):
                 "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
                 "cycle": cycle, "W": W, "H": H, "top_length": top, "h": h}
 
+    @classmethod
+    def progress_total(cls, v):
+        """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
+        return nominal_steps(v["cycles"] * cls.period(v), v["dt"])
+
+    @staticmethod
+    def load_up(run, v, verbose=False):
+        """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
+
+        Newton starts from the pin translated down by the Hertz approach a²/(2R)
+        of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin); a
+        user's pin (``mesh_file``) by its tip height at |x| = W/4 plus F H/(ℓ E_pin)
+        (:func:`tribofx.cases.user_pin.user_pin_approach` with the pin's
+        traction q = F/ℓ and modulus).
+        """
+        if v["mesh_file"]:
+            delta0 = user_pin_approach(
+                run["wear_pin"].contact, {"q": v["F"] / run["top_length"], "E": v["E_pin"]})
+        else:
+            a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
+                          v["nu"], line=True).a, v["W"] / 2)
+            delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
+        run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
+        run["load"].value = 0.0
+        control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
+                               verbose=verbose)
+        control.march(1.0, steps=2, predictor=False)
+        return int(sum(control.record))
+
+    @staticmethod
+    def snapshot(run):
+        """Cells of both bodies (X̂, w, u) at −A, at the centre and at +A of a cycle (rank 0).
+
+        Runs the start of a cycle at the current shapes: memory erased, the
+        block at −A (a), the run-in to the centre (b), the first quarter to +A
+        (c); then restarts, so the state is that of a cycle start again.
+        """
+        st, cyc = run["stepper"], run["cycle"]
+        P = st.problem
+        shots = []
+        cyc.start()
+        P.commit()
+        P.solve_by_homotopy()
+        P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        for pos in cyc.run_in:
+            cyc.move(pos)
+            P.solve_by_homotopy()
+            P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        for pos in cyc.positions[:cyc.fast_steps // 4]:
+            cyc.move(pos)
+            P.solve_by_homotopy()
+            P.commit()
+        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+        st.restart()
+        return shots
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+        """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
+
+        ``checkpoint``: directory of the per-step checkpoint (state and histories);
+        ``resume``: continue from it (:mod:`tribofx.restart`).
+        """
+        run = cls.build(v, checkpoint=checkpoint)
+        st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
+        wp, wb = run["wear_pin"], run["wear_block"]
+        st.verbose = verbose
+        for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
+                               ("pin_top_length", run["top_length"], "mm"),
+                               ("contact_element_size", run["h"], "mm")):
+            record.result(key, val, unit)
+        pin = run["pin"]
+        # the pin's vertical equilibrium: Σ of its momentum rows along y (each below
+        # atol_u at a solved state) is F − (contact force along y)
+        record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
+                      * pin.tolerances()[pin.u].atol, "N/mm")
+        tau = cls.period(v)
+        # the worn shapes and the deformation at every slow step (ParaView time series)
+        sr = SlowRun(st, v, record, (
+            "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
+            "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
+            "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
+            "picard_iterations", "dt", "error_estimate", "rejected"), cls.vtx_fields(run),
+            resume)
+        h, hist = sr.history, sr.hist
+        energy = [hist["dissipated_energy"][-1] if resume else 0.0]
+        w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
+
+        def log(t, dt, its, picard=0, error=None, rejected=0):
+            comm = contact.slave.mesh.comm
+            if st.last_increments is not None:   # dissipation of the step's (last) cycle
+                d_pin = st.last_increments[0]
+                n = contact.Q.dofmap.index_map.size_local
+                cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v["K_pin"]
+                energy[0] += cyc_d * dt / tau
+            else:
+                cyc_d = None
+            sr.log(its, (("time", t), ("cycles_done", t / tau),
+                         ("worn_area_pin", wp.worn_volume()),
+                         ("worn_area_block", wb.worn_volume()),
+                         ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
+                         ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
+                         ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
+                         ("rate_integral_pin", wp.wear_rate_integral()),
+                         ("rate_integral_block", wb.wear_rate_integral()),
+                         ("normal_force", float(contact.forces()[0][1])),
+                         ("newton_iterations", its), ("picard_iterations", picard),
+                         ("dt", dt), ("error_estimate", error), ("rejected", rejected)))
+
+        if not resume:
+            log(0.0, 0.0, cls.load_up(run, v, verbose))
+            h["initial_shot"] = _jsonable(cls.snapshot(run))
+        shots = {"initial": _arrays(h["initial_shot"])}
+
+        def report():
+            cls._report(run, record, hist, shots)
+            if record.profile is not None:
+                half = 0.5 * v["L"] + v["A"] + 0.1
+                record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
+
+        sr.run(v["cycles"] * tau, v["dt"],
+               lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard, rep.error,
+                                  rep.rejected), progress,
+               report=report, problem=run, **slow_time.control(v),
+               after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
+        return run
+
+    @staticmethod
+    def _report(run, record, hist, shots):
+        units = {"time": "s", "cycles_done": "-", "worn_area_pin": "mm^2/mm",
+                 "worn_area_block": "mm^2/mm", "dissipated_energy": "N*mm/mm",
+                 "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
+                 "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
+                 "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
+                 "normal_force": "N/mm", "newton_iterations": "-", "picard_iterations": "-",
+                 "dt": "s", "error_estimate": "mm (per step, error control)",
+                 "rejected": "-"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        record.result("accepted_steps", len(hist["time"]) - 1, "-")
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+        prof = {}
+        for key in ("wear_pin", "wear_block"):
+            d = run[key].gather_shape()
+            if d is not None:
+                prof[key] = {"X_hat": d["X_hat"], "X_worn": d["X_worn"], "x": d["x"],
+                             "depth": d["depth"]}
+                record.result(f"final_profile_{key[5:]}", d["X_worn"].tolist(),
+                              "mm (worn configuration)")
+                record.result(f"final_depth_{key[5:]}", d["depth"].tolist(), "mm")
+        if MPI.COMM_WORLD.rank == 0:
+            record.profile = {**hist, **prof, "shots": shots}
+
+    @staticmethod
+    def vtx_fields(run):
+        """Displacement and shape change of both bodies (one file per mesh)."""
+        return {"pin": [run["pin"].u, run["pin"].w], "block": [run["block"].u, run["block"].w]}
+
+    @staticmethod
+    def plot(profile, outdir):
+        """``fig5.png`` (configurations, both bodies) and ``wear.png`` (histories, profiles)."""
+        from ..plots.two_body import plot_reciprocating
+
+        plot_reciprocating(profile, outdir)

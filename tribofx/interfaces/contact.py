@@ -33,12 +33,13 @@ from ..forms import kinematics as kin
 from ..forms import wear as wf
 from ..laws import friction_law
 from ..problem import BlockTolerance
+from ..protocols import ComponentBase
 from .surface import Surface, node_to_dof
 
 __all__ = ["Contact", "gather_nodal", "node_to_dof"]
 
 
-class Contact:
+class Contact(ComponentBase):
     """Contact of ``body`` on boundary ``boundary`` with ``counterpart``.
 
     Args:

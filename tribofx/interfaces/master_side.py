@@ -18,6 +18,7 @@ from mpi4py import MPI
 
 from ..pattern import facet_rings
 from ..petsc_insert import add_matrix_blocks, add_vector_blocks
+from ..protocols import ComponentBase
 from ..two_body import MasterSurface, MasterSurface3
 from . import facets
 from .surface import node_to_dof
@@ -159,7 +160,7 @@ class MasterSide:
         return rr, cc
 
 
-class KernelAssembly:
+class KernelAssembly(ComponentBase):
     """The nodal kernel of a two-body interface in a :class:`tribofx.problem.Problem`.
 
     Base of :class:`~tribofx.interfaces.TwoBodyContact` and
@@ -169,6 +170,9 @@ class KernelAssembly:
     k)`` (global rows and columns of the kernel's slots) and the pairing
     references ``_facet_ref``, ``_facet_committed``.
     """
+
+    assembles = True
+    iterates = True
 
     def _kernel_ready(self):
         """Whether the kernel has a committed state to evaluate (always, by default)."""

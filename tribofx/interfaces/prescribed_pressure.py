@@ -5,11 +5,12 @@ from dolfinx import fem
 
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
+from ..protocols import ComponentBase
 
 __all__ = ["PrescribedPressure"]
 
 
-class PrescribedPressure:
+class PrescribedPressure(ComponentBase):
     """The lubricated boundary of a :class:`Film` under a prescribed pressure (no film).
 
     Component of a dry problem ``Problem([body, PrescribedPressure(film)])``: the

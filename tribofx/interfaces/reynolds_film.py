@@ -30,11 +30,12 @@ from ..forms import ehl as ef
 from ..forms import jfo, mixed
 from ..laws import density_law, is_constant
 from ..problem import BlockTolerance
+from ..protocols import ComponentBase
 
 __all__ = ["ReynoldsFilm"]
 
 
-class ReynoldsFilm:
+class ReynoldsFilm(ComponentBase):
     """Pressure rows, boundary conditions, scales and JFO tools shared by the films.
 
     A subclass sets ``sub`` (the mesh of the film), ``Q``/``Ql`` and ``p``/``lam``,

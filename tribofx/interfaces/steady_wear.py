@@ -46,6 +46,7 @@ from ..forms import hyperelastic as hf
 from ..forms import wear as wf
 from ..forms import wear_groove as gf
 from ..problem import BlockTolerance
+from ..protocols import ComponentBase
 from ..reduced import AlgebraicRow, ReducedProblem, Reduction
 from ..submesh import facet_submesh
 
@@ -105,7 +106,7 @@ class _Transposed:
         return self.P.transpose(v)
 
 
-class SteadyWear:
+class SteadyWear(ComponentBase):
     """Quasi-steady wear of ``contact``'s body, shape on the cross-section ``section``.
 
     Args:

@@ -68,6 +68,7 @@ from ..forms import ale
 from ..forms import wear as wf
 from ..laws import is_constant, wear_coefficient_law
 from ..problem import BlockTolerance
+from ..protocols import ComponentBase
 from .contact import node_to_dof
 
 __all__ = ["LAWS", "Wear"]
@@ -75,7 +76,7 @@ __all__ = ["LAWS", "Wear"]
 LAWS = ("nominal", "spatial")
 
 
-class Wear:
+class Wear(ComponentBase):
     """Archard wear of the slave surface of ``contact`` with the shape evolution law (28).
 
     Args:

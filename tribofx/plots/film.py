@@ -189,7 +189,7 @@ def _oring_axes(plt, groups, title):
 def plot_oring_cycle(hist, outdir):
     """O-ring over a reciprocating stroke: ``cycle.png``, rod speed, h_min, friction, air flux.
 
-    ``hist``: the per-step lists of :mod:`tribofx.cases.oring_cycle` (time in s).
+    ``hist``: the per-step lists of :mod:`tribofx.cases.ehl_oring` (time in s).
     """
     plt = pyplot()
     t = 1e3 * np.asarray(hist["time"])

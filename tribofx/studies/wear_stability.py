@@ -16,8 +16,8 @@ import math
 import numpy as np
 from mpi4py import MPI
 
+from ..cases.wear_ball_flat import MODEL_FRACTION, WearBallCase
 from ..stability import bisect_critical_step, growth_probe
-from .wear_ball import MODEL_FRACTION, WearBallCase
 
 __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
            "oscillation_ratio", "pin_critical_step", "pressure_nonuniformity",
@@ -66,7 +66,7 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
 
     The stability probe: the flat pin in the homogeneous state (parameters ``v``
     of ``wear-pin``, R_tip forced to 0; ``case`` the pin case class,
-    :class:`tribofx.cases.wear.WearPinCase`, whose ``build`` and ``load_up`` make
+    :class:`tribofx.cases.wear_pin.WearPinCase`, whose ``build`` and ``load_up`` make
     it) gets a node-to-node alternating wear-depth
     perturbation of amplitude ε (the highest mode the mesh carries, i.e. the
     first to go unstable), the contact problem is re-solved, and ``steps``

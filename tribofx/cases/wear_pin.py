@@ -43,12 +43,12 @@ p(2 Δt_r) of two implicit runs instead; ``study_schemes`` may add ``bdf2``, and
 reference is then a BDF2 run at Δt_r).  The error of a run is the Euclidean
 norm (as in the chapter) of the difference of the final worn nodal positions
 X̂ + w on Γ̂_c from the reference (mm; the max nodal distance is also stored).
-A run is flagged unstable (:func:`tribofx.cases.wear_dt_study.run_dt_study`) if it fails
+A run is flagged unstable (:func:`tribofx.studies.wear_dt_study.run_dt_study`) if it fails
 (Newton divergence or an inverted mesh at its nominal Δt: explicit runs get no
 step cutting) or if its error is dominated by the node-to-node alternating
-(checkerboard) mode (:func:`tribofx.cases.wear_stability.oscillation_ratio` of the
+(checkerboard) mode (:func:`tribofx.studies.wear_stability.oscillation_ratio` of the
 vertical error > ``OSCILLATION_TOL``), or (explicit) if Δt exceeds the critical
-step Δt_cr of the mesh (:func:`tribofx.cases.wear_stability.pin_critical_step`, also
+step Δt_cr of the mesh (:func:`tribofx.studies.wear_stability.pin_critical_step`, also
 reported).  Writes ``error_vs_dt.png``,
 ``profiles.png`` and the ``study_*`` results in summary.json.
 """
@@ -61,6 +61,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..body import Body
+from ..continuation import ConstantParameter, Continuation
 from ..forms import wear as wf
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact, Wear
@@ -68,20 +69,25 @@ from ..laws import Law
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
-from ..stepper import ReciprocatingCycle, Stepper
+from ..params import InputError, Param, number_list
+from ..references import hertz
+from ..slow_run import SlowRun, wear_fields
+from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
+from ..studies.wear_dt_study import run_dt_study
+from . import slow_time
 from .slow_time import check_scheme, scheme_params
-from .wear_pin_run import PinRun
-from .wear_pin_setup import PinSetup
+from .user_pin import place_user_pin, user_pin_approach
 
 __all__ = ["WearPinCase"]
 
 
-class WearPinCase(PinSetup, PinRun):
+class WearPinCase:
     """Case ``wear-pin``; see the module docstring."""
 
     name = "wear-pin"
+
     doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
+
     params = (
         *scheme_params(),
         Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
@@ -195,7 +201,6 @@ class WearPinCase(PinSetup, PinRun):
         """Elements per side of the structured mesh."""
         return 10 * 2 ** v["mesh"]
 
-
     @classmethod
     def build(cls, v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
         """Body, contact, wear and slow-time stepper of the case; returns ``(stepper, load)``.
@@ -210,7 +215,7 @@ class WearPinCase(PinSetup, PinRun):
         cyclic = v["mode"] == "cyclic"
         if v["mesh_file"]:
             msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(NAMES))
-            W, h = cls._user_pin(msh, ft, names)
+            W, h = place_user_pin(msh, ft, names)
         else:
             msh, ft = pin_body(W, v["H"], v["R_tip"] if v["R_tip"] > 0 else math.inf, n, comm)
             names, h = NAMES, W / n
@@ -240,3 +245,129 @@ class WearPinCase(PinSetup, PinRun):
                           max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_pin")
         return stepper, load
 
+    @staticmethod
+    def load_up(stepper, load, v, verbose=False):
+        """Unworn contact under the full traction (load factor 0 → 1 by Continuation).
+
+        Newton starts from the rigid translation δ₀ = a²/(2R) + qH/E of the pin (a
+        the 2D Hertz half-width of the tip, ν = 0.3, at most W/2), so that the tip
+        nodes start active; a failed solve halves the load increment.  Returns
+        the Newton iterations spent.
+        """
+        R = v["R_tip"]
+        a = min(hertz(v["q"] * v["W"], R, v["E"], 0.3, line=True).a, v["W"] / 2) if R else 0.0
+        delta0 = (a * a / (2 * R) if a else 0.0) + v["q"] * v["H"] / v["E"]
+        if v["mesh_file"]:   # a user's tip: its middle half starts in contact
+            delta0 = user_pin_approach(stepper.wear.contact, v)
+        stepper.wear.body.u.x.array.reshape(-1, 2)[:, 1] = -delta0
+        load.value = 0.0
+        control = Continuation(stepper.problem, ConstantParameter(load), verbose=verbose)
+        control.march(1.0, steps=1, predictor=False)
+        return int(sum(control.record))
+
+    @staticmethod
+    def study_lists(v):
+        """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
+        dts = number_list(v["study_dts"], "study_dts", allow_empty=True)
+        levels = number_list(v["study_meshes"], "study_meshes", int, True) or [v["mesh"]]
+        return dts, levels
+
+    @staticmethod
+    def study_schemes(v):
+        """Schemes of ``study=dt`` (one-line error if unknown or none)."""
+        schemes = [x.strip() for x in v["study_schemes"].split(",") if x.strip()]
+        if not schemes or any(x not in ("explicit", "implicit", "bdf2") for x in schemes):
+            raise InputError(f"study_schemes = {v['study_schemes']!r}: a comma-separated "
+                             "list of explicit, implicit, bdf2")
+        return list(dict.fromkeys(schemes))
+
+    @classmethod
+    def progress_total(cls, v):
+        """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
+        if v["study"] == "dt":
+            dts, levels = cls.study_lists(v)
+            return len(cls.study_schemes(v)) * len(dts) * len(levels)
+        return nominal_steps(v["T"], cls.slow_step(v))
+
+    @staticmethod
+    def vtx_fields(stepper):
+        """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
+        return wear_fields(stepper.wear)
+
+    @staticmethod
+    def plot(profile, outdir):
+        """Plot ``profiles.png``, ``wear.png`` (``study=dt``: ``error_vs_dt.png``, profiles)."""
+        from ..plots.wear import plot_dt_study, plot_wear_pin
+
+        if profile.get("study") == "dt":
+            return plot_dt_study(profile, outdir)
+        return plot_wear_pin(profile, outdir)
+
+    @classmethod
+    def run(cls, v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
+            resume=False):
+        """Integrate the wear of the pin from t = 0 to T; record per-step histories.
+
+        ``checkpoint``: directory of the per-step checkpoint (state and the
+        histories so far); ``resume``: continue from it instead of t = 0.
+        """
+        if v["study"] == "dt":
+            dts, levels = cls.study_lists(v)
+            ns = [10 * 2**m for m in levels] if n is None else [n]
+            return run_dt_study(cls, v, record, ns, dts, progress=progress, verbose=verbose)
+        stepper, load = cls.build(v, n=n, setup=setup, checkpoint=checkpoint)
+        stepper.verbose = verbose
+        wear, contact = stepper.wear, stepper.wear.contact
+        comm = wear.body.mesh.comm
+        keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
+                "newton_iterations", "wear_rate_integral", "dt", "error_estimate", "rejected")
+        # the worn shape and the deformation at every step (ParaView time series)
+        sr = SlowRun(stepper, v, record, keys,
+                     {"displacement": [wear.body.u, wear.body.w]}, resume)
+        h = sr.history
+        profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
+        if stepper.cycle is None:
+            record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
+
+        def log(t, its, dt, error=None, rejected=0):
+            area, _ = contact.measures()
+            sr.log(its, (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
+                         ("max_wear_depth", wear.max_depth()), ("contact_radius", area / 2),
+                         ("newton_iterations", its),
+                         ("wear_rate_integral", wear.wear_rate_integral()),
+                         ("error_estimate", error), ("rejected", rejected)))
+            s = wear.gather_shape()
+            if comm.rank == 0:
+                profiles.append(s["X_worn"].tolist())
+                ptimes.append(t)
+
+        def on_step(st, rep):
+            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
+            if st.cycle is None:
+                record.data["newton_residuals"].append(
+                    [float(x) for x in rep.reports[-1].residuals])
+
+        if not resume:
+            log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
+        sr.run(v["T"], cls.slow_step(v), on_step, progress,
+               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes),
+               **slow_time.control(v))
+        return stepper
+
+    @classmethod
+    def _report(cls, stepper, v, record, hist, profiles, ptimes):
+        units = {"time": "s", "wear_volume": "mm^3/mm", "max_wear_depth": "mm",
+                 "contact_radius": "mm (half-width)", "newton_iterations": "-",
+                 "wear_rate_integral": "mm^3/(mm*s)", "dt": "s",
+                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
+        for key, vals in hist.items():
+            record.result(key, vals, units[key])
+        record.result("accepted_steps", len(hist["time"]) - 1, "-")
+        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+        d = stepper.wear.gather_shape()
+        if d is not None:
+            record.result("final_profile", d["X_worn"].tolist(), "mm (worn configuration)")
+            record.result("final_profile_deformed", d["x"].tolist(), "mm (current)")
+            record.result("final_pressure", d["p"].tolist(), "MPa")
+            record.profile = {**hist, "profiles": profiles, "times": ptimes,
+                              "scheme": v["scheme"], "dt": cls.slow_step(v)}

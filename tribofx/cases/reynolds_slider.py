@@ -1,8 +1,8 @@
-"""Hydrodynamic lubrication between rigid surfaces: the Reynolds equation in 1D.
+"""The plane inclined slider: the Reynolds equation in 1D between rigid surfaces.
 
-Cases on an interval mesh (the planar, traditional form §6.6 of the chapter,
-with the weak forms of ``forms/reynolds.py``); the 1D film :func:`rigid_film`
-they share:
+On an interval mesh (the planar, traditional form §6.6 of the chapter, with the
+weak forms of ``forms/reynolds.py``; the 1D film of
+:func:`tribofx.cases.film_setup.rigid_film`, shared with ``reynolds-cylinder``).
 
 ``reynolds-slider`` — plane inclined slider (pad at rest, plane runner sliding
 at U, so v̄ = U/2 and ∂h/∂t = 0 by eq. 61), gap h = h0(1 + K − K x/L) on
@@ -18,49 +18,20 @@ import math
 
 import numpy as np
 import ufl
-from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
-from ..interfaces import RigidFilm
 from ..params import InputError, Param
 from ..positions import parabolic_vertex
-from ..problem import NewtonDivergence, Problem
+from ..problem import NewtonDivergence
 from ..references import (
     barus_pressure,
     slider_pressure,
     slider_reference,
 )
-from .film_setup import VISCOSITY_PARAMS, density, viscosity
+from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
 
 # slider_reference is re-exported from tribofx.references
-__all__ = ["SliderCase", "rigid_film", "slider_reference"]
-
-
-def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,
-               p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None, supply=False):
-    """Return the film of a 1D gap on [x0, x1] (flow entering at x0) and its :class:`Problem`.
-
-    Penalty or no cavitation: p = 0 at both ends.  JFO: inlet at x0 with void
-    fraction λ_in (flooded, λ_in = 0: also p = 0), natural outlet (no
-    Poiseuille flux, p = 0 there by complementarity).  ``h_ref`` (mm) is the
-    film scale of the tolerances and, times v̄, the flux scale of the JFO
-    complementarity rows.  ``supply`` (JFO): the inlet is an open end supplied with
-    the content (1 − λ_in) h(x0) (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`)
-    instead of the Dirichlet conditions on λ and p.  Returns ``(film, problem)``.
-    """
-    msh = dmesh.create_interval(comm, n, [x0, x1])
-    film = RigidFilm(msh, gap, vbar, mu, degree=degree, cavitation=cavitation, supg=supg,
-                     eps=eps, p_c=p_c, film_scale=h_ref, speed_scale=vbar, density=density)
-    if cavitation == "jfo":
-        at_inlet = lambda y: np.isclose(y[0], x0)   # noqa: E731
-        if supply:
-            film.add_inflow(at_inlet, (1 - lam_in) * gap(np.array(x0)))
-        else:
-            film.add_inlet(at_inlet, void=lam_in)
-        film.jfo_initial_guess()
-    else:
-        film.add_pressure_bc()
-    return film, Problem([film], name="reynolds", max_it=50, max_backtracks=8)
+__all__ = ["SliderCase", "slider_reference"]
 
 
 # --------------------------------------------------------------------------- slider case
@@ -110,7 +81,7 @@ class SliderCase:
         try:
             report = problem.solve_by_homotopy(verbose=verbose)
         except NewtonDivergence as err:
-            err.problem = run
+            err.model = run
             raise
         record.data["newton_iterations"].append([report.iterations])
         record.data["newton_residuals"] = [float(r) for r in report.residuals]
@@ -129,7 +100,7 @@ class SliderCase:
             ref["load"] = film.integral(p_ex)
         elif v["viscosity"] != "constant":
             ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
-        err = math.sqrt(film.integral((film.p - p_ex) ** 2))
+        l2 = math.sqrt(film.integral((film.p - p_ex) ** 2))
         nrm = math.sqrt(film.integral(p_ex**2))
         prof = film.profile()
         peak = None
@@ -151,8 +122,8 @@ class SliderCase:
 
         record.result("load_rel_error", rel(load, ref["load"]))
         record.result("p_max_rel_error", rel(pm, ref["p_max"]))
-        record.result("pressure_l2_error", err, "MPa·mm^0.5")
-        record.result("pressure_rel_l2_error", err / nrm if nrm > 0 else None)
+        record.result("pressure_l2_error", l2, "MPa·mm^0.5")
+        record.result("pressure_rel_l2_error", l2 / nrm if nrm > 0 else None)
         return run
 
     @staticmethod

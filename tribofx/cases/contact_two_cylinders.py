@@ -22,7 +22,7 @@ body with the physical groups the case gives its own meshes — ``contact``,
 and ``symmetry_x`` (x = 0) — one file per body, as the two bodies are two
 meshes here; either may be given alone (the other body is built).  The Hertz
 reference stays the one of R1, R2, E1, E2, ν1, ν2 and the load, so each mesh
-must be its body: it is moved (:func:`tribofx.cases.hertz_user.read_hertz_body`)
+must be its body: it is moved (:func:`tribofx.cases.curved_bodies.read_hertz_body`)
 so that symmetry_x is x = 0 and its first-contact point (the lowest contact
 node of the upper body, the highest of the lower one) is at the origin, and
 rejected if its curvature there is not 1/R1 (1/R2; 0 for R2 = 0, a flat)
@@ -43,7 +43,7 @@ from ..meshes.hertz import NAMES, hertz_body
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz
-from .hertz_user import CURVATURE_TOL, read_hertz_body
+from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
 __all__ = ["TwoCylindersCase"]
 
@@ -102,7 +102,7 @@ class TwoCylindersCase:
         """Upper body, lower body, contact and problem (unloaded).
 
         A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
-        and placed by :func:`tribofx.cases.hertz_user.read_hertz_body`; ρ_N = E_min/h
+        and placed by :func:`tribofx.cases.curved_bodies.read_hertz_body`; ρ_N = E_min/h
         with h the smaller contact element size of the two bodies.
         """
         h = cls.reference(v)
@@ -155,7 +155,7 @@ class TwoCylindersCase:
                 if progress is not None:
                     progress.update(1)
         except NewtonDivergence as err:
-            err.problem = run
+            err.model = run
             raise
         finally:
             cls.report(run, v, record, h)

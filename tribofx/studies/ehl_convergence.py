@@ -2,8 +2,8 @@
 
 from mpi4py import MPI
 
+from ..cases.ehl_cylinder_layer import EHLCylinderLayerCase as Case
 from ..params import InputError
-from .ehl import EHLCylinderLayerCase as Case
 
 __all__ = ["mesh_convergence"]
 

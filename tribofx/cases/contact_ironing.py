@@ -36,6 +36,7 @@ contact force).
 """
 
 import numpy as np
+from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
@@ -44,10 +45,9 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
 from ..meshes.block import NAMES, block_mesh
 from ..meshes.ironing import ARC, TOP, die_body
-from ..meshes.user import read_user_mesh
+from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
-from .ironing_user import IroningUser
 
 __all__ = ["IroningCase"]
 
@@ -57,11 +57,13 @@ def _slab(comm, L, H, nx, ny, material):
     return Body(msh, tags, NAMES, "plane_strain", material, name="slab")
 
 
-class IroningCase(IroningUser):
+class IroningCase:
     """Case ``contact-ironing``; see the module docstring."""
 
     name = "contact-ironing"
+
     doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
+
     params = (
         Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
         Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),
@@ -163,7 +165,7 @@ class IroningCase(IroningUser):
                 phase.remember()
                 phase.march(target, steps)
         except NewtonDivergence as err:
-            err.problem = run
+            err.model = run
             raise
         finally:
             cls.report(history, v, record)
@@ -217,3 +219,44 @@ class IroningCase(IroningUser):
         fig.tight_layout()
         fig.savefig(outdir / "reaction.png", dpi=110)
         plt.close(fig)
+
+    @classmethod
+    def _user_die(cls, msh, ft, names, v):
+        """Place a user's die as the case places its own; return (half-width b, h_die).
+
+        The x extent is centred on x_c = b/2 + 1 and the lowest ``arc`` node put
+        on the slab's top y = H.  One-line :class:`InputError` if a node of the
+        die lies below that point, or a node of ``top`` as low as it, by more
+        than 1e-9 of the die's size (the arc is not its lower boundary: the die
+        would start inside the slab, or press it with a face that is not in
+        contact), or if the slide takes x_c off the slab (:meth:`check_slide`).
+        h_die is the mean length of the arc facets within b of (x_c, H)
+        (:func:`tribofx.meshes.user.boundary_facet_size`).
+        """
+        comm, x = msh.comm, msh.geometry.x
+
+        def extent(a):
+            return (comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN),
+                    comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX))
+
+        (lo, hi), (ylo, yhi) = extent(x[:, 0]), extent(x[:, 1])
+        b = 0.5 * (hi - lo)
+        cls.check_slide(v, b)
+
+        def nodes(name):
+            return np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(names[name]),
+                                                        False).ravel())
+
+        y0, tol = extent(x[nodes("arc"), 1])[0], 1e-9 * max(hi - lo, yhi - ylo)
+        y_top = extent(x[nodes("top"), 1])[0]
+        path = v["mesh_file"]
+        if ylo < y0 - tol:
+            raise InputError(f"the die in {path!r} reaches {y0 - ylo:.4g} mm below its "
+                             "lowest 'arc' node: 'arc' must be its lower boundary")
+        if y_top <= y0 + tol:
+            raise InputError(f"the die in {path!r} has 'top' as low as its lowest 'arc' "
+                             "node: 'arc' must be its lower boundary")
+        xc = 0.5 * b + 1.0
+        x[:, 0] += xc - 0.5 * (lo + hi)
+        x[:, 1] += v["H"] - y0
+        return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v["H"]), b))

@@ -3,7 +3,7 @@
 :func:`run_dt_study` runs the explicit and the implicit scheme (and BDF2, if
 ``study_schemes`` asks) over a list of steps on one or more meshes against a fine
 (or Richardson) reference, flags the
-unstable runs (:mod:`tribofx.cases.wear_stability`) and records errors, costs
+unstable runs (:mod:`tribofx.studies.wear_stability`) and records errors, costs
 and profiles.  Units: s, mm.
 """
 
@@ -37,7 +37,7 @@ def _study_run(case, v, n, scheme, dt, verbose=False):
         prob = case.run(over, sub, n=n, verbose=verbose)
     except NewtonDivergence as err:
         status = f"failed: {type(err).__name__}: {err}"[:200]
-        prob = getattr(err, "problem", None)
+        prob = err.model
     wall = time.perf_counter() - t0
     comm = MPI.COMM_WORLD if prob is None else prob.comm
     res = {k: r["value"] for k, r in sub.data["results"].items()}
@@ -59,7 +59,7 @@ def _study_run(case, v, n, scheme, dt, verbose=False):
 def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     """``study=dt`` of ``wear-pin`` on the n × n meshes ``ns`` for the time steps ``dts``.
 
-    ``case``: the pin case class (:class:`tribofx.cases.wear.WearPinCase`, its
+    ``case``: the pin case class (:class:`tribofx.cases.wear_pin.WearPinCase`, its
     ``run`` makes each run).
 
     Records ``study_dt``, ``study_error_<scheme>`` for each of ``study_schemes``
