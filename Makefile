@@ -27,9 +27,12 @@ test: setup
 	$(PY) -m pytest -q -m mpiexec $(PYTEST_ARGS)
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
+# the same three passes with the slow tests included (the 2-rank pass runs the slow tests
+# marked mpi too, e.g. the rough films' serial-against-parallel comparisons)
 test-slow: setup
 	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" --runslow $(PYTEST_ARGS)
 	$(PY) -m pytest -q -m mpiexec --runslow $(PYTEST_ARGS)
+	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider --runslow $(PYTEST_ARGS)
 
 lint: setup
 	$(VENV)/bin/ruff check .

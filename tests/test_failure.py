@@ -99,3 +99,24 @@ def test_solver_error_becomes_newton_divergence():
     assert np.array_equal(body.u.x.array, before)
     calls["n"] = 10  # no more failures: the same problem now converges
     assert problem.solve().iterations > 0
+
+
+def test_wear_of_an_axisymmetric_body_is_refused_where_it_is_built():
+    """A configuration that cannot run is refused by the constructor, in one line: a
+    shape field (finite wear) on an axisymmetric body, which the worn-body kinematics
+    (forms/ale.py) do not support, is refused by ``Body``, not later by the stepper."""
+    import numpy as np
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from tribofx.body import Body
+    from tribofx.params import InputError
+
+    msh = dmesh.create_rectangle(MPI.COMM_WORLD, [[1, 0], [2, 1]], [2, 2])
+    facets = dmesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[1], 0))
+    ft = dmesh.meshtags(msh, 1, facets, np.full(len(facets), 1, np.int32))
+    law = ("neo-hookean", {"mu": 1.0, "lmbda": 1.0})
+    with pytest.raises(InputError, match="3d' or 'plane_strain'") as err:
+        Body(msh, ft, {"bottom": 1}, "axisymmetric", law, shape=True)
+    assert "\n" not in str(err.value)
+    Body(msh, ft, {"bottom": 1}, "plane_strain", law, shape=True)   # the supported kinds build

@@ -200,7 +200,7 @@ def test_filtered_error_estimate_is_the_linearized_response():
     saved = stepper.state()
     stepper.step(20.0)                       # a BDF2 step (c₁ ≠ 0), from `saved`
     n = wear.surface.n_own
-    s0 = wear._swept_volume()[:n]
+    s0 = wear.swept_volume()[:n]
     raw = []
     wear.step_error(lambda d: raw.append(d) or d)
     (d,) = raw
@@ -217,7 +217,7 @@ def test_filtered_error_estimate_is_the_linearized_response():
     wear.bdf.swept_old.x.array[:n] -= eps * c0 * d / c1
     wear.bdf.swept_old.x.scatter_forward()
     control.solve()
-    response = (wear._swept_volume()[:n] - s0) / eps
+    response = (wear.swept_volume()[:n] - s0) / eps
     wear.end_step()
     emax = comm.allreduce(float(np.max(np.abs(e), initial=0.0)), op=MPI.MAX)
     gap = comm.allreduce(float(np.max(np.abs(response - e), initial=0.0)), op=MPI.MAX)

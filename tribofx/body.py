@@ -98,6 +98,10 @@ class Body(ComponentBase):
         if formulation == "mixed" and shape is not False:
             raise InputError("the mixed formulation is not available with a shape field "
                              "(finite wear)")
+        if kind == "axisymmetric" and shape is not False:
+            raise InputError("finite wear (a shape field) needs a '3d' or 'plane_strain' body: "
+                             "the worn-body kinematics of a surface of revolution are not built; "
+                             "model a sector of the body in 3D instead")
         self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
         self.cell_tags, self.name = cell_tags, name
         self.materials = material if isinstance(material, dict) else {None: material}

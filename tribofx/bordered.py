@@ -103,7 +103,7 @@ class Border:
         # owned Dirichlet dofs of each unknown (zero rows of b)
         self._fixed = []
         for u in problem.u:
-            n_own = problem._owned_size(u)
+            n_own = problem.owned_size(u)
             dofs = [bc.dof_indices()[0] for c in problem.components
                     for v, bcs in c.bcs_by_unknown().items() if v is u for bc in bcs]
             dofs = np.concatenate(dofs) if dofs else np.zeros(0, dtype=np.int32)
@@ -130,7 +130,7 @@ class Border:
         out = P.snes.getFunction()[0].duplicate()
         parts = []
         for u, form, fixed in zip(P.u, forms, self._fixed):
-            n_own = P._owned_size(u)
+            n_own = P.owned_size(u)
             if form is None:
                 parts.append(np.zeros(n_own))
                 continue
@@ -156,7 +156,7 @@ class Border:
         stays unsolved and Newton fails at ``max_it``: the caller's fallback).
         """
         P = self.problem
-        P._set_unknowns(x)
+        P.set_unknowns(x)
         P.refresh()
         step = self.condense(y, self.value() - self.target)
         self.step = (self.parameter.get(), step or 0.0)

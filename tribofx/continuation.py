@@ -116,7 +116,8 @@ class Continuation:
         (pa, ra), (pb, rb) = self.history[-2:]
         return (rb - ra) / (pb - pa) if pb != pa and self._distinct(ra, rb) else None
 
-    def _accept(self, iterations):
+    def accept(self, iterations):
+        """Commit the converged state at the current parameter; record it; return the response."""
         self.problem.commit()
         self.done = self.parameter.get()
         self.record.append(iterations)   # before the response: it may checkpoint the record
@@ -205,7 +206,7 @@ class Continuation:
                 continue
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
             self.increments = (step0, step)   # before _accept: its response may checkpoint
-            out.append(self._accept(its))
+            out.append(self.accept(its))
         return out
 
     def advance(self, target, step, growth=1.5, min_fraction=1e-4):
@@ -238,7 +239,7 @@ class Continuation:
                     raise NewtonDivergence(f"response-controlled march stalled at {r:g} "
                                            f"(step {h:.2e})") from None
                 continue
-            r = self._accept(its)
+            r = self.accept(its)
             h = np.sign(step) * min(abs(step), growth * abs(h))
         if abs(r - target) <= self.rtol * abs(target):
             return self.done
@@ -308,5 +309,5 @@ class Continuation:
         if stuck:
             self._give_up(saved, f"response {target:g} not reached: every trial within "
                           f"{bound:.1e} of the last successful one fails")
-        self._accept(iterations)
+        self.accept(iterations)
         return d1

@@ -34,11 +34,6 @@ from .bordered import solve_like
 __all__ = ["filtered_defect"]
 
 
-def _block(problem, f):
-    k = next(i for i, u in enumerate(problem.u) if u is f)
-    return problem._tolerances[k][1]
-
-
 def filtered_defect(problem, wear, defect, border=None, wears=None):
     """Return the filtered estimate e (owned nodal swept volumes, mm) of the ``defect`` d.
 
@@ -64,12 +59,12 @@ def filtered_defect(problem, wear, defect, border=None, wears=None):
 
 def _filtered(problem, wear, defect, border):
     zeta, w = wear.zeta, wear.body.w
-    n = problem._owned_size(zeta)
-    weight = wear.surface.nodal(wear._forms()["lumped"])[:n]
+    n = problem.owned_size(zeta)
+    weight = wear.lumped_weight()[:n]
     rhs = problem.snes.getFunction()[0].duplicate()
     rhs.set(0.0)
     arr = rhs.getArray()
-    arr[_block(problem, zeta)] = weight * float(wear.bdf.c0.value) * defect[:n]
+    arr[problem.block_slice(zeta)] = weight * float(wear.bdf.c0.value) * defect[:n]
     del arr
     ksp = problem.snes.getKSP()
     dx = rhs.duplicate()
@@ -81,16 +76,16 @@ def _filtered(problem, wear, defect, border):
             v.destroy()
         return defect[:n]
     dw = fem.Function(w.function_space)
-    nw = problem._owned_size(w)
-    dw.x.array[:nw] = dx.getArray(readonly=True)[_block(problem, w)]
+    nw = problem.owned_size(w)
+    dw.x.array[:nw] = dx.getArray(readonly=True)[problem.block_slice(w)]
     dw.x.scatter_forward()
     for v in (rhs, dx):
         v.destroy()
-    s0 = wear._swept_volume()[:n]
+    s0 = wear.swept_volume()[:n]
     kept = w.x.array.copy()
     w.x.array[:] += dw.x.array
     try:
-        s1 = wear._swept_volume()[:n]
+        s1 = wear.swept_volume()[:n]
     finally:
         w.x.array[:] = kept          # bit for bit: the accepted step stays as solved
     return s1 - s0

@@ -198,4 +198,4 @@ class ResponseControl(HeldResponse):
             raise
         finally:
             problem.border = None
-        self.inner._accept([report.iterations])
+        self.inner.accept([report.iterations])

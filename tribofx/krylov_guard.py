@@ -98,9 +98,9 @@ class KrylovGuard:
     def bound(self, problem):
         """Owned rows' bound η·atol_i·w_k, and its global 2-norm (computed once)."""
         if self._bound is None:
-            n = sum(problem._owned_size(ui) for ui in problem.u)
+            n = sum(problem.owned_size(ui) for ui in problem.u)
             rows = np.empty(n)
-            for _, sl, tol, w in problem._tolerances:
+            for _, sl, tol, w in problem.block_tolerances:
                 rows[sl] = self.eta * tol.atol * (1.0 if w is None else w)
             comm = problem.snes.comm.tompi4py()
             self._bound = (rows, np.sqrt(comm.allreduce(float(rows @ rows), op=MPI.SUM)))
@@ -144,8 +144,7 @@ class KrylovGuard:
                  "reason": reason_name(reason), "iterations": int(its),
                  "direct": "converged" if ok else "failed"}
         self.fallbacks.append(event)
-        if problem._report is not None:
-            problem._report.linear_fallbacks.append(event)
+        problem.record_linear_fallback(event)
         if ksp.getComm().getRank() == 0:
             sys.stderr.write(
                 f"tribofx: {problem.name}: {ksp.getType().upper()} {event['reason']} after "

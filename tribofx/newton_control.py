@@ -24,7 +24,7 @@ class NewtonControl:
     It reads the problem's ``components``, unknowns ``u``, ``snes``, ``max_it``,
     ``max_backtracks``, ``line_search``, ``stall_window``, ``_verbose`` and the
     report being filled (``_report``); row weights are assembled with
-    ``_emaps()`` and cut by ``_owned``/``_owned_size``; trial residuals go
+    ``_emaps()`` and cut by ``_owned``/``owned_size``; trial residuals go
     through ``_residual`` and its cache ``_cache``.
 
     ``border`` (a :class:`tribofx.bordered.Border`, or None): a scalar unknown
@@ -44,7 +44,7 @@ class NewtonControl:
             tol[id(ui)] = t
         blocks, start = [], 0
         for ui in self.u:
-            n = self._owned_size(ui)
+            n = self.owned_size(ui)
             t = tol.get(id(ui))
             if t is None:
                 raise ValueError(f"no stopping tolerance for unknown {ui.name!r}")
@@ -77,7 +77,7 @@ class NewtonControl:
         if not movers:
             return None
         x = snes.getSolution()
-        self._set_unknowns(x)
+        self.set_unknowns(x)
         changed = [c.accept_iterate() for c in movers]
         if not any(changed):
             return None

@@ -200,7 +200,7 @@ class Problem(NewtonControl):
             self._jacobian_cb = weak_callback(self._jacobian)
             self.snes.setJacobian(self._jacobian_cb, A, P)
 
-    def _owned_size(self, ui):
+    def owned_size(self, ui):
         """Return the number of rows of ``ui`` owned by this rank."""
         V = ui.function_space
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
@@ -208,11 +208,26 @@ class Problem(NewtonControl):
     def block_start(self, k):
         """Global row of the first owned dof of unknown ``k`` on this rank."""
         return self._x.getOwnershipRange()[0] + sum(
-            self._owned_size(uj) for uj in self.u[:k])
+            self.owned_size(uj) for uj in self.u[:k])
+
+    @property
+    def block_tolerances(self):
+        """Per unknown: (name, slice of its owned rows, BlockTolerance, row weights or None)."""
+        return list(self._tolerances)
+
+    def block_slice(self, ui):
+        """Slice of the owned rows of unknown ``ui`` in this rank's part of the block vector."""
+        k = next(i for i, uj in enumerate(self.u) if uj is ui)
+        return self._tolerances[k][1]
+
+    def record_linear_fallback(self, event):
+        """Record a linear solve's LU fallback (:mod:`tribofx.krylov_guard`) in the report."""
+        if self._report is not None:
+            self._report.linear_fallbacks.append(event)
 
     def _owned(self, vec, ui):
         """Owned part of an assembled, reverse-scattered DOLFINx vector of ``ui``'s space."""
-        return vec.array[:self._owned_size(ui)]
+        return vec.array[:self.owned_size(ui)]
 
     def _emaps(self):
         return _unique([m for c in self.components for m in c.entity_maps()]) or None
@@ -300,7 +315,7 @@ class Problem(NewtonControl):
                 return self._global[key]
             start = self.block_start(k)
             f = fem.Function(V)
-            n_own = self._owned_size(ui)
+            n_own = self.owned_size(ui)
             f.x.array[:n_own] = start + np.arange(n_own)
             f.x.scatter_forward()
             cols = np.rint(f.x.array).astype(np.int64)
@@ -311,7 +326,7 @@ class Problem(NewtonControl):
             self._global[key] = (rows, cols)
         return self._global[key]
 
-    def _set_unknowns(self, x):
+    def set_unknowns(self, x):
         """Copy the block vector ``x`` into the unknowns (ghosts updated)."""
         x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
         fem_petsc.assign(x, self.u)
@@ -322,7 +337,7 @@ class Problem(NewtonControl):
 
     def _evaluate(self, snes, x, b):
         """Residual at ``x`` into ``b``: unknowns ← x, refresh, blocked UFL assembly."""
-        self._set_unknowns(x)
+        self.set_unknowns(x)
         self.refresh()
         fn, args, kargs = self._assemble_residual
         fn(snes, x, b, *args, **kargs)
@@ -331,6 +346,10 @@ class Problem(NewtonControl):
                 c.add_residual(b, self)
             b.assemblyBegin()
             b.assemblyEnd()
+        self._shift_by_homotopy(b)
+
+    def _shift_by_homotopy(self, b):
+        """Inside :meth:`solve_by_homotopy`: b ← b − (1 − s) R(u₀) (nothing at s = 1)."""
         if self._homotopy is not None and self._homotopy[0] != 1.0:
             s, r0 = self._homotopy
             b.axpy(-(1.0 - s), r0)
@@ -357,7 +376,7 @@ class Problem(NewtonControl):
             self._grow_pattern()
             self.solver.prepare(self)
             self.snes.solve(None, self._x)
-            self._set_unknowns(self._x)
+            self.set_unknowns(self._x)
         except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step
             failure = f"PETSc error {err.ierr}{self._linear_state()}"
         finally:

@@ -97,7 +97,7 @@ class ReducedProblem(Problem):
             for j, uj in enumerate(self.u):
                 self._add_jacobian(("A", k), j, a.form, uj, by_image, kw)
         self._bc_rows = self._collect_bcs()
-        sizes = [self._owned_size(ui) for ui in self.u]
+        sizes = [self.owned_size(ui) for ui in self.u]
         self._sizes = comm.allgather(sizes)
         self._starts = comm.allgather(
             [0 if self._replicated[id(ui)] else
@@ -138,14 +138,15 @@ class ReducedProblem(Problem):
         return rows
 
     # -- layout ------------------------------------------------------------------
-    def _owned_size(self, ui):
+    def owned_size(self, ui):
+        """Rows of ``ui`` owned by this rank (a replicated unknown's all on rank 0)."""
         V = ui.function_space
         if V.mesh.comm.size == 1 and self.comm.size > 1:  # replicated: owned by rank 0
             return len(ui.x.array) if self.comm.rank == 0 else 0
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
 
     def _owned(self, vec, ui):
-        return vec.array[:self._owned_size(ui)]
+        return vec.array[:self.owned_size(ui)]
 
     def block_start(self, k):
         """Global row of the first owned dof of unknown ``k`` on this rank."""
@@ -178,11 +179,12 @@ class ReducedProblem(Problem):
             r.image.x.array[:] = r.P.apply(r.reduced.x.array)
 
     # -- unknowns <-> vector -------------------------------------------------------
-    def _set_unknowns(self, x):
+    def set_unknowns(self, x):
+        """Copy the block vector ``x`` into the unknowns (reduced blocks mapped, ghosts updated)."""
         arr = x.getArray(readonly=True)
         i = 0
         for ui in self.u:
-            n = self._owned_size(ui)
+            n = self.owned_size(ui)
             if self._replicated[id(ui)]:
                 vals = arr[i:i + n].copy() if self.comm.rank == 0 else None
                 ui.x.array[:] = self.comm.bcast(vals, root=0)
@@ -193,7 +195,7 @@ class ReducedProblem(Problem):
         self._set_maps()
 
     def _get_unknowns(self, x):
-        x.setArray(np.concatenate([ui.x.array[:self._owned_size(ui)] for ui in self.u]))
+        x.setArray(np.concatenate([ui.x.array[:self.owned_size(ui)] for ui in self.u]))
 
     # -- assembly --------------------------------------------------------------------
     def _vector(self, form, ui=None, n=None):
@@ -215,7 +217,7 @@ class ReducedProblem(Problem):
         return self._alg_vector(k)
 
     def _evaluate(self, snes, x, b):
-        self._set_unknowns(x)
+        self.set_unknowns(x)
         self.refresh()
         parts = []
         for i, ui in enumerate(self.u):
@@ -230,6 +232,7 @@ class ReducedProblem(Problem):
                 r = full[:len(r)]
             parts.append(r)
         b.setArray(np.concatenate(parts) if parts else np.zeros(0))
+        self._shift_by_homotopy(b)
 
     def _matrices(self, key, j):
         """Assembled Jacobian blocks (PETSc) of row ``key`` in unknown j (direct, image·P)."""
@@ -330,6 +333,6 @@ class ReducedProblem(Problem):
         return A
 
     def _jacobian(self, snes, x, A, P):
-        self._set_unknowns(x)
+        self.set_unknowns(x)
         self.refresh()
         self._jacobian_matrix(A)

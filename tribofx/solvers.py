@@ -439,7 +439,7 @@ class IterativeSolver:
             opts[PRODUCT_CLEAR] = None
 
         def index_set(ks, bs=1):
-            idx = [problem.block_start(k) + np.arange(problem._owned_size(problem.u[k]))
+            idx = [problem.block_start(k) + np.arange(problem.owned_size(problem.u[k]))
                    for k in ks]
             idx = np.concatenate(idx) if idx else np.zeros(0, dtype=np.int64)
             iset = PETSc.IS().createGeneral(idx.astype(PETSc.IntType), comm=comm)
@@ -447,7 +447,7 @@ class IterativeSolver:
             return iset
 
         nsp = near_nullspace([problem.u[k].function_space for k in bulk],
-                             [problem._owned_size(problem.u[k]) for k in bulk], comm)
+                             [problem.owned_size(problem.u[k]) for k in bulk], comm)
         if rest:
             gdim = problem.u[bulk[0]].function_space.mesh.geometry.dim
             is0, is1 = index_set(bulk, gdim), index_set(rest)

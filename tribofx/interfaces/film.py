@@ -212,7 +212,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
         scales = ((self.mu / self.h_ref, body.stiffness / self.h_ref, self.h_ref)
                   if row_scaling else (1.0, 1.0, 1.0))
-        self._c_p, self._c_u, self._c_g = (fem.Constant(sub, c) for c in scales)
+        self._c_p, self.trace_scale, self._c_g = (fem.Constant(sub, c) for c in scales)
         self._q_ref = fem.Constant(sub, 0.5 * self.U_ref * self.h_ref)
 
         # measures and reference geometry
@@ -339,7 +339,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         """Film virtual work on u; trace, Reynolds, gradient and complementarity rows."""
         body = self.body
         out = [(body.u, ft.film_virtual_work(self.traction, body.v, self.ds, self.w_solid)),
-               (self.u_s, self._c_u * ef.trace_constraint(self.u_s, body.u,
+               (self.u_s, self.trace_scale * ef.trace_constraint(self.u_s, body.u,
                                                           ufl.TestFunction(self.Vs), self.ds))]
         R_p, C = self._reynolds(ufl.TestFunction(self.Q))
         out.append((self.p, self._c_p * R_p))
@@ -399,7 +399,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
         if self._tol:
             return self._tol_out
         ones = ufl.as_vector([1.0] * self.body.gdim)
-        self._tol["u_s"] = BlockTolerance(0.0, "mm", self._c_u * ufl.dot(
+        self._tol["u_s"] = BlockTolerance(0.0, "mm", self.trace_scale * ufl.dot(
             ufl.TestFunction(self.Vs), ones) * self.dx)
         out = {self.u_s: self._tol["u_s"], **self._pressure_tolerances()}
         if self.g is not None:

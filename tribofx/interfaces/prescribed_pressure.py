@@ -38,7 +38,7 @@ class PrescribedPressure(ComponentBase):
         """Prescribed-pressure work on u, trace rows on u_s."""
         f, body = self.film, self.film.body
         return [(body.u, ft.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
-                (f.u_s, f._c_u * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
+                (f.u_s, f.trace_scale * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
                                                      f.ds))]
 
     def bcs(self):

@@ -203,7 +203,7 @@ class TwoBodyFilm(KernelAssembly, Film):
             data[:, 1] = U2 * np.sum(self._motion2(B) * T, axis=1) / T2
         k0, z = self._master_rates(keys)
         data[:, 2], data[:, 3:5], data[:, 5:7] = k0, z[seg[f, 0]], z[seg[f, 1]]
-        r, J = film_node_residuals(q, data, self._w, self._w_c, float(self._c_u.value),
+        r, J = film_node_residuals(q, data, self._w, self._w_c, float(self.trace_scale.value),
                                    float(self._c_w.value))
         k = {"q": q, "data": data, "r": r, "J": J, "xm": xm, "keys": keys, "seg": seg,
              "facet": f, "xi": proj["xi"], "rows": {}}
@@ -214,7 +214,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         """Set h and w to their kernel values at the current state (a start or a restart)."""
         k = self._kernel()
         d = self.body.gdim
-        self.gap.x.array[self._q] = -k["r"][:, 6] / (float(self._c_u.value) * self._w_c)
+        self.gap.x.array[self._q] = -k["r"][:, 6] / (float(self.trace_scale.value) * self._w_c)
         w = self.v_master.x.array.reshape(-1, d)
         w[self._q] = -k["r"][:, 7:9] / (float(self._c_w.value) * self._w_c[:, None])
         for f in (self.gap, self.v_master):
@@ -253,7 +253,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         tests = [ufl.TestFunction(f.function_space) for f in (self.gap, self.v_master,
                                                                self.t_nodal)]
         return out + [
-            (self.gap, tbf.nodal_equality(self.gap, tests[0], self._c_u, self.nodal_dx)),
+            (self.gap, tbf.nodal_equality(self.gap, tests[0], self.trace_scale, self.nodal_dx)),
             (self.v_master, tbf.nodal_equality(self.v_master, tests[1], self._c_w, self.nodal_dx)),
             (self.t_nodal, tbf.traction_collocation(self.t_nodal, self.traction, tests[2],
                                                    self._surface.dsc))]
@@ -273,7 +273,7 @@ class TwoBodyFilm(KernelAssembly, Film):
             out = dict(super().tolerances())
             gdim = self.body.gdim
             ones = ufl.as_vector([1.0] * gdim)
-            for key, fun, unit, c in (("h", self.gap, "mm", self._c_u),
+            for key, fun, unit, c in (("h", self.gap, "mm", self.trace_scale),
                                       ("w", self.v_master, "mm/s", self._c_w),
                                       ("t", self.t_nodal, "MPa", 1.0)):
                 v = ufl.TestFunction(fun.function_space)

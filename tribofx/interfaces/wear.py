@@ -258,7 +258,7 @@ class Wear(ComponentBase):
         when there is no previous step).
         """
         if self.scheme == "bdf2":
-            self.bdf.begin_step(dt, self._swept_volume, self._nodal_rate)
+            self.bdf.begin_step(dt, self.swept_volume, self._nodal_rate)
         self.dt.value = float(dt)
         self.body.w_n.x.array[:] = self.body.w.x.array
 
@@ -275,7 +275,11 @@ class Wear(ComponentBase):
         den = self.surface.nodal(self._forms()["lumped"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
 
-    def _swept_volume(self):
+    def lumped_weight(self):
+        """Nodal lumped area of the worn surface (mm², the rows of ζ; owned and ghosts)."""
+        return self.surface.nodal(self._forms()["lumped"])
+
+    def swept_volume(self):
         """Nodal (w − w_n)·a(w, w_n) per unit initial area."""
         return self._nodal_value("swept", ufl.dot(self.body.w - self.body.w_n, self.a))
 
@@ -287,7 +291,7 @@ class Wear(ComponentBase):
         """
         if self.scheme != "bdf2":
             return None
-        return self.bdf.error(self._swept_volume()[:self.surface.n_own], self.body.mesh.comm,
+        return self.bdf.error(self.swept_volume()[:self.surface.n_own], self.body.mesh.comm,
                               filter)
 
     @property
