@@ -43,26 +43,12 @@ class Reaction(ComponentBase):
     def contributions(self):
         return [(self.u, self.form)]
 
-    def bcs(self):
-        return []
-
-    def bcs_by_unknown(self):
-        return {}
-
-    def entity_maps(self):
-        return []
-
-    def refresh(self):
-        pass
-
     def tolerances(self):
         return {self.u: BlockTolerance(ATOL, "-", self.weight)}
 
     def state_fields(self):
         return [self.u]
 
-    def commit(self):
-        pass
 
 
 def _max_error(c, g):

@@ -52,26 +52,12 @@ class _Bulk(ComponentBase):
     def contributions(self):
         return [(self.u, self.form)]
 
-    def bcs(self):
-        return []
-
-    def bcs_by_unknown(self):
-        return {}
-
-    def entity_maps(self):
-        return []
-
-    def refresh(self):
-        pass
-
     def tolerances(self):
         return {self.u: BlockTolerance(1e-13)}
 
     def state_fields(self):
         return [self.u]
 
-    def commit(self):
-        pass
 
 
 class _Section(ComponentBase):
@@ -105,20 +91,12 @@ class _Section(ComponentBase):
     def bcs_by_unknown(self):
         return {self.s: [self.bc]}
 
-    def entity_maps(self):
-        return []
-
-    def refresh(self):
-        pass
-
     def tolerances(self):
         return {self.s: BlockTolerance(1e-13)}
 
     def state_fields(self):
         return [self.s]
 
-    def commit(self):
-        pass
 
 
 def _build(comm):

@@ -43,26 +43,12 @@ class Foundation(ComponentBase):
         work = (self.k * un + self.k3 * un**3) * ufl.dot(self.body.v, self.N) * self.ds
         return [(self.body.u, work)]
 
-    def bcs(self):
-        return []
-
-    def bcs_by_unknown(self):
-        return {}
-
-    def entity_maps(self):
-        return []
-
-    def refresh(self):
-        pass
-
     def tolerances(self):
         return {}                          # the body's momentum test covers its rows
 
     def state_fields(self):
         return [self.k, self.k3]
 
-    def commit(self):
-        pass
 
 
 def _block(k3=0.0, material="linear"):

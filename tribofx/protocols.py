@@ -72,10 +72,35 @@ class ComponentBase:
     * ``admissible()``: the "admissible" line search's test of a trial (True);
     * ``reductions()`` / ``algebraic_rows()``: the maps of a
       :class:`tribofx.reduced.ReducedProblem` (none).
+
+    It also answers the protocol's ``bcs()``, ``bcs_by_unknown()``,
+    ``entity_maps()``, ``refresh()`` and ``commit()`` with "none", so that a
+    component writes only ``unknowns()``, ``contributions()``, ``tolerances()`` and
+    ``state_fields()`` and what it actually has.
     """
 
     assembles = False
     iterates = False
+
+    # the protocol's methods whose usual answer is "none": a component overrides them
+    # where it has conditions, mixed-dimensional forms, data outside UFL or a history
+    def bcs(self) -> list:
+        """Dirichlet conditions on any unknown (none)."""
+        return []
+
+    def bcs_by_unknown(self) -> dict:
+        """Return the same conditions as ``{unknown: [DirichletBC]}`` (none)."""
+        return {}
+
+    def entity_maps(self) -> list:
+        """Entity maps of its mixed-dimensional forms (none)."""
+        return []
+
+    def refresh(self) -> None:
+        """Compute data outside UFL before every evaluation (nothing)."""
+
+    def commit(self) -> None:
+        """Accept a converged step (nothing to move on)."""
 
     def add_residual(self, b, problem) -> None:
         """Add terms assembled outside UFL to the block residual ``b`` (none)."""
