@@ -143,6 +143,7 @@ from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
 from tribofx.references import rigid_cap_radius
+from tribofx.step_control import ErrorControl
 from tribofx.studies.wear_stability import ball_critical_step
 
 parser = argparse.ArgumentParser()
@@ -357,8 +358,8 @@ def late_window(t1, dt_e, tol):
         return v, st
 
     vb, sb = build(scheme="bdf2", dt="100", tol="1e-3", tol_per="step")
-    sb.control.solve(guess=hertz(vb["F"], vb["R"], vb["E"], vb["nu"]).delta)
-    sb.run(t1, 100.0, tol=1e-3, per="step")
+    sb.hold.solve(guess=hertz(vb["F"], vb["R"], vb["E"], vb["nu"]).delta)
+    sb.run(t1, ErrorControl(100.0, 1e-3, per="step"))
     saved, fields = sb.state(), dict(zip(sb.field_names(), sb._fields()))
     _, se = build(scheme="explicit", dt=str(dt_e), max_cuts="4")
     for name, f in zip(se.field_names(), se._fields()):
@@ -368,14 +369,14 @@ def late_window(t1, dt_e, tol):
     ce.offset.value[:], ce.offset_n.value[:] = cb.offset.value, cb.offset_n.value
     se.t = sb.t
     se.problem.refresh()
-    se.control.begin(0.0)
+    se.hold.begin(0.0)
     t0 = time.perf_counter()
     se.run(T, dt_e)
     wall_e = comm.allreduce(time.perf_counter() - t0, op=MPI.MAX)
     sb.restore(saved)
-    sb.dt = 0.5              # the reference's first step (a run with steps keeps its own)
+    sb.controller.dt = 0.5   # the reference's first step (a run with steps keeps its own)
     t0 = time.perf_counter()
-    sb.run(T, 0.5, tol=tol, per="step")
+    sb.run(T, ErrorControl(0.5, tol, per="step"))
     wall_r = comm.allreduce(time.perf_counter() - t0, op=MPI.MAX)
 
     def shape(st):

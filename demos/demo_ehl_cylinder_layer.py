@@ -61,7 +61,7 @@ from tribofx.meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_laye
 
 from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
-from tribofx.held_response import HeldResponse
+from tribofx.hold import Hold
 from tribofx.interfaces import Film
 from tribofx.obstacles import rigid_cylinder
 from tribofx.output import write_summary
@@ -117,8 +117,8 @@ def sweep(run, loads):
     layer, film, problem = run
     position = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
                             response=lambda: -1 / film.force()[1], rtol=1e-6)
-    held = HeldResponse(position, 0.0, transform=lambda W: 1 / W,
-                        slope=1 / rigid_clearance(1.0, mu, U, R))   # d(1/W)/ds, rigid film
+    held = Hold(position, 0.0, transform=lambda W: 1 / W,
+                slope=1 / rigid_clearance(1.0, mu, U, R))   # d(1/W)/ds, rigid film
     steps = Continuation(held, held)                                # load steps, step cutting
     out = []
     for W in loads:

@@ -55,8 +55,8 @@ from tribofx.forms.mixed import GT_FIT
 
 from tribofx.cases import rough_contact
 from tribofx.cases.stribeck import StribeckCase
-from tribofx.continuation import ConstantParameter
-from tribofx.held_response import ResponseControl
+from tribofx.continuation import ConstantParameter, Continuation
+from tribofx.hold import Hold
 from tribofx.interfaces import Wear
 from tribofx.output import write_summary
 from tribofx.params import resolve
@@ -112,14 +112,15 @@ if comm.rank == 0:
 #
 # At the last speed the slow time starts: the ``Stepper`` solves the film, the
 # body and the shape law (28) monolithically (θ = 1) at every step, with a
-# ``ResponseControl`` holding W by the plane's approach.
+# ``Hold`` keeping W by the plane's approach.
 
 # +
 nsteps = 1 if args.quick else 6
-stepper.set_control(ResponseControl(
-    stepper.problem, ConstantParameter(film.counterpart.offset, 1),
-    lambda: np.log(float(film.force()[1])), np.log(v["W"]),
-    slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]), rtol=1e-7, max_trials=30))
+approach = Continuation(stepper.problem, ConstantParameter(film.counterpart.offset, 1),
+                        response=lambda: np.log(float(film.force()[1])), rtol=1e-7,
+                        max_trials=30)
+stepper.hold = Hold(approach, np.log(v["W"]),
+                    step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
 history = []
 for n in range(nsteps + 1):
     if n:

@@ -15,8 +15,8 @@
 # * add a frictional **Contact** interface with *Eulerian* slip (steady sliding,
 #   v_T = −V e_x) and a **Wear** interface in the dissipation form of Archard's
 #   law;
-# * hold the normal force at F during the slow time: a **ResponseControl**
-#   makes the position δ of the flat an unknown of every implicit step's Newton
+# * hold the normal force at F during the slow time: a **Hold** (the stepper's
+#   ``hold``) makes the position δ of the flat an unknown of every implicit step's Newton
 #   solve, with the force equation G(x, δ) = F/2 beside the system (a bordered
 #   Newton system, :class:`tribofx.bordered.Border`), started from a rigid-cap
 #   predictor;
@@ -62,8 +62,8 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.wear_ball import NAMES, quarter_ball
 
 from tribofx.body import Body
-from tribofx.continuation import ConstantParameter
-from tribofx.held_response import ResponseControl
+from tribofx.continuation import ConstantParameter, Continuation
+from tribofx.hold import Hold
 from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
@@ -144,16 +144,17 @@ def stiffness(dt):
     return 0.5 * math.pi * a * a / (math.pi * a / (2 * Es) + k * V * dt)
 
 
-control = ResponseControl(stepper.problem, ConstantParameter(offset, 2),
-                          lambda: float(contact.force()[2]), F / 2, predictor=predictor,
-                          slope=stiffness, border=(contact.force_functional(2), contact.sub))
-stepper.set_control(control)
+# the search: the flat's position δ, the force it carries, to 1e-8 of F/2
+search = Continuation(stepper.problem, ConstantParameter(offset, 2),
+                      response=lambda: float(contact.force()[2]), rtol=1e-8, max_trials=12)
+stepper.hold = Hold(search, F / 2, step_guess=predictor, step_slope=stiffness,
+                    border=(contact.force_functional(2), contact.sub))
 # -
 
 # ## Loading and wearing
 
 # +
-control.solve(guess=hertz(F, R, E, nu).delta)  # unworn contact from the Hertz approach
+stepper.hold.solve(guess=hertz(F, R, E, nu).delta)  # unworn contact from the Hertz approach
 history = []
 
 

@@ -120,3 +120,30 @@ def test_wear_of_an_axisymmetric_body_is_refused_where_it_is_built():
         Body(msh, ft, {"bottom": 1}, "axisymmetric", law, shape=True)
     assert "\n" not in str(err.value)
     Body(msh, ft, {"bottom": 1}, "plane_strain", law, shape=True)   # the supported kinds build
+
+
+def test_radial_sliding_of_an_axisymmetric_body_is_refused_where_it_is_built():
+    """A radial velocity of an axisymmetric body's material (or of its countersurface)
+    is no rigid motion of a surface of revolution (div(V e_r) = V/r ≠ 0): ``Body`` and
+    ``Contact`` refuse it in one line; sliding along the axis builds."""
+    import numpy as np
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from tribofx.body import Body
+    from tribofx.interfaces import Contact
+    from tribofx.obstacles import rigid_plane
+    from tribofx.params import InputError
+
+    msh = dmesh.create_rectangle(MPI.COMM_WORLD, [[1, 0], [2, 1]], [2, 2])
+    facets = dmesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[0], 1))
+    ft = dmesh.meshtags(msh, 1, facets, np.full(len(facets), 1, np.int32))
+    law = ("neo-hookean", {"mu": 1.0, "lmbda": 1.0})
+    with pytest.raises(InputError, match="slides only along its axis") as err:
+        Body(msh, ft, {"bore": 1}, "axisymmetric", law, velocity=(1.0, 0.0))
+    assert "\n" not in str(err.value)
+    body = Body(msh, ft, {"bore": 1}, "axisymmetric", law, velocity=(0.0, 1.0))
+    plane = rigid_plane(np.array([0.9, 0.0]), np.array([1.0, 0.0]))
+    with pytest.raises(InputError, match="slides only along its axis"):
+        Contact(body, "bore", plane, 1.0, friction=0.1, slip="eulerian", V_master=(0.5, 0.0))
+    Contact(body, "bore", plane, 1.0, friction=0.1, slip="eulerian", V_master=(0.0, 0.5))

@@ -678,7 +678,7 @@ def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
     ref = stepper.state()
     fresh, load2 = WearPinCase.build(values, n=4)
     fresh.load_checkpoint(copy)
-    assert fresh.t == 200.0 and fresh.steps == 1 and fresh.dt == 200.0
+    assert fresh.t == 200.0 and fresh.steps == 1 and fresh.controller.dt == 200.0
     assert float(load2.value) == 1.0  # the load factor is part of the state
     fresh.run(400.0, 200.0)
     new = fresh.state()

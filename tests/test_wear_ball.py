@@ -95,7 +95,7 @@ def _one_step(force_control, scheme="implicit", dt=100.0):
     v = resolve(WearBallCase.params, {"scheme": scheme, "T": "100", "dt": str(dt),
                                       "force_control": force_control})
     stepper = WearBallCase.build(v)
-    stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    stepper.hold.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
     report = stepper.step(dt)
     return stepper, report
 
@@ -105,7 +105,7 @@ def test_bordered_force_control_quadratic_and_as_the_secant():
     # the flat's position δ as an unknown of the step's Newton solve (tribofx.bordered)
     bordered, rep_b = _one_step("bordered")
     secant, rep_s = _one_step("secant")
-    control = bordered.control
+    control = bordered.hold
     (report,) = rep_b.reports
     g = control.border.history
     print("bordered: residuals", ["%.2e" % x for x in report.residuals],
@@ -125,7 +125,7 @@ def test_bordered_force_control_quadratic_and_as_the_secant():
     # the same discrete problem at the held force: the secant holds F to 1e-8, so δ
     # and the worn depth (∝ F) agree to ~1e-8 relative; the Newton tolerances
     # (1e-10) are below that
-    da, db = (float(s.control.parameter.get()) for s in (bordered, secant))
+    da, db = (float(s.hold.parameter.get()) for s in (bordered, secant))
     ha, hb = (s.wear.max_depth() for s in (bordered, secant))
     print("approach", da, db, "max depth", ha, hb)
     assert da == pytest.approx(db, rel=1e-6)
@@ -139,13 +139,13 @@ def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
     # state as the secant alone
     from tribofx.bordered import Border
     from tribofx.continuation import Continuation
-    from tribofx.held_response import ResponseControl
+    from tribofx.hold import Hold
 
     entries, starts = [], []
-    solve, reach = ResponseControl.solve, Continuation.reach
+    solve, reach = Hold.solve, Continuation.reach
 
     def state(control):
-        return control.parameter.get(), [f.x.array.copy() for f in control.inner.problem.u]
+        return control.parameter.get(), [f.x.array.copy() for f in control.search.problem.u]
 
     def solve_recorded(self, *a, **k):
         entries.append(state(self))
@@ -156,18 +156,18 @@ def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
         return reach(self, *a, **k)
 
     monkeypatch.setattr(Border, "converged", lambda self: False)
-    bordered = ResponseControl._bordered
+    bordered = Hold._bordered
 
-    def short(self, guess):
-        problem, keep = self._rec.problem, self._rec.problem.max_it
+    def short(self, guess, target):
+        problem, keep = self.search.problem, self.search.problem.max_it
         problem.max_it = 3
         try:
-            return bordered(self, guess)
+            return bordered(self, guess, target)
         finally:
             problem.max_it = keep
 
-    monkeypatch.setattr(ResponseControl, "_bordered", short)
-    monkeypatch.setattr(ResponseControl, "solve", solve_recorded)
+    monkeypatch.setattr(Hold, "_bordered", short)
+    monkeypatch.setattr(Hold, "solve", solve_recorded)
     monkeypatch.setattr(Continuation, "reach", reach_recorded)
     fallen, _ = _one_step("bordered")
     monkeypatch.undo()
@@ -176,8 +176,8 @@ def test_bordered_failure_falls_back_to_the_secant(monkeypatch):
     for (d0, u0), (d1, u1) in zip(entries, starts):
         assert d1 == d0 and all(np.array_equal(a, b) for a, b in zip(u0, u1))
     secant, _ = _one_step("secant")
-    assert fallen.control.fallbacks == 2           # the unworn contact and the step
-    for a, b in ((fallen.control.parameter.get(), secant.control.parameter.get()),
+    assert fallen.hold.fallbacks == 2           # the unworn contact and the step
+    for a, b in ((fallen.hold.parameter.get(), secant.hold.parameter.get()),
                  (fallen.wear.max_depth(), secant.wear.max_depth())):
         # the same secant from the same states: equal to its tolerances (1e-8 of F)
         assert a == pytest.approx(b, rel=1e-6)
@@ -193,7 +193,7 @@ def test_filtered_error_estimate_is_the_linearized_response():
 
     v = resolve(WearBallCase.params, {"scheme": "bdf2", "T": "100", "dt": "20"})
     stepper = WearBallCase.build(v)
-    control, wear = stepper.control, stepper.wear
+    control, wear = stepper.hold, stepper.wear
     control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
     stepper.step(20.0)
     stepper.step(20.0)

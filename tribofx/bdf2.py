@@ -9,7 +9,7 @@ swept volumes s (per unit initial area, or length):
 ω = Δt_{n+1}/Δt_n (backward Euler, (1, 0), on the first step).  :class:`SweptHistory`
 keeps s_n (a nodal Function, part of the interface's state with the step sizes),
 sets the weights at the start of each step and estimates the step's error for
-the controller of :func:`tribofx.step_control.run_controlled`.
+the step controller :class:`tribofx.step_control.ErrorControl`.
 """
 
 import numpy as np

@@ -35,7 +35,12 @@ from .params import InputError
 from .problem import BlockTolerance
 from .protocols import ComponentBase
 
-__all__ = ["FORMULATIONS", "Body", "shear_modulus"]
+__all__ = ["AXISYMMETRIC_MOTION", "FORMULATIONS", "Body", "shear_modulus"]
+
+#: why an axisymmetric body's material or countersurface moves only along the axis
+AXISYMMETRIC_MOTION = (
+    "an axisymmetric body slides only along its axis: a radial velocity is no rigid motion "
+    "of a surface of revolution; give the velocity as (0, V), or model the body in 3D")
 
 #: formulations of the solid (``Body(formulation=...)``)
 FORMULATIONS = ("displacement", "mixed")
@@ -102,6 +107,8 @@ class Body(ComponentBase):
             raise InputError("finite wear (a shape field) needs a '3d' or 'plane_strain' body: "
                              "the worn-body kinematics of a surface of revolution are not built; "
                              "model a sector of the body in 3D instead")
+        if kind == "axisymmetric" and velocity is not None and np.asarray(velocity)[0] != 0:
+            raise InputError(AXISYMMETRIC_MOTION)
         self.mesh, self.facet_tags, self.names, self.kind = mesh, facet_tags, dict(names), kind
         self.cell_tags, self.name = cell_tags, name
         self.materials = material if isinstance(material, dict) else {None: material}

@@ -81,6 +81,7 @@ class Continuation:
         self.admissible, self.max_step = admissible, max_step
         self.min_bound = 1e-4   # step-limited secant: give up below min_bound·max_step
         self.record = record if record is not None else []
+        self.reports = []  # the report of every Newton solve, failed ones included
         self.done = parameter.get()
         self.history = []  # (parameter, response) of converged steps
         self._states = []  # (parameter, unknown arrays) of the last two converged steps
@@ -94,9 +95,25 @@ class Continuation:
         self.parameter.set(self.done)
         raise NewtonDivergence(message)
 
+    def solve_once(self, border=None):
+        """One Newton solve of the problem at the current parameter; its report is kept.
+
+        ``border``: a :class:`tribofx.bordered.Border` joined to the solve (the
+        parameter an unknown).  Every report, of failed solves too, goes to
+        :attr:`reports`.
+        """
+        kw = {} if border is None else {"border": border}
+        try:
+            report = self.problem.solve(verbose=self.verbose, **kw)
+        except NewtonDivergence as err:
+            self.reports.append(err.report)
+            raise
+        self.reports.append(report)
+        return report
+
     def _solve_at(self, value):
         self.parameter.set(value)
-        iterations = self.problem.solve(verbose=self.verbose).iterations
+        iterations = self.solve_once().iterations
         if self.admissible is not None and not self.admissible():
             raise NewtonDivergence(f"converged to an inadmissible state at {value:g}")
         return iterations

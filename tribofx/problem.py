@@ -185,16 +185,22 @@ class Problem(NewtonControl):
         if comm.size > 1:
             LIFETIMES.release(comm)
         self._nlp = LIFETIMES.keep(self, nlp, comm)
-        # wrap the residual callback: refresh the components' data at every iterate
-        b, (fn, args, kargs) = self.snes.getFunction()
-        self._assemble_residual = (fn, args, kargs)
+        # wrap the residual callback: refresh the components' data at every iterate, then
+        # DOLFINx's public blocked assembly with the problem's compiled forms
+        b = nlp.b
+        ctx = {"u": nlp.u, "residual": nlp.F, "jacobian": nlp.J, "bcs": self.bcs}
+        if (blocks := b.getAttr("_blocks")) is not None:
+            ctx["_blocks"] = blocks
+        self._assemble_residual = (fem_petsc.assemble_residual, (), ctx)
         self.snes.setFunction(weak_callback(self._residual), b)
         # components that add assembled terms outside UFL (the two-body contact kernel)
         self._assemblers = [c for c in self.components if c.assembles]
         self._global = {}
         if self._assemblers:
-            A, P, (fn, args, kargs) = self.snes.getJacobian()
-            self._assemble_jacobian = (fn, args, kargs)
+            A, P = nlp.A, nlp.P_mat
+            self._assemble_jacobian = (fem_petsc.assemble_jacobian, (), {
+                "u": nlp.u, "jacobian": nlp.J, "preconditioner": nlp.preconditioner,
+                "bcs": self.bcs})
             # their couplings (slave-master pairs) may change: the pattern grows as needed
             A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
             self._jacobian_cb = weak_callback(self._jacobian)
@@ -355,11 +361,14 @@ class Problem(NewtonControl):
             b.axpy(-(1.0 - s), r0)
 
     # -- solve ---------------------------------------------------------------
-    def solve(self, verbose=False):
+    def solve(self, verbose=False, border=None):
         """Newton from the current values of the unknowns; returns a :class:`NewtonReport`.
 
         Raises :class:`NewtonDivergence` (the unknowns back at their entry
-        values) when SNES does not converge.
+        values, the report of the failed solve as its ``report``) when SNES
+        does not converge.  ``border``: a :class:`tribofx.bordered.Border`, a
+        scalar unknown and its equation solved with this Newton iteration (a
+        response held by :class:`tribofx.hold.Hold`).
         """
         if self.snes.comm.size > 1:
             LIFETIMES.release(self.snes.comm.tompi4py())
@@ -367,8 +376,9 @@ class Problem(NewtonControl):
         self._report = NewtonReport(names=[n for n, _, _, _ in self._tolerances])
         self._verbose = verbose
         self._cache = None
-        if self.border is not None:
-            self.border.history = []
+        self.border = border
+        if border is not None:
+            border.history = []
         failure = None
         self._reset_iterates()
         try:
@@ -383,6 +393,7 @@ class Problem(NewtonControl):
             if self._cache is not None:
                 self._cache[1].destroy()
             self._cache = None
+            self.border = None
         reason = -1 if failure else self.snes.getConvergedReason()
         if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
             failure = f"DIVERGED_LINEAR_SOLVE{self._linear_state()}"
@@ -398,7 +409,7 @@ class Problem(NewtonControl):
             raise NewtonDivergence(
                 f"Newton did not converge ({why}) in "
                 f"{report.iterations} iterations (residual history "
-                f"{['%.2e' % v for v in report.residuals]})")
+                f"{['%.2e' % v for v in report.residuals]})", report=report)
         for ui in self.u:
             ui.x.scatter_forward()
         self.refresh()
@@ -424,8 +435,6 @@ class Problem(NewtonControl):
         last solve, with ``iterations`` the total over the trials.  ``direct``
         False: march s from the start, without the first trial.
         """
-        if self.border is not None:
-            raise ValueError("the Newton homotopy does not apply to a bordered (held) solve")
         entry = self.state()
         first, spent = "started at s = 0", 0
         if direct:

@@ -20,7 +20,15 @@ class RunStop(RuntimeError):
 
 
 class NewtonDivergence(RunStop):
-    """Raised when the Newton iteration does not converge (the unknowns are restored)."""
+    """Raised when the Newton iteration does not converge (the unknowns are restored).
+
+    ``report``: the :class:`NewtonReport` of the failed solve (None when the
+    failure is not one Newton solve's, e.g. a search that gives up).
+    """
+
+    def __init__(self, message: str, report: "NewtonReport | None" = None):
+        super().__init__(message)
+        self.report = report
 
 
 @dataclass

@@ -61,17 +61,16 @@ class SlowRun:
             self.hist[key].append(val)
         self.record.data["newton_iterations"].append(iterations)
 
-    def run(self, T, dt, on_step=None, progress=None, report=None, problem=None, tol=None,
-            after=None, per="unit_step", filtered=False, controller="i"):
-        """Integrate to ``T`` with the nominal step ``dt`` (s); the series at every step.
+    def run(self, T, controller, on_step=None, progress=None, report=None, problem=None,
+            after=None):
+        """Integrate to ``T`` (s), the steps by ``controller``; the series at every step.
 
-        ``on_step(stepper, report)`` after every accepted step (before its
-        series entry); ``report()`` at the end whatever happens; ``problem``:
-        what a failure carries (default the stepper); ``tol`` (mm) and ``per``: error
-        control of the steps, ``filtered`` and ``controller`` its estimate and step rule
-        (:meth:`tribofx.stepper.Stepper.run`); ``after()``
-        once the run has reached T, before the report (a failure there carries
-        ``problem`` too).
+        ``controller``: a step (s) or a :class:`tribofx.step_control.StepController`
+        (:meth:`tribofx.stepper.Stepper.run`).  ``on_step(stepper, report)``
+        after every accepted step (before its series entry); ``report()`` at
+        the end whatever happens; ``problem``: what a failure carries (default
+        the stepper); ``after()`` once the run has reached T, before the report
+        (a failure there carries ``problem`` too).
         """
         st = self.stepper
         self.series.write(st.t)
@@ -82,8 +81,7 @@ class SlowRun:
             self.series.write(s.t)
 
         try:
-            st.run(T, dt, on_step=step, progress=progress, tol=tol, per=per, filtered=filtered,
-                   controller=controller)
+            st.run(T, controller, on_step=step, progress=progress)
             if after is not None:
                 after()
         except (NewtonDivergence, interrupt.Interrupted) as err:

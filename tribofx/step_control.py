@@ -1,25 +1,37 @@
-"""Error-controlled slow time: the accept/reject loop of :meth:`tribofx.stepper.Stepper.run`.
+"""Step controllers of the slow time: which step :meth:`tribofx.stepper.Stepper.run` takes next.
 
-Each evolving interface gives the error estimate of its last step
-(``step_error()``, of order ``error_order``); a step whose estimate per unit
-step exceeds tol/T (``per="unit_step"``; ``per="step"``: whose estimate exceeds
-tol) is rejected and retried with a smaller step, an accepted one proposes the
-next (see :meth:`tribofx.stepper.Stepper.run`), by the elementary controller
-(``"i"``: the last estimate alone) or Gustafsson's PI controller (``"pi"``: the
-last two accepted estimates, which damps the oscillating step sequences of the
-elementary one near its stability limit; Gustafsson, ACM TOMS 17 (1991) 533;
-Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.4).
+:meth:`tribofx.stepper.Stepper.run` is the one slow-time loop; a controller
+decides the steps:
+
+* :class:`FixedStep` — the nominal step Δt; a step whose Newton solve fails
+  is halved (up to the stepper's ``max_cuts`` times) and the step doubles back
+  as soon as the time is aligned with the coarser step;
+* :class:`ErrorControl` — BDF2 wear under error control: each evolving
+  interface gives the error estimate of its last step (``step_error()``, of
+  order ``error_order``); a step whose estimate per unit step exceeds tol/T
+  (``per="unit_step"``; ``per="step"``: whose estimate exceeds tol) is
+  rejected and retried with a smaller step, an accepted one proposes the next,
+  by the elementary rule (``rule="i"``: the last estimate alone) or
+  Gustafsson's PI rule (``rule="pi"``: the last two accepted estimates, which
+  damps the oscillating step sequences of the elementary one near its
+  stability limit; Gustafsson, ACM TOMS 17 (1991) 533; Hairer, Nørsett &
+  Wanner, *Solving ODEs I*, §II.4).
+
+A controller's state — the step it proposes (``dt``), the halving level
+(``cuts``) and the PI rule's memory (``err_prev``) — is part of the stepper's
+state and checkpoint (:meth:`StepController.state`), so a resumed run goes on
+with the steps it would have taken.
 """
 
-from . import interrupt
-from .problem import NewtonDivergence
+from .reports import NewtonDivergence
 
-__all__ = ["CONTROLLERS", "CONTROLS", "run_controlled", "step_factor"]
+__all__ = ["ERROR_MEASURES", "STEP_RULES", "ErrorControl", "FixedStep", "StepController",
+           "step_factor"]
 
-#: what tol bounds: the sum of the steps' estimates, or each one
-CONTROLS = ("unit_step", "step")
-#: step-size controllers: elementary (integral) or proportional-integral
-CONTROLLERS = ("i", "pi")
+#: what tol bounds: the sum of the steps' estimates (per unit step), or each one
+ERROR_MEASURES = ("unit_step", "step")
+#: step-size rules: elementary (integral) or proportional-integral
+STEP_RULES = ("i", "pi")
 
 
 def step_factor(r, p, r_prev=None):
@@ -44,85 +56,194 @@ def step_factor(r, p, r_prev=None):
     return min(2.0, max(0.2, f))
 
 
-def run_controlled(stepper, T, dt, on_step, progress, tol, per="unit_step", filtered=False,
-                   controller="i"):
-    """Run the error-controlled loop of :meth:`tribofx.stepper.Stepper.run` (``stepper``).
+class StepController:
+    """The step sequence of one slow-time run (see the module docstring).
 
-    ``filtered``: the estimates are filtered through each step's implicit
-    operator (:meth:`tribofx.stepper.Stepper.defect_filter`).  ``controller``:
-    ``"i"`` or ``"pi"`` (:func:`step_factor`); the PI controller's memory, the
-    last accepted step's normalized estimate and its order ``[r, p]``, is the
-    stepper's ``err_prev`` (in its state and checkpoint; None after a forced
-    step or a zero estimate, and unused when the order changes, e.g. from the
-    start-up estimate to Milne's); a rejected step is retried by the elementary
-    rule, and the step after a rejection or a Newton failure's halving does not
-    grow (Gustafsson).
+    Attributes:
+        dt: the step proposed next (s); None before a run.
+        cuts: halvings of the step after Newton failures.
+        err_prev: the PI rule's memory ``[r, p]`` (None: none).
+    """
+
+    #: whether an accepted solve may still be rejected (the loop then keeps its entry state)
+    rejects = False
+
+    def __init__(self, dt: float | None = None):
+        self.dt = None if dt is None else float(dt)
+        self.cuts = 0
+        self.err_prev: list | None = None
+
+    @property
+    def nominal(self) -> float | None:
+        """The step the progress bar counts in (s)."""
+        return self.dt
+
+    # -- state (the stepper's state and checkpoint) -----------------------------------
+    def state(self) -> dict:
+        """Return the controller's part of the stepper's state (JSON)."""
+        return {"dt": self.dt, "cuts": self.cuts, "err_prev": self.err_prev}
+
+    def restore(self, state: dict) -> None:
+        """Restore a :meth:`state` (``err_prev`` absent in checkpoints before the PI rule)."""
+        self.dt, self.cuts = state["dt"], state["cuts"]
+        self.err_prev = state.get("err_prev")
+
+    def take_over(self, state: dict) -> None:
+        """Go on from the state of the controller this one replaces (a resumed run)."""
+        self.cuts = state["cuts"]
+
+    # -- the loop's questions -------------------------------------------------------------
+    def start(self, stepper, T: float) -> None:
+        """Check that the controller can drive ``stepper`` to ``T``; set the first step."""
+        if self.dt is None:
+            raise ValueError("no step: give Stepper.run a step (s) or a step controller")
+
+    def next_step(self, t: float, T: float) -> float:
+        """Return the step to try from ``t`` (s)."""
+        raise NotImplementedError
+
+    def failed(self, stepper, h: float, error: NewtonDivergence) -> None:
+        """Cut the step after a Newton failure of ``h`` (state restored), or raise ``error``."""
+        raise NotImplementedError
+
+    def judge(self, stepper, h: float, report, saved) -> bool:
+        """Accept the converged step of ``h`` (True), or reject it (state back to ``saved``)."""
+        return True
+
+
+class FixedStep(StepController):
+    """The nominal step ``dt`` (s), halved on Newton failures (see the module docstring)."""
+
+    def next_step(self, t, T):
+        """Return the nominal step at the current halving level (the last one up to T)."""
+        return min(self.dt / 2**self.cuts, T - t)
+
+    def failed(self, stepper, h, error):
+        """Halve the step; raise ``error`` beyond ``stepper.max_cuts`` halvings."""
+        self.cuts += 1
+        if self.cuts > stepper.max_cuts:
+            self.cuts -= 1
+            raise error
+
+    def judge(self, stepper, h, report, saved):
+        """Accept; double the step back once t is aligned with the coarser step."""
+        while self.cuts > 0 and _aligned(stepper.t, self.dt / 2 ** (self.cuts - 1)):
+            self.cuts -= 1
+        return True
+
+
+class ErrorControl(StepController):
+    """Error control of BDF2 wear: each step's estimate held within ``tol`` (mm).
+
+    Args:
+        dt: the first step (s).
+        tol: the tolerance (mm): per unit step (``per="unit_step"``) each
+            step's estimate E of order p may be at most tol·Δt/T, so that the
+            steps' errors add up to about tol (a step above it is retried with
+            Δt·max(0.2, 0.9 (tol Δt/(T E))^(1/(p−1)))); per step
+            (``per="step"``) each estimate is held at tol itself (the local
+            error control of ODE codes: where wear damps its own errors the
+            final error stays near tol at far fewer steps, elsewhere it may add
+            up to a multiple of tol).
+        per: ``"unit_step"`` or ``"step"``.
+        rule: ``"i"`` (elementary) or ``"pi"`` (Gustafsson) for the next step
+            (:func:`step_factor`); a rejected step is retried by the elementary
+            rule, and the step after a rejection or a Newton failure's halving
+            does not grow (Gustafsson).
+        filtered: each estimate is filtered through the step's implicit
+            operator (:meth:`tribofx.stepper.Stepper.defect_filter`).
 
     A step at the smallest size Δt_min = 1e-6 T is accepted whatever its
     estimate (``report.forced``): across a jump of the rate (a node entering
     contact) the estimate per unit step does not vanish with Δt, and the step
-    boundary at the jump is the best the scheme can do.  A NaN estimate is
-    a rejection.
+    boundary at the jump is the best the scheme can do.  A NaN estimate is a
+    rejection.  Newton failures halve the step as without control.
     """
-    if per not in CONTROLS:
-        raise ValueError(f"unknown error control per {per!r}: unit_step or step")
-    if controller not in CONTROLLERS:
-        raise ValueError(f"unknown step-size controller {controller!r}: i or pi")
-    if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
-        raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
-    if not stepper.steps:
-        stepper.dt = dt            # a resumed run goes on with its proposed step
-    dt_min = 1e-6 * T
-    stepper._bar = (T, dt)
-    stepper._progress(progress)     # resumed from a checkpoint: the bar goes on
-    interrupt.arm()
-    rejected = 0
-    while stepper.t < T * (1 - 1e-12):
-        h = min(stepper.dt, T - stepper.t)
-        saved = stepper.state()
-        try:
-            report = stepper.step(h)
-        except NewtonDivergence:
-            stepper.restore(saved)
-            stepper.cuts += 1
-            if stepper.cuts > stepper.max_cuts:
-                raise
-            stepper.dt = h / 2
-            continue
+
+    rejects = True
+
+    def __init__(self, dt: float, tol: float, per: str = "unit_step", rule: str = "i",
+                 filtered: bool = False):
+        if per not in ERROR_MEASURES:
+            raise ValueError(f"unknown error control per {per!r}: unit_step or step")
+        if rule not in STEP_RULES:
+            raise ValueError(f"unknown step-size rule {rule!r}: i or pi")
+        super().__init__(dt)
+        self.first, self.tol, self.per = float(dt), float(tol), per
+        self.rule, self.filtered = rule, bool(filtered)
+        self.rejected = 0      # rejections since the last accepted step
+        self.T = self.dt_min = 0.0
+
+    @property
+    def nominal(self):
+        """The first step (s): the progress bar counts in it."""
+        return self.first
+
+    def take_over(self, state):
+        """Go on with the proposed step, the cut level and the PI memory of ``state``."""
+        self.restore(state)
+
+    def start(self, stepper, T):
+        """Refuse wear other than BDF2; the first step unless resumed; Δt_min = 1e-6 T."""
+        if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
+            raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
+        if not stepper.steps:
+            self.dt = self.first      # a resumed run goes on with its proposed step
+        self.T, self.dt_min = T, 1e-6 * T
+        self.rejected = 0
+
+    def next_step(self, t, T):
+        """Return the proposed step (the last one up to T)."""
+        return min(self.dt, T - t)
+
+    def failed(self, stepper, h, error):
+        """Halve the step; raise ``error`` beyond ``stepper.max_cuts`` halvings."""
+        self.cuts += 1
+        if self.cuts > stepper.max_cuts:
+            raise error
+        self.dt = h / 2
+
+    def judge(self, stepper, h, report, saved):
+        """Accept or reject the step by its estimate; propose the next step."""
         errs = [(e, w.error_order) for w, e in
-                ((w, w.step_error(stepper.defect_filter(w) if filtered else None))
+                ((w, w.step_error(stepper.defect_filter(w) if self.filtered else None))
                  for w in stepper.wears) if e is not None]
         err, order = max(errs) if errs else (None, 2)
         # error per unit step: a step may err by tol·Δt/T, so the errors of all
         # steps add up to tol; E ∝ Δt^p, so E/Δt ∝ Δt^(p−1).  Per step: E ≤ tol
-        unit = per == "unit_step"
-        allowed = tol * h / T if unit else tol
+        unit = self.per == "unit_step"
+        allowed = self.tol * h / self.T if unit else self.tol
         p_eff = order - 1 if unit else order
         bad = err is not None and not err <= allowed        # NaN: rejected
         r = 0.0 if err is None else err / allowed
         # PI: the memory of the last accepted step of the same estimator (its order p)
         # on a step that follows neither a rejection nor a Newton failure's halving
-        after_cut = rejected or stepper.cuts
-        memory = stepper.err_prev
-        pi = (controller == "pi" and not bad and not after_cut and memory is not None
+        after_cut = self.rejected or self.cuts
+        memory = self.err_prev
+        pi = (self.rule == "pi" and not bad and not after_cut and memory is not None
               and memory[1] == p_eff)
         factor = step_factor(r, p_eff, memory[0] if pi else None)
-        if controller == "pi" and after_cut and not bad:
+        if self.rule == "pi" and after_cut and not bad:
             factor = min(factor, 1.0)
-        forced = bad and err == err and h <= dt_min * (1 + 1e-9)
-        if bad and err != err and h <= dt_min * (1 + 1e-9):
+        at_min = h <= self.dt_min * (1 + 1e-9)
+        forced = bad and err == err and at_min
+        if bad and err != err and at_min:
             stepper.restore(saved)
             raise NewtonDivergence(f"error control: NaN estimate at t = {stepper.t:g} s")
         if bad and not forced:
             stepper.restore(saved)
-            rejected += 1
-            stepper.dt = max(h * factor, dt_min)
-            continue
-        stepper.cuts = 0
-        if h == stepper.dt:       # a last, shortened step keeps the memory as the proposal
-            stepper.err_prev = None if forced or not r > 0 else [r, p_eff]
-        report.error, report.rejected, rejected = err, rejected, 0
+            self.rejected += 1
+            self.dt = max(h * factor, self.dt_min)
+            return False
+        self.cuts = 0
+        if h == self.dt:       # a last, shortened step keeps the memory as the proposal
+            self.err_prev = None if forced or not r > 0 else [r, p_eff]
+        report.error, report.rejected, self.rejected = err, self.rejected, 0
         report.forced = forced
-        if h == stepper.dt or factor < 1:   # a last, shortened step keeps the proposal
-            stepper.dt = max(h * factor, dt_min)
-        stepper._accepted(report, on_step, progress)
+        if h == self.dt or factor < 1:   # a last, shortened step keeps the proposal
+            self.dt = max(h * factor, self.dt_min)
+        return True
+
+
+def _aligned(t, h):
+    return abs(t / h - round(t / h)) < 1e-9

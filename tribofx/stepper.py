@@ -19,17 +19,19 @@ Schemes (chosen by the interface's ``theta`` and ``averaged``):
   drives the shape step; θ > 0 by a fixed-point (Picard) iteration, each
   iterate re-solving a cycle on the predicted shape.
 
-A *control* (:class:`tribofx.held_response.ResponseControl`, a
-:class:`~tribofx.held_response.HeldResponse` of the slow time) replaces the plain
-Newton solve of the deformation problem by
-:meth:`tribofx.continuation.Continuation.reach` on a parameter (e.g. the
-countersurface position that carries a prescribed force), with a predictor
-evaluated at step entry.
+A *hold* (:class:`tribofx.hold.Hold`, the stepper's ``hold``) replaces the
+plain Newton solve of the deformation problem by a solve with a response held
+at its target (e.g. the countersurface position that carries a prescribed
+force, by a secant of complete solves or the bordered Newton system), with its
+first trial estimated at step entry (:meth:`tribofx.hold.Hold.begin`).
 
-Step cutting (one policy): a step that fails (Newton divergence, a force not
-reached, or an inverted cell, :class:`MeshInversion`) restores the state at
-entry and is halved, up to ``max_cuts`` times; after a success the step is
-doubled back as soon as the time is aligned with the coarser step.
+The steps: :meth:`Stepper.run` is the one slow-time loop, and a step
+controller of :mod:`tribofx.step_control` chooses its steps — a fixed step
+(:class:`~tribofx.step_control.FixedStep`: a step that fails, by Newton
+divergence, a force not reached or an inverted cell, :class:`MeshInversion`,
+restores the state at entry and is halved, up to ``max_cuts`` times, and
+doubles back once the time is aligned with the coarser step) or the error
+control of BDF2 wear (:class:`~tribofx.step_control.ErrorControl`).
 
 The evolving interface (``wear``; a list of them for the wear of several
 surfaces, e.g. both bodies of a two-body contact, advanced together with one
@@ -47,8 +49,9 @@ the sliding direction) needs only the same methods and, if its unknowns need
 a different assembly, a ``problem_class`` with the constructor of
 :class:`tribofx.problem.Problem`.
 
-State: :meth:`Stepper.state` holds the time, the nominal Δt, the cut level, the
-step count, the PI step rule's memory (``err_prev``), every Function and Constant
+State: :meth:`Stepper.state` holds the time, the step count, the step
+controller's state (the proposed Δt, the cut level, the PI step rule's memory
+``err_prev``), every Function and Constant
 of the components (unknowns, histories, countersurface positions) and the extra
 ``parameters`` (e.g. load factors).  A :class:`tribofx.checkpoint.Checkpoint`
 writes it after every accepted step: one NumPy ``.npz`` of the local arrays per
@@ -68,7 +71,7 @@ from .cycles import ReciprocatingCycle
 from .error_filter import filtered_defect
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
-from .step_control import run_controlled
+from .step_control import FixedStep, StepController
 
 __all__ = ["MeshInversion", "ReciprocatingCycle",
            "StepReport", "Stepper", "nominal_steps"]
@@ -154,21 +157,17 @@ class Stepper:
         else:
             self.problem = problem_class(self.components, deformation, name=name, **kw)
             self.shape = problem_class(self.components, shape, name=f"{name}_shape", **kw)
-        self.control = None
+        self.hold = None      # a tribofx.hold.Hold: the deformation solved with a response held
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
-        self.t, self.dt, self.cuts, self.steps = 0.0, None, 0, 0
-        self.err_prev = None      # the PI controller's memory (step_control.run_controlled)
-        self._bar = (1.0, 1.0)          # (T, Δt) of the progress bar (set by run)
+        self.t, self.steps = 0.0, 0
+        #: the step controller of the last (or next) run: its state is the stepper's too
+        self.controller: StepController = FixedStep()
         self.history = {}     # the case's JSON-able records, kept in the checkpoint
         self.last_increment = None
         self.last_increments = None
 
     # -- set-up ------------------------------------------------------------------
-    def set_control(self, control):
-        """Solve the deformation problem by ``control`` (a ``held_response.ResponseControl``)."""
-        self.control = control
-
     def shape_unknown_fraction(self):
         """Fraction of all unknowns that belong to the shape step (w and ζ)."""
         def n(f):
@@ -187,9 +186,9 @@ class Stepper:
         return field_names(self._fields())
 
     def state(self):
-        """Copy of the full state: t, Δt, cut level, steps, PI memory and every field."""
-        return {"t": self.t, "dt": self.dt, "cuts": self.cuts, "steps": self.steps,
-                "err_prev": self.err_prev, "fields": field_arrays(self._fields())}
+        """Copy of the full state: t, steps, the step controller's (Δt, cuts, PI memory), fields."""
+        return {"t": self.t, "steps": self.steps, **self.controller.state(),
+                "fields": field_arrays(self._fields())}
 
     def restore(self, state):
         """Restore a state from :meth:`state` (or :meth:`Checkpoint.read`)."""
@@ -200,9 +199,8 @@ class Stepper:
             if hasattr(f, "x") and f.x.array.shape != np.shape(a):
                 raise ValueError(f"state of {f.name!r} has shape {np.shape(a)}")
         assign_fields(fields, state["fields"])
-        self.t, self.dt, self.cuts, self.steps = (state["t"], state["dt"], state["cuts"],
-                                                  state["steps"])
-        self.err_prev = state.get("err_prev")     # None in checkpoints before the PI control
+        self.t, self.steps = state["t"], state["steps"]
+        self.controller.restore(state)
         self.problem.refresh()
 
     def load_checkpoint(self, directory=None):
@@ -219,9 +217,9 @@ class Stepper:
             raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
 
     def _deform(self):
-        """Solve the deformation problem (plainly or by the control); Newton reports."""
-        if self.control is not None:
-            return self.control.solve()
+        """Solve the deformation problem (plainly or with the hold's response held); reports."""
+        if self.hold is not None:
+            return self.hold.solve().reports
         return [self.problem.solve(verbose=self.verbose)]
 
     def step(self, dt):
@@ -236,8 +234,8 @@ class Stepper:
             w.begin_step(dt)
         for c, f in self.schedule:
             c.value = f(self.t + dt)
-        if self.control is not None:
-            self.control.begin(dt)
+        if self.hold is not None:
+            self.hold.begin(dt)
         try:
             if self.cycle is not None:
                 self._cycle_step(dt, out)
@@ -351,84 +349,73 @@ class Stepper:
         self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
-    def run(self, T, dt, on_step=None, progress=None, tol=None, per="unit_step",
-            filtered=False, controller="i"):
-        """Advance from the current time to ``T`` with the nominal step ``dt`` (s).
+    def run(self, T, controller=None, on_step=None, progress=None):
+        """Advance from the current time to ``T`` (s), the steps chosen by ``controller``.
+
+        ``controller``: a :class:`tribofx.step_control.StepController` (e.g.
+        :class:`~tribofx.step_control.ErrorControl` for BDF2 wear under error
+        control), a number (s: :class:`~tribofx.step_control.FixedStep` of that
+        nominal step) or None (the stepper's :attr:`controller`).  A new
+        controller takes over the state of the one it replaces (the cut level;
+        under error control also the proposed step and the PI memory), so a run
+        resumed from a checkpoint goes on with its steps.
 
         ``on_step(stepper, report)`` is called after every accepted step, then
         the checkpoint is written (with :attr:`history`) and a SIGINT/SIGTERM
         received meanwhile stops the run (:func:`tribofx.interrupt.check`).
         Raises the last failure when a step still fails after ``max_cuts``
         halvings (the state is the last accepted one).
-
-        ``tol`` (mm, with BDF2 wear): error control per unit step.  ``dt`` is
-        then the first step; each step's estimate E of order p
-        (:meth:`tribofx.interfaces.Wear.step_error`, ``error_order``) may be at
-        most tol·Δt/T, so that the steps' errors add up to about ``tol``: a step
-        above it is rejected (state restored) and retried with Δt·max(0.2,
-        0.9 (tol Δt/(T E))^(1/(p−1))); an accepted one proposes Δt·min(2, …) for
-        the next, kept as the stepper's ``dt`` (so a checkpoint resumes with it).
-        Newton failures are halved as without control.  ``per="step"`` holds each
-        step's estimate at tol itself (retry factor (tol/E)^(1/p)), the local error
-        control of ODE codes: where wear damps its own errors the final error stays
-        near tol at far fewer steps, elsewhere it may add up to a multiple of tol.
-        ``filtered``: each estimate is that of :meth:`defect_filter`; ``controller``:
-        ``"pi"`` proposes the next step by Gustafsson's PI rule instead
-        (:func:`tribofx.step_control.step_factor`).
         """
-        if tol:
-            return run_controlled(self, T, dt, on_step, progress, tol, per, filtered,
-                                  controller)
-        self.dt = dt
-        self._bar = (T, dt)
-        self._progress(progress)   # resumed from a checkpoint: the bar goes on
+        if controller is not None:
+            if not isinstance(controller, StepController):
+                controller = FixedStep(float(controller))
+            controller.take_over(self.controller.state())
+            self.controller = controller
+        ctl = self.controller
+        ctl.start(self, T)
+        bar = (T, ctl.nominal)
+        self._progress(progress, bar)   # resumed from a checkpoint: the bar goes on
         interrupt.arm()
         while self.t < T * (1 - 1e-12):
-            h = min(dt / 2**self.cuts, T - self.t)
+            h = ctl.next_step(self.t, T)
+            saved = self.state() if ctl.rejects else None
             try:
                 report = self.step(h)
-            except NewtonDivergence:
-                self.cuts += 1
-                if self.cuts > self.max_cuts:
-                    self.cuts -= 1
-                    raise
+            except NewtonDivergence as err:
+                ctl.failed(self, h, err)
                 continue
-            # double the step back once t is aligned with the coarser step
-            while self.cuts > 0 and _aligned(self.t, dt / 2 ** (self.cuts - 1)):
-                self.cuts -= 1
-            self._accepted(report, on_step, progress)
+            if not ctl.judge(self, h, report, saved):
+                continue
+            if on_step is not None:
+                on_step(self, report)
+            if self.checkpoint is not None:
+                self.checkpoint.write(self.state(), self.field_names(), self.history)
+            self._progress(progress, bar)
+            interrupt.check(self.comm, self.t)
 
     def defect_filter(self, wear):
         """Return the filter of ``wear``'s error estimate through the step's implicit operator.
 
         A callable taking the nodal defect to :func:`tribofx.error_filter.filtered_defect`
-        (the force held by the control's border, if any); monolithic steps only.
+        (the force held by the hold's border, if any); monolithic steps only.
         """
         if not self.monolithic or self.cycle is not None:
             raise ValueError("the filtered error estimate needs a monolithic implicit step")
-        border = getattr(self.control, "border", None)
-        if self.control is not None and border is None:
-            raise ValueError("the filtered error estimate needs the control's border "
+        border = None if self.hold is None else self.hold.border
+        if self.hold is not None and border is None:
+            raise ValueError("the filtered error estimate needs the hold's border "
                              "(the response held in the filter's solve)")
         return lambda d: filtered_defect(self.problem, wear, d, border, self.wears)
 
-    def _accepted(self, report, on_step, progress):
-        if on_step is not None:
-            on_step(self, report)
-        if self.checkpoint is not None:
-            self.checkpoint.write(self.state(), self.field_names(), self.history)
-        self._progress(progress)
-        interrupt.check(self.comm, self.t)
-
-    def _progress(self, progress):
-        """Move the bar to the nominal steps (``run``'s Δt) that t has completed.
+    def _progress(self, progress, bar):
+        """Move the bar to the nominal steps (``bar`` = (T, Δt)) that t has completed.
 
         By time, so that cut steps and the steps of error control count as the
         nominal steps they make up: the bar ends at its total, ⌈T/Δt⌉.
         """
         if progress is None or not hasattr(progress, "n"):
             return
-        T, d = self._bar
+        T, d = bar
         n = nominal_steps(T, d) if self.t >= T * (1 - 1e-12) else math.floor(self.t / d + 1e-9)
         if n > progress.n:
             progress.update(n - progress.n)
@@ -438,6 +425,3 @@ def nominal_steps(T, dt):
     """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""
     return math.ceil(T / dt - 1e-9)
 
-
-def _aligned(t, h):
-    return abs(t / h - round(t / h)) < 1e-9

@@ -69,7 +69,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import HeldResponse
+from ..hold import Hold
 from ..interfaces import Film
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.user import read_user_mesh
@@ -665,7 +665,7 @@ class EHLBallCase:
         offset = film.counterpart.offset.value
         # each trial sequence starts at the current position: the converged first
         # state, then the Hertz state predicted for each further load
-        held = HeldResponse(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
+        held = Hold(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
         if start is None:
             cls.hertz_start(run, v, W1, v["U"])
             its0 = problem.solve_by_homotopy(verbose=verbose).iterations
@@ -788,7 +788,7 @@ class EHLBallCase:
             last["U"] = speed.get()
             return on_speed(march) if on_speed is not None else None
 
-        held = HeldResponse(inner, W, slope=cls.hertz_slope(v),
+        held = Hold(inner, W, slope=cls.hertz_slope(v),
                             guess=(lambda: float(offset[Z])) if restart else shifted,
                             predict=(lambda Wt: cls.hertz_start(run, v, Wt, speed.get()))
                             if restart else None)

@@ -9,7 +9,7 @@ through its mesh with v = F V, V = (U, 0), eq. 26: the frame of the cylinder), a
 or an interval3 arc projected by the C++ kernel, ``countersurface=mesh``), one
 :class:`~tribofx.problem.Problem` and :class:`~tribofx.continuation.Continuation`
 controllers: the cylinder's vertical position is found by a secant for each load
-(:class:`~tribofx.held_response.HeldResponse`), the loads W/steps, …, W are
+(:class:`~tribofx.hold.Hold`), the loads W/steps, …, W are
 marched with step cutting, ``speeds`` continues the final load in U (geometric
 steps, cut on failure) and records friction coefficient, h_min, p_max against μU.
 
@@ -39,7 +39,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import HeldResponse
+from ..hold import Hold
 from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..meshes.user import read_user_mesh
@@ -486,7 +486,7 @@ class EHLCylinderLayerCase:
         inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
                              response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
                              verbose=verbose)
-        held = HeldResponse(inner, 0.0, transform=lambda W: 1 / W, slope=cls.slope(run, v))
+        held = Hold(inner, 0.0, transform=lambda W: 1 / W, slope=cls.slope(run, v))
 
         def response():
             if on_step is not None:
@@ -524,7 +524,7 @@ class EHLCylinderLayerCase:
         ``speeds[start]`` (a resumed run).
         """
         layer = run[0]
-        held = HeldResponse(inner, W, transform=lambda W: 1 / W,
+        held = Hold(inner, W, transform=lambda W: 1 / W,
                             slope=cls.slope(run, v))
         at = {"j": start}
 

@@ -16,7 +16,7 @@ their flat faces held (the upper) and lifted by δ (the lower).  The film,
 |x| ≤ x_l (S = γ_l), projected onto the lower body's current boundary
 (|x| ≤ x_l + 2ℓ); p = 0 at its ends, penalty cavitation.  The load is reached
 by δ (a secant on 1/W, nearly linear for a rigid film, inside a load march
-with step cutting: :class:`~tribofx.held_response.HeldResponse`).
+with step cutting: :class:`~tribofx.hold.Hold`).
 
 References: Hertz (line contact, R* and E* of the pair, the dry limit of the
 pressure) and Martin's rigid film h = 4.9 μ u_m R*/W (u_m = (U1 + U2)/2),
@@ -37,7 +37,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import HeldResponse
+from ..hold import Hold
 from ..interfaces import Film, TwoBodyFilm
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..motions import Rolling, Sliding
@@ -193,7 +193,7 @@ class EHLTwoCylindersCase:
                              response=lambda: 1.0 / (sign * film.force()[1]), rtol=1e-6,
                              max_trials=30, verbose=verbose)
         slope = -1.0 / (4.9 * v["mu"] * u_m * ref.R_star)    # Martin: d(1/W)/dδ, h = h₀ − δ
-        held = HeldResponse(inner, 0.0, transform=lambda W: 1.0 / W, slope=slope)
+        held = Hold(inner, 0.0, transform=lambda W: 1.0 / W, slope=slope)
         steps = []
 
         def on_load():

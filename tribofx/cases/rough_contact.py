@@ -19,7 +19,7 @@ from mpi4py import MPI
 from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import HeldResponse
+from ..hold import Hold
 from ..interfaces import Film
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.roller import ROLLER_NAMES, roller
@@ -211,7 +211,7 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
                          rtol=1e-7, max_trials=30, verbose=verbose)
     # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
     # film's 1/h; steeper once the asperities carry: at least 1/σ)
-    held = HeldResponse(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
+    held = Hold(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
         film.min_film(), v["sigma"]) if inner.history else 1.0 / max(h_r, v["sigma"]))
     its = []
     Continuation(held, held, response=lambda: held.target, record=its).march(

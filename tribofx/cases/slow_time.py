@@ -3,16 +3,17 @@
 Every wear case (``wear-pin``, ``wear-ball-flat``, ``wear-ball-halfspace``,
 ``wear-reciprocating``, ``wear-lubricated``) takes ``scheme`` (explicit θ = 0,
 implicit θ = 1, or the second-order BDF2 of :mod:`tribofx.bdf2`) and ``tol``, the
-error control of :func:`tribofx.step_control.run_controlled` (mm; 0: the fixed
+error control of :class:`tribofx.step_control.ErrorControl` (mm; 0: the fixed
 step ``dt``, else ``dt`` is the first step) with ``tol_per``: ``unit_step`` (the
 steps' estimates add up to tol) or ``step`` (each step's estimate within tol), and
 ``controller``: the step-size rule, elementary (``i``) or Gustafsson's PI (``pi``).
+:func:`step_controller` turns them into the step controller of the run.
 """
 
 from ..params import InputError, Param
-from ..step_control import CONTROLLERS, CONTROLS
+from ..step_control import ERROR_MEASURES, STEP_RULES, ErrorControl, FixedStep
 
-__all__ = ["SCHEMES", "check_scheme", "control", "scheme_params"]
+__all__ = ["SCHEMES", "check_scheme", "scheme_params", "step_controller"]
 
 SCHEMES = ("explicit", "implicit", "bdf2")
 
@@ -37,17 +38,22 @@ def scheme_params(default="implicit", note="", filtered=False):
             Param("tol_per", str, "unit_step", "-",
                   "tol per unit_step (the steps' estimates add up to tol over T) or per "
                   "step (each step's estimate within tol, as ODE codes: for wear that "
-                  "damps its own errors, e.g. wear-ball-flat)", choices=CONTROLS),
+                  "damps its own errors, e.g. wear-ball-flat)", choices=ERROR_MEASURES),
             Param("controller", str, "i", "-",
                   "tol: the step-size rule, elementary i (the last estimate) or pi "
                   "(Gustafsson's proportional-integral rule: the last two)",
-                  choices=CONTROLLERS), *extra)
+                  choices=STEP_RULES), *extra)
 
 
-def control(v):
-    """Return the error control's keywords of :meth:`tribofx.slow_run.SlowRun.run`."""
-    return {"tol": v["tol"] or None, "per": v["tol_per"],
-            "filtered": bool(v.get("error_filter", False)), "controller": v["controller"]}
+def step_controller(v, dt):
+    """Return the step controller of a run: the fixed step ``dt`` (s), or error control.
+
+    Error control (``tol`` > 0) starts at ``dt``.
+    """
+    if not v["tol"]:
+        return FixedStep(dt)
+    return ErrorControl(dt, v["tol"], per=v["tol_per"], rule=v["controller"],
+                        filtered=bool(v.get("error_filter", False)))
 
 
 def check_scheme(v):

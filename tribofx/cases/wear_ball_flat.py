@@ -23,7 +23,7 @@ far away.  Loading (chapter: at the mid-plane, which moves vertically as a
 rigid plane): in the ball frame the mid-plane z = R is clamped (u = 0, it also
 supports the friction force and its moment) and the rigid flat is translated
 vertically by δ (``approach``) so that the contact force of the half contact is
-F/2 to 10⁻⁸ (:class:`tribofx.held_response.ResponseControl`): by default δ is an
+F/2 to 10⁻⁸ (:class:`tribofx.hold.Hold`): by default δ is an
 unknown of the step's Newton solve, with the force equation beside the system
 (``force_control=bordered``, :class:`tribofx.bordered.Border`; 3–4 iterations a
 step); ``secant`` finds it by the secant iteration of
@@ -65,9 +65,9 @@ from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..body import Body
-from ..continuation import ConstantParameter
+from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
-from ..held_response import ResponseControl
+from ..hold import Hold
 from ..interfaces import Contact, Wear
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..meshes.wear_ball import NAMES, quarter_ball
@@ -198,11 +198,13 @@ class WearBallCase:
             c_wear = v["k"] * v["V"] * dt if wear.theta == 1 else 0.0
             return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
 
-        stepper.set_control(ResponseControl(
-            stepper.problem, ConstantParameter(offset, 2), lambda: float(contact.force()[2]),
-            MODEL_FRACTION * v["F"], predictor=predictor, slope=stiffness,
-            border=((contact.force_functional(2), contact.sub)
-                    if v["force_control"] == "bordered" else None)))
+        search = Continuation(stepper.problem, ConstantParameter(offset, 2),
+                              response=lambda: float(contact.force()[2]), rtol=1e-8,
+                              max_trials=12)
+        stepper.hold = Hold(search, MODEL_FRACTION * v["F"], step_guess=predictor,
+                            step_slope=stiffness,
+                            border=((contact.force_functional(2), contact.sub)
+                                    if v["force_control"] == "bordered" else None))
         stepper.h_fine = h_fine
         return stepper
 
@@ -294,7 +296,7 @@ class WearBallCase:
         """
         t_wall = time.perf_counter()
         stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
-        stepper.verbose = stepper.control.inner.verbose = verbose
+        stepper.verbose = stepper.hold.search.verbose = verbose
         record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
         record.stepper = stepper
         comm = stepper.comm
@@ -330,14 +332,15 @@ class WearBallCase:
                 on_step(st, rep)
 
         if not resume:
-            reports = stepper.control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+            reports = stepper.hold.solve(
+                guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta).reports
             plane = cls.contact_plane(stepper)
             state["initial_plane"] = None if plane is None else plane.tolist()
             log(0.0, int(sum(r.iterations for r in reports)), 0.0)
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
-        sr.run(T, v["dt"], step_done, progress, report=lambda: cls._report(
-            stepper, v, record, sr.hist, state, time.perf_counter() - t_wall),
-            **slow_time.control(v))
+        sr.run(T, slow_time.step_controller(v, v["dt"]), step_done, progress,
+               report=lambda: cls._report(stepper, v, record, sr.hist, state,
+                                          time.perf_counter() - t_wall))
         return stepper
 
     @staticmethod
@@ -361,7 +364,7 @@ class WearBallCase:
         for key, vals in hist.items():
             record.result(key, vals, units[key])
         record.result("rejected_steps", int(sum(hist["rejected"])), "-")
-        record.result("force_fallbacks", getattr(stepper.control, "fallbacks", 0), "-")
+        record.result("force_fallbacks", stepper.hold.fallbacks, "-")
         record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
         record.result("steps", len(hist["time"]) - 1, "-")
         s = v["V"] * np.asarray(hist["time"])

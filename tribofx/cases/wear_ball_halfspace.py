@@ -260,9 +260,9 @@ class WearBallHalfspaceCase:
 
         if not resume:
             log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
-        sr.run(v["T"], v["dt"], on_step, progress, report=lambda: cls._report(
-            stepper, v, record, hist, prof, time.perf_counter() - t_start),
-            **slow_time.control(v))
+        sr.run(v["T"], slow_time.step_controller(v, v["dt"]), on_step, progress,
+               report=lambda: cls._report(stepper, v, record, hist, prof,
+                                          time.perf_counter() - t_start))
         return stepper
 
     @staticmethod

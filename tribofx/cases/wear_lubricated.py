@@ -13,7 +13,7 @@ film: the finite shape update (28) of the core (:class:`tribofx.interfaces.Wear`
 on the film, the ALE shape field of the body), monolithic with the film and the
 body (``scheme=implicit``: θ = 1; ``bdf2``: second order, ``tol`` its error
 control; ``explicit``: θ = 0).  W is held at every step by the plane's approach
-(a secant on log W, :class:`tribofx.held_response.ResponseControl`).
+(a secant on log W, :class:`tribofx.hold.Hold`).
 
 The run: W is reached at ``U_start`` (a full film, the load march of
 ``stribeck``), the speed is marched down to V, then the slow time runs from 0
@@ -31,8 +31,8 @@ import math
 
 from mpi4py import MPI
 
-from ..continuation import ConstantParameter
-from ..held_response import ResponseControl
+from ..continuation import ConstantParameter, Continuation
+from ..hold import Hold
 from ..interfaces import Wear
 from ..params import InputError, Param
 from ..slow_run import SlowRun
@@ -104,11 +104,11 @@ class WearLubricatedCase:
             (t0, y0), (t1, y1) = track[-2:]
             return y1 + (y1 - y0) * dt / (t1 - t0)
 
-        stepper.set_control(ResponseControl(
-            stepper.problem, ConstantParameter(offset, 1),
-            lambda: math.log(max(float(film.force()[1]), 1e-300)), math.log(v["W"]),
-            predictor=predictor, slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]),
-            rtol=1e-7, max_trials=30))
+        search = Continuation(stepper.problem, ConstantParameter(offset, 1),
+                              response=lambda: math.log(max(float(film.force()[1]), 1e-300)),
+                              rtol=1e-7, max_trials=30)
+        stepper.hold = Hold(search, math.log(v["W"]), step_guess=predictor,
+                            step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
         run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
         return run
 
@@ -118,7 +118,7 @@ class WearLubricatedCase:
         """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
         run = cls.build(v, comm, checkpoint)
         stepper, wear, film = run["stepper"], run["wear"], run["film"]
-        stepper.verbose = stepper.control.inner.verbose = verbose
+        stepper.verbose = stepper.hold.search.verbose = verbose
         keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
                 "film_load_fraction", "friction_coefficient", "h_central", "h_min",
                 "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
@@ -147,10 +147,10 @@ class WearLubricatedCase:
             rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
                                        lambda U, n: its.append(n))
             log(0.0, sum(its) + stepper.start(), 0.0)
-        sr.run(v["T"], v["dt"],
+        sr.run(v["T"], slow_time.step_controller(v, v["dt"]),
                lambda st, rep: log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected),
                progress, report=lambda: cls.report(run, v, record, sr.hist, state),
-               problem=run, **slow_time.control(v))
+               problem=run)
         return run
 
     @staticmethod

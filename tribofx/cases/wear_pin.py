@@ -349,9 +349,8 @@ class WearPinCase:
 
         if not resume:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
-        sr.run(v["T"], cls.slow_step(v), on_step, progress,
-               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes),
-               **slow_time.control(v))
+        sr.run(v["T"], slow_time.step_controller(v, cls.slow_step(v)), on_step, progress,
+               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes))
         return stepper
 
     @classmethod

@@ -401,10 +401,10 @@ class WearReciprocatingCase:
                 half = 0.5 * v["L"] + v["A"] + 0.1
                 record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
 
-        sr.run(v["cycles"] * tau, v["dt"],
+        sr.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]),
                lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard, rep.error,
                                   rep.rejected), progress,
-               report=report, problem=run, **slow_time.control(v),
+               report=report, problem=run,
                after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
         return run
 

@@ -28,10 +28,12 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
+from ..body import AXISYMMETRIC_MOTION
 from ..forms import contact as cf
 from ..forms import kinematics as kin
 from ..forms import wear as wf
 from ..laws import friction_law
+from ..params import InputError
 from ..problem import BlockTolerance
 from ..protocols import ComponentBase
 from .surface import Surface, node_to_dof
@@ -88,6 +90,8 @@ class Contact(ComponentBase):
                 if body.velocity is None:
                     raise ValueError("eulerian slip needs the body's background velocity")
                 Vm = np.zeros(gdim) if V_master is None else np.asarray(V_master, float)
+                if body.kind == "axisymmetric" and Vm[0] != 0:
+                    raise InputError(AXISYMMETRIC_MOTION)
                 self.V_master = fem.Constant(msh, Vm)
                 self.slip = cf.eulerian_slip(body.u, self.geometry, body.velocity,
                                              self.V_master, dtau)
