@@ -48,6 +48,7 @@ from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
 from tribofx.cases.wear_ball_halfspace import surface_data
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
+from tribofx.scheme import EXPLICIT
 from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser()
@@ -128,7 +129,7 @@ if args.probe_steps == 0:   # the implicit run only
     raise SystemExit(0)
 
 # 2. explicit stability probe -----------------------------------------------------
-wear.theta = 0.0  # the same configuration, forward Euler
+wear.scheme = EXPLICIT  # the same configuration, forward Euler
 explicit = Stepper(stepper.components, wear, name="groove_explicit",
                    problem_class=wear.problem_class)
 explicit.restore(probe_state)

@@ -119,10 +119,9 @@ def sweep(run, loads):
                             response=lambda: -1 / film.force()[1], rtol=1e-6)
     held = Hold(position, 0.0, transform=lambda W: 1 / W,
                 slope=1 / rigid_clearance(1.0, mu, U, R))   # d(1/W)/ds, rigid film
-    steps = Continuation(held, held)                                # load steps, step cutting
     out = []
     for W in loads:
-        steps.march(W, predictor=False)
+        held.march(W, predictor=False)      # the load march: a failed step is cut in half
         prof = comm.bcast(film.profile(), root=0)
         F = film.force()
         x = prof["y" if film.model == "finite" else "X"][:, 0]

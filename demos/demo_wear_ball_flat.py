@@ -43,7 +43,7 @@
 #
 # ## Changing it
 #
-# ``theta=0.0`` in ``Wear`` gives the explicit scheme (stable only below
+# ``scheme=EXPLICIT`` (θ = 0) in ``Wear`` gives the explicit scheme (stable only below
 # Δt_cr ≈ 7 s on this mesh, ``tribofx.studies.wear_stability.ball_critical_step``); a finer
 # contact zone with ``h = a_H/4``.  The same configuration is the case
 # ``wear-ball-flat``.  Units: mm, N, s, MPa.
@@ -68,6 +68,7 @@ from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
+from tribofx.scheme import IMPLICIT
 from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="ball-on-flat wear demo")
@@ -104,7 +105,7 @@ body.add_shape_dirichlet("loaded", 2)
 
 contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0.0, 1.0])),
                   rho_n=E / h, friction=mu_f, slip="eulerian", V_master=(V, 0.0, 0.0))
-wear = Wear(contact, k=k, speed=V, theta=1.0)
+wear = Wear(contact, k=k, speed=V, scheme=IMPLICIT)
 checkpoint = f"{args.out}/checkpoint" if args.out else None
 stepper = Stepper([body, contact, wear], wear, checkpoint=checkpoint, name="demo_ball")
 # -

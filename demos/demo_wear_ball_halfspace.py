@@ -58,7 +58,7 @@
 #
 # ## Changing it
 #
-# ``theta=0.0`` in ``SteadyWear`` gives the explicit scheme (stable only for
+# ``scheme=EXPLICIT`` (θ = 0) in ``SteadyWear`` gives the explicit scheme (stable only for
 # small Δt, see ``benchmarks/bench_wear_groove.py``); ``law="spatial"`` the
 # spatial Archard law (eqs. 15–16); a graded layer multiplies E and k by
 # :func:`tribofx.forms.wear_groove.graded_factor` of the worn depth (Fig. 10b,
@@ -88,6 +88,7 @@ from tribofx.interfaces.steady_wear import SteadyWear
 from tribofx.obstacles import rigid_sphere
 from tribofx.output import write_summary, write_vtx
 from tribofx.references import hertz, rigid_groove_halfwidth
+from tribofx.scheme import IMPLICIT
 from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="wear groove demo")
@@ -139,7 +140,7 @@ def solve_groove(graded=None):
     contact = Contact(body, "top", rigid_sphere(np.array([0.0, 0.0, R]), R), rho_n=E / h)
     # (shape rows to 1e-12 of the block size: small against a step's worn-depth increment)
     wear = SteadyWear(contact, section, section_tags, hs.SECTION_NAMES, hs.prolongation,
-                      k * factor, V, L, aux=(E, 0.3), theta=1.0, rtol=1e-12,
+                      k * factor, V, L, aux=(E, 0.3), scheme=IMPLICIT, rtol=1e-12,
                       fixed={"sym": [0], "far": [0], "bottom": [0, 1]})
 
     # slow time: the stepper builds the monolithic problem of (u, λ_N, w₂, ζ), a

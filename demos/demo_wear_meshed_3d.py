@@ -40,6 +40,7 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.body import Body
 from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_cylinder, rigid_surface_mesh
+from tribofx.scheme import IMPLICIT
 from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="3D wear against a meshed cylinder")
@@ -77,7 +78,7 @@ def wear_run(countersurface):
         body.add_shape_dirichlet(name, comp)
     contact = Contact(body, "contact", countersurface, rho_n=E * n, friction=mu_f,
                       slip="eulerian", V_master=(0.0, V, 0.0))
-    wear = Wear(contact, k=k, theta=1.0)
+    wear = Wear(contact, k=k, scheme=IMPLICIT)
     stepper = Stepper([body, contact, wear], wear, name="demo_meshed3d",
                       checkpoint=f"{args.out}/checkpoint" if args.out else None)
     contact.counterpart.offset.value[2] = delta  # the cylinder indents the block by δ

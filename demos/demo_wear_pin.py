@@ -55,7 +55,7 @@
 #
 # ## Changing it
 #
-# ``theta=0.0`` in ``Wear`` gives the explicit scheme (stable only for
+# ``scheme=EXPLICIT`` (θ = 0) in ``Wear`` gives the explicit scheme (stable only for
 # Δt < Δt_cr ∼ h/E, eq. 31); ``law="spatial"`` the spatial Archard law (16);
 # ``k_grad`` a depth-graded coefficient; ``friction`` in ``Contact`` (with
 # ``slip="eulerian"`` and a body velocity) the dissipation form (14).  The
@@ -83,6 +83,7 @@ from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.plots import plot_wear_pin
 from tribofx.references import hertz
+from tribofx.scheme import IMPLICIT
 from tribofx.stepper import Stepper
 
 parser = argparse.ArgumentParser(description="pin-on-flat finite wear demo")
@@ -119,9 +120,9 @@ body.add_shape_dirichlet("top", 1)  # ... and the top face
 # the interfaces: contact with the rigid plane y = 0, wear on that contact
 contact = Contact(body, "contact", rigid_plane(np.zeros(2), np.array([0.0, 1.0])),
                   rho_n=E / (W / n))
-wear = Wear(contact, k=k, speed=V, theta=1.0)
+wear = Wear(contact, k=k, speed=V, scheme=IMPLICIT)
 
-# the slow time: theta = 1 -> one monolithic Problem in (u, λ_N, w, ζ)
+# the slow time: θ = 1 -> one monolithic Problem in (u, λ_N, w, ζ)
 checkpoint = f"{args.out}/checkpoint" if args.out else None
 stepper = Stepper([body, contact, wear], wear, parameters=[load], checkpoint=checkpoint,
                   name="demo_pin")

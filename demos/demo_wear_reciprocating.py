@@ -42,7 +42,7 @@
 # ## Changing it
 #
 # ``stroke``, ``fast_steps`` (a multiple of 4) and ``cycles`` per slow step below;
-# ``theta=1.0`` in ``Wear`` makes the slow time implicit (a Picard iteration,
+# ``scheme=IMPLICIT`` (θ = 1) in ``Wear`` makes the slow time implicit (a Picard iteration,
 # one cycle per iterate).  The same run is the case ``wear-pin`` with
 # ``--set mode=cyclic``.  Units: mm, N, s, MPa.
 
@@ -66,6 +66,7 @@ from tribofx.interfaces import Contact, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.references import hertz
+from tribofx.scheme import EXPLICIT
 from tribofx.stepper import ReciprocatingCycle, Stepper
 
 parser = argparse.ArgumentParser(description="reciprocating wear demo")
@@ -100,7 +101,7 @@ body.add_shape_dirichlet("top", 1)
 # Lagrangian Coulomb friction: the slip is the projection point's increment per sub-step
 contact = Contact(body, "contact", rigid_plane(np.zeros(2), np.array([0.0, 1.0])),
                   rho_n=E / (W / n), friction=mu_f, slip="lagrangian")
-wear = Wear(contact, k=k, theta=0.0, averaged=True)  # (28) driven by the rate_bar field
+wear = Wear(contact, k=k, scheme=EXPLICIT, averaged=True)  # (28) driven by rate_bar
 cycle = ReciprocatingCycle(contact, stroke, fast_steps, V, axis=0)
 checkpoint = f"{args.out}/checkpoint" if args.out else None
 stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],

@@ -40,7 +40,7 @@
 #
 # ## Changing it
 #
-# ``K_pin``, ``K_block``, ``E_pin``, ``E_block`` and ``theta=1.0`` in the two
+# ``K_pin``, ``K_block``, ``E_pin``, ``E_block`` and ``scheme=IMPLICIT`` in the two
 # ``Wear`` calls (implicit on the slow time, a Picard iteration of cycles).
 # The same problem is the case ``tribofx run wear-reciprocating`` (parameters
 # in ``tribofx list``).  Units: mm, N, s, MPa.
@@ -64,6 +64,7 @@ from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
 from tribofx.interfaces import TwoBodyContact, Wear
 from tribofx.output import write_summary, write_vtx
+from tribofx.scheme import EXPLICIT
 from tribofx.stepper import ReciprocatingCycle, Stepper
 
 parser = argparse.ArgumentParser(description="two-body reciprocating wear demo")
@@ -112,9 +113,9 @@ for name, c in (("bottom", 0), ("bottom", 1), ("sides", 0)):
 # +
 contact = TwoBodyContact(pin, "contact", block, "top", rho_n=E_block / (W / n), friction=mu_f)
 # Wear's k is the coefficient of the pressure form; in the dissipation form K = k/μ
-wear_pin = Wear(contact.wear_surface("slave"), k=K_pin * mu_f, theta=0.0, averaged=True,
+wear_pin = Wear(contact.wear_surface("slave"), k=K_pin * mu_f, scheme=EXPLICIT, averaged=True,
                 name="wear_pin")
-wear_block = Wear(contact.wear_surface("master"), k=K_block * mu_f, theta=0.0, averaged=True,
+wear_block = Wear(contact.wear_surface("master"), k=K_block * mu_f, scheme=EXPLICIT, averaged=True,
                   name="wear_block")
 
 

@@ -17,6 +17,7 @@ from tribofx.interfaces import Contact, Film, Wear
 from tribofx.obstacles import rigid_cylinder
 from tribofx.problem import Problem
 from tribofx.roughness import Roughness, greenwood_tripp
+from tribofx.scheme import IMPLICIT
 from tribofx.testing import block_taylor_orders, exact_tangent, smooth_direction
 
 U = 100.0      # mm/s, the cylinder's sliding speed
@@ -58,7 +59,7 @@ def _block(with_contact, rough=False):
     drivers = [film]
     if with_contact:
         drivers.append(Contact(body, "bottom", rigid_cylinder(CENTRE, 2.0), rho_n=10.0))
-    wear = Wear(drivers if with_contact else film, K, speed=U, theta=1.0)
+    wear = Wear(drivers if with_contact else film, K, speed=U, scheme=IMPLICIT)
     return body, film, drivers, wear
 
 

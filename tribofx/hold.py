@@ -4,11 +4,13 @@ Force control by a position is the everyday example: the load a film or a
 contact carries (the *response*) is held at W by moving the countersurface
 (the *parameter*).  One class, :class:`Hold`, does it everywhere:
 
+* to hold a load, one call: :meth:`Hold.march` steps the held target to its
+  final value (the load march: equal steps, a failed step restored and cut in
+  half, a secant predictor of the state), each step found by the hold's search;
 * as a problem of an outer :class:`tribofx.continuation.Continuation`: that
-  continuation marches another parameter (a speed) with the load held, or
-  marches the held target itself (``Continuation(hold, hold, ...)``: the hold's
-  ``get``/``set`` are those of its target, so a load is stepped with step
-  cutting, each step found by the inner search);
+  continuation marches another parameter (a speed) with the load held (the
+  hold's ``get``/``set`` are those of its target, so :meth:`Hold.march` is
+  ``Continuation(hold, hold).march``);
 * in the slow time of :class:`tribofx.stepper.Stepper` (``stepper.hold``): the
   deformation problem of each step is solved with the load held, the first
   trial from estimates evaluated at step entry (:meth:`Hold.begin`).
@@ -94,6 +96,8 @@ class Hold:
             rtol=search.rtol)
         self.fallbacks = 0
         self._step: tuple | None = None   # (guess, slope) of the slow step in progress
+        self._steps: Continuation | None = None   # the load march of :meth:`march`
+        self._on_step = None
 
     @property
     def parameter(self):
@@ -113,6 +117,32 @@ class Hold:
     def set(self, value: float) -> None:
         """Set the held target."""
         self.target = float(value)
+
+    def march(self, target: float, steps: int = 1, *, on_step=None, record=None,
+              predictor: bool = True, min_fraction: float = 2.0**-10) -> list:
+        """Step the held target from its value to ``target`` (the load march); returns targets.
+
+        ``steps`` equal steps; each is one :meth:`solve` (the search finds the
+        parameter), a failed step is restored and cut in half, down to
+        ``min_fraction`` of the first (then :class:`~tribofx.reports.NewtonDivergence`,
+        the state the last converged load's); ``predictor``: the state of each step
+        extrapolated from the last two converged loads.  ``on_step()`` runs after
+        every converged step; ``record`` (a list) receives each step's trial
+        iterations.  Repeated calls go on with the same march (its predictor's
+        history).
+        """
+        if self._steps is None:
+            self._steps = Continuation(self, self, response=self._stepped)
+        if record is not None:
+            self._steps.record = record
+        self._on_step = on_step
+        return self._steps.march(target, steps, predictor=predictor,
+                                 min_fraction=min_fraction)
+
+    def _stepped(self):
+        if self._on_step is not None:
+            self._on_step()
+        return self.target
 
     # -- the slow time ---------------------------------------------------------------
     def begin(self, dt: float) -> None:

@@ -185,8 +185,8 @@ class ErrorControl(StepController):
 
     def start(self, stepper, T):
         """Refuse wear other than BDF2; the first step unless resumed; Δt_min = 1e-6 T."""
-        if any(getattr(w, "scheme", None) != "bdf2" for w in stepper.wears):
-            raise ValueError("error control (tol) needs BDF2 wear: Wear(scheme='bdf2')")
+        if not all(w.scheme.bdf2 for w in stepper.wears):
+            raise ValueError("error control needs BDF2: Wear(..., scheme=BDF2)")
         if not stepper.steps:
             self.dt = self.first      # a resumed run goes on with its proposed step
         self.T, self.dt_min = T, 1e-6 * T

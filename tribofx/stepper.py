@@ -7,7 +7,8 @@ problem (§4.2–4.3).  It knows nothing of the physics: it builds the Problems
 of the scheme from the components, moves the slow-time history on, solves,
 checks the worn mesh, cuts failed steps and writes a checkpoint every step.
 
-Schemes (chosen by the interface's ``theta`` and ``averaged``):
+Schemes (chosen by the interface's ``scheme``, a :class:`tribofx.scheme.Scheme`,
+and ``averaged``):
 
 * θ = 1, instantaneous rate: one monolithic :class:`tribofx.problem.Problem` in
   all unknowns (deformation unknowns first, then the shape unknowns w, ζ);
@@ -35,7 +36,7 @@ control of BDF2 wear (:class:`~tribofx.step_control.ErrorControl`).
 
 The evolving interface (``wear``; a list of them for the wear of several
 surfaces, e.g. both bodies of a two-body contact, advanced together with one
-shape Problem) answers: ``theta`` and ``averaged``;
+shape Problem) answers: ``scheme`` (a :class:`tribofx.scheme.Scheme`) and ``averaged``;
 ``shape_unknowns()`` (the unknowns of the shape step, e.g. [w, ζ]);
 ``begin_step(dt)`` (history w_n ← w and Δt set) and ``end_step()`` (Δt = 0);
 ``min_volume_factor()`` (smallest det(I + Grad w), collective); ``body.mesh.comm``;
@@ -134,9 +135,9 @@ class Stepper:
                  problem_kw=None, problem_class=Problem, schedule=()):
         self.wears = list(wear) if isinstance(wear, (list, tuple)) else [wear]
         wear = self.wears[0]
-        if any((w.theta, w.averaged) != (wear.theta, wear.averaged) for w in self.wears):
+        if any((w.scheme, w.averaged) != (wear.scheme, wear.averaged) for w in self.wears):
             raise ValueError("the evolving interfaces of one stepper need the same scheme "
-                             "(theta, averaged)")
+                             "(scheme, averaged)")
         if cycle is not None and not wear.averaged:
             raise ValueError("fast-time cycles need a wear interface with averaged=True")
         if wear.averaged and cycle is None:
@@ -150,7 +151,7 @@ class Stepper:
         shape = [u for w in self.wears for u in w.shape_unknowns()]
         every = _unique([u for c in self.components for u in c.unknowns()])
         deformation = [u for u in every if not any(u is s for s in shape)]
-        self.monolithic = wear.theta == 1 and not wear.averaged
+        self.monolithic = wear.scheme.implicit and not wear.averaged
         if self.monolithic:
             self.problem = problem_class(self.components, deformation + shape, name=name, **kw)
             self.shape = None
@@ -315,7 +316,7 @@ class Stepper:
                                        default=0.0), op=MPI.MAX)
 
     def _cycle_step(self, dt, out):
-        theta, tau = self.wear.theta, self.cycle.period
+        theta, tau = self.wear.scheme.theta, self.cycle.period
         dW, its = self.run_cycle()
         rate_n = [wf.cycle_average_rate(d, tau) for d in dW]  # eq. 23
         for w, r in zip(self.wears, rate_n):

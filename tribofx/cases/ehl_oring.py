@@ -123,7 +123,8 @@ from ..problem import Problem, options_name
 from ..references import inverse_film
 from ..restart import SweepJournal
 from ..roughness import rough_pair
-from ..slow_run import SlowRun
+from ..scheme import Scheme
+from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
 from ..sweep import SweepVariant
 from .film_setup import (
@@ -135,6 +136,7 @@ from .film_setup import (
     formulation_param,
     viscosity,
 )
+from .slow_time import SlowTimeRecords
 
 __all__ = [
     "AirLayer", "EHLORingCase", "NAMES", "ORingSeal", "USER_GROUPS", "air_end", "axial_balance",
@@ -568,7 +570,7 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
     seal, film = stepper.seal, stepper.seal.film
     keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "flux_sealed",
             "content", "supply")
-    sr = SlowRun(stepper, v, record, keys, case.vtx_fields(seal), resume)
+    sr = SlowTimeRecords(stepper, v, record, keys, case.vtx_fields(seal), resume)
     stepper.layer.h = stepper.history.setdefault("air_layer", stepper.layer.h)  # on resume
 
     def log(st, its):
@@ -582,8 +584,9 @@ def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, re
 
     if not resume:
         log(stepper, 0)
-    sr.run(v["cycles"] * T, T / v["cycle_steps"], lambda st, rep: log(st, rep.iterations),
-           progress, report=lambda: _report(sr.hist, record, T, seal, v["scheme"]))
+    with sr.closing(report=lambda: _report(sr.hist, record, T, seal, v["scheme"])):
+        stepper.run(v["cycles"] * T, FixedStep(T / v["cycle_steps"]), progress=progress,
+                    on_step=sr.written(lambda st, rep: log(st, rep.iterations)))
     return stepper
 
 
@@ -598,7 +601,8 @@ def integral(t, q, scheme):
     Q, prev = np.zeros(len(t)), 0.0
     for n in range(len(t) - 1):
         dt = t[n + 1] - t[n]
-        c0, c1 = (1.0, 0.0) if scheme == "euler" or prev <= 0 else bdf2_coefficients(dt / prev)
+        bdf2 = Scheme.of(scheme).bdf2
+        c0, c1 = bdf2_coefficients(dt / prev) if bdf2 and prev > 0 else (1.0, 0.0)
         dQ = Q[n] - Q[n - 1] if n > 0 else 0.0
         Q[n + 1] = Q[n] + (dt * q[n + 1] - c1 * dQ) / c0
         prev = dt

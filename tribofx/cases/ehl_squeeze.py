@@ -46,9 +46,10 @@ from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..references import hertz, squeeze_film_under_load, squeeze_resistance
-from ..slow_run import SlowRun
+from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
 from .film_setup import VISCOSITY_PARAMS, density, viscosity
+from .slow_time import SlowTimeRecords
 
 __all__ = ["EHLSqueezeCase"]
 
@@ -267,7 +268,8 @@ class EHLSqueezeCase:
         film, dim = stepper.wear, v["dim"]
         keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
                 "newton_iterations", "force_rigid", "h_center_rigid")
-        sr = SlowRun(stepper, v, record, keys, {"displacement": [film.body.u]}, resume)
+        sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
+                             resume)
         y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
         R, mu, L = v["R"], v["mu"], cls.extent(v)
 
@@ -282,8 +284,9 @@ class EHLSqueezeCase:
 
         if not resume:
             log(0.0, 0)
-        sr.run(v["T"], v["dt"], lambda st, rep: log(st.t, rep.iterations), progress,
-               report=lambda: cls._report(film, record, sr.hist))
+        with sr.closing(report=lambda: cls._report(film, record, sr.hist)):
+            stepper.run(v["T"], FixedStep(v["dt"]), progress=progress,
+                        on_step=sr.written(lambda st, rep: log(st.t, rep.iterations)))
         return stepper
 
     @staticmethod

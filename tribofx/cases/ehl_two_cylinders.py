@@ -200,12 +200,10 @@ class EHLTwoCylindersCase:
             steps.append(cls.measures(run, v))
             if progress is not None:
                 progress.update(1)
-            return held.target
 
-        outer = Continuation(held, held, response=on_load,
-                             record=record.data["newton_iterations"])
         try:
-            outer.march(v["W"], v["steps"])
+            held.march(v["W"], v["steps"], on_step=on_load,
+                       record=record.data["newton_iterations"])
         except NewtonDivergence as err:
             err.model = run
             raise

@@ -214,8 +214,7 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
     held = Hold(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
         film.min_film(), v["sigma"]) if inner.history else 1.0 / max(h_r, v["sigma"]))
     its = []
-    Continuation(held, held, response=lambda: held.target, record=its).march(
-        v["W"], v["steps"])
+    held.march(v["W"], v["steps"], record=its)
     U_done = speeds[0]
     for U in speeds:
         while U_done > U * (1 + 1e-12):

@@ -1,4 +1,4 @@
-"""The slow-time parameters of the wear cases: the scheme and its error control.
+"""What the slow-time cases share: the scheme, its error control, and their per-step records.
 
 Every wear case (``wear-pin``, ``wear-ball-flat``, ``wear-ball-halfspace``,
 ``wear-reciprocating``, ``wear-lubricated``) takes ``scheme`` (explicit θ = 0,
@@ -8,12 +8,30 @@ step ``dt``, else ``dt`` is the first step) with ``tol_per``: ``unit_step`` (the
 steps' estimates add up to tol) or ``step`` (each step's estimate within tol), and
 ``controller``: the step-size rule, elementary (``i``) or Gustafsson's PI (``pi``).
 :func:`step_controller` turns them into the step controller of the run.
+
+:class:`SlowTimeRecords` keeps what every such case records besides its physics:
+the per-step measures (``hist``: lists keyed by measure; ``newton_iterations``)
+in the stepper's ``history``, so the checkpoint written after every step carries
+them and ``--resume`` continues them (:func:`tribofx.restart.open_history`
+checks the checkpoint's parameters); a ParaView time series of the case's fields
+at every accepted step (a resumed run writes its steps into series of their own,
+:func:`tribofx.restart.series_stem`); and, around the case's own call of
+:meth:`tribofx.stepper.Stepper.run`, the series closed and the case's report
+written whatever happens, a failed or interrupted run carrying its model at the
+last accepted step (:meth:`SlowTimeRecords.closing`).
 """
 
+import contextlib
+
+from ..output import VTXSeries
 from ..params import InputError, Param
+from ..reports import RunStop
+from ..restart import open_history, series_stem
+from ..scheme import Scheme
 from ..step_control import ERROR_MEASURES, STEP_RULES, ErrorControl, FixedStep
 
-__all__ = ["SCHEMES", "check_scheme", "scheme_params", "step_controller"]
+__all__ = ["SCHEMES", "SlowTimeRecords", "check_scheme", "scheme_params", "step_controller",
+           "wear_fields"]
 
 SCHEMES = ("explicit", "implicit", "bdf2")
 
@@ -58,9 +76,71 @@ def step_controller(v, dt):
 
 def check_scheme(v):
     """One-line error for tol > 0 without bdf2, or a filter or PI controller without tol."""
-    if v["tol"] > 0 and v["scheme"] != "bdf2":
+    if v["tol"] > 0 and not Scheme.of(v["scheme"]).bdf2:
         raise InputError("tol > 0 (error control) needs scheme=bdf2")
     if v.get("error_filter") and not v["tol"] > 0:
         raise InputError("error_filter filters the estimates of the error control: set tol > 0")
     if v["controller"] != "i" and not v["tol"] > 0:
         raise InputError("controller chooses the steps of the error control: set tol > 0")
+
+
+def wear_fields(wear):
+    """VTX fields of a worn body: displacement and shape change (bulk), contact multiplier."""
+    return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
+
+
+class SlowTimeRecords:
+    """Per-step records, series and failure handling of one slow-time run of ``stepper``.
+
+    Args:
+        stepper: the :class:`tribofx.stepper.Stepper`.
+        v: the run's parameter values (checked against a checkpoint on resume).
+        record: the run record (``data``, ``result``, ``outdir``).
+        keys: the names of the per-step measures (``hist[key]`` lists).
+        fields: ``{name: [Function, ...]}`` written as ``<name>_series.bp``.
+        resume: continue from the stepper's checkpoint.
+    """
+
+    def __init__(self, stepper, v, record, keys, fields, resume=False):
+        self.stepper, self.record = stepper, record
+        record.data["num_dofs"] = stepper.problem.num_dofs
+        if stepper.shape is not None:
+            record.data["num_dofs_shape"] = stepper.shape.num_dofs
+        self.history = open_history(stepper, v, resume)
+        self.hist = self.history.setdefault("hist", {k: [] for k in keys})
+        record.data["newton_iterations"] = self.history.setdefault("newton_iterations", [])
+        self.series = VTXSeries(stepper.comm, getattr(record, "outdir", None),
+                                {series_stem(f"{k}_series", stepper, resume): f
+                                 for k, f in fields.items()})
+
+    def log(self, iterations, values):
+        """Append the step's measures ``values`` (pairs or a dict) and its Newton iterations."""
+        for key, val in (values.items() if isinstance(values, dict) else values):
+            self.hist[key].append(val)
+        self.record.data["newton_iterations"].append(iterations)
+
+    def written(self, on_step=None):
+        """Return the ``on_step`` of :meth:`Stepper.run`: the case's, then the series entry."""
+        def step(stepper, report):
+            if on_step is not None:
+                on_step(stepper, report)
+            self.series.write(stepper.t)
+        return step
+
+    @contextlib.contextmanager
+    def closing(self, report=None, model=None):
+        """Around the run: the series from the current time, closed and ``report()`` at the end.
+
+        A :class:`~tribofx.reports.RunStop` leaving the block carries ``model``
+        (default: the stepper) at its last accepted state.
+        """
+        self.series.write(self.stepper.t)
+        try:
+            yield
+        except RunStop as err:
+            err.model = self.stepper if model is None else model
+            raise
+        finally:
+            self.series.close()
+            if report is not None:
+                report()

@@ -74,7 +74,6 @@ from ..meshes.wear_ball import NAMES, quarter_ball
 from ..obstacles import rigid_plane
 from ..params import InputError, Param
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
-from ..slow_run import SlowRun, wear_fields
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import check_scheme, scheme_params
@@ -174,9 +173,7 @@ class WearBallCase:
         contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0, 1])),
                           rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
                           V_master=(v["V"], 0.0, 0.0), dtau=1.0)
-        wear = Wear(contact, k=v["k"], speed=v["V"],
-                    theta=0.0 if v["scheme"] == "explicit" else 1.0,
-                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
+        wear = Wear(contact, k=v["k"], speed=v["V"], scheme=v["scheme"])
         # the flat's position is state of the contact (its counterpart's state fields):
         # restored by a cut step and by a resume
         stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
@@ -195,7 +192,7 @@ class WearBallCase:
             # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
             # (implicit step) with the wear compliance k V Δt
             a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
-            c_wear = v["k"] * v["V"] * dt if wear.theta == 1 else 0.0
+            c_wear = v["k"] * v["V"] * dt if wear.scheme.implicit else 0.0
             return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
 
         search = Continuation(stepper.problem, ConstantParameter(offset, 2),
@@ -306,7 +303,8 @@ class WearBallCase:
                 "error_estimate", "rejected")
         # the worn shape (warp by w), the deformation (by u) and the contact pressure at
         # every step (ParaView time series)
-        sr = SlowRun(stepper, v, record, keys, cls.vtx_fields(stepper), resume)
+        sr = slow_time.SlowTimeRecords(stepper, v, record, keys, cls.vtx_fields(stepper),
+                                       resume)
         h = sr.history
         state = h.setdefault("state", {"profiles": [], "initial_plane": None})
         residuals = h.setdefault("newton_residuals", [])
@@ -338,9 +336,10 @@ class WearBallCase:
             state["initial_plane"] = None if plane is None else plane.tolist()
             log(0.0, int(sum(r.iterations for r in reports)), 0.0)
         T = v["T"] if t_stop is None else min(t_stop, v["T"])
-        sr.run(T, slow_time.step_controller(v, v["dt"]), step_done, progress,
-               report=lambda: cls._report(stepper, v, record, sr.hist, state,
-                                          time.perf_counter() - t_wall))
+        with sr.closing(report=lambda: cls._report(stepper, v, record, sr.hist, state,
+                                                   time.perf_counter() - t_wall)):
+            stepper.run(T, slow_time.step_controller(v, v["dt"]),
+                        on_step=sr.written(step_done), progress=progress)
         return stepper
 
     @staticmethod
@@ -392,7 +391,7 @@ class WearBallCase:
     @staticmethod
     def vtx_fields(stepper):
         """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        return wear_fields(stepper.wear)
+        return slow_time.wear_fields(stepper.wear)
 
     @staticmethod
     def plot(profile, outdir):

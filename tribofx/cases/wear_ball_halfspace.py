@@ -41,7 +41,6 @@ from ..meshes import halfspace as hs
 from ..obstacles import rigid_sphere
 from ..params import InputError, Param
 from ..references import hertz, rigid_groove_halfwidth
-from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import check_scheme, scheme_params
@@ -170,8 +169,7 @@ class WearBallHalfspaceCase:
         wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v["k"] * fg,
                           v["V"], v["L"], law=v["law"], aux=(v["E"], 0.3),
                           fixed={"sym": [0], "far": [0], "bottom": [0, 1]},
-                          theta=0.0 if v["scheme"] == "explicit" else 1.0, rtol=1e-12,
-                          scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
+                          scheme=v["scheme"], rtol=1e-12)
         stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
                           checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
         return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}
@@ -229,7 +227,7 @@ class WearBallHalfspaceCase:
         record.result("hertz", info, "mm, MPa")
         # the groove (warp by w), the deformation (by u) and the contact pressure at every
         # step (ParaView time series)
-        sr = SlowRun(stepper, v, record, (
+        sr = slow_time.SlowTimeRecords(stepper, v, record, (
             "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
             "newton_iterations", "averaged_rate", "max_pressure", "dt", "error_estimate",
             "rejected"),
@@ -260,9 +258,10 @@ class WearBallHalfspaceCase:
 
         if not resume:
             log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
-        sr.run(v["T"], slow_time.step_controller(v, v["dt"]), on_step, progress,
-               report=lambda: cls._report(stepper, v, record, hist, prof,
-                                          time.perf_counter() - t_start))
+        with sr.closing(report=lambda: cls._report(stepper, v, record, hist, prof,
+                                                   time.perf_counter() - t_start)):
+            stepper.run(v["T"], slow_time.step_controller(v, v["dt"]),
+                        on_step=sr.written(on_step), progress=progress)
         return stepper
 
     @staticmethod

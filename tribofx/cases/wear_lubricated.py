@@ -35,7 +35,6 @@ from ..continuation import ConstantParameter, Continuation
 from ..hold import Hold
 from ..interfaces import Wear
 from ..params import InputError, Param
-from ..slow_run import SlowRun
 from ..stepper import Stepper, nominal_steps
 from . import rough_contact, slow_time
 
@@ -86,9 +85,7 @@ class WearLubricatedCase:
         s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
         run = rough_contact.build(s, comm, shape=True)
         film = run["film"]
-        wear = Wear(film, k=v["k"], speed=v["V"],
-                    theta=0.0 if v["scheme"] == "explicit" else 1.0,
-                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
+        wear = Wear(film, k=v["k"], speed=v["V"], scheme=v["scheme"])
         stepper = Stepper([run["body"], film, wear], wear, max_cuts=v["max_cuts"],
                           checkpoint=checkpoint, name="wear_lubricated",
                           problem_kw={"max_it": 30})
@@ -122,7 +119,7 @@ class WearLubricatedCase:
         keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
                 "film_load_fraction", "friction_coefficient", "h_central", "h_min",
                 "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
-        sr = SlowRun(stepper, v, record, keys, cls.vtx_fields(run), resume)
+        sr = slow_time.SlowTimeRecords(stepper, v, record, keys, cls.vtx_fields(run), resume)
         state = sr.history.setdefault("state", {"profiles": [], "times": []})
 
         def log(t, its, dt, error=None, rejected=0):
@@ -147,10 +144,10 @@ class WearLubricatedCase:
             rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
                                        lambda U, n: its.append(n))
             log(0.0, sum(its) + stepper.start(), 0.0)
-        sr.run(v["T"], slow_time.step_controller(v, v["dt"]),
-               lambda st, rep: log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected),
-               progress, report=lambda: cls.report(run, v, record, sr.hist, state),
-               problem=run)
+        with sr.closing(report=lambda: cls.report(run, v, record, sr.hist, state), model=run):
+            stepper.run(v["T"], slow_time.step_controller(v, v["dt"]), progress=progress,
+                        on_step=sr.written(lambda st, rep: log(st.t, rep.iterations, rep.dt,
+                                                               rep.error, rep.rejected)))
         return run
 
     @staticmethod

@@ -71,11 +71,10 @@ from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
 from ..params import InputError, Param, number_list
 from ..references import hertz
-from ..slow_run import SlowRun, wear_fields
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from ..studies.wear_dt_study import run_dt_study
 from . import slow_time
-from .slow_time import check_scheme, scheme_params
+from .slow_time import SCHEMES, check_scheme, scheme_params
 from .user_pin import place_user_pin, user_pin_approach
 
 __all__ = ["WearPinCase"]
@@ -237,8 +236,7 @@ class WearPinCase:
         k = (Law(wf.pressure_dependent_coefficient, k0=v["k"], p_s=v["k_ps"], m=v["k_m"])
              if v["k_law"] == "pressure" else v["k"])
         wear = Wear(contact, k=k, speed=v["V"], law=v["law"], k_grad=v["k_grad"],
-                    theta=0.0 if v["scheme"] == "explicit" else 1.0, averaged=cyclic,
-                    scheme="bdf2" if v["scheme"] == "bdf2" else "theta")
+                    scheme=v["scheme"], averaged=cyclic)
         cycle = ReciprocatingCycle(contact, v["stroke"], v["fast_steps"], v["V"]) \
             if cyclic else None
         stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],
@@ -276,7 +274,7 @@ class WearPinCase:
     def study_schemes(v):
         """Schemes of ``study=dt`` (one-line error if unknown or none)."""
         schemes = [x.strip() for x in v["study_schemes"].split(",") if x.strip()]
-        if not schemes or any(x not in ("explicit", "implicit", "bdf2") for x in schemes):
+        if not schemes or any(x not in SCHEMES for x in schemes):
             raise InputError(f"study_schemes = {v['study_schemes']!r}: a comma-separated "
                              "list of explicit, implicit, bdf2")
         return list(dict.fromkeys(schemes))
@@ -292,7 +290,7 @@ class WearPinCase:
     @staticmethod
     def vtx_fields(stepper):
         """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        return wear_fields(stepper.wear)
+        return slow_time.wear_fields(stepper.wear)
 
     @staticmethod
     def plot(profile, outdir):
@@ -322,7 +320,7 @@ class WearPinCase:
         keys = ("time", "wear_volume", "max_wear_depth", "contact_radius",
                 "newton_iterations", "wear_rate_integral", "dt", "error_estimate", "rejected")
         # the worn shape and the deformation at every step (ParaView time series)
-        sr = SlowRun(stepper, v, record, keys,
+        sr = slow_time.SlowTimeRecords(stepper, v, record, keys,
                      {"displacement": [wear.body.u, wear.body.w]}, resume)
         h = sr.history
         profiles, ptimes = h.setdefault("profiles", []), h.setdefault("ptimes", [])
@@ -349,8 +347,10 @@ class WearPinCase:
 
         if not resume:
             log(0.0, cls.load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
-        sr.run(v["T"], slow_time.step_controller(v, cls.slow_step(v)), on_step, progress,
-               report=lambda: cls._report(stepper, v, record, sr.hist, profiles, ptimes))
+        with sr.closing(report=lambda: cls._report(stepper, v, record, sr.hist, profiles,
+                                                   ptimes)):
+            stepper.run(v["T"], slow_time.step_controller(v, cls.slow_step(v)),
+                        on_step=sr.written(on_step), progress=progress)
         return stepper
 
     @classmethod

@@ -74,7 +74,6 @@ from ..meshes.pin import pin_body, tip_height
 from ..meshes.user import read_user_mesh
 from ..params import InputError, Param
 from ..references import hertz
-from ..slow_run import SlowRun
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from . import slow_time
 from .slow_time import check_scheme, scheme_params
@@ -257,12 +256,11 @@ class WearReciprocatingCase:
             block.add_shape_dirichlet(name, c)
         contact = TwoBodyContact(pin, "contact", block, "top",
                                  rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
-        theta = 0.0 if v["scheme"] == "explicit" else 1.0
-        mu_f, sch = v["friction"], "bdf2" if v["scheme"] == "bdf2" else "theta"
-        wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f, theta=theta,
-                        averaged=True, name="wear_pin", scheme=sch)
-        wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f, theta=theta,
-                          averaged=True, name="wear_block", scheme=sch)
+        mu_f = v["friction"]
+        wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f,
+                        scheme=v["scheme"], averaged=True, name="wear_pin")
+        wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f,
+                          scheme=v["scheme"], averaged=True, name="wear_block")
 
         def drive(position):
             """Move the block's bottom to ``position``; the block translated as predictor."""
@@ -359,7 +357,7 @@ class WearReciprocatingCase:
                       * pin.tolerances()[pin.u].atol, "N/mm")
         tau = cls.period(v)
         # the worn shapes and the deformation at every slow step (ParaView time series)
-        sr = SlowRun(st, v, record, (
+        sr = slow_time.SlowTimeRecords(st, v, record, (
             "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
             "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
             "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
@@ -401,11 +399,11 @@ class WearReciprocatingCase:
                 half = 0.5 * v["L"] + v["A"] + 0.1
                 record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
 
-        sr.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]),
-               lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard, rep.error,
-                                  rep.rejected), progress,
-               report=report, problem=run,
-               after=lambda: shots.__setitem__("worn", cls.snapshot(run)))
+        with sr.closing(report=report, model=run):
+            st.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]), progress=progress,
+                   on_step=sr.written(lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard,
+                                                         rep.error, rep.rejected)))
+            shots["worn"] = cls.snapshot(run)
         return run
 
     @staticmethod

@@ -14,10 +14,11 @@ steady film of the chapter into the transient one of :mod:`tribofx.forms.squeeze
   (:func:`tribofx.forms.squeeze.surface_rate`).
 
 The film then answers the slow-time protocol of :class:`tribofx.stepper.Stepper`
-(``theta = 1``, not averaged, no shape unknowns): ``begin_step(dt)`` moves the
-histories on (t_n ← the converged state) and sets the weights, backward Euler
-(``scheme="euler"``) or variable-step BDF2 (``scheme="bdf2"``, started by one
-backward-Euler step).  Between steps (before the first) the rate weight 1/Δt is
+(an implicit :class:`tribofx.scheme.Scheme`, not averaged, no shape unknowns):
+``begin_step(dt)`` moves the histories on (t_n ← the converged state) and sets
+the weights, backward Euler (``scheme=IMPLICIT``, named ``"euler"``) or
+variable-step BDF2 (``scheme=BDF2``, ``"bdf2"``, started by one backward-Euler
+step).  Between steps (before the first) the rate weight 1/Δt is
 0 and the film is the steady one, so a steady solve gives the initial state.
 """
 
@@ -32,22 +33,24 @@ from mpi4py import MPI
 from ..forms import mixed
 from ..forms import squeeze as sq
 from ..forms import wear as wf
+from ..scheme import BDF2, Scheme
 
 __all__ = ["TransientFilm"]
-
-SCHEMES = ("euler", "bdf2")
 
 
 class TransientFilm:
     """Time history and slow-time protocol of a transient :class:`tribofx.interfaces.Film`."""
 
-    theta, averaged = 1, False
-    scheme = None            # None: the steady film of the chapter
+    averaged = False
+    scheme: Scheme | None = None     # None: the steady film of the chapter
     _content_form = None     # the compiled ∫ c dS of :meth:`content`
     _conductance = None      # the compiled w h³|p|/(12 μ h_e) of :meth:`row_round_off`
 
-    def transient(self, scheme="bdf2", lumped=False):
-        """Make the film transient, integrated by ``scheme`` ("euler" or "bdf2"); returns self.
+    def transient(self, scheme=BDF2, lumped=False):
+        """Make the film transient, integrated by ``scheme``; returns self.
+
+        ``scheme``: :data:`~tribofx.scheme.IMPLICIT` (backward Euler, ``"euler"``)
+        or :data:`~tribofx.scheme.BDF2` (``"bdf2"``).
 
         Call before the :class:`tribofx.problem.Problem` is built (the rows are
         built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
@@ -57,8 +60,9 @@ class TransientFilm:
         Constant ``vertex_couette`` ω (0 until set), the vertex rule's share of
         the cavitated Couette flux (:func:`tribofx.forms.jfo.jfo_on_surface`).
         """
-        if scheme not in SCHEMES:
-            raise ValueError(f"unknown time scheme {scheme!r}: one of {SCHEMES}")
+        scheme = Scheme.of(scheme)
+        if not scheme.implicit:
+            raise ValueError(f"a transient film is implicit: euler or bdf2, not {scheme.name}")
         if self.scheme is not None:
             raise ValueError("the film is already transient")
         md = self.dx.metadata()
@@ -127,7 +131,7 @@ class TransientFilm:
         """Start a step of Δt (s): histories t_{n−1} ← t_n ← the converged state; weights.
 
         BDF2 with ω = Δt/Δt_prev (:func:`tribofx.forms.wear.bdf2_coefficients`);
-        the first step, and every step of ``scheme="euler"``, is backward Euler.
+        the first step, and every step of the implicit θ-scheme, is backward Euler.
         """
         if self.scheme is None:
             raise ValueError("begin_step of a steady film: call film.transient() first")
@@ -144,7 +148,7 @@ class TransientFilm:
             self._offset_hist[1].value[:] = self._offset_hist[0].value
             self._offset_hist[0].value[:] = self._offset.value
         prev = float(self.dt_prev.value)
-        c0, c1 = (1.0, 0.0) if self.scheme == "euler" or prev <= 0 \
+        c0, c1 = (1.0, 0.0) if not self.scheme.bdf2 or prev <= 0 \
             else wf.bdf2_coefficients(dt / prev)
         for c, v in zip(self.time_weights, (1.0 / dt, c0, c1)):
             c.value = v

@@ -21,14 +21,14 @@ Residuals (all from :mod:`tribofx.forms`):
   Nanson vector of the line (exact swept area), while ζ's reaction acts along
   the line's Nanson vector at the step's end (as in :class:`tribofx.interfaces.Wear`:
   the nodes' positions along the line depend on the groove's shape alone);
-  ``scheme="bdf2"``: the variable-step BDF2 law in swept areas
+  ``scheme=BDF2`` (:mod:`tribofx.scheme`): the variable-step BDF2 law in swept areas
   (:class:`tribofx.bdf2.SweptHistory`, with its error estimate ``step_error``).
 
 The cross-section mesh is replicated on every rank (``COMM_SELF``); its
 unknowns are owned by rank 0 in the :class:`tribofx.reduced.ReducedProblem`
 (``problem_class``, which the slow-time stepper :class:`tribofx.stepper.Stepper`
-builds for this interface).  Stepper protocol: ``theta`` (1 implicit, 0
-explicit: the rate of the known state, frozen by :meth:`begin_step`), ``scheme``,
+builds for this interface).  Stepper protocol: ``scheme`` (θ = 1 implicit, θ = 0
+explicit: the rate of the known state, frozen by :meth:`begin_step`; or BDF2),
 ``averaged = False``, :meth:`shape_unknowns`, :meth:`begin_step`,
 :meth:`end_step`, :meth:`min_volume_factor`, ``body``.
 Units: mm, N, s, MPa.
@@ -48,6 +48,7 @@ from ..forms import wear_groove as gf
 from ..problem import BlockTolerance
 from ..protocols import ComponentBase
 from ..reduced import AlgebraicRow, ReducedProblem, Reduction
+from ..scheme import IMPLICIT, Scheme
 from ..submesh import facet_submesh
 
 __all__ = ["Extrusion", "SteadyWear"]
@@ -123,24 +124,24 @@ class SteadyWear(ComponentBase):
         law: "nominal" (eq. 14) or "spatial" (eqs. 15–16).
         aux: (E, ν) of the auxiliary plane elasticity (MPa, -).
         fixed: {section boundary name: components with zero shape change}.
-        theta: θ of the scheme (28): 1 implicit (rate at the unknown state), 0
-            explicit (rate of the known state, frozen at :meth:`begin_step`).
+        scheme: the slow-time scheme (:class:`tribofx.scheme.Scheme` or its name):
+            implicit (θ = 1 of (28), the rate at the unknown state), explicit
+            (θ = 0, the rate of the known state, frozen at :meth:`begin_step`), or
+            BDF2: the variable-step BDF2 law in swept areas with its error
+            estimate (:class:`tribofx.bdf2.SweptHistory`).
         rtol: relative size of the stopping tolerances.
-        scheme: "theta", or "bdf2" (θ = 1): the variable-step BDF2 law in swept
-            areas with its error estimate (:class:`tribofx.bdf2.SweptHistory`).
     """
 
     problem_class = ReducedProblem  # the problem class the stepper builds
     averaged = False  # no fast-time cycles: the rate is path-averaged in closed form
 
     def __init__(self, contact, section, section_tags, section_names, prolongation, k, V, L,
-                 law="nominal", aux=(1.0, 0.3), fixed=None, theta=1.0, rtol=1e-10,
-                 scheme="theta"):
-        if theta not in (0, 1):
-            raise ValueError(f"theta = {theta}: 0 (explicit) or 1 (implicit)")
-        if scheme not in ("theta", "bdf2") or (scheme == "bdf2" and theta != 1):
-            raise ValueError(f"scheme = {scheme!r}: theta, or bdf2 with theta = 1")
-        self.theta, self.scheme = float(theta), scheme
+                 law="nominal", aux=(1.0, 0.3), fixed=None,
+                 scheme=IMPLICIT, rtol=1e-10):
+        scheme = Scheme.of(scheme)
+        if scheme.theta not in (0, 1):
+            raise ValueError(f"theta = {scheme.theta}: 0 (explicit) or 1 (implicit)")
+        self.scheme = scheme
         body = contact.body
         if body.w is None or body.shape_is_unknown:
             raise ValueError("SteadyWear needs a body with an image shape field (shape='image')")
@@ -212,10 +213,10 @@ class SteadyWear(ComponentBase):
         BDF2: the area swept in the previous step is kept before w₂ₙ moves on
         (:class:`tribofx.bdf2.SweptHistory`).
         """
-        if self.scheme == "bdf2":
+        if self.scheme.bdf2:
             self.bdf.begin_step(dt, self._swept, self._nodal_rate)
         self.w2n.x.array[:] = self.w2.x.array
-        freeze = self.theta == 0 if freeze is None else freeze
+        freeze = self.scheme.theta == 0 if freeze is None else freeze
         self._rate_fixed = self.rate_vector() if freeze else None
         self.dt.value = float(dt)
 
@@ -236,7 +237,7 @@ class SteadyWear(ComponentBase):
         R_w = (ale.aux_elasticity(self.w2, dw, mu_a, lmbda_a, self.dx2)
                + ale.shape_multiplier_work(self.zeta, dw, self.a_end, self.dsl))
         R_z = wf.shape_update_residual(self.w2, self.w2n, self.a, 0.0, 0.0, eta, self.dsl,
-                                       bdf2=self.bdf.weights if self.scheme == "bdf2" else None)
+                                       bdf2=self.bdf.weights if self.scheme.bdf2 else None)
         return [(self.w2, R_w), (self.zeta, R_z)]
 
     def shape_unknowns(self):
@@ -320,7 +321,7 @@ class SteadyWear(ComponentBase):
         """
         if filter is not None:
             raise ValueError("the filtered error estimate needs a monolithic Wear step")
-        if self.scheme != "bdf2":
+        if not self.scheme.bdf2:
             return None
         return self.bdf.error(self._swept(), self.body.mesh.comm)
 

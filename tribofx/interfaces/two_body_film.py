@@ -39,6 +39,7 @@ from mpi4py import MPI
 
 from ..forms import two_body_film as tbf
 from ..problem import BlockTolerance
+from ..scheme import BDF2
 from ..two_body import NUM_LOCAL_FILM, film_node_residuals
 from .film import Film
 from .master_side import KernelAssembly, MasterSide, cached_state
@@ -128,7 +129,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
 
     # -- time: the master's nodes move too ------------------------------------------------
-    def transient(self, scheme="bdf2", lumped=False):
+    def transient(self, scheme=BDF2, lumped=False):
         """Make the film transient (:meth:`Film.transient`); the master's history is kept too.
 
         The master's surface velocity at the projection gains its nodes' rates,
@@ -142,7 +143,7 @@ class TwoBodyFilm(KernelAssembly, Film):
 
     def history_fields(self):
         """Return the film's histories and the master's displacements at t_n, t_{n−1}."""
-        return super().history_fields() + (self._master_hist if self.scheme else [])
+        return super().history_fields() + (self._master_hist if self.scheme is not None else [])
 
     def begin_step(self, dt):
         """Start a step (:meth:`Film.begin_step`) and move the master's history on."""

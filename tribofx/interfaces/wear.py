@@ -33,9 +33,9 @@ speed ``speed``); with friction (the contact has λ_T), the dissipation form
 the worn configuration; a depth-graded coefficient k(d) = k max(1 + g d, 0),
 d = −w·N̂ (:func:`tribofx.forms.wear.depth_graded_coefficient`); both at t_{n+θ}.
 
-θ-scheme (eq. 28): ``theta=1`` (implicit) takes the rate at the unknown state
-(u, λ, w)_{n+1}, so the wear rows couple to the contact rows in one monolithic
-problem in (u, λ_N, [λ_T], w, ζ); ``theta=0`` (explicit) takes it at the known
+θ-scheme (eq. 28): ``scheme=IMPLICIT`` (θ = 1, :mod:`tribofx.scheme`) takes the rate
+at the unknown state (u, λ, w)_{n+1}, so the wear rows couple to the contact rows in one monolithic
+problem in (u, λ_N, [λ_T], w, ζ); ``scheme=EXPLICIT`` (θ = 0) takes it at the known
 contact state and the known shape w_n, so the shape step (w, ζ) can be solved
 alone before the contact problem.  ``averaged=True`` drives (28) by the nodal
 field ``rate_bar`` instead (the cycle-averaged rate W̄̇ of eqs. 21–23, set by
@@ -43,7 +43,7 @@ the slow-time stepper from the fast-time cycles, :mod:`tribofx.stepper`); then
 any θ in [0, 1] is allowed (the stepper iterates for θ > 0).
 
 The interface follows the component protocol of :mod:`tribofx.problem`; the
-slow-time stepper uses, in addition, ``dt`` (a Constant, s), ``theta``,
+slow-time stepper uses, in addition, ``dt`` (a Constant, s), ``scheme``,
 ``averaged``, :meth:`shape_unknowns`, :meth:`begin_step`, :meth:`end_step`,
 :meth:`min_volume_factor`, :meth:`nodal_increment` and ``rate_bar``.
 
@@ -69,6 +69,7 @@ from ..forms import wear as wf
 from ..laws import is_constant, wear_coefficient_law
 from ..problem import BlockTolerance
 from ..protocols import ComponentBase
+from ..scheme import IMPLICIT, Scheme
 from .contact import node_to_dof
 
 __all__ = ["LAWS", "Wear"]
@@ -91,23 +92,24 @@ class Wear(ComponentBase):
             friction the slip velocity of the contact is used).
         law: "nominal" (eq. 14) or "spatial" (eqs. 15–16).
         k_grad: relative depth gradient g (1/mm) of k(d) = k max(1 + g d, 0).
-        theta: θ of the scheme (28): 1 implicit, 0 explicit (any value in
-            [0, 1] with ``averaged``).
+        scheme: the slow-time scheme (:class:`tribofx.scheme.Scheme` or its
+            name): :data:`~tribofx.scheme.IMPLICIT` (θ = 1 of (28)),
+            :data:`~tribofx.scheme.EXPLICIT` (θ = 0), any θ in [0, 1] with
+            ``averaged``, or :data:`~tribofx.scheme.BDF2` (the variable-step
+            BDF2 law in swept volumes, :func:`tribofx.forms.wear.shape_update_residual`;
+            its first step, and the first after a start, is backward Euler; with
+            ``averaged`` the law is driven by ``rate_bar`` of the new shape, the
+            Stepper's Picard iteration of cycles).
         averaged: drive (28) by the nodal cycle-averaged rate ``rate_bar``.
         name: name of the interface (reports).
         rtol: relative size of the stopping tolerance of the ζ rows (× body size, mm);
             the rows carry the wear increment of a step, orders of magnitude below
             the body size, hence a default two decades below the contact gap's.
-        scheme: "theta" (the θ-scheme (28)) or "bdf2" (θ = 1 only: the
-            variable-step BDF2 law in swept volumes,
-            :func:`tribofx.forms.wear.shape_update_residual`; its first step, and
-            the first after a start, is backward Euler; with ``averaged`` the law is
-            driven by ``rate_bar`` of the new shape, the Stepper's Picard iteration of
-            cycles).
     """
 
-    def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0, theta=1.0,
-                 averaged=False, name="wear", rtol=1e-12, scheme="theta"):
+    def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0,
+                 scheme=IMPLICIT, averaged=False, name="wear", rtol=1e-12):
+        scheme = Scheme.of(scheme)
         drivers = list(contact) if isinstance(contact, (list, tuple)) else [contact]
         contact = drivers[0]
         body = contact.body
@@ -121,12 +123,9 @@ class Wear(ComponentBase):
             raise ValueError("wear needs a body with a shape field: Body(..., shape=True)")
         if law not in LAWS:
             raise ValueError(f"unknown wear law {law!r}; expected one of {LAWS}")
-        if scheme not in ("theta", "bdf2"):
-            raise ValueError(f"unknown scheme {scheme!r}: theta or bdf2")
-        if scheme == "bdf2" and theta != 1:
-            raise ValueError("scheme='bdf2' is implicit: theta=1")
-        if not 0.0 <= theta <= 1.0 or (not averaged and theta not in (0, 1)):
-            raise ValueError(f"theta = {theta}: 0 or 1 (any value in [0, 1] with averaged)")
+        if not averaged and scheme.theta not in (0, 1):
+            raise ValueError(f"theta = {scheme.theta}: 0 or 1 (any value in [0, 1] with "
+                             "averaged)")
         if averaged and len(drivers) > 1:
             raise ValueError("cycle-averaged wear is driven by one interface")
         if not averaged and not all(hasattr(d, "wear_load") for d in drivers):
@@ -139,8 +138,7 @@ class Wear(ComponentBase):
             raise ValueError("Lagrangian (fast-time) friction needs averaged=True and the "
                              "fast-time cycles of the slow-time stepper (tribofx.stepper)")
         self.contact, self.body, self.name, self.rtol = contact, body, name, rtol
-        self.law, self.theta, self.averaged = law, float(theta), bool(averaged)
-        self.scheme = scheme
+        self.law, self.scheme, self.averaged = law, scheme, bool(averaged)
         msh = body.mesh
         Q = self.surface.Q
         self.zeta = fem.Function(Q, name=f"{name}_shape_multiplier")
@@ -162,7 +160,7 @@ class Wear(ComponentBase):
         if averaged:
             self.rate_density = self.rate_bar
         else:  # t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit the known state and w_n
-            self.rate_density = self.rate(w if theta == 1 else w_n)
+            self.rate_density = self.rate(w if scheme.implicit else w_n)
         # trace map of w: contact-submesh dof → dof of the shape space
         gmap_w = node_to_dof(body.Vw)
         node_of_bulk = np.full(len(gmap_w), -1, dtype=np.int64)
@@ -208,7 +206,7 @@ class Wear(ComponentBase):
         c = self.surface
         dw = ufl.TestFunction(self.body.Vw)
         eta = ufl.TestFunction(c.Q)
-        bdf2 = self.bdf.weights if self.scheme == "bdf2" else None
+        bdf2 = self.bdf.weights if self.scheme.bdf2 else None
         return [(self.body.w, ale.shape_multiplier_work(self.zeta, dw, self.a_end, c.dsc)),
                 (self.zeta, wf.shape_update_residual(self.body.w, self.body.w_n, self.a,
                                                      self.rate_density, self.dt, eta,
@@ -257,7 +255,7 @@ class Wear(ComponentBase):
         before w_n moves on, and the weights follow ω = Δt/Δt_prev (backward Euler
         when there is no previous step).
         """
-        if self.scheme == "bdf2":
+        if self.scheme.bdf2:
             self.bdf.begin_step(dt, self.swept_volume, self._nodal_rate)
         self.dt.value = float(dt)
         self.body.w_n.x.array[:] = self.body.w.x.array
@@ -289,7 +287,7 @@ class Wear(ComponentBase):
         :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept volumes per unit
         initial area (its order in :attr:`error_order`), ``filter``-ed if given.
         """
-        if self.scheme != "bdf2":
+        if not self.scheme.bdf2:
             return None
         return self.bdf.error(self.swept_volume()[:self.surface.n_own], self.body.mesh.comm,
                               filter)
@@ -306,7 +304,7 @@ class Wear(ComponentBase):
         driven by cycles, that rate is the first cycle's (``rate_bar`` at
         :meth:`begin_step` is the last step's).  No effect otherwise.
         """
-        if self.scheme == "bdf2":
+        if self.scheme.bdf2:
             self.bdf.set_start_rate(rate)
 
     def _nodal_rate(self):

@@ -5,6 +5,7 @@ from pathlib import Path
 import numpy as np
 
 from ..references import rigid_cap_radius
+from ..scheme import Scheme
 from .common import pyplot
 
 __all__ = ["error_curve", "plot_dt_study", "plot_wear_ball", "plot_wear_pin"]
@@ -73,7 +74,7 @@ def plot_dt_study(study, outdir):
                         f"{key}, {scheme}", m["dt_cr"] if scheme == "explicit" else None)
         ok = [e for m in study["meshes"].values() for e in m[f"error_{scheme}"] if e]
         if ok:  # slope guide: 1, or 2 for BDF2
-            x, q = np.array([dts.min(), dts.max()]), 2 if scheme == "bdf2" else 1
+            x, q = np.array([dts.min(), dts.max()]), 2 if Scheme.of(scheme).bdf2 else 1
             ax.loglog(x, min(ok) * (x / dts.min()) ** q, "k--", lw=0.8, label=f"slope {q}")
         ax.set_xlabel("Δt (s)")
         ax.set_title(f"{scheme}, E = {study['E']:g} MPa (× unstable, ⋮ Δt_cr)")
