@@ -7,7 +7,7 @@ export OMP_NUM_THREADS ?= 1
 STAMP    := $(VENV)/.tribofx-installed
 SOURCES  := pyproject.toml constraints.txt $(wildcard cpp_kernels/CMakeLists.txt cpp_kernels/src/*)
 
-.PHONY: setup demo test test-slow lint bench clean lock
+.PHONY: setup demo test test-slow lint bench docs-results clean lock
 
 setup: $(STAMP)
 
@@ -37,6 +37,11 @@ test-slow: setup
 lint: setup
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/mypy
+
+# the generated parts of docs/cases/<case>.md: parameter tables and the results of each
+# page's command, stamped with the commit and the machine (a few minutes on 2 cores)
+docs-results: setup
+	$(PY) benchmarks/docs_results.py
 
 # the full Fig. 4 wear study (benchmarks/bench_wear_study.py) takes hours, and the
 # direct/iterative size sweep (benchmarks/bench_solvers.py --ranks2) about an hour: run them by hand

@@ -755,7 +755,7 @@ def test_bdf2_wear_is_second_order():
     than backward Euler at 25 s (measured 2.75e-4 against 3.83e-4 mm).  With the
     default R_tip = 4 mm nodes enter the contact during the run (a kink of their rate
     in time); on the 20 × 20 pin BDF2's orders are still 1.8–2.2 from Δt = 100 s on
-    (README, "BDF2 beside backward Euler")."""
+    (docs/cases/wear-pin.md, "BDF2 beside backward Euler")."""
     ref = _pin_profile("bdf2", 3.125)
     errs = [float(np.linalg.norm(_pin_profile("bdf2", dt) - ref)) for dt in (100.0, 50.0, 25.0)]
     be = [float(np.linalg.norm(_pin_profile("implicit", dt) - ref)) for dt in (50.0, 25.0)]

@@ -70,6 +70,21 @@ def options_name(base, variant=""):
     return re.sub(r"[^A-Za-z0-9_]", "_", name)
 
 
+def _block_layout(u):
+    """Local offsets of each unknown's owned and ghost entries in a blocked vector.
+
+    The layout :func:`dolfinx.la.petsc.create_vector` documents for the ``mpi``
+    kind: ((0, n₀, n₀ + n₁, …), (N, N + g₀, …)), n the owned and g the ghost
+    entries of each unknown, N = Σ n.  DOLFINx's blocked residual assembly takes it.
+    """
+    own = [f.function_space.dofmap.index_map.size_local * f.function_space.dofmap.index_map_bs
+           for f in u]
+    ghost = [f.function_space.dofmap.index_map.num_ghosts * f.function_space.dofmap.index_map_bs
+             for f in u]
+    owned = tuple(int(x) for x in np.cumsum([0, *own]))
+    return owned, tuple(int(owned[-1] + x) for x in np.cumsum([0, *ghost]))
+
+
 def _nonzero_or_none(a):
     a = expand_derivatives(a)
     return None if a.empty() else a
@@ -187,12 +202,9 @@ class Problem(NewtonControl):
         self._nlp = LIFETIMES.keep(self, nlp, comm)
         # wrap the residual callback: refresh the components' data at every iterate, then
         # DOLFINx's public blocked assembly with the problem's compiled forms
-        b = nlp.b
-        ctx = {"u": nlp.u, "residual": nlp.F, "jacobian": nlp.J, "bcs": self.bcs}
-        if (blocks := b.getAttr("_blocks")) is not None:
-            ctx["_blocks"] = blocks
-        self._assemble_residual = (fem_petsc.assemble_residual, (), ctx)
-        self.snes.setFunction(weak_callback(self._residual), b)
+        self._assemble_residual = (fem_petsc.assemble_residual,
+                                   (nlp.u, nlp.F, nlp.J, self.bcs, _block_layout(self.u)), {})
+        self.snes.setFunction(weak_callback(self._residual), nlp.b)
         # components that add assembled terms outside UFL (the two-body contact kernel)
         self._assemblers = [c for c in self.components if c.assembles]
         self._global = {}

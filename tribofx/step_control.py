@@ -23,6 +23,8 @@ state and checkpoint (:meth:`StepController.state`), so a resumed run goes on
 with the steps it would have taken.
 """
 
+from abc import ABC, abstractmethod
+
 from .reports import NewtonDivergence
 
 __all__ = ["ERROR_MEASURES", "STEP_RULES", "ErrorControl", "FixedStep", "StepController",
@@ -56,7 +58,7 @@ def step_factor(r, p, r_prev=None):
     return min(2.0, max(0.2, f))
 
 
-class StepController:
+class StepController(ABC):
     """The step sequence of one slow-time run (see the module docstring).
 
     Attributes:
@@ -98,13 +100,13 @@ class StepController:
         if self.dt is None:
             raise ValueError("no step: give Stepper.run a step (s) or a step controller")
 
+    @abstractmethod
     def next_step(self, t: float, T: float) -> float:
         """Return the step to try from ``t`` (s)."""
-        raise NotImplementedError
 
+    @abstractmethod
     def failed(self, stepper, h: float, error: NewtonDivergence) -> None:
         """Cut the step after a Newton failure of ``h`` (state restored), or raise ``error``."""
-        raise NotImplementedError
 
     def judge(self, stepper, h: float, report, saved) -> bool:
         """Accept the converged step of ``h`` (True), or reject it (state back to ``saved``)."""

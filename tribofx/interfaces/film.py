@@ -144,7 +144,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
             data are exact at the nodes of Γ_l, P1 between them: the Gauss rule's
             tangent is off by O(h κ) on curved facets, the vertex rule's exact.  Not
             the default: a node projecting onto a kinked countersurface vertex gets
-            ∂P/∂x = 0 (a degenerate S, NaN rows), which aligned meshes hit (README).
+            ∂P/∂x = 0 (a degenerate S, NaN rows), which aligned meshes hit (docs/contact.md).
         row_scaling: physical row scales of the film rows (see the module docstring).
         name: name of the interface (unknown names, reports).
         rtol: relative size of the stopping tolerances (see the module docstring).

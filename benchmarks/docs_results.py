@@ -1,0 +1,134 @@
+"""Write the generated parts of ``docs/cases/<case>.md`` from the cases themselves.
+
+Each case page has two generated blocks:
+
+* ``<!-- params:begin -->`` … ``<!-- params:end -->``: the case's parameters (name,
+  default, unit, description) from its declaration, as ``tribofx list`` prints them;
+* ``<!-- results:begin -->`` … ``<!-- results:end -->``: the scalar results of the
+  page's command (the first ``tribofx run`` line of its "Run it" block), run into
+  ``results/docs/<case>/`` and read back from that run's ``summary.json``, stamped
+  with the commit, the machine, the number of ranks and the wall time.
+
+So the numbers on a page are those of a run of the code as committed, never typed
+in.  Usage::
+
+    python benchmarks/docs_results.py                  # every case: parameters and results
+    python benchmarks/docs_results.py --params-only    # the parameter tables alone (fast)
+    python benchmarks/docs_results.py --cases hertz,wear-pin
+"""
+
+import argparse
+import json
+import os
+import platform
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGES = ROOT / "docs" / "cases"
+BLOCK = "<!-- {0}:begin -->\n{1}<!-- {0}:end -->"
+
+
+def replace_block(text, name, body):
+    """Return ``text`` with the generated block ``name`` holding ``body``."""
+    pattern = re.compile(rf"<!-- {name}:begin -->\n.*?<!-- {name}:end -->", re.S)
+    if not pattern.search(text):
+        raise SystemExit(f"no {name} block in the page")
+    return pattern.sub(lambda _: BLOCK.format(name, body), text)
+
+
+def params_table(case):
+    """Markdown table of a case's parameters (those every case takes are in the README)."""
+    rows = ["| parameter | default | unit | meaning |", "|---|---|---|---|"]
+    for p in case.params:
+        doc = str(p.doc).replace("|", "\\|")
+        if p.choices:
+            doc += " (" + ", ".join(str(c) for c in p.choices) + ")"
+        rows.append(f"| `{p.name}` | `{p.default!r}` | {p.unit} | {doc} |")
+    return "\n".join(rows) + "\n"
+
+
+def page_command(text):
+    """The ``tribofx run`` command of a page's "Run it" block, as arguments."""
+    m = re.search(r"^\.venv/bin/tribofx (run [^\n]*?)( --out \S+)?$", text, re.M)
+    if m is None:
+        raise SystemExit("no '.venv/bin/tribofx run ...' line in the page")
+    return shlex.split(m.group(1))
+
+
+def machine():
+    """CPU model and core count of this machine."""
+    model = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores"
+
+
+def commit():
+    """The commit the code runs at (``-dirty`` with uncommitted changes outside ``docs/``)."""
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
+                          capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--",
+                            ".", ":!docs"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    return head + ("-dirty" if dirty else "")
+
+
+def fmt(value):
+    """A scalar for a table cell."""
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return f"`{value}`" if isinstance(value, str) else str(value)
+
+
+def results_table(summary, args, stamp):
+    """Markdown of a run's scalar results (lists and maps are in its summary.json)."""
+    rows = [f"`tribofx {' '.join(args)}` — status `{summary['status']}`, {stamp}, "
+            f"{summary.get('mpi_size', 1)} rank(s), {summary.get('wall_time_s', 0):.1f} s, "
+            f"{summary.get('num_dofs', '?')} unknowns.", "",
+            "| result | value | unit |", "|---|---|---|"]
+    for key, entry in summary["results"].items():
+        value = entry["value"]
+        if isinstance(value, (list, dict)) or "wall" in key:
+            continue
+        rows.append(f"| `{key}` | {fmt(value)} | {entry.get('unit', '-')} |")
+    return "\n".join(rows) + "\n"
+
+
+def main(argv=None):
+    """Regenerate the blocks of the chosen case pages."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", default="", help="comma-separated cases (default: all)")
+    parser.add_argument("--params-only", action="store_true", help="do not run the cases")
+    parser.add_argument("--out", default=str(ROOT / "results" / "docs"))
+    a = parser.parse_args(argv)
+    import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
+
+    from tribofx.cases import CASES
+
+    names = [c for c in a.cases.split(",") if c] or sorted(CASES)
+    stamp = f"commit `{commit()}`, {machine()}"
+    for name in names:
+        page = PAGES / f"{name}.md"
+        text = replace_block(page.read_text(), "params", params_table(CASES[name]))
+        if not a.params_only:
+            args = page_command(text)
+            out = Path(a.out) / name
+            env = dict(os.environ, UCX_TLS=os.environ.get("UCX_TLS", "self,sm,tcp"))
+            cmd = [sys.executable, "-m", "tribofx.cli", *args, "--quiet", "--out", str(out)]
+            print(" ".join(cmd), flush=True)
+            subprocess.run(cmd, env=env, check=False)
+            summary = json.loads((out / "summary.json").read_text())
+            text = replace_block(text, "results", results_table(summary, args, stamp))
+        page.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
