@@ -47,7 +47,8 @@ def params_table(case):
         doc = str(p.doc).replace("|", "\\|")
         if p.choices:
             doc += " (" + ", ".join(str(c) for c in p.choices) + ")"
-        rows.append(f"| `{p.name}` | `{p.default!r}` | {p.unit} | {doc} |")
+        unit = str(p.unit).replace("|", "\\|")
+        rows.append(f"| `{p.name}` | `{p.default!r}` | {unit} | {doc} |")
     return "\n".join(rows) + "\n"
 
 
