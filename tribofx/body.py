@@ -159,7 +159,7 @@ class Body(ComponentBase):
             self._beta = fem.Constant(mesh, float(alpha)) * h_K**2 / self.stiffness
 
     # -- tags ------------------------------------------------------------------
-    def tag(self, name):
+    def tag(self, name: str) -> int:
         """Facet tag value of the boundary ``name`` (one-line error if unknown)."""
         if name not in self.names:
             raise InputError(f"{self.name}: no boundary named {name!r}; "
@@ -174,7 +174,7 @@ class Body(ComponentBase):
         return facets
 
     # -- boundary conditions and loads ------------------------------------------
-    def add_dirichlet(self, name, value, component=None):
+    def add_dirichlet(self, name: str, value, component: int | None = None):
         """Prescribe u (or one ``component``) on boundary ``name``; returns the value holder.
 
         ``value``: a vector, a scalar (with ``component``) or a Function of the
@@ -183,10 +183,11 @@ class Body(ComponentBase):
         fdim = self.mesh.topology.dim - 1
         facets = self.facets(name)
         if isinstance(value, fem.Function):  # a field, e.g. a manufactured solution
-            c = value
             dofs = fem.locate_dofs_topological(self.V, fdim, facets)
-            self._bcs.append(fem.dirichletbc(c, dofs))
-        elif component is None:
+            self._bcs.append(fem.dirichletbc(value, dofs))
+            self._multiplier_fixes.append((facets, component))
+            return value
+        if component is None:
             c = fem.Constant(self.mesh, np.asarray(value, dtype=float))
             dofs = fem.locate_dofs_topological(self.V, fdim, facets)
             self._bcs.append(fem.dirichletbc(c, dofs, self.V))
@@ -321,7 +322,7 @@ class Body(ComponentBase):
                                                    lmbda_a, self.dx)))
         return out
 
-    def reaction(self, name, component):
+    def reaction(self, name: str, component: int) -> float:
         """Reaction force of the supports on boundary ``name`` (units and parts as below).
 
         The body's own rows (internal work minus its loads) tested with the unit

@@ -35,16 +35,16 @@ class ConstantParameter:
     the entrainment speed U).
     """
 
-    def __init__(self, constant, index=None, on_set=None, scale=1.0):
+    def __init__(self, constant, index: int | None = None, on_set=None, scale: float = 1.0):
         self.constant, self.index, self.on_set = constant, index, on_set
         self.scale = float(scale)
 
-    def get(self):
+    def get(self) -> float:
         """Return the current value."""
         v = self.constant.value
         return float(v if self.index is None else v[self.index]) / self.scale
 
-    def set(self, value):
+    def set(self, value: float) -> None:
         """Set the value (and run ``on_set``)."""
         if self.index is None:
             self.constant.value = self.scale * float(value)
@@ -122,7 +122,7 @@ class Continuation:
         """Two responses differ by more than the tolerance (a secant through them is sound)."""
         return abs(rb - ra) > self.rtol * max(abs(ra), abs(rb))
 
-    def history_slope(self):
+    def history_slope(self) -> float | None:
         """Secant d(response)/d(parameter) of the last two converged steps (None if unknown).
 
         None also when their responses agree to the tolerance (steps of another
@@ -144,21 +144,21 @@ class Continuation:
         self._states = (self._states + [(self.done, [f.x.array.copy() for f in unknowns])])[-2:]
         return r
 
-    def resume_from(self, value):
+    def resume_from(self, value: float) -> None:
         """Take ``value`` as the converged parameter (a state restored from a checkpoint)."""
         self.parameter.set(value)
         self.done = self.parameter.get()
 
-    def secant_state(self):
+    def secant_state(self) -> dict:
         """Return what a resumed search needs (JSON): ``done`` and the last two points."""
         return {"done": self.done, "history": [list(h) for h in self.history[-2:]]}
 
-    def set_secant_state(self, saved):
+    def set_secant_state(self, saved: dict) -> None:
         """Restore a :meth:`secant_state` (the trials of a resumed search are then the same)."""
         self.done = float(saved["done"])
         self.history = [tuple(h) for h in saved["history"]]
 
-    def remember(self):
+    def remember(self) -> None:
         """Take the current (converged) state as the first point of the secant predictor.
 
         A new Continuation predicts from its third step on (two accepted states);
@@ -180,8 +180,9 @@ class Continuation:
             f.x.array[:] = x1 + s * (x1 - x0)
 
     # -- strategies ------------------------------------------------------------------
-    def march(self, target, steps=1, predictor=True, min_fraction=2.0**-10, geometric=False,
-              increments=None):
+    def march(self, target: float, steps: int = 1, predictor: bool = True,
+              min_fraction: float = 2.0**-10, geometric: bool = False,
+              increments=None) -> list:
         """Natural-parameter continuation from the current value to ``target``.
 
         ``steps`` equal increments; a failed step is cut in half (down to
@@ -226,7 +227,8 @@ class Continuation:
             out.append(self.accept(its))
         return out
 
-    def advance(self, target, step, growth=1.5, min_fraction=1e-4):
+    def advance(self, target: float, step: float, growth: float = 1.5,
+                min_fraction: float = 1e-4) -> float:
         """Response-controlled march: move the parameter until the response passes ``target``.
 
         Each step changes the parameter by ``step`` from the last converged state
@@ -262,7 +264,8 @@ class Continuation:
             return self.done
         return self.reach(target, slope=self.history_slope())
 
-    def reach(self, target, guess=None, slope=None):
+    def reach(self, target: float, guess: float | None = None,
+              slope: float | None = None) -> float:
         """Find the parameter at which the response equals ``target``; returns it.
 
         ``guess``: first trial value (default: secant extrapolation of the

@@ -218,12 +218,12 @@ class Problem(NewtonControl):
             self._jacobian_cb = weak_callback(self._jacobian)
             self.snes.setJacobian(self._jacobian_cb, A, P)
 
-    def owned_size(self, ui):
+    def owned_size(self, ui) -> int:
         """Return the number of rows of ``ui`` owned by this rank."""
         V = ui.function_space
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
 
-    def block_start(self, k):
+    def block_start(self, k: int) -> int:
         """Global row of the first owned dof of unknown ``k`` on this rank."""
         return self._x.getOwnershipRange()[0] + sum(
             self.owned_size(uj) for uj in self.u[:k])
@@ -261,7 +261,7 @@ class Problem(NewtonControl):
         return bool(self._assemblers)
 
     @property
-    def num_dofs(self):
+    def num_dofs(self) -> int:
         """Global number of unknowns of the block system."""
         return self._x.getSize()
 
@@ -373,7 +373,7 @@ class Problem(NewtonControl):
             b.axpy(-(1.0 - s), r0)
 
     # -- solve ---------------------------------------------------------------
-    def solve(self, verbose=False, border=None):
+    def solve(self, verbose: bool = False, border=None) -> NewtonReport:
         """Newton from the current values of the unknowns; returns a :class:`NewtonReport`.
 
         Raises :class:`NewtonDivergence` (the unknowns back at their entry
@@ -400,7 +400,8 @@ class Problem(NewtonControl):
             self.snes.solve(None, self._x)
             self.set_unknowns(self._x)
         except PETSc.Error as err:  # e.g. a MUMPS factorisation failure: cut the step
-            failure = f"PETSc error {err.ierr}{self._linear_state()}"
+            code = err.ierr  # type: ignore[attr-defined]  # petsc4py's stubs omit it
+            failure = f"PETSc error {code}{self._linear_state()}"
         finally:
             if self._cache is not None:
                 self._cache[1].destroy()
@@ -427,7 +428,8 @@ class Problem(NewtonControl):
         self.refresh()
         return report
 
-    def solve_by_homotopy(self, verbose=False, min_step=2.0**-8, direct=True):
+    def solve_by_homotopy(self, verbose: bool = False, min_step: float = 2.0**-8,
+                          direct: bool = True) -> NewtonReport:
         """Newton from the current state; if it fails, the Newton homotopy with step cuts.
 
         The first trial is :meth:`solve` itself (a solve that converges is
@@ -485,6 +487,7 @@ class Problem(NewtonControl):
             self._homotopy = None
             self._cache = None
             r0.destroy()
+        assert last is not None      # s reached 1 through a converged solve
         last.iterations = spent
         self.report = last
         return last
@@ -535,17 +538,17 @@ class Problem(NewtonControl):
         """Functions and Constants making up the state of every component."""
         return _unique([f for c in self.components for f in c.state_fields()])
 
-    def state(self):
+    def state(self) -> list:
         """Copy of the full state (unknowns, histories, positions, parameters)."""
         return field_arrays(self.state_fields())
 
-    def restore(self, state):
+    def restore(self, state: list) -> None:
         """Restore a state from :meth:`state` and refresh the kernel data."""
         assign_fields(self.state_fields(), state)
         self._reset_iterates()
         self.refresh()
 
-    def commit(self):
+    def commit(self) -> None:
         """Accept the converged step in every component."""
         self.refresh()
         for c in self.components:

@@ -1,7 +1,6 @@
 """Run a named case: parameters → solve → ``summary.json``, plots and VTX in an output folder."""
 
 import contextlib
-import inspect
 from pathlib import Path
 
 from mpi4py import MPI
@@ -32,8 +31,8 @@ def _progress_bar(total, name="run"):
 
 
 def resumable(name):
-    """Whether case ``name`` writes a checkpoint each step and can be resumed."""
-    return "resume" in inspect.signature(get_case(name).run).parameters
+    """Whether case ``name`` writes a checkpoint each step and can be resumed (it says so)."""
+    return bool(get_case(name).resumable)
 
 
 def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=True,
@@ -48,13 +47,14 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     that step cutting cannot cure ends the run with status "failed: …"; the last
     converged state is still written.
 
-    A resumable case (its ``run`` takes ``checkpoint`` and ``resume``) writes a
-    checkpoint into ``out/checkpoint`` after every step; ``resume=True``
-    continues from it.  SIGINT/SIGTERM stop such a run after the step in
+    A resumable case (``resumable = True``; its ``run`` takes ``checkpoint`` and
+    ``resume``) writes a checkpoint into ``out/checkpoint`` after every step;
+    ``resume=True`` continues from it.  SIGINT/SIGTERM stop such a run after the step in
     progress with status "interrupted: …" and its state written
     (:mod:`tribofx.interrupt`).
 
-    A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple) and
+    A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple),
+    ``resumable`` and
     the static/class methods ``validate(values)``, ``run(values, record, progress,
     verbose)`` (returns the problem object; on failure it raises
     :class:`~tribofx.reports.NewtonDivergence`, a :class:`~tribofx.reports.RunStop`,

@@ -169,7 +169,7 @@ class Stepper:
         self.last_increments = None
 
     # -- set-up ------------------------------------------------------------------
-    def shape_unknown_fraction(self):
+    def shape_unknown_fraction(self) -> float:
         """Fraction of all unknowns that belong to the shape step (w and ζ)."""
         def n(f):
             im = f.function_space.dofmap.index_map
@@ -182,16 +182,16 @@ class Stepper:
     def _fields(self):
         return self.problem.state_fields() + self.parameters
 
-    def field_names(self):
+    def field_names(self) -> list:
         """Names of the state fields (Functions by name, Constants by position)."""
         return field_names(self._fields())
 
-    def state(self):
+    def state(self) -> dict:
         """Copy of the full state: t, steps, the step controller's (Δt, cuts, PI memory), fields."""
         return {"t": self.t, "steps": self.steps, **self.controller.state(),
                 "fields": field_arrays(self._fields())}
 
-    def restore(self, state):
+    def restore(self, state: dict) -> None:
         """Restore a state from :meth:`state` (or :meth:`Checkpoint.read`)."""
         fields = self._fields()
         if len(fields) != len(state["fields"]):
@@ -204,7 +204,7 @@ class Stepper:
         self.controller.restore(state)
         self.problem.refresh()
 
-    def load_checkpoint(self, directory=None):
+    def load_checkpoint(self, directory=None) -> None:
         """Restore the state of the checkpoint in ``directory`` (default: this stepper's)."""
         ck = self.checkpoint if directory is None else Checkpoint(directory, self.comm)
         state = ck.read()
@@ -223,7 +223,7 @@ class Stepper:
             return self.hold.solve().reports
         return [self.problem.solve(verbose=self.verbose)]
 
-    def step(self, dt):
+    def step(self, dt: float) -> StepReport:
         """Advance by Δt (s) without cutting; returns a :class:`StepReport`.
 
         On failure the state at entry is restored and :class:`NewtonDivergence`
@@ -262,7 +262,7 @@ class Stepper:
         return out
 
     # -- fast-time cycles (time-scale separation) --------------------------------------
-    def start(self):
+    def start(self) -> int:
         """Settle the deformation problem before the first step; returns Newton iterations.
 
         With a fast-time cycle: erase the contact memory and slide the
@@ -270,7 +270,7 @@ class Stepper:
         """
         return self.restart() if self.cycle is not None else 0
 
-    def restart(self):
+    def restart(self) -> int:
         """Erase the contact memory, start the cycle and run in (no wear); Newton iterations."""
         P, cyc = self.problem, self.cycle
         cyc.start()
@@ -350,7 +350,8 @@ class Stepper:
         self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
-    def run(self, T, controller=None, on_step=None, progress=None):
+    def run(self, T: float, controller: StepController | float | None = None, on_step=None,
+            progress=None) -> None:
         """Advance from the current time to ``T`` (s), the steps chosen by ``controller``.
 
         ``controller``: a :class:`tribofx.step_control.StepController` (e.g.

@@ -61,6 +61,7 @@ class IroningCase:
     """Case ``contact-ironing``; see the module docstring."""
 
     name = "contact-ironing"
+    resumable = False   # no per-step checkpoint
 
     doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
 

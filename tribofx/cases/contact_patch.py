@@ -53,6 +53,7 @@ class ContactPatchCase:
     """Case ``contact-patch``; see the module docstring."""
 
     name = "contact-patch"
+    resumable = False   # no per-step checkpoint
     doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
     params = (
         Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",

@@ -52,6 +52,7 @@ class TwoCylindersCase:
     """Case ``contact-two-cylinders``; see the module docstring."""
 
     name = "contact-two-cylinders"
+    resumable = False   # no per-step checkpoint
     doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
     params = (
         Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),

@@ -240,6 +240,8 @@ class EHLBallCase:
     """Case ``ehl-ball``; see the module docstring."""
 
     name = "ehl-ball"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
 

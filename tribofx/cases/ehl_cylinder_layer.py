@@ -143,6 +143,8 @@ class EHLCylinderLayerCase:
     """Case ``ehl-cylinder-layer``; see the module docstring."""
 
     name = "ehl-cylinder-layer"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "soft-EHL: rigid cylinder sliding on a coated elastic layer (finite or linear)"
 

@@ -640,6 +640,8 @@ class EHLORingCase:
     """Case ``ehl-oring``; see the module docstring."""
 
     name = "ehl-oring"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "soft-EHL of a reciprocating O-ring seal (axisymmetric, housing contact)"
 

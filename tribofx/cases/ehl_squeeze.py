@@ -58,6 +58,8 @@ class EHLSqueezeCase:
     """Case ``ehl-squeeze``; see the module docstring."""
 
     name = "ehl-squeeze"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
            "plane, at a speed or under a load; rigid-limit references")

@@ -53,6 +53,7 @@ class EHLTwoCylindersCase:
     """Case ``ehl-two-cylinders``; see the module docstring."""
 
     name = "ehl-two-cylinders"
+    resumable = False   # no per-step checkpoint
 
     doc = ("soft-EHL line contact of two elastic cylinders (or a cylinder on a block), "
            "rolling and sliding; either body may be rigid")

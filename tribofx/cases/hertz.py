@@ -72,6 +72,7 @@ class HertzCase:
     """Case ``hertz``; see the module docstring."""
 
     name = "hertz"
+    resumable = False   # no per-step checkpoint
 
     doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
            "meridian section) pressed on a rigid plane, vs Hertz")

@@ -77,6 +77,7 @@ class CylinderCase:
     """Case ``reynolds-cylinder``; see the module docstring."""
 
     name = "reynolds-cylinder"
+    resumable = False   # no per-step checkpoint
     doc = ("rigid cylinder on a rigid plane (1D Reynolds) with cavitation none|penalty|jfo, "
            "vs half-Sommerfeld and Swift–Stieber")
     params = (

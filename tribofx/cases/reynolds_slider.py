@@ -41,6 +41,7 @@ class SliderCase:
     """Case ``reynolds-slider``; see the module docstring."""
 
     name = "reynolds-slider"
+    resumable = False   # no per-step checkpoint
     doc = "rigid plane inclined slider bearing (1D Reynolds), vs the analytic solution"
     params = (
         Param("K", float, 1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0",

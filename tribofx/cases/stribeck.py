@@ -39,6 +39,7 @@ class StribeckCase:
     """Case ``stribeck``; see the module docstring."""
 
     name = "stribeck"
+    resumable = False   # no per-step checkpoint
     doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
     params = PARAMS
 

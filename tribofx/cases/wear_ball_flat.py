@@ -88,6 +88,8 @@ class WearBallCase:
     """Case ``wear-ball-flat``; see the module docstring."""
 
     name = "wear-ball-flat"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
 

@@ -78,6 +78,8 @@ class WearBallHalfspaceCase:
     """Case ``wear-ball-halfspace``; see the module docstring."""
 
     name = "wear-ball-halfspace"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
 

@@ -47,6 +47,8 @@ class WearLubricatedCase:
     """Case ``wear-lubricated``; see the module docstring."""
 
     name = "wear-lubricated"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
     doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
     params = (*_SHARED,
               Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",

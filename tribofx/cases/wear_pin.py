@@ -84,6 +84,8 @@ class WearPinCase:
     """Case ``wear-pin``; see the module docstring."""
 
     name = "wear-pin"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
 

@@ -132,6 +132,8 @@ class WearReciprocatingCase:
     """Case ``wear-reciprocating``; see the module docstring."""
 
     name = "wear-reciprocating"
+    #: writes a checkpoint every step: `--resume` continues an interrupted run
+    resumable = True
 
     doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
 
