@@ -30,8 +30,8 @@ import ufl
 from mpi4py import MPI
 
 from tribofx.body import Body
+from tribofx.cases import ehl_cylinder_layer as Case
 from tribofx.cases.ehl_cylinder_layer import NAMES
-from tribofx.cases.ehl_cylinder_layer import EHLCylinderLayerCase as Case
 from tribofx.params import resolve
 from tribofx.problem import Problem
 

@@ -31,8 +31,8 @@ import ufl
 from mpi4py import MPI
 
 from tribofx.body import Body
+from tribofx.cases import ehl_ball as Case
 from tribofx.cases.ehl_ball import NAMES
-from tribofx.cases.ehl_ball import EHLBallCase as Case
 from tribofx.params import resolve
 from tribofx.problem import Problem
 from tribofx.references import hertz

@@ -24,7 +24,7 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401,E402
 
-from tribofx.cases.ehl_oring import EHLORingCase as Case  # noqa: E402
+from tribofx.cases import ehl_oring as Case  # noqa: E402
 from tribofx.cases.ehl_oring import build, solve_to  # noqa: E402
 from tribofx.params import resolve  # noqa: E402
 

@@ -55,13 +55,13 @@ def build(problem, level, comm):
     from tribofx.params import resolve
 
     if problem == "groove":
-        from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
+        from tribofx.cases import wear_ball_halfspace as Case
 
         v = Case.resolved(resolve(Case.params, {"mesh": str(level)}))
         stepper, info = Case.build(v, comm)
         return stepper.problem, [lambda: [Case.initial_contact(stepper, info)],
                                  lambda: stepper.step(100.0).reports]
-    from tribofx.cases.hertz import HertzCase as Case
+    from tribofx.cases import hertz as Case
     from tribofx.continuation import ConstantParameter
     from tribofx.references import hertz
 

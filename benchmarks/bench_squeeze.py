@@ -36,7 +36,7 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 
 import dolfinx_solver  # noqa: F401,E402
 
-from tribofx.cases.ehl_squeeze import EHLSqueezeCase as Case  # noqa: E402
+from tribofx.cases import ehl_squeeze as Case  # noqa: E402
 from tribofx.params import resolve  # noqa: E402
 from tribofx.runner import COMMON_PARAMS  # noqa: E402
 

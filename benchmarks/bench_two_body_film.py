@@ -32,7 +32,7 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 import dolfinx_solver  # noqa: F401,E402
 from timing import Timer  # noqa: E402  (benchmarks/timing.py)
 
-from tribofx.cases.ehl_two_cylinders import EHLTwoCylindersCase as Case  # noqa: E402
+from tribofx.cases import ehl_two_cylinders as Case  # noqa: E402
 from tribofx.output import RunRecord  # noqa: E402
 from tribofx.params import resolve  # noqa: E402
 

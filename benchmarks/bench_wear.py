@@ -36,7 +36,7 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_pin import WearPinCase
+from tribofx.cases import wear_pin
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
@@ -48,20 +48,20 @@ parser.add_argument("--mesh", type=int, default=1)
 parser.add_argument("--out", default="benchmarks/results/wear.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
-units = {p.name: p.unit for p in WearPinCase.params}
+units = {p.name: p.unit for p in wear_pin.params}
 
 
 def run(tmp, **over):
     """One wear-pin run; returns (stepper or None, results, wall time, status)."""
     over = {"E": args.E, "mesh": args.mesh, **over}
-    values = resolve(WearPinCase.params, {k: str(v) for k, v in over.items()})
-    WearPinCase.validate(values)
+    values = resolve(wear_pin.params, {k: str(v) for k, v in over.items()})
+    wear_pin.validate(values)
     rec = RunRecord("wear-pin", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
     rec.profile = None
     t0 = time.perf_counter()
     status, prob = "ok", None
     try:
-        prob = WearPinCase.run(values, rec)
+        prob = wear_pin.run(values, rec)
     except NewtonDivergence as err:
         status = f"failed: {err}"
     wall = time.perf_counter() - t0
@@ -76,10 +76,10 @@ def profile(res):
 
 rows = []
 with tempfile.TemporaryDirectory() as tmp:
-    values = resolve(WearPinCase.params, {"E": str(args.E), "mesh": str(args.mesh)})
-    n = WearPinCase.n_elements(values)
+    values = resolve(wear_pin.params, {"E": str(args.E), "mesh": str(args.mesh)})
+    n = wear_pin.n_elements(values)
     t0 = time.perf_counter()
-    dt_cr, _ = pin_critical_step(WearPinCase, values, n, lo=0.05, hi=200.0)
+    dt_cr, _ = pin_critical_step(wear_pin, values, n, lo=0.05, hi=200.0)
     t_probe = time.perf_counter() - t0
     T = values["T"]
     dt_exp = T / math.ceil(T / dt_cr)

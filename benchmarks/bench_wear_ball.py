@@ -138,7 +138,7 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball_flat import WearBallCase
+from tribofx.cases import wear_ball_flat
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence
@@ -184,12 +184,12 @@ parser.add_argument("--dt-cr-range", default="3,30",
 parser.add_argument("--out", default="benchmarks/results/wear_ball.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
-units = {p.name: p.unit for p in WearBallCase.params}
+units = {p.name: p.unit for p in wear_ball_flat.params}
 sets = dict(kv.split("=", 1) for kv in args.set)
 SOLVE_ONLY = ("error_filter", "controller")     # of the error control: runs with tol only
-v0 = resolve(WearBallCase.params, {"mesh": str(args.mesh),
+v0 = resolve(wear_ball_flat.params, {"mesh": str(args.mesh),
                                    **{k: x for k, x in sets.items() if k not in SOLVE_ONLY}})
-WearBallCase.validate(v0)
+wear_ball_flat.validate(v0)
 T = v0["T"]
 if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols or args.to_T_ref):
     parser.error("--to-T-tols needs --to-T-ref, or --accuracy-dts and --bdf2-tols (the "
@@ -206,12 +206,12 @@ def run(tmp, t_stop=None, on_step=None, **over):
     if not float(given.get("tol", 0) or 0):
         for k in SOLVE_ONLY:
             given.pop(k, None)
-    values = resolve(WearBallCase.params, {"mesh": str(args.mesh), **given})
-    WearBallCase.validate(values)
+    values = resolve(wear_ball_flat.params, {"mesh": str(args.mesh), **given})
+    wear_ball_flat.validate(values)
     rec = RunRecord("wear-ball-flat", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
     rec.profile = None
     t0 = time.perf_counter()
-    WearBallCase.run(values, rec, t_stop=t_stop, on_step=on_step)
+    wear_ball_flat.run(values, rec, t_stop=t_stop, on_step=on_step)
     wall = comm.allreduce(time.perf_counter() - t0, op=MPI.MAX)
     res = {k: r["value"] for k, r in rec.data["results"].items()}
     return res, rec, wall
@@ -352,9 +352,9 @@ def late_window(t1, dt_e, tol):
     from tribofx.references import hertz
 
     def build(**over):
-        v = resolve(WearBallCase.params, {"mesh": str(args.mesh), **{
+        v = resolve(wear_ball_flat.params, {"mesh": str(args.mesh), **{
             k: x for k, x in sets.items() if k not in SOLVE_ONLY}, **over})
-        st = WearBallCase.build(v)
+        st = wear_ball_flat.build(v)
         return v, st
 
     vb, sb = build(scheme="bdf2", dt="100", tol="1e-3", tol_per="step")

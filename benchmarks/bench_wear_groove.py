@@ -44,7 +44,7 @@ import numpy as np
 from mpi4py import MPI
 
 from tribofx import solvers
-from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
+from tribofx.cases import wear_ball_halfspace as Case
 from tribofx.cases.wear_ball_halfspace import surface_data
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence

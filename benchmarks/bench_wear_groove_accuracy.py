@@ -46,7 +46,7 @@ import dolfinx_solver  # noqa: F401
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase as Case
+from tribofx.cases import wear_ball_halfspace as Case
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence

@@ -61,7 +61,7 @@ from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
 from tribofx.meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quarter_ball
 
 from tribofx.body import Body
-from tribofx.cases.ehl_ball import EHLBallCase
+from tribofx.cases import ehl_ball
 from tribofx.continuation import ConstantParameter, Continuation
 from tribofx.interfaces import Film
 from tribofx.obstacles import rigid_plane
@@ -173,11 +173,11 @@ if not args.quick:
                        ("linear", {"model": "linear"})):
         for W_v, extra in ((6.0, {"steps": "3", "mesh": "1"}),
                            (40.0, {"steps": "1", "mesh": "0", "theta_l": "55", "U": "3e5"})):
-            v = resolve(EHLBallCase.params, {"W": str(W_v), **extra, **over})
-            run = EHLBallCase.build(v, comm)
+            v = resolve(ehl_ball.params, {"W": str(W_v), **extra, **over})
+            run = ehl_ball.build(v, comm)
             steps = []
-            EHLBallCase.load_sweep(run, v, lambda W, its, run=run, v=v: steps.append(
-                EHLBallCase.measures(run, v)))
+            ehl_ball.load_sweep(run, v, lambda W, its, run=run, v=v: steps.append(
+                ehl_ball.measures(run, v)))
             variants[name, W_v] = steps
             if comm.rank == 0:
                 m = steps[-1]

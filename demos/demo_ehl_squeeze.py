@@ -48,7 +48,7 @@ os.environ.setdefault("UCX_TLS", "self,sm,tcp")
 import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
 from mpi4py import MPI
 
-from tribofx.cases.ehl_squeeze import EHLSqueezeCase
+from tribofx.cases import ehl_squeeze
 from tribofx.output import write_summary
 from tribofx.params import resolve
 from tribofx.references import squeeze_film_under_load
@@ -64,15 +64,15 @@ steps = 8 if args.quick else 32
 
 def squeeze(**over):
     """Build the cylinder, its transient film and the Stepper; step to T; per-step measures."""
-    v = resolve(tuple(EHLSqueezeCase.params) + COMMON_PARAMS,
+    v = resolve(tuple(ehl_squeeze.params) + COMMON_PARAMS,
                 {k: str(x) for k, x in dict(control="load", dt=over["T"] / steps,
                                             **over).items()})
-    stepper = EHLSqueezeCase.build(v)        # Body + Film(...).transient("bdf2") + Stepper
+    stepper = ehl_squeeze.build(v)        # Body + Film(...).transient("bdf2") + Stepper
     film = stepper.wear
     y0 = float(film.counterpart.offset.value[1])
     out = []
     stepper.run(v["T"], v["dt"], on_step=lambda st, rep: out.append(
-        (st.t, EHLSqueezeCase.measures(film, v, y0))))
+        (st.t, ehl_squeeze.measures(film, v, y0))))
     return v, out
 # -
 
@@ -82,7 +82,7 @@ def squeeze(**over):
 v1, out = squeeze(F=0.05, E1=1e7, T=2e-3)
 t = [s for s, _ in out]
 h_ref = squeeze_film_under_load(2, v1["R"], v1["mu"], v1["F"], v1["h_start"], t,
-                                EHLSqueezeCase.extent(v1))
+                                ehl_squeeze.extent(v1))
 stiff = [(s, m["h_center"], float(r)) for (s, m), r in zip(out, h_ref)]
 if comm.rank == 0:
     for s, h, r in stiff:
@@ -116,7 +116,7 @@ for s, h, r in stiff:
 s, hc, hm, _ = soft[-1]
 assert hc > 1.1 * hm
 rigid = squeeze_film_under_load(2, v2["R"], v2["mu"], v2["F"], v2["h_start"], [s],
-                                EHLSqueezeCase.extent(v2))[0]
+                                ehl_squeeze.extent(v2))[0]
 assert hm > 5 * rigid
 if comm.rank == 0:
     print("demo_ehl_squeeze: all checks passed")

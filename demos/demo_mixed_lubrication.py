@@ -54,7 +54,7 @@ from mpi4py import MPI
 from tribofx.forms.mixed import GT_FIT
 
 from tribofx.cases import rough_contact
-from tribofx.cases.stribeck import StribeckCase
+from tribofx.cases import stribeck as stribeck_case
 from tribofx.continuation import ConstantParameter, Continuation
 from tribofx.hold import Hold
 from tribofx.interfaces import Wear
@@ -70,7 +70,7 @@ comm = MPI.COMM_WORLD
 
 # R = 10 mm, E = 10 MPa, ν = 0.45, μ = 0.1 Pa·s, W = 0.5 N/mm, σ = 1 µm, μ_b = 0.1
 speeds = [1000.0, 30.0, 1.0] if args.quick else [1000.0, 100.0, 30.0, 10.0, 3.0, 1.0]
-v = resolve(StribeckCase.params, {"speeds": ",".join(map(str, speeds))})
+v = resolve(stribeck_case.params, {"speeds": ",".join(map(str, speeds))})
 # -
 
 # ## 1. The Stribeck curve
@@ -157,7 +157,7 @@ if comm.rank == 0:
 
 # +
 ball_speeds = [10.0] if args.quick else [1000.0, 100.0, 10.0, 1.0, 0.1]
-vb = resolve(StribeckCase.params, {"geometry": "ball", "W": "0.5", "steps": "1",
+vb = resolve(stribeck_case.params, {"geometry": "ball", "W": "0.5", "steps": "1",
                                    "speeds": ",".join(map(str, ball_speeds))})
 run_b = rough_contact.build(vb, comm)
 ball_rows = []

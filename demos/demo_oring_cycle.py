@@ -56,7 +56,8 @@ import dolfinx_solver  # noqa: F401  (before dolfinx / petsc4py)
 import numpy as np
 from mpi4py import MPI
 
-from tribofx.cases.ehl_oring import EHLORingCase, build, cycle_stepper, solve_to
+from tribofx.cases import ehl_oring
+from tribofx.cases.ehl_oring import build, cycle_stepper, solve_to
 from tribofx.output import write_summary
 from tribofx.params import resolve
 
@@ -77,7 +78,7 @@ comm = MPI.COMM_WORLD
 
 # +
 U0, T = 400.0, 10.0
-v = resolve(EHLORingCase.params, {"mesh": "2" if args.quick else "4", "stroke": "cycle",
+v = resolve(ehl_oring.params, {"mesh": "2" if args.quick else "4", "stroke": "cycle",
                                   "period": str(T), "scheme": "bdf2",
                                   "arc_refine": "0" if args.quick else "1"})
 # the seal at U0, transient, its steady outstroke, and the Stepper whose schedule sets
@@ -97,7 +98,7 @@ cycle = seal.measures()
 
 # +
 U = U0 * math.cos(math.pi / 4)
-steady = build(resolve(EHLORingCase.params, {"mesh": v["mesh"], "U": str(U)}), 1000.0)
+steady = build(resolve(ehl_oring.params, {"mesh": v["mesh"], "U": str(U)}), 1000.0)
 solve_to(steady, v, U, [1.0])
 ref = steady.measures()
 dev = {k: cycle[k] / ref[k] - 1 for k in ("h_min", "h_mean", "p_max")}
@@ -125,7 +126,7 @@ assert all(abs(x) < 1e-2 for x in dev.values()), dev
 # and the cycle's leakage is what the air end lets out.
 
 # +
-vc = resolve(EHLORingCase.params, {"stroke": "cycle", "scheme": "euler",
+vc = resolve(ehl_oring.params, {"stroke": "cycle", "scheme": "euler",
                                    **({"mesh": "2", "arc_refine": "0"} if args.quick else
                                       {"sigma": "2e-4", "arc_refine": "1"})})
 cyc = cycle_stepper(vc)

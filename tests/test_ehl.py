@@ -13,7 +13,7 @@ import pytest
 from dolfinx import fem
 from mpi4py import MPI
 
-from tribofx.cases.ehl_cylinder_layer import EHLCylinderLayerCase as Case
+from tribofx.cases import ehl_cylinder_layer as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import cylinder_references

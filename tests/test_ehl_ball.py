@@ -16,7 +16,7 @@ from dolfinx import fem
 from mpi4py import MPI
 from tribofx.meshes.ball import cap_height
 
-from tribofx.cases.ehl_ball import EHLBallCase as Case
+from tribofx.cases import ehl_ball as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hamrock_dowson, hertz

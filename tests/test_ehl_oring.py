@@ -12,7 +12,7 @@ from mpi4py import MPI
 from tribofx.forms import hyperelastic as hf
 from tribofx.forms import kinematics as km
 
-from tribofx.cases.ehl_oring import EHLORingCase as Case
+from tribofx.cases import ehl_oring as Case
 from tribofx.cases.ehl_oring import axial_balance, build, solve_to
 from tribofx.params import InputError, resolve
 from tribofx.references import inverse_film

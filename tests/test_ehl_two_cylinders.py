@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.ehl_two_cylinders import EHLTwoCylindersCase as Case
+from tribofx.cases import ehl_two_cylinders as Case
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 

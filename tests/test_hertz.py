@@ -3,18 +3,18 @@
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.hertz import HertzCase
+from tribofx.cases import hertz as hertz_case
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 
 
 def run_hertz(tmp_path, **overrides):
-    values = resolve(HertzCase.params, {k: str(v) for k, v in overrides.items()})
-    HertzCase.validate(values)
-    rec = RunRecord("hertz", values, {p.name: p.unit for p in HertzCase.params}, tmp_path,
+    values = resolve(hertz_case.params, {k: str(v) for k, v in overrides.items()})
+    hertz_case.validate(values)
+    rec = RunRecord("hertz", values, {p.name: p.unit for p in hertz_case.params}, tmp_path,
                     MPI.COMM_WORLD)
     rec.profile = None
-    HertzCase.run(values, rec)
+    hertz_case.run(values, rec)
     return {k: v["value"] for k, v in rec.data["results"].items()}, rec
 
 
@@ -81,8 +81,8 @@ def test_hertz_axisymmetric_sphere(tmp_path):
     """
     import math
 
-    v = resolve(HertzCase.params, {"dim": "axisymmetric", "load": str(LOAD_3D)})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "axisymmetric", "load": str(LOAD_3D)})
+    hertz_case.validate(v)
     u_far = LOAD_3D * (1 + v["nu"]) * (3 - 2 * v["nu"]) / (2 * math.pi * v["E"] * v["R"])
     errs = []
     for level in (1, 2):

@@ -17,7 +17,7 @@ from tribofx.meshes.hertz import NAMES, hertz_body
 
 from tribofx.body import Body
 from tribofx.cases import rough_contact
-from tribofx.cases.stribeck import StribeckCase
+from tribofx.cases import stribeck as stribeck_case
 from tribofx.interfaces import Film
 from tribofx.obstacles import rigid_plane
 from tribofx.output import RunRecord
@@ -64,10 +64,10 @@ def test_expected_gap_and_flow_factors_limits():
 
 def stribeck(rough=True, **over):
     """Run the stribeck case with ``over``; return (run, per-speed results)."""
-    v = resolve(StribeckCase.params, {k: str(x) for k, x in over.items()})
-    StribeckCase.validate(v)
-    rec = RunRecord(StribeckCase.name, {}, {}, ".", MPI.COMM_WORLD)
-    run = StribeckCase.run(v, rec, rough=rough)
+    v = resolve(stribeck_case.params, {k: str(x) for k, x in over.items()})
+    stribeck_case.validate(v)
+    rec = RunRecord(stribeck_case.name, {}, {}, ".", MPI.COMM_WORLD)
+    run = stribeck_case.run(v, rec, rough=rough)
     return run, {k: r["value"] for k, r in rec.data["results"].items()}
 
 
@@ -170,7 +170,7 @@ def test_mixed_regime_against_the_jgp_load_sharing():
     speeds = "1000,30,10,3,1"
     _, rough = stribeck(speeds=speeds)
     _, smooth = stribeck(rough=False, speeds=speeds)
-    v = resolve(StribeckCase.params, {"speeds": speeds})
+    v = resolve(stribeck_case.params, {"speeds": speeds})
     p0 = hertz(v["W"], v["R"], v["E"], v["nu"], line=True).p0
     KE, (A, Hc, n) = rough_contact.roughness(v).asperity.parameters["KE"], mixed.GT_FIT
 
@@ -231,7 +231,7 @@ def test_creeping_rough_cylinder_approaches_hertz():
         W = np.trapezoid(p, x)
         xbar = np.trapezoid(p * x, x) / W
         a_eff = 2 * np.sqrt(np.trapezoid(p * x * x, x) / W - xbar**2)
-        v = resolve(StribeckCase.params, {})
+        v = resolve(stribeck_case.params, {})
         ref = hertz(v["W"], v["R"], v["E"], v["nu"], line=True)
         dev.append(abs(a_eff / ref.a - 1))
     assert dev[1] < dev[0], dev
@@ -245,7 +245,7 @@ def test_vanishing_roughness_is_the_smooth_film():
     """
     out = []
     for rough in (True, False):
-        v = resolve(StribeckCase.params, {"speeds": "1000", "sigma": "1e-9"})
+        v = resolve(stribeck_case.params, {"speeds": "1000", "sigma": "1e-9"})
         run = rough_contact.build(v, rough=rough)
         film = run["film"]
         film.counterpart.offset.value[1] = -0.01
@@ -318,9 +318,9 @@ def test_parallel_matches_serial():
         pytest.skip("run under mpiexec -n 2")
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
-        v = resolve(StribeckCase.params, {"speeds": "1000,10"})
-        rec = RunRecord(StribeckCase.name, {}, {}, ".", comm)
-        StribeckCase.run(v, rec, comm=comm)
+        v = resolve(stribeck_case.params, {"speeds": "1000,10"})
+        rec = RunRecord(stribeck_case.name, {}, {}, ".", comm)
+        stribeck_case.run(v, rec, comm=comm)
         res = rec.data["results"]
         out.append(np.array([res[k]["value"] for k in ("friction_coefficient",
                                                        "film_load_fraction", "h_central",

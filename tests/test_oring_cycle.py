@@ -18,6 +18,7 @@ from mpi4py import MPI
 from test_ehl_oring import _seal_taylor_orders, assert_exact
 from ufl import TestFunction
 
+from tribofx.cases import ehl_oring as Case
 from tribofx.cases.ehl_oring import (
     AirLayer,
     air_end,
@@ -27,7 +28,6 @@ from tribofx.cases.ehl_oring import (
     solve_to,
     transient_seal,
 )
-from tribofx.cases.ehl_oring import EHLORingCase as Case
 from tribofx.params import resolve
 
 U0 = 400.0

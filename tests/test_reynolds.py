@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.reynolds_cylinder import CylinderCase, cylinder_references
-from tribofx.cases.reynolds_slider import SliderCase
+from tribofx.cases import reynolds_cylinder, reynolds_slider
+from tribofx.cases.reynolds_cylinder import cylinder_references
 from tribofx.output import RunRecord
 from tribofx.params import InputError, resolve
 from tribofx.problem import NewtonDivergence, convergence_orders
@@ -29,7 +29,7 @@ def run_case(case, tmp_path, **overrides):
 
 @pytest.mark.mpi
 def test_slider_matches_analytic(tmp_path):
-    res, rec, _ = run_case(SliderCase, tmp_path)
+    res, rec, _ = run_case(reynolds_slider, tmp_path)
     print(res)
     # default P1 mesh of 200 elements: discretisation error O(h²) ≈ 1e-4; 0.5 % required
     assert abs(res["load_rel_error"]) < 5e-3
@@ -56,7 +56,7 @@ def test_slider_peak_position_sub_element(tmp_path, n):
     """
     from tribofx.references import slider_pressure
 
-    res, rec, _ = run_case(SliderCase, tmp_path, mesh=n)
+    res, rec, _ = run_case(reynolds_slider, tmp_path, mesh=n)
     v = rec.data["parameters"]
     K, L, h0, U, mu = (v[k]["value"] for k in ("K", "L", "h0", "U", "mu"))
     xm = res["analytic_x_p_max"]
@@ -87,7 +87,7 @@ def test_slider_mesh_convergence(tmp_path, degree, rate):
     errs, loads = [], []
     meshes = (8, 16, 32, 64)
     for n in meshes:
-        res, _, _ = run_case(SliderCase, tmp_path, mesh=n, degree=degree, K=2.0)
+        res, _, _ = run_case(reynolds_slider, tmp_path, mesh=n, degree=degree, K=2.0)
         errs.append(res["pressure_l2_error"])
         loads.append(abs(res["load_rel_error"]))
     rates = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
@@ -100,7 +100,7 @@ def test_slider_mesh_convergence(tmp_path, degree, rate):
 def test_slider_bad_input():
     for key, text in (("h0", "0"), ("mu", "-1"), ("K", "-1"), ("K", "-2"), ("degree", "3")):
         with pytest.raises(InputError):
-            resolve(SliderCase.params, {key: text})
+            resolve(reynolds_slider.params, {key: text})
 
 
 # ----------------------------------------------------------------------------- cylinder
@@ -141,14 +141,14 @@ def test_cylinder_bad_input():
                                                         "inlet_void": "0.5"},
                  {"cavitation": "jfo", "x_out": "0.1"}):
         with pytest.raises(InputError):
-            v = resolve(CylinderCase.params, over)
-            CylinderCase.validate(v)
+            v = resolve(reynolds_cylinder.params, over)
+            reynolds_cylinder.validate(v)
 
 
 @pytest.mark.mpi
 def test_cylinder_half_sommerfeld_and_penalty(tmp_path):
-    none, _, _ = run_case(CylinderCase, tmp_path, cavitation="none")
-    pen, rec, _ = run_case(CylinderCase, tmp_path, cavitation="penalty")
+    none, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="none")
+    pen, rec, _ = run_case(reynolds_cylinder, tmp_path, cavitation="penalty")
     print("none", none)
     print("penalty", pen, rec.data["newton_iterations"])
     # Sommerfeld solution with the negative part cut off (Gümbel): 1 % of half-Sommerfeld
@@ -171,7 +171,7 @@ def test_cylinder_half_sommerfeld_and_penalty(tmp_path):
 
 @pytest.mark.mpi
 def test_cylinder_jfo_swift_stieber_and_mass_balance(tmp_path):
-    res, rec, _ = run_case(CylinderCase, tmp_path, cavitation="jfo")
+    res, rec, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo")
     print(res, rec.data["newton_iterations"])
     # flooded JFO with rupture only = Reynolds (Swift–Stieber) conditions: 1 %
     assert abs(res["load_per_length"] / res["swift_stieber_load_per_length"] - 1) < 0.01
@@ -185,7 +185,7 @@ def test_cylinder_jfo_swift_stieber_and_mass_balance(tmp_path):
 
 @pytest.mark.mpi
 def test_jfo_newton_rate(tmp_path):
-    res, rec, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=800)
+    res, rec, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", mesh=800)
     its = rec.data["newton_iterations"][0]
     orders = convergence_orders(rec.data["newton_residuals"])
     print("iterations per mesh level", its, "residuals", rec.data["newton_residuals"],
@@ -225,7 +225,7 @@ def _advection_zone_bound(prof, v, q_in, q_out, r_final):
     (p = 0), τ = h_e/√(4v̄² + (12D/h_e)²).  An O(h_e²) bound with no free constant.
     """
     R, h0, um, mu = v["R"], v["h0"], v["um"], v["mu"]
-    _, p_c, _ = CylinderCase.scales(v)
+    _, p_c, _ = reynolds_cylinder.scales(v)
     x, lam, p = prof["x"], prof["lam"], prof["p"]
     h = h0 + x**2 / (2 * R)
     hp = x / R
@@ -263,7 +263,7 @@ def _advection_zone_bound(prof, v, q_in, q_out, r_final):
 
 
 def _run_starved(tmp_path, mesh, supg):
-    return run_case(CylinderCase, tmp_path, cavitation="jfo", inlet_void=LAM_IN, mesh=mesh,
+    return run_case(reynolds_cylinder, tmp_path, cavitation="jfo", inlet_void=LAM_IN, mesh=mesh,
                     supg=supg)
 
 
@@ -275,7 +275,7 @@ def test_supg_removes_oscillations_starved_inlet(tmp_path):
     # zones: monotone decrease from λ_in, jump to 0, monotone increase after rupture.
     # Coarse mesh: 100 elements (Δx = 0.04 mm), nested iteration 50 → 100.
     res, rec, _ = _run_starved(tmp_path, 100, True)
-    v = resolve(CylinderCase.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo",
+    v = resolve(reynolds_cylinder.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo",
                                       "mesh": "100"})
     dx = (v["x_out"] - v["x_in"]) / 100
     r_final = rec.data["newton_residuals"][-1]
@@ -344,10 +344,10 @@ def test_serial_and_parallel_agree():
     # the same problem on COMM_WORLD and, on every rank, on COMM_SELF
     out = {}
     for name, comm in (("world", MPI.COMM_WORLD), ("self", MPI.COMM_SELF)):
-        v = resolve(CylinderCase.params, {"cavitation": "jfo", "mesh": "200"})
+        v = resolve(reynolds_cylinder.params, {"cavitation": "jfo", "mesh": "200"})
         prev = None
-        for n in CylinderCase.levels(v["mesh"]):
-            film, problem = CylinderCase.build(dict(v, mesh=n), comm=comm)
+        for n in reynolds_cylinder.mesh_levels(v["mesh"]):
+            film, problem = reynolds_cylinder.build(dict(v, mesh=n), comm=comm)
             if prev is not None:
                 film.set_from_profile(prev)
             problem.solve()
@@ -481,9 +481,9 @@ def test_open_end_supply_starved_inlet(tmp_path):
     # (weak upwind inflow, Robin leak for p = 0) instead of the Dirichlet λ_in, p = 0.
     # (1) Everything that enters is the supply: q_in = q_out = c_in u_m (the analytic
     # flux 11.55 mm²/s) to solver tolerance (rows ≤ 1e-10 of the Couette flux; 1e-9).
-    v = resolve(CylinderCase.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo"})
+    v = resolve(reynolds_cylinder.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo"})
     c_in = (1 - LAM_IN) * (v["h0"] + v["x_in"] ** 2 / (2 * v["R"]))
-    res, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
+    res, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
                          mesh=100, inlet="supply")
     for key in ("flux_in", "flux_out"):
         assert res[key] == pytest.approx(c_in * v["um"], rel=1e-9)
@@ -491,7 +491,7 @@ def test_open_end_supply_starved_inlet(tmp_path):
     # within one element of Swift–Stieber, the load error of order 2 (Δx 0.04 → 0.01)
     dx = (v["x_out"] - v["x_in"]) / 100
     assert abs(res["x_reformation"] - res["swift_stieber_x_reformation"]) <= dx
-    fine, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
+    fine, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
                           mesh=400, inlet="supply")
     order = math.log(abs(res["load_rel_error"]) / abs(fine["load_rel_error"])) / math.log(4)
     assert abs(order - 2) < 0.5
@@ -504,8 +504,8 @@ def test_open_end_flooded_supply_leaks_back(tmp_path):
     # on the same mesh: the leak leaves p_0 = Δp_e/1000 at the end (Δp_e the last
     # element's pressure drop, ≲ p_max Δx/(x_pmax − x_in) ≈ p_max/50 at 100 elements), a
     # load change ≤ p_0 (x_r − x_in)/load ≲ 1e-4 of the load; the fluxes likewise.
-    sup, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=100, inlet="supply")
-    dir_, _, _ = run_case(CylinderCase, tmp_path, cavitation="jfo", mesh=100)
+    sup, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", mesh=100, inlet="supply")
+    dir_, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", mesh=100)
     assert abs(sup["load_rel_error"] - dir_["load_rel_error"]) < 1e-4
     assert sup["flux_out"] == pytest.approx(dir_["flux_out"], rel=1e-4)
     assert sup["flux_in"] == pytest.approx(sup["flux_out"], rel=1e-9)   # mass: the leak counted

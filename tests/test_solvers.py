@@ -18,8 +18,9 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 from tribofx import solvers
-from tribofx.cases.hertz import HertzCase
-from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase, groove_mesh
+from tribofx.cases import hertz as hertz_case
+from tribofx.cases import wear_ball_halfspace
+from tribofx.cases.wear_ball_halfspace import groove_mesh
 from tribofx.continuation import ConstantParameter
 from tribofx.near_nullspace import rigid_body_modes
 from tribofx.params import resolve
@@ -38,10 +39,10 @@ def _last_correction(report, name):
 
 def _hertz_steps(strategy, offsets, friction=0.3, options=None):
     """3D Hertz with friction at prescribed approaches δ (mm): states and reports per step."""
-    v = resolve(HertzCase.params, {"dim": "3", "mesh": "1", "friction": str(friction)})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "3", "mesh": "1", "friction": str(friction)})
+    hertz_case.validate(v)
     with solvers.run_settings(strategy, options):
-        body, contact, problem = HertzCase.build(v)
+        body, contact, problem = hertz_case.build(v)
     delta = ConstantParameter(contact.counterpart.offset, 2)
     out = []
     for d in offsets:
@@ -59,8 +60,8 @@ def _hertz_steps(strategy, offsets, friction=0.3, options=None):
 def test_iterative_matches_direct_through_active_set_changes():
     """Frictional 3D Hertz loaded in three approach steps: the contact zone grows
     (active set changes in every step, stick and slip nodes), fieldsplit = LU."""
-    v = resolve(HertzCase.params, {"dim": "3"})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "3"})
+    hertz_case.validate(v)
     a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
     offsets = [0.3 * a**2 / v["R"], 0.6 * a**2 / v["R"], a**2 / v["R"]]
     pd, bd, cd, direct = _hertz_steps("direct", offsets)
@@ -89,7 +90,7 @@ def test_iterative_and_lagged_groove_reduced_problem():
     implicit step.  The fieldsplit (Ψ and ζ in the Schur field) and the lagged LU equal
     LU; the lagged LU factorises less often than Newton iterates, and its Newton
     iterations are those of LU (the same exact Newton, GMRES to 1e-10)."""
-    case = WearBallHalfspaceCase
+    case = wear_ball_halfspace
     v = case.resolved(resolve(case.params, {}))
     a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
     h = 0.9 * a
@@ -139,7 +140,7 @@ def test_krylov_floor_is_the_newton_test():
     """GMRES stops before rtol only when its true residual is below η of the Newton
     stopping test in every row (krylov_guard): checked on the true residual b − A x of
     each solve of the groove's implicit step, rebuilt here from the KSP's operator."""
-    case = WearBallHalfspaceCase
+    case = wear_ball_halfspace
     v = case.resolved(resolve(case.params, {}))
     a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
     comm = MPI.COMM_WORLD
@@ -175,8 +176,8 @@ def test_failed_krylov_solve_falls_back_to_lu(tmp_path):
     and reaches its solution; the events are in the report and in summary.json, and with
     the fallback made to fail too, the error names the Krylov reason and its iteration
     count."""
-    v = resolve(HertzCase.params, {"dim": "3"})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "3"})
+    hertz_case.validate(v)
     a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
     offsets = [0.5 * a**2 / v["R"], a**2 / v["R"]]
     pd, bd, _, direct = _hertz_steps("direct", offsets)
@@ -212,8 +213,8 @@ def test_direct_reuses_symbolic_factorisation():
     PETSc.Log.begin()
     sym, num = PETSc.Log.Event("MatLUFactorSym"), PETSc.Log.Event("MatLUFactorNum")
     before = sym.getPerfInfo()["count"], num.getPerfInfo()["count"]
-    v = resolve(HertzCase.params, {"dim": "3"})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "3"})
+    hertz_case.validate(v)
     a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
     problem, _, _, steps = _hertz_steps("direct", [0.5 * a**2 / v["R"], a**2 / v["R"]])
     newton = sum(s["report"].iterations for s in steps)
@@ -251,10 +252,10 @@ def test_rigid_body_modes_are_the_kernel_of_elasticity():
 
 def test_bulk_and_interface_fields():
     """Displacements are the AMG field; facet and replicated unknowns go to the Schur field."""
-    v = resolve(HertzCase.params, {"dim": "3", "mesh": "0", "friction": "0.3"})
-    HertzCase.validate(v)
+    v = resolve(hertz_case.params, {"dim": "3", "mesh": "0", "friction": "0.3"})
+    hertz_case.validate(v)
     with solvers.run_settings("auto"):
-        _, _, problem = HertzCase.build(v)
+        _, _, problem = hertz_case.build(v)
     bulk, rest = solvers.bulk_fields(problem)
     assert [problem.u[k].name for k in bulk] == ["displacement"]
     assert [problem.u[k].name for k in rest] == ["contact_pressure_nominal",
@@ -336,12 +337,12 @@ def test_iterative_single_field_is_amg():
 
 def test_iterative_without_bulk_field_falls_back_to_direct():
     """A film alone (reynolds-slider) has nothing for AMG: solver=iterative gives LU."""
-    from tribofx.cases.reynolds_slider import SliderCase
+    from tribofx.cases import reynolds_slider
 
-    v = resolve(SliderCase.params, {})
-    SliderCase.validate(v)
+    v = resolve(reynolds_slider.params, {})
+    reynolds_slider.validate(v)
     with solvers.run_settings("iterative") as run:
-        _, problem = SliderCase.build(v)
+        _, problem = reynolds_slider.build(v)
         assert problem.solver.name == "direct"
         assert "no bulk field" in run.used[problem.name]
 

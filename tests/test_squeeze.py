@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from tribofx.cases.ehl_squeeze import EHLSqueezeCase as Case
+from tribofx.cases import ehl_squeeze as Case
 from tribofx.params import resolve
 from tribofx.references import (
     squeeze_closed_form,

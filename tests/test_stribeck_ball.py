@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.stribeck import StribeckCase
+from tribofx.cases import stribeck as stribeck_case
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.testing import block_taylor_orders, exact_tangent, penalty_film_directions
@@ -21,11 +21,11 @@ from tribofx.testing import block_taylor_orders, exact_tangent, penalty_film_dir
 
 def ball(rough=True, comm=MPI.COMM_WORLD, **over):
     """Run ``stribeck geometry=ball`` with ``over``; return (run, per-speed results)."""
-    v = resolve(StribeckCase.params, {"geometry": "ball",
+    v = resolve(stribeck_case.params, {"geometry": "ball",
                                       **{k: str(x) for k, x in over.items()}})
-    StribeckCase.validate(v)
-    rec = RunRecord(StribeckCase.name, {}, {}, ".", comm)
-    run = StribeckCase.run(v, rec, rough=rough, comm=comm)
+    stribeck_case.validate(v)
+    rec = RunRecord(stribeck_case.name, {}, {}, ".", comm)
+    run = stribeck_case.run(v, rec, rough=rough, comm=comm)
     return run, {k: r["value"] for k, r in rec.data["results"].items()}
 
 

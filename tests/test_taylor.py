@@ -274,13 +274,13 @@ def test_bordered_force_control_tangent():
     # the border of the force control of wear-ball-flat (tribofx.bordered): ∂R/∂δ of
     # every row (u, λ_N, λ_T and the wear rows w, ζ of a step in progress), ∂G/∂x and
     # ∂G/∂δ of the contact force, at an iterate off the solution (flat 10 % further in)
-    from tribofx.cases.wear_ball_flat import WearBallCase
+    from tribofx.cases import wear_ball_flat
     from tribofx.params import resolve
     from tribofx.references import hertz
     from tribofx.testing import border_taylor_orders, smooth_direction
 
-    v = resolve(WearBallCase.params, {"scheme": "implicit", "T": "100", "dt": "100"})
-    stepper = WearBallCase.build(v)
+    v = resolve(wear_ball_flat.params, {"scheme": "implicit", "T": "100", "dt": "100"})
+    stepper = wear_ball_flat.build(v)
     control = stepper.hold
     control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
     for w in stepper.wears:

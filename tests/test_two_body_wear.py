@@ -178,7 +178,7 @@ def test_both_bodies_worn_tangent_taylor():
     (w and ζ of pin and block, driven by their cycle-averaged rates) have Taylor
     remainders of order 2.  Directions: 1e-6 mm and 1e-6 MPa keep the active and stick
     sets (as tests/test_two_body.py)."""
-    from tribofx.cases.wear_reciprocating import WearReciprocatingCase as Case
+    from tribofx.cases import wear_reciprocating as Case
     from tribofx.params import resolve
     from tribofx.testing import block_taylor_orders, exact_tangent
 

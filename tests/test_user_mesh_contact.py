@@ -283,7 +283,7 @@ def test_user_cylinder_parallel_equals_serial(tmp_path):
     """
     if MPI.COMM_WORLD.size < 2:
         pytest.skip("compares COMM_WORLD with COMM_SELF: run under mpiexec -n 2")
-    from tribofx.cases.hertz import HertzCase
+    from tribofx.cases import hertz as hertz_case
     from tribofx.output import RunRecord
     from tribofx.params import resolve
 
@@ -293,15 +293,15 @@ def test_user_cylinder_parallel_equals_serial(tmp_path):
     if comm.rank == 0:
         cylinder_2d(path, a_h / 8, 3 * a_h)
     comm.barrier()
-    values = resolve(HertzCase.params, {"mesh_file": path, "load": str(LOAD_2D),
+    values = resolve(hertz_case.params, {"mesh_file": path, "load": str(LOAD_2D),
                                         "steps": "1"})
-    HertzCase.validate(values)
+    hertz_case.validate(values)
     results, dofs = [], []
     for c in (comm, MPI.COMM_SELF):
-        rec = RunRecord("hertz", values, {p.name: p.unit for p in HertzCase.params},
+        rec = RunRecord("hertz", values, {p.name: p.unit for p in hertz_case.params},
                         tmp_path, c)
         rec.profile = None
-        HertzCase.run(values, rec, comm=c)
+        hertz_case.run(values, rec, comm=c)
         results.append({k: v["value"] for k, v in rec.data["results"].items()})
         dofs.append(rec.data["num_dofs"])
     par, ser = results

@@ -225,7 +225,7 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch, t_c):
 
     from tribofx.cases import ehl_cylinder_layer as ehl
 
-    Case = ehl.EHLCylinderLayerCase
+    Case = ehl
     values = dict(LAYER_FAST, t_c=t_c)
     mesh = _layer(tmp_path / "layer.msh", t_c=t_c)
     res = _cli_results("ehl-cylinder-layer", mesh, values, tmp_path / "run")
@@ -318,7 +318,7 @@ def test_user_oring_is_placed_with_its_end_conditions(tmp_path):
     arc ends φ = 225° (sealed side, p = p_s) and 135° (air side) at
     z = ∓ a sin 45° exactly (vertices).  No solve.
     """
-    from tribofx.cases.ehl_oring import EHLORingCase as Case
+    from tribofx.cases import ehl_oring as Case
     from tribofx.cases.ehl_oring import build
 
     mesh = _oring(tmp_path / "ring.msh")
@@ -351,7 +351,7 @@ def test_built_section_as_user_mesh_gives_the_built_problem(tmp_path):
     """
     from tribofx.meshes.oring import write_oring_section
 
-    from tribofx.cases.ehl_oring import EHLORingCase as Case
+    from tribofx.cases import ehl_oring as Case
     from tribofx.cases.ehl_oring import build, geometry
 
     v = _values(Case, **ORING_FAST, mesh=2)
@@ -384,7 +384,7 @@ def test_user_oring_matches_built_section(tmp_path):
     (oscillation 5 % at density 4).  They are printed.  The axial balance of the
     user's ring holds to the Newton tolerance (measured ≈ 1e-12; bound 1e-6).
     """
-    from tribofx.cases.ehl_oring import EHLORingCase as Case
+    from tribofx.cases import ehl_oring as Case
     from tribofx.cases.ehl_oring import build, solve_to
 
     mesh = _oring(tmp_path / "ring.msh", h_l=0.018, h_b=0.07, d_min=0.18, d_max=1.4,
@@ -481,7 +481,7 @@ def test_user_ball_is_placed_with_its_rim_condition(tmp_path):
     at radius R sin 40° from the axis, and the pressure condition holds there
     and nowhere else.  No solve.
     """
-    from tribofx.cases.ehl_ball import EHLBallCase as Case
+    from tribofx.cases import ehl_ball as Case
 
     mesh = _ball(tmp_path / "ball.msh", h_fine=1.0, h_coarse=4.0)
     v = _values(Case, **BALL_FAST, mesh_file=mesh)
@@ -511,7 +511,7 @@ def test_built_ball_as_user_mesh_gives_the_built_problem(tmp_path):
     """
     from tribofx.meshes.ball import write_quarter_ball
 
-    from tribofx.cases.ehl_ball import EHLBallCase as Case
+    from tribofx.cases import ehl_ball as Case
 
     v = _values(Case, **BALL_FAST, mesh=0)
     a = Case.hertz_contact(v).a
@@ -537,7 +537,7 @@ def test_user_ball_matches_built_ball(tmp_path):
     (module docstring), plus 1e-4 relative for the load controller (it stops at
     |W − W*| ≤ 1e-4 W*).
     """
-    from tribofx.cases.ehl_ball import EHLBallCase as Case
+    from tribofx.cases import ehl_ball as Case
 
     mesh = _ball(tmp_path / "ball.msh")
     res = _cli_results("ehl-ball", mesh, BALL_FAST, tmp_path / "run")

@@ -20,7 +20,7 @@ import ufl
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from tribofx.cases.wear_pin import WearPinCase
+from tribofx.cases import wear_pin
 from tribofx.output import RunRecord, bp4_steps
 from tribofx.params import InputError, resolve
 from tribofx.problem import convergence_orders
@@ -37,12 +37,12 @@ MU = 0.3  # Coulomb coefficient of the frictional tests
 
 
 def _run(tmp_path, n, setup=None, **over):
-    values = resolve(WearPinCase.params, {k: str(v) for k, v in over.items()})
-    WearPinCase.validate(values)
-    units = {p.name: p.unit for p in WearPinCase.params}
+    values = resolve(wear_pin.params, {k: str(v) for k, v in over.items()})
+    wear_pin.validate(values)
+    units = {p.name: p.unit for p in wear_pin.params}
     rec = RunRecord("wear-pin", values, units, tmp_path, MPI.COMM_WORLD)
     rec.profile = None
-    stepper = WearPinCase.run(values, rec, n=n, setup=setup)
+    stepper = wear_pin.run(values, rec, n=n, setup=setup)
     res = {k: v["value"] for k, v in rec.data["results"].items()}
     return stepper, res, rec
 
@@ -161,10 +161,10 @@ def _pin_steps(comm, n=6, dt=250.0, T=500.0, E=40.0):
     """Rounded pin (R_tip = 4 mm), implicit, on ``comm``: per step the worn area, max
     depth, contact half-width, worn profile (on every rank), the Newton reports and
     the error estimate of the converged step."""
-    values = resolve(WearPinCase.params, {"scheme": "implicit", "dt": str(dt), "T": str(T),
+    values = resolve(wear_pin.params, {"scheme": "implicit", "dt": str(dt), "T": str(T),
                                           "E": str(E)})
-    stepper, load = WearPinCase.build(values, comm=comm, n=n)
-    WearPinCase.load_up(stepper, load, values)
+    stepper, load = wear_pin.build(values, comm=comm, n=n)
+    wear_pin.load_up(stepper, load, values)
     wear = stepper.wear
     hist = []
 
@@ -248,9 +248,9 @@ def test_inverting_shape_update_is_rejected(tmp_path, scheme):
     # flat punch: a wear increment k q V Δt = 2.5 mm exceeds the pin height
     # (2 mm), so the uniform shape change w_y = d(1 − y/H) has det G = 1 − d/H < 0;
     # the step must be refused and the state restored (the stepper then cuts Δt)
-    values = resolve(WearPinCase.params, {"scheme": scheme, "R_tip": "0", "E": "40"})
-    stepper, load = WearPinCase.build(values, n=4)
-    WearPinCase.load_up(stepper, load, values)
+    values = resolve(wear_pin.params, {"scheme": scheme, "R_tip": "0", "E": "40"})
+    stepper, load = wear_pin.build(values, n=4)
+    wear_pin.load_up(stepper, load, values)
     w = stepper.wear.body.w
     w0 = w.x.array.copy()
     with pytest.raises(MeshInversion):
@@ -266,8 +266,8 @@ def test_inverting_shape_update_is_rejected(tmp_path, scheme):
 def _critical(n, E):
     from tribofx.studies.wear_stability import pin_critical_step
 
-    values = resolve(WearPinCase.params, {"E": str(E)})
-    dt_cr, probe = pin_critical_step(WearPinCase, values, n, lo=5.0, hi=2000.0)
+    values = resolve(wear_pin.params, {"E": str(E)})
+    dt_cr, probe = pin_critical_step(wear_pin, values, n, lo=5.0, hi=2000.0)
     return dt_cr, probe
 
 
@@ -492,13 +492,13 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
     from tribofx.plots.wear import plot_dt_study
     from tribofx.studies.wear_dt_study import run_dt_study
 
-    values = resolve(WearPinCase.params, {"E": "80", "T": "400", "study": "dt",
+    values = resolve(wear_pin.params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "200,50,25,12.5", "study_ref": "richardson",
                                           "study_ref_dt": "3.125"})
-    WearPinCase.validate(values)
-    dts = WearPinCase.study_lists(values)[0]
+    wear_pin.validate(values)
+    dts = wear_pin.study_lists(values)[0]
     rec = _StudyRecord()
-    run_dt_study(WearPinCase, values, rec, [6], dts)
+    run_dt_study(wear_pin, values, rec, [6], dts)
     err = rec.data["study_error_implicit"]["6x6"]
     dt_cr = rec.data["study_dt_cr"]["6x6"]
     orders = [math.log2(a / b) for a, b in zip(err[1:-1], err[2:])]
@@ -539,13 +539,13 @@ def test_dt_study_with_bdf2(tmp_path):
     from tribofx.plots.wear import plot_dt_study
     from tribofx.studies.wear_dt_study import run_dt_study
 
-    values = resolve(WearPinCase.params, {"E": "80", "T": "400", "study": "dt",
+    values = resolve(wear_pin.params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "50,25,12.5", "study_ref_dt": "3.125",
                                           "study_schemes": "implicit,bdf2",
                                           "study_critical": "false"})
-    WearPinCase.validate(values)
+    wear_pin.validate(values)
     rec = _StudyRecord()
-    run_dt_study(WearPinCase, values, rec, [6], WearPinCase.study_lists(values)[0])
+    run_dt_study(wear_pin, values, rec, [6], wear_pin.study_lists(values)[0])
     be, bdf = rec.data["study_error_implicit"]["6x6"], rec.data["study_error_bdf2"]["6x6"]
     print("backward Euler", be, "BDF2", bdf, "reference", rec.data["study_reference"])
     assert "study_error_explicit" not in rec.data
@@ -560,9 +560,9 @@ def test_dt_study_with_bdf2(tmp_path):
 def test_study_schemes_refused():
     for over in ({"study_schemes": "implicit,crank"}, {"study_schemes": ","},
                  {"study_schemes": "bdf2", "study_ref": "richardson"}):
-        values = resolve(WearPinCase.params, {"study": "dt", **over})
+        values = resolve(wear_pin.params, {"study": "dt", **over})
         with pytest.raises(InputError):
-            WearPinCase.validate(values)
+            wear_pin.validate(values)
 
 
 # -- Taylor tests of the wear tangents (u, λ_N, [λ_T], w, ζ) --------------------------
@@ -593,10 +593,10 @@ def test_wear_tangent_taylor(scheme, friction, law, k_grad):
     # directions of size 1e-3 (mm, MPa) stay within every branch of the semismooth
     # law (active set, Coulomb cone, k(d) > 0) for ε ≤ 1e-3, so the remainder of an
     # exact tangent decays like ε² (order 2; a wrong coupling block gives order 1)
-    values = resolve(WearPinCase.params, {"scheme": scheme, "E": "40", "friction": str(friction),
+    values = resolve(wear_pin.params, {"scheme": scheme, "E": "40", "friction": str(friction),
                                           "law": law, "k_grad": str(k_grad)})
-    stepper, load = WearPinCase.build(values, n=4)
-    WearPinCase.load_up(stepper, load, values)
+    stepper, load = wear_pin.build(values, n=4)
+    wear_pin.load_up(stepper, load, values)
     stepper.step(200.0)
     stepper.wear.dt.value = 200.0  # the residual of the step (end_step zeroed Δt)
     # the converged inactive nodes sit on the kink λ_N = 0 of the rate k V max(−λ_N, 0)
@@ -619,10 +619,10 @@ def test_cycle_averaged_wear_tangent_taylor():
     # sliding contact).  Same directions and bound as test_wear_tangent_taylor.  (The
     # implicit slow step iterates these same two problems, Picard, so it adds no tangent)
     scheme = "explicit"
-    values = resolve(WearPinCase.params, {"scheme": scheme, "E": "40", "mode": "cyclic",
+    values = resolve(wear_pin.params, {"scheme": scheme, "E": "40", "mode": "cyclic",
                                           "friction": str(MU), "fast_steps": "4"})
-    stepper, load = WearPinCase.build(values, n=4)
-    WearPinCase.load_up(stepper, load, values)
+    stepper, load = wear_pin.build(values, n=4)
+    wear_pin.load_up(stepper, load, values)
     stepper.start()
     stepper.step(200.0)
     wear = stepper.wear
@@ -660,11 +660,11 @@ def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
     over = {"scheme": scheme, "E": "40"}
     if scheme == "cyclic":  # reciprocating, time-scale separation (contact memory, rate_bar)
         over.update(scheme="explicit", mode="cyclic", friction=str(MU), fast_steps="4")
-    values = resolve(WearPinCase.params, over)
+    values = resolve(wear_pin.params, over)
     tmp = Path(comm.bcast(str(tmp_path), root=0))  # one folder for all ranks
     ck, copy = tmp / "ck", tmp / "ck_step1"
-    stepper, load = WearPinCase.build(values, n=4, checkpoint=ck)
-    WearPinCase.load_up(stepper, load, values)
+    stepper, load = wear_pin.build(values, n=4, checkpoint=ck)
+    wear_pin.load_up(stepper, load, values)
 
     def keep_step1(st, report):
         # on_step runs before its step's checkpoint is written (the checkpoint holds
@@ -676,7 +676,7 @@ def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
     stepper.start()  # the cyclic run-in (nothing otherwise)
     stepper.run(400.0, 200.0, on_step=keep_step1)
     ref = stepper.state()
-    fresh, load2 = WearPinCase.build(values, n=4)
+    fresh, load2 = wear_pin.build(values, n=4)
     fresh.load_checkpoint(copy)
     assert fresh.t == 200.0 and fresh.steps == 1 and fresh.controller.dt == 200.0
     assert float(load2.value) == 1.0  # the load factor is part of the state
@@ -697,10 +697,10 @@ def test_pressure_dependent_wear_coefficient():
     the solved state is the vertex-rule sum Σ w_i k(p_i) p_i V over the contact nodes,
     recomputed here from the solved multipliers (p = −λ_N) with the law in NumPy, to
     the tolerance of the multiplier rows."""
-    values = resolve(WearPinCase.params, {"scheme": "implicit", "E": "40", "k_law": "pressure",
+    values = resolve(wear_pin.params, {"scheme": "implicit", "E": "40", "k_law": "pressure",
                                           "k_ps": "1.0", "k_m": "2"})
-    stepper, load = WearPinCase.build(values, n=4)
-    WearPinCase.load_up(stepper, load, values)
+    stepper, load = wear_pin.build(values, n=4)
+    wear_pin.load_up(stepper, load, values)
     stepper.step(200.0)
     wear = stepper.wear
     c = wear.contact
@@ -726,12 +726,12 @@ def test_pressure_dependent_wear_coefficient():
 def _pin_run(scheme, dt, tol=0.0, T=400.0, n=6, per="unit_step", controller="i"):
     from tribofx.studies.wear_stability import SubRecord
 
-    v = resolve(WearPinCase.params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
+    v = resolve(wear_pin.params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
                                      "R_tip": "20", "tol": str(tol), "tol_per": per,
                                      "controller": controller})
-    WearPinCase.validate(v)
+    wear_pin.validate(v)
     rec = SubRecord()
-    stepper = WearPinCase.run(v, rec, n=n)
+    stepper = wear_pin.run(v, rec, n=n)
     return stepper.wear.gather_shape(root_only=False)["X_worn"], rec.data["results"]
 
 
@@ -767,13 +767,13 @@ def test_bdf2_wear_is_second_order():
 
 
 def _cyclic_pin_profile(scheme, dt):
-    v = resolve(WearPinCase.params, {"scheme": scheme, "dt": str(dt), "T": "400", "E": "40",
+    v = resolve(wear_pin.params, {"scheme": scheme, "dt": str(dt), "T": "400", "E": "40",
                                      "R_tip": "20", "mode": "cyclic", "friction": "0.3",
                                      "stroke": "1.0", "fast_steps": "8"})
-    WearPinCase.validate(v)
+    wear_pin.validate(v)
     from tribofx.studies.wear_stability import SubRecord
 
-    return WearPinCase.run(v, SubRecord(), n=6).wear.gather_shape(root_only=False)["X_worn"]
+    return wear_pin.run(v, SubRecord(), n=6).wear.gather_shape(root_only=False)["X_worn"]
 
 
 @pytest.mark.slow
@@ -811,9 +811,9 @@ def test_bdf2_wear_tangent_taylor():
     """The monolithic BDF2 step (ω = Δt/Δt_prev = 1/2: c₀ = 4/3, c₁ = −1/6, a nonzero
     previous swept volume) has the exact tangent: Taylor order 2 per block, as
     test_wear_tangent_taylor."""
-    values = resolve(WearPinCase.params, {"scheme": "bdf2", "E": "40"})
-    stepper, load = WearPinCase.build(values, n=4)
-    WearPinCase.load_up(stepper, load, values)
+    values = resolve(wear_pin.params, {"scheme": "bdf2", "E": "40"})
+    stepper, load = wear_pin.build(values, n=4)
+    wear_pin.load_up(stepper, load, values)
     stepper.step(200.0)
     stepper.step(100.0)
     wear = stepper.wear
@@ -918,9 +918,9 @@ def test_error_control_needs_bdf2_and_no_dt_study():
 
     for over in ({"scheme": "implicit", "tol": "1e-5"},
                  {"scheme": "bdf2", "tol": "1e-5", "study": "dt"}):
-        v = resolve(WearPinCase.params, over)
+        v = resolve(wear_pin.params, over)
         with pytest.raises(InputError, match="tol > 0"):
-            WearPinCase.validate(v)
-    v = resolve(WearPinCase.params, {"scheme": "bdf2", "controller": "pi"})
+            wear_pin.validate(v)
+    v = resolve(wear_pin.params, {"scheme": "bdf2", "controller": "pi"})
     with pytest.raises(InputError, match="controller chooses the steps"):
-        WearPinCase.validate(v)
+        wear_pin.validate(v)

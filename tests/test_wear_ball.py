@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball_flat import WearBallCase
+from tribofx.cases import wear_ball_flat
 from tribofx.output import RunRecord
 from tribofx.params import resolve
 from tribofx.problem import NewtonDivergence, convergence_orders
@@ -29,12 +29,12 @@ def hertz_radius(F, R, E, nu):
 
 
 def _run(tmp_path, comm=MPI.COMM_WORLD, t_stop=None, **over):
-    values = resolve(WearBallCase.params, {k: str(v) for k, v in over.items()})
-    WearBallCase.validate(values)
-    units = {p.name: p.unit for p in WearBallCase.params}
+    values = resolve(wear_ball_flat.params, {k: str(v) for k, v in over.items()})
+    wear_ball_flat.validate(values)
+    units = {p.name: p.unit for p in wear_ball_flat.params}
     rec = RunRecord("wear-ball-flat", values, units, tmp_path, comm)
     rec.profile = None
-    WearBallCase.run(values, rec, comm=comm, t_stop=t_stop)
+    wear_ball_flat.run(values, rec, comm=comm, t_stop=t_stop)
     res = {k: r["value"] for k, r in rec.data["results"].items()}
     return values, res, rec
 
@@ -92,9 +92,9 @@ def test_monolithic_newton_quadratic(short_implicit):
 
 def _one_step(force_control, scheme="implicit", dt=100.0):
     """Build the short case, reach F on the unworn ball and take one step of Δt."""
-    v = resolve(WearBallCase.params, {"scheme": scheme, "T": "100", "dt": str(dt),
+    v = resolve(wear_ball_flat.params, {"scheme": scheme, "T": "100", "dt": str(dt),
                                       "force_control": force_control})
-    stepper = WearBallCase.build(v)
+    stepper = wear_ball_flat.build(v)
     stepper.hold.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
     report = stepper.step(dt)
     return stepper, report
@@ -191,8 +191,8 @@ def test_filtered_error_estimate_is_the_linearized_response():
     # step again, nonlinearly, with s_n shifted by −ε c₀ d/c₁ (the same right side)
     from tribofx.error_filter import filtered_defect
 
-    v = resolve(WearBallCase.params, {"scheme": "bdf2", "T": "100", "dt": "20"})
-    stepper = WearBallCase.build(v)
+    v = resolve(wear_ball_flat.params, {"scheme": "bdf2", "T": "100", "dt": "20"})
+    stepper = wear_ball_flat.build(v)
     control, wear = stepper.hold, stepper.wear
     control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
     stepper.step(20.0)
@@ -253,8 +253,8 @@ def test_rigid_cap_scar_law_and_uniform_pressure(tmp_path):
     a_scar = np.asarray(res["scar_radius"])
     a_cont = np.asarray(res["contact_radius"])
     a_ref = rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * t)
-    p_scar = WearBallCase.late_time_exponent(t, a_scar, v["V"], 400)
-    p_cont = WearBallCase.late_time_exponent(t, a_cont, v["V"], 400)
+    p_scar = wear_ball_flat.late_time_exponent(t, a_scar, v["V"], 400)
+    p_cont = wear_ball_flat.late_time_exponent(t, a_cont, v["V"], 400)
     ratio = np.asarray(res["pressure_ratio"])
     print("t", t, "\nscar", a_scar, "\ncontact", a_cont, "\nrigid cap", a_ref,
           "\nexponents scar %.4f contact %.4f" % (p_scar, p_cont), "\npressure max/min", ratio)
@@ -303,13 +303,13 @@ def test_explicit_conditionally_implicit_unconditionally_stable(tmp_path):
     # the pressure nonuniformity must not grow: it does for the explicit scheme
     # above its critical step (measured by bisection, below) and not for the
     # implicit one (unconditionally stable)
-    v = resolve(WearBallCase.params, {})
+    v = resolve(wear_ball_flat.params, {})
     _, _, rec = _run(tmp_path, t_stop=300.0)
     start = rec.stepper.state()
     s0 = pressure_nonuniformity(rec.stepper.wear.contact)
 
     def growth(scheme, dt, steps=5):
-        stepper = WearBallCase.build({**v, "scheme": scheme})
+        stepper = wear_ball_flat.build({**v, "scheme": scheme})
         # the state is restored by dof index: the rebuilt mesh must be the same
         assert np.array_equal(stepper.wear.body.mesh.geometry.x,
                               rec.stepper.wear.body.mesh.geometry.x)
@@ -343,9 +343,9 @@ def test_bad_input_is_rejected(over, fragment):
     from tribofx.cases import get_case
     from tribofx.params import InputError
 
-    assert get_case("wear-ball-flat") is WearBallCase
+    assert get_case("wear-ball-flat") is wear_ball_flat
     with pytest.raises(InputError, match=fragment):
-        WearBallCase.validate(resolve(WearBallCase.params, over))
+        wear_ball_flat.validate(resolve(wear_ball_flat.params, over))
 
 
 def test_bdf2_with_error_control_conserves_the_worn_volume(tmp_path):

@@ -18,13 +18,14 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from tribofx.cases.wear_ball_halfspace import WearBallHalfspaceCase, groove_mesh, surface_data
+from tribofx.cases import wear_ball_halfspace
+from tribofx.cases.wear_ball_halfspace import groove_mesh, surface_data
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hertz
 from tribofx.testing import owned_arrays, taylor_orders
 
-CASE = WearBallHalfspaceCase
+CASE = wear_ball_halfspace
 serial = pytest.mark.skipif(MPI.COMM_WORLD.size > 1, reason="serial-only case")
 
 

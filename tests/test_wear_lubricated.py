@@ -14,7 +14,7 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.hertz import NAMES, hertz_body
 
 from tribofx.body import Body
-from tribofx.cases.wear_lubricated import WearLubricatedCase
+from tribofx.cases import wear_lubricated
 from tribofx.interfaces import Film, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import RunRecord
@@ -72,9 +72,9 @@ def test_rough_flat_punch_wears_by_archard():
 
 
 def _run(comm=MPI.COMM_WORLD, **kw):
-    v = resolve(WearLubricatedCase.params, {"T": 1440.0, "dt": 720.0, **kw})
-    rec = RunRecord(WearLubricatedCase.name, {}, {}, ".", comm)
-    run = WearLubricatedCase.run(v, rec, comm=comm)
+    v = resolve(wear_lubricated.params, {"T": 1440.0, "dt": 720.0, **kw})
+    rec = RunRecord(wear_lubricated.name, {}, {}, ".", comm)
+    run = wear_lubricated.run(v, rec, comm=comm)
     return v, run, {k: np.asarray(r["value"]) for k, r in rec.data["results"].items()
                     if k not in ("final_film", "worn_profiles")}
 

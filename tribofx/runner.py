@@ -53,10 +53,9 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     progress with status "interrupted: …" and its state written
     (:mod:`tribofx.interrupt`).
 
-    A case is a class with ``name``, ``doc``, ``params`` (:class:`Param` tuple),
-    ``resumable`` and
-    the static/class methods ``validate(values)``, ``run(values, record, progress,
-    verbose)`` (returns the problem object; on failure it raises
+    A case is a module of :mod:`tribofx.cases` with ``name``, ``doc``, ``params``
+    (:class:`Param` tuple), ``resumable`` and the functions ``validate(values)``,
+    ``run(values, record, progress, verbose)`` (returns the problem object; on failure it raises
     :class:`~tribofx.reports.NewtonDivergence`, a :class:`~tribofx.reports.RunStop`,
     with the problem, restored to its last converged state, as ``model``),
     ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and

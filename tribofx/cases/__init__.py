@@ -1,35 +1,45 @@
-"""Registry of runnable cases: ``tribofx run CASE``."""
+"""Registry of runnable cases: ``tribofx run CASE``.
 
-from .contact_ironing import IroningCase
-from .contact_patch import ContactPatchCase
-from .contact_two_cylinders import TwoCylindersCase
-from .ehl_ball import EHLBallCase
-from .ehl_cylinder_layer import EHLCylinderLayerCase
-from .ehl_oring import EHLORingCase
-from .ehl_squeeze import EHLSqueezeCase
-from .ehl_two_cylinders import EHLTwoCylindersCase
-from .hertz import HertzCase
-from .reynolds_cylinder import CylinderCase
-from .reynolds_slider import SliderCase
-from .stribeck import StribeckCase
-from .wear_ball_flat import WearBallCase
-from .wear_ball_halfspace import WearBallHalfspaceCase
-from .wear_lubricated import WearLubricatedCase
-from .wear_pin import WearPinCase
-from .wear_reciprocating import WearReciprocatingCase
+A case is a module of this package named for it (``ehl_ball`` is ``ehl-ball``):
+it declares ``name``, ``doc``, ``params`` and ``resumable`` and defines
+``validate(v)``, ``build(v)``, ``run(v, record, progress, verbose, ...)``,
+``vtx_fields(model)`` and ``plot(profile, outdir)`` (see
+:func:`tribofx.runner.run_case`).  The other modules here are helpers grouped by
+subject (``film_setup``, ``slow_time``, ``rough_contact``, ``curved_bodies``,
+``user_pin``); no case imports another.
+"""
+
+from . import (
+    contact_ironing,
+    contact_patch,
+    contact_two_cylinders,
+    ehl_ball,
+    ehl_cylinder_layer,
+    ehl_oring,
+    ehl_squeeze,
+    ehl_two_cylinders,
+    hertz,
+    reynolds_cylinder,
+    reynolds_slider,
+    stribeck,
+    wear_ball_flat,
+    wear_ball_halfspace,
+    wear_lubricated,
+    wear_pin,
+    wear_reciprocating,
+)
 
 __all__ = ["CASES", "get_case"]
 
-CASES = {c.name: c for c in (HertzCase, SliderCase, CylinderCase, EHLCylinderLayerCase,
-                                  WearPinCase, WearBallHalfspaceCase, EHLBallCase, WearBallCase,
-                                  EHLORingCase, EHLSqueezeCase, EHLTwoCylindersCase,
-                                  TwoCylindersCase, ContactPatchCase, IroningCase,
-                                  WearReciprocatingCase, StribeckCase,
-                                  WearLubricatedCase)}
+CASES = {c.name: c for c in (hertz, reynolds_slider, reynolds_cylinder, ehl_cylinder_layer,
+                             wear_pin, wear_ball_halfspace, ehl_ball, wear_ball_flat, ehl_oring,
+                             ehl_squeeze, ehl_two_cylinders, contact_two_cylinders,
+                             contact_patch, contact_ironing, wear_reciprocating, stribeck,
+                             wear_lubricated)}
 
 
 def get_case(name):
-    """Return the case class called ``name`` or raise :class:`tribofx.params.InputError`."""
+    """Return the case module called ``name`` or raise :class:`tribofx.params.InputError`."""
     from ..params import InputError
 
     if name not in CASES:

@@ -16,7 +16,7 @@ pressing and sliding motion is prescribed), read and checked by
 own: the case's die spans R on either side of its axis x_c = R/2 + 1 and its
 lowest point touches the slab's top, so a user's die of half-width b (half its
 x extent) is moved so that its x extent is centred on x_c = b/2 + 1 and its
-lowest ``arc`` node is on y = H (:meth:`IroningCase._user_die`).  b replaces
+lowest ``arc`` node is on y = H (:meth:`_user_die`).  b replaces
 ``R`` (R = b for the case's die; the slide-off check uses it) and is reported
 as ``die_half_width``; one-line error if part of the die lies below its
 lowest arc node or ``top`` reaches down to it (``arc`` is not its lower
@@ -49,7 +49,8 @@ from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import InputError, Param
 from ..problem import NewtonDivergence, Problem
 
-__all__ = ["IroningCase"]
+__all__ = ["build", "check_slide", "doc", "name", "params", "plot", "report", "resumable",
+           "run", "validate", "vtx_fields"]
 
 
 def _slab(comm, L, H, nx, ny, material):
@@ -57,207 +58,208 @@ def _slab(comm, L, H, nx, ny, material):
     return Body(msh, tags, NAMES, "plane_strain", material, name="slab")
 
 
-class IroningCase:
-    """Case ``contact-ironing``; see the module docstring."""
+name = "contact-ironing"
 
-    name = "contact-ironing"
-    resumable = False   # no per-step checkpoint
 
-    doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
+resumable = False   # no per-step checkpoint
 
-    params = (
-        Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),
-        Param("friction", float, 0.3, "-", "Coulomb coefficient", lower=0, closed=True),
-        Param("R", float, 3.0, "mm", "die radius", lower=0),
-        Param("L", float, 9.0, "mm", "slab length", lower=0),
-        Param("H", float, 1.0, "mm", "slab height", lower=0),
-        Param("depth", float, 0.5, "mm", "indentation of the die", lower=0),
-        Param("slide", float, 4.0, "mm", "sliding distance of the die", lower=0),
-        Param("n", int, 60, "-", "slab elements along its length", lower=4, upper=2000),
-        Param("press_steps", int, 5, "-", "indentation steps", lower=1, upper=10000),
-        Param("slide_steps", int, 40, "-", "sliding steps", lower=1, upper=10000),
-        Param("mesh_file", str, "", "-",
-              "your own die: a 2D gmsh .msh with physical groups arc (its lower boundary, "
-              "in contact) and top (moved); its x extent centred on b/2 + 1 (b its "
-              "half-width, which replaces R) and its lowest arc point put on the slab top "
-              "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point"),
-    )
 
-    @staticmethod
-    def validate(v):
-        """Reject a die that would slide off the slab or indent through it.
+doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
 
-        With ``mesh_file`` the die's half-width is known only once the mesh is
-        read: :meth:`build` checks the slide then (:meth:`check_slide`).
-        """
-        if v["depth"] >= v["H"]:
-            raise InputError("depth must be below the slab height H")
-        if not v["mesh_file"]:
-            IroningCase.check_slide(v, v["R"])
 
-    @staticmethod
-    def check_slide(v, b):
-        """Reject a slide that takes the axis of a die of half-width ``b`` off the slab."""
-        if 0.5 * b + 1 + v["slide"] > v["L"]:
-            if v["mesh_file"]:
-                raise InputError(f"the die would slide off the slab: slide > L − b/2 − 1 = "
-                                 f"{v['L'] - 0.5 * b - 1:.6g} mm (b = {b:.6g} mm: the "
-                                 f"half-width of the die in {v['mesh_file']!r})")
-            raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
+params = (
+    Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),
+    Param("friction", float, 0.3, "-", "Coulomb coefficient", lower=0, closed=True),
+    Param("R", float, 3.0, "mm", "die radius", lower=0),
+    Param("L", float, 9.0, "mm", "slab length", lower=0),
+    Param("H", float, 1.0, "mm", "slab height", lower=0),
+    Param("depth", float, 0.5, "mm", "indentation of the die", lower=0),
+    Param("slide", float, 4.0, "mm", "sliding distance of the die", lower=0),
+    Param("n", int, 60, "-", "slab elements along its length", lower=4, upper=2000),
+    Param("press_steps", int, 5, "-", "indentation steps", lower=1, upper=10000),
+    Param("slide_steps", int, 40, "-", "sliding steps", lower=1, upper=10000),
+    Param("mesh_file", str, "", "-",
+          "your own die: a 2D gmsh .msh with physical groups arc (its lower boundary, "
+          "in contact) and top (moved); its x extent centred on b/2 + 1 (b its "
+          "half-width, which replaces R) and its lowest arc point put on the slab top "
+          "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point"),
+)
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
-        The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
-        and its arc element size ``h_die``.
-        """
-        h = v["L"] / v["n"]
+def validate(v):
+    """Reject a die that would slide off the slab or indent through it.
+
+    With ``mesh_file`` the die's half-width is known only once the mesh is
+    read: :meth:`build` checks the slide then (:meth:`check_slide`).
+    """
+    if v["depth"] >= v["H"]:
+        raise InputError("depth must be below the slab height H")
+    if not v["mesh_file"]:
+        check_slide(v, v["R"])
+
+
+def check_slide(v, b):
+    """Reject a slide that takes the axis of a die of half-width ``b`` off the slab."""
+    if 0.5 * b + 1 + v["slide"] > v["L"]:
         if v["mesh_file"]:
-            dmsh, dtags, names = read_user_mesh(v["mesh_file"], comm, 2, ("arc", "top"))
-            b, h_die = cls._user_die(dmsh, dtags, names, v)
-        else:
-            b, h_die, names = v["R"], h, {"arc": ARC, "top": TOP}
-            dmsh, dtags = die_body(v["R"], 0.5 * v["R"] + 1.0, v["H"] + v["R"], h, comm)
-        mu, lmbda = lame_parameters(v["E"], v["nu"])
-        slab = _slab(comm, v["L"], v["H"], v["n"], max(2, round(v["H"] / h)),
-                     ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
-        slab.add_dirichlet("bottom", np.zeros(2))
-        mu_d, lmbda_d = lame_parameters(1000 * v["E"], v["nu"])
-        die = Body(dmsh, dtags, names, "plane_strain",
-                   ("neo-hookean", {"mu": mu_d, "lmbda": lmbda_d}), name="die")
-        motion = die.add_dirichlet("top", np.zeros(2))
-        contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / min(h, h_die),
-                                 friction=v["friction"])
-        problem = Problem([slab, die, contact], name="ironing", max_it=40)
-        return {"slab": slab, "die": die, "contact": contact, "problem": problem,
-                "motion": motion, "b": b, "h_die": h_die}
+            raise InputError(f"the die would slide off the slab: slide > L − b/2 − 1 = "
+                             f"{v['L'] - 0.5 * b - 1:.6g} mm (b = {b:.6g} mm: the "
+                             f"half-width of the die in {v['mesh_file']!r})")
+        raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Press, then slide; the die's reaction force at every converged step."""
-        run = cls.build(v)
-        contact, problem, motion = run["contact"], run["problem"], run["motion"]
-        record.data["num_dofs"] = problem.num_dofs
-        record.result("die_half_width", run["b"], "mm")
-        record.result("die_element_size", run["h_die"], "mm")
-        history = []
 
-        def reaction():
-            on_die = contact.forces(problem)[1]
-            history.append([float(motion.value[0]), float(motion.value[1]),
-                            float(on_die[0]), float(on_die[1])])
-            if progress is not None:
-                progress.update(1)
-            return on_die
+def build(v, comm=MPI.COMM_WORLD):
+    """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
-        try:
-            # secant predictor from the second step of each phase (its start state
-            # remembered): without it the first iterate of a step has zero slip
-            # increments, every node that slid in the last step sits exactly on the
-            # Coulomb cone, and round-off (which differs between partitions) picks
-            # stick or slip for its first tangent
-            for index, target, steps in ((1, -v["depth"], v["press_steps"]),
-                                         (0, v["slide"], v["slide_steps"])):
-                phase = Continuation(problem, ConstantParameter(motion, index),
-                                     response=reaction, verbose=verbose,
-                                     record=record.data["newton_iterations"])
-                phase.remember()
-                phase.march(target, steps)
-        except NewtonDivergence as err:
-            err.model = run
-            raise
-        finally:
-            cls.report(history, v, record)
-            on_die = contact.forces(problem)[1]
-            die = run["die"]
-            record.result("equilibrium_error", [abs(die.reaction("top", c) + float(on_die[c]))
-                                                for c in (0, 1)], "N/mm")
-            record.result("equilibrium_bound", die.V.dofmap.index_map.size_global * 2
-                          * die.tolerances()[die.u].atol, "N/mm")
-        return run
+    The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
+    and its arc element size ``h_die``.
+    """
+    h = v["L"] / v["n"]
+    if v["mesh_file"]:
+        dmsh, dtags, names = read_user_mesh(v["mesh_file"], comm, 2, ("arc", "top"))
+        b, h_die = _user_die(dmsh, dtags, names, v)
+    else:
+        b, h_die, names = v["R"], h, {"arc": ARC, "top": TOP}
+        dmsh, dtags = die_body(v["R"], 0.5 * v["R"] + 1.0, v["H"] + v["R"], h, comm)
+    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    slab = _slab(comm, v["L"], v["H"], v["n"], max(2, round(v["H"] / h)),
+                 ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
+    slab.add_dirichlet("bottom", np.zeros(2))
+    mu_d, lmbda_d = lame_parameters(1000 * v["E"], v["nu"])
+    die = Body(dmsh, dtags, names, "plane_strain",
+               ("neo-hookean", {"mu": mu_d, "lmbda": lmbda_d}), name="die")
+    motion = die.add_dirichlet("top", np.zeros(2))
+    contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / min(h, h_die),
+                             friction=v["friction"])
+    problem = Problem([slab, die, contact], name="ironing", max_it=40)
+    return {"slab": slab, "die": die, "contact": contact, "problem": problem,
+            "motion": motion, "b": b, "h_die": h_die}
 
-    @staticmethod
-    def report(history, v, record):
-        """Force history, friction ratio and smoothness of the sliding phase."""
-        hist = np.array(history).reshape(-1, 4)
-        record.result("die_position", hist[:, :2].tolist(), "mm")
-        record.result("reaction_force", hist[:, 2:].tolist(), "N/mm")
-        sliding = hist[v["press_steps"]:]
-        steady = sliding[len(sliding) // 2:]     # past the transition to steady sliding
-        if len(steady) >= 3:
-            F = steady[:, 2:]
-            record.result("force_ratio_sliding",
-                          float(np.median(np.abs(F[:, 0] / F[:, 1]))), "-")
-            d2 = np.abs(np.diff(F, 2, axis=0)).max(axis=0) / np.abs(F).max(axis=0)
-            record.result("smoothness_Fx", float(d2[0]), "-")
-            record.result("smoothness_Fy", float(d2[1]), "-")
-        if MPI.COMM_WORLD.rank == 0:
-            record.profile = {"position": hist[:, :2], "force": hist[:, 2:],
-                              "press_steps": v["press_steps"]}
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacements of slab and die."""
-        return {"slab": [run["slab"].u], "die": [run["die"].u]}
+def run(v, record, progress=None, verbose=False):
+    """Press, then slide; the die's reaction force at every converged step."""
+    run = build(v)
+    contact, problem, motion = run["contact"], run["problem"], run["motion"]
+    record.data["num_dofs"] = problem.num_dofs
+    record.result("die_half_width", run["b"], "mm")
+    record.result("die_element_size", run["h_die"], "mm")
+    history = []
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Reaction force history of the die (``reaction.png``)."""
-        from ..plots import pyplot
+    def reaction():
+        on_die = contact.forces(problem)[1]
+        history.append([float(motion.value[0]), float(motion.value[1]),
+                        float(on_die[0]), float(on_die[1])])
+        if progress is not None:
+            progress.update(1)
+        return on_die
 
-        plt = pyplot()
-        F = profile["force"]
-        k = np.arange(len(F))
-        fig, ax = plt.subplots(figsize=(6, 3.8))
-        ax.plot(k, F[:, 0], ".-", label="F_x (tangential)")
-        ax.plot(k, F[:, 1], ".-", label="F_y (normal)")
-        ax.axvline(profile["press_steps"] - 0.5, color="k", lw=0.6)
-        ax.set_xlabel("step (pressing, then sliding)")
-        ax.set_ylabel("reaction on the die (N/mm)")
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(outdir / "reaction.png", dpi=110)
-        plt.close(fig)
+    try:
+        # secant predictor from the second step of each phase (its start state
+        # remembered): without it the first iterate of a step has zero slip
+        # increments, every node that slid in the last step sits exactly on the
+        # Coulomb cone, and round-off (which differs between partitions) picks
+        # stick or slip for its first tangent
+        for index, target, steps in ((1, -v["depth"], v["press_steps"]),
+                                     (0, v["slide"], v["slide_steps"])):
+            phase = Continuation(problem, ConstantParameter(motion, index),
+                                 response=reaction, verbose=verbose,
+                                 record=record.data["newton_iterations"])
+            phase.remember()
+            phase.march(target, steps)
+    except NewtonDivergence as err:
+        err.model = run
+        raise
+    finally:
+        report(history, v, record)
+        on_die = contact.forces(problem)[1]
+        die = run["die"]
+        record.result("equilibrium_error", [abs(die.reaction("top", c) + float(on_die[c]))
+                                            for c in (0, 1)], "N/mm")
+        record.result("equilibrium_bound", die.V.dofmap.index_map.size_global * 2
+                      * die.tolerances()[die.u].atol, "N/mm")
+    return run
 
-    @classmethod
-    def _user_die(cls, msh, ft, names, v):
-        """Place a user's die as the case places its own; return (half-width b, h_die).
 
-        The x extent is centred on x_c = b/2 + 1 and the lowest ``arc`` node put
-        on the slab's top y = H.  One-line :class:`InputError` if a node of the
-        die lies below that point, or a node of ``top`` as low as it, by more
-        than 1e-9 of the die's size (the arc is not its lower boundary: the die
-        would start inside the slab, or press it with a face that is not in
-        contact), or if the slide takes x_c off the slab (:meth:`check_slide`).
-        h_die is the mean length of the arc facets within b of (x_c, H)
-        (:func:`tribofx.meshes.user.boundary_facet_size`).
-        """
-        comm, x = msh.comm, msh.geometry.x
+def report(history, v, record):
+    """Force history, friction ratio and smoothness of the sliding phase."""
+    hist = np.array(history).reshape(-1, 4)
+    record.result("die_position", hist[:, :2].tolist(), "mm")
+    record.result("reaction_force", hist[:, 2:].tolist(), "N/mm")
+    sliding = hist[v["press_steps"]:]
+    steady = sliding[len(sliding) // 2:]     # past the transition to steady sliding
+    if len(steady) >= 3:
+        F = steady[:, 2:]
+        record.result("force_ratio_sliding",
+                      float(np.median(np.abs(F[:, 0] / F[:, 1]))), "-")
+        d2 = np.abs(np.diff(F, 2, axis=0)).max(axis=0) / np.abs(F).max(axis=0)
+        record.result("smoothness_Fx", float(d2[0]), "-")
+        record.result("smoothness_Fy", float(d2[1]), "-")
+    if MPI.COMM_WORLD.rank == 0:
+        record.profile = {"position": hist[:, :2], "force": hist[:, 2:],
+                          "press_steps": v["press_steps"]}
 
-        def extent(a):
-            return (comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN),
-                    comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX))
 
-        (lo, hi), (ylo, yhi) = extent(x[:, 0]), extent(x[:, 1])
-        b = 0.5 * (hi - lo)
-        cls.check_slide(v, b)
+def vtx_fields(run):
+    """Displacements of slab and die."""
+    return {"slab": [run["slab"].u], "die": [run["die"].u]}
 
-        def nodes(name):
-            return np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(names[name]),
-                                                        False).ravel())
 
-        y0, tol = extent(x[nodes("arc"), 1])[0], 1e-9 * max(hi - lo, yhi - ylo)
-        y_top = extent(x[nodes("top"), 1])[0]
-        path = v["mesh_file"]
-        if ylo < y0 - tol:
-            raise InputError(f"the die in {path!r} reaches {y0 - ylo:.4g} mm below its "
-                             "lowest 'arc' node: 'arc' must be its lower boundary")
-        if y_top <= y0 + tol:
-            raise InputError(f"the die in {path!r} has 'top' as low as its lowest 'arc' "
-                             "node: 'arc' must be its lower boundary")
-        xc = 0.5 * b + 1.0
-        x[:, 0] += xc - 0.5 * (lo + hi)
-        x[:, 1] += v["H"] - y0
-        return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v["H"]), b))
+def plot(profile, outdir):
+    """Reaction force history of the die (``reaction.png``)."""
+    from ..plots import pyplot
+
+    plt = pyplot()
+    F = profile["force"]
+    k = np.arange(len(F))
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    ax.plot(k, F[:, 0], ".-", label="F_x (tangential)")
+    ax.plot(k, F[:, 1], ".-", label="F_y (normal)")
+    ax.axvline(profile["press_steps"] - 0.5, color="k", lw=0.6)
+    ax.set_xlabel("step (pressing, then sliding)")
+    ax.set_ylabel("reaction on the die (N/mm)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(outdir / "reaction.png", dpi=110)
+    plt.close(fig)
+
+
+def _user_die(msh, ft, names, v):
+    """Place a user's die as the case places its own; return (half-width b, h_die).
+
+    The x extent is centred on x_c = b/2 + 1 and the lowest ``arc`` node put
+    on the slab's top y = H.  One-line :class:`InputError` if a node of the
+    die lies below that point, or a node of ``top`` as low as it, by more
+    than 1e-9 of the die's size (the arc is not its lower boundary: the die
+    would start inside the slab, or press it with a face that is not in
+    contact), or if the slide takes x_c off the slab (:meth:`check_slide`).
+    h_die is the mean length of the arc facets within b of (x_c, H)
+    (:func:`tribofx.meshes.user.boundary_facet_size`).
+    """
+    comm, x = msh.comm, msh.geometry.x
+
+    def extent(a):
+        return (comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN),
+                comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX))
+
+    (lo, hi), (ylo, yhi) = extent(x[:, 0]), extent(x[:, 1])
+    b = 0.5 * (hi - lo)
+    check_slide(v, b)
+
+    def nodes(name):
+        return np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(names[name]),
+                                                    False).ravel())
+
+    y0, tol = extent(x[nodes("arc"), 1])[0], 1e-9 * max(hi - lo, yhi - ylo)
+    y_top = extent(x[nodes("top"), 1])[0]
+    path = v["mesh_file"]
+    if ylo < y0 - tol:
+        raise InputError(f"the die in {path!r} reaches {y0 - ylo:.4g} mm below its "
+                         "lowest 'arc' node: 'arc' must be its lower boundary")
+    if y_top <= y0 + tol:
+        raise InputError(f"the die in {path!r} has 'top' as low as its lowest 'arc' "
+                         "node: 'arc' must be its lower boundary")
+    xc = 0.5 * b + 1.0
+    x[:, 0] += xc - 0.5 * (lo + hi)
+    x[:, 1] += v["H"] - y0
+    return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v["H"]), b))

@@ -30,7 +30,8 @@ from ..interfaces import TwoBodyContact
 from ..params import InputError, Param
 from ..problem import Problem
 
-__all__ = ["ContactPatchCase", "patch_block"]
+__all__ = ["build", "doc", "name", "params", "patch_block", "plot", "resumable", "run",
+           "validate", "vtx_fields"]
 
 
 def patch_block(comm, y0, y1, n, name, material):
@@ -49,87 +50,90 @@ def patch_block(comm, y0, y1, n, name, material):
                 name=name)
 
 
-class ContactPatchCase:
-    """Case ``contact-patch``; see the module docstring."""
+name = "contact-patch"
 
-    name = "contact-patch"
-    resumable = False   # no per-step checkpoint
-    doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
-    params = (
-        Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",
-              lower=0.0, upper=16.0, closed=True),
-        Param("n_master", int, 8, "-", "master elements along the interface", lower=1,
-              upper=512, closed=True),
-        Param("E", float, 10.0, "MPa", "Young's modulus of both blocks", lower=0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio of both blocks", lower=-1, upper=0.5),
-        Param("pressure", float, 0.1, "MPa", "nominal pressure on the slave's top", lower=0),
-    )
 
-    @staticmethod
-    def validate(v):
-        """Require at least two slave elements along the interface (a patch, not a point)."""
-        n_s = round(v["mesh_ratio"] * v["n_master"])
-        if n_s < 2:
-            raise InputError(f"mesh_ratio·n_master = {v['mesh_ratio'] * v['n_master']:g} gives "
-                             f"{n_s} slave element(s): the patch test needs at least 2")
+resumable = False   # no per-step checkpoint
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Slave and master blocks, contact and problem."""
-        mu, lmbda = lame_parameters(v["E"], v["nu"])
-        mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
-        n_s = round(v["mesh_ratio"] * v["n_master"])
-        slave = patch_block(comm, 0.0, 0.5, n_s, "slave", mat)
-        master = patch_block(comm, -0.5, 0.0, v["n_master"], "master", mat)
-        slave.add_traction("top", ufl.as_vector([0.0, -v["pressure"]]))
-        slave.add_dirichlet("left", 0.0, component=0)
-        master.add_dirichlet("left", 0.0, component=0)
-        master.add_dirichlet("bottom", 0.0, component=1)
-        h = 1.0 / max(n_s, v["n_master"])
-        contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v["E"] / h)
-        problem = Problem([slave, master, contact], name="contact_patch")
-        return {"slave": slave, "master": master, "contact": contact, "problem": problem}
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Solve once; record the mean and the largest relative deviation of the traction."""
-        run = cls.build(v)
-        contact, problem = run["contact"], run["problem"]
-        record.data["num_dofs"] = problem.num_dofs
-        record.data["newton_iterations"].append(problem.solve_by_homotopy(verbose=verbose).iterations)
-        d = contact.nodal_data(problem)
-        comm = contact.slave.mesh.comm
-        w, t = d["weight_ref"], -d["T_n"]
-        mean = comm.allreduce(float(np.sum(w * t)), op=MPI.SUM) / \
-            comm.allreduce(float(np.sum(w)), op=MPI.SUM)
-        dev = comm.allreduce(float(np.max(np.abs(t - mean), initial=0.0)), op=MPI.MAX)
-        record.result("pressure_mean", mean, "MPa")
-        record.result("pressure_max_deviation", dev / mean)
-        record.result("nodes_in_contact", comm.allreduce(int(np.sum(d["active"])), op=MPI.SUM))
-        prof = contact.gather_profile(problem)
-        if comm.rank == 0:
-            record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v["pressure"]}
-        if progress is not None:
-            progress.update(1)
-        return run
+doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacements of both blocks."""
-        return {"slave": [run["slave"].u], "master": [run["master"].u]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Nominal contact pressure along the interface (``pressure.png``)."""
-        from ..plots import pyplot
+params = (
+    Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",
+          lower=0.0, upper=16.0, closed=True),
+    Param("n_master", int, 8, "-", "master elements along the interface", lower=1,
+          upper=512, closed=True),
+    Param("E", float, 10.0, "MPa", "Young's modulus of both blocks", lower=0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio of both blocks", lower=-1, upper=0.5),
+    Param("pressure", float, 0.1, "MPa", "nominal pressure on the slave's top", lower=0),
+)
 
-        plt = pyplot()
-        fig, ax = plt.subplots(figsize=(5.5, 3.5))
-        ax.plot(profile["x"], profile["p"], "o-", ms=3, label="slave nodes")
-        ax.axhline(profile["p_ref"], color="k", lw=0.8, label="applied pressure")
-        ax.set_xlabel("X (mm)")
-        ax.set_ylabel("nominal contact pressure (MPa)")
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(outdir / "pressure.png", dpi=110)
-        plt.close(fig)
+
+def validate(v):
+    """Require at least two slave elements along the interface (a patch, not a point)."""
+    n_s = round(v["mesh_ratio"] * v["n_master"])
+    if n_s < 2:
+        raise InputError(f"mesh_ratio·n_master = {v['mesh_ratio'] * v['n_master']:g} gives "
+                         f"{n_s} slave element(s): the patch test needs at least 2")
+
+
+def build(v, comm=MPI.COMM_WORLD):
+    """Slave and master blocks, contact and problem."""
+    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
+    n_s = round(v["mesh_ratio"] * v["n_master"])
+    slave = patch_block(comm, 0.0, 0.5, n_s, "slave", mat)
+    master = patch_block(comm, -0.5, 0.0, v["n_master"], "master", mat)
+    slave.add_traction("top", ufl.as_vector([0.0, -v["pressure"]]))
+    slave.add_dirichlet("left", 0.0, component=0)
+    master.add_dirichlet("left", 0.0, component=0)
+    master.add_dirichlet("bottom", 0.0, component=1)
+    h = 1.0 / max(n_s, v["n_master"])
+    contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v["E"] / h)
+    problem = Problem([slave, master, contact], name="contact_patch")
+    return {"slave": slave, "master": master, "contact": contact, "problem": problem}
+
+
+def run(v, record, progress=None, verbose=False):
+    """Solve once; record the mean and the largest relative deviation of the traction."""
+    run = build(v)
+    contact, problem = run["contact"], run["problem"]
+    record.data["num_dofs"] = problem.num_dofs
+    record.data["newton_iterations"].append(problem.solve_by_homotopy(verbose=verbose).iterations)
+    d = contact.nodal_data(problem)
+    comm = contact.slave.mesh.comm
+    w, t = d["weight_ref"], -d["T_n"]
+    mean = comm.allreduce(float(np.sum(w * t)), op=MPI.SUM) / \
+        comm.allreduce(float(np.sum(w)), op=MPI.SUM)
+    dev = comm.allreduce(float(np.max(np.abs(t - mean), initial=0.0)), op=MPI.MAX)
+    record.result("pressure_mean", mean, "MPa")
+    record.result("pressure_max_deviation", dev / mean)
+    record.result("nodes_in_contact", comm.allreduce(int(np.sum(d["active"])), op=MPI.SUM))
+    prof = contact.gather_profile(problem)
+    if comm.rank == 0:
+        record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v["pressure"]}
+    if progress is not None:
+        progress.update(1)
+    return run
+
+
+def vtx_fields(run):
+    """Displacements of both blocks."""
+    return {"slave": [run["slave"].u], "master": [run["master"].u]}
+
+
+def plot(profile, outdir):
+    """Nominal contact pressure along the interface (``pressure.png``)."""
+    from ..plots import pyplot
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(5.5, 3.5))
+    ax.plot(profile["x"], profile["p"], "o-", ms=3, label="slave nodes")
+    ax.axhline(profile["p_ref"], color="k", lw=0.8, label="applied pressure")
+    ax.set_xlabel("X (mm)")
+    ax.set_ylabel("nominal contact pressure (MPa)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(outdir / "pressure.png", dpi=110)
+    plt.close(fig)

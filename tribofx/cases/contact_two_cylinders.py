@@ -45,160 +45,164 @@ from ..problem import NewtonDivergence, Problem
 from ..references import hertz
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = ["TwoCylindersCase"]
+__all__ = ["build", "doc", "name", "params", "plot", "reference", "report", "resumable", "run",
+           "validate", "vtx_fields"]
 
 
-class TwoCylindersCase:
-    """Case ``contact-two-cylinders``; see the module docstring."""
+name = "contact-two-cylinders"
 
-    name = "contact-two-cylinders"
-    resumable = False   # no per-step checkpoint
-    doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
-    params = (
-        Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),
-        Param("R2", float, 10.0, "mm", "radius of the lower (master) cylinder; 0: flat block",
-              lower=0, closed=True),
-        Param("E1", float, 10.0, "MPa", "Young's modulus of the upper cylinder", lower=0),
-        Param("E2", float, 10.0, "MPa", "Young's modulus of the lower body", lower=0),
-        Param("nu1", float, 0.3, "-", "Poisson's ratio of the upper cylinder", lower=-1,
-              upper=0.5),
-        Param("nu2", float, 0.3, "-", "Poisson's ratio of the lower body", lower=-1,
-              upper=0.5),
-        Param("load", float, 0.2, "N/mm", "normal load per unit length (full cylinders)",
-              lower=0),
-        Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0,
-              closed=True),
-        Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh) (of the "
-              "bodies not given by mesh_file, mesh_file2)", lower=0, upper=6, closed=True),
-        Param("steps", int, 2, "-", "load increments", lower=1, upper=100, closed=True),
-        Param("mesh_file", str, "", "-",
-              "your own upper (slave) cylinder: a 2D gmsh .msh of its x >= 0 half, radius R1, "
-              "with physical groups contact, loaded (flat top face, held) and symmetry_x "
-              "(x = 0); moved so that symmetry_x is x = 0 and its lowest contact point is at "
-              "the origin; tip curvature 1/R1 within 5 % of 1/R*; replaces mesh for it"),
-        Param("mesh_file2", str, "", "-",
-              "your own lower (master) body: as mesh_file, radius R2 (R2 = 0: a flat block), "
-              "loaded = its bottom face (pushed up), its highest contact point moved to the "
-              "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*"),
-    )
 
-    @staticmethod
-    def reference(v):
-        """Hertz line contact of the two bodies (a flat for R2 = 0)."""
-        R2 = math.inf if v["R2"] == 0 else v["R2"]
-        return hertz(v["load"], v["R1"], v["E1"], v["nu1"], R2, v["E2"], v["nu2"], line=True)
+resumable = False   # no per-step checkpoint
 
-    @classmethod
-    def validate(cls, v):
-        """Reject loads with a/R* > 0.3 (no Hertz comparison) or a/R* < 1e-4."""
-        h = cls.reference(v)
-        if h.a > 0.3 * h.R_star:
-            raise InputError(f"load too large for a Hertz comparison: a/R* = "
-                             f"{h.a / h.R_star:.2f} > 0.3")
-        if h.a < 1e-4 * h.R_star:
-            raise InputError(f"load too small to resolve: a/R* = {h.a / h.R_star:.1e}")
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Upper body, lower body, contact and problem (unloaded).
+doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
 
-        A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
-        and placed by :func:`tribofx.cases.curved_bodies.read_hertz_body`; ρ_N = E_min/h
-        with h the smaller contact element size of the two bodies.
-        """
-        h = cls.reference(v)
-        h_fine = h.a / (6 * 2 ** v["mesh"])
-        bodies, sizes = [], []
-        for k, (R, E, nu) in enumerate(((v["R1"], v["E1"], v["nu1"]),
-                                        (v["R2"], v["E2"], v["nu2"]))):
-            path = v[("mesh_file", "mesh_file2")[k]]
-            if path:
-                msh, ft, names, h_k, _ = read_hertz_body(
-                    path, comm, 2, h.a, R, CURVATURE_TOL / h.R_star, name=f"R{k + 1}",
-                    below=k == 1)
-            else:
-                size = R if R > 0 else 2 * v["R1"]
-                msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
-                                     block=size if R == 0 else None)
-                names, h_k = NAMES, h_fine
-            sizes.append(h_k)
-            mu, lmbda = lame_parameters(E, nu)
-            body = Body(msh, ft, names, "plane_strain",
-                        ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
-                        name=("upper", "lower")[k])
-            body.add_dirichlet("symmetry_x", 0.0, component=0)
-            bodies.append(body)
-        upper, lower = bodies
-        upper.add_dirichlet("loaded", np.zeros(2))
-        push = lower.add_dirichlet("loaded", 0.0, component=1)
-        E_min = min(v["E1"], v["E2"])
-        contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / min(sizes),
-                                 friction=v["friction"])
-        problem = Problem([upper, lower, contact], name="two_cylinders")
-        return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
-                "push": push}
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
-        run = cls.build(v)
-        contact, problem = run["contact"], run["problem"]
-        record.data["num_dofs"] = problem.num_dofs
-        h = cls.reference(v)
-        control = Continuation(problem, ConstantParameter(run["push"]),
-                               response=lambda: contact.forces(problem)[0][1],
-                               verbose=verbose, record=record.data["newton_iterations"])
-        delta = 0.25 * h.a**2 / h.R_star
-        try:
-            for k in range(v["steps"]):
-                target = 0.5 * v["load"] * (k + 1) / v["steps"]   # half model
-                delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
-                if progress is not None:
-                    progress.update(1)
-        except NewtonDivergence as err:
-            err.model = run
-            raise
-        finally:
-            cls.report(run, v, record, h)
-        return run
+params = (
+    Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),
+    Param("R2", float, 10.0, "mm", "radius of the lower (master) cylinder; 0: flat block",
+          lower=0, closed=True),
+    Param("E1", float, 10.0, "MPa", "Young's modulus of the upper cylinder", lower=0),
+    Param("E2", float, 10.0, "MPa", "Young's modulus of the lower body", lower=0),
+    Param("nu1", float, 0.3, "-", "Poisson's ratio of the upper cylinder", lower=-1,
+          upper=0.5),
+    Param("nu2", float, 0.3, "-", "Poisson's ratio of the lower body", lower=-1,
+          upper=0.5),
+    Param("load", float, 0.2, "N/mm", "normal load per unit length (full cylinders)",
+          lower=0),
+    Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0,
+          closed=True),
+    Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh) (of the "
+          "bodies not given by mesh_file, mesh_file2)", lower=0, upper=6, closed=True),
+    Param("steps", int, 2, "-", "load increments", lower=1, upper=100, closed=True),
+    Param("mesh_file", str, "", "-",
+          "your own upper (slave) cylinder: a 2D gmsh .msh of its x >= 0 half, radius R1, "
+          "with physical groups contact, loaded (flat top face, held) and symmetry_x "
+          "(x = 0); moved so that symmetry_x is x = 0 and its lowest contact point is at "
+          "the origin; tip curvature 1/R1 within 5 % of 1/R*; replaces mesh for it"),
+    Param("mesh_file2", str, "", "-",
+          "your own lower (master) body: as mesh_file, radius R2 (R2 = 0: a flat block), "
+          "loaded = its bottom face (pushed up), its highest contact point moved to the "
+          "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*"),
+)
 
-    @staticmethod
-    def report(run, v, record, h):
-        """Contact half-width (sum of active lumped current lengths) and peak pressure."""
-        contact, problem = run["contact"], run["problem"]
-        d = contact.nodal_data(problem)
-        comm = contact.slave.mesh.comm
-        a = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
-        p_max = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
-        on_upper, _ = contact.forces(problem)
-        record.result("contact_half_width", a, "mm")
-        record.result("hertz_contact_half_width", h.a, "mm")
-        record.result("p_max", p_max, "MPa")
-        record.result("hertz_p_max", h.p0, "MPa")
-        record.result("contact_half_width_rel_error", a / h.a - 1)
-        record.result("p_max_rel_error", p_max / h.p0 - 1)
-        record.result("contact_element_size", min(v["E1"], v["E2"]) / contact.rho_n,
-                      "mm (h of rho_N = min(E1, E2)/h)")
-        record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
-        # equilibrium of the solved upper cylinder: its held face balances the contact
-        upper = run["upper"]
-        record.result("equilibrium_error",
-                      abs(upper.reaction("loaded", 1) + float(on_upper[1])), "N/mm")
-        record.result("equilibrium_bound", upper.V.dofmap.index_map.size_global * 2
-                      * upper.tolerances()[upper.u].atol, "N/mm")
-        prof = contact.gather_profile(problem)
-        if comm.rank == 0:
-            record.profile = {"r": prof["x"][:, 0], "p": prof["p"], "a": h.a, "p0": h.p0,
-                              "dim": 2}
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacements of both bodies (one file per mesh)."""
-        return {"upper": [run["upper"].u], "lower": [run["lower"].u]}
+def reference(v):
+    """Hertz line contact of the two bodies (a flat for R2 = 0)."""
+    R2 = math.inf if v["R2"] == 0 else v["R2"]
+    return hertz(v["load"], v["R1"], v["E1"], v["nu1"], R2, v["E2"], v["nu2"], line=True)
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure profile against Hertz (``pressure.png``)."""
-        from ..plots import plot_hertz_pressure
 
-        plot_hertz_pressure(profile, outdir / "pressure.png")
+def validate(v):
+    """Reject loads with a/R* > 0.3 (no Hertz comparison) or a/R* < 1e-4."""
+    h = reference(v)
+    if h.a > 0.3 * h.R_star:
+        raise InputError(f"load too large for a Hertz comparison: a/R* = "
+                         f"{h.a / h.R_star:.2f} > 0.3")
+    if h.a < 1e-4 * h.R_star:
+        raise InputError(f"load too small to resolve: a/R* = {h.a / h.R_star:.1e}")
+
+
+def build(v, comm=MPI.COMM_WORLD):
+    """Upper body, lower body, contact and problem (unloaded).
+
+    A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
+    and placed by :func:`tribofx.cases.curved_bodies.read_hertz_body`; ρ_N = E_min/h
+    with h the smaller contact element size of the two bodies.
+    """
+    h = reference(v)
+    h_fine = h.a / (6 * 2 ** v["mesh"])
+    bodies, sizes = [], []
+    for k, (R, E, nu) in enumerate(((v["R1"], v["E1"], v["nu1"]),
+                                    (v["R2"], v["E2"], v["nu2"]))):
+        path = v[("mesh_file", "mesh_file2")[k]]
+        if path:
+            msh, ft, names, h_k, _ = read_hertz_body(
+                path, comm, 2, h.a, R, CURVATURE_TOL / h.R_star, name=f"R{k + 1}",
+                below=k == 1)
+        else:
+            size = R if R > 0 else 2 * v["R1"]
+            msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
+                                 block=size if R == 0 else None)
+            names, h_k = NAMES, h_fine
+        sizes.append(h_k)
+        mu, lmbda = lame_parameters(E, nu)
+        body = Body(msh, ft, names, "plane_strain",
+                    ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                    name=("upper", "lower")[k])
+        body.add_dirichlet("symmetry_x", 0.0, component=0)
+        bodies.append(body)
+    upper, lower = bodies
+    upper.add_dirichlet("loaded", np.zeros(2))
+    push = lower.add_dirichlet("loaded", 0.0, component=1)
+    E_min = min(v["E1"], v["E2"])
+    contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / min(sizes),
+                             friction=v["friction"])
+    problem = Problem([upper, lower, contact], name="two_cylinders")
+    return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
+            "push": push}
+
+
+def run(v, record, progress=None, verbose=False):
+    """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
+    run = build(v)
+    contact, problem = run["contact"], run["problem"]
+    record.data["num_dofs"] = problem.num_dofs
+    h = reference(v)
+    control = Continuation(problem, ConstantParameter(run["push"]),
+                           response=lambda: contact.forces(problem)[0][1],
+                           verbose=verbose, record=record.data["newton_iterations"])
+    delta = 0.25 * h.a**2 / h.R_star
+    try:
+        for k in range(v["steps"]):
+            target = 0.5 * v["load"] * (k + 1) / v["steps"]   # half model
+            delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
+            if progress is not None:
+                progress.update(1)
+    except NewtonDivergence as err:
+        err.model = run
+        raise
+    finally:
+        report(run, v, record, h)
+    return run
+
+
+def report(run, v, record, h):
+    """Contact half-width (sum of active lumped current lengths) and peak pressure."""
+    contact, problem = run["contact"], run["problem"]
+    d = contact.nodal_data(problem)
+    comm = contact.slave.mesh.comm
+    a = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
+    p_max = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
+    on_upper, _ = contact.forces(problem)
+    record.result("contact_half_width", a, "mm")
+    record.result("hertz_contact_half_width", h.a, "mm")
+    record.result("p_max", p_max, "MPa")
+    record.result("hertz_p_max", h.p0, "MPa")
+    record.result("contact_half_width_rel_error", a / h.a - 1)
+    record.result("p_max_rel_error", p_max / h.p0 - 1)
+    record.result("contact_element_size", min(v["E1"], v["E2"]) / contact.rho_n,
+                  "mm (h of rho_N = min(E1, E2)/h)")
+    record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
+    # equilibrium of the solved upper cylinder: its held face balances the contact
+    upper = run["upper"]
+    record.result("equilibrium_error",
+                  abs(upper.reaction("loaded", 1) + float(on_upper[1])), "N/mm")
+    record.result("equilibrium_bound", upper.V.dofmap.index_map.size_global * 2
+                  * upper.tolerances()[upper.u].atol, "N/mm")
+    prof = contact.gather_profile(problem)
+    if comm.rank == 0:
+        record.profile = {"r": prof["x"][:, 0], "p": prof["p"], "a": h.a, "p0": h.p0,
+                          "dim": 2}
+
+
+def vtx_fields(run):
+    """Displacements of both bodies (one file per mesh)."""
+    return {"upper": [run["upper"].u], "lower": [run["lower"].u]}
+
+
+def plot(profile, outdir):
+    """Pressure profile against Hertz (``pressure.png``)."""
+    from ..plots import plot_hertz_pressure
+
+    plot_hertz_pressure(profile, outdir / "pressure.png")

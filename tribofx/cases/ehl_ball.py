@@ -83,11 +83,14 @@ from ..sweep import SweepVariant
 from . import film_setup
 from .film_setup import VISCOSITY_PARAMS, at_points, density, film_boundary, speed_list, viscosity
 
-__all__ = [
-    "EHLBallCase", "LEVELS", "MAX_EDGE_RATIO", "USER_GROUPS", "Z", "check_curvature",
-    "checked_outlet_width", "edge_size", "mesh_levels", "outlet_width", "place_user_ball",
-    "user_rim",
-]
+__all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS",
+           "VARIANTS", "Z", "build", "check_curvature", "checked_outlet_width", "doc",
+           "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
+           "hertz_slope", "hertz_start", "large_load", "load", "load_sweep", "measures",
+           "mesh_levels", "name", "outlet_width", "params", "place_user_ball", "plot",
+           "position_control", "progress_total", "resumable", "run", "scales", "set_scales",
+           "speed_parameter", "speed_march", "sweep", "thick_film_sweep", "user_rim", "validate",
+           "vtx_fields"]
 
 
 #: largest element size along the contact edge, in units of the outlet width ℓ
@@ -236,571 +239,570 @@ def user_rim(film, v, a):
 NAMES = BALL_NAMES
 
 
-class EHLBallCase:
-    """Case ``ehl-ball``; see the module docstring."""
+name = "ehl-ball"
 
-    name = "ehl-ball"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        Param("W", float, 10.0, "N", "final load on the whole ball", lower=0.0),
-        Param("steps", int, 3, "-", "load increments (W/steps, …, W)", lower=1, upper=100,
-              closed=True),
-        Param("mu", float, 1e-8, "MPa·s", "viscosity (1e-8 MPa·s = 10 mPa·s)", lower=0.0),
-        Param("U", float, 1e4, "mm/s", "entrainment speed U = V/2 (plane slides at 2U)",
-              lower=0.0),
-        Param("R", float, 12.7, "mm", "ball radius", lower=0.0),
-        Param("E", float, 1.19, "MPa", "Young's modulus of the ball", lower=0.0),
-        Param("nu", float, 0.45, "-", "Poisson's ratio of the ball", lower=-1.0, upper=0.5),
-        Param("theta_l", float, 40.0, "deg", "polar angle of the lubricated cap", lower=5.0,
-              upper=75.0, closed=True),
-        Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
-              choices=("finite", "linear")),
-        Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
-        Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        film_setup.formulation_param("displacement"), film_setup.quadrature_param(),
-        Param("penalty", float, 1e-4, "-",
-              "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
-              "Hamrock–Dowson h_c at W)", lower=0.0),
-        Param("mesh", int, None, "-", "element size a/(4·2^mesh) near the contact (default: "
-              "chosen with edge_refine from W and U to resolve the outlet, edge_size)",
-              lower=0, upper=3, closed=True),
-        Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
-        Param("edge_refine", int, None, "-",
-              "refinement levels of a band along the edge of the contact zone (the "
-              "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
-              "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
-              "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
-              lower=0, upper=3,
-              closed=True),
-        Param("start_speed", float, 30.0, "-",
-              "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
-              "displacement control (thick film), then U is continued down to U",
-              lower=1.0, closed=True),
-        Param("speeds", str, "", "mm/s",
-              "comma-separated entrainment speeds for continuation in U at the final load "
-              "(empty: none); records the friction coefficient vs μU"),
-        Param("compare", str, "none", "-",
-              "all: load sweep (and speeds) of the full model, without shear tractions and "
-              "geometrically linear in one run", choices=("none", "all")),
-        Param("mesh_file", str, "", "-",
-              "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
-              "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
-              "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
-              "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
-              "lowest at z = 0"),
-    ) + VISCOSITY_PARAMS
 
-    #: variants of ``compare=all``: (prefix, label, overrides)
-    VARIANTS = (("full", "finite deformation", {"model": "finite", "shear": True}),
-                ("no-shear", "finite, no shear tractions", {"model": "finite", "shear": False}),
-                ("linear", "geometrically linear", {"model": "linear", "shear": True}))
+doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
 
-    UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
-             "x_h_min": "mm (sub-element)", "y_h_min": "mm (sub-element)",
-             "friction_coefficient": "-", "couette_friction_coefficient": "-",
-             "plane_friction_coefficient": "-", "clearance": "mm", "U": "mm/s",
-             "mu_U": "N/mm", "film_oscillation": "-"}
 
-    #: film_oscillation above which the run warns (a zig-zag of ±5 % of the film)
-    FILM_OSCILLATION_TOL = 0.05
+params = (
+    Param("W", float, 10.0, "N", "final load on the whole ball", lower=0.0),
+    Param("steps", int, 3, "-", "load increments (W/steps, …, W)", lower=1, upper=100,
+          closed=True),
+    Param("mu", float, 1e-8, "MPa·s", "viscosity (1e-8 MPa·s = 10 mPa·s)", lower=0.0),
+    Param("U", float, 1e4, "mm/s", "entrainment speed U = V/2 (plane slides at 2U)",
+          lower=0.0),
+    Param("R", float, 12.7, "mm", "ball radius", lower=0.0),
+    Param("E", float, 1.19, "MPa", "Young's modulus of the ball", lower=0.0),
+    Param("nu", float, 0.45, "-", "Poisson's ratio of the ball", lower=-1.0, upper=0.5),
+    Param("theta_l", float, 40.0, "deg", "polar angle of the lubricated cap", lower=5.0,
+          upper=75.0, closed=True),
+    Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
+          choices=("finite", "linear")),
+    Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
+    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
+    film_setup.formulation_param("displacement"), film_setup.quadrature_param(),
+    Param("penalty", float, 1e-4, "-",
+          "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
+          "Hamrock–Dowson h_c at W)", lower=0.0),
+    Param("mesh", int, None, "-", "element size a/(4·2^mesh) near the contact (default: "
+          "chosen with edge_refine from W and U to resolve the outlet, edge_size)",
+          lower=0, upper=3, closed=True),
+    Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
+    Param("edge_refine", int, None, "-",
+          "refinement levels of a band along the edge of the contact zone (the "
+          "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
+          "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
+          "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
+          lower=0, upper=3,
+          closed=True),
+    Param("start_speed", float, 30.0, "-",
+          "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
+          "displacement control (thick film), then U is continued down to U",
+          lower=1.0, closed=True),
+    Param("speeds", str, "", "mm/s",
+          "comma-separated entrainment speeds for continuation in U at the final load "
+          "(empty: none); records the friction coefficient vs μU"),
+    Param("compare", str, "none", "-",
+          "all: load sweep (and speeds) of the full model, without shear tractions and "
+          "geometrically linear in one run", choices=("none", "all")),
+    Param("mesh_file", str, "", "-",
+          "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
+          "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
+          "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
+          "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
+          "lowest at z = 0"),
+) + VISCOSITY_PARAMS
 
-    @staticmethod
-    def e_star(v):
-        """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
-        return composite_modulus(v["E"], v["nu"])
 
-    @staticmethod
-    def hertz_contact(v, W=None):
-        """Hertz contact of the ball on the rigid plane at W (default ``v["W"]``, N)."""
-        return hertz(v["W"] if W is None else W, v["R"], v["E"], v["nu"])
+#: variants of ``compare=all``: (prefix, label, overrides)
+VARIANTS = (("full", "finite deformation", {"model": "finite", "shear": True}),
+            ("no-shear", "finite, no shear tractions", {"model": "finite", "shear": False}),
+            ("linear", "geometrically linear", {"model": "linear", "shear": True}))
 
-    @classmethod
-    def validate(cls, v):
-        """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W).
 
-        With ``mesh_file`` the cap of the mesh is checked when it is read (:meth:`build`).
-        """
-        a = cls.hertz_contact(v).a
-        r_cap = v["R"] * math.sin(math.radians(v["theta_l"]))
-        if r_cap < 1.5 * a and not v["mesh_file"]:
-            raise InputError(f"cap radius R sin θ_l = {r_cap:.3g} mm < 1.5 a = {1.5 * a:.3g} mm "
-                             f"(Hertz a at W = {v['W']} N): increase theta_l")
-        if not v["U"] > 0 or not v["mu"] > 0:
-            raise InputError("U and mu must be positive (entrainment)")
-        checked_outlet_width(v)
-        auto = v["mesh"] is None or v["edge_refine"] is None
-        if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
-            raise InputError(
-                f"no built mesh{'' if v['mesh'] is None else ' with mesh=' + str(v['mesh'])}"
-                f"{'' if v['edge_refine'] is None else ' edge_refine=' + str(v['edge_refine'])}"
-                f" resolves the film's outlet at W = {v['W']:g} N, U = {v['U']:g} mm/s "
-                f"(width {outlet_width(v):.3g} mm): raise U, refine, or give mesh_file")
-        viscosity(v)
-        density(v)
-        speed_list(v)
+UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
+         "x_h_min": "mm (sub-element)", "y_h_min": "mm (sub-element)",
+         "friction_coefficient": "-", "couette_friction_coefficient": "-",
+         "plane_friction_coefficient": "-", "clearance": "mm", "U": "mm/s",
+         "mu_U": "N/mm", "film_oscillation": "-"}
 
-    @staticmethod
-    def speed_list(v):
-        """Return the continuation speeds (mm/s) of ``speeds`` (one-line error if bad)."""
-        return speed_list(v)
 
-    @classmethod
-    def scales(cls, v, W=None, U=None):
-        """Hertz a (mm), p0 (MPa), Hamrock–Dowson h_c (mm) and penalty ε (MPa·s/mm)."""
-        W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
-        h = cls.hertz_contact(v, W)
-        h_c = hamrock_dowson(W, v["mu"], U, v["R"], cls.e_star(v))[0]
-        return h.a, h.p0, h_c, v["penalty"] * 12 * v["mu"] * h.a**2 / h_c**3
+#: film_oscillation above which the run warns (a zig-zag of ±5 % of the film)
+FILM_OSCILLATION_TOL = 0.05
 
-    @classmethod
-    def set_scales(cls, film, v, W, U):
-        """SUPG pressure scale p0, penalty ε and tolerance scales at load W and speed U."""
-        _, p0, h_c, eps = cls.scales(v, W, U)
-        film.set_scales(p_c=p0, eps=eps, film_scale=h_c, speed_scale=U)
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, name="ehl_ball"):
-        """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
+def e_star(v):
+    """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
+    return composite_modulus(v["E"], v["nu"])
 
-        ``name``: the problem's name, options prefix ``tribofx_<name>_`` (a variant
-        of ``compare=all`` is ``ehl_ball_full``, ``ehl_ball_no_shear``, ``ehl_ball_linear``).
-        """
-        a = cls.hertz_contact(v).a
-        th = math.radians(v["theta_l"])
-        if v["mesh_file"]:
-            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
-            place_user_ball(msh, ft, names, v, a)
-        else:
-            level, refine, _ = mesh_levels(v)
-            h_fine = a / (4 * 2**level)
-            ring = (0.95 * a, h_fine / 2**refine, 0.1 * a) if refine else None
-            msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
-                                       1.6 * a, comm, ring=ring)
-            names = NAMES
-        mu, lm = lame_parameters(v["E"], v["nu"])
-        law = "linear" if v["model"] == "linear" else "neo-hookean"
-        ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball",
-                    formulation=v["formulation"])
-        ball.add_dirichlet("midplane", np.zeros(3))
-        ball.add_dirichlet("symmetry", 0.0, component=1)
-        _, p0, h_c, eps = cls.scales(v, v["W"] / v["steps"])
-        V_plane = np.array([2 * v["U"], 0.0, 0.0])
-        film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
-                    density=density(v), quadrature=v["quadrature"],
-                    V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
-                    eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
-                    speed_scale=v["U"], quadrature_degree=2)
-        if v["mesh_file"]:
-            film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v["R"]))
-        else:
-            z_cap = cap_height(v["R"], th)
-            film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
-        problem = Problem([ball, film], name=name, max_it=25)
-        return ball, film, problem
 
-    @classmethod
-    def progress_total(cls, v):
-        """Points the progress bar counts: the loads of every variant."""
-        return v["steps"] * (len(cls.VARIANTS) if v["compare"] == "all" else 1)
+def hertz_contact(v, W=None):
+    """Hertz contact of the ball on the rigid plane at W (default ``v["W"]``, N)."""
+    return hertz(v["W"] if W is None else W, v["R"], v["E"], v["nu"])
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
 
-        ``checkpoint``: directory of the sweep's checkpoint, written after every
-        converged load and speed step (:class:`tribofx.restart.SweepJournal`);
-        ``resume``: continue from it.
-        """
-        variants = cls.VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
-        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        a, p0, _, _ = cls.scales(v)
-        hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], cls.e_star(v))
-        for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
-                           ("hamrock_dowson_h_min", hm)):
-            record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
-        if not v["mesh_file"]:
-            level, refine, resolved = mesh_levels(v)
-            record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
-            if not resolved:
-                record.warn(f"mesh={level} edge_refine={refine}: elements of "
-                            f"{edge_size(v, level, refine):.3g} mm along the contact edge "
-                            f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
-                            "at this W and U: expect a zig-zag or a spurious dip of the film")
-        record.data["variant_newton_iterations"] = {}
-        record.profile = {"variants": {}, "W": v["W"]}
-        first = None
-        for name, label, over in variants:
-            run = cls.sweep(dict(v, **over), name, label, record, journal, progress, verbose)
-            first = first or run
-        return first
+def validate(v):
+    """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W).
 
-    @classmethod
-    def sweep(cls, vv, name, label, record, journal, progress=None, verbose=False):
-        """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
+    With ``mesh_file`` the cap of the mesh is checked when it is read (:meth:`build`).
+    """
+    a = hertz_contact(v).a
+    r_cap = v["R"] * math.sin(math.radians(v["theta_l"]))
+    if r_cap < 1.5 * a and not v["mesh_file"]:
+        raise InputError(f"cap radius R sin θ_l = {r_cap:.3g} mm < 1.5 a = {1.5 * a:.3g} mm "
+                         f"(Hertz a at W = {v['W']} N): increase theta_l")
+    if not v["U"] > 0 or not v["mu"] > 0:
+        raise InputError("U and mu must be positive (entrainment)")
+    checked_outlet_width(v)
+    auto = v["mesh"] is None or v["edge_refine"] is None
+    if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
+        raise InputError(
+            f"no built mesh{'' if v['mesh'] is None else ' with mesh=' + str(v['mesh'])}"
+            f"{'' if v['edge_refine'] is None else ' edge_refine=' + str(v['edge_refine'])}"
+            f" resolves the film's outlet at W = {v['W']:g} N, U = {v['U']:g} mm/s "
+            f"(width {outlet_width(v):.3g} mm): raise U, refine, or give mesh_file")
+    viscosity(v)
+    density(v)
+    speed_list(v)
 
-        After every converged load and speed step the variant's state, records
-        and position are written to ``journal`` (position: ``leg`` 0 the loads,
-        1 + j the march to the j-th speed; the secant state of the position
-        search; the march increments; the film scales); a resumed variant
-        restores them and continues on the same sequence of steps.
-        """
-        key = name or vv["model"]
-        run = cls.build(vv, name=options_name("ehl_ball", name))
-        film, problem = run[1], run[2]
-        record.data["num_dofs"] = problem.num_dofs
-        # (the plane's offset is state); the series' "time" is the point's index, its
-        # (W, U) in series_points
-        sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
-                          record, cls.vtx_fields(run), f"{name}_" if name else "",
-                          ("steps", "speed"), run[0].mesh.comm, progress)
-        steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
-        pos = sv.position
-        record.data["variant_newton_iterations"][key] = its_all
-        var = {"label": label, "shear": vv["shear"]}
-        record.profile["variants"][key] = var
-        at = {"leg": 0 if pos is None else pos["leg"]}
 
-        def write():
-            sv.write([cls.load(run), cls.speed(run).get()])
+def scales(v, W=None, U=None):
+    """Hertz a (mm), p0 (MPa), Hamrock–Dowson h_c (mm) and penalty ε (MPa·s/mm)."""
+    W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
+    h = hertz_contact(v, W)
+    h_c = hamrock_dowson(W, v["mu"], U, v["R"], e_star(v))[0]
+    return h.a, h.p0, h_c, v["penalty"] * 12 * v["mu"] * h.a**2 / h_c**3
 
-        def save(position, arrays=None):
-            sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
-                    arrays=[] if arrays is None else arrays)
 
-        def on_step(W, its):
-            its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
-            if steps:   # the film map is kept for the last load only (checkpoint size)
-                steps[-1].pop("profile", None)
-            steps.append(cls.measures(run, vv))
-            write()
-            if progress is not None:
-                progress.update(1)
+def set_scales(film, v, W, U):
+    """SUPG pressure scale p0, penalty ε and tolerance scales at load W and speed U."""
+    _, p0, h_c, eps = scales(v, W, U)
+    film.set_scales(p_c=p0, eps=eps, film_scale=h_c, speed_scale=U)
 
-        def on_speed(march=None):
-            m = cls.measures(run, vv)
-            m.pop("profile")
-            speed.append(dict(m, U=cls.speed(run).get()))
-            write()
-            if march is not None:
-                save({"increments": march.increments, "inner": inner.secant_state()})
 
-        start = None
-        if pos is not None:
-            carrier = sv.resume()
-            film.set_scales(**pos["scales"])
-            problem.refresh()
-            start = dict(pos, carrier=carrier)
-        with sv:
-            try:
-                if at["leg"] == 0:
-                    inner = cls.load_sweep(run, vv, on_step, verbose, start, on_accept=save)
-                    if cls.speed_list(vv):
-                        on_speed()
-                elif cls.large_load(vv):
-                    inner = cls.follow_control(run, vv, vv["W"], vv["W"], verbose)
-                    inner.set_secant_state(pos["inner"])
-                else:
-                    inner = cls.position_control(run, vv, verbose)
-                    inner.set_secant_state(pos["inner"])
-                for j, U in enumerate(cls.speed_list(vv)):
-                    if j + 1 < at["leg"]:
-                        continue
-                    increments = pos["increments"] if j + 1 == at["leg"] else None
-                    at["leg"] = j + 1
-                    cls.speed_march(run, vv, inner, vv["W"], U,
-                                    restart=not cls.large_load(vv), record=its_all,
-                                    on_speed=on_speed, increments=increments)
-            finally:
-                if steps:
-                    var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
-                cls._report(steps, speed, vv, record, f"{name}_" if name else "")
-                var["speed"] = {k: [m[k] for m in speed] for k in (
-                    "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                    "plane_friction_coefficient")}
-        return run
+def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
+    """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
 
-    @staticmethod
-    def film_oscillation(h_axis, p_axis):
-        """Zig-zag of h on the centre line where p > p_max/2 (see the module docstring)."""
-        p_axis = np.asarray(p_axis)
-        return oscillation_indicator(np.asarray(h_axis), p_axis, 0.5 * p_axis.max(initial=0))
+    ``name``: the problem's name, options prefix ``tribofx_<name>_`` (a variant
+    of ``compare=all`` is ``ehl_ball_full``, ``ehl_ball_no_shear``, ``ehl_ball_linear``).
+    """
+    a = hertz_contact(v).a
+    th = math.radians(v["theta_l"])
+    if v["mesh_file"]:
+        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
+        place_user_ball(msh, ft, names, v, a)
+    else:
+        level, refine, _ = mesh_levels(v)
+        h_fine = a / (4 * 2**level)
+        ring = (0.95 * a, h_fine / 2**refine, 0.1 * a) if refine else None
+        msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
+                                   1.6 * a, comm, ring=ring)
+        names = NAMES
+    mu, lm = lame_parameters(v["E"], v["nu"])
+    law = "linear" if v["model"] == "linear" else "neo-hookean"
+    ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball",
+                formulation=v["formulation"])
+    ball.add_dirichlet("midplane", np.zeros(3))
+    ball.add_dirichlet("symmetry", 0.0, component=1)
+    _, p0, h_c, eps = scales(v, v["W"] / v["steps"])
+    V_plane = np.array([2 * v["U"], 0.0, 0.0])
+    film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
+                density=density(v), quadrature=v["quadrature"],
+                V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
+                eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
+                speed_scale=v["U"], quadrature_degree=2)
+    if v["mesh_file"]:
+        film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v["R"]))
+    else:
+        z_cap = cap_height(v["R"], th)
+        film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
+    problem = Problem([ball, film], name=name, max_it=25)
+    return ball, film, problem
 
-    @classmethod
-    def measures(cls, run, v):
-        """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
-        film = run[1]
-        prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
-        f_plane = film.counter_force()
-        xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
-        on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
-        order = np.argsort(xy[on, 0])
-        xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
-        i = int(np.argmin(prof["h"]))
-        # where h is least, between nodes (tribofx.positions); y ≥ 0 in the quarter model
-        x_min, y_min = paraboloid_vertex(xy, prof["h"], "min")
-        per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
-        return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
-                "film_oscillation": cls.film_oscillation(hh, pp),
-                "x_h_min": x_min, "y_h_min": max(y_min, 0.0),
-                "p_max": float(prof["p"].max()),
-                "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
-                            "h_axis": hh, "p_axis": pp},
-                "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
-                "friction_coefficient": abs(float(f[0])) * per_load,
-                "couette_friction_coefficient": abs(float(fc[0])) * per_load,
-                "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
-                "clearance": -float(film.counterpart.offset.value[Z])}
 
-    @classmethod
-    def _report(cls, steps, speed, v, record, prefix):
-        keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
-                "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
-                "film_oscillation")
-        for m in steps:  # a journal written before film_oscillation was measured
-            if "film_oscillation" not in m:
-                m["film_oscillation"] = (cls.film_oscillation(m["profile"]["h_axis"],
-                                                              m["profile"]["p_axis"])
-                                         if "profile" in m else math.nan)
-        for m in steps + speed:   # ... or before the force on the plane was
-            m.setdefault("plane_friction_coefficient", math.nan)
-        if steps:
-            for k in keys:
-                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
-            if steps[-1]["film_oscillation"] > cls.FILM_OSCILLATION_TOL:
-                who = f"{prefix.rstrip('_')}: " if prefix else ""
-                record.warn(f"{who}film zig-zags node to node by ±"
-                            f"{100 * steps[-1]['film_oscillation']:.0f} % on the centre line "
-                            f"(W = {steps[-1]['W']:.3g} N): the mesh does not resolve it; "
-                            "refine (mesh, edge_refine)")
-            record.result(prefix + "W_reached", steps[-1]["W"], "N")
-        for k in ("W",) + keys:
-            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
-        for m in speed:
-            m["mu_U"] = v["mu"] * m["U"]
-        if len(speed) > 1:
-            for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
-                      "plane_friction_coefficient", "h_central", "h_min", "p_max"):
-                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
+def progress_total(v):
+    """Points the progress bar counts: the loads of every variant."""
+    return v["steps"] * (len(VARIANTS) if v["compare"] == "all" else 1)
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement (bulk) and film pressure (cap submesh)."""
-        ball, film, _ = run
-        return {"displacement": [ball.u], "pressure": [film.p]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """film_map.png, centerline.png and (with speeds) friction_vs_speed.png."""
-        from ..plots import plot_ball_film, plot_friction_vs_speed
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
 
-        variants = {k: var for k, var in profile["variants"].items() if "xy" in var}
-        if not variants:
-            return
-        plot_ball_film(variants, profile["W"], outdir)
-        # without shear tractions the film force has no drag: plot the Couette drag
-        curves = {var["label"] + ("" if var["shear"] else " (Couette drag)"): (
-            var["speed"]["mu_U"], var["speed"]["friction_coefficient" if var["shear"]
-                                               else "couette_friction_coefficient"])
-            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1}
-        curves.update({var["label"] + " (on the plane)": (
-            var["speed"]["mu_U"], var["speed"]["plane_friction_coefficient"])
-            for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1
-            and np.isfinite(var["speed"]["plane_friction_coefficient"]).all()})
-        if curves:
-            plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
+    ``checkpoint``: directory of the sweep's checkpoint, written after every
+    converged load and speed step (:class:`tribofx.restart.SweepJournal`);
+    ``resume``: continue from it.
+    """
+    variants = VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
+    journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
+    record.result("mu_U", v["mu"] * v["U"], "N/mm")
+    a, p0, _, _ = scales(v)
+    hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], e_star(v))
+    for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
+                       ("hamrock_dowson_h_min", hm)):
+        record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
+    if not v["mesh_file"]:
+        level, refine, resolved = mesh_levels(v)
+        record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
+        if not resolved:
+            record.warn(f"mesh={level} edge_refine={refine}: elements of "
+                        f"{edge_size(v, level, refine):.3g} mm along the contact edge "
+                        f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
+                        "at this W and U: expect a zig-zag or a spurious dip of the film")
+    record.data["variant_newton_iterations"] = {}
+    record.profile = {"variants": {}, "W": v["W"]}
+    first = None
+    for name, label, over in variants:
+        run = sweep(dict(v, **over), name, label, record, journal, progress, verbose)
+        first = first or run
+    return first
 
-    @staticmethod
-    def speed(run, on_set=None):
-        """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
-        return ConstantParameter(run[1].V_counter, 0, on_set=on_set, scale=2.0)
 
-    @classmethod
-    def hertz_start(cls, run, v, W, U):
-        """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
-        h = cls.hertz_contact(v, W)
-        run[1].start_from_pressure(
-            lambda x: h.pressure(np.hypot(x[0], x[1])),
-            cls.scales(v, W, U)[2], np.zeros(3))
+def sweep(vv, name, label, record, journal, progress=None, verbose=False):
+    """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
 
-    @staticmethod
-    def load(run):
-        """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
-        return 2.0 * float(run[1].force()[Z])
+    After every converged load and speed step the variant's state, records
+    and position are written to ``journal`` (position: ``leg`` 0 the loads,
+    1 + j the march to the j-th speed; the secant state of the position
+    search; the march increments; the film scales); a resumed variant
+    restores them and continues on the same sequence of steps.
+    """
+    key = name or vv["model"]
+    run = build(vv, name=options_name("ehl_ball", name))
+    film, problem = run[1], run[2]
+    record.data["num_dofs"] = problem.num_dofs
+    # (the plane's offset is state); the series' "time" is the point's index, its
+    # (W, U) in series_points
+    sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
+                      record, vtx_fields(run), f"{name}_" if name else "",
+                      ("steps", "speed"), run[0].mesh.comm, progress)
+    steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
+    pos = sv.position
+    record.data["variant_newton_iterations"][key] = its_all
+    var = {"label": label, "shear": vv["shear"]}
+    record.profile["variants"][key] = var
+    at = {"leg": 0 if pos is None else pos["leg"]}
 
-    @classmethod
-    def position_control(cls, run, v, verbose=False, on_set=None, record=None):
-        """Secant on the load W(z_p) in the plane position z_p (steps ≤ 0.1 δ_Hertz).
+    def write():
+        sv.write([load(run), speed_parameter(run).get()])
 
-        A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
-        """
-        film, problem = run[1], run[2]
-        return Continuation(problem, ConstantParameter(film.counterpart.offset, Z, on_set),
-                            response=lambda: cls.load(run), rtol=1e-4, max_trials=40,
-                            verbose=verbose, max_step=0.1 * cls.hertz_contact(v).delta,
-                            admissible=lambda: film.min_film() > 0 and cls.load(run) > 0,
-                            record=record)
+    def save(position, arrays=None):
+        sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
+                arrays=[] if arrays is None else arrays)
 
-    @classmethod
-    def hertz_slope(cls, v):
-        """dW/dz_p = 1.5 W/δ(W) (N/mm) of a Hertz contact, as a function of W."""
-        return lambda W: 1.5 * W / cls.hertz_contact(v, W).delta
+    def on_step(W, its):
+        its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
+        if steps:   # the film map is kept for the last load only (checkpoint size)
+            steps[-1].pop("profile", None)
+        steps.append(measures(run, vv))
+        write()
+        if progress is not None:
+            progress.update(1)
 
-    @classmethod
-    def load_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
-        """Reach W/steps, …, W at the speed U; returns the position controller.
+    def on_speed(march=None):
+        m = measures(run, vv)
+        m.pop("profile")
+        speed.append(dict(m, U=speed_parameter(run).get()))
+        write()
+        if march is not None:
+            save({"increments": march.increments, "inner": inner.secant_state()})
 
-        ``on_step(W, iterations)`` after each load (the Newton trials of the
-        load), then ``on_accept(position, carrier)``: the JSON ``position`` a
-        resumed sweep starts from (``start=``, with the state of that load
-        restored) and the arrays of the state the next load starts from (or None).
-        """
-        if cls.large_load(v):
-            return cls.thick_film_sweep(run, v, on_step, verbose, start, on_accept)
-        film, problem = run[1], run[2]
-        W1 = v["W"] / v["steps"]
-        inner = cls.position_control(run, v, verbose)
-        offset = film.counterpart.offset.value
-        # each trial sequence starts at the current position: the converged first
-        # state, then the Hertz state predicted for each further load
-        held = Hold(inner, W1, slope=cls.hertz_slope(v), guess=lambda: float(offset[Z]))
-        if start is None:
-            cls.hertz_start(run, v, W1, v["U"])
-            its0 = problem.solve_by_homotopy(verbose=verbose).iterations
-            if not film.min_film() > 0:
-                raise NewtonDivergence(
-                    f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
-                    "under-resolved by the mesh): raise mesh or use fewer load steps")
-        else:
-            inner.set_secant_state(start["inner"])
-        for k in range(0 if start is None else start["k"], v["steps"]):
-            if k > 0:
-                held.predict = lambda W: cls.hertz_start(run, v, W, v["U"])
-            held.target = v["W"] * (k + 1) / v["steps"]
-            its = held.solve(verbose).iterations
-            if on_step is not None:
-                on_step(held.target, [its0, *its] if k == 0 else its)
-            if on_accept is not None:
-                on_accept({"k": k + 1, "inner": inner.secant_state()}, None)
-        return inner
-
-    @classmethod
-    def thick_film_sweep(cls, run, v, on_step=None, verbose=False, start=None, on_accept=None):
-        """Large loads: displacement control on a thick film at U_s, then continue down to U.
-
-        (i) At U_s = ``start_speed``·U the Hertz state at W_0 = min(W/steps, W/4)
-        is solved (if it fails: U_s ×0.3, ×3, ×0.1, ×10, never below U); (ii) the
-        plane is raised by displacement control until the film carries the next
-        load (:meth:`Continuation.advance`, scales following the load reached);
-        (iii) from that state U is marched down to U at fixed load
-        (:meth:`speed_march`) and the load recorded; (iv) the next load continues
-        from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
-        as for :meth:`load_sweep`, with the carrier state restored.
-        """
-        film, problem = run[1], run[2]
-        U, speed = v["U"], cls.speed(run)
-        if start is None:
-            its, k0 = [], 0
-            W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
-            for f in (1.0, 0.3, 3.0, 0.1, 10.0):
-                Us = max(U, f * v["start_speed"] * U)
-                speed.set(Us)
-                cls.set_scales(film, v, W0, Us)
-                cls.hertz_start(run, v, W0, Us)
-                try:
-                    its = [problem.solve(verbose=verbose).iterations]
-                except NewtonDivergence:
-                    continue
-                if film.min_film() > 0:
-                    break
+    start = None
+    if pos is not None:
+        carrier = sv.resume()
+        film.set_scales(**pos["scales"])
+        problem.refresh()
+        start = dict(pos, carrier=carrier)
+    with sv:
+        try:
+            if at["leg"] == 0:
+                inner = load_sweep(run, vv, on_step, verbose, start, on_accept=save)
+                if speed_list(vv):
+                    on_speed()
+            elif large_load(vv):
+                inner = follow_control(run, vv, vv["W"], vv["W"], verbose)
+                inner.set_secant_state(pos["inner"])
             else:
-                raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
-                                       "start_speed or mesh")
-            W_start = cls.load(run)
+                inner = position_control(run, vv, verbose)
+                inner.set_secant_state(pos["inner"])
+            for j, U in enumerate(speed_list(vv)):
+                if j + 1 < at["leg"]:
+                    continue
+                increments = pos["increments"] if j + 1 == at["leg"] else None
+                at["leg"] = j + 1
+                speed_march(run, vv, inner, vv["W"], U,
+                                restart=not large_load(vv), record=its_all,
+                                on_speed=on_speed, increments=increments)
+        finally:
+            if steps:
+                var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
+            _report(steps, speed, vv, record, f"{name}_" if name else "")
+            var["speed"] = {k: [m[k] for m in speed] for k in (
+                "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                "plane_friction_coefficient")}
+    return run
+
+
+def film_oscillation(h_axis, p_axis):
+    """Zig-zag of h on the centre line where p > p_max/2 (see the module docstring)."""
+    p_axis = np.asarray(p_axis)
+    return oscillation_indicator(np.asarray(h_axis), p_axis, 0.5 * p_axis.max(initial=0))
+
+
+def measures(run, v):
+    """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
+    film = run[1]
+    prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
+    f_plane = film.counter_force()
+    xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
+    on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
+    order = np.argsort(xy[on, 0])
+    xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
+    i = int(np.argmin(prof["h"]))
+    # where h is least, between nodes (tribofx.positions); y ≥ 0 in the quarter model
+    x_min, y_min = paraboloid_vertex(xy, prof["h"], "min")
+    per_load = 1 / float(f[Z]) if f[Z] > 0 else math.nan
+    return {"h_central": float(np.interp(0.0, xx, hh)), "h_min": float(prof["h"][i]),
+            "film_oscillation": film_oscillation(hh, pp),
+            "x_h_min": x_min, "y_h_min": max(y_min, 0.0),
+            "p_max": float(prof["p"].max()),
+            "profile": {"xy": xy, "h": prof["h"], "p": prof["p"], "x_axis": xx,
+                        "h_axis": hh, "p_axis": pp},
+            "W": 2.0 * float(f[Z]), "friction_force": 2.0 * float(f[0]),
+            "friction_coefficient": abs(float(f[0])) * per_load,
+            "couette_friction_coefficient": abs(float(fc[0])) * per_load,
+            "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
+            "clearance": -float(film.counterpart.offset.value[Z])}
+
+
+def _report(steps, speed, v, record, prefix):
+    keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
+            "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
+            "film_oscillation")
+    for m in steps:  # a journal written before film_oscillation was measured
+        if "film_oscillation" not in m:
+            m["film_oscillation"] = (film_oscillation(m["profile"]["h_axis"],
+                                                          m["profile"]["p_axis"])
+                                     if "profile" in m else math.nan)
+    for m in steps + speed:   # ... or before the force on the plane was
+        m.setdefault("plane_friction_coefficient", math.nan)
+    if steps:
+        for k in keys:
+            record.result(prefix + k, steps[-1][k], UNITS[k])
+        if steps[-1]["film_oscillation"] > FILM_OSCILLATION_TOL:
+            who = f"{prefix.rstrip('_')}: " if prefix else ""
+            record.warn(f"{who}film zig-zags node to node by ±"
+                        f"{100 * steps[-1]['film_oscillation']:.0f} % on the centre line "
+                        f"(W = {steps[-1]['W']:.3g} N): the mesh does not resolve it; "
+                        "refine (mesh, edge_refine)")
+        record.result(prefix + "W_reached", steps[-1]["W"], "N")
+    for k in ("W",) + keys:
+        record.result(f"{prefix}steps_{k}", [m[k] for m in steps], UNITS[k])
+    for m in speed:
+        m["mu_U"] = v["mu"] * m["U"]
+    if len(speed) > 1:
+        for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
+                  "plane_friction_coefficient", "h_central", "h_min", "p_max"):
+            record.result(f"{prefix}speed_{k}", [m[k] for m in speed], UNITS[k])
+
+
+def vtx_fields(run):
+    """Displacement (bulk) and film pressure (cap submesh)."""
+    ball, film, _ = run
+    return {"displacement": [ball.u], "pressure": [film.p]}
+
+
+def plot(profile, outdir):
+    """film_map.png, centerline.png and (with speeds) friction_vs_speed.png."""
+    from ..plots import plot_ball_film, plot_friction_vs_speed
+
+    variants = {k: var for k, var in profile["variants"].items() if "xy" in var}
+    if not variants:
+        return
+    plot_ball_film(variants, profile["W"], outdir)
+    # without shear tractions the film force has no drag: plot the Couette drag
+    curves = {var["label"] + ("" if var["shear"] else " (Couette drag)"): (
+        var["speed"]["mu_U"], var["speed"]["friction_coefficient" if var["shear"]
+                                           else "couette_friction_coefficient"])
+        for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1}
+    curves.update({var["label"] + " (on the plane)": (
+        var["speed"]["mu_U"], var["speed"]["plane_friction_coefficient"])
+        for var in profile["variants"].values() if len(var["speed"]["mu_U"]) > 1
+        and np.isfinite(var["speed"]["plane_friction_coefficient"]).all()})
+    if curves:
+        plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
+
+
+def speed_parameter(run, on_set=None):
+    """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
+    return ConstantParameter(run[1].V_counter, 0, on_set=on_set, scale=2.0)
+
+
+def hertz_start(run, v, W, U):
+    """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
+    h = hertz_contact(v, W)
+    run[1].start_from_pressure(
+        lambda x: h.pressure(np.hypot(x[0], x[1])),
+        scales(v, W, U)[2], np.zeros(3))
+
+
+def load(run):
+    """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
+    return 2.0 * float(run[1].force()[Z])
+
+
+def position_control(run, v, verbose=False, on_set=None, record=None):
+    """Secant on the load W(z_p) in the plane position z_p (steps ≤ 0.1 δ_Hertz).
+
+    A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
+    """
+    film, problem = run[1], run[2]
+    return Continuation(problem, ConstantParameter(film.counterpart.offset, Z, on_set),
+                        response=lambda: load(run), rtol=1e-4, max_trials=40,
+                        verbose=verbose, max_step=0.1 * hertz_contact(v).delta,
+                        admissible=lambda: film.min_film() > 0 and load(run) > 0,
+                        record=record)
+
+
+def hertz_slope(v):
+    """dW/dz_p = 1.5 W/δ(W) (N/mm) of a Hertz contact, as a function of W."""
+    return lambda W: 1.5 * W / hertz_contact(v, W).delta
+
+
+def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
+    """Reach W/steps, …, W at the speed U; returns the position controller.
+
+    ``on_step(W, iterations)`` after each load (the Newton trials of the
+    load), then ``on_accept(position, carrier)``: the JSON ``position`` a
+    resumed sweep starts from (``start=``, with the state of that load
+    restored) and the arrays of the state the next load starts from (or None).
+    """
+    if large_load(v):
+        return thick_film_sweep(run, v, on_step, verbose, start, on_accept)
+    film, problem = run[1], run[2]
+    W1 = v["W"] / v["steps"]
+    inner = position_control(run, v, verbose)
+    offset = film.counterpart.offset.value
+    # each trial sequence starts at the current position: the converged first
+    # state, then the Hertz state predicted for each further load
+    held = Hold(inner, W1, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
+    if start is None:
+        hertz_start(run, v, W1, v["U"])
+        its0 = problem.solve_by_homotopy(verbose=verbose).iterations
+        if not film.min_film() > 0:
+            raise NewtonDivergence(
+                f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
+                "under-resolved by the mesh): raise mesh or use fewer load steps")
+    else:
+        inner.set_secant_state(start["inner"])
+    for k in range(0 if start is None else start["k"], v["steps"]):
+        if k > 0:
+            held.predict = lambda W: hertz_start(run, v, W, v["U"])
+        held.target = v["W"] * (k + 1) / v["steps"]
+        its = held.solve(verbose).iterations
+        if on_step is not None:
+            on_step(held.target, [its0, *its] if k == 0 else its)
+        if on_accept is not None:
+            on_accept({"k": k + 1, "inner": inner.secant_state()}, None)
+    return inner
+
+
+def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
+    """Large loads: displacement control on a thick film at U_s, then continue down to U.
+
+    (i) At U_s = ``start_speed``·U the Hertz state at W_0 = min(W/steps, W/4)
+    is solved (if it fails: U_s ×0.3, ×3, ×0.1, ×10, never below U); (ii) the
+    plane is raised by displacement control until the film carries the next
+    load (:meth:`Continuation.advance`, scales following the load reached);
+    (iii) from that state U is marched down to U at fixed load
+    (:meth:`speed_march`) and the load recorded; (iv) the next load continues
+    from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
+    as for :meth:`load_sweep`, with the carrier state restored.
+    """
+    film, problem = run[1], run[2]
+    U, speed = v["U"], speed_parameter(run)
+    if start is None:
+        its, k0 = [], 0
+        W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
+        for f in (1.0, 0.3, 3.0, 0.1, 10.0):
+            Us = max(U, f * v["start_speed"] * U)
+            speed.set(Us)
+            set_scales(film, v, W0, Us)
+            hertz_start(run, v, W0, Us)
+            try:
+                its = [problem.solve(verbose=verbose).iterations]
+            except NewtonDivergence:
+                continue
+            if film.min_film() > 0:
+                break
         else:
-            its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
-            if k0 < v["steps"]:      # the next load starts from the thick-film state
-                problem.restore(start["carrier"])
-                speed.set(Us)
-                cls.set_scales(film, v, W_start, Us)
-            else:                    # all loads done: the last load's controller
-                inner = cls.follow_control(run, v, W_start, W_start, verbose, its)
-                inner.set_secant_state(start["inner"])
-        for k in range(k0, v["steps"]):
-            Wk = v["W"] * (k + 1) / v["steps"]
-            inner = cls.follow_control(run, v, Wk, W_start, verbose, its)
-            inner.advance(Wk, 0.05 * cls.hertz_contact(v).delta)
-            cls.set_scales(film, v, Wk, Us)
-            carrier = problem.state()
-            if Us != U:  # (``inner`` records the Newton trials of each speed step)
-                cls.speed_march(run, v, inner, Wk, U)
-            if on_step is not None:
-                on_step(Wk, its)
-            if on_accept is not None:
-                on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
-                           "inner": inner.secant_state()}, carrier)
-            its, W_start = [], Wk
-            if k + 1 < v["steps"] and Us != U:
-                problem.restore(carrier)
-                speed.set(Us)
-                cls.set_scales(film, v, Wk, Us)
-        return inner
+            raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
+                                   "start_speed or mesh")
+        W_start = load(run)
+    else:
+        its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
+        if k0 < v["steps"]:      # the next load starts from the thick-film state
+            problem.restore(start["carrier"])
+            speed.set(Us)
+            set_scales(film, v, W_start, Us)
+        else:                    # all loads done: the last load's controller
+            inner = follow_control(run, v, W_start, W_start, verbose, its)
+            inner.set_secant_state(start["inner"])
+    for k in range(k0, v["steps"]):
+        Wk = v["W"] * (k + 1) / v["steps"]
+        inner = follow_control(run, v, Wk, W_start, verbose, its)
+        inner.advance(Wk, 0.05 * hertz_contact(v).delta)
+        set_scales(film, v, Wk, Us)
+        carrier = problem.state()
+        if Us != U:  # (``inner`` records the Newton trials of each speed step)
+            speed_march(run, v, inner, Wk, U)
+        if on_step is not None:
+            on_step(Wk, its)
+        if on_accept is not None:
+            on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
+                       "inner": inner.secant_state()}, carrier)
+        its, W_start = [], Wk
+        if k + 1 < v["steps"] and Us != U:
+            problem.restore(carrier)
+            speed.set(Us)
+            set_scales(film, v, Wk, Us)
+    return inner
 
-    @classmethod
-    def follow_control(cls, run, v, Wk, W_start, verbose=False, record=None):
-        """Position control towards the load Wk whose scales follow the load reached.
 
-        Every trial position sets the scales of the load reached last (≤ Wk;
-        ``W_start`` before the first) at the current speed.
-        """
-        film, speed = run[1], cls.speed(run)
+def follow_control(run, v, Wk, W_start, verbose=False, record=None):
+    """Position control towards the load Wk whose scales follow the load reached.
 
-        def follow(z):
-            W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
-            cls.set_scales(film, v, W_ref, speed.get())
+    Every trial position sets the scales of the load reached last (≤ Wk;
+    ``W_start`` before the first) at the current speed.
+    """
+    film, speed = run[1], speed_parameter(run)
 
-        inner = cls.position_control(run, v, verbose, on_set=follow, record=record)
-        return inner
+    def follow(z):
+        W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
+        set_scales(film, v, W_ref, speed.get())
 
-    @classmethod
-    def speed_march(cls, run, v, inner, W, U, restart=False, record=None, on_speed=None,
-                    increments=None):
-        """Continue the converged state at load W in the entrainment speed to U (geometric).
+    inner = position_control(run, v, verbose, on_set=follow, record=record)
+    return inner
 
-        Each speed step re-finds the plane position for W (``inner``), starting
-        from the Hertz state at the new speed (``restart``) or from the plane
-        shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
-        A failed step is cut (six times at most).  ``on_speed(march)`` after every
-        converged step; ``increments``: those of an interrupted march (resumed).
-        """
-        film = run[1]
-        offset = film.counterpart.offset.value
-        speed = cls.speed(run, on_set=lambda Uv: cls.set_scales(film, v, W, Uv))
-        last = {"U": speed.get()}
 
-        def shifted():
-            h_c = cls.measures(run, v)["h_central"]
-            return float(offset[Z]) - h_c * ((speed.get() / last["U"]) ** 0.64 - 1)
+def speed_march(run, v, inner, W, U, restart=False, record=None, on_speed=None,
+                increments=None):
+    """Continue the converged state at load W in the entrainment speed to U (geometric).
 
-        def response():
-            last["U"] = speed.get()
-            return on_speed(march) if on_speed is not None else None
+    Each speed step re-finds the plane position for W (``inner``), starting
+    from the Hertz state at the new speed (``restart``) or from the plane
+    shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
+    A failed step is cut (six times at most).  ``on_speed(march)`` after every
+    converged step; ``increments``: those of an interrupted march (resumed).
+    """
+    film = run[1]
+    offset = film.counterpart.offset.value
+    speed = speed_parameter(run, on_set=lambda Uv: set_scales(film, v, W, Uv))
+    last = {"U": speed.get()}
 
-        held = Hold(inner, W, slope=cls.hertz_slope(v),
-                            guess=(lambda: float(offset[Z])) if restart else shifted,
-                            predict=(lambda Wt: cls.hertz_start(run, v, Wt, speed.get()))
-                            if restart else None)
-        march = Continuation(held, speed, response=response, record=record)
-        # speed ratios of at most MAX_SPEED_RATIO per step (a failed step is cut further)
-        steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
-        march.march(U, steps=steps, predictor=False, geometric=True, min_fraction=2.0**-6,
-                    increments=increments)
+    def shifted():
+        h_c = measures(run, v)["h_central"]
+        return float(offset[Z]) - h_c * ((speed.get() / last["U"]) ** 0.64 - 1)
 
-    @classmethod
-    def large_load(cls, v):
-        """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
-        return cls.hertz_contact(v).a > v["R"] / 3
+    def response():
+        last["U"] = speed.get()
+        return on_speed(march) if on_speed is not None else None
+
+    held = Hold(inner, W, slope=hertz_slope(v),
+                        guess=(lambda: float(offset[Z])) if restart else shifted,
+                        predict=(lambda Wt: hertz_start(run, v, Wt, speed.get()))
+                        if restart else None)
+    march = Continuation(held, speed, response=response, record=record)
+    # speed ratios of at most MAX_SPEED_RATIO per step (a failed step is cut further)
+    steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
+    march.march(U, steps=steps, predictor=False, geometric=True, min_fraction=2.0**-6,
+                increments=increments)
+
+
+def large_load(v):
+    """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
+    return hertz_contact(v).a > v["R"] / 3

@@ -59,10 +59,11 @@ from .film_setup import (
     viscosity,
 )
 
-__all__ = [
-    "EHLCylinderLayerCase", "USER_CELLS", "USER_GROUPS", "check_user_ends", "cylinder_arc",
-    "place_user_layer", "read_user_layer",
-]
+__all__ = ["COMPARE", "COMPARE_PLOT", "UNITS", "USER_CELLS", "USER_GROUPS", "arc_half_angle",
+           "build", "check_film_length", "check_user_ends", "cylinder_arc", "doc",
+           "load_control", "measures", "name", "params", "place_user_layer", "plot",
+           "progress_total", "read_user_layer", "resumable", "run", "scales", "set_speed",
+           "slope", "speed_sweep", "sweep", "validate", "vtx_fields"]
 
 
 #: boundary names a user's layer must carry
@@ -139,407 +140,406 @@ def cylinder_arc(R, n, alpha):
     return nodes, np.c_[k, k + 2, k + 1].astype(np.int32), "interval3"
 
 
-class EHLCylinderLayerCase:
-    """Case ``ehl-cylinder-layer``; see the module docstring."""
+name = "ehl-cylinder-layer"
 
-    name = "ehl-cylinder-layer"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "soft-EHL: rigid cylinder sliding on a coated elastic layer (finite or linear)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        Param("W", float, 1.0, "N/mm", "final load per unit length", lower=0.0),
-        Param("steps", int, 10, "-", "load increments (W/steps, 2W/steps, …, W)", lower=1,
-              upper=1000, closed=True),
-        Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-        Param("U", float, 1000.0, "mm/s", "sliding speed of the cylinder", lower=0.0),
-        Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
-        Param("H", float, 5.0, "mm", "layer thickness (coating included)", lower=0.0),
-        Param("E", float, 10.0, "MPa", "Young's modulus of the layer", lower=0.0),
-        Param("t_c", float, 0.1, "mm", "coating thickness (0: no coating)", lower=0.0,
-              closed=True),
-        Param("E_c", float, 100.0, "MPa", "Young's modulus of the coating", lower=0.0),
-        Param("nu", float, 0.45, "-", "Poisson's ratio (layer and coating)", lower=-1.0,
-              upper=0.5),
-        Param("x_l", float, 3.0, "mm", "half length of the lubricated zone (p = 0 at ±x_l)",
-              lower=0.0),
-        Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
-              choices=("finite", "linear")),
-        Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
-        Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-        formulation_param("displacement"),
-        Param("penalty", float, 1e-6, "-",
-              "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
-              lower=0.0),
-        Param("mesh", int, 1, "-", "refinement: element size 0.04/2^mesh mm along Γ_l",
-              lower=0, upper=6, closed=True),
-        Param("degree", int, 2, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-        Param("countersurface", str, "analytic", "-",
-              "cylinder in closed form, or meshed (interval3 arc, C++ projection kernel)",
-              choices=("analytic", "mesh")),
-        Param("cs_facets", int, 400, "-", "interval3 facets of the meshed cylinder arc", lower=1,
-              upper=100000, closed=True),
-        Param("cavitation", str, "penalty", "-",
-              "penalty (Swift–Stieber limit) or jfo (mass-conserving, void fraction λ)",
-              choices=("penalty", "jfo")),
-        Param("alpha", float, 0.0, "-",
-              "lubrication surface S_α = (1 − α) P(γ_l) + α γ_l (0: S = P(γ_l), 1: S = γ_l)",
-              lower=0.0, upper=1.0, closed=True),
-        Param("speeds", str, "", "mm/s",
-              "comma-separated sliding speeds for continuation in U at the final load W "
-              "(empty: none); records the friction coefficient vs μU"),
-        Param("compare", str, "none", "-",
-              "one load sweep per variant in the same run: linear (model = finite and "
-              "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
-              "the variant", choices=("none", "linear", "alpha")),
-        Param("mesh_file", str, "", "-",
-              "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
-              "open curve under the cylinder) and bottom (u = 0), and optionally the cell "
-              "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
-              "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
-              "is at y = 0, its x extent centred below the cylinder axis"),
-    ) + VISCOSITY_PARAMS
 
-    #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
-    COMPARE = {
-        "linear": (("finite", "finite deformation", {"model": "finite"}),
-                   ("linear", "geometrically linear", {"model": "linear"})),
-        "alpha": (("alpha0", "α = 0 (S = P(γ_l))", {"alpha": 0.0}),
-                  ("alpha0.5", "α = 0.5", {"alpha": 0.5}),
-                  ("alpha1", "α = 1 (S = γ_l)", {"alpha": 1.0})),
-    }
+doc = "soft-EHL: rigid cylinder sliding on a coated elastic layer (finite or linear)"
 
-    COMPARE_PLOT = {"linear": "profiles_finite_vs_linear.png", "alpha": "profiles_alpha.png"}
 
-    UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
-             "friction_coefficient": "-", "clearance": "mm", "U": "mm/s", "mu_U": "N/mm"}
+params = (
+    Param("W", float, 1.0, "N/mm", "final load per unit length", lower=0.0),
+    Param("steps", int, 10, "-", "load increments (W/steps, 2W/steps, …, W)", lower=1,
+          upper=1000, closed=True),
+    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
+    Param("U", float, 1000.0, "mm/s", "sliding speed of the cylinder", lower=0.0),
+    Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
+    Param("H", float, 5.0, "mm", "layer thickness (coating included)", lower=0.0),
+    Param("E", float, 10.0, "MPa", "Young's modulus of the layer", lower=0.0),
+    Param("t_c", float, 0.1, "mm", "coating thickness (0: no coating)", lower=0.0,
+          closed=True),
+    Param("E_c", float, 100.0, "MPa", "Young's modulus of the coating", lower=0.0),
+    Param("nu", float, 0.45, "-", "Poisson's ratio (layer and coating)", lower=-1.0,
+          upper=0.5),
+    Param("x_l", float, 3.0, "mm", "half length of the lubricated zone (p = 0 at ±x_l)",
+          lower=0.0),
+    Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
+          choices=("finite", "linear")),
+    Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
+    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
+    formulation_param("displacement"),
+    Param("penalty", float, 1e-6, "-",
+          "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
+          lower=0.0),
+    Param("mesh", int, 1, "-", "refinement: element size 0.04/2^mesh mm along Γ_l",
+          lower=0, upper=6, closed=True),
+    Param("degree", int, 2, "-", "Lagrange degree of the displacement", choices=(1, 2)),
+    Param("countersurface", str, "analytic", "-",
+          "cylinder in closed form, or meshed (interval3 arc, C++ projection kernel)",
+          choices=("analytic", "mesh")),
+    Param("cs_facets", int, 400, "-", "interval3 facets of the meshed cylinder arc", lower=1,
+          upper=100000, closed=True),
+    Param("cavitation", str, "penalty", "-",
+          "penalty (Swift–Stieber limit) or jfo (mass-conserving, void fraction λ)",
+          choices=("penalty", "jfo")),
+    Param("alpha", float, 0.0, "-",
+          "lubrication surface S_α = (1 − α) P(γ_l) + α γ_l (0: S = P(γ_l), 1: S = γ_l)",
+          lower=0.0, upper=1.0, closed=True),
+    Param("speeds", str, "", "mm/s",
+          "comma-separated sliding speeds for continuation in U at the final load W "
+          "(empty: none); records the friction coefficient vs μU"),
+    Param("compare", str, "none", "-",
+          "one load sweep per variant in the same run: linear (model = finite and "
+          "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
+          "the variant", choices=("none", "linear", "alpha")),
+    Param("mesh_file", str, "", "-",
+          "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
+          "open curve under the cylinder) and bottom (u = 0), and optionally the cell "
+          "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
+          "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
+          "is at y = 0, its x extent centred below the cylinder axis"),
+) + VISCOSITY_PARAMS
 
-    @classmethod
-    def validate(cls, v):
-        """Geometric consistency of the layer and the lubricated zone.
 
-        With ``mesh_file`` H, t_c and x_l come from the mesh; x_l ≤ 0.8 R is then
-        checked when the mesh is read (:meth:`build`).
-        """
-        if not v["mesh_file"]:
-            if v["t_c"] >= v["H"]:
-                raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than "
-                                 f"H = {v['H']} mm")
-            if v["x_l"] >= 3 * v["H"]:
-                raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
-            cls.check_film_length(v["x_l"], v["R"])
-        speeds = cls.speed_list(v)
-        viscosity(v)
-        density(v)
-        if v["cavitation"] == "jfo" and not v["U"] > 0:
-            raise InputError("cavitation=jfo needs U > 0")
-        if v["compare"] != "none" and speeds:
-            raise InputError("speeds (continuation in U) is not available with compare")
-        if v["compare"] == "alpha" and v["model"] != "finite":
-            raise InputError("compare=alpha is a study of the finite-deformation model")
+#: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
+COMPARE = {
+    "linear": (("finite", "finite deformation", {"model": "finite"}),
+               ("linear", "geometrically linear", {"model": "linear"})),
+    "alpha": (("alpha0", "α = 0 (S = P(γ_l))", {"alpha": 0.0}),
+              ("alpha0.5", "α = 0.5", {"alpha": 0.5}),
+              ("alpha1", "α = 1 (S = γ_l)", {"alpha": 1.0})),
+}
 
-    @staticmethod
-    def check_film_length(x_l, R):
-        """Raise InputError unless the film zone |X| ≤ x_l lies below the cylinder (x_l ≤ 0.8 R)."""
-        if x_l > 0.8 * R:
-            raise InputError(f"x_l = {x_l:.6g} mm must be < 0.8 R (film beyond the cylinder)")
 
-    @staticmethod
-    def speed_list(v):
-        """Return the continuation speeds (mm/s) of ``speeds`` (one-line error if bad)."""
-        return speed_list(v)
+COMPARE_PLOT = {"linear": "profiles_finite_vs_linear.png", "alpha": "profiles_alpha.png"}
 
-    @staticmethod
-    def scales(v, W=None, U=None):
-        """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at W and U."""
-        W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
-        h_r = rigid_clearance(W, v["mu"], U, v["R"])
-        ell = math.sqrt(2 * v["R"] * h_r)
-        return h_r, 6 * v["mu"] * U * ell / h_r**2, v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3
 
-    @staticmethod
-    def arc_half_angle(v):
-        """Half angle (rad) of the meshed arc: covers the film zone |x| ≤ x_l with 25 % margin."""
-        return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
+UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
+         "friction_coefficient": "-", "clearance": "mm", "U": "mm/s", "mu_U": "N/mm"}
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
-        """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
-        ``name``: the problem's name (options prefix ``tribofx_<name>_``; a variant of
-        ``compare`` is ``ehl_cylinder_<variant>``).
+def validate(v):
+    """Geometric consistency of the layer and the lubricated zone.
 
-        ``alpha = 0`` uses S = P(γ_l) unless ``intermediate`` (then the general S_α
-        kinematics with α = 0, for checking that they coincide).  ``mesh_file``:
-        the user's layer (see the module docstring), ``x_l`` taken from it.
-        """
-        H = v["H"]
-        law = "linear" if v["model"] == "linear" else "neo-hookean"
+    With ``mesh_file`` H, t_c and x_l come from the mesh; x_l ≤ 0.8 R is then
+    checked when the mesh is read (:meth:`build`).
+    """
+    if not v["mesh_file"]:
+        if v["t_c"] >= v["H"]:
+            raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than "
+                             f"H = {v['H']} mm")
+        if v["x_l"] >= 3 * v["H"]:
+            raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
+        check_film_length(v["x_l"], v["R"])
+    speeds = speed_list(v)
+    viscosity(v)
+    density(v)
+    if v["cavitation"] == "jfo" and not v["U"] > 0:
+        raise InputError("cavitation=jfo needs U > 0")
+    if v["compare"] != "none" and speeds:
+        raise InputError("speeds (continuation in U) is not available with compare")
+    if v["compare"] == "alpha" and v["model"] != "finite":
+        raise InputError("compare=alpha is a study of the finite-deformation model")
 
-        def mat(E):
-            mu, lm = lame_parameters(E, v["nu"])
-            return (law, {"mu": mu, "lmbda": lm})
 
-        if v["mesh_file"]:
-            msh, ct, ft, names, materials, x_l = read_user_layer(v, comm, mat)
-            v = dict(v, x_l=x_l)
-            cls.check_film_length(x_l, v["R"])
-        else:
-            msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
-                                       H / 5, comm)
-            names = NAMES
-            materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0
-                                               else {})
-        layer = Body(msh, ft, names, "plane_strain", materials, cell_tags=ct,
-                     degree=v["degree"], velocity=(v["U"], 0.0), name="layer",
-                     formulation=v["formulation"])
-        layer.add_dirichlet("bottom", np.zeros(2))
-        if v["countersurface"] == "mesh":
-            nodes, facets, ctype = cylinder_arc(v["R"], v["cs_facets"], cls.arc_half_angle(v))
-            cylinder = rigid_surface_mesh(nodes + [0.0, v["R"]], facets, ctype)
-        else:
-            cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
-        h_r, p_s, eps = cls.scales(v, v["W"] / v["steps"])
-        film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
-                    model=v["model"], shear=v["shear"],
-                    supg=v["supg"], cavitation=v["cavitation"],
-                    eps=eps if v["penalty"] > 0 else None, p_c=p_s,
-                    alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
-                    film_scale=h_r, speed_scale=v["U"])
-        if v["mesh_file"]:
-            check_user_ends(film, v)
-        if v["cavitation"] == "jfo":
-            film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
-        else:
-            film.add_pressure_bc()
-        problem = Problem([layer, film], name=name, max_it=25)
-        film.counterpart.offset.value[1] = h_r
-        film.jfo_initial_guess()
-        return layer, film, problem
+def check_film_length(x_l, R):
+    """Raise InputError unless the film zone |X| ≤ x_l lies below the cylinder (x_l ≤ 0.8 R)."""
+    if x_l > 0.8 * R:
+        raise InputError(f"x_l = {x_l:.6g} mm must be < 0.8 R (film beyond the cylinder)")
 
-    @classmethod
-    def sweep(cls, v, record, progress=None, verbose=False, prefix="", journal=None):
-        """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
 
-        ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
-        records and the position (leg 0: the loads, leg 1 + j: the march to the
-        j-th speed; its increments; the inner position search) are written after
-        every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
-        resumed variant continues there.
-        """
-        name = prefix[:-1] or v["model"]
-        run = cls.build(v, name=options_name("ehl_cylinder", prefix[:-1]))
-        layer, film, problem = run
-        journal = journal or SweepJournal(None, layer.mesh.comm, v)
-        record.data["num_dofs"] = problem.num_dofs
-        var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
-                           record, cls.vtx_fields(run), prefix, ("steps", "speed", "profiles"),
-                           layer.mesh.comm, progress)
-        steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
-        pos = var.position
+def scales(v, W=None, U=None):
+    """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at W and U."""
+    W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
+    h_r = rigid_clearance(W, v["mu"], U, v["R"])
+    ell = math.sqrt(2 * v["R"] * h_r)
+    return h_r, 6 * v["mu"] * U * ell / h_r**2, v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3
 
-        def write(m):
-            var.write([m["W"], float(layer.velocity.value[0])])
 
-        def save(leg, march):
-            var.save({"leg": leg, "increments": march.increments,
-                      "W": loads.done if leg == 0 else v["W"], "inner": inner.secant_state(),
-                      "scales": film.scale_values()})
+def arc_half_angle(v):
+    """Half angle (rad) of the meshed arc: covers the film zone |x| ≤ x_l with 25 % margin."""
+    return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
 
-        def on_step():
-            m = cls.measures(run, v)
-            profiles.append(dict(m.pop("profile"), W=m["W"]))
-            steps.append(m)
-            write(m)
-            if progress is not None:
-                progress.update(1)
 
-        def on_speed():
-            m = cls.measures(run, v)
-            m.pop("profile")
-            m["U"] = float(layer.velocity.value[0])
-            speed.append(m)
-            write(m)
+def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
+    """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
-        if prefix:
-            record.data.setdefault("variant_newton_iterations", {})[name] = its
-        loads, inner = cls.load_control(run, v, on_step, verbose, its,
-                                         on_accept=lambda: save(0, loads))
-        leg = 0 if pos is None else pos["leg"]
-        if pos is not None:
-            var.resume()
-            film.set_scales(**pos["scales"])
-            problem.refresh()
-            loads.resume_from(pos["W"])
-            inner.set_secant_state(pos["inner"])
-        increments = None if pos is None else pos["increments"]
-        with var:
-            try:
+    ``name``: the problem's name (options prefix ``tribofx_<name>_``; a variant of
+    ``compare`` is ``ehl_cylinder_<variant>``).
+
+    ``alpha = 0`` uses S = P(γ_l) unless ``intermediate`` (then the general S_α
+    kinematics with α = 0, for checking that they coincide).  ``mesh_file``:
+    the user's layer (see the module docstring), ``x_l`` taken from it.
+    """
+    H = v["H"]
+    law = "linear" if v["model"] == "linear" else "neo-hookean"
+
+    def mat(E):
+        mu, lm = lame_parameters(E, v["nu"])
+        return (law, {"mu": mu, "lmbda": lm})
+
+    if v["mesh_file"]:
+        msh, ct, ft, names, materials, x_l = read_user_layer(v, comm, mat)
+        v = dict(v, x_l=x_l)
+        check_film_length(x_l, v["R"])
+    else:
+        msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
+                                   H / 5, comm)
+        names = NAMES
+        materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0
+                                           else {})
+    layer = Body(msh, ft, names, "plane_strain", materials, cell_tags=ct,
+                 degree=v["degree"], velocity=(v["U"], 0.0), name="layer",
+                 formulation=v["formulation"])
+    layer.add_dirichlet("bottom", np.zeros(2))
+    if v["countersurface"] == "mesh":
+        nodes, facets, ctype = cylinder_arc(v["R"], v["cs_facets"], arc_half_angle(v))
+        cylinder = rigid_surface_mesh(nodes + [0.0, v["R"]], facets, ctype)
+    else:
+        cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
+    h_r, p_s, eps = scales(v, v["W"] / v["steps"])
+    film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
+                model=v["model"], shear=v["shear"],
+                supg=v["supg"], cavitation=v["cavitation"],
+                eps=eps if v["penalty"] > 0 else None, p_c=p_s,
+                alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
+                film_scale=h_r, speed_scale=v["U"])
+    if v["mesh_file"]:
+        check_user_ends(film, v)
+    if v["cavitation"] == "jfo":
+        film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
+    else:
+        film.add_pressure_bc()
+    problem = Problem([layer, film], name=name, max_it=25)
+    film.counterpart.offset.value[1] = h_r
+    film.jfo_initial_guess()
+    return layer, film, problem
+
+
+def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
+    """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
+
+    ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
+    records and the position (leg 0: the loads, leg 1 + j: the march to the
+    j-th speed; its increments; the inner position search) are written after
+    every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
+    resumed variant continues there.
+    """
+    name = prefix[:-1] or v["model"]
+    run = build(v, name=options_name("ehl_cylinder", prefix[:-1]))
+    layer, film, problem = run
+    journal = journal or SweepJournal(None, layer.mesh.comm, v)
+    record.data["num_dofs"] = problem.num_dofs
+    var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
+                       record, vtx_fields(run), prefix, ("steps", "speed", "profiles"),
+                       layer.mesh.comm, progress)
+    steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
+    pos = var.position
+
+    def write(m):
+        var.write([m["W"], float(layer.velocity.value[0])])
+
+    def save(leg, march):
+        var.save({"leg": leg, "increments": march.increments,
+                  "W": loads.done if leg == 0 else v["W"], "inner": inner.secant_state(),
+                  "scales": film.scale_values()})
+
+    def on_step():
+        m = measures(run, v)
+        profiles.append(dict(m.pop("profile"), W=m["W"]))
+        steps.append(m)
+        write(m)
+        if progress is not None:
+            progress.update(1)
+
+    def on_speed():
+        m = measures(run, v)
+        m.pop("profile")
+        m["U"] = float(layer.velocity.value[0])
+        speed.append(m)
+        write(m)
+
+    if prefix:
+        record.data.setdefault("variant_newton_iterations", {})[name] = its
+    loads, inner = load_control(run, v, on_step, verbose, its,
+                                     on_accept=lambda: save(0, loads))
+    leg = 0 if pos is None else pos["leg"]
+    if pos is not None:
+        var.resume()
+        film.set_scales(**pos["scales"])
+        problem.refresh()
+        loads.resume_from(pos["W"])
+        inner.set_secant_state(pos["inner"])
+    increments = None if pos is None else pos["increments"]
+    with var:
+        try:
+            if leg == 0:
+                loads.march(v["W"], v["steps"], predictor=False, increments=increments)
+                increments = None
+            if speed_list(v):
                 if leg == 0:
-                    loads.march(v["W"], v["steps"], predictor=False, increments=increments)
-                    increments = None
-                if cls.speed_list(v):
-                    if leg == 0:
-                        speed.append(dict(steps[-1], U=v["U"]))
-                    cls.speed_sweep(run, v, inner, v["W"], cls.speed_list(v), on_speed, its,
-                                    start=max(leg - 1, 0), increments=increments,
-                                    on_accept=lambda j, march: save(1 + j, march))
-            finally:
-                cls._report(steps, speed, profiles, v, record, prefix)
-        return run
+                    speed.append(dict(steps[-1], U=v["U"]))
+                speed_sweep(run, v, inner, v["W"], speed_list(v), on_speed, its,
+                                start=max(leg - 1, 0), increments=increments,
+                                on_accept=lambda j, march: save(1 + j, march))
+        finally:
+            _report(steps, speed, profiles, v, record, prefix)
+    return run
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
 
-        ``checkpoint``: directory of the sweep's checkpoint (written after every
-        converged load and speed); ``resume``: continue from it.
-        """
-        journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-        record.result("mu_U", v["mu"] * v["U"], "N/mm")
-        if v["compare"] == "none":
-            return cls.sweep(v, record, progress, verbose, journal=journal)
-        record.result("variants", [name for name, _, _ in cls.COMPARE[v["compare"]]])
-        first = None
-        for name, label, over in cls.COMPARE[v["compare"]]:
-            run = cls.sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_",
-                            journal=journal)
-            first = first or run
-            if MPI.COMM_WORLD.rank == 0:
-                record.profile["variants"][name]["label"] = label
-                record.profile["compare"] = v["compare"]
-        return first
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
 
-    @classmethod
-    def measures(cls, run, v):
-        """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
-        film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
-        xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
-        return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
-                "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
-                "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
-                "tangential_force": float(f[0]),
-                "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,
-                "clearance": float(film.counterpart.offset.value[1])}
-
-    @classmethod
-    def _report(cls, steps, speed, profiles, v, record, prefix):
-        keys = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
-        if steps:
-            for k in keys[1:5]:
-                record.result(prefix + k, steps[-1][k], cls.UNITS[k])
-            record.result(prefix + "W_reached", steps[-1]["W"], "N/mm")
-        for k in keys:
-            record.result(f"{prefix}steps_{k}", [m[k] for m in steps], cls.UNITS[k])
-        for m in speed:
-            m["mu_U"] = v["mu"] * m["U"]
-        if len(speed) > 1:
-            for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max", "clearance"):
-                record.result(f"{prefix}speed_{k}", [m[k] for m in speed], cls.UNITS[k])
+    ``checkpoint``: directory of the sweep's checkpoint (written after every
+    converged load and speed); ``resume``: continue from it.
+    """
+    journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
+    record.result("mu_U", v["mu"] * v["U"], "N/mm")
+    if v["compare"] == "none":
+        return sweep(v, record, progress, verbose, journal=journal)
+    record.result("variants", [name for name, _, _ in COMPARE[v["compare"]]])
+    first = None
+    for name, label, over in COMPARE[v["compare"]]:
+        run = sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_",
+                        journal=journal)
+        first = first or run
         if MPI.COMM_WORLD.rank == 0:
-            prof = record.profile or {"variants": {}}
-            prof["variants"][prefix[:-1] or v["model"]] = {
-                "label": prefix[:-1] or v["model"], "steps": profiles,
-                "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
-            record.profile = prof
+            record.profile["variants"][name]["label"] = label
+            record.profile["compare"] = v["compare"]
+    return first
 
-    @classmethod
-    def progress_total(cls, v):
-        """Points the progress bar counts: the loads of every variant."""
-        return v["steps"] * (1 if v["compare"] == "none" else len(cls.COMPARE[v["compare"]]))
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement (bulk) and film pressure (Γ_l submesh)."""
-        layer, film, _ = run
-        return {"displacement": [layer.u], "pressure": [film.p]}
+def measures(run, v):
+    """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
+    film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
+    xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
+    return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
+            "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
+            "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
+            "tangential_force": float(f[0]),
+            "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,
+            "clearance": float(film.counterpart.offset.value[1])}
 
-    @classmethod
-    def plot(cls, profile, outdir):
-        """``profiles.png`` (or the ``compare`` plot) and ``friction_vs_speed.png``."""
-        from ..plots import plot_film_profiles, plot_friction_vs_speed
 
-        variants = profile["variants"]
-        if "compare" in profile:
-            title = ("coated layer: finite deformation vs geometrically linear"
-                     if profile["compare"] == "linear" else "coated layer: lubrication surface S_α")
-            plot_film_profiles(None, outdir / cls.COMPARE_PLOT[profile["compare"]], title,
-                               variants)
-            return
-        (name, var), = variants.items()
-        plot_film_profiles(var["steps"], outdir / "profiles.png",
-                           f"coated layer, model = {name}")
-        if len(var["speed"][0]) > 1:
-            plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")
+def _report(steps, speed, profiles, v, record, prefix):
+    keys = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
+    if steps:
+        for k in keys[1:5]:
+            record.result(prefix + k, steps[-1][k], UNITS[k])
+        record.result(prefix + "W_reached", steps[-1]["W"], "N/mm")
+    for k in keys:
+        record.result(f"{prefix}steps_{k}", [m[k] for m in steps], UNITS[k])
+    for m in speed:
+        m["mu_U"] = v["mu"] * m["U"]
+    if len(speed) > 1:
+        for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max", "clearance"):
+            record.result(f"{prefix}speed_{k}", [m[k] for m in speed], UNITS[k])
+    if MPI.COMM_WORLD.rank == 0:
+        prof = record.profile or {"variants": {}}
+        prof["variants"][prefix[:-1] or v["model"]] = {
+            "label": prefix[:-1] or v["model"], "steps": profiles,
+            "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
+        record.profile = prof
 
-    @classmethod
-    def load_control(cls, run, v, on_step=None, verbose=False, record=None, on_accept=None):
-        """Load control by the cylinder position: (outer load march, inner position search).
 
-        The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
-        first update) finds the position s at which the film carries the held
-        load; the outer march steps
-        the load with step cutting.  ``on_step()`` runs at every converged load,
-        then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
-        iterations of the trials of each load.
-        """
-        _, film, problem = run
-        inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
-                             response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
-                             verbose=verbose)
-        held = Hold(inner, 0.0, transform=lambda W: 1 / W, slope=cls.slope(run, v))
+def progress_total(v):
+    """Points the progress bar counts: the loads of every variant."""
+    return v["steps"] * (1 if v["compare"] == "none" else len(COMPARE[v["compare"]]))
 
-        def response():
-            if on_step is not None:
-                on_step()
-            if on_accept is not None:
-                on_accept()
-            return held.target
 
-        return Continuation(held, held, response=response, record=record), inner
+def vtx_fields(run):
+    """Displacement (bulk) and film pressure (Γ_l submesh)."""
+    layer, film, _ = run
+    return {"displacement": [layer.u], "pressure": [film.p]}
 
-    @staticmethod
-    def slope(run, v):
-        """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
-        U = run[0].velocity.value
-        return lambda W: 1 / rigid_clearance(1.0, v["mu"], U[0], v["R"])
 
-    @classmethod
-    def set_speed(cls, run, v, U):
-        """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
-        layer, film, _ = run
-        layer.velocity.value[0] = U
-        h_r, p_s, eps = cls.scales(v, U=U)
-        film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
+def plot(profile, outdir):
+    """``profiles.png`` (or the ``compare`` plot) and ``friction_vs_speed.png``."""
+    from ..plots import plot_film_profiles, plot_friction_vs_speed
 
-    @classmethod
-    def speed_sweep(cls, run, v, inner, W, speeds, on_speed=None, record=None, start=0,
-                    increments=None, on_accept=None):
-        """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
+    variants = profile["variants"]
+    if "compare" in profile:
+        title = ("coated layer: finite deformation vs geometrically linear"
+                 if profile["compare"] == "linear" else "coated layer: lubrication surface S_α")
+        plot_film_profiles(None, outdir / COMPARE_PLOT[profile["compare"]], title,
+                           variants)
+        return
+    (name, var), = variants.items()
+    plot_film_profiles(var["steps"], outdir / "profiles.png",
+                       f"coated layer, model = {name}")
+    if len(var["speed"][0]) > 1:
+        plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")
 
-        Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
-        failed step is cut in log U) with the load held by the cylinder position;
-        penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
-        every converged speed step, then ``on_accept(j, march)`` (j: the index of
-        the speed marched to).  ``increments``: those of an interrupted march to
-        ``speeds[start]`` (a resumed run).
-        """
-        layer = run[0]
-        held = Hold(inner, W, transform=lambda W: 1 / W,
-                            slope=cls.slope(run, v))
-        at = {"j": start}
 
-        def response():
-            if on_speed is not None:
-                on_speed()
-            if on_accept is not None:
-                on_accept(at["j"], sweep)
+def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=None):
+    """Load control by the cylinder position: (outer load march, inner position search).
 
-        sweep = Continuation(held, ConstantParameter(
-            layer.velocity, 0, on_set=lambda U: cls.set_speed(run, v, U)),
-            response=response, record=record)
-        for j in range(start, len(speeds)):
-            at["j"] = j
-            sweep.march(speeds[j], predictor=False, geometric=True,
-                        increments=increments if j == start else None)
+    The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
+    first update) finds the position s at which the film carries the held
+    load; the outer march steps
+    the load with step cutting.  ``on_step()`` runs at every converged load,
+    then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
+    iterations of the trials of each load.
+    """
+    _, film, problem = run
+    inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
+                         response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
+                         verbose=verbose)
+    held = Hold(inner, 0.0, transform=lambda W: 1 / W, slope=slope(run, v))
+
+    def response():
+        if on_step is not None:
+            on_step()
+        if on_accept is not None:
+            on_accept()
+        return held.target
+
+    return Continuation(held, held, response=response, record=record), inner
+
+
+def slope(run, v):
+    """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
+    U = run[0].velocity.value
+    return lambda W: 1 / rigid_clearance(1.0, v["mu"], U[0], v["R"])
+
+
+def set_speed(run, v, U):
+    """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
+    layer, film, _ = run
+    layer.velocity.value[0] = U
+    h_r, p_s, eps = scales(v, U=U)
+    film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
+
+
+def speed_sweep(run, v, inner, W, speeds, on_speed=None, record=None, start=0,
+                increments=None, on_accept=None):
+    """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
+
+    Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
+    failed step is cut in log U) with the load held by the cylinder position;
+    penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
+    every converged speed step, then ``on_accept(j, march)`` (j: the index of
+    the speed marched to).  ``increments``: those of an interrupted march to
+    ``speeds[start]`` (a resumed run).
+    """
+    layer = run[0]
+    held = Hold(inner, W, transform=lambda W: 1 / W,
+                        slope=slope(run, v))
+    at = {"j": start}
+
+    def response():
+        if on_speed is not None:
+            on_speed()
+        if on_accept is not None:
+            on_accept(at["j"], sweep)
+
+    sweep = Continuation(held, ConstantParameter(
+        layer.velocity, 0, on_set=lambda U: set_speed(run, v, U)),
+        response=response, record=record)
+    for j in range(start, len(speeds)):
+        at["j"] = j
+        sweep.march(speeds[j], predictor=False, geometric=True,
+                    increments=increments if j == start else None)

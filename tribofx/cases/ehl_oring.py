@@ -138,11 +138,11 @@ from .film_setup import (
 )
 from .slow_time import SlowTimeRecords
 
-__all__ = [
-    "AirLayer", "EHLORingCase", "NAMES", "ORingSeal", "USER_GROUPS", "air_end", "axial_balance",
-    "build", "cycle_stepper", "geometry", "integral", "reforming", "rod_speed", "run_cycle",
-    "solve_to", "transient_seal",
-]
+__all__ = ["AirLayer", "NAMES", "ORingSeal", "UNITS", "USER_GROUPS", "air_end",
+           "axial_balance", "build", "cycle_stepper", "doc", "geometry", "integral",
+           "mesh_study", "name", "params", "plot", "progress_total", "reforming", "resumable",
+           "rod_speed", "run", "run_cycle", "solve_to", "transient_seal", "validate",
+           "vtx_fields"]
 
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze
@@ -405,7 +405,7 @@ class ORingSeal:
         return out
 
     def measures(self):
-        """Film measures on all ranks (see ``EHLORingCase.UNITS``)."""
+        """Film measures on all ranks (see ``UNITS``)."""
         prof = self.profile()
         res = None
         if self.body.mesh.comm.rank == 0:
@@ -563,14 +563,14 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
     return stepper
 
 
-def run_cycle(case, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
     T = v["period"]
     stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
     seal, film = stepper.seal, stepper.seal.film
     keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "flux_sealed",
             "content", "supply")
-    sr = SlowTimeRecords(stepper, v, record, keys, case.vtx_fields(seal), resume)
+    sr = SlowTimeRecords(stepper, v, record, keys, vtx_fields(seal), resume)
     stepper.layer.h = stepper.history.setdefault("air_layer", stepper.layer.h)  # on resume
 
     def log(st, its):
@@ -636,220 +636,222 @@ def _report(hist, record, T, seal, scheme):
                   "mm (z), mm (h), MPa (p), - (λ) per node of the film at the last step")
 
 
-class EHLORingCase:
-    """Case ``ehl-oring``; see the module docstring."""
+name = "ehl-oring"
 
-    name = "ehl-oring"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "soft-EHL of a reciprocating O-ring seal (axisymmetric, housing contact)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        Param("p_s", str, "1", "MPa", "sealed pressures (comma-separated, increasing)"),
-        Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
-        Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
-              "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
-              "tribofx.cases.ehl_oring)",
-              choices=("single", "both", "cycle")),
-        Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
-        Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
-              "Newton failure)", lower=4),
-        Param("cycles", float, 1.0, "-", "stroke=cycle: periods to run", lower=0),
-        Param("scheme", str, "euler", "-", "stroke=cycle: time scheme of the film, euler "
-              "or bdf2", choices=("euler", "bdf2")),
-        Param("sigma", float, 0.0, "mm", "stroke=cycle: RMS roughness σ of the rod (0: "
-              "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
-              "ηβσ = σ/β = 0.1)",
-              lower=0, closed=True),
-        Param("mu_b", float, 0.1, "-", "boundary friction of the asperities (sigma > 0)",
-              lower=0, closed=True),
-        Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
-        Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
-              lower=1, upper=32, closed=True),
-        Param("arc_refine", int, None, "-", "halvings of the element size on the film arc "
-              "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm; default: 1 with stroke=cycle, "
-              "else 0)", lower=0, upper=3, closed=True),
-        Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-        formulation_param("mixed"),
-        Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
-              upper=0.3),
-        Param("d", float, 3.5, "mm", "cross-section diameter", lower=0),
-        Param("r_rod", float, 10.0, "mm", "rod radius", lower=0),
-        Param("mu1", float, 2.93, "MPa", "Mooney–Rivlin μ₁", lower=0),
-        Param("mu2", float, 0.73, "MPa", "Mooney–Rivlin μ₂", lower=0, closed=True),
-        Param("kappa", float, 3660.0, "MPa", "bulk modulus", lower=0),
-        Param("cavitation", str, "auto", "-",
-              "penalty (ε⁻¹ min(p, 0), Swift–Stieber limit), jfo (mass-conserving: void "
-              "fraction λ, flooded inlet, natural outlet) or auto: jfo with the mixed solid, "
-              "penalty with the displacement one (a locked, zig-zag surface makes JFO's "
-              "semismooth iteration cycle)", choices=("auto", "penalty", "jfo")),
-        Param("eps", float, 1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³",
-              lower=0),
-        Param("supg", bool, True, "-", "SUPG in the Reynolds equation"),
-        Param("gap0", float, 0.02, "mm", "initial clearance to the rod", lower=0),
-        Param("mount_steps", int, 10, "-", "squeeze increments", lower=1),
-        Param("ramp_steps", int, 4, "-", "p_s increments per target", lower=1),
-        Param("speed_steps", int, 3, "-", "geometric speed increments", lower=1),
-        Param("study", str, "none", "-", "none or mesh (density study, Figs. 18–19)",
-              choices=("none", "mesh")),
-        Param("mesh_levels", str, "1,2,4", "-", "densities of study=mesh"),
-        Param("mesh_file", str, "", "-",
-              "your own cross-section: a 2D gmsh .msh in (r, z) with physical groups "
-              "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
-              "housing (touches groove bottom/wall); replaces d (its radial extent) and "
-              "mesh; moved to r_min = r_rod + gap0, z extent centred at 0"),
-    ) + VISCOSITY_PARAMS
 
-    @staticmethod
-    def validate(v):
-        """Parse the lists and check the consistency of the values."""
-        viscosity(v)
-        density({**v, "cavitation": cavitation_model(v)})
-        ps = number_list(v["p_s"], "p_s")
-        if any(p <= 0 for p in ps):
-            raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")
-        if ps != sorted(ps):
-            raise InputError("p_s must be increasing")
-        if v["U"] == 0:
-            raise InputError("U must be nonzero (mm/s)")
-        if v["stroke"] == "cycle" and (v["U"] < 0 or cavitation_model(v) != "jfo"
-                                       or v["study"] != "none"):
-            raise InputError("stroke=cycle starts from the outstroke (U > 0) and needs "
-                             "cavitation=jfo (mass-conserving) and study=none")
-        if v["sigma"] > 0 and v["stroke"] != "cycle":
-            raise InputError("sigma (a rough rod) is built for stroke=cycle")
-        levels = number_list(v["mesh_levels"], "mesh_levels")
-        if any(k < 1 or k != int(k) for k in levels):
-            raise InputError("mesh_levels must be positive integers")
-        if v["mesh_file"]:
-            if v["study"] != "none" or v["arc_refine"]:
-                raise InputError("mesh_file works with study=none and arc_refine=0 only")
-        elif v["gap0"] >= 0.5 * v["d"]:
-            raise InputError("gap0 must be below the cross-section radius")
+doc = "soft-EHL of a reciprocating O-ring seal (axisymmetric, housing contact)"
 
-    UNITS = {"p_max": "MPa", "z_p_max": "mm", "h_at_p_max": "mm", "h_mean": "mm", "h_min": "mm",
-             "z_h_min": "mm", "flux": "mm^2/s", "leakage": "mm^3/s",
-             "load_per_circumference": "N/mm", "friction_force_per_circumference": "N/mm",
-             "oscillation": "-", "flux_spread": "-", "axial_balance": "-"}
 
-    @staticmethod
-    def progress_total(v):
-        """Points the progress bar counts: the sealed pressures of every stroke, or the steps."""
-        if v["stroke"] == "cycle":
-            return nominal_steps(v["cycles"] * v["period"], v["period"] / v["cycle_steps"])
-        return len(number_list(v["p_s"], "p_s")) * (1 if v["stroke"] == "single" else 2)
+params = (
+    Param("p_s", str, "1", "MPa", "sealed pressures (comma-separated, increasing)"),
+    Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
+    Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
+          "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
+          "tribofx.cases.ehl_oring)",
+          choices=("single", "both", "cycle")),
+    Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
+    Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
+          "Newton failure)", lower=4),
+    Param("cycles", float, 1.0, "-", "stroke=cycle: periods to run", lower=0),
+    Param("scheme", str, "euler", "-", "stroke=cycle: time scheme of the film, euler "
+          "or bdf2", choices=("euler", "bdf2")),
+    Param("sigma", float, 0.0, "mm", "stroke=cycle: RMS roughness σ of the rod (0: "
+          "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
+          "ηβσ = σ/β = 0.1)",
+          lower=0, closed=True),
+    Param("mu_b", float, 0.1, "-", "boundary friction of the asperities (sigma > 0)",
+          lower=0, closed=True),
+    Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
+    Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
+          lower=1, upper=32, closed=True),
+    Param("arc_refine", int, None, "-", "halvings of the element size on the film arc "
+          "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm; default: 1 with stroke=cycle, "
+          "else 0)", lower=0, upper=3, closed=True),
+    Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
+    formulation_param("mixed"),
+    Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
+          upper=0.3),
+    Param("d", float, 3.5, "mm", "cross-section diameter", lower=0),
+    Param("r_rod", float, 10.0, "mm", "rod radius", lower=0),
+    Param("mu1", float, 2.93, "MPa", "Mooney–Rivlin μ₁", lower=0),
+    Param("mu2", float, 0.73, "MPa", "Mooney–Rivlin μ₂", lower=0, closed=True),
+    Param("kappa", float, 3660.0, "MPa", "bulk modulus", lower=0),
+    Param("cavitation", str, "auto", "-",
+          "penalty (ε⁻¹ min(p, 0), Swift–Stieber limit), jfo (mass-conserving: void "
+          "fraction λ, flooded inlet, natural outlet) or auto: jfo with the mixed solid, "
+          "penalty with the displacement one (a locked, zig-zag surface makes JFO's "
+          "semismooth iteration cycle)", choices=("auto", "penalty", "jfo")),
+    Param("eps", float, 1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³",
+          lower=0),
+    Param("supg", bool, True, "-", "SUPG in the Reynolds equation"),
+    Param("gap0", float, 0.02, "mm", "initial clearance to the rod", lower=0),
+    Param("mount_steps", int, 10, "-", "squeeze increments", lower=1),
+    Param("ramp_steps", int, 4, "-", "p_s increments per target", lower=1),
+    Param("speed_steps", int, 3, "-", "geometric speed increments", lower=1),
+    Param("study", str, "none", "-", "none or mesh (density study, Figs. 18–19)",
+          choices=("none", "mesh")),
+    Param("mesh_levels", str, "1,2,4", "-", "densities of study=mesh"),
+    Param("mesh_file", str, "", "-",
+          "your own cross-section: a 2D gmsh .msh in (r, z) with physical groups "
+          "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
+          "housing (touches groove bottom/wall); replaces d (its radial extent) and "
+          "mesh; moved to r_min = r_rod + gap0, z extent centred at 0"),
+) + VISCOSITY_PARAMS
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Mount, pressurise and solve each stroke; optionally the mesh study.
 
-        ``checkpoint``: directory of the sweep's checkpoint, written after every
-        sealed pressure of every stroke (:class:`tribofx.restart.SweepJournal`:
-        the seal's state, its records and the number of pressures reached);
-        ``resume``: continue from it (a stroke restarts at its next pressure,
-        ramped from the saved state; ``study=mesh`` is run again whole).
-        """
-        record.data["parameters"]["arc_refine"]["value"] = arc_halvings(v)   # as used
-        if v["stroke"] == "cycle":
-            return run_cycle(cls, v, record, progress, verbose, checkpoint, resume)
-        comm = MPI.COMM_WORLD
-        U = v["U"]
-        p_targets = number_list(v["p_s"], "p_s")
-        journal = SweepJournal(checkpoint, comm, v, resume)
-        speeds = [U] if v["stroke"] == "single" else [abs(U), -abs(U)]
-        profiles = {"strokes": {}, "mesh": None, "U": abs(U)}
-        prob = None
-        for Us in speeds:
-            tag = "out" if Us > 0 else "in"
-            t_start = time.perf_counter()   # the wall time counts the build too
-            prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
-                         name=options_name("ehl_oring", f"{tag}stroke"))
-            record.data["num_dofs"] = prob.problem.num_dofs
-            state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
-            # u and p at each sealed pressure of the stroke (ParaView time series; the
-            # "time" is the index of the state, its p_s in series_points)
-            sv = SweepVariant(journal, tag, prob, state, record, cls.vtx_fields(prob),
-                              f"{tag}stroke_", {"states": [], "measures": [], "wall_time": 0.0},
-                              comm, progress, progress_key="points", newton=False)
-            rec = sv.records
-            points, states, measures = rec["points"], rec["states"], rec["measures"]
-            done = len(points)
-            t0 = t_start - rec["wall_time"]
-            if done:
-                sv.resume()
-                prob.problem.refresh()
-                prob.iterations.extend(rec["its"])
-            for p_s, m in zip(points, measures):
-                cls._record(record, tag, p_s, m)
+def validate(v):
+    """Parse the lists and check the consistency of the values."""
+    viscosity(v)
+    density({**v, "cavitation": cavitation_model(v)})
+    ps = number_list(v["p_s"], "p_s")
+    if any(p <= 0 for p in ps):
+        raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")
+    if ps != sorted(ps):
+        raise InputError("p_s must be increasing")
+    if v["U"] == 0:
+        raise InputError("U must be nonzero (mm/s)")
+    if v["stroke"] == "cycle" and (v["U"] < 0 or cavitation_model(v) != "jfo"
+                                   or v["study"] != "none"):
+        raise InputError("stroke=cycle starts from the outstroke (U > 0) and needs "
+                         "cavitation=jfo (mass-conserving) and study=none")
+    if v["sigma"] > 0 and v["stroke"] != "cycle":
+        raise InputError("sigma (a rough rod) is built for stroke=cycle")
+    levels = number_list(v["mesh_levels"], "mesh_levels")
+    if any(k < 1 or k != int(k) for k in levels):
+        raise InputError("mesh_levels must be positive integers")
+    if v["mesh_file"]:
+        if v["study"] != "none" or v["arc_refine"]:
+            raise InputError("mesh_file works with study=none and arc_refine=0 only")
+    elif v["gap0"] >= 0.5 * v["d"]:
+        raise InputError("gap0 must be below the cross-section radius")
 
-            def on_state(p_s, prob=prob, tag=tag, rec=rec, sv=sv, t0=t0):
-                sv.write(p_s)
-                m = prob.measures()
-                m["axial_balance"] = axial_balance(prob)
-                rec["measures"].append(m)
-                cls._record(record, tag, p_s, m)
-                pr = prob.profile()
-                if pr is not None:
-                    rec["states"].append({"p_s": p_s,
-                                          **{k: pr[k].tolist() for k in ("z", "h", "p")}})
-                if progress is not None:
-                    progress.update(1)
-                rec["its"][:] = list(prob.iterations)
-                rec["wall_time"] = time.perf_counter() - t0
-                sv.save({"reached": len(rec["points"])})
 
-            with sv:
-                its = solve_to(prob, v, Us, p_targets, on_state, done=done)
-            record.data["newton_iterations"].append({tag: its})
-            record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
-            profiles["strokes"][tag] = states
-        if v["study"] == "mesh":
-            profiles["mesh"] = cls.mesh_study(v, record)
-        record.result("p_s", p_targets, "MPa")
-        if comm.rank == 0:
-            record.profile = profiles
-        return prob
+UNITS = {"p_max": "MPa", "z_p_max": "mm", "h_at_p_max": "mm", "h_mean": "mm", "h_min": "mm",
+         "z_h_min": "mm", "flux": "mm^2/s", "leakage": "mm^3/s",
+         "load_per_circumference": "N/mm", "friction_force_per_circumference": "N/mm",
+         "oscillation": "-", "flux_spread": "-", "axial_balance": "-"}
 
-    @classmethod
-    def _record(cls, record, tag, p_s, m):
-        """Record the results of one sealed pressure of a stroke (``<tag>_ps<p_s>_…``)."""
-        for k, unit in cls.UNITS.items():
-            record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
 
-    @classmethod
-    def mesh_study(cls, v, record):
-        """Outstroke at the first p_s on the densities ``levels``; returns the profiles."""
-        rows, out = [], []
-        U = abs(v["U"])
-        for n in [int(k) for k in number_list(v["mesh_levels"], "mesh_levels")]:
-            t0 = time.perf_counter()
-            seal = build(v, max(U, 1000.0), mesh=n, name=options_name("ehl_oring", f"density{n}"))
-            its = solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
-            m = seal.measures()
-            row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
-                   "h_mean": m["h_mean"],
-                   "h_min": m["h_min"], "p_max": m["p_max"], "oscillation": m["oscillation"],
-                   "newton_iterations": its, "wall_time": time.perf_counter() - t0}
-            if rows:
-                row["d_h_mean"] = abs(row["h_mean"] - rows[-1]["h_mean"]) / row["h_mean"]
-            rows.append(row)
-            pr = seal.profile()
+def progress_total(v):
+    """Points the progress bar counts: the sealed pressures of every stroke, or the steps."""
+    if v["stroke"] == "cycle":
+        return nominal_steps(v["cycles"] * v["period"], v["period"] / v["cycle_steps"])
+    return len(number_list(v["p_s"], "p_s")) * (1 if v["stroke"] == "single" else 2)
+
+
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Mount, pressurise and solve each stroke; optionally the mesh study.
+
+    ``checkpoint``: directory of the sweep's checkpoint, written after every
+    sealed pressure of every stroke (:class:`tribofx.restart.SweepJournal`:
+    the seal's state, its records and the number of pressures reached);
+    ``resume``: continue from it (a stroke restarts at its next pressure,
+    ramped from the saved state; ``study=mesh`` is run again whole).
+    """
+    record.data["parameters"]["arc_refine"]["value"] = arc_halvings(v)   # as used
+    if v["stroke"] == "cycle":
+        return run_cycle(v, record, progress, verbose, checkpoint, resume)
+    comm = MPI.COMM_WORLD
+    U = v["U"]
+    p_targets = number_list(v["p_s"], "p_s")
+    journal = SweepJournal(checkpoint, comm, v, resume)
+    speeds = [U] if v["stroke"] == "single" else [abs(U), -abs(U)]
+    profiles = {"strokes": {}, "mesh": None, "U": abs(U)}
+    prob = None
+    for Us in speeds:
+        tag = "out" if Us > 0 else "in"
+        t_start = time.perf_counter()   # the wall time counts the build too
+        prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
+                     name=options_name("ehl_oring", f"{tag}stroke"))
+        record.data["num_dofs"] = prob.problem.num_dofs
+        state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
+        # u and p at each sealed pressure of the stroke (ParaView time series; the
+        # "time" is the index of the state, its p_s in series_points)
+        sv = SweepVariant(journal, tag, prob, state, record, vtx_fields(prob),
+                          f"{tag}stroke_", {"states": [], "measures": [], "wall_time": 0.0},
+                          comm, progress, progress_key="points", newton=False)
+        rec = sv.records
+        points, states, measures = rec["points"], rec["states"], rec["measures"]
+        done = len(points)
+        t0 = t_start - rec["wall_time"]
+        if done:
+            sv.resume()
+            prob.problem.refresh()
+            prob.iterations.extend(rec["its"])
+        for p_s, m in zip(points, measures):
+            _record(record, tag, p_s, m)
+
+        def on_state(p_s, prob=prob, tag=tag, rec=rec, sv=sv, t0=t0):
+            sv.write(p_s)
+            m = prob.measures()
+            m["axial_balance"] = axial_balance(prob)
+            rec["measures"].append(m)
+            _record(record, tag, p_s, m)
+            pr = prob.profile()
             if pr is not None:
-                out.append({"mesh": n, **{k: pr[k].tolist() for k in ("z", "h", "p")}})
-        record.result("mesh_study", rows)
-        return out
+                rec["states"].append({"p_s": p_s,
+                                      **{k: pr[k].tolist() for k in ("z", "h", "p")}})
+            if progress is not None:
+                progress.update(1)
+            rec["its"][:] = list(prob.iterations)
+            rec["wall_time"] = time.perf_counter() - t0
+            sv.save({"reached": len(rec["points"])})
 
-    @staticmethod
-    def vtx_fields(seal):
-        """Displacement (bulk) and film pressure (Γ_l submesh) of the seal (or its cycle's)."""
-        seal = getattr(seal, "seal", seal)
-        return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
+        with sv:
+            its = solve_to(prob, v, Us, p_targets, on_state, done=done)
+        record.data["newton_iterations"].append({tag: its})
+        record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
+        profiles["strokes"][tag] = states
+    if v["study"] == "mesh":
+        profiles["mesh"] = mesh_study(v, record)
+    record.result("p_s", p_targets, "MPa")
+    if comm.rank == 0:
+        record.profile = profiles
+    return prob
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19), or ``cycle.png``."""
-        if "cycle" in profile:
-            plot_oring_cycle(profile["cycle"], outdir)
-        else:
-            plot_oring(profile, outdir)
+
+def _record(record, tag, p_s, m):
+    """Record the results of one sealed pressure of a stroke (``<tag>_ps<p_s>_…``)."""
+    for k, unit in UNITS.items():
+        record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
+
+
+def mesh_study(v, record):
+    """Outstroke at the first p_s on the densities ``levels``; returns the profiles."""
+    rows, out = [], []
+    U = abs(v["U"])
+    for n in [int(k) for k in number_list(v["mesh_levels"], "mesh_levels")]:
+        t0 = time.perf_counter()
+        seal = build(v, max(U, 1000.0), mesh=n, name=options_name("ehl_oring", f"density{n}"))
+        its = solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
+        m = seal.measures()
+        row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
+               "h_mean": m["h_mean"],
+               "h_min": m["h_min"], "p_max": m["p_max"], "oscillation": m["oscillation"],
+               "newton_iterations": its, "wall_time": time.perf_counter() - t0}
+        if rows:
+            row["d_h_mean"] = abs(row["h_mean"] - rows[-1]["h_mean"]) / row["h_mean"]
+        rows.append(row)
+        pr = seal.profile()
+        if pr is not None:
+            out.append({"mesh": n, **{k: pr[k].tolist() for k in ("z", "h", "p")}})
+    record.result("mesh_study", rows)
+    return out
+
+
+def vtx_fields(seal):
+    """Displacement (bulk) and film pressure (Γ_l submesh) of the seal (or its cycle's)."""
+    seal = getattr(seal, "seal", seal)
+    return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
+
+
+def plot(profile, outdir):
+    """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19), or ``cycle.png``."""
+    if "cycle" in profile:
+        plot_oring_cycle(profile["cycle"], outdir)
+    else:
+        plot_oring(profile, outdir)

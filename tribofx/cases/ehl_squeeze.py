@@ -51,258 +51,261 @@ from ..stepper import Stepper, nominal_steps
 from .film_setup import VISCOSITY_PARAMS, density, viscosity
 from .slow_time import SlowTimeRecords
 
-__all__ = ["EHLSqueezeCase"]
+__all__ = ["build", "doc", "extent", "fraction", "length", "measures", "name", "params",
+           "plot", "progress_total", "resumable", "run", "speed_scale", "validate",
+           "vtx_fields"]
 
 
-class EHLSqueezeCase:
-    """Case ``ehl-squeeze``; see the module docstring."""
+name = "ehl-squeeze"
 
-    name = "ehl-squeeze"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
-           "plane, at a speed or under a load; rigid-limit references")
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        Param("dim", int, 2, "-", "2: cylinder (plane strain, half model), 3: sphere "
-              "(quarter model)", choices=(2, 3)),
-        Param("control", str, "speed", "-", "speed: the plane approaches at V; load: the "
-              "body carries F", choices=("speed", "load")),
-        Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed; < 0: "
-              "it recedes, the film cavitates: cavitation=jfo)"),
-        Param("cavitation", str, "none", "-", "none (a full film) or jfo (mass-conserving, "
-              "the void fraction transported in time; dim=2)", choices=("none", "jfo")),
-        Param("lumped", bool, False, "-", "jfo: the content's rate at the nodes (lumped) and "
-              "the SUPG rate weighted by the full-film fraction (forms.jfo.jfo_on_surface)"),
-        Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
-              lower=0.0),
-        Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
-        Param("E1", float, 1e5, "MPa", "Young's modulus of the cylinder or sphere (neo-Hookean)",
-              lower=0.0),
-        Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
-              upper=0.5),
-        Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
-              "finite: an elastic block, the two-body film, dim=2)", lower=0.0, infinite=True),
-        Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
-              upper=0.5),
-        Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-        Param("h_start", float, 0.01, "mm", "initial film at the centre", lower=0.0),
-        Param("T", float, 2e-3, "s", "end time", lower=0.0),
-        Param("dt", float, 2.5e-4, "s", "time step", lower=0.0),
-        Param("scheme", str, "bdf2", "-", "time scheme of the squeeze term: euler (backward "
-              "Euler) or bdf2 (second order, started by one Euler step)",
-              choices=("euler", "bdf2")),
-        Param("mesh", int, 0, "-", "element size ℓ/(8·2^mesh) near the centre, "
-              "ℓ = max(√(2R h_start), Hertz half-width)", lower=0, upper=6, closed=True),
-        Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds rows"),
-    ) + VISCOSITY_PARAMS
 
-    @classmethod
-    def validate(cls, v):
-        """Bad input: a one-line error."""
-        if math.isfinite(v["E2"]) and v["dim"] != 2:
-            raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
-        if not v["h_start"] < 0.1 * v["R"]:
-            raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
-        if v["dt"] > v["T"]:
-            raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
-        if v["control"] == "speed" and v["V"] <= 0 and not (v["V"] < 0 and v["cavitation"]
-                                                             == "jfo"):
-            raise InputError(f"V = {v['V']} mm/s: a receding plane (V < 0) needs "
-                             f"cavitation=jfo; V = 0 has no squeeze")
-        if v["lumped"] and v["cavitation"] != "jfo":
-            raise InputError("lumped=true is for cavitation=jfo")
-        if v["cavitation"] == "jfo" and v["dim"] != 2:
-            raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
-        if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
-            raise InputError(f"V·T = {v['V'] * v['T']:.3g} mm would close the rigid gap "
-                             f"h_start = {v['h_start']} mm; shorten T")
-        viscosity(v)
-        density(v)
+doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
+       "plane, at a speed or under a load; rigid-limit references")
 
-    @staticmethod
-    def fraction(v):
-        """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
-        return 0.5 if v["dim"] == 2 else 0.25
 
-    @classmethod
-    def length(cls, v):
-        """ℓ = max(√(2R h_start), Hertz half-width at F) (mm): the film's width."""
-        ell = math.sqrt(2 * v["R"] * v["h_start"])
-        if v["control"] == "load" and v["F"] > 0:
-            ell = max(ell, hertz(v["F"], v["R"], v["E1"], v["nu1"], line=v["dim"] == 2).a)
-        return ell
+params = (
+    Param("dim", int, 2, "-", "2: cylinder (plane strain, half model), 3: sphere "
+          "(quarter model)", choices=(2, 3)),
+    Param("control", str, "speed", "-", "speed: the plane approaches at V; load: the "
+          "body carries F", choices=("speed", "load")),
+    Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed; < 0: "
+          "it recedes, the film cavitates: cavitation=jfo)"),
+    Param("cavitation", str, "none", "-", "none (a full film) or jfo (mass-conserving, "
+          "the void fraction transported in time; dim=2)", choices=("none", "jfo")),
+    Param("lumped", bool, False, "-", "jfo: the content's rate at the nodes (lumped) and "
+          "the SUPG rate weighted by the full-film fraction (forms.jfo.jfo_on_surface)"),
+    Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
+          lower=0.0),
+    Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
+    Param("E1", float, 1e5, "MPa", "Young's modulus of the cylinder or sphere (neo-Hookean)",
+          lower=0.0),
+    Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
+          upper=0.5),
+    Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
+          "finite: an elastic block, the two-body film, dim=2)", lower=0.0, infinite=True),
+    Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
+          upper=0.5),
+    Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
+    Param("h_start", float, 0.01, "mm", "initial film at the centre", lower=0.0),
+    Param("T", float, 2e-3, "s", "end time", lower=0.0),
+    Param("dt", float, 2.5e-4, "s", "time step", lower=0.0),
+    Param("scheme", str, "bdf2", "-", "time scheme of the squeeze term: euler (backward "
+          "Euler) or bdf2 (second order, started by one Euler step)",
+          choices=("euler", "bdf2")),
+    Param("mesh", int, 0, "-", "element size ℓ/(8·2^mesh) near the centre, "
+          "ℓ = max(√(2R h_start), Hertz half-width)", lower=0, upper=6, closed=True),
+    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds rows"),
+) + VISCOSITY_PARAMS
 
-    @classmethod
-    def extent(cls, v):
-        """End L of the film (mm): min(10ℓ, R/2); the body is lubricated within L of its axis.
 
-        Beyond it the gap exceeds ~50 h_start: the film carries ≲ (ℓ/L)³ (2D) or
-        ≲ (ℓ/L)² (3D) of the load there, and Reynolds' thin-film equation with its
-        growing conductance h³ (ill-conditioned rows) has no business there.  The
-        references are taken with the same extent.
-        """
-        return min(10 * cls.length(v), 0.5 * v["R"])
+def validate(v):
+    """Bad input: a one-line error."""
+    if math.isfinite(v["E2"]) and v["dim"] != 2:
+        raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
+    if not v["h_start"] < 0.1 * v["R"]:
+        raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
+    if v["dt"] > v["T"]:
+        raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+    if v["control"] == "speed" and v["V"] <= 0 and not (v["V"] < 0 and v["cavitation"]
+                                                         == "jfo"):
+        raise InputError(f"V = {v['V']} mm/s: a receding plane (V < 0) needs "
+                         f"cavitation=jfo; V = 0 has no squeeze")
+    if v["lumped"] and v["cavitation"] != "jfo":
+        raise InputError("lumped=true is for cavitation=jfo")
+    if v["cavitation"] == "jfo" and v["dim"] != 2:
+        raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
+    if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
+        raise InputError(f"V·T = {v['V'] * v['T']:.3g} mm would close the rigid gap "
+                         f"h_start = {v['h_start']} mm; shorten T")
+    viscosity(v)
+    density(v)
 
-    @classmethod
-    def speed_scale(cls, v):
-        """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
-        if v["control"] == "speed":
-            return abs(v["V"])
-        return v["F"] / squeeze_resistance(v["dim"], v["R"], v["mu"], v["h_start"],
-                                           cls.extent(v))
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
-        """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
+def fraction(v):
+    """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
+    return 0.5 if v["dim"] == 2 else 0.25
 
-        ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
-        """
-        dim, R, h0 = v["dim"], v["R"], v["h_start"]
-        ell, L = cls.length(v), cls.extent(v)
-        h_fine, h_coarse = ell / (8 * 2 ** v["mesh"]), R / (8 * 2 ** v["mesh"])
-        msh, ft = hertz_body(dim, R, h_fine, h_coarse, 2 * ell, comm, cap=L)
-        names = {("lubricated" if k == "contact" else k): t for k, t in NAMES.items()}
-        names["free"] = FREE
-        if dim == 2:
-            names.pop("symmetry_y")
-        mu_s, lm = lame_parameters(v["E1"], v["nu1"])
-        kind = "plane_strain" if dim == 2 else "3d"
-        Vs = cls.speed_scale(v)
-        K0 = squeeze_resistance(dim, R, v["mu"], h0, L)
-        # momentum rows relative to the film's force, far below the body's stiffness
-        # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
-        # the coarse elements h (×100), so a stiff body (the rigid limit) converges
-        f_s = cls.fraction(v) * K0 * Vs
-        rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * h_coarse ** (dim - 1) / f_s)
-        body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
-                    name="body", force_scale=f_s, rtol=rtol)
-        body.add_dirichlet("symmetry_x", 0.0, component=0)
-        if dim == 3:
-            body.add_dirichlet("symmetry_y", 0.0, component=1)
-        up = np.eye(dim)[dim - 1]
-        if v["control"] == "speed":
-            body.add_dirichlet("loaded", np.zeros(dim))
-        else:   # the model's part of F, uniform over the top face (its discrete area)
-            one = fem.form(fem.Constant(msh, 1.0) * body.ds(body.tag("loaded")))
-            area = msh.comm.allreduce(fem.assemble_scalar(one), op=MPI.SUM)
-            body.add_traction("loaded", fem.Constant(msh, -cls.fraction(v) * v["F"] / area * up))
-        p_c = K0 * Vs / (ell if dim == 2 else ell * ell)
-        # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
-        # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
-        h_L = h0 + R - math.sqrt(R * R - L * L)
-        floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * h_coarse)
-        kw = dict(density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
-                  speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
-                  cavitation="penalty" if v["cavitation"] == "none" else "jfo")
-        bodies = [body]
-        if math.isinf(v["E2"]):
-            film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v), **kw)
-        else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
-            mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
-            mu_b, lm_b = lame_parameters(v["E2"], v["nu2"])
-            block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
-                         name="block", force_scale=f_s, rtol=rtol)
-            block.add_dirichlet("symmetry_x", 0.0, component=0)
-            lift = block.add_dirichlet("loaded", np.zeros(dim))
-            msh.geometry.x[:, 1] += h0        # the body's lowest point h0 above the block
-            film = TwoBodyFilm(body, "lubricated", block, "lubricated", viscosity(v), **kw)
-            bodies.append(block)
 
-        def rim(X):
-            return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
+def length(v):
+    """ℓ = max(√(2R h_start), Hertz half-width at F) (mm): the film's width."""
+    ell = math.sqrt(2 * v["R"] * v["h_start"])
+    if v["control"] == "load" and v["F"] > 0:
+        ell = max(ell, hertz(v["F"], v["R"], v["E1"], v["nu1"], line=v["dim"] == 2).a)
+    return ell
 
-        if v["cavitation"] == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
-            film.add_reservoir(rim, 0.0)
-        else:
-            film.add_pressure_bc(rim)
-        if math.isinf(v["E2"]):
-            film.place_countersurface(h0, np.zeros(3))
-            lift = film.counterpart.offset
-        film.plane = lift             # the plane's (or the block's) rigid position
-        if not steady:
-            film.transient(v["scheme"], lumped=v["lumped"])
-        offset = lift
-        y0 = float(offset.value[dim - 1])
-        schedule = []
-        if v["control"] == "speed":
-            schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
-        return Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
-                       name="ehl_squeeze")
 
-    @staticmethod
-    def progress_total(v):
-        """Time steps to T."""
-        return nominal_steps(v["T"], v["dt"])
+def extent(v):
+    """End L of the film (mm): min(10ℓ, R/2); the body is lubricated within L of its axis.
 
-    @staticmethod
-    def vtx_fields(stepper):
-        """Displacement of the body; film pressure (on Γ_l)."""
-        film = stepper.wear
-        return {"displacement": [film.body.u], "pressure": [film.p]}
+    Beyond it the gap exceeds ~50 h_start: the film carries ≲ (ℓ/L)³ (2D) or
+    ≲ (ℓ/L)² (3D) of the load there, and Reynolds' thin-film equation with its
+    growing conductance h³ (ill-conditioned rows) has no business there.  The
+    references are taken with the same extent.
+    """
+    return min(10 * length(v), 0.5 * v["R"])
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``squeeze.png``: film and force against time; ``squeeze_profiles.png``."""
-        from ..plots.film import plot_squeeze
 
-        plot_squeeze(profile, outdir)
+def speed_scale(v):
+    """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
+    if v["control"] == "speed":
+        return abs(v["V"])
+    return v["F"] / squeeze_resistance(v["dim"], v["R"], v["mu"], v["h_start"],
+                                       extent(v))
 
-    @classmethod
-    def measures(cls, film, v, y0):
-        """One step's measures: film at the centre and its minimum, force, plane position."""
-        dim = v["dim"]
-        prof = film.profile(everywhere=True)
-        r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
-        h_c = float(prof["h"][np.argmin(r)])
-        force = float(film.force()[dim - 1]) / cls.fraction(v)
-        return {"h_center": h_c, "h_min": film.min_film(), "force": force,
-                "approach": float(film.plane.value[dim - 1]) - y0,
-                "p_center": float(prof["p"][np.argmin(r)]),
-                "content": film.content() / cls.fraction(v)}
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
-        stepper = cls.build(v, checkpoint=checkpoint)
-        stepper.verbose = verbose
-        film, dim = stepper.wear, v["dim"]
-        keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
-                "newton_iterations", "force_rigid", "h_center_rigid")
-        sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
-                             resume)
-        y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
-        R, mu, L = v["R"], v["mu"], cls.extent(v)
+def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
+    """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
 
-        def log(t, its):
-            m = cls.measures(film, v, y0)
-            h_rigid = v["h_start"] - m["approach"]     # the rigid body's gap at the plane
-            m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v["V"]
-                                if v["control"] == "speed" else v["F"])
-            m["h_center_rigid"] = (h_rigid if v["control"] == "speed" else float(
-                squeeze_film_under_load(dim, R, mu, v["F"], v["h_start"], [t], L)[0]))
-            sr.log(its, dict(time=t, newton_iterations=its, **m))
+    ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
+    """
+    dim, R, h0 = v["dim"], v["R"], v["h_start"]
+    ell, L = length(v), extent(v)
+    h_fine, h_coarse = ell / (8 * 2 ** v["mesh"]), R / (8 * 2 ** v["mesh"])
+    msh, ft = hertz_body(dim, R, h_fine, h_coarse, 2 * ell, comm, cap=L)
+    names = {("lubricated" if k == "contact" else k): t for k, t in NAMES.items()}
+    names["free"] = FREE
+    if dim == 2:
+        names.pop("symmetry_y")
+    mu_s, lm = lame_parameters(v["E1"], v["nu1"])
+    kind = "plane_strain" if dim == 2 else "3d"
+    Vs = speed_scale(v)
+    K0 = squeeze_resistance(dim, R, v["mu"], h0, L)
+    # momentum rows relative to the film's force, far below the body's stiffness
+    # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
+    # the coarse elements h (×100), so a stiff body (the rigid limit) converges
+    f_s = fraction(v) * K0 * Vs
+    rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * h_coarse ** (dim - 1) / f_s)
+    body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
+                name="body", force_scale=f_s, rtol=rtol)
+    body.add_dirichlet("symmetry_x", 0.0, component=0)
+    if dim == 3:
+        body.add_dirichlet("symmetry_y", 0.0, component=1)
+    up = np.eye(dim)[dim - 1]
+    if v["control"] == "speed":
+        body.add_dirichlet("loaded", np.zeros(dim))
+    else:   # the model's part of F, uniform over the top face (its discrete area)
+        one = fem.form(fem.Constant(msh, 1.0) * body.ds(body.tag("loaded")))
+        area = msh.comm.allreduce(fem.assemble_scalar(one), op=MPI.SUM)
+        body.add_traction("loaded", fem.Constant(msh, -fraction(v) * v["F"] / area * up))
+    p_c = K0 * Vs / (ell if dim == 2 else ell * ell)
+    # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
+    # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
+    h_L = h0 + R - math.sqrt(R * R - L * L)
+    floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * h_coarse)
+    kw = dict(density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
+              speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
+              cavitation="penalty" if v["cavitation"] == "none" else "jfo")
+    bodies = [body]
+    if math.isinf(v["E2"]):
+        film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v), **kw)
+    else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
+        mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
+        mu_b, lm_b = lame_parameters(v["E2"], v["nu2"])
+        block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
+                     name="block", force_scale=f_s, rtol=rtol)
+        block.add_dirichlet("symmetry_x", 0.0, component=0)
+        lift = block.add_dirichlet("loaded", np.zeros(dim))
+        msh.geometry.x[:, 1] += h0        # the body's lowest point h0 above the block
+        film = TwoBodyFilm(body, "lubricated", block, "lubricated", viscosity(v), **kw)
+        bodies.append(block)
 
-        if not resume:
-            log(0.0, 0)
-        with sr.closing(report=lambda: cls._report(film, record, sr.hist)):
-            stepper.run(v["T"], FixedStep(v["dt"]), progress=progress,
-                        on_step=sr.written(lambda st, rep: log(st.t, rep.iterations)))
-        return stepper
+    def rim(X):
+        return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
 
-    @staticmethod
-    def _report(film, record, hist):
-        units = {"time": "s", "h_center": "mm", "h_min": "mm", "force": "N (N/mm in 2D)",
-                 "approach": "mm", "p_center": "MPa", "newton_iterations": "-",
-                 "content": "mm² per unit length (2D), mm³ (3D): the fluid in the film",
-                 "force_rigid": "N (N/mm in 2D)", "h_center_rigid": "mm"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        prof = film.profile()
-        if prof is not None:
-            r = np.linalg.norm(prof["X"][:, :-1], axis=1)    # distance from the axis
-            record.result("final_film", np.column_stack([r, prof["h"], prof["p"]]).tolist(),
-                          "mm (radius), mm (h), MPa (p) per node of the film")
-            record.profile = {**hist, "X": prof["X"].tolist(), "h": prof["h"].tolist(),
-                              "p": prof["p"].tolist()}
+    if v["cavitation"] == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
+        film.add_reservoir(rim, 0.0)
+    else:
+        film.add_pressure_bc(rim)
+    if math.isinf(v["E2"]):
+        film.place_countersurface(h0, np.zeros(3))
+        lift = film.counterpart.offset
+    film.plane = lift             # the plane's (or the block's) rigid position
+    if not steady:
+        film.transient(v["scheme"], lumped=v["lumped"])
+    offset = lift
+    y0 = float(offset.value[dim - 1])
+    schedule = []
+    if v["control"] == "speed":
+        schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
+    return Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
+                   name="ehl_squeeze")
+
+
+def progress_total(v):
+    """Time steps to T."""
+    return nominal_steps(v["T"], v["dt"])
+
+
+def vtx_fields(stepper):
+    """Displacement of the body; film pressure (on Γ_l)."""
+    film = stepper.wear
+    return {"displacement": [film.body.u], "pressure": [film.p]}
+
+
+def plot(profile, outdir):
+    """``squeeze.png``: film and force against time; ``squeeze_profiles.png``."""
+    from ..plots.film import plot_squeeze
+
+    plot_squeeze(profile, outdir)
+
+
+def measures(film, v, y0):
+    """One step's measures: film at the centre and its minimum, force, plane position."""
+    dim = v["dim"]
+    prof = film.profile(everywhere=True)
+    r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
+    h_c = float(prof["h"][np.argmin(r)])
+    force = float(film.force()[dim - 1]) / fraction(v)
+    return {"h_center": h_c, "h_min": film.min_film(), "force": force,
+            "approach": float(film.plane.value[dim - 1]) - y0,
+            "p_center": float(prof["p"][np.argmin(r)]),
+            "content": film.content() / fraction(v)}
+
+
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
+    stepper = build(v, checkpoint=checkpoint)
+    stepper.verbose = verbose
+    film, dim = stepper.wear, v["dim"]
+    keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
+            "newton_iterations", "force_rigid", "h_center_rigid")
+    sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
+                         resume)
+    y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
+    R, mu, L = v["R"], v["mu"], extent(v)
+
+    def log(t, its):
+        m = measures(film, v, y0)
+        h_rigid = v["h_start"] - m["approach"]     # the rigid body's gap at the plane
+        m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v["V"]
+                            if v["control"] == "speed" else v["F"])
+        m["h_center_rigid"] = (h_rigid if v["control"] == "speed" else float(
+            squeeze_film_under_load(dim, R, mu, v["F"], v["h_start"], [t], L)[0]))
+        sr.log(its, dict(time=t, newton_iterations=its, **m))
+
+    if not resume:
+        log(0.0, 0)
+    with sr.closing(report=lambda: _report(film, record, sr.hist)):
+        stepper.run(v["T"], FixedStep(v["dt"]), progress=progress,
+                    on_step=sr.written(lambda st, rep: log(st.t, rep.iterations)))
+    return stepper
+
+
+def _report(film, record, hist):
+    units = {"time": "s", "h_center": "mm", "h_min": "mm", "force": "N (N/mm in 2D)",
+             "approach": "mm", "p_center": "MPa", "newton_iterations": "-",
+             "content": "mm² per unit length (2D), mm³ (3D): the fluid in the film",
+             "force_rigid": "N (N/mm in 2D)", "h_center_rigid": "mm"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    prof = film.profile()
+    if prof is not None:
+        r = np.linalg.norm(prof["X"][:, :-1], axis=1)    # distance from the axis
+        record.result("final_film", np.column_stack([r, prof["h"], prof["p"]]).tolist(),
+                      "mm (radius), mm (h), MPa (p) per node of the film")
+        record.profile = {**hist, "X": prof["X"].tolist(), "h": prof["h"].tolist(),
+                          "p": prof["p"].tolist()}

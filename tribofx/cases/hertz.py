@@ -43,9 +43,9 @@ from ..references import hertz_reference
 # hertz_reference is re-exported from tribofx.references
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = [
-    "AXISYMMETRIC", "HertzCase", "dimension", "geometric_dim", "hertz_dim", "hertz_reference",
-]
+__all__ = ["AXISYMMETRIC", "build", "dimension", "doc", "geometric_dim", "hertz_dim",
+           "hertz_reference", "mesh_sizes", "model_fraction", "name", "params", "plot",
+           "resumable", "run", "validate", "vtx_fields"]
 
 
 #: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
@@ -68,192 +68,193 @@ def hertz_dim(dim):
     return 3 if dim == AXISYMMETRIC else dim
 
 
-class HertzCase:
-    """Case ``hertz``; see the module docstring."""
+name = "hertz"
 
-    name = "hertz"
-    resumable = False   # no per-step checkpoint
 
-    doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
-           "meridian section) pressed on a rigid plane, vs Hertz")
+resumable = False   # no per-step checkpoint
 
-    params = (
-        Param("dim", dimension, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model), "
-              "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
-              choices=(2, 3, AXISYMMETRIC)),
-        Param("E", float, 10.0, "MPa", "Young's modulus", lower=0.0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0,
-              upper=0.5),
-        Param("R", float, 10.0, "mm", "radius of the cylinder/sphere", lower=0.0),
-        Param("load", float, None, "N/mm (dim=2) or N (dim=3, axisymmetric)",
-              "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
-              lower=0.0),
-        Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0.0,
-              closed=True),
-        Param("obstacle", str, "analytic", "-", "rigid plane in closed form or as a gmsh mesh",
-              choices=("analytic", "mesh")),
-        Param("material", str, "neo-hookean", "-", "strain energy",
-              choices=("neo-hookean", "linear")),
-        Param("mesh", int, 2, "-",
-              "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
-              "in 3D, a = Hertz contact size (ignored with mesh_file)", lower=0, upper=7,
-              closed=True),
-        Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
-        Param("mesh_file", str, "", "-",
-              "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
-              "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
-              "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
-              "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
-              "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
-              "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
-              "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)"),
-    )
 
-    @staticmethod
-    def validate(v):
-        """Fill derived defaults and check cross-parameter consistency."""
-        if v["load"] is None:
-            v["load"] = 0.2 if v["dim"] == 2 else 0.5
-        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
-        if a > 0.5 * v["R"]:
-            raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
-        if a < 1e-4 * v["R"]:
-            raise InputError(f"load too small to resolve: a/R = {a / v['R']:.1e} < 1e-4")
+doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
+       "meridian section) pressed on a rigid plane, vs Hertz")
 
-    @staticmethod
-    def mesh_sizes(v):
-        """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
-        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
-        plane = geometric_dim(v["dim"]) == 2       # a 2D mesh: cylinder or meridian section
-        per_a = (6 if plane else 2) * 2 ** v["mesh"]
-        return a / per_a, v["R"] / (6 if plane else 4), 1.5 * a
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Body, contact interface and :class:`Problem` of the case (not yet loaded).
+params = (
+    Param("dim", dimension, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model), "
+          "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
+          choices=(2, 3, AXISYMMETRIC)),
+    Param("E", float, 10.0, "MPa", "Young's modulus", lower=0.0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0,
+          upper=0.5),
+    Param("R", float, 10.0, "mm", "radius of the cylinder/sphere", lower=0.0),
+    Param("load", float, None, "N/mm (dim=2) or N (dim=3, axisymmetric)",
+          "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
+          lower=0.0),
+    Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0.0,
+          closed=True),
+    Param("obstacle", str, "analytic", "-", "rigid plane in closed form or as a gmsh mesh",
+          choices=("analytic", "mesh")),
+    Param("material", str, "neo-hookean", "-", "strain energy",
+          choices=("neo-hookean", "linear")),
+    Param("mesh", int, 2, "-",
+          "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
+          "in 3D, a = Hertz contact size (ignored with mesh_file)", lower=0, upper=7,
+          closed=True),
+    Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
+    Param("mesh_file", str, "", "-",
+          "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
+          "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
+          "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
+          "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
+          "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
+          "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
+          "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)"),
+)
 
-        ``mesh_file``: the user's body
-        (:func:`tribofx.cases.curved_bodies.read_hertz_body`); ρ_N = E/h with h its
-        contact element size instead of ``h_fine``.
-        """
-        R, dim = v["R"], geometric_dim(v["dim"])
-        h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
-        if v["mesh_file"]:
-            a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], R, v["load"])
-            msh, ft, names, h_fine, _ = read_hertz_body(v["mesh_file"], comm, dim, a, R,
-                                                        CURVATURE_TOL / R)
-        else:
-            msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
-            names = NAMES
-        normal = np.eye(dim)[dim - 1]
-        if v["obstacle"] == "analytic":
-            plane = rigid_plane(np.zeros(dim), normal)
-        else:
-            from ..meshes.obstacles import plane_surface_mesh
 
-            plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
-                                                           4 * h_fine))
-        mu, lmbda = lame_parameters(v["E"], v["nu"])
-        kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v["dim"]]
-        body = Body(msh, ft, names, kind,
-                    (v["material"], {"mu": mu, "lmbda": lmbda}))
-        body.add_dirichlet("loaded", np.zeros(dim))
-        body.add_dirichlet("symmetry_x", 0.0, component=0)
-        if dim == 3:
-            body.add_dirichlet("symmetry_y", 0.0, component=1)
-        contact = Contact(body, "contact", plane, rho_n=v["E"] / h_fine,
-                          friction=v["friction"])
-        problem = Problem([body, contact], name="hertz")
-        return body, contact, problem
+def validate(v):
+    """Fill derived defaults and check cross-parameter consistency."""
+    if v["load"] is None:
+        v["load"] = 0.2 if v["dim"] == 2 else 0.5
+    a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
+    if a > 0.5 * v["R"]:
+        raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
+    if a < 1e-4 * v["R"]:
+        raise InputError(f"load too small to resolve: a/R = {a / v['R']:.1e} < 1e-4")
 
-    @staticmethod
-    def vtx_fields(run):
-        """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
-        body, contact, _ = run
-        return {"displacement": [body.u], "contact": [contact.lam_n]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure profile against Hertz (``pressure.png``)."""
-        from ..plots import plot_hertz_pressure
+def mesh_sizes(v):
+    """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
+    a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
+    plane = geometric_dim(v["dim"]) == 2       # a 2D mesh: cylinder or meridian section
+    per_a = (6 if plane else 2) * 2 ** v["mesh"]
+    return a / per_a, v["R"] / (6 if plane else 4), 1.5 * a
 
-        plot_hertz_pressure(profile, outdir / "pressure.png")
 
-    @staticmethod
-    def model_fraction(dim):
-        """Fraction of the full body whose force the model gives (symmetry).
+def build(v, comm=MPI.COMM_WORLD):
+    """Body, contact interface and :class:`Problem` of the case (not yet loaded).
 
-        A half cylinder, a quarter sphere; the meridian section's forces are those
-        of the revolved (full) sphere, its measures weighted by 2πR.
-        """
-        return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
+    ``mesh_file``: the user's body
+    (:func:`tribofx.cases.curved_bodies.read_hertz_body`); ρ_N = E/h with h its
+    contact element size instead of ``h_fine``.
+    """
+    R, dim = v["R"], geometric_dim(v["dim"])
+    h_fine, h_coarse, r_fine = mesh_sizes(v)
+    if v["mesh_file"]:
+        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], R, v["load"])
+        msh, ft, names, h_fine, _ = read_hertz_body(v["mesh_file"], comm, dim, a, R,
+                                                    CURVATURE_TOL / R)
+    else:
+        msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
+        names = NAMES
+    normal = np.eye(dim)[dim - 1]
+    if v["obstacle"] == "analytic":
+        plane = rigid_plane(np.zeros(dim), normal)
+    else:
+        from ..meshes.obstacles import plane_surface_mesh
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
-        """Load the body to ``load`` and record contact size and peak pressure.
+        plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
+                                                       4 * h_fine))
+    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v["dim"]]
+    body = Body(msh, ft, names, kind,
+                (v["material"], {"mu": mu, "lmbda": lmbda}))
+    body.add_dirichlet("loaded", np.zeros(dim))
+    body.add_dirichlet("symmetry_x", 0.0, component=0)
+    if dim == 3:
+        body.add_dirichlet("symmetry_y", 0.0, component=1)
+    contact = Contact(body, "contact", plane, rho_n=v["E"] / h_fine,
+                      friction=v["friction"])
+    problem = Problem([body, contact], name="hertz")
+    return body, contact, problem
 
-        The plane's position δ is driven by :meth:`Continuation.reach` so that the
-        normal contact force equals each load increment.  ``comm``: the
-        communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
-        test).
-        """
-        R, dim = v["R"], hertz_dim(v["dim"])
-        body, contact, problem = run = cls.build(v, comm)
-        frac = cls.model_fraction(v["dim"])
-        record.data["num_dofs"] = problem.num_dofs
-        a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
-        axis = geometric_dim(v["dim"]) - 1
-        control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
-                               response=lambda: contact.force()[axis], verbose=verbose,
-                               record=record.data["newton_iterations"])
-        targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
-        delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
-        try:
-            for k, target in enumerate(targets):
-                delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
-                if progress is not None:
-                    progress.update(1)
-        except NewtonDivergence as err:
-            err.model = run  # restored to the last converged load step
-            raise
-        finally:
-            cls._report(contact, v, record, frac, a_h, p_h)
-        return run
 
-    @staticmethod
-    def _report(contact, v, record, frac, a_h, p_h):
-        dim, gdim = v["dim"], geometric_dim(v["dim"])
-        area, pmax = contact.measures()
-        # half-width; the radius of a quarter disc's area; that of the revolved disc's
-        size = {2: area, 3: math.sqrt(4 * area / math.pi),
-                AXISYMMETRIC: math.sqrt(area / math.pi)}[dim]
-        force = contact.force()
-        key = "contact_half_width" if dim == 2 else "contact_radius"
-        record.result(key, size, "mm")
-        record.result(f"hertz_{key}", a_h, "mm")
-        record.result("p_max", pmax, "MPa")
-        record.result("hertz_p_max", p_h, "MPa")
-        record.result(f"{key}_rel_error", size / a_h - 1)
-        record.result("p_max_rel_error", pmax / p_h - 1)
-        record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
-        if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
-            delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
-            record.result("approach", delta, "mm")
-            record.result("hertz_approach", a_h**2 / v["R"], "mm (half-space)")
-        record.result("normal_load_full_body", float(force[gdim - 1] / frac),
-                      "N/mm" if dim == 2 else "N")
-        record.result("tangential_force_modelled_part", [float(f) for f in force[: gdim - 1]],
-                      "N/mm" if dim == 2 else "N")
-        # weighted L2 distance of the nodal pressures from the Hertz distribution
-        d = contact.nodal_data()
-        rr = d["x"][:, 0] if gdim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
-        ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
-        comm = contact.body.mesh.comm
-        num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
-        den = comm.allreduce(float(np.sum(d["weight"] * ph**2)), op=MPI.SUM)
-        record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
-        prof = contact.gather_profile()
-        if comm.rank == 0:
-            r = (prof["x"][:, 0] if gdim == 2
-                 else np.linalg.norm(prof["x"][:, :2], axis=1))
-            record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}
+def vtx_fields(run):
+    """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
+    body, contact, _ = run
+    return {"displacement": [body.u], "contact": [contact.lam_n]}
+
+
+def plot(profile, outdir):
+    """Pressure profile against Hertz (``pressure.png``)."""
+    from ..plots import plot_hertz_pressure
+
+    plot_hertz_pressure(profile, outdir / "pressure.png")
+
+
+def model_fraction(dim):
+    """Fraction of the full body whose force the model gives (symmetry).
+
+    A half cylinder, a quarter sphere; the meridian section's forces are those
+    of the revolved (full) sphere, its measures weighted by 2πR.
+    """
+    return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
+
+
+def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
+    """Load the body to ``load`` and record contact size and peak pressure.
+
+    The plane's position δ is driven by :meth:`Continuation.reach` so that the
+    normal contact force equals each load increment.  ``comm``: the
+    communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
+    test).
+    """
+    R, dim = v["R"], hertz_dim(v["dim"])
+    body, contact, problem = run = build(v, comm)
+    frac = model_fraction(v["dim"])
+    record.data["num_dofs"] = problem.num_dofs
+    a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
+    axis = geometric_dim(v["dim"]) - 1
+    control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
+                           response=lambda: contact.force()[axis], verbose=verbose,
+                           record=record.data["newton_iterations"])
+    targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
+    delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
+    try:
+        for k, target in enumerate(targets):
+            delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
+            if progress is not None:
+                progress.update(1)
+    except NewtonDivergence as err:
+        err.model = run  # restored to the last converged load step
+        raise
+    finally:
+        _report(contact, v, record, frac, a_h, p_h)
+    return run
+
+
+def _report(contact, v, record, frac, a_h, p_h):
+    dim, gdim = v["dim"], geometric_dim(v["dim"])
+    area, pmax = contact.measures()
+    # half-width; the radius of a quarter disc's area; that of the revolved disc's
+    size = {2: area, 3: math.sqrt(4 * area / math.pi),
+            AXISYMMETRIC: math.sqrt(area / math.pi)}[dim]
+    force = contact.force()
+    key = "contact_half_width" if dim == 2 else "contact_radius"
+    record.result(key, size, "mm")
+    record.result(f"hertz_{key}", a_h, "mm")
+    record.result("p_max", pmax, "MPa")
+    record.result("hertz_p_max", p_h, "MPa")
+    record.result(f"{key}_rel_error", size / a_h - 1)
+    record.result("p_max_rel_error", pmax / p_h - 1)
+    record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
+    if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
+        delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
+        record.result("approach", delta, "mm")
+        record.result("hertz_approach", a_h**2 / v["R"], "mm (half-space)")
+    record.result("normal_load_full_body", float(force[gdim - 1] / frac),
+                  "N/mm" if dim == 2 else "N")
+    record.result("tangential_force_modelled_part", [float(f) for f in force[: gdim - 1]],
+                  "N/mm" if dim == 2 else "N")
+    # weighted L2 distance of the nodal pressures from the Hertz distribution
+    d = contact.nodal_data()
+    rr = d["x"][:, 0] if gdim == 2 else np.linalg.norm(d["x"][:, :2], axis=1)
+    ph = p_h * np.sqrt(np.clip(1 - (rr / a_h) ** 2, 0, None))
+    comm = contact.body.mesh.comm
+    num = comm.allreduce(float(np.sum(d["weight"] * (d["p"] - ph) ** 2)), op=MPI.SUM)
+    den = comm.allreduce(float(np.sum(d["weight"] * ph**2)), op=MPI.SUM)
+    record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
+    prof = contact.gather_profile()
+    if comm.rank == 0:
+        r = (prof["x"][:, 0] if gdim == 2
+             else np.linalg.norm(prof["x"][:, :2], axis=1))
+        record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}

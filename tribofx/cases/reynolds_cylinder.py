@@ -29,7 +29,8 @@ from ..references import cylinder_references
 from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
 
 # cylinder_references is re-exported from tribofx.references
-__all__ = ["CylinderCase", "cylinder_references"]
+__all__ = ["build", "cylinder_references", "doc", "mesh_levels", "name", "params", "plot",
+           "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
 def _peak_and_rupture(prof, crossing):
@@ -73,176 +74,179 @@ def _reformation(prof):
     return float(prof["x"][full[0]]) if len(full) else None
 
 
-class CylinderCase:
-    """Case ``reynolds-cylinder``; see the module docstring."""
+name = "reynolds-cylinder"
 
-    name = "reynolds-cylinder"
-    resumable = False   # no per-step checkpoint
-    doc = ("rigid cylinder on a rigid plane (1D Reynolds) with cavitation none|penalty|jfo, "
-           "vs half-Sommerfeld and Swift–Stieber")
-    params = (
-        Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
-        Param("h0", float, 0.01, "mm", "minimum film thickness", lower=0.0),
-        Param("um", float, 1000.0, "mm/s", "mean entrainment speed (u1 + u2)/2", lower=0.0),
-        Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
-        Param("x_in", float, -2.0, "mm", "inlet position (p = 0)", upper=0.0),
-        Param("x_out", float, 2.0, "mm", "outlet position", lower=0.0),
-        Param("cavitation", str, "penalty", "-", "cavitation model",
-              choices=("none", "penalty", "jfo")),
-        Param("supg", bool, True, "-", "SUPG stabilisation (Remark 3.2)"),
-        Param("mesh", int, 400, "-", "number of elements", lower=2, upper=10**7, closed=True),
-        Param("degree", int, 1, "-", "Lagrange degree of p (jfo: 1 only)", choices=(1, 2)),
-        Param("inlet_void", float, 0.0, "-",
-              "void fraction λ of the supplied film at x_in (jfo; 0: fully flooded, "
-              "> 0: starved inlet)", lower=0.0, upper=1.0, closed=True),
-        Param("inlet", str, "dirichlet", "-", "jfo inlet: dirichlet (λ = inlet_void, p = 0 "
-              "at x_in) or supply (an open end supplied with the content (1 − inlet_void) "
-              "h(x_in), as the reciprocating O-ring's air end)", choices=("dirichlet", "supply")),
-        Param("penalty", float, 1e-6, "-",
-              "relative penalty ε/ε_ref, ε_ref = 12 μ ℓ²/h0³ (MPa·s/mm), ℓ = √(2 R h0)",
-              lower=0.0),
-    ) + VISCOSITY_PARAMS
 
-    @staticmethod
-    def scales(v):
-        """Contact length ℓ = √(2Rh0) (mm), pressure scale 12μu_mℓ/h0² (MPa), ε (MPa·s/mm)."""
-        ell = math.sqrt(2 * v["R"] * v["h0"])
-        p_s = 12 * v["mu"] * v["um"] * ell / v["h0"] ** 2
-        eps = v["penalty"] * 12 * v["mu"] * ell**2 / v["h0"] ** 3
-        return ell, p_s, eps
+resumable = False   # no per-step checkpoint
 
-    @classmethod
-    def validate(cls, v):
-        """Check the interval and, with cavitation, that the outlet lies past the rupture."""
-        if not v["x_in"] < v["x_out"]:
-            raise InputError(f"x_in = {v['x_in']} mm must be < x_out = {v['x_out']} mm")
-        viscosity(v)
-        density(v)
-        if v["cavitation"] == "jfo" and v["degree"] != 1:
-            raise InputError("cavitation=jfo needs degree=1 (nodal complementarity)")
-        if v["inlet_void"] > 0 and v["cavitation"] != "jfo":
-            raise InputError("inlet_void > 0 (starved inlet) needs cavitation=jfo")
-        if max(-v["x_in"], v["x_out"]) >= v["R"]:
-            raise InputError(f"x_in, x_out must lie within the cylinder's radius R = {v['R']} mm "
-                             f"(the gap h0 + x²/(2R) is its parabolic approximation)")
-        if v["cavitation"] != "none":
-            try:
-                refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
-                                           v["x_out"], n=20_000, inlet_void=v["inlet_void"])
-            except ValueError as err:
-                raise InputError(str(err)) from None
-            xr = refs["swift_stieber"]["x_rupture"]
-            if v["x_out"] < xr + 0.02 * (v["x_out"] - v["x_in"]):
-                raise InputError(f"x_out = {v['x_out']} mm must lie downstream of the "
-                                 f"cavitation boundary (Swift–Stieber x_r = {xr:.4g} mm)")
 
-    @staticmethod
-    def levels(n, coarsest=50):
-        """Element counts of the nested iteration: n/2^k, ..., n/2, n with n/2^k ≥ coarsest.
+doc = ("rigid cylinder on a rigid plane (1D Reynolds) with cavitation none|penalty|jfo, "
+       "vs half-Sommerfeld and Swift–Stieber")
 
-        Each level starts from the solution of the previous one, so that the
-        semismooth Newton iteration only moves the free boundaries by about one
-        coarse element (a primal active-set iteration moves them by about one
-        node per iteration).
-        """
-        out = [n]
-        while out[0] // 2 >= coarsest:
-            out.insert(0, out[0] // 2)
-        return out
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD):
-        """Return the film of the cylinder gap and its problem (not solved; JFO guess set)."""
-        R, h0 = v["R"], v["h0"]
-        _, p_s, eps = cls.scales(v)
-        return rigid_film(comm, v["x_in"], v["x_out"], v["mesh"], v["degree"],
-                          lambda x: h0 + x**2 / (2 * R), v["um"], viscosity(v),
-                          cavitation=v["cavitation"], supg=v["supg"], p_c=p_s, eps=eps,
-                          h_ref=h0, lam_in=v["inlet_void"], density=density(v),
-                          supply=v["inlet"] == "supply")
+params = (
+    Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
+    Param("h0", float, 0.01, "mm", "minimum film thickness", lower=0.0),
+    Param("um", float, 1000.0, "mm/s", "mean entrainment speed (u1 + u2)/2", lower=0.0),
+    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
+    Param("x_in", float, -2.0, "mm", "inlet position (p = 0)", upper=0.0),
+    Param("x_out", float, 2.0, "mm", "outlet position", lower=0.0),
+    Param("cavitation", str, "penalty", "-", "cavitation model",
+          choices=("none", "penalty", "jfo")),
+    Param("supg", bool, True, "-", "SUPG stabilisation (Remark 3.2)"),
+    Param("mesh", int, 400, "-", "number of elements", lower=2, upper=10**7, closed=True),
+    Param("degree", int, 1, "-", "Lagrange degree of p (jfo: 1 only)", choices=(1, 2)),
+    Param("inlet_void", float, 0.0, "-",
+          "void fraction λ of the supplied film at x_in (jfo; 0: fully flooded, "
+          "> 0: starved inlet)", lower=0.0, upper=1.0, closed=True),
+    Param("inlet", str, "dirichlet", "-", "jfo inlet: dirichlet (λ = inlet_void, p = 0 "
+          "at x_in) or supply (an open end supplied with the content (1 − inlet_void) "
+          "h(x_in), as the reciprocating O-ring's air end)", choices=("dirichlet", "supply")),
+    Param("penalty", float, 1e-6, "-",
+          "relative penalty ε/ε_ref, ε_ref = 12 μ ℓ²/h0³ (MPa·s/mm), ℓ = √(2 R h0)",
+          lower=0.0),
+) + VISCOSITY_PARAMS
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Solve and record load, peak, rupture point and fluxes against the references."""
-        levels = cls.levels(v["mesh"])
-        its, prev, run = [], None, None
+
+def scales(v):
+    """Contact length ℓ = √(2Rh0) (mm), pressure scale 12μu_mℓ/h0² (MPa), ε (MPa·s/mm)."""
+    ell = math.sqrt(2 * v["R"] * v["h0"])
+    p_s = 12 * v["mu"] * v["um"] * ell / v["h0"] ** 2
+    eps = v["penalty"] * 12 * v["mu"] * ell**2 / v["h0"] ** 3
+    return ell, p_s, eps
+
+
+def validate(v):
+    """Check the interval and, with cavitation, that the outlet lies past the rupture."""
+    if not v["x_in"] < v["x_out"]:
+        raise InputError(f"x_in = {v['x_in']} mm must be < x_out = {v['x_out']} mm")
+    viscosity(v)
+    density(v)
+    if v["cavitation"] == "jfo" and v["degree"] != 1:
+        raise InputError("cavitation=jfo needs degree=1 (nodal complementarity)")
+    if v["inlet_void"] > 0 and v["cavitation"] != "jfo":
+        raise InputError("inlet_void > 0 (starved inlet) needs cavitation=jfo")
+    if max(-v["x_in"], v["x_out"]) >= v["R"]:
+        raise InputError(f"x_in, x_out must lie within the cylinder's radius R = {v['R']} mm "
+                         f"(the gap h0 + x²/(2R) is its parabolic approximation)")
+    if v["cavitation"] != "none":
         try:
-            for n in levels:  # nested iteration: each level from the coarser solution
-                run = film, problem = cls.build(dict(v, mesh=n))
-                if prev is not None:
-                    film.set_from_profile(prev)
-                report = problem.solve_by_homotopy(verbose=verbose)
-                its.append(report.iterations)
-                prev = film.sub.comm.bcast(film.profile(), root=0)
-        except NewtonDivergence as err:
-            err.model = run
-            raise
-        record.data["num_dofs"] = problem.num_dofs
-        record.data["mesh_levels"] = levels
-        record.data["newton_iterations"].append(its)
-        record.data["newton_residuals"] = [float(r) for r in report.residuals]
-        if progress is not None:
-            progress.update(1)
-        cls._report(film, v, record)
-        return run
+            refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
+                                       v["x_out"], n=20_000, inlet_void=v["inlet_void"])
+        except ValueError as err:
+            raise InputError(str(err)) from None
+        xr = refs["swift_stieber"]["x_rupture"]
+        if v["x_out"] < xr + 0.02 * (v["x_out"] - v["x_in"]):
+            raise InputError(f"x_out = {v['x_out']} mm must lie downstream of the "
+                             f"cavitation boundary (Swift–Stieber x_r = {xr:.4g} mm)")
 
-    @classmethod
-    def _report(cls, film, v, record):
-        cav = v["cavitation"]
-        ell, p_s, eps = cls.scales(v)
-        refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"], v["x_out"],
-                                   inlet_void=v["inlet_void"])
-        p, comm = film.p, film.sub.comm
-        load = film.integral(ufl.max_value(p, 0) if cav == "none" else p)
-        q_in, q_out = film.consistent_fluxes(inlet=lambda y: np.isclose(y[0], v["x_in"]))
-        prof = film.profile()
-        peak = None
-        if comm.rank == 0:
-            peak = _peak_and_rupture(prof, crossing=(cav == "none"))
-            peak = (*peak, _reformation(prof))
-            record.profile = dict(prof, cavitation=cav, refs={
-                k: {"x": r["x"][::50], "p": r["p"][::50], "x_rupture": r["x_rupture"]}
-                for k, r in refs.items()})
-        pm, xm, xr, xf = comm.bcast(peak, root=0)
-        record.result("load_per_length", load, "N/mm")
-        record.result("p_max", pm, "MPa")
-        record.result("x_p_max", xm, "mm")
-        record.result("x_rupture", xr, "mm")
-        if cav == "jfo":
-            record.result("x_reformation", xf, "mm")
-            record.result("swift_stieber_x_reformation", refs["swift_stieber"]["x_reformation"],
-                          "mm")
-        for key, r in refs.items():
-            record.result(f"{key}_load_per_length", float(r["load"]), "N/mm")
-            record.result(f"{key}_p_max", float(r["p_max"]), "MPa")
-            record.result(f"{key}_x_p_max", float(r["x_p_max"]), "mm")
-            record.result(f"{key}_x_rupture", float(r["x_rupture"]), "mm")
-            record.result(f"{key}_flux", float(r["flux"]), "mm^2/s")
-        if v["viscosity"] == "constant" and v["density"] == "incompressible":
-            ref = refs["half_sommerfeld" if cav == "none" else "swift_stieber"]
-            record.result("reference", "half_sommerfeld" if cav == "none" else "swift_stieber")
-            record.result("load_rel_error", float(load / ref["load"] - 1))
-            record.result("p_max_rel_error", float(pm / ref["p_max"] - 1))
-        else:   # the references above are those of the isoviscous, incompressible fluid
-            record.result("reference", "none (the references are isoviscous, incompressible)")
-        record.result("flux_in", float(q_in), "mm^2/s")
-        record.result("flux_out", float(q_out), "mm^2/s")
-        record.result("mass_balance_rel_defect", float((q_out - q_in) / abs(q_in)))
-        record.result("pressure_scale", p_s, "MPa")
-        if cav == "penalty":
-            record.result("penalty_epsilon", eps, "MPa·s/mm")
-            record.result("p_min", comm.allreduce(float(p.x.array.min(initial=0.0)),
-                                                  op=MPI.MIN), "MPa")
 
-    @staticmethod
-    def vtx_fields(run):
-        """Pressure, film thickness (and void fraction for JFO) on the interval mesh."""
-        film = run[0]
-        return {"reynolds": [film.p, film.h_fun] + ([film.lam] if film.lam is not None else [])}
+def mesh_levels(n, coarsest=50):
+    """Element counts of the nested iteration: n/2^k, ..., n/2, n with n/2^k ≥ coarsest.
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure vs half-Sommerfeld / Swift–Stieber, film thickness, void fraction."""
-        from ..plots import plot_reynolds_cylinder
+    Each level starts from the solution of the previous one, so that the
+    semismooth Newton iteration only moves the free boundaries by about one
+    coarse element (a primal active-set iteration moves them by about one
+    node per iteration).
+    """
+    out = [n]
+    while out[0] // 2 >= coarsest:
+        out.insert(0, out[0] // 2)
+    return out
 
-        plot_reynolds_cylinder(profile, outdir / "pressure.png")
+
+def build(v, comm=MPI.COMM_WORLD):
+    """Return the film of the cylinder gap and its problem (not solved; JFO guess set)."""
+    R, h0 = v["R"], v["h0"]
+    _, p_s, eps = scales(v)
+    return rigid_film(comm, v["x_in"], v["x_out"], v["mesh"], v["degree"],
+                      lambda x: h0 + x**2 / (2 * R), v["um"], viscosity(v),
+                      cavitation=v["cavitation"], supg=v["supg"], p_c=p_s, eps=eps,
+                      h_ref=h0, lam_in=v["inlet_void"], density=density(v),
+                      supply=v["inlet"] == "supply")
+
+
+def run(v, record, progress=None, verbose=False):
+    """Solve and record load, peak, rupture point and fluxes against the references."""
+    levels = mesh_levels(v["mesh"])
+    its, prev, run = [], None, None
+    try:
+        for n in levels:  # nested iteration: each level from the coarser solution
+            run = film, problem = build(dict(v, mesh=n))
+            if prev is not None:
+                film.set_from_profile(prev)
+            report = problem.solve_by_homotopy(verbose=verbose)
+            its.append(report.iterations)
+            prev = film.sub.comm.bcast(film.profile(), root=0)
+    except NewtonDivergence as err:
+        err.model = run
+        raise
+    record.data["num_dofs"] = problem.num_dofs
+    record.data["mesh_levels"] = levels
+    record.data["newton_iterations"].append(its)
+    record.data["newton_residuals"] = [float(r) for r in report.residuals]
+    if progress is not None:
+        progress.update(1)
+    _report(film, v, record)
+    return run
+
+
+def _report(film, v, record):
+    cav = v["cavitation"]
+    ell, p_s, eps = scales(v)
+    refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"], v["x_out"],
+                               inlet_void=v["inlet_void"])
+    p, comm = film.p, film.sub.comm
+    load = film.integral(ufl.max_value(p, 0) if cav == "none" else p)
+    q_in, q_out = film.consistent_fluxes(inlet=lambda y: np.isclose(y[0], v["x_in"]))
+    prof = film.profile()
+    peak = None
+    if comm.rank == 0:
+        peak = _peak_and_rupture(prof, crossing=(cav == "none"))
+        peak = (*peak, _reformation(prof))
+        record.profile = dict(prof, cavitation=cav, refs={
+            k: {"x": r["x"][::50], "p": r["p"][::50], "x_rupture": r["x_rupture"]}
+            for k, r in refs.items()})
+    pm, xm, xr, xf = comm.bcast(peak, root=0)
+    record.result("load_per_length", load, "N/mm")
+    record.result("p_max", pm, "MPa")
+    record.result("x_p_max", xm, "mm")
+    record.result("x_rupture", xr, "mm")
+    if cav == "jfo":
+        record.result("x_reformation", xf, "mm")
+        record.result("swift_stieber_x_reformation", refs["swift_stieber"]["x_reformation"],
+                      "mm")
+    for key, r in refs.items():
+        record.result(f"{key}_load_per_length", float(r["load"]), "N/mm")
+        record.result(f"{key}_p_max", float(r["p_max"]), "MPa")
+        record.result(f"{key}_x_p_max", float(r["x_p_max"]), "mm")
+        record.result(f"{key}_x_rupture", float(r["x_rupture"]), "mm")
+        record.result(f"{key}_flux", float(r["flux"]), "mm^2/s")
+    if v["viscosity"] == "constant" and v["density"] == "incompressible":
+        ref = refs["half_sommerfeld" if cav == "none" else "swift_stieber"]
+        record.result("reference", "half_sommerfeld" if cav == "none" else "swift_stieber")
+        record.result("load_rel_error", float(load / ref["load"] - 1))
+        record.result("p_max_rel_error", float(pm / ref["p_max"] - 1))
+    else:   # the references above are those of the isoviscous, incompressible fluid
+        record.result("reference", "none (the references are isoviscous, incompressible)")
+    record.result("flux_in", float(q_in), "mm^2/s")
+    record.result("flux_out", float(q_out), "mm^2/s")
+    record.result("mass_balance_rel_defect", float((q_out - q_in) / abs(q_in)))
+    record.result("pressure_scale", p_s, "MPa")
+    if cav == "penalty":
+        record.result("penalty_epsilon", eps, "MPa·s/mm")
+        record.result("p_min", comm.allreduce(float(p.x.array.min(initial=0.0)),
+                                              op=MPI.MIN), "MPa")
+
+
+def vtx_fields(run):
+    """Pressure, film thickness (and void fraction for JFO) on the interval mesh."""
+    film = run[0]
+    return {"reynolds": [film.p, film.h_fun] + ([film.lam] if film.lam is not None else [])}
+
+
+def plot(profile, outdir):
+    """Pressure vs half-Sommerfeld / Swift–Stieber, film thickness, void fraction."""
+    from ..plots import plot_reynolds_cylinder
+
+    plot_reynolds_cylinder(profile, outdir / "pressure.png")

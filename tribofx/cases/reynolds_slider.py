@@ -31,110 +31,114 @@ from ..references import (
 from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
 
 # slider_reference is re-exported from tribofx.references
-__all__ = ["SliderCase", "slider_reference"]
+__all__ = ["build", "doc", "name", "params", "plot", "resumable", "run", "slider_reference",
+           "validate", "vtx_fields"]
 
 
 # --------------------------------------------------------------------------- slider case
 
 
-class SliderCase:
-    """Case ``reynolds-slider``; see the module docstring."""
+name = "reynolds-slider"
 
-    name = "reynolds-slider"
-    resumable = False   # no per-step checkpoint
-    doc = "rigid plane inclined slider bearing (1D Reynolds), vs the analytic solution"
-    params = (
-        Param("K", float, 1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0",
-              lower=-1.0),
-        Param("L", float, 10.0, "mm", "slider length", lower=0.0),
-        Param("h0", float, 0.01, "mm", "outlet (minimum) film thickness", lower=0.0),
-        Param("U", float, 1000.0, "mm/s", "speed of the sliding plane (pad at rest)",
-              lower=0.0),
-        Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
-        Param("mesh", int, 200, "-", "number of elements", lower=2, upper=10**7, closed=True),
-        Param("degree", int, 1, "-", "Lagrange degree of the pressure", choices=(1, 2)),
-    ) + VISCOSITY_PARAMS
 
-    @staticmethod
-    def validate(v):
-        """Barus: α p_iso,max < 1 (the reference transform; the fluid stays finite)."""
-        viscosity(v)
-        density(v)
-        if v["viscosity"] == "barus":
-            ap = v["alpha_p"] * slider_reference(v["K"], v["L"], v["h0"], v["U"], v["mu"])["p_max"]
-            if not ap < 0.95:
-                raise InputError(f"alpha·p_max of the isoviscous slider = {ap:.3g}: the Barus "
-                                 f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
+resumable = False   # no per-step checkpoint
 
-    @staticmethod
-    def build(v, comm=MPI.COMM_WORLD):
-        """Return the film of the slider and its problem (not solved)."""
-        K, L, h0 = v["K"], v["L"], v["h0"]
-        return rigid_film(comm, 0.0, L, v["mesh"], v["degree"],
-                          lambda x: h0 * (1 + K - K * x / L), 0.5 * v["U"], viscosity(v),
-                          h_ref=h0, density=density(v))
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False):
-        """Solve, then record load, peak pressure and the L2 error against the analytic p."""
-        run = film, problem = cls.build(v)
-        record.data["num_dofs"] = problem.num_dofs
-        try:
-            report = problem.solve_by_homotopy(verbose=verbose)
-        except NewtonDivergence as err:
-            err.model = run
-            raise
-        record.data["newton_iterations"].append([report.iterations])
-        record.data["newton_residuals"] = [float(r) for r in report.residuals]
-        if progress is not None:
-            progress.update(1)
-        K, L, h0, U, mu = (v[k] for k in ("K", "L", "h0", "U", "mu"))
-        ref = dict(slider_reference(K, L, h0, U, mu))
-        load = film.integral(film.p)
-        p_ex = slider_pressure(ufl.SpatialCoordinate(film.sub)[0], K, L, h0, U, mu)
-        if v["density"] != "incompressible":    # no closed form
-            ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
-        elif v["viscosity"] == "barus":   # the exact transform of the isoviscous film
-            a = v["alpha_p"]
-            p_ex = barus_pressure(p_ex, a, ufl.ln)
-            ref["p_max"] = barus_pressure(ref["p_max"], a)   # monotone: the same x_p_max
-            ref["load"] = film.integral(p_ex)
-        elif v["viscosity"] != "constant":
-            ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
-        l2 = math.sqrt(film.integral((film.p - p_ex) ** 2))
-        nrm = math.sqrt(film.integral(p_ex**2))
-        prof = film.profile()
-        peak = None
-        if film.sub.comm.rank == 0:
-            i = int(np.argmax(np.abs(prof["p"])))
-            peak = (float(prof["p"][i]), parabolic_vertex(prof["x"], np.abs(prof["p"])))
-            record.profile = {"x": prof["x"], "p": prof["p"], "h": prof["h"], "K": K, "L": L,
-                              "h0": h0, "U": U, "mu": mu}
-        pm, xm = film.sub.comm.bcast(peak, root=0)
-        record.result("load_per_width", load, "N/mm")
-        record.result("analytic_load_per_width", ref["load"], "N/mm")
-        record.result("p_max", pm, "MPa")
-        record.result("analytic_p_max", ref["p_max"], "MPa")
-        record.result("x_p_max", xm, "mm")
-        record.result("analytic_x_p_max", ref["x_p_max"], "mm")
+doc = "rigid plane inclined slider bearing (1D Reynolds), vs the analytic solution"
 
-        def rel(a, b):
-            return a / b - 1 if b != 0 else None
 
-        record.result("load_rel_error", rel(load, ref["load"]))
-        record.result("p_max_rel_error", rel(pm, ref["p_max"]))
-        record.result("pressure_l2_error", l2, "MPa·mm^0.5")
-        record.result("pressure_rel_l2_error", l2 / nrm if nrm > 0 else None)
-        return run
+params = (
+    Param("K", float, 1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0",
+          lower=-1.0),
+    Param("L", float, 10.0, "mm", "slider length", lower=0.0),
+    Param("h0", float, 0.01, "mm", "outlet (minimum) film thickness", lower=0.0),
+    Param("U", float, 1000.0, "mm/s", "speed of the sliding plane (pad at rest)",
+          lower=0.0),
+    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
+    Param("mesh", int, 200, "-", "number of elements", lower=2, upper=10**7, closed=True),
+    Param("degree", int, 1, "-", "Lagrange degree of the pressure", choices=(1, 2)),
+) + VISCOSITY_PARAMS
 
-    @staticmethod
-    def vtx_fields(run):
-        """Pressure and film thickness on the interval mesh."""
-        return {"reynolds": [run[0].p, run[0].h_fun]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Pressure against the analytic solution and film thickness (``pressure.png``)."""
-        from ..plots import plot_slider
+def validate(v):
+    """Barus: α p_iso,max < 1 (the reference transform; the fluid stays finite)."""
+    viscosity(v)
+    density(v)
+    if v["viscosity"] == "barus":
+        ap = v["alpha_p"] * slider_reference(v["K"], v["L"], v["h0"], v["U"], v["mu"])["p_max"]
+        if not ap < 0.95:
+            raise InputError(f"alpha·p_max of the isoviscous slider = {ap:.3g}: the Barus "
+                             f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
 
-        plot_slider(profile, outdir / "pressure.png")
+
+def build(v, comm=MPI.COMM_WORLD):
+    """Return the film of the slider and its problem (not solved)."""
+    K, L, h0 = v["K"], v["L"], v["h0"]
+    return rigid_film(comm, 0.0, L, v["mesh"], v["degree"],
+                      lambda x: h0 * (1 + K - K * x / L), 0.5 * v["U"], viscosity(v),
+                      h_ref=h0, density=density(v))
+
+
+def run(v, record, progress=None, verbose=False):
+    """Solve, then record load, peak pressure and the L2 error against the analytic p."""
+    run = film, problem = build(v)
+    record.data["num_dofs"] = problem.num_dofs
+    try:
+        report = problem.solve_by_homotopy(verbose=verbose)
+    except NewtonDivergence as err:
+        err.model = run
+        raise
+    record.data["newton_iterations"].append([report.iterations])
+    record.data["newton_residuals"] = [float(r) for r in report.residuals]
+    if progress is not None:
+        progress.update(1)
+    K, L, h0, U, mu = (v[k] for k in ("K", "L", "h0", "U", "mu"))
+    ref = dict(slider_reference(K, L, h0, U, mu))
+    load = film.integral(film.p)
+    p_ex = slider_pressure(ufl.SpatialCoordinate(film.sub)[0], K, L, h0, U, mu)
+    if v["density"] != "incompressible":    # no closed form
+        ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
+    elif v["viscosity"] == "barus":   # the exact transform of the isoviscous film
+        a = v["alpha_p"]
+        p_ex = barus_pressure(p_ex, a, ufl.ln)
+        ref["p_max"] = barus_pressure(ref["p_max"], a)   # monotone: the same x_p_max
+        ref["load"] = film.integral(p_ex)
+    elif v["viscosity"] != "constant":
+        ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
+    l2 = math.sqrt(film.integral((film.p - p_ex) ** 2))
+    nrm = math.sqrt(film.integral(p_ex**2))
+    prof = film.profile()
+    peak = None
+    if film.sub.comm.rank == 0:
+        i = int(np.argmax(np.abs(prof["p"])))
+        peak = (float(prof["p"][i]), parabolic_vertex(prof["x"], np.abs(prof["p"])))
+        record.profile = {"x": prof["x"], "p": prof["p"], "h": prof["h"], "K": K, "L": L,
+                          "h0": h0, "U": U, "mu": mu}
+    pm, xm = film.sub.comm.bcast(peak, root=0)
+    record.result("load_per_width", load, "N/mm")
+    record.result("analytic_load_per_width", ref["load"], "N/mm")
+    record.result("p_max", pm, "MPa")
+    record.result("analytic_p_max", ref["p_max"], "MPa")
+    record.result("x_p_max", xm, "mm")
+    record.result("analytic_x_p_max", ref["x_p_max"], "mm")
+
+    def rel(a, b):
+        return a / b - 1 if b != 0 else None
+
+    record.result("load_rel_error", rel(load, ref["load"]))
+    record.result("p_max_rel_error", rel(pm, ref["p_max"]))
+    record.result("pressure_l2_error", l2, "MPa·mm^0.5")
+    record.result("pressure_rel_l2_error", l2 / nrm if nrm > 0 else None)
+    return run
+
+
+def vtx_fields(run):
+    """Pressure and film thickness on the interval mesh."""
+    return {"reynolds": [run[0].p, run[0].h_fun]}
+
+
+def plot(profile, outdir):
+    """Pressure against the analytic solution and film thickness (``pressure.png``)."""
+    from ..plots import plot_slider
+
+    plot_slider(profile, outdir / "pressure.png")

@@ -32,66 +32,70 @@ from mpi4py import MPI
 from ..problem import NewtonDivergence
 from .rough_contact import PARAMS, build, check, load_and_slow, measures, speeds
 
-__all__ = ["StribeckCase"]
+__all__ = ["doc", "name", "params", "plot", "report", "resumable", "run", "validate",
+           "vtx_fields"]
 
 
-class StribeckCase:
-    """Case ``stribeck``; see the module docstring."""
+name = "stribeck"
 
-    name = "stribeck"
-    resumable = False   # no per-step checkpoint
-    doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
-    params = PARAMS
 
-    @staticmethod
-    def validate(v):
-        """Bad input: a one-line error."""
-        check(v)
+resumable = False   # no per-step checkpoint
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
-        """Reach W at the first speed, then march the speed down; record per speed.
 
-        ``rough=False``: the smooth film (the chapter's) at the same speeds.
-        """
-        run = build(v, comm, rough)
-        record.data["num_dofs"] = run["problem"].num_dofs
-        rows = []
+doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
 
-        def on_speed(U, iterations):
-            rows.append(dict(measures(run, v), U=U, newton_iterations=iterations))
-            if progress is not None:
-                progress.update(1)
 
-        try:
-            load_and_slow(run, v, speeds(v), verbose, on_speed)
-        except NewtonDivergence as err:
-            err.model = run
-            raise
-        finally:
-            cls.report(rows, record, v["geometry"])
-        return run
+params = PARAMS
 
-    @staticmethod
-    def report(rows, record, geometry="cylinder"):
-        """Per-speed lists and the curve for the plot."""
-        units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
-                 "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm | N",
-                 "p_max": "MPa", "p_total_max": "MPa",
-                 "newton_iterations": "-"}
-        for key, unit in units.items():
-            record.result(key if key != "U" else "speeds", [r[key] for r in rows], unit)
-        if MPI.COMM_WORLD.rank == 0 and rows:
-            record.profile = {"rows": rows, "geometry": geometry}
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement of the cylinder."""
-        return {"displacement": [run["body"].u]}
+def validate(v):
+    """Bad input: a one-line error."""
+    check(v)
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``stribeck.png``: friction coefficient and film load fraction against speed."""
-        from ..plots.film import plot_stribeck
 
-        plot_stribeck(profile["rows"], outdir / "stribeck.png", profile.get("geometry", "cylinder"))
+def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
+    """Reach W at the first speed, then march the speed down; record per speed.
+
+    ``rough=False``: the smooth film (the chapter's) at the same speeds.
+    """
+    run = build(v, comm, rough)
+    record.data["num_dofs"] = run["problem"].num_dofs
+    rows = []
+
+    def on_speed(U, iterations):
+        rows.append(dict(measures(run, v), U=U, newton_iterations=iterations))
+        if progress is not None:
+            progress.update(1)
+
+    try:
+        load_and_slow(run, v, speeds(v), verbose, on_speed)
+    except NewtonDivergence as err:
+        err.model = run
+        raise
+    finally:
+        report(rows, record, v["geometry"])
+    return run
+
+
+def report(rows, record, geometry="cylinder"):
+    """Per-speed lists and the curve for the plot."""
+    units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
+             "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm | N",
+             "p_max": "MPa", "p_total_max": "MPa",
+             "newton_iterations": "-"}
+    for key, unit in units.items():
+        record.result(key if key != "U" else "speeds", [r[key] for r in rows], unit)
+    if MPI.COMM_WORLD.rank == 0 and rows:
+        record.profile = {"rows": rows, "geometry": geometry}
+
+
+def vtx_fields(run):
+    """Displacement of the cylinder."""
+    return {"displacement": [run["body"].u]}
+
+
+def plot(profile, outdir):
+    """``stribeck.png``: friction coefficient and film load fraction against speed."""
+    from ..plots.film import plot_stribeck
+
+    plot_stribeck(profile["rows"], outdir / "stribeck.png", profile.get("geometry", "cylinder"))

@@ -78,326 +78,329 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import check_scheme, scheme_params
 
-__all__ = ["MODEL_FRACTION", "WearBallCase"]
+__all__ = ["MODEL_FRACTION", "build", "contact_plane", "doc", "late_time_exponent", "measures",
+           "mesh_sizes", "name", "params", "plot", "progress_total", "resumable", "run",
+           "symmetry_line", "validate", "vtx_fields"]
 
 
 MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the wear)
 
 
-class WearBallCase:
-    """Case ``wear-ball-flat``; see the module docstring."""
+name = "wear-ball-flat"
 
-    name = "wear-ball-flat"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        *scheme_params(filtered=True),
-        Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-        Param("T", float, 1000.0, "s", "end time", lower=0.0),
-        Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
-              lower=0.0, closed=True),
-        Param("V", float, 10.0, "mm/s", "sliding speed of the rigid flat", lower=0.0),
-        Param("E", float, 1e5, "MPa", "Young's modulus of the ball", lower=0.0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-        Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
-        Param("F", float, 100.0, "N", "normal force on the full ball", lower=0.0),
-        Param("friction", float, 0.4, "-", "Coulomb coefficient μ (K = k/μ)", lower=0.0),
-        Param("mesh", int, 0, "-",
-              "refinement level: contact-zone element size a_H/(2·2^mesh)", lower=0, upper=3,
-              closed=True),
-        Param("h_contact", float, 0.0, "mm",
-              "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
-              lower=0.0, closed=True),
-        Param("force_control", str, "bordered", "-",
-              "the flat's position δ: an unknown of each Newton solve (bordered) or found "
-              "by a secant of complete solves (secant)", choices=("bordered", "secant")),
-        Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
-              closed=True),
-        Param("mesh_file", str, "", "-",
-              "your own ball: a 3D gmsh .msh of the half body y ≥ 0 with physical groups "
-              "contact (the surface the flat wears), loaded (the clamped mid-plane) and "
-              "symmetry_y (on y = 0); its lowest contact point is moved to the origin; "
-              "replaces mesh (R still sets the scar-radius measure and the mesh-size check)"),
-    )
 
-    @staticmethod
-    def validate(v):
-        """Check cross-parameter consistency."""
-        if v["dt"] > v["T"]:
-            raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
-        check_scheme(v)
-        if v["error_filter"] and v["force_control"] != "bordered":
-            raise InputError("error_filter holds the force by the border: "
-                             "force_control=bordered")
-        if v["mesh_file"] and v["h_contact"]:
-            raise InputError("h_contact sets the built mesh: not with mesh_file")
-        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-        if aH > 0.2 * v["R"]:
-            raise InputError(f"load too large for small strains: a_H/R = {aH / v['R']:.2f}")
-        aT = WearBallCase.mesh_sizes(v)[2] / 1.25
-        if aT > 0.6 * v["R"]:
-            raise InputError(f"scar radius at T ({aT:.3g} mm) beyond 0.6 R: reduce k, V or T")
+doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
 
-    @staticmethod
-    def mesh_sizes(v):
-        """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
-        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-        aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
-        h = v["h_contact"] or aH / (2 * 2 ** v["mesh"])
-        return h, v["R"] / 4, 1.25 * aT
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
-        """Body, contact, wear, stepper and force control of the case (not yet loaded).
+params = (
+    *scheme_params(filtered=True),
+    Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
+    Param("T", float, 1000.0, "s", "end time", lower=0.0),
+    Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
+          lower=0.0, closed=True),
+    Param("V", float, 10.0, "mm/s", "sliding speed of the rigid flat", lower=0.0),
+    Param("E", float, 1e5, "MPa", "Young's modulus of the ball", lower=0.0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
+    Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
+    Param("F", float, 100.0, "N", "normal force on the full ball", lower=0.0),
+    Param("friction", float, 0.4, "-", "Coulomb coefficient μ (K = k/μ)", lower=0.0),
+    Param("mesh", int, 0, "-",
+          "refinement level: contact-zone element size a_H/(2·2^mesh)", lower=0, upper=3,
+          closed=True),
+    Param("h_contact", float, 0.0, "mm",
+          "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
+          lower=0.0, closed=True),
+    Param("force_control", str, "bordered", "-",
+          "the flat's position δ: an unknown of each Newton solve (bordered) or found "
+          "by a secant of complete solves (secant)", choices=("bordered", "secant")),
+    Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
+          closed=True),
+    Param("mesh_file", str, "", "-",
+          "your own ball: a 3D gmsh .msh of the half body y ≥ 0 with physical groups "
+          "contact (the surface the flat wears), loaded (the clamped mid-plane) and "
+          "symmetry_y (on y = 0); its lowest contact point is moved to the origin; "
+          "replaces mesh (R still sets the scar-radius measure and the mesh-size check)"),
+)
 
-        Returns the :class:`tribofx.stepper.Stepper`; its ``control`` positions the
-        flat so that the contact force of the half contact is F/2.
-        """
-        h_fine, h_coarse, r_fine = cls.mesh_sizes(v)
-        if v["mesh_file"]:
-            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, tuple(NAMES))
-            h_fine = cls._user_ball(msh, ft, names, v)
-        else:
-            msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
-            names = NAMES
-        mu, lmbda = lame_parameters(v["E"], v["nu"])
-        # ball frame: the ball material is at rest, the flat moves at V e_x (eqs. 26–27)
-        body = Body(msh, ft, names, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
-                    shape=True, aux=(v["E"], 0.3), velocity=np.zeros(3))
-        # the mid-plane is the rigid holder: clamped in the ball frame, the flat moves
-        body.add_dirichlet("loaded", np.zeros(3))
-        body.add_dirichlet("symmetry_y", 0.0, component=1)
-        body.add_shape_dirichlet("symmetry_y", 1)
-        body.add_shape_dirichlet("loaded", 2)
-        contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0, 1])),
-                          rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
-                          V_master=(v["V"], 0.0, 0.0), dtau=1.0)
-        wear = Wear(contact, k=v["k"], speed=v["V"], scheme=v["scheme"])
-        # the flat's position is state of the contact (its counterpart's state fields):
-        # restored by a cut step and by a resume
-        stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
-                          checkpoint=checkpoint, name="wear_ball")
-        offset = contact.counterpart.offset
-        Es = composite_modulus(v["E"], v["nu"])
-        a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
 
-        def predictor(dt):
-            # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
-            h = wear.max_depth()
-            dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
-            return float(offset.value[2]) + math.sqrt(h * h + dh2) - h
+def validate(v):
+    """Check cross-parameter consistency."""
+    if v["dt"] > v["T"]:
+        raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
+    check_scheme(v)
+    if v["error_filter"] and v["force_control"] != "bordered":
+        raise InputError("error_filter holds the force by the border: "
+                         "force_control=bordered")
+    if v["mesh_file"] and v["h_contact"]:
+        raise InputError("h_contact sets the built mesh: not with mesh_file")
+    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    if aH > 0.2 * v["R"]:
+        raise InputError(f"load too large for small strains: a_H/R = {aH / v['R']:.2f}")
+    aT = mesh_sizes(v)[2] / 1.25
+    if aT > 0.6 * v["R"]:
+        raise InputError(f"scar radius at T ({aT:.3g} mm) beyond 0.6 R: reduce k, V or T")
 
-        def stiffness(dt):
-            # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
-            # (implicit step) with the wear compliance k V Δt
-            a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
-            c_wear = v["k"] * v["V"] * dt if wear.scheme.implicit else 0.0
-            return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
 
-        search = Continuation(stepper.problem, ConstantParameter(offset, 2),
-                              response=lambda: float(contact.force()[2]), rtol=1e-8,
-                              max_trials=12)
-        stepper.hold = Hold(search, MODEL_FRACTION * v["F"], step_guess=predictor,
-                            step_slope=stiffness,
-                            border=((contact.force_functional(2), contact.sub)
-                                    if v["force_control"] == "bordered" else None))
-        stepper.h_fine = h_fine
-        return stepper
+def mesh_sizes(v):
+    """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
+    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
+    h = v["h_contact"] or aH / (2 * 2 ** v["mesh"])
+    return h, v["R"] / 4, 1.25 * aT
 
-    @staticmethod
-    def _user_ball(msh, ft, names, v):
-        """Move a user's ball so that its lowest contact point is the origin; its h there.
 
-        The symmetry group must lie on y = 0 (one-line error otherwise).  The
-        returned element size is the mean size of the contact facets within the
-        Hertz radius a_H of that point (the augmentation ρ_N = E/h).
-        """
-        comm = msh.comm
-        x = msh.geometry.x
-        fdim = msh.topology.dim - 1
-        contact = np.unique(dmesh.entities_to_geometry(
-            msh, fdim, ft.find(names["contact"]), False).ravel())
-        z = x[contact, 2] if len(contact) else np.array([np.inf])
-        zmin = comm.allreduce(float(z.min()), op=MPI.MIN)
-        i = int(np.argmin(z))
-        lowest = x[contact[i]].copy() if len(contact) and z[i] == zmin else None
-        lowest = next(p for p in comm.allgather(lowest) if p is not None)
-        x[:, 0] -= lowest[0]
-        x[:, 2] -= zmin
-        sym = np.unique(dmesh.entities_to_geometry(
-            msh, fdim, ft.find(names["symmetry_y"]), False).ravel())
-        off = comm.allreduce(float(np.max(np.abs(x[sym, 1]), initial=0.0)), op=MPI.MAX)
-        if off > 1e-9 * v["R"]:
-            raise InputError(f"mesh file {v['mesh_file']!r}: group 'symmetry_y' is not on "
-                             f"the plane y = 0 (|y| up to {off:.3g} mm)")
-        aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-        return boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(3), aH))
+def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+    """Body, contact, wear, stepper and force control of the case (not yet loaded).
 
-    @staticmethod
-    def progress_total(v):
-        """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
-        return nominal_steps(v["T"], v["dt"])
+    Returns the :class:`tribofx.stepper.Stepper`; its ``control`` positions the
+    flat so that the contact force of the half contact is F/2.
+    """
+    h_fine, h_coarse, r_fine = mesh_sizes(v)
+    if v["mesh_file"]:
+        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, tuple(NAMES))
+        h_fine = _user_ball(msh, ft, names, v)
+    else:
+        msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
+        names = NAMES
+    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    # ball frame: the ball material is at rest, the flat moves at V e_x (eqs. 26–27)
+    body = Body(msh, ft, names, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+                shape=True, aux=(v["E"], 0.3), velocity=np.zeros(3))
+    # the mid-plane is the rigid holder: clamped in the ball frame, the flat moves
+    body.add_dirichlet("loaded", np.zeros(3))
+    body.add_dirichlet("symmetry_y", 0.0, component=1)
+    body.add_shape_dirichlet("symmetry_y", 1)
+    body.add_shape_dirichlet("loaded", 2)
+    contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0, 1])),
+                      rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
+                      V_master=(v["V"], 0.0, 0.0), dtau=1.0)
+    wear = Wear(contact, k=v["k"], speed=v["V"], scheme=v["scheme"])
+    # the flat's position is state of the contact (its counterpart's state fields):
+    # restored by a cut step and by a resume
+    stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+                      checkpoint=checkpoint, name="wear_ball")
+    offset = contact.counterpart.offset
+    Es = composite_modulus(v["E"], v["nu"])
+    a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
 
-    @staticmethod
-    def measures(stepper, v):
-        """Contact radius, flat-scar radius, pressure ratio, max depth, full-ball worn volume."""
-        wear = stepper.wear
-        comm = wear.body.mesh.comm
-        d = wear.nodal_shape_data()
-        area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
-        a_c = math.sqrt(area / (MODEL_FRACTION * math.pi))
-        h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
-        a_s = math.sqrt(max(2 * v["R"] * h - h * h, 0.0))
-        r = np.linalg.norm(d["x"][:, :2], axis=1)
-        inner = d["active"] & (r < 0.7 * a_c)
-        pmax = comm.allreduce(float(np.max(d["p"][inner], initial=0.0)), op=MPI.MAX)
-        pmin = comm.allreduce(float(np.min(d["p"][inner], initial=np.inf)), op=MPI.MIN)
-        return {"contact_radius": a_c, "scar_radius": a_s, "max_wear_depth": h,
-                "pressure_ratio": pmax / pmin if pmin > 0 else math.inf,
-                "wear_volume": wear.worn_volume() / MODEL_FRACTION,
-                "wear_rate_integral": wear.wear_rate_integral() / MODEL_FRACTION}
+    def predictor(dt):
+        # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
+        h = wear.max_depth()
+        dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
+        return float(offset.value[2]) + math.sqrt(h * h + dh2) - h
 
-    @classmethod
-    def symmetry_line(cls, stepper, v):
-        """Worn and deformed contact boundary along y = 0 near the contact, on rank 0 (else None).
+    def stiffness(dt):
+        # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
+        # (implicit step) with the wear compliance k V Δt
+        a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
+        c_wear = v["k"] * v["V"] * dt if wear.scheme.implicit else 0.0
+        return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
 
-        Returns a dict of arrays sorted by X̂_x: X_worn, x (deformed), p (pressure).
-        """
-        d = stepper.wear.gather_shape()
-        if d is None:
-            return None
-        r_fine = cls.mesh_sizes(v)[2]
-        sel = (np.abs(d["X_hat"][:, 1]) < 1e-9 * v["R"]) & (d["X_hat"][:, 2] < 0.5 * v["R"]) \
-            & (np.abs(d["X_hat"][:, 0]) <= 2 * r_fine)
-        return {"X_worn": d["X_worn"][sel], "x": d["x"][sel], "p": d["p"][sel]}
+    search = Continuation(stepper.problem, ConstantParameter(offset, 2),
+                          response=lambda: float(contact.force()[2]), rtol=1e-8,
+                          max_trials=12)
+    stepper.hold = Hold(search, MODEL_FRACTION * v["F"], step_guess=predictor,
+                        step_slope=stiffness,
+                        border=((contact.force_functional(2), contact.sub)
+                                if v["force_control"] == "bordered" else None))
+    stepper.h_fine = h_fine
+    return stepper
 
-    @staticmethod
-    def contact_plane(stepper):
-        """(x, y, p) of all contact-surface nodes within the active zone, on rank 0 (else None)."""
-        d = stepper.wear.gather_shape()
-        if d is None:
-            return None
-        a = d["active"]
-        return np.column_stack([d["x"][a, 0], d["x"][a, 1], d["p"][a]])
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
-            t_stop=None, checkpoint=None, resume=False):
-        """Integrate the wear of the ball from t = 0 to T; record per-step histories.
+def _user_ball(msh, ft, names, v):
+    """Move a user's ball so that its lowest contact point is the origin; its h there.
 
-        ``on_step(stepper, report)``, if given, is called after every accepted step;
-        ``t_stop`` < T ends the run early (on the mesh built for T).  ``checkpoint``:
-        directory of the per-step checkpoint (state and histories); ``resume``:
-        continue from it (:mod:`tribofx.restart`).  Returns the stepper.
-        """
-        t_wall = time.perf_counter()
-        stepper = cls.build(v, comm=comm, checkpoint=checkpoint)
-        stepper.verbose = stepper.hold.search.verbose = verbose
-        record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
-        record.stepper = stepper
-        comm = stepper.comm
-        record.result("h_contact_zone", stepper.h_fine, "mm")
-        keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
-                "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral",
-                "error_estimate", "rejected")
-        # the worn shape (warp by w), the deformation (by u) and the contact pressure at
-        # every step (ParaView time series)
-        sr = slow_time.SlowTimeRecords(stepper, v, record, keys, cls.vtx_fields(stepper),
-                                       resume)
-        h = sr.history
-        state = h.setdefault("state", {"profiles": [], "initial_plane": None})
-        residuals = h.setdefault("newton_residuals", [])
-        residuals_all = h.setdefault("newton_residuals_all", [])
-        record.data["newton_residuals"] = residuals
-        record.data["newton_residuals_all"] = residuals_all
-        offset = stepper.wear.contact.counterpart.offset
+    The symmetry group must lie on y = 0 (one-line error otherwise).  The
+    returned element size is the mean size of the contact facets within the
+    Hertz radius a_H of that point (the augmentation ρ_N = E/h).
+    """
+    comm = msh.comm
+    x = msh.geometry.x
+    fdim = msh.topology.dim - 1
+    contact = np.unique(dmesh.entities_to_geometry(
+        msh, fdim, ft.find(names["contact"]), False).ravel())
+    z = x[contact, 2] if len(contact) else np.array([np.inf])
+    zmin = comm.allreduce(float(z.min()), op=MPI.MIN)
+    i = int(np.argmin(z))
+    lowest = x[contact[i]].copy() if len(contact) and z[i] == zmin else None
+    lowest = next(p for p in comm.allgather(lowest) if p is not None)
+    x[:, 0] -= lowest[0]
+    x[:, 2] -= zmin
+    sym = np.unique(dmesh.entities_to_geometry(
+        msh, fdim, ft.find(names["symmetry_y"]), False).ravel())
+    off = comm.allreduce(float(np.max(np.abs(x[sym, 1]), initial=0.0)), op=MPI.MAX)
+    if off > 1e-9 * v["R"]:
+        raise InputError(f"mesh file {v['mesh_file']!r}: group 'symmetry_y' is not on "
+                         f"the plane y = 0 (|y| up to {off:.3g} mm)")
+    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    return boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(3), aH))
 
-        def log(t, its, dt, error=None, rejected=0):
-            m = cls.measures(stepper, v)
-            sr.log(its, (("time", t), ("dt", dt), ("newton_iterations", its),
-                         ("approach", float(offset.value[2])), *m.items(),
-                         ("error_estimate", error), ("rejected", rejected)))
-            line = cls.symmetry_line(stepper, v)
-            if comm.rank == 0:
-                state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
 
-        def step_done(st, rep):
-            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
-            residuals.append([float(x) for x in rep.reports[-1].residuals])
-            residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
-            if on_step is not None:
-                on_step(st, rep)
+def progress_total(v):
+    """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
+    return nominal_steps(v["T"], v["dt"])
 
-        if not resume:
-            reports = stepper.hold.solve(
-                guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta).reports
-            plane = cls.contact_plane(stepper)
-            state["initial_plane"] = None if plane is None else plane.tolist()
-            log(0.0, int(sum(r.iterations for r in reports)), 0.0)
-        T = v["T"] if t_stop is None else min(t_stop, v["T"])
-        with sr.closing(report=lambda: cls._report(stepper, v, record, sr.hist, state,
-                                                   time.perf_counter() - t_wall)):
-            stepper.run(T, slow_time.step_controller(v, v["dt"]),
-                        on_step=sr.written(step_done), progress=progress)
-        return stepper
 
-    @staticmethod
-    def late_time_exponent(time_s, radius, V, t_min):
-        """Least-squares slope of log a against log s = V t over the steps with t ≥ t_min."""
-        t = np.asarray(time_s, dtype=float)
-        a = np.asarray(radius, dtype=float)
-        sel = t >= t_min
-        if np.count_nonzero(sel) < 2:
-            return math.nan
-        return float(np.polyfit(np.log(V * t[sel]), np.log(a[sel]), 1)[0])
+def measures(stepper, v):
+    """Contact radius, flat-scar radius, pressure ratio, max depth, full-ball worn volume."""
+    wear = stepper.wear
+    comm = wear.body.mesh.comm
+    d = wear.nodal_shape_data()
+    area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
+    a_c = math.sqrt(area / (MODEL_FRACTION * math.pi))
+    h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
+    a_s = math.sqrt(max(2 * v["R"] * h - h * h, 0.0))
+    r = np.linalg.norm(d["x"][:, :2], axis=1)
+    inner = d["active"] & (r < 0.7 * a_c)
+    pmax = comm.allreduce(float(np.max(d["p"][inner], initial=0.0)), op=MPI.MAX)
+    pmin = comm.allreduce(float(np.min(d["p"][inner], initial=np.inf)), op=MPI.MIN)
+    return {"contact_radius": a_c, "scar_radius": a_s, "max_wear_depth": h,
+            "pressure_ratio": pmax / pmin if pmin > 0 else math.inf,
+            "wear_volume": wear.worn_volume() / MODEL_FRACTION,
+            "wear_rate_integral": wear.wear_rate_integral() / MODEL_FRACTION}
 
-    @classmethod
-    def _report(cls, stepper, v, record, hist, state, wall):
-        units = {"time": "s", "dt": "s", "approach": "mm (flat position)",
-                 "wear_volume": "mm^3 (full ball)",
-                 "max_wear_depth": "mm", "contact_radius": "mm", "scar_radius": "mm",
-                 "pressure_ratio": "-", "newton_iterations": "-",
-                 "wear_rate_integral": "mm^3/s (full ball)",
-                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
-        record.result("force_fallbacks", stepper.hold.fallbacks, "-")
-        record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
-        record.result("steps", len(hist["time"]) - 1, "-")
-        s = v["V"] * np.asarray(hist["time"])
-        record.result("rigid_cap_radius", rigid_cap_radius(v["k"], v["F"], v["R"], s).tolist(),
-                      "mm")
-        record.result("archard_volume", (v["k"] * v["F"] * s).tolist(), "mm^3 (k F V t)")
-        for key in ("contact_radius", "scar_radius"):
-            record.result(f"{key}_exponent_late",
-                          cls.late_time_exponent(hist["time"], hist[key], v["V"], 0.4 * v["T"]),
-                          "-")
-        line = cls.symmetry_line(stepper, v)
-        plane = cls.contact_plane(stepper)
-        if line is not None:
-            record.result("final_profile", line["X_worn"][:, [0, 2]].tolist(),
-                          "mm ([x, z] of the worn boundary on y = 0)")
-            record.result("final_profile_deformed", line["x"][:, [0, 2]].tolist(), "mm")
-            record.result("final_pressure_symmetry_line", line["p"].tolist(), "MPa")
-            initial = state["initial_plane"]
-            record.profile = {**hist, "profiles": state["profiles"],
-                              "initial_plane": None if initial is None else np.asarray(initial),
-                              "final_plane": plane,
-                              "scheme": v["scheme"], "dt": v["dt"], "R": v["R"], "k": v["k"],
-                              "F": v["F"], "V": v["V"]}
 
-    @staticmethod
-    def vtx_fields(stepper):
-        """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
-        return slow_time.wear_fields(stepper.wear)
+def symmetry_line(stepper, v):
+    """Worn and deformed contact boundary along y = 0 near the contact, on rank 0 (else None).
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``pressure.png``, ``profiles.png`` and ``scar.png`` (:func:`tribofx.plots.wear`)."""
-        from ..plots.wear import plot_wear_ball
+    Returns a dict of arrays sorted by X̂_x: X_worn, x (deformed), p (pressure).
+    """
+    d = stepper.wear.gather_shape()
+    if d is None:
+        return None
+    r_fine = mesh_sizes(v)[2]
+    sel = (np.abs(d["X_hat"][:, 1]) < 1e-9 * v["R"]) & (d["X_hat"][:, 2] < 0.5 * v["R"]) \
+        & (np.abs(d["X_hat"][:, 0]) <= 2 * r_fine)
+    return {"X_worn": d["X_worn"][sel], "x": d["x"][sel], "p": d["p"][sel]}
 
-        plot_wear_ball(profile, outdir)
+
+def contact_plane(stepper):
+    """(x, y, p) of all contact-surface nodes within the active zone, on rank 0 (else None)."""
+    d = stepper.wear.gather_shape()
+    if d is None:
+        return None
+    a = d["active"]
+    return np.column_stack([d["x"][a, 0], d["x"][a, 1], d["p"][a]])
+
+
+def run(v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
+        t_stop=None, checkpoint=None, resume=False):
+    """Integrate the wear of the ball from t = 0 to T; record per-step histories.
+
+    ``on_step(stepper, report)``, if given, is called after every accepted step;
+    ``t_stop`` < T ends the run early (on the mesh built for T).  ``checkpoint``:
+    directory of the per-step checkpoint (state and histories); ``resume``:
+    continue from it (:mod:`tribofx.restart`).  Returns the stepper.
+    """
+    t_wall = time.perf_counter()
+    stepper = build(v, comm=comm, checkpoint=checkpoint)
+    stepper.verbose = stepper.hold.search.verbose = verbose
+    record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
+    record.stepper = stepper
+    comm = stepper.comm
+    record.result("h_contact_zone", stepper.h_fine, "mm")
+    keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
+            "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral",
+            "error_estimate", "rejected")
+    # the worn shape (warp by w), the deformation (by u) and the contact pressure at
+    # every step (ParaView time series)
+    sr = slow_time.SlowTimeRecords(stepper, v, record, keys, vtx_fields(stepper),
+                                   resume)
+    h = sr.history
+    state = h.setdefault("state", {"profiles": [], "initial_plane": None})
+    residuals = h.setdefault("newton_residuals", [])
+    residuals_all = h.setdefault("newton_residuals_all", [])
+    record.data["newton_residuals"] = residuals
+    record.data["newton_residuals_all"] = residuals_all
+    offset = stepper.wear.contact.counterpart.offset
+
+    def log(t, its, dt, error=None, rejected=0):
+        m = measures(stepper, v)
+        sr.log(its, (("time", t), ("dt", dt), ("newton_iterations", its),
+                     ("approach", float(offset.value[2])), *m.items(),
+                     ("error_estimate", error), ("rejected", rejected)))
+        line = symmetry_line(stepper, v)
+        if comm.rank == 0:
+            state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
+
+    def step_done(st, rep):
+        log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
+        residuals.append([float(x) for x in rep.reports[-1].residuals])
+        residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
+        if on_step is not None:
+            on_step(st, rep)
+
+    if not resume:
+        reports = stepper.hold.solve(
+            guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta).reports
+        plane = contact_plane(stepper)
+        state["initial_plane"] = None if plane is None else plane.tolist()
+        log(0.0, int(sum(r.iterations for r in reports)), 0.0)
+    T = v["T"] if t_stop is None else min(t_stop, v["T"])
+    with sr.closing(report=lambda: _report(stepper, v, record, sr.hist, state,
+                                               time.perf_counter() - t_wall)):
+        stepper.run(T, slow_time.step_controller(v, v["dt"]),
+                    on_step=sr.written(step_done), progress=progress)
+    return stepper
+
+
+def late_time_exponent(time_s, radius, V, t_min):
+    """Least-squares slope of log a against log s = V t over the steps with t ≥ t_min."""
+    t = np.asarray(time_s, dtype=float)
+    a = np.asarray(radius, dtype=float)
+    sel = t >= t_min
+    if np.count_nonzero(sel) < 2:
+        return math.nan
+    return float(np.polyfit(np.log(V * t[sel]), np.log(a[sel]), 1)[0])
+
+
+def _report(stepper, v, record, hist, state, wall):
+    units = {"time": "s", "dt": "s", "approach": "mm (flat position)",
+             "wear_volume": "mm^3 (full ball)",
+             "max_wear_depth": "mm", "contact_radius": "mm", "scar_radius": "mm",
+             "pressure_ratio": "-", "newton_iterations": "-",
+             "wear_rate_integral": "mm^3/s (full ball)",
+             "error_estimate": "mm (per step, error control)", "rejected": "-"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+    record.result("force_fallbacks", stepper.hold.fallbacks, "-")
+    record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
+    record.result("steps", len(hist["time"]) - 1, "-")
+    s = v["V"] * np.asarray(hist["time"])
+    record.result("rigid_cap_radius", rigid_cap_radius(v["k"], v["F"], v["R"], s).tolist(),
+                  "mm")
+    record.result("archard_volume", (v["k"] * v["F"] * s).tolist(), "mm^3 (k F V t)")
+    for key in ("contact_radius", "scar_radius"):
+        record.result(f"{key}_exponent_late",
+                      late_time_exponent(hist["time"], hist[key], v["V"], 0.4 * v["T"]),
+                      "-")
+    line = symmetry_line(stepper, v)
+    plane = contact_plane(stepper)
+    if line is not None:
+        record.result("final_profile", line["X_worn"][:, [0, 2]].tolist(),
+                      "mm ([x, z] of the worn boundary on y = 0)")
+        record.result("final_profile_deformed", line["x"][:, [0, 2]].tolist(), "mm")
+        record.result("final_pressure_symmetry_line", line["p"].tolist(), "MPa")
+        initial = state["initial_plane"]
+        record.profile = {**hist, "profiles": state["profiles"],
+                          "initial_plane": None if initial is None else np.asarray(initial),
+                          "final_plane": plane,
+                          "scheme": v["scheme"], "dt": v["dt"], "R": v["R"], "k": v["k"],
+                          "F": v["F"], "V": v["V"]}
+
+
+def vtx_fields(stepper):
+    """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
+    return slow_time.wear_fields(stepper.wear)
+
+
+def plot(profile, outdir):
+    """``pressure.png``, ``profiles.png`` and ``scar.png`` (:func:`tribofx.plots.wear`)."""
+    from ..plots.wear import plot_wear_ball
+
+    plot_wear_ball(profile, outdir)

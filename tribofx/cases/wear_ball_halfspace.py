@@ -45,7 +45,9 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import check_scheme, scheme_params
 
-__all__ = ["WearBallHalfspaceCase", "groove_mesh", "surface_data"]
+__all__ = ["build", "doc", "groove_mesh", "initial_contact", "name", "params", "plot",
+           "progress_total", "resolved", "resumable", "run", "surface_data", "validate",
+           "vtx_fields"]
 
 
 def surface_data(contact, root=None):
@@ -74,225 +76,224 @@ def groove_mesh(comm, a, h, lz=1.35, nc=(4, 5, 6)):
     return msh, ft, sec, sft, (gx[-1] - gx[0]) * gy[-1]
 
 
-class WearBallHalfspaceCase:
-    """Case ``wear-ball-halfspace``; see the module docstring."""
+name = "wear-ball-halfspace"
 
-    name = "wear-ball-halfspace"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    REGIMES = REGIMES
 
-    params = (
-        *scheme_params(),
-        Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-        Param("T", float, 1000.0, "s", "end time", lower=0.0),
-        Param("regime", str, "small", "-", "material set: small (E=200 GPa) or finite (E=10 MPa)",
-              choices=("small", "finite")),
-        Param("k", float, None, "mm^3/(N*mm)", "Archard coefficient of the substrate "
-              "(default: 1e-7 small, 1e-4 finite)", lower=0.0, closed=True),
-        Param("V", float, 100.0, "mm/s", "sliding speed", lower=0.0),
-        Param("E", float, None, "MPa", "Young's modulus of the substrate "
-              "(default: 2e5 small, 10 finite)", lower=0.0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-        Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
-        Param("F", float, 10.0, "N", "normal load on the ball", lower=0.0),
-        Param("L", float, 2 * math.pi * 10.0, "mm", "sliding length per cycle (track length)",
-              lower=0.0),
-        Param("mesh", int, 0, "-", "refinement level: h = 0.45 a / 2^mesh at the contact",
-              lower=0, upper=2, closed=True),
-        Param("law", str, "nominal", "-", "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
-              choices=("nominal", "spatial")),
-        Param("graded", bool, False, "-", "functionally graded surface layer (Fig. 10b)"),
-        Param("grade_alpha", float, 1.0, "-", "FGM: E and k at the surface = (1 + α) × substrate",
-              lower=0.0, closed=True),
-        Param("grade_depth", float, None, "mm", "FGM layer thickness (default: 0.01 small, "
-              "0.3 finite)", lower=0.0),
-        Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
-              closed=True),
-    )
+doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
 
-    @staticmethod
-    def resolved(v):
-        """Parameters with the regime defaults filled in."""
-        v = dict(v)
-        for key, val in REGIMES[v["regime"]].items():
-            if v.get(key) is None:
-                v[key] = val
-        return v
 
-    @classmethod
-    def validate(cls, v):
-        """Check cross-parameter consistency."""
-        v = cls.resolved(v)
-        if v["dt"] > v["T"]:
-            raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
-        check_scheme(v)
-        a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-        if a > 0.5 * v["R"]:
-            raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
-        if v["L"] < 4 * a:
-            raise InputError(f"L = {v['L']:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
-                             " one pass per cycle is assumed")
-        b = float(rigid_groove_halfwidth(v["k"], v["F"], v["R"], v["V"] * v["T"], v["L"]))
-        if b > 5.4 * a:
-            raise InputError(f"final groove half-width ≈ {b:.3g} mm exceeds the refined zone "
-                             f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
+params = (
+    *scheme_params(),
+    Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
+    Param("T", float, 1000.0, "s", "end time", lower=0.0),
+    Param("regime", str, "small", "-", "material set: small (E=200 GPa) or finite (E=10 MPa)",
+          choices=("small", "finite")),
+    Param("k", float, None, "mm^3/(N*mm)", "Archard coefficient of the substrate "
+          "(default: 1e-7 small, 1e-4 finite)", lower=0.0, closed=True),
+    Param("V", float, 100.0, "mm/s", "sliding speed", lower=0.0),
+    Param("E", float, None, "MPa", "Young's modulus of the substrate "
+          "(default: 2e5 small, 10 finite)", lower=0.0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
+    Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
+    Param("F", float, 10.0, "N", "normal load on the ball", lower=0.0),
+    Param("L", float, 2 * math.pi * 10.0, "mm", "sliding length per cycle (track length)",
+          lower=0.0),
+    Param("mesh", int, 0, "-", "refinement level: h = 0.45 a / 2^mesh at the contact",
+          lower=0, upper=2, closed=True),
+    Param("law", str, "nominal", "-", "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
+          choices=("nominal", "spatial")),
+    Param("graded", bool, False, "-", "functionally graded surface layer (Fig. 10b)"),
+    Param("grade_alpha", float, 1.0, "-", "FGM: E and k at the surface = (1 + α) × substrate",
+          lower=0.0, closed=True),
+    Param("grade_depth", float, None, "mm", "FGM layer thickness (default: 0.01 small, "
+          "0.3 finite)", lower=0.0),
+    Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
+          closed=True),
+)
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
-        """Body, contact, steady wear and stepper; returns ``(stepper, info)``.
 
-        ``h``, ``mesh``: contact element size (mm) and ``groove_mesh`` output (default:
-        the case mesh); ``info``: Hertz a, p₀, δ and h.
-        """
-        v = cls.resolved(v)
-        a, p0, delta = hertz(v["F"], v["R"], v["E"], v["nu"])[:3]
-        h = 0.45 * a / 2 ** v["mesh"] if h is None else h
-        msh, ft, sec, sft, area = groove_mesh(comm, a, h) if mesh is None else mesh
-        mu, lmbda = hf.lame_parameters(v["E"], v["nu"])
-        w3 = fem.Function(fem.functionspace(msh, ("Lagrange", 1, (3,))), name="shape_change_3d")
-        fg = 1.0  # graded layer: a factor of the depth of the worn point below the surface
-        if v["graded"]:
-            depth = gf.material_depth(ufl.SpatialCoordinate(msh), w3)
-            fg = gf.graded_factor(depth, v["grade_alpha"], v["grade_depth"])
-        body = Body(msh, ft, hs.NAMES, "3d", ("neo-hookean", {"mu": mu * fg, "lmbda": lmbda * fg}),
-                    quadrature_degree=2, shape=w3, force_scale=v["F"], stiffness=mu)
-        body.add_dirichlet("ends", 0.0, component=0)
-        body.add_dirichlet("sym", 0.0, component=1)
-        body.add_dirichlet("far", 0.0, component=1)
-        body.add_traction("bottom", ufl.as_vector([0.0, 0.0, 0.5 * v["F"] / area]))
-        contact = Contact(body, "top", rigid_sphere(np.array([0.0, 0.0, v["R"]]), v["R"]),
-                          rho_n=v["E"] / h)
-        # shape rows to 1e-12 L (3.7e-12 mm): small against the worn-depth increment of one
-        # explicit step (Δt k p V ≈ 1e-5 mm at Δt = 0.5 s), not only against the block
-        wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v["k"] * fg,
-                          v["V"], v["L"], law=v["law"], aux=(v["E"], 0.3),
-                          fixed={"sym": [0], "far": [0], "bottom": [0, 1]},
-                          scheme=v["scheme"], rtol=1e-12)
-        stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
-                          checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
-        return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}
+def resolved(v):
+    """Parameters with the regime defaults filled in."""
+    v = dict(v)
+    for key, val in REGIMES[v["regime"]].items():
+        if v.get(key) is None:
+            v[key] = val
+    return v
 
-    @staticmethod
-    def initial_contact(stepper, info, verbose=False):
-        """Unworn contact: the block starts lifted by the Hertz approach δ = a²/R.
 
-        (The compression of the block by F/(2A)·H/E is negligible.)  Solved by the
-        stepper's deformation problem (implicit: all unknowns, Δt = 0 keeps w₂ = 0).
-        """
-        stepper.wear.body.u.x.array.reshape(-1, 3)[:, 2] = info["delta"]
-        rep = stepper.problem.solve_by_homotopy(verbose)
-        stepper.problem.commit()
-        return rep
+def validate(v):
+    """Check cross-parameter consistency."""
+    v = resolved(v)
+    if v["dt"] > v["T"]:
+        raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+    check_scheme(v)
+    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    if a > 0.5 * v["R"]:
+        raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
+    if v["L"] < 4 * a:
+        raise InputError(f"L = {v['L']:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
+                         " one pass per cycle is assumed")
+    b = float(rigid_groove_halfwidth(v["k"], v["F"], v["R"], v["V"] * v["T"], v["L"]))
+    if b > 5.4 * a:
+        raise InputError(f"final groove half-width ≈ {b:.3g} mm exceeds the refined zone "
+                         f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
 
-    @staticmethod
-    def progress_total(v):
-        """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
-        return nominal_steps(v["T"], v["dt"])
 
-    @staticmethod
-    def vtx_fields(stepper):
-        """Displacement and 3D shape change (block), contact multiplier."""
-        body = stepper.wear.body
-        return {"displacement": [body.u, body.w], "contact": [stepper.wear.contact.lam_n]}
+def build(v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
+    """Body, contact, steady wear and stepper; returns ``(stepper, info)``.
 
-    @staticmethod
-    def plot(profile, outdir):
-        """Groove profiles, pressure maps at t = 0 and final, pressure across the groove."""
-        from ..plots.groove import plot_groove
+    ``h``, ``mesh``: contact element size (mm) and ``groove_mesh`` output (default:
+    the case mesh); ``info``: Hertz a, p₀, δ and h.
+    """
+    v = resolved(v)
+    a, p0, delta = hertz(v["F"], v["R"], v["E"], v["nu"])[:3]
+    h = 0.45 * a / 2 ** v["mesh"] if h is None else h
+    msh, ft, sec, sft, area = groove_mesh(comm, a, h) if mesh is None else mesh
+    mu, lmbda = hf.lame_parameters(v["E"], v["nu"])
+    w3 = fem.Function(fem.functionspace(msh, ("Lagrange", 1, (3,))), name="shape_change_3d")
+    fg = 1.0  # graded layer: a factor of the depth of the worn point below the surface
+    if v["graded"]:
+        depth = gf.material_depth(ufl.SpatialCoordinate(msh), w3)
+        fg = gf.graded_factor(depth, v["grade_alpha"], v["grade_depth"])
+    body = Body(msh, ft, hs.NAMES, "3d", ("neo-hookean", {"mu": mu * fg, "lmbda": lmbda * fg}),
+                quadrature_degree=2, shape=w3, force_scale=v["F"], stiffness=mu)
+    body.add_dirichlet("ends", 0.0, component=0)
+    body.add_dirichlet("sym", 0.0, component=1)
+    body.add_dirichlet("far", 0.0, component=1)
+    body.add_traction("bottom", ufl.as_vector([0.0, 0.0, 0.5 * v["F"] / area]))
+    contact = Contact(body, "top", rigid_sphere(np.array([0.0, 0.0, v["R"]]), v["R"]),
+                      rho_n=v["E"] / h)
+    # shape rows to 1e-12 L (3.7e-12 mm): small against the worn-depth increment of one
+    # explicit step (Δt k p V ≈ 1e-5 mm at Δt = 0.5 s), not only against the block
+    wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v["k"] * fg,
+                      v["V"], v["L"], law=v["law"], aux=(v["E"], 0.3),
+                      fixed={"sym": [0], "far": [0], "bottom": [0, 1]},
+                      scheme=v["scheme"], rtol=1e-12)
+    stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+                      checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
+    return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}
 
-        plot_groove(profile, outdir)
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Integrate the groove from t = 0 to T; record per-step histories.
+def initial_contact(stepper, info, verbose=False):
+    """Unworn contact: the block starts lifted by the Hertz approach δ = a²/R.
 
-        ``checkpoint``: directory of the per-step checkpoint (state and histories);
-        ``resume``: continue from it (:mod:`tribofx.restart`).
-        """
-        v = cls.resolved(v)
-        for key in cls.REGIMES[v["regime"]]:  # record the regime defaults actually used
-            record.data["parameters"][key]["value"] = v[key]
-        t_start = time.perf_counter()
-        stepper, info = cls.build(v, checkpoint=checkpoint)
-        stepper.verbose = verbose
-        wear, contact = stepper.wear, stepper.wear.contact
-        comm = wear.body.mesh.comm
-        n = {"u": wear.body.u, "lambda": contact.lam_n, "psi": wear.w2, "zeta": wear.zeta}
-        n = {key: f.function_space.dofmap.index_map.size_global
-             * f.function_space.dofmap.index_map_bs for key, f in n.items()}
-        record.result("dofs", n, "-")
-        record.result("psi_fraction", stepper.shape_unknown_fraction(), "- (share of Ψ and ζ)")
-        record.result("hertz", info, "mm, MPa")
-        # the groove (warp by w), the deformation (by u) and the contact pressure at every
-        # step (ParaView time series)
-        sr = slow_time.SlowTimeRecords(stepper, v, record, (
-            "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
-            "newton_iterations", "averaged_rate", "max_pressure", "dt", "error_estimate",
-            "rejected"),
-            cls.vtx_fields(stepper), resume)
-        record.data["num_dofs"] = sum(n.values())
-        h, hist = sr.history, sr.hist
-        prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
-        residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
+    (The compression of the block by F/(2A)·H/E is negligible.)  Solved by the
+    stepper's deformation problem (implicit: all unknowns, Δt = 0 keeps w₂ = 0).
+    """
+    stepper.wear.body.u.x.array.reshape(-1, 3)[:, 2] = info["delta"]
+    rep = stepper.problem.solve_by_homotopy(verbose)
+    stepper.problem.commit()
+    return rep
 
-        def log(t, its, dt, error=None, rejected=0):
-            d = surface_data(contact)
-            X = d["X"][d["active"]]
-            ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
-                   for c in (np.abs(X[:, 0]), X[:, 1], d["p"])]
-            lp = wear.line_profile()
-            sr.log(its, zip(hist, (t, 2 * wear.groove_area(), float(lp["depth"].max()),
-                                   ext[1], ext[0], its, 2 * wear.averaged_rate_integral(),
-                                   ext[2], dt, error, rejected)))
-            g = surface_data(contact, root=0)
-            if g is not None:
-                prof["times"].append(t)
-                prof["profiles"].append(lp["worn"].tolist())
-                prof["maps"].append(np.column_stack([g["X"], g["p"]]).tolist())
 
-        def on_step(st, rep):
-            log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
-            residuals.append([float(x) for x in rep.reports[0].residuals])
+def progress_total(v):
+    """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
+    return nominal_steps(v["T"], v["dt"])
 
-        if not resume:
-            log(0.0, cls.initial_contact(stepper, info, verbose).iterations, 0.0)
-        with sr.closing(report=lambda: cls._report(stepper, v, record, hist, prof,
-                                                   time.perf_counter() - t_start)):
-            stepper.run(v["T"], slow_time.step_controller(v, v["dt"]),
-                        on_step=sr.written(on_step), progress=progress)
-        return stepper
 
-    @staticmethod
-    def _report(stepper, v, record, hist, prof, wall):
-        units = {"time": "s", "wear_volume": "mm^3/mm (full groove cross-section area)",
-                 "max_wear_depth": "mm", "contact_radius": "mm (half-width across the groove)",
-                 "contact_half_length": "mm (along the sliding direction)",
-                 "newton_iterations": "-", "averaged_rate": "mm^3/(mm*s) ((2/L) ∫ k p v dA)",
-                 "max_pressure": "MPa (nominal)", "dt": "s",
-                 "error_estimate": "mm (per step, error control)", "rejected": "-"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        record.result("accepted_steps", len(hist["time"]) - 1, "-")
-        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
-        wear = stepper.wear
-        w = wear.line_profile()["worn"]
-        record.result("final_profile", np.vstack([w[::-1] * [-1, 1], w[1:]]).tolist(),
-                      "mm (worn cross-section (y, z), both halves)")
-        y, pint = wear.averaged_pressure()
-        record.result("final_pressure_integral", np.column_stack([y, pint]).tolist(),
-                      "mm, N/mm (y, ∫ p dx)")
-        record.result("wall_time_solve", wall, "s")
-        d = surface_data(wear.contact, root=0)
-        if d is None:
-            return
-        on = np.abs(d["X"][:, 0]) < 1e-9
-        o = np.argsort(d["X"][on, 1])
-        px0 = np.column_stack([d["X"][on, 1][o], d["p"][on][o]]).tolist()
-        record.result("final_pressure_x0", px0, "mm, MPa (y, p at x = 0)")
-        record.profile = {**hist, **prof, "scheme": v["scheme"], "graded": v["graded"],
-                          "R": v["R"], "pressure_x0": px0,
-                          "pressure_integral": np.column_stack([y, pint]).tolist()}
+def vtx_fields(stepper):
+    """Displacement and 3D shape change (block), contact multiplier."""
+    body = stepper.wear.body
+    return {"displacement": [body.u, body.w], "contact": [stepper.wear.contact.lam_n]}
+
+
+def plot(profile, outdir):
+    """Groove profiles, pressure maps at t = 0 and final, pressure across the groove."""
+    from ..plots.groove import plot_groove
+
+    plot_groove(profile, outdir)
+
+
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Integrate the groove from t = 0 to T; record per-step histories.
+
+    ``checkpoint``: directory of the per-step checkpoint (state and histories);
+    ``resume``: continue from it (:mod:`tribofx.restart`).
+    """
+    v = resolved(v)
+    for key in REGIMES[v["regime"]]:  # record the regime defaults actually used
+        record.data["parameters"][key]["value"] = v[key]
+    t_start = time.perf_counter()
+    stepper, info = build(v, checkpoint=checkpoint)
+    stepper.verbose = verbose
+    wear, contact = stepper.wear, stepper.wear.contact
+    comm = wear.body.mesh.comm
+    n = {"u": wear.body.u, "lambda": contact.lam_n, "psi": wear.w2, "zeta": wear.zeta}
+    n = {key: f.function_space.dofmap.index_map.size_global
+         * f.function_space.dofmap.index_map_bs for key, f in n.items()}
+    record.result("dofs", n, "-")
+    record.result("psi_fraction", stepper.shape_unknown_fraction(), "- (share of Ψ and ζ)")
+    record.result("hertz", info, "mm, MPa")
+    # the groove (warp by w), the deformation (by u) and the contact pressure at every
+    # step (ParaView time series)
+    sr = slow_time.SlowTimeRecords(stepper, v, record, (
+        "time", "wear_volume", "max_wear_depth", "contact_radius", "contact_half_length",
+        "newton_iterations", "averaged_rate", "max_pressure", "dt", "error_estimate",
+        "rejected"),
+        vtx_fields(stepper), resume)
+    record.data["num_dofs"] = sum(n.values())
+    h, hist = sr.history, sr.hist
+    prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
+    residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
+
+    def log(t, its, dt, error=None, rejected=0):
+        d = surface_data(contact)
+        X = d["X"][d["active"]]
+        ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
+               for c in (np.abs(X[:, 0]), X[:, 1], d["p"])]
+        lp = wear.line_profile()
+        sr.log(its, zip(hist, (t, 2 * wear.groove_area(), float(lp["depth"].max()),
+                               ext[1], ext[0], its, 2 * wear.averaged_rate_integral(),
+                               ext[2], dt, error, rejected)))
+        g = surface_data(contact, root=0)
+        if g is not None:
+            prof["times"].append(t)
+            prof["profiles"].append(lp["worn"].tolist())
+            prof["maps"].append(np.column_stack([g["X"], g["p"]]).tolist())
+
+    def on_step(st, rep):
+        log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
+        residuals.append([float(x) for x in rep.reports[0].residuals])
+
+    if not resume:
+        log(0.0, initial_contact(stepper, info, verbose).iterations, 0.0)
+    with sr.closing(report=lambda: _report(stepper, v, record, hist, prof,
+                                               time.perf_counter() - t_start)):
+        stepper.run(v["T"], slow_time.step_controller(v, v["dt"]),
+                    on_step=sr.written(on_step), progress=progress)
+    return stepper
+
+
+def _report(stepper, v, record, hist, prof, wall):
+    units = {"time": "s", "wear_volume": "mm^3/mm (full groove cross-section area)",
+             "max_wear_depth": "mm", "contact_radius": "mm (half-width across the groove)",
+             "contact_half_length": "mm (along the sliding direction)",
+             "newton_iterations": "-", "averaged_rate": "mm^3/(mm*s) ((2/L) ∫ k p v dA)",
+             "max_pressure": "MPa (nominal)", "dt": "s",
+             "error_estimate": "mm (per step, error control)", "rejected": "-"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    record.result("accepted_steps", len(hist["time"]) - 1, "-")
+    record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+    wear = stepper.wear
+    w = wear.line_profile()["worn"]
+    record.result("final_profile", np.vstack([w[::-1] * [-1, 1], w[1:]]).tolist(),
+                  "mm (worn cross-section (y, z), both halves)")
+    y, pint = wear.averaged_pressure()
+    record.result("final_pressure_integral", np.column_stack([y, pint]).tolist(),
+                  "mm, N/mm (y, ∫ p dx)")
+    record.result("wall_time_solve", wall, "s")
+    d = surface_data(wear.contact, root=0)
+    if d is None:
+        return
+    on = np.abs(d["X"][:, 0]) < 1e-9
+    o = np.argsort(d["X"][on, 1])
+    px0 = np.column_stack([d["X"][on, 1][o], d["p"][on][o]]).tolist()
+    record.result("final_pressure_x0", px0, "mm, MPa (y, p at x = 0)")
+    record.profile = {**hist, **prof, "scheme": v["scheme"], "graded": v["graded"],
+                      "R": v["R"], "pressure_x0": px0,
+                      "pressure_integral": np.column_stack([y, pint]).tolist()}

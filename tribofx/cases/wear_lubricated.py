@@ -38,150 +38,154 @@ from ..params import InputError, Param
 from ..stepper import Stepper, nominal_steps
 from . import rough_contact, slow_time
 
-__all__ = ["WearLubricatedCase"]
+__all__ = ["build", "doc", "name", "params", "plot", "progress_total", "report", "resumable",
+           "run", "validate", "vtx_fields"]
 
 _SHARED = [p for p in rough_contact.PARAMS if p.name not in ("speeds", "geometry")]
 
 
-class WearLubricatedCase:
-    """Case ``wear-lubricated``; see the module docstring."""
+name = "wear-lubricated"
 
-    name = "wear-lubricated"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
-    doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
-    params = (*_SHARED,
-              Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",
-                    lower=0.0),
-              Param("U_start", float, 1000.0, "mm/s", "speed at which W is reached (full film)",
-                    lower=0.0),
-              Param("k", float, 1e-5, "mm^3/(N*mm)",
-                    "Archard coefficient (1e-5 mm³/(N·mm) = 1e-2 mm³/(N·m): an elastomer "
-                    "on a rough counterface)", lower=0.0),
-              Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
-              Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
-              *slow_time.scheme_params(),
-              Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
-                    upper=20, closed=True))
 
-    @classmethod
-    def validate(cls, v):
-        """Bad input: a one-line error."""
-        if v["V"] >= v["U_start"]:
-            raise InputError("V must be below U_start (W is reached at U_start)")
-        slow_time.check_scheme(v)
-        rough_contact.check(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    @staticmethod
-    def progress_total(v):
-        """Return the number of slow steps."""
-        return nominal_steps(v["T"], v["dt"])
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
-        """Cylinder with a shape field, rough film, wear, stepper and the load control.
+doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
 
-        Returns the run dict of :func:`tribofx.cases.rough_contact.build` with ``wear`` and
-        ``stepper``; ``problem`` is the stepper's monolithic Problem.
-        """
-        s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
-        run = rough_contact.build(s, comm, shape=True)
-        film = run["film"]
-        wear = Wear(film, k=v["k"], speed=v["V"], scheme=v["scheme"])
-        stepper = Stepper([run["body"], film, wear], wear, max_cuts=v["max_cuts"],
-                          checkpoint=checkpoint, name="wear_lubricated",
-                          problem_kw={"max_it": 30})
-        offset = film.counterpart.offset
-        track = []   # (t, plane position) of the accepted steps (appended by ``run``)
 
-        def predictor(dt):
-            # the plane follows the worn surface: its last rate (none before two steps;
-            # the mean worn depth k F_a V Δt/(2a) overshoots the plane's rise about 2×
-            # as the film takes load back, and a trial 0.3σ off may not converge)
-            if len(track) < 2:
-                return float(offset.value[1])
-            (t0, y0), (t1, y1) = track[-2:]
-            return y1 + (y1 - y0) * dt / (t1 - t0)
+params = (*_SHARED,
+          Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",
+                lower=0.0),
+          Param("U_start", float, 1000.0, "mm/s", "speed at which W is reached (full film)",
+                lower=0.0),
+          Param("k", float, 1e-5, "mm^3/(N*mm)",
+                "Archard coefficient (1e-5 mm³/(N·mm) = 1e-2 mm³/(N·m): an elastomer "
+                "on a rough counterface)", lower=0.0),
+          Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
+          Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
+          *slow_time.scheme_params(),
+          Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
+                upper=20, closed=True))
 
-        search = Continuation(stepper.problem, ConstantParameter(offset, 1),
-                              response=lambda: math.log(max(float(film.force()[1]), 1e-300)),
-                              rtol=1e-7, max_trials=30)
-        stepper.hold = Hold(search, math.log(v["W"]), step_guess=predictor,
-                            step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
-        run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
-        return run
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
-            checkpoint=None, resume=False):
-        """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
-        run = cls.build(v, comm, checkpoint)
-        stepper, wear, film = run["stepper"], run["wear"], run["film"]
-        stepper.verbose = stepper.hold.search.verbose = verbose
-        keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
-                "film_load_fraction", "friction_coefficient", "h_central", "h_min",
-                "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
-        sr = slow_time.SlowTimeRecords(stepper, v, record, keys, cls.vtx_fields(run), resume)
-        state = sr.history.setdefault("state", {"profiles": [], "times": []})
+def validate(v):
+    """Bad input: a one-line error."""
+    if v["V"] >= v["U_start"]:
+        raise InputError("V must be below U_start (W is reached at U_start)")
+    slow_time.check_scheme(v)
+    rough_contact.check(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
 
-        def log(t, its, dt, error=None, rejected=0):
-            m = rough_contact.measures(run, v)
-            sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
-                         "max_wear_depth": wear.max_depth(),
-                         **{k: m[k] for k in ("asperity_load", "film_load_fraction",
-                                              "friction_coefficient", "h_central", "h_min")},
-                         "wear_rate_integral": wear.wear_rate_integral(),
-                         "newton_iterations": its, "error_estimate": error,
-                         "rejected": rejected})
-            run["track"].append((t, float(film.counterpart.offset.value[1])))
-            d = wear.gather_shape()
-            if d is not None:
-                state["profiles"].append(d["X_worn"].tolist())
-                state["times"].append(t)
 
-        if resume:   # the state is the checkpoint's; the speed is V
-            rough_contact.set_speed(run, v["V"])
-        else:
-            its = []
-            rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
-                                       lambda U, n: its.append(n))
-            log(0.0, sum(its) + stepper.start(), 0.0)
-        with sr.closing(report=lambda: cls.report(run, v, record, sr.hist, state), model=run):
-            stepper.run(v["T"], slow_time.step_controller(v, v["dt"]), progress=progress,
-                        on_step=sr.written(lambda st, rep: log(st.t, rep.iterations, rep.dt,
-                                                               rep.error, rep.rejected)))
-        return run
+def progress_total(v):
+    """Return the number of slow steps."""
+    return nominal_steps(v["T"], v["dt"])
 
-    @staticmethod
-    def report(run, v, record, hist, state):
-        """Per-step lists, the final film (h, p, p_a) and the worn profiles."""
-        units = {"time": "s", "dt": "s", "wear_volume": "mm^2/mm", "max_wear_depth": "mm",
-                 "asperity_load": "N/mm", "film_load_fraction": "-",
-                 "friction_coefficient": "-", "h_central": "mm", "h_min": "mm",
-                 "wear_rate_integral": "mm^2/(mm*s)", "newton_iterations": "-",
-                 "error_estimate": "mm", "rejected": "-"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        record.result("accepted_steps", max(len(hist["time"]) - 1, 0), "-")
-        if state["profiles"]:
-            record.result("worn_profiles", {"time": state["times"],
-                                            "X_worn": state["profiles"]},
-                          "s, mm (worn configuration, nodes of the film face by X̂₀)")
-        prof = run["film"].profile()
-        if prof is not None:
-            film = {"x": prof["X"][:, 0].tolist(),
-                    **{k: prof[k].tolist() for k in ("h", "p", "p_a")}}
-            record.result("final_film", film, "mm, MPa")
-            record.profile = {**hist, **state, "film": film}
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement and shape change of the cylinder."""
-        return {"displacement": [run["body"].u, run["body"].w]}
+def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+    """Cylinder with a shape field, rough film, wear, stepper and the load control.
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``running_in.png``: worn profiles, loads and friction against time."""
-        from ..plots.film import plot_running_in
+    Returns the run dict of :func:`tribofx.cases.rough_contact.build` with ``wear`` and
+    ``stepper``; ``problem`` is the stepper's monolithic Problem.
+    """
+    s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
+    run = rough_contact.build(s, comm, shape=True)
+    film = run["film"]
+    wear = Wear(film, k=v["k"], speed=v["V"], scheme=v["scheme"])
+    stepper = Stepper([run["body"], film, wear], wear, max_cuts=v["max_cuts"],
+                      checkpoint=checkpoint, name="wear_lubricated",
+                      problem_kw={"max_it": 30})
+    offset = film.counterpart.offset
+    track = []   # (t, plane position) of the accepted steps (appended by ``run``)
 
-        plot_running_in(profile, outdir / "running_in.png")
+    def predictor(dt):
+        # the plane follows the worn surface: its last rate (none before two steps;
+        # the mean worn depth k F_a V Δt/(2a) overshoots the plane's rise about 2×
+        # as the film takes load back, and a trial 0.3σ off may not converge)
+        if len(track) < 2:
+            return float(offset.value[1])
+        (t0, y0), (t1, y1) = track[-2:]
+        return y1 + (y1 - y0) * dt / (t1 - t0)
+
+    search = Continuation(stepper.problem, ConstantParameter(offset, 1),
+                          response=lambda: math.log(max(float(film.force()[1]), 1e-300)),
+                          rtol=1e-7, max_trials=30)
+    stepper.hold = Hold(search, math.log(v["W"]), step_guess=predictor,
+                        step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
+    run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
+    return run
+
+
+def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
+        checkpoint=None, resume=False):
+    """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
+    run = build(v, comm, checkpoint)
+    stepper, wear, film = run["stepper"], run["wear"], run["film"]
+    stepper.verbose = stepper.hold.search.verbose = verbose
+    keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
+            "film_load_fraction", "friction_coefficient", "h_central", "h_min",
+            "wear_rate_integral", "newton_iterations", "error_estimate", "rejected")
+    sr = slow_time.SlowTimeRecords(stepper, v, record, keys, vtx_fields(run), resume)
+    state = sr.history.setdefault("state", {"profiles": [], "times": []})
+
+    def log(t, its, dt, error=None, rejected=0):
+        m = rough_contact.measures(run, v)
+        sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
+                     "max_wear_depth": wear.max_depth(),
+                     **{k: m[k] for k in ("asperity_load", "film_load_fraction",
+                                          "friction_coefficient", "h_central", "h_min")},
+                     "wear_rate_integral": wear.wear_rate_integral(),
+                     "newton_iterations": its, "error_estimate": error,
+                     "rejected": rejected})
+        run["track"].append((t, float(film.counterpart.offset.value[1])))
+        d = wear.gather_shape()
+        if d is not None:
+            state["profiles"].append(d["X_worn"].tolist())
+            state["times"].append(t)
+
+    if resume:   # the state is the checkpoint's; the speed is V
+        rough_contact.set_speed(run, v["V"])
+    else:
+        its = []
+        rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
+                                   lambda U, n: its.append(n))
+        log(0.0, sum(its) + stepper.start(), 0.0)
+    with sr.closing(report=lambda: report(run, v, record, sr.hist, state), model=run):
+        stepper.run(v["T"], slow_time.step_controller(v, v["dt"]), progress=progress,
+                    on_step=sr.written(lambda st, rep: log(st.t, rep.iterations, rep.dt,
+                                                           rep.error, rep.rejected)))
+    return run
+
+
+def report(run, v, record, hist, state):
+    """Per-step lists, the final film (h, p, p_a) and the worn profiles."""
+    units = {"time": "s", "dt": "s", "wear_volume": "mm^2/mm", "max_wear_depth": "mm",
+             "asperity_load": "N/mm", "film_load_fraction": "-",
+             "friction_coefficient": "-", "h_central": "mm", "h_min": "mm",
+             "wear_rate_integral": "mm^2/(mm*s)", "newton_iterations": "-",
+             "error_estimate": "mm", "rejected": "-"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    record.result("accepted_steps", max(len(hist["time"]) - 1, 0), "-")
+    if state["profiles"]:
+        record.result("worn_profiles", {"time": state["times"],
+                                        "X_worn": state["profiles"]},
+                      "s, mm (worn configuration, nodes of the film face by X̂₀)")
+    prof = run["film"].profile()
+    if prof is not None:
+        film = {"x": prof["X"][:, 0].tolist(),
+                **{k: prof[k].tolist() for k in ("h", "p", "p_a")}}
+        record.result("final_film", film, "mm, MPa")
+        record.profile = {**hist, **state, "film": film}
+
+
+def vtx_fields(run):
+    """Displacement and shape change of the cylinder."""
+    return {"displacement": [run["body"].u, run["body"].w]}
+
+
+def plot(profile, outdir):
+    """``running_in.png``: worn profiles, loads and friction against time."""
+    from ..plots.film import plot_running_in
+
+    plot_running_in(profile, outdir / "running_in.png")

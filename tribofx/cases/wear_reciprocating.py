@@ -79,7 +79,9 @@ from . import slow_time
 from .slow_time import check_scheme, scheme_params
 from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["WearReciprocatingCase", "cell_coordinates"]
+__all__ = ["build", "cell_coordinates", "check_stroke", "doc", "load_up", "name", "params",
+           "period", "plot", "progress_total", "resumable", "run", "snapshot", "validate",
+           "vtx_fields"]
 
 
 def cell_coordinates(body):
@@ -102,7 +104,7 @@ def cell_coordinates(body):
 
 
 def _jsonable(shot):
-    """Return a :meth:`WearReciprocatingCase.snapshot` as nested lists (None off rank 0)."""
+    """Return a :meth:`snapshot` as nested lists (None off rank 0)."""
     if shot is None or any(body is None for part in shot for body in part):
         return None
     return [[[np.asarray(a).tolist() for a in body] for body in part] for part in shot]
@@ -128,320 +130,321 @@ def _centre_on_axis(msh):
     x[:, 0] -= 0.5 * (lo + hi)
 
 
-class WearReciprocatingCase:
-    """Case ``wear-reciprocating``; see the module docstring."""
+name = "wear-reciprocating"
 
-    name = "wear-reciprocating"
-    #: writes a checkpoint every step: `--resume` continues an interrupted run
-    resumable = True
 
-    doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
+#: writes a checkpoint every step: `--resume` continues an interrupted run
+resumable = True
 
-    params = (
-        *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
-                       "tol on the cycle-averaged shapes"),
-        Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
-        Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
-        Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
-        Param("friction", float, 0.3, "-", "Coulomb coefficient μ", lower=0.0),
-        Param("K_pin", float, 1e-4, "mm^3/(N*mm)", "nominal wear coefficient of the pin (eq. 14)",
-              lower=0.0),
-        Param("K_block", float, 5e-5, "mm^3/(N*mm)",
-              "nominal wear coefficient of the block (eq. 14)", lower=0.0, closed=True),
-        Param("A", float, 0.5, "mm", "amplitude of the reciprocating motion (stroke 2A)",
-              lower=0.0),
-        Param("V", float, 10.0, "mm/s", "sliding speed", lower=0.0),
-        Param("F", float, 1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0),
-        Param("cycles", float, 2000.0, "-", "loading cycles of the run (T = cycles·4A/V)",
-              lower=0.0),
-        Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step; "
-              "with tol: the first step)", lower=0.0),
-        Param("W", float, 2.0, "mm", "pin width", lower=0.0),
-        Param("H", float, 2.0, "mm", "pin height", lower=0.0),
-        Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
-        Param("L", float, 6.0, "mm", "block length", lower=0.0),
-        Param("D", float, 1.5, "mm", "block depth", lower=0.0),
-        Param("mesh", int, 1, "-", "refinement: pin n × n, n = 10·2^mesh; block at 4/3 the size",
-              lower=0, upper=4, closed=True),
-        Param("fast_steps", int, 16, "-", "fast sub-steps per cycle (multiple of 4)", lower=4,
-              upper=100000, closed=True),
-        Param("max_cuts", int, 4, "-", "step halvings allowed per step", lower=0, upper=20,
-              closed=True),
-        Param("mesh_file", str, "", "-",
-              "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
-              "(loaded by F: traction F/l, l its length) and sides (held laterally); its "
-              "lowest tip point moved to y = 0 and its x extent centred on x = 0; replaces "
-              "W (its x extent: L >= W + 2A + 1), H, R_tip and the pin's mesh (h = mean tip "
-              "facet length: rho_N = min(E)/h, block elements 4h/3)"),
-    )
 
-    @staticmethod
-    def validate(v):
-        """Reject a stroke off the block, a tip lower than the pin and a step above T.
+doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
 
-        With ``mesh_file`` the pin's width is known only once the mesh is read:
-        :meth:`build` checks the stroke then (:meth:`check_stroke`); the tip
-        checks are those of the built circular tip.
-        """
-        if not v["mesh_file"]:
-            if v["R_tip"] < v["W"] / 2:
-                raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
-            if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
-                raise InputError("the rounded tip must be lower than half the pin height")
-            WearReciprocatingCase.check_stroke(v, v["W"])
-        check_scheme(v)
-        if v["fast_steps"] % 4:
-            raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
-        if v["dt"] > WearReciprocatingCase.period(v) * v["cycles"]:
-            raise InputError(f"time step {v['dt']} s exceeds T = "
-                             f"{WearReciprocatingCase.period(v) * v['cycles']} s")
 
-    @staticmethod
-    def check_stroke(v, W):
-        """Reject a block too short for a pin of width ``W`` (mm) and the stroke 2A.
+params = (
+    *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
+                   "tol on the cycle-averaged shapes"),
+    Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
+    Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
+    Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
+    Param("friction", float, 0.3, "-", "Coulomb coefficient μ", lower=0.0),
+    Param("K_pin", float, 1e-4, "mm^3/(N*mm)", "nominal wear coefficient of the pin (eq. 14)",
+          lower=0.0),
+    Param("K_block", float, 5e-5, "mm^3/(N*mm)",
+          "nominal wear coefficient of the block (eq. 14)", lower=0.0, closed=True),
+    Param("A", float, 0.5, "mm", "amplitude of the reciprocating motion (stroke 2A)",
+          lower=0.0),
+    Param("V", float, 10.0, "mm/s", "sliding speed", lower=0.0),
+    Param("F", float, 1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0),
+    Param("cycles", float, 2000.0, "-", "loading cycles of the run (T = cycles·4A/V)",
+          lower=0.0),
+    Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step; "
+          "with tol: the first step)", lower=0.0),
+    Param("W", float, 2.0, "mm", "pin width", lower=0.0),
+    Param("H", float, 2.0, "mm", "pin height", lower=0.0),
+    Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
+    Param("L", float, 6.0, "mm", "block length", lower=0.0),
+    Param("D", float, 1.5, "mm", "block depth", lower=0.0),
+    Param("mesh", int, 1, "-", "refinement: pin n × n, n = 10·2^mesh; block at 4/3 the size",
+          lower=0, upper=4, closed=True),
+    Param("fast_steps", int, 16, "-", "fast sub-steps per cycle (multiple of 4)", lower=4,
+          upper=100000, closed=True),
+    Param("max_cuts", int, 4, "-", "step halvings allowed per step", lower=0, upper=20,
+          closed=True),
+    Param("mesh_file", str, "", "-",
+          "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
+          "(loaded by F: traction F/l, l its length) and sides (held laterally); its "
+          "lowest tip point moved to y = 0 and its x extent centred on x = 0; replaces "
+          "W (its x extent: L >= W + 2A + 1), H, R_tip and the pin's mesh (h = mean tip "
+          "facet length: rho_N = min(E)/h, block elements 4h/3)"),
+)
 
-        The pin must stay on the block with 0.5 mm to spare at either end of the
-        stroke: L ≥ W + 2A + 1 mm.
-        """
-        if v["L"] < W + 2 * v["A"] + 1.0:
-            where = f" (W = {W:.6g} mm: the width of the pin in {v['mesh_file']!r})" \
-                if v["mesh_file"] else ""
-            raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 = "
-                             f"{W + 2 * v['A'] + 1.0:.6g} mm{where}")
 
-    @staticmethod
-    def period(v):
-        """Δτ of one cycle, 4A/V (s)."""
-        return 4 * v["A"] / v["V"]
+def validate(v):
+    """Reject a stroke off the block, a tip lower than the pin and a step above T.
 
-    @classmethod
-    def build(cls, v, comm=MPI.COMM_WORLD, checkpoint=None):
-        """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
+    With ``mesh_file`` the pin's width is known only once the mesh is read:
+    :meth:`build` checks the stroke then (:meth:`check_stroke`); the tip
+    checks are those of the built circular tip.
+    """
+    if not v["mesh_file"]:
+        if v["R_tip"] < v["W"] / 2:
+            raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
+        if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
+            raise InputError("the rounded tip must be lower than half the pin height")
+        check_stroke(v, v["W"])
+    check_scheme(v)
+    if v["fast_steps"] % 4:
+        raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
+    if v["dt"] > period(v) * v["cycles"]:
+        raise InputError(f"time step {v['dt']} s exceeds T = "
+                         f"{period(v) * v['cycles']} s")
 
-        The dict also holds the pin's geometry as used: ``W`` (width), ``H``
-        (height above the lowest tip point), ``top_length`` (ℓ of the traction
-        F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
-        """
-        if v["mesh_file"]:
-            msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(PIN_NAMES))
-            W, h = place_user_pin(msh, ft, names)
-            cls.check_stroke(v, W)
-            _centre_on_axis(msh)
-            H = comm.allreduce(float(np.max(msh.geometry.x[:, 1], initial=-np.inf)),
-                               op=MPI.MAX)
-        else:
-            n = 10 * 2 ** v["mesh"]
-            W, H, h = v["W"], v["H"], v["W"] / n
-            msh, ft = pin_body(W, H, v["R_tip"], n, comm)
-            names = PIN_NAMES
-        mu, lmbda = lame_parameters(v["E_pin"], v["nu"])
-        pin = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
-                   shape=True, aux=(v["E_pin"], 0.3), name="pin")
-        # the top's length: the traction F/ℓ loads the pin with F whatever its top
-        top = comm.allreduce(fem.assemble_scalar(fem.form(
-            fem.Constant(msh, 1.0) * pin.ds(pin.tag("top")))), op=MPI.SUM) \
-            if v["mesh_file"] else W
-        load = fem.Constant(msh, 1.0)
-        pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / top]))
-        pin.add_dirichlet("sides", 0.0, component=0)
-        pin.add_shape_dirichlet("sides", 0)
-        pin.add_shape_dirichlet("top", 1)
-        hb = 4 * h / 3                       # the slave (pin) is the finer surface
-        bmsh, bft = block_mesh(comm, (-v["L"] / 2, -v["D"]), (v["L"] / 2, 0.0),
-                               round(v["L"] / hb), max(2, round(v["D"] / hb)))
-        mu, lmbda = lame_parameters(v["E_block"], v["nu"])
-        block = Body(bmsh, bft, BLOCK_NAMES, "plane_strain",
-                     ("neo-hookean", {"mu": mu, "lmbda": lmbda}), shape=True,
-                     aux=(v["E_block"], 0.3), name="block")
-        motion = block.add_dirichlet("bottom", np.zeros(2))
-        for name, c in (("bottom", 0), ("bottom", 1), ("sides", 0)):
-            block.add_shape_dirichlet(name, c)
-        contact = TwoBodyContact(pin, "contact", block, "top",
-                                 rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
-        mu_f = v["friction"]
-        wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f,
-                        scheme=v["scheme"], averaged=True, name="wear_pin")
-        wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f,
-                          scheme=v["scheme"], averaged=True, name="wear_block")
 
-        def drive(position):
-            """Move the block's bottom to ``position``; the block translated as predictor."""
-            block.u.x.array.reshape(-1, 2)[:, 0] += position - float(motion.value[0])
-            motion.value[0] = position
+def check_stroke(v, W):
+    """Reject a block too short for a pin of width ``W`` (mm) and the stroke 2A.
 
-        cycle = ReciprocatingCycle(contact, 2 * v["A"], v["fast_steps"], v["V"], drive=drive,
-                                   force=lambda: block.reaction("bottom", 0))
-        stepper = Stepper([pin, block, contact, wear_pin, wear_block], [wear_pin, wear_block],
-                          cycle=cycle, parameters=[load, motion], max_cuts=v["max_cuts"],
-                          checkpoint=checkpoint, name="wear_reciprocating",
-                          problem_kw={"max_it": 40})
-        return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
-                "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
-                "cycle": cycle, "W": W, "H": H, "top_length": top, "h": h}
+    The pin must stay on the block with 0.5 mm to spare at either end of the
+    stroke: L ≥ W + 2A + 1 mm.
+    """
+    if v["L"] < W + 2 * v["A"] + 1.0:
+        where = f" (W = {W:.6g} mm: the width of the pin in {v['mesh_file']!r})" \
+            if v["mesh_file"] else ""
+        raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 = "
+                         f"{W + 2 * v['A'] + 1.0:.6g} mm{where}")
 
-    @classmethod
-    def progress_total(cls, v):
-        """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
-        return nominal_steps(v["cycles"] * cls.period(v), v["dt"])
 
-    @staticmethod
-    def load_up(run, v, verbose=False):
-        """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
+def period(v):
+    """Δτ of one cycle, 4A/V (s)."""
+    return 4 * v["A"] / v["V"]
 
-        Newton starts from the pin translated down by the Hertz approach a²/(2R)
-        of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin); a
-        user's pin (``mesh_file``) by its tip height at |x| = W/4 plus F H/(ℓ E_pin)
-        (:func:`tribofx.cases.user_pin.user_pin_approach` with the pin's
-        traction q = F/ℓ and modulus).
-        """
-        if v["mesh_file"]:
-            delta0 = user_pin_approach(
-                run["wear_pin"].contact, {"q": v["F"] / run["top_length"], "E": v["E_pin"]})
-        else:
-            a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
-                          v["nu"], line=True).a, v["W"] / 2)
-            delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
-        run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
-        run["load"].value = 0.0
-        control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
-                               verbose=verbose)
-        control.march(1.0, steps=2, predictor=False)
-        return int(sum(control.record))
 
-    @staticmethod
-    def snapshot(run):
-        """Cells of both bodies (X̂, w, u) at −A, at the centre and at +A of a cycle (rank 0).
+def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+    """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
 
-        Runs the start of a cycle at the current shapes: memory erased, the
-        block at −A (a), the run-in to the centre (b), the first quarter to +A
-        (c); then restarts, so the state is that of a cycle start again.
-        """
-        st, cyc = run["stepper"], run["cycle"]
-        P = st.problem
-        shots = []
-        cyc.start()
-        P.commit()
+    The dict also holds the pin's geometry as used: ``W`` (width), ``H``
+    (height above the lowest tip point), ``top_length`` (ℓ of the traction
+    F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
+    """
+    if v["mesh_file"]:
+        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(PIN_NAMES))
+        W, h = place_user_pin(msh, ft, names)
+        check_stroke(v, W)
+        _centre_on_axis(msh)
+        H = comm.allreduce(float(np.max(msh.geometry.x[:, 1], initial=-np.inf)),
+                           op=MPI.MAX)
+    else:
+        n = 10 * 2 ** v["mesh"]
+        W, H, h = v["W"], v["H"], v["W"] / n
+        msh, ft = pin_body(W, H, v["R_tip"], n, comm)
+        names = PIN_NAMES
+    mu, lmbda = lame_parameters(v["E_pin"], v["nu"])
+    pin = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
+               shape=True, aux=(v["E_pin"], 0.3), name="pin")
+    # the top's length: the traction F/ℓ loads the pin with F whatever its top
+    top = comm.allreduce(fem.assemble_scalar(fem.form(
+        fem.Constant(msh, 1.0) * pin.ds(pin.tag("top")))), op=MPI.SUM) \
+        if v["mesh_file"] else W
+    load = fem.Constant(msh, 1.0)
+    pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / top]))
+    pin.add_dirichlet("sides", 0.0, component=0)
+    pin.add_shape_dirichlet("sides", 0)
+    pin.add_shape_dirichlet("top", 1)
+    hb = 4 * h / 3                       # the slave (pin) is the finer surface
+    bmsh, bft = block_mesh(comm, (-v["L"] / 2, -v["D"]), (v["L"] / 2, 0.0),
+                           round(v["L"] / hb), max(2, round(v["D"] / hb)))
+    mu, lmbda = lame_parameters(v["E_block"], v["nu"])
+    block = Body(bmsh, bft, BLOCK_NAMES, "plane_strain",
+                 ("neo-hookean", {"mu": mu, "lmbda": lmbda}), shape=True,
+                 aux=(v["E_block"], 0.3), name="block")
+    motion = block.add_dirichlet("bottom", np.zeros(2))
+    for name, c in (("bottom", 0), ("bottom", 1), ("sides", 0)):
+        block.add_shape_dirichlet(name, c)
+    contact = TwoBodyContact(pin, "contact", block, "top",
+                             rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
+    mu_f = v["friction"]
+    wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f,
+                    scheme=v["scheme"], averaged=True, name="wear_pin")
+    wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f,
+                      scheme=v["scheme"], averaged=True, name="wear_block")
+
+    def drive(position):
+        """Move the block's bottom to ``position``; the block translated as predictor."""
+        block.u.x.array.reshape(-1, 2)[:, 0] += position - float(motion.value[0])
+        motion.value[0] = position
+
+    cycle = ReciprocatingCycle(contact, 2 * v["A"], v["fast_steps"], v["V"], drive=drive,
+                               force=lambda: block.reaction("bottom", 0))
+    stepper = Stepper([pin, block, contact, wear_pin, wear_block], [wear_pin, wear_block],
+                      cycle=cycle, parameters=[load, motion], max_cuts=v["max_cuts"],
+                      checkpoint=checkpoint, name="wear_reciprocating",
+                      problem_kw={"max_it": 40})
+    return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
+            "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
+            "cycle": cycle, "W": W, "H": H, "top_length": top, "h": h}
+
+
+def progress_total(v):
+    """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
+    return nominal_steps(v["cycles"] * period(v), v["dt"])
+
+
+def load_up(run, v, verbose=False):
+    """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
+
+    Newton starts from the pin translated down by the Hertz approach a²/(2R)
+    of the tip (2D Hertz, both moduli) plus its compression F H/(W E_pin); a
+    user's pin (``mesh_file``) by its tip height at |x| = W/4 plus F H/(ℓ E_pin)
+    (:func:`tribofx.cases.user_pin.user_pin_approach` with the pin's
+    traction q = F/ℓ and modulus).
+    """
+    if v["mesh_file"]:
+        delta0 = user_pin_approach(
+            run["wear_pin"].contact, {"q": v["F"] / run["top_length"], "E": v["E_pin"]})
+    else:
+        a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
+                      v["nu"], line=True).a, v["W"] / 2)
+        delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
+    run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
+    run["load"].value = 0.0
+    control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
+                           verbose=verbose)
+    control.march(1.0, steps=2, predictor=False)
+    return int(sum(control.record))
+
+
+def snapshot(run):
+    """Cells of both bodies (X̂, w, u) at −A, at the centre and at +A of a cycle (rank 0).
+
+    Runs the start of a cycle at the current shapes: memory erased, the
+    block at −A (a), the run-in to the centre (b), the first quarter to +A
+    (c); then restarts, so the state is that of a cycle start again.
+    """
+    st, cyc = run["stepper"], run["cycle"]
+    P = st.problem
+    shots = []
+    cyc.start()
+    P.commit()
+    P.solve_by_homotopy()
+    P.commit()
+    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    for pos in cyc.run_in:
+        cyc.move(pos)
         P.solve_by_homotopy()
         P.commit()
-        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
-        for pos in cyc.run_in:
-            cyc.move(pos)
-            P.solve_by_homotopy()
-            P.commit()
-        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
-        for pos in cyc.positions[:cyc.fast_steps // 4]:
-            cyc.move(pos)
-            P.solve_by_homotopy()
-            P.commit()
-        shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
-        st.restart()
-        return shots
+    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    for pos in cyc.positions[:cyc.fast_steps // 4]:
+        cyc.move(pos)
+        P.solve_by_homotopy()
+        P.commit()
+    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    st.restart()
+    return shots
 
-    @classmethod
-    def run(cls, v, record, progress=None, verbose=False, checkpoint=None, resume=False):
-        """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
 
-        ``checkpoint``: directory of the per-step checkpoint (state and histories);
-        ``resume``: continue from it (:mod:`tribofx.restart`).
-        """
-        run = cls.build(v, checkpoint=checkpoint)
-        st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
-        wp, wb = run["wear_pin"], run["wear_block"]
-        st.verbose = verbose
-        for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
-                               ("pin_top_length", run["top_length"], "mm"),
-                               ("contact_element_size", run["h"], "mm")):
-            record.result(key, val, unit)
-        pin = run["pin"]
-        # the pin's vertical equilibrium: Σ of its momentum rows along y (each below
-        # atol_u at a solved state) is F − (contact force along y)
-        record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
-                      * pin.tolerances()[pin.u].atol, "N/mm")
-        tau = cls.period(v)
-        # the worn shapes and the deformation at every slow step (ParaView time series)
-        sr = slow_time.SlowTimeRecords(st, v, record, (
-            "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
-            "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
-            "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
-            "picard_iterations", "dt", "error_estimate", "rejected"), cls.vtx_fields(run),
-            resume)
-        h, hist = sr.history, sr.hist
-        energy = [hist["dissipated_energy"][-1] if resume else 0.0]
-        w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
+def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+    """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
 
-        def log(t, dt, its, picard=0, error=None, rejected=0):
-            comm = contact.slave.mesh.comm
-            if st.last_increments is not None:   # dissipation of the step's (last) cycle
-                d_pin = st.last_increments[0]
-                n = contact.Q.dofmap.index_map.size_local
-                cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v["K_pin"]
-                energy[0] += cyc_d * dt / tau
-            else:
-                cyc_d = None
-            sr.log(its, (("time", t), ("cycles_done", t / tau),
-                         ("worn_area_pin", wp.worn_volume()),
-                         ("worn_area_block", wb.worn_volume()),
-                         ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
-                         ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
-                         ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
-                         ("rate_integral_pin", wp.wear_rate_integral()),
-                         ("rate_integral_block", wb.wear_rate_integral()),
-                         ("normal_force", float(contact.forces()[0][1])),
-                         ("newton_iterations", its), ("picard_iterations", picard),
-                         ("dt", dt), ("error_estimate", error), ("rejected", rejected)))
+    ``checkpoint``: directory of the per-step checkpoint (state and histories);
+    ``resume``: continue from it (:mod:`tribofx.restart`).
+    """
+    run = build(v, checkpoint=checkpoint)
+    st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
+    wp, wb = run["wear_pin"], run["wear_block"]
+    st.verbose = verbose
+    for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
+                           ("pin_top_length", run["top_length"], "mm"),
+                           ("contact_element_size", run["h"], "mm")):
+        record.result(key, val, unit)
+    pin = run["pin"]
+    # the pin's vertical equilibrium: Σ of its momentum rows along y (each below
+    # atol_u at a solved state) is F − (contact force along y)
+    record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
+                  * pin.tolerances()[pin.u].atol, "N/mm")
+    tau = period(v)
+    # the worn shapes and the deformation at every slow step (ParaView time series)
+    sr = slow_time.SlowTimeRecords(st, v, record, (
+        "time", "cycles_done", "worn_area_pin", "worn_area_block", "dissipated_energy",
+        "cycle_dissipation", "drive_work", "drive_work_bound", "friction_force_ratio",
+        "rate_integral_pin", "rate_integral_block", "normal_force", "newton_iterations",
+        "picard_iterations", "dt", "error_estimate", "rejected"), vtx_fields(run),
+        resume)
+    h, hist = sr.history, sr.hist
+    energy = [hist["dissipated_energy"][-1] if resume else 0.0]
+    w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
-        if not resume:
-            log(0.0, 0.0, cls.load_up(run, v, verbose))
-            h["initial_shot"] = _jsonable(cls.snapshot(run))
-        shots = {"initial": _arrays(h["initial_shot"])}
+    def log(t, dt, its, picard=0, error=None, rejected=0):
+        comm = contact.slave.mesh.comm
+        if st.last_increments is not None:   # dissipation of the step's (last) cycle
+            d_pin = st.last_increments[0]
+            n = contact.Q.dofmap.index_map.size_local
+            cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v["K_pin"]
+            energy[0] += cyc_d * dt / tau
+        else:
+            cyc_d = None
+        sr.log(its, (("time", t), ("cycles_done", t / tau),
+                     ("worn_area_pin", wp.worn_volume()),
+                     ("worn_area_block", wb.worn_volume()),
+                     ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
+                     ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
+                     ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
+                     ("rate_integral_pin", wp.wear_rate_integral()),
+                     ("rate_integral_block", wb.wear_rate_integral()),
+                     ("normal_force", float(contact.forces()[0][1])),
+                     ("newton_iterations", its), ("picard_iterations", picard),
+                     ("dt", dt), ("error_estimate", error), ("rejected", rejected)))
 
-        def report():
-            cls._report(run, record, hist, shots)
-            if record.profile is not None:
-                half = 0.5 * v["L"] + v["A"] + 0.1
-                record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
+    if not resume:
+        log(0.0, 0.0, load_up(run, v, verbose))
+        h["initial_shot"] = _jsonable(snapshot(run))
+    shots = {"initial": _arrays(h["initial_shot"])}
 
-        with sr.closing(report=report, model=run):
-            st.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]), progress=progress,
-                   on_step=sr.written(lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard,
-                                                         rep.error, rep.rejected)))
-            shots["worn"] = cls.snapshot(run)
-        return run
+    def report():
+        _report(run, record, hist, shots)
+        if record.profile is not None:
+            half = 0.5 * v["L"] + v["A"] + 0.1
+            record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
 
-    @staticmethod
-    def _report(run, record, hist, shots):
-        units = {"time": "s", "cycles_done": "-", "worn_area_pin": "mm^2/mm",
-                 "worn_area_block": "mm^2/mm", "dissipated_energy": "N*mm/mm",
-                 "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
-                 "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
-                 "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
-                 "normal_force": "N/mm", "newton_iterations": "-", "picard_iterations": "-",
-                 "dt": "s", "error_estimate": "mm (per step, error control)",
-                 "rejected": "-"}
-        for key, vals in hist.items():
-            record.result(key, vals, units[key])
-        record.result("accepted_steps", len(hist["time"]) - 1, "-")
-        record.result("rejected_steps", int(sum(hist["rejected"])), "-")
-        prof = {}
-        for key in ("wear_pin", "wear_block"):
-            d = run[key].gather_shape()
-            if d is not None:
-                prof[key] = {"X_hat": d["X_hat"], "X_worn": d["X_worn"], "x": d["x"],
-                             "depth": d["depth"]}
-                record.result(f"final_profile_{key[5:]}", d["X_worn"].tolist(),
-                              "mm (worn configuration)")
-                record.result(f"final_depth_{key[5:]}", d["depth"].tolist(), "mm")
-        if MPI.COMM_WORLD.rank == 0:
-            record.profile = {**hist, **prof, "shots": shots}
+    with sr.closing(report=report, model=run):
+        st.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]), progress=progress,
+               on_step=sr.written(lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard,
+                                                     rep.error, rep.rejected)))
+        shots["worn"] = snapshot(run)
+    return run
 
-    @staticmethod
-    def vtx_fields(run):
-        """Displacement and shape change of both bodies (one file per mesh)."""
-        return {"pin": [run["pin"].u, run["pin"].w], "block": [run["block"].u, run["block"].w]}
 
-    @staticmethod
-    def plot(profile, outdir):
-        """``fig5.png`` (configurations, both bodies) and ``wear.png`` (histories, profiles)."""
-        from ..plots.two_body import plot_reciprocating
+def _report(run, record, hist, shots):
+    units = {"time": "s", "cycles_done": "-", "worn_area_pin": "mm^2/mm",
+             "worn_area_block": "mm^2/mm", "dissipated_energy": "N*mm/mm",
+             "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
+             "drive_work_bound": "N*mm/mm", "friction_force_ratio": "-",
+             "rate_integral_pin": "mm^2/(mm*s)", "rate_integral_block": "mm^2/(mm*s)",
+             "normal_force": "N/mm", "newton_iterations": "-", "picard_iterations": "-",
+             "dt": "s", "error_estimate": "mm (per step, error control)",
+             "rejected": "-"}
+    for key, vals in hist.items():
+        record.result(key, vals, units[key])
+    record.result("accepted_steps", len(hist["time"]) - 1, "-")
+    record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+    prof = {}
+    for key in ("wear_pin", "wear_block"):
+        d = run[key].gather_shape()
+        if d is not None:
+            prof[key] = {"X_hat": d["X_hat"], "X_worn": d["X_worn"], "x": d["x"],
+                         "depth": d["depth"]}
+            record.result(f"final_profile_{key[5:]}", d["X_worn"].tolist(),
+                          "mm (worn configuration)")
+            record.result(f"final_depth_{key[5:]}", d["depth"].tolist(), "mm")
+    if MPI.COMM_WORLD.rank == 0:
+        record.profile = {**hist, **prof, "shots": shots}
 
-        plot_reciprocating(profile, outdir)
+
+def vtx_fields(run):
+    """Displacement and shape change of both bodies (one file per mesh)."""
+    return {"pin": [run["pin"].u, run["pin"].w], "block": [run["block"].u, run["block"].w]}
+
+
+def plot(profile, outdir):
+    """``fig5.png`` (configurations, both bodies) and ``wear.png`` (histories, profiles)."""
+    from ..plots.two_body import plot_reciprocating
+
+    plot_reciprocating(profile, outdir)

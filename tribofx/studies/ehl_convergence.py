@@ -2,7 +2,7 @@
 
 from mpi4py import MPI
 
-from ..cases.ehl_cylinder_layer import EHLCylinderLayerCase as Case
+from ..cases import ehl_cylinder_layer as Case
 from ..params import InputError
 
 __all__ = ["mesh_convergence"]

@@ -59,7 +59,7 @@ def _study_run(case, v, n, scheme, dt, verbose=False):
 def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     """``study=dt`` of ``wear-pin`` on the n × n meshes ``ns`` for the time steps ``dts``.
 
-    ``case``: the pin case class (:class:`tribofx.cases.wear_pin.WearPinCase`, its
+    ``case``: the pin case (the module :mod:`tribofx.cases.wear_pin`, its
     ``run`` makes each run).
 
     Records ``study_dt``, ``study_error_<scheme>`` for each of ``study_schemes``

@@ -16,7 +16,8 @@ import math
 import numpy as np
 from mpi4py import MPI
 
-from ..cases.wear_ball_flat import MODEL_FRACTION, WearBallCase
+from ..cases import wear_ball_flat
+from ..cases.wear_ball_flat import MODEL_FRACTION
 from ..stability import bisect_critical_step, growth_probe
 
 __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
@@ -65,8 +66,8 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     """Largest stable Δt (s) of the explicit scheme on an n × n flat-ended pin (eq. 31).
 
     The stability probe: the flat pin in the homogeneous state (parameters ``v``
-    of ``wear-pin``, R_tip forced to 0; ``case`` the pin case class,
-    :class:`tribofx.cases.wear_pin.WearPinCase`, whose ``build`` and ``load_up`` make
+    of ``wear-pin``, R_tip forced to 0; ``case`` the pin case,
+    the module :mod:`tribofx.cases.wear_pin`, whose ``build`` and ``load_up`` make
     it) gets a node-to-node alternating wear-depth
     perturbation of amplitude ε (the highest mode the mesh carries, i.e. the
     first to go unstable), the contact problem is re-solved, and ``steps``
@@ -133,9 +134,9 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     probe)``, ``probe`` the list of (Δt, nonuniformity ratio).
     """
     rec = SubRecord()
-    implicit = WearBallCase.run({**v, "scheme": "implicit"}, rec, comm=comm, t_stop=t0)
+    implicit = wear_ball_flat.run({**v, "scheme": "implicit"}, rec, comm=comm, t_stop=t0)
     start = implicit.state()
-    stepper = WearBallCase.build({**v, "scheme": "explicit"}, comm=comm)
+    stepper = wear_ball_flat.build({**v, "scheme": "explicit"}, comm=comm)
     if not np.array_equal(stepper.wear.body.mesh.geometry.x, implicit.wear.body.mesh.geometry.x):
         raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
     probe = []
