@@ -59,14 +59,8 @@ def _slab(comm, L, H, nx, ny, material):
 
 
 name = "contact-ironing"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
-
-
 params = (
     Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
     Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),

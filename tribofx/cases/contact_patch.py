@@ -51,14 +51,8 @@ def patch_block(comm, y0, y1, n, name, material):
 
 
 name = "contact-patch"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
-
-
 params = (
     Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",
           lower=0.0, upper=16.0, closed=True),

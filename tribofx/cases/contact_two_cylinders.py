@@ -50,14 +50,8 @@ __all__ = ["build", "doc", "name", "params", "plot", "reference", "report", "res
 
 
 name = "contact-two-cylinders"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
-
-
 params = (
     Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),
     Param("R2", float, 10.0, "mm", "radius of the lower (master) cylinder; 0: flat block",

@@ -240,15 +240,9 @@ NAMES = BALL_NAMES
 
 
 name = "ehl-ball"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
-
-
 params = (
     Param("W", float, 10.0, "N", "final load on the whole ball", lower=0.0),
     Param("steps", int, 3, "-", "load increments (W/steps, …, W)", lower=1, upper=100,

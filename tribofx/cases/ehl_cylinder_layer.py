@@ -141,15 +141,9 @@ def cylinder_arc(R, n, alpha):
 
 
 name = "ehl-cylinder-layer"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "soft-EHL: rigid cylinder sliding on a coated elastic layer (finite or linear)"
-
-
 params = (
     Param("W", float, 1.0, "N/mm", "final load per unit length", lower=0.0),
     Param("steps", int, 10, "-", "load increments (W/steps, 2W/steps, …, W)", lower=1,

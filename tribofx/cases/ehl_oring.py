@@ -637,15 +637,9 @@ def _report(hist, record, T, seal, scheme):
 
 
 name = "ehl-oring"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "soft-EHL of a reciprocating O-ring seal (axisymmetric, housing contact)"
-
-
 params = (
     Param("p_s", str, "1", "MPa", "sealed pressures (comma-separated, increasing)"),
     Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),

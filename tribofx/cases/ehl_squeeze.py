@@ -57,16 +57,10 @@ __all__ = ["build", "doc", "extent", "fraction", "length", "measures", "name", "
 
 
 name = "ehl-squeeze"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
        "plane, at a speed or under a load; rigid-limit references")
-
-
 params = (
     Param("dim", int, 2, "-", "2: cylinder (plane strain, half model), 3: sphere "
           "(quarter model)", choices=(2, 3)),

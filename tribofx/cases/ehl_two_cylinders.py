@@ -51,15 +51,9 @@ __all__ = ["build", "doc", "measures", "name", "params", "plot", "reference", "r
 
 
 name = "ehl-two-cylinders"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = ("soft-EHL line contact of two elastic cylinders (or a cylinder on a block), "
        "rolling and sliding; either body may be rigid")
-
-
 params = (
     Param("R1", float, 10.0, "mm", "radius of the upper cylinder", lower=0.0),
     Param("R2", float, 10.0, "mm", "radius of the lower cylinder (inf: a block)",

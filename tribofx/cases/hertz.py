@@ -69,15 +69,9 @@ def hertz_dim(dim):
 
 
 name = "hertz"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
        "meridian section) pressed on a rigid plane, vs Hertz")
-
-
 params = (
     Param("dim", dimension, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model), "
           "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",

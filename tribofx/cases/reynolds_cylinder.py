@@ -75,15 +75,9 @@ def _reformation(prof):
 
 
 name = "reynolds-cylinder"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = ("rigid cylinder on a rigid plane (1D Reynolds) with cavitation none|penalty|jfo, "
        "vs half-Sommerfeld and Swift–Stieber")
-
-
 params = (
     Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
     Param("h0", float, 0.01, "mm", "minimum film thickness", lower=0.0),

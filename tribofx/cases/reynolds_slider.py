@@ -39,14 +39,8 @@ __all__ = ["build", "doc", "name", "params", "plot", "resumable", "run", "slider
 
 
 name = "reynolds-slider"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = "rigid plane inclined slider bearing (1D Reynolds), vs the analytic solution"
-
-
 params = (
     Param("K", float, 1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0",
           lower=-1.0),

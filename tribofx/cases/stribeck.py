@@ -37,14 +37,8 @@ __all__ = ["doc", "name", "params", "plot", "report", "resumable", "run", "valid
 
 
 name = "stribeck"
-
-
 resumable = False   # no per-step checkpoint
-
-
 doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
-
-
 params = PARAMS
 
 

@@ -87,15 +87,9 @@ MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the
 
 
 name = "wear-ball-flat"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
-
-
 params = (
     *scheme_params(filtered=True),
     Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),

@@ -77,15 +77,9 @@ def groove_mesh(comm, a, h, lz=1.35, nc=(4, 5, 6)):
 
 
 name = "wear-ball-halfspace"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
-
-
 params = (
     *scheme_params(),
     Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),

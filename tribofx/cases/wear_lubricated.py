@@ -45,15 +45,9 @@ _SHARED = [p for p in rough_contact.PARAMS if p.name not in ("speeds", "geometry
 
 
 name = "wear-lubricated"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
-
-
 params = (*_SHARED,
           Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",
                 lower=0.0),

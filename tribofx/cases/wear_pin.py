@@ -84,15 +84,9 @@ __all__ = ["build", "doc", "load_up", "n_elements", "name", "params", "plot", "p
 
 
 name = "wear-pin"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
-
-
 params = (
     *scheme_params(),
     Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),

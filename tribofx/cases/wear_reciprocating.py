@@ -131,15 +131,9 @@ def _centre_on_axis(msh):
 
 
 name = "wear-reciprocating"
-
-
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-
-
 doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
-
-
 params = (
     *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
                    "tol on the cycle-averaged shapes"),
