@@ -156,26 +156,32 @@ class Hold:
         """Find the parameter at which the response is the target (``guess``: first trial).
 
         Raises :class:`~tribofx.reports.NewtonDivergence` (state at entry) when
-        the search gives up.
+        the search gives up.  ``verbose`` is the problem protocol's: the
+        search's own ``verbose`` prints its Newton histories.  The Newton
+        reports of this solve are taken out of the search's ``reports`` (a long
+        slow-time run does not accumulate them).
         """
         n0 = len(self.search.reports)
-        if self._step is not None:
-            step_guess, slope = self._step
-            self._step = None
-            self._reach(step_guess if guess is None else guess, slope)
-        elif self.predict is not None and guess is None:
-            converged = self.search.problem.state()
-            self.predict(self.target)
-            try:
-                self._reach(*self._estimates())
-            except NewtonDivergence:
-                self.search.problem.restore(converged)
-                self._reach(*self._estimates())
-        else:
-            first, slope = self._estimates()
-            self._reach(first if guess is None else guess, slope)
-        return HoldReport(iterations=self.search.record[-1],
-                          reports=self.search.reports[n0:])
+        try:
+            if self._step is not None:
+                step_guess, slope = self._step
+                self._step = None
+                self._reach(step_guess if guess is None else guess, slope)
+            elif self.predict is not None and guess is None:
+                converged = self.search.problem.state()
+                self.predict(self.target)
+                try:
+                    self._reach(*self._estimates())
+                except NewtonDivergence:
+                    self.search.problem.restore(converged)
+                    self._reach(*self._estimates())
+            else:
+                first, slope = self._estimates()
+                self._reach(first if guess is None else guess, slope)
+        finally:
+            reports = self.search.reports[n0:]
+            del self.search.reports[n0:]
+        return HoldReport(iterations=self.search.record[-1], reports=reports)
 
     def _estimates(self):
         """(first trial, first-update slope) of a solve outside the slow time."""
