@@ -67,7 +67,7 @@ def timed_iteration(problem, repeat):
     return {"total_s": best[0], "assemble_s": best[1], "solve_s": best[2]}
 
 
-v = resolve(Case.params, {"W": str(args.W), "steps": str(args.steps), "mesh": str(args.mesh),
+v = resolve(Case.Params, {"W": str(args.W), "steps": str(args.steps), "mesh": str(args.mesh),
                           "degree": str(args.degree), "model": args.model})
 Case.validate(v)
 
@@ -86,7 +86,7 @@ def on_step():
 
 loads, _ = Case.load_control(run, v, on_step)
 t0 = time.perf_counter()
-loads.march(v["W"], v["steps"], predictor=False)
+loads.march(v.W, v.steps, predictor=False)
 t_sweep = time.perf_counter() - t0
 for s, its in zip(steps, loads.record):
     s["newton_iterations"] = list(its)
@@ -96,9 +96,9 @@ n_u = layer.V.dofmap.index_map.size_global * layer.V.dofmap.index_map_bs
 
 # -- purely hyperelastic problem on the same mesh: a uniform pressure W/(2 x_l) on Γ_l
 plain = Body(layer.mesh, layer.facet_tags, NAMES, "plane_strain", layer.materials,
-             cell_tags=layer.cell_tags, degree=v["degree"], name="plain")
+             cell_tags=layer.cell_tags, degree=v.degree, name="plain")
 plain.add_dirichlet("bottom", np.zeros(2))
-plain.add_traction("lubricated", ufl.as_vector([0.0, -v["W"] / (2 * v["x_l"])]))
+plain.add_traction("lubricated", ufl.as_vector([0.0, -v.W / (2 * v.x_l)]))
 hyper = Problem([plain], name="hyperelastic")
 t0 = time.perf_counter()
 rep = hyper.solve()
@@ -108,9 +108,9 @@ t_hyper = timed_iteration(hyper, args.repeat)
 t_coupled = min(t_coupled, timed_iteration(prob, args.repeat), key=lambda t: t["total_s"])
 
 result = {
-    "parameters": {"W": v["W"], "steps": v["steps"], "mesh": v["mesh"], "degree": v["degree"],
-                   "model": v["model"], "h_fine_mm": 0.04 / 2 ** v["mesh"],
-                   "cavitation": v["cavitation"], "countersurface": v["countersurface"]},
+    "parameters": {"W": v.W, "steps": v.steps, "mesh": v.mesh, "degree": v.degree,
+                   "model": v.model, "h_fine_mm": 0.04 / 2 ** v.mesh,
+                   "cavitation": v.cavitation, "countersurface": v.countersurface},
     "mpi_size": comm.size,
     "num_dofs_coupled": prob.num_dofs,
     "num_dofs_displacement": n_u,
@@ -129,7 +129,7 @@ result = {
 }
 if rank0:
     print(f"coupled unknowns {result['num_dofs_coupled']} (displacement {n_u}), "
-          f"mesh {v['mesh']}, P{v['degree']}, model {v['model']}, {comm.size} process(es)")
+          f"mesh {v.mesh}, P{v.degree}, model {v.model}, {comm.size} process(es)")
     print(f"{'W[N/mm]':>8} {'Newton its per secant trial':<32} {'h_min[um]':>9} "
           f"{'p_max[MPa]':>10}")
     for s in steps:

@@ -68,7 +68,7 @@ def timed_iteration(problem, repeat):
     return {"total_s": best[0], "assemble_s": best[1], "solve_s": best[2]}
 
 
-v = resolve(Case.params, {"W": str(args.W), "steps": str(args.steps), "mesh": str(args.mesh),
+v = resolve(Case.Params, {"W": str(args.W), "steps": str(args.steps), "mesh": str(args.mesh),
                           "model": args.model})
 Case.validate(v)
 
@@ -110,10 +110,10 @@ t_hyper = timed_iteration(hyper, args.repeat)
 t_coupled = min(t_coupled, timed_iteration(prob, args.repeat), key=lambda t: t["total_s"])
 
 result = {
-    "parameters": {"W": v["W"], "steps": v["steps"], "mesh": v["mesh"], "model": v["model"],
-                   "mu_U_N_per_mm": v["mu"] * v["U"], "theta_l_deg": v["theta_l"],
-                   "h_fine_mm": hertz(v["W"], v["R"], v["E"], v["nu"]).a
-                   / (4 * 2 ** v["mesh"])},
+    "parameters": {"W": v.W, "steps": v.steps, "mesh": v.mesh, "model": v.model,
+                   "mu_U_N_per_mm": v.mu * v.U, "theta_l_deg": v.theta_l,
+                   "h_fine_mm": hertz(v.W, v.R, v.E, v.nu).a
+                   / (4 * 2 ** v.mesh)},
     "mpi_size": comm.size,
     "num_dofs_coupled": prob.num_dofs,
     "num_dofs_displacement": n_u,
@@ -131,7 +131,7 @@ result = {
 }
 if rank0:
     print(f"coupled unknowns {result['num_dofs_coupled']} (displacement {n_u}), "
-          f"mesh {v['mesh']}, model {v['model']}, {comm.size} process(es)")
+          f"mesh {v.mesh}, model {v.model}, {comm.size} process(es)")
     print(f"{'W[N]':>6} {'Newton its per secant trial':<30} {'h_c[um]':>8} {'h_min[um]':>9} "
           f"{'p_max[MPa]':>10} {'friction':>8}")
     for s in steps:

@@ -31,7 +31,7 @@ from tribofx.params import resolve  # noqa: E402
 
 def run(formulation, density, U):
     """Solve one O-ring; return its measures, unknowns, iterations and wall time."""
-    v = resolve(Case.params, {"mesh": str(density), "U": str(U), "p_s": "1",
+    v = resolve(Case.Params, {"mesh": str(density), "U": str(U), "p_s": "1",
                               "formulation": formulation})
     Case.validate(v)
     t0 = time.perf_counter()

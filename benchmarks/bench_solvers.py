@@ -57,7 +57,7 @@ def build(problem, level, comm):
     if problem == "groove":
         from tribofx.cases import wear_ball_halfspace as Case
 
-        v = Case.resolved(resolve(Case.params, {"mesh": str(level)}))
+        v = Case.resolved(resolve(Case.Params, {"mesh": str(level)}))
         stepper, info = Case.build(v, comm)
         return stepper.problem, [lambda: [Case.initial_contact(stepper, info)],
                                  lambda: stepper.step(100.0).reports]
@@ -65,15 +65,15 @@ def build(problem, level, comm):
     from tribofx.continuation import ConstantParameter
     from tribofx.references import hertz
 
-    v = resolve(Case.params, {"dim": "3", "mesh": str(level), "friction": "0.3"})
+    v = resolve(Case.Params, {"dim": "3", "mesh": str(level), "friction": "0.3"})
     Case.validate(v)
     _, contact, prob = Case.build(v, comm)
-    a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
+    a = hertz(v.load, v.R, v.E, v.nu)[0]
     delta = ConstantParameter(contact.counterpart.offset, 2)
 
     def approach(f):
         def step():
-            delta.set(f * a**2 / v["R"])
+            delta.set(f * a**2 / v.R)
             report = prob.solve()
             prob.commit()
             return [report]

@@ -38,7 +38,6 @@ import dolfinx_solver  # noqa: F401,E402
 
 from tribofx.cases import ehl_squeeze as Case  # noqa: E402
 from tribofx.params import resolve  # noqa: E402
-from tribofx.runner import COMMON_PARAMS  # noqa: E402
 
 
 def per_iteration(problem, repeat=3):
@@ -60,18 +59,18 @@ def run(dim):
     """Measure one dimension; returns the row."""
     over = {"dim": dim, "control": "load", "E1": 1e7, "F": 0.05 if dim == 2 else 0.02,
             "T": 1e-3, "dt": 2.5e-4}
-    v = resolve(tuple(Case.params) + COMMON_PARAMS, {k: str(x) for k, x in over.items()})
+    v = resolve(Case.Params, {k: str(x) for k, x in over.items()})
     st = Case.build(v)
-    st.run(2 * v["dt"], v["dt"])                  # two steps: the BDF2 history is full
+    st.run(2 * v.dt, v.dt)                  # two steps: the BDF2 history is full
     film = st.wear
     t0 = time.perf_counter()
-    film.begin_step(v["dt"])
+    film.begin_step(v.dt)
     t_begin = time.perf_counter() - t0
     its = st.problem.solve().iterations
     t_tr = per_iteration(st.problem)
     # the same mesh, body and film with the chapter's steady rows (the body held at its
     # top, since a steady film cannot carry a load alone), the same unknowns
-    steady = Case.build(dict(v, control="speed"), steady=True).problem
+    steady = Case.build(v.replace(control="speed"), steady=True).problem
     t_st = per_iteration(steady)
     return {"dim": dim, "unknowns": st.problem.num_dofs, "unknowns_steady": steady.num_dofs,
             "begin_step_s": t_begin, "iteration_transient_s": t_tr,

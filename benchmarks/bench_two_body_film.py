@@ -43,7 +43,7 @@ def split(level):
     """Load the case at mesh ``level``; time one Newton solve; return the split (dict)."""
     from mpi4py import MPI
 
-    v = resolve(Case.params, {"mesh": str(level)})
+    v = resolve(Case.Params, {"mesh": str(level)})
     rec = RunRecord(Case.name, {}, {}, Path("."), MPI.COMM_WORLD)
     run = Case.run(v, rec)
     film, problem, lift = run["film"], run["problem"], run["lift"]

@@ -48,13 +48,13 @@ parser.add_argument("--mesh", type=int, default=1)
 parser.add_argument("--out", default="benchmarks/results/wear.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
-units = {p.name: p.unit for p in wear_pin.params}
+units = None
 
 
 def run(tmp, **over):
     """One wear-pin run; returns (stepper or None, results, wall time, status)."""
     over = {"E": args.E, "mesh": args.mesh, **over}
-    values = resolve(wear_pin.params, {k: str(v) for k, v in over.items()})
+    values = resolve(wear_pin.Params, {k: str(v) for k, v in over.items()})
     wear_pin.validate(values)
     rec = RunRecord("wear-pin", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
     rec.profile = None
@@ -76,12 +76,12 @@ def profile(res):
 
 rows = []
 with tempfile.TemporaryDirectory() as tmp:
-    values = resolve(wear_pin.params, {"E": str(args.E), "mesh": str(args.mesh)})
+    values = resolve(wear_pin.Params, {"E": str(args.E), "mesh": str(args.mesh)})
     n = wear_pin.n_elements(values)
     t0 = time.perf_counter()
     dt_cr, _ = pin_critical_step(wear_pin, values, n, lo=0.05, hi=200.0)
     t_probe = time.perf_counter() - t0
-    T = values["T"]
+    T = values.T
     dt_exp = T / math.ceil(T / dt_cr)
 
     _, r10, _, _, _ = run(tmp, scheme="implicit", dt=10)

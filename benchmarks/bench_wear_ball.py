@@ -184,13 +184,13 @@ parser.add_argument("--dt-cr-range", default="3,30",
 parser.add_argument("--out", default="benchmarks/results/wear_ball.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
-units = {p.name: p.unit for p in wear_ball_flat.params}
+units = None
 sets = dict(kv.split("=", 1) for kv in args.set)
 SOLVE_ONLY = ("error_filter", "controller")     # of the error control: runs with tol only
-v0 = resolve(wear_ball_flat.params, {"mesh": str(args.mesh),
+v0 = resolve(wear_ball_flat.Params, {"mesh": str(args.mesh),
                                    **{k: x for k, x in sets.items() if k not in SOLVE_ONLY}})
 wear_ball_flat.validate(v0)
-T = v0["T"]
+T = v0.T
 if args.to_T_tols and not (args.accuracy_dts and args.bdf2_tols or args.to_T_ref):
     parser.error("--to-T-tols needs --to-T-ref, or --accuracy-dts and --bdf2-tols (the "
                  "window's accuracies)")
@@ -206,7 +206,7 @@ def run(tmp, t_stop=None, on_step=None, **over):
     if not float(given.get("tol", 0) or 0):
         for k in SOLVE_ONLY:
             given.pop(k, None)
-    values = resolve(wear_ball_flat.params, {"mesh": str(args.mesh), **given})
+    values = resolve(wear_ball_flat.Params, {"mesh": str(args.mesh), **given})
     wear_ball_flat.validate(values)
     rec = RunRecord("wear-ball-flat", values, units, Path(tmp) / f"r{len(os.listdir(tmp))}", comm)
     rec.profile = None
@@ -352,13 +352,13 @@ def late_window(t1, dt_e, tol):
     from tribofx.references import hertz
 
     def build(**over):
-        v = resolve(wear_ball_flat.params, {"mesh": str(args.mesh), **{
+        v = resolve(wear_ball_flat.Params, {"mesh": str(args.mesh), **{
             k: x for k, x in sets.items() if k not in SOLVE_ONLY}, **over})
         st = wear_ball_flat.build(v)
         return v, st
 
     vb, sb = build(scheme="bdf2", dt="100", tol="1e-3", tol_per="step")
-    sb.hold.solve(guess=hertz(vb["F"], vb["R"], vb["E"], vb["nu"]).delta)
+    sb.hold.solve(guess=hertz(vb.F, vb.R, vb.E, vb.nu).delta)
     sb.run(t1, ErrorControl(100.0, 1e-3, per="step"))
     saved, fields = sb.state(), dict(zip(sb.field_names(), sb._fields()))
     _, se = build(scheme="explicit", dt=str(dt_e), max_cuts="4")
@@ -477,7 +477,7 @@ with tempfile.TemporaryDirectory() as tmp:
         "explicit_scar_radius": exp["scar_radius"][-1],
         "implicit_max_depth": imp_te["max_wear_depth"][i_te],
         "explicit_max_depth": exp["max_wear_depth"][-1],
-        "rigid_cap_radius": float(rigid_cap_radius(v0["k"], v0["F"], v0["R"], v0["V"] * t_e)),
+        "rigid_cap_radius": float(rigid_cap_radius(v0.k, v0.F, v0.R, v0.V * t_e)),
         "max_nodal_distance_worn_profiles_mm": diff,
         "reference": f"implicit, Δt = {args.ref_dt:g} s", "reference_wall_time_s": wall_r,
         "reference_scar_radius": ref["scar_radius"][-1],

@@ -69,7 +69,7 @@ def say(*a, **k):
         print(*a, **k, flush=True)
 
 
-v = Case.resolved(resolve(Case.params, {"mesh": str(args.mesh)}))
+v = Case.resolved(resolve(Case.Params, {"mesh": str(args.mesh)}))
 out = {"mesh": args.mesh, "T": args.T}
 
 # 1. implicit run to T ------------------------------------------------------------

@@ -61,12 +61,12 @@ parser.add_argument("--tols", default="1e-4,1e-5,1e-6")
 parser.add_argument("--out", default="benchmarks/results/wear_groove_accuracy.json")
 args = parser.parse_args()
 comm = MPI.COMM_WORLD
-units = {p.name: p.unit for p in Case.params}
+units = None
 
 
 def leg(tmp, scheme, dt, tol=0.0):
     """One run to the horizon; returns (results, wall time s)."""
-    v = resolve(Case.params, {"mesh": str(args.mesh), "scheme": scheme, "dt": str(dt),
+    v = resolve(Case.Params, {"mesh": str(args.mesh), "scheme": scheme, "dt": str(dt),
                               "T": str(args.t_end), "tol": str(tol)})
     Case.validate(v)
     rec = RunRecord(Case.name, v, units, Path(tmp) / f"{scheme}_{dt:g}_{tol:g}", comm)

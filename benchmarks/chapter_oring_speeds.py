@@ -39,7 +39,7 @@ KEYS = ("oscillation", "flux_spread", "h_mean", "h_min", "p_max")
 
 def sweep(solid, density, speeds):
     """Solve one seal down the speeds; a list of per-speed records with profiles."""
-    v = resolve(Case.params, {"mesh": str(density), "U": str(speeds[0]), "p_s": "1",
+    v = resolve(Case.Params, {"mesh": str(density), "U": str(speeds[0]), "p_s": "1",
                               "formulation": solid})
     Case.validate(v)
     out = []

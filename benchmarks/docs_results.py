@@ -42,8 +42,10 @@ def replace_block(text, name, body):
 
 def params_table(case):
     """Markdown table of a case's parameters (those every case takes are in the README)."""
+    from tribofx.params import declared
+
     rows = ["| parameter | default | unit | meaning |", "|---|---|---|---|"]
-    for p in case.params:
+    for p in declared(case.Params):
         doc = str(p.doc).replace("|", "\\|")
         if p.choices:
             doc += " (" + ", ".join(str(c) for c in p.choices) + ")"

@@ -52,7 +52,6 @@ from tribofx.cases import ehl_squeeze
 from tribofx.output import write_summary
 from tribofx.params import resolve
 from tribofx.references import squeeze_film_under_load
-from tribofx.runner import COMMON_PARAMS
 
 parser = argparse.ArgumentParser(description="transient squeeze film demo")
 parser.add_argument("--quick", action="store_true", help="fewer, longer steps (CI)")
@@ -64,14 +63,14 @@ steps = 8 if args.quick else 32
 
 def squeeze(**over):
     """Build the cylinder, its transient film and the Stepper; step to T; per-step measures."""
-    v = resolve(tuple(ehl_squeeze.params) + COMMON_PARAMS,
+    v = resolve(ehl_squeeze.Params,
                 {k: str(x) for k, x in dict(control="load", dt=over["T"] / steps,
                                             **over).items()})
     stepper = ehl_squeeze.build(v)        # Body + Film(...).transient("bdf2") + Stepper
     film = stepper.wear
     y0 = float(film.counterpart.offset.value[1])
     out = []
-    stepper.run(v["T"], v["dt"], on_step=lambda st, rep: out.append(
+    stepper.run(v.T, v.dt, on_step=lambda st, rep: out.append(
         (st.t, ehl_squeeze.measures(film, v, y0))))
     return v, out
 # -
@@ -81,7 +80,7 @@ def squeeze(**over):
 # +
 v1, out = squeeze(F=0.05, E1=1e7, T=2e-3)
 t = [s for s, _ in out]
-h_ref = squeeze_film_under_load(2, v1["R"], v1["mu"], v1["F"], v1["h_start"], t,
+h_ref = squeeze_film_under_load(2, v1.R, v1.mu, v1.F, v1.h_start, t,
                                 ehl_squeeze.extent(v1))
 stiff = [(s, m["h_center"], float(r)) for (s, m), r in zip(out, h_ref)]
 if comm.rank == 0:
@@ -112,10 +111,10 @@ if args.out:
 
 # +
 for s, h, r in stiff:
-    assert abs(h - r) <= 0.015 * (v1["h_start"] - r) + 1e-12, (s, h, r)
+    assert abs(h - r) <= 0.015 * (v1.h_start - r) + 1e-12, (s, h, r)
 s, hc, hm, _ = soft[-1]
 assert hc > 1.1 * hm
-rigid = squeeze_film_under_load(2, v2["R"], v2["mu"], v2["F"], v2["h_start"], [s],
+rigid = squeeze_film_under_load(2, v2.R, v2.mu, v2.F, v2.h_start, [s],
                                 ehl_squeeze.extent(v2))[0]
 assert hm > 5 * rigid
 if comm.rank == 0:

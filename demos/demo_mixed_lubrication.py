@@ -70,7 +70,7 @@ comm = MPI.COMM_WORLD
 
 # R = 10 mm, E = 10 MPa, ν = 0.45, μ = 0.1 Pa·s, W = 0.5 N/mm, σ = 1 µm, μ_b = 0.1
 speeds = [1000.0, 30.0, 1.0] if args.quick else [1000.0, 100.0, 30.0, 10.0, 3.0, 1.0]
-v = resolve(stribeck_case.params, {"speeds": ",".join(map(str, speeds))})
+v = resolve(stribeck_case.Params, {"speeds": ",".join(map(str, speeds))})
 # -
 
 # ## 1. The Stribeck curve
@@ -92,7 +92,7 @@ rough = rough_contact.roughness(v)
 print(f"K E* = {rough.asperity.parameters['KE']:.4g} MPa, σ = {rough.sigma} mm") \
     if comm.rank == 0 else None
 V, k, dt = speeds[-1], 1e-5, 720.0          # mm/s, mm³/(N·mm), s
-run = rough_contact.build(v, comm, shape=True)
+run = rough_contact.build(v, "cylinder", speeds[0], comm, shape=True)
 film = run["film"]
 wear = Wear(film, k=k, speed=V)
 stepper = Stepper([run["body"], film, wear], wear, name="running_in",
@@ -119,8 +119,8 @@ nsteps = 1 if args.quick else 6
 approach = Continuation(stepper.problem, ConstantParameter(film.counterpart.offset, 1),
                         response=lambda: np.log(float(film.force()[1])), rtol=1e-7,
                         max_trials=30)
-stepper.hold = Hold(approach, np.log(v["W"]),
-                    step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
+stepper.hold = Hold(approach, np.log(v.W),
+                    step_slope=lambda dt: 1.0 / max(film.min_film(), v.sigma))
 history = []
 for n in range(nsteps + 1):
     if n:
@@ -130,7 +130,7 @@ for n in range(nsteps + 1):
     # of p_a(h) at the nodes (the wear rows' vertex rule; j = ds/dŜ per facet)
     prof = film.profile(everywhere=True)
     KE, (A, Hc, n_gt) = rough.asperity.parameters["KE"], GT_FIT
-    p_a = KE * A * np.maximum(Hc - prof["h"] / v["sigma"], 0.0) ** n_gt
+    p_a = KE * A * np.maximum(Hc - prof["h"] / v.sigma, 0.0) ** n_gt
     ds = np.linalg.norm(np.diff(prof["x"], axis=0), axis=1)
     history.append({"time": n * dt, "wear_area": wear.worn_volume(),
                     "archard_rate": k * V * float(np.sum(ds * (p_a[1:] + p_a[:-1]) / 2)),
@@ -157,9 +157,9 @@ if comm.rank == 0:
 
 # +
 ball_speeds = [10.0] if args.quick else [1000.0, 100.0, 10.0, 1.0, 0.1]
-vb = resolve(stribeck_case.params, {"geometry": "ball", "W": "0.5", "steps": "1",
+vb = resolve(stribeck_case.Params, {"geometry": "ball", "W": "0.5", "steps": "1",
                                    "speeds": ",".join(map(str, ball_speeds))})
-run_b = rough_contact.build(vb, comm)
+run_b = rough_contact.build(vb, "ball", ball_speeds[0], comm)
 ball_rows = []
 rough_contact.load_and_slow(run_b, vb, ball_speeds, on_speed=lambda U, n: ball_rows.append(
     dict(rough_contact.measures(run_b, vb), U=U, newton_iterations=n)))
@@ -199,7 +199,7 @@ for a, b in zip(history, history[1:]):
     assert b["film_load_fraction"] > a["film_load_fraction"]
 mixed = [r for r in ball_rows if r["U"] == 10.0][0]
 assert mixed["lambda_ratio"] < 1 and 0.5 < mixed["film_load_fraction"] < 1.0
-assert abs(mixed["W"] / vb["W"] - 1) < 1e-6
+assert abs(mixed["W"] / vb.W - 1) < 1e-6
 if comm.rank == 0:
     print("demo_mixed_lubrication: all checks passed")
 # -

@@ -78,7 +78,7 @@ comm = MPI.COMM_WORLD
 
 # +
 U0, T = 400.0, 10.0
-v = resolve(ehl_oring.params, {"mesh": "2" if args.quick else "4", "stroke": "cycle",
+v = resolve(ehl_oring.Params, {"mesh": "2" if args.quick else "4", "stroke": "cycle",
                                   "period": str(T), "scheme": "bdf2",
                                   "arc_refine": "0" if args.quick else "1"})
 # the seal at U0, transient, its steady outstroke, and the Stepper whose schedule sets
@@ -98,7 +98,7 @@ cycle = seal.measures()
 
 # +
 U = U0 * math.cos(math.pi / 4)
-steady = build(resolve(ehl_oring.params, {"mesh": v["mesh"], "U": str(U)}), 1000.0)
+steady = build(resolve(ehl_oring.Params, {"mesh": v.mesh, "U": str(U)}), 1000.0)
 solve_to(steady, v, U, [1.0])
 ref = steady.measures()
 dev = {k: cycle[k] / ref[k] - 1 for k in ("h_min", "h_mean", "p_max")}
@@ -126,11 +126,11 @@ assert all(abs(x) < 1e-2 for x in dev.values()), dev
 # and the cycle's leakage is what the air end lets out.
 
 # +
-vc = resolve(ehl_oring.params, {"stroke": "cycle", "scheme": "euler",
+vc = resolve(ehl_oring.Params, {"stroke": "cycle", "scheme": "euler",
                                    **({"mesh": "2", "arc_refine": "0"} if args.quick else
                                       {"sigma": "2e-4", "arc_refine": "1"})})
 cyc = cycle_stepper(vc)
-film, Tc = cyc.seal.film, vc["period"]
+film, Tc = cyc.seal.film, vc.period
 books = [(0.0, film.content(), 0.0, 0.0, 0.0)]
 
 
@@ -142,7 +142,7 @@ def keep_books(st, report):
     books.append((st.t, film.content(), q_sealed, q_air, bound))
 
 
-dt = Tc / vc["cycle_steps"]
+dt = Tc / vc.cycle_steps
 cyc.run(4 * dt if args.quick else Tc, dt, on_step=keep_books)
 t, C, q_s, q_a, bound = (np.array(col) for col in zip(*books))
 step_error = np.abs(np.diff(C) - np.diff(t) * (q_s[1:] - q_a[1:]))

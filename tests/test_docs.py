@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from tribofx.cases import CASES
+from tribofx.params import declared
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = ROOT / "docs" / "cases"
@@ -53,9 +54,9 @@ def test_readme_is_short():
 def test_case_page_parameters_are_the_declaration(name):
     table = _block((PAGES / f"{name}.md").read_text(), "params")
     rows = re.findall(r"^\| `([^`]+)` \| `([^`]*)` \| ((?:\\\||[^|])*) \|", table, re.M)
-    declared = [(p.name, repr(p.default), p.unit.replace("|", "\\|"))
-                for p in CASES[name].params]
-    assert [(n, d, u.strip()) for n, d, u in rows] == declared
+    expected = [(p.name, repr(p.default), p.unit.replace("|", "\\|"))
+                for p in declared(CASES[name].Params)]
+    assert [(n, d, u.strip()) for n, d, u in rows] == expected
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

@@ -24,7 +24,7 @@ FAST = {"mesh": 0, "degree": 1}
 
 
 def values(**overrides):
-    v = resolve(Case.params, {k: str(x) for k, x in {**FAST, **overrides}.items()})
+    v = resolve(Case.Params, {k: str(x) for k, x in {**FAST, **overrides}.items()})
     Case.validate(v)
     return v
 
@@ -93,10 +93,10 @@ def test_coupled_residual_taylor(model, alpha, countersurface, viscosity):
                viscosity=viscosity, alpha_p=0.0 if viscosity == "constant" else 10.0)
     layer, film, problem = Case.build(v)
     film.counterpart.offset.value[1] = 0.02
-    _taylor_state(film, v["x_l"])
+    _taylor_state(film, v.x_l)
     dirs = _directions(problem, 7, [1e-2, 1e-2, 1e-2, 1.0])  # mm, mm, MPa, MPa/mm
     # no pressure perturbation at the ends, where p = 0 sits on the kink of min(p, 0)
-    ends = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(np.abs(y[0]), v["x_l"]))
+    ends = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(np.abs(y[0]), v.x_l))
     dirs[2].x.array[ends] = 0.0
     orders, rem = taylor_orders(problem, dirs, eps0=1e-1)
     print(model, alpha, countersurface, orders, rem)
@@ -116,13 +116,13 @@ def test_jfo_residual_taylor():
     v = values(W=0.1, steps=1, cavitation="jfo")
     layer, film, problem = Case.build(v)
     film.counterpart.offset.value[1] = 0.02
-    _taylor_state(film, v["x_l"])
+    _taylor_state(film, v.x_l)
     p_c = float(film.p_c.value)
-    film.p.interpolate(lambda x: np.where(x[0] < 0.3, 0.05 * (1 - (x[0] / v["x_l"]) ** 2),
+    film.p.interpolate(lambda x: np.where(x[0] < 0.3, 0.05 * (1 - (x[0] / v.x_l) ** 2),
                                           -0.3 * p_c))
     film.lam.interpolate(lambda x: np.where(x[0] < 0.3, -0.3, 0.2 + 0.1 * np.sin(x[0])))
     dirs = _directions(problem, 11, [1e-2, 1e-2, 1e-2, 1.0, 1e-2])
-    inlet = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(y[0], -v["x_l"]))
+    inlet = fem.locate_dofs_geometrical(film.Q, lambda y: np.isclose(y[0], -v.x_l))
     dirs[2].x.array[inlet] = 0.0
     dirs[4].x.array[inlet] = 0.0
     orders, rem = taylor_orders(problem, dirs, eps0=1e-2)
@@ -174,8 +174,8 @@ def test_stiff_layer_matches_rigid_cylinder():
     *_, out = _sweep(v, [0.125, 0.25])
     m = out[-1]
     h0 = m["h_min"]  # minimum film (the cylinder is 0.3 % closer to the undeformed layer)
-    um = 0.5 * v["U"]
-    ref = cylinder_references(v["R"], h0, um, v["mu"], -v["x_l"], v["x_l"])["swift_stieber"]
+    um = 0.5 * v.U
+    ref = cylinder_references(v.R, h0, um, v.mu, -v.x_l, v.x_l)["swift_stieber"]
     print(m, "Swift–Stieber p_max", ref["p_max"], "load", ref["load"])
     # E = 1e4 MPa: the layer deflects by ~3e-5 mm, 0.3 % of h0 ≈ 0.009 mm and nearly
     # uniformly over ℓ = √(2Rh0) ≈ 0.43 mm; the curved surface S and the radial film
@@ -236,8 +236,8 @@ def test_meshed_countersurface_matches_analytic():
         rep = problem.solve()
         rates[cs] = (rep.iterations, _orders(rep.residuals)[-1])
     v = values(countersurface="mesh")
-    R, h_e = v["R"], 0.04 / 2 ** v["mesh"]
-    delta = 2 * Case.arc_half_angle(v) / v["cs_facets"]  # facet angle (rad)
+    R, h_e = v.R, 0.04 / 2 ** v.mesh
+    delta = 2 * Case.arc_half_angle(v) / v.cs_facets  # facet angle (rad)
     # facet geometry error of the P2 arc: O(R δ⁴) in h (≈ 1e-13 mm here, see
     # test_lubrication_projection); the nodal P1 data interpolate h between the
     # Γ_l nodes, a shift of the film of at most h_e²/(8R) (mean h_e²/(12R)) against
@@ -281,7 +281,7 @@ def test_jfo_conserves_mass_and_matches_penalty():
     r = i + int(np.nonzero(prof["lam"][i:] > 1e-8)[0][0])
     h_r = 0.5 * (prof["h"][r - 1] + prof["h"][r])
     print("h_min", m["h_min"], "h_rupture", h_r)
-    assert q_in == pytest.approx(0.5 * values()["U"] * h_r, rel=2e-2)
+    assert q_in == pytest.approx(0.5 * values().U * h_r, rel=2e-2)
     # a cavitated zone downstream (λ up to 1 − h_rupture/h_outlet), p ≥ 0 there
     assert prof["lam"].max() > 0.5 and prof["p"].min() > -1e-10 * m["p_max"]
     # flooded inlet: JFO ruptures with p = ∂p/∂m = 0 (58), the penalty converges to
@@ -313,7 +313,7 @@ def test_intermediate_lubrication_surface():
         res[key] = out[-1]
     print({k: (r["h_min"], r["p_max"], r["friction_coefficient"]) for k, r in res.items()})
     h0 = res[0.0]["h_min"]
-    thin = h0 / np.sqrt(2 * values()["R"] * h0)  # h/ℓ, ℓ = √(2Rh) ≈ 0.69 mm
+    thin = h0 / np.sqrt(2 * values().R * h0)  # h/ℓ, ℓ = √(2Rh) ≈ 0.69 mm
     for key in ("h_min", "h_central", "p_max", "friction_coefficient", "clearance"):
         a0, a5, a1 = res[0.0][key], res[0.5][key], res[1.0][key]
         # general S_α kinematics at α = 0: the closed form S = P(γ_l) to round-off
@@ -341,14 +341,14 @@ def test_speed_continuation_friction_increases():
     """Sweep of μU at fixed load with step cutting: hydrodynamic friction grows with μU."""
     v = values(W=0.1, steps=1)
     run, _, inner, out = _sweep(v, [0.1])
-    curve = [(v["mu"] * v["U"], out[-1]["friction_coefficient"], out[-1]["h_min"])]
+    curve = [(v.mu * v.U, out[-1]["friction_coefficient"], out[-1]["h_min"])]
     speeds = [3000.0, 9000.0]
 
     def on_speed():
         m = Case.measures(run, v)
         U = float(run[0].velocity.value[0])
         if U in speeds:  # a speed of the list reached (not an intermediate, cut step)
-            curve.append((v["mu"] * U, m["friction_coefficient"], m["h_min"]))
+            curve.append((v.mu * U, m["friction_coefficient"], m["h_min"]))
 
     Case.speed_sweep(run, v, inner, 0.1, speeds, on_speed)
     print("muU, friction, h_min", curve)

@@ -24,7 +24,7 @@ from tribofx.testing import block_taylor_orders, exact_tangent
 
 
 def values(**overrides):
-    v = resolve(Case.params, {k: str(x) for k, x in overrides.items()})
+    v = resolve(Case.Params, {k: str(x) for k, x in overrides.items()})
     Case.validate(v)
     return v
 
@@ -57,8 +57,8 @@ def test_film_matches_hamrock_dowson(light_load):
     is also extrapolated (Richardson, order 1) from meshes 0 and 1.
     """
     v, run, m = light_load
-    hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], Case.e_star(v))
-    m0 = _solve(dict(v, mesh=0))[1][-1]
+    hc, hm = hamrock_dowson(v.W, v.mu, v.U, v.R, Case.e_star(v))
+    m0 = _solve(v.replace(mesh=0))[1][-1]
     h_ext = 2 * m["h_central"] - m0["h_central"]
     d_c, d_m, d_x = m["h_central"] / hc - 1, m["h_min"] / hm - 1, h_ext / hc - 1
     print(f"h_c = {m['h_central']:.5g} mm (HD {hc:.5g}, {100 * d_c:+.1f} %), "
@@ -114,12 +114,12 @@ def test_coupled_tangent_taylor(light_load):
     # positive pressure except on the rim (p = 0 there: the state satisfies its
     # Dirichlet conditions, and the rim is not perturbed, p = 0 being the kink)
     rim = fem.locate_dofs_geometrical(film.Q, lambda X: np.abs(
-        X[2] - cap_height(v["R"], math.radians(v["theta_l"]))) < 1e-6 * v["R"])
+        X[2] - cap_height(v.R, math.radians(v.theta_l))) < 1e-6 * v.R)
     film.p.x.array[:] = np.abs(film.p.x.array) + 0.01 * p0
     film.p.x.array[rim] = 0.0
     rng = np.random.default_rng(3 + MPI.COMM_WORLD.rank)
     dirs = []
-    for f, c in zip(problem.u, (1e-3, 1e-3, 1e-3 * p0, 1e-3 * p0 / v["R"])):
+    for f, c in zip(problem.u, (1e-3, 1e-3, 1e-3 * p0, 1e-3 * p0 / v.R)):
         d = fem.Function(f.function_space)
         d.x.array[:] = c * rng.uniform(-1, 1, d.x.array.shape)
         d.x.scatter_forward()
@@ -165,20 +165,20 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
                 name="twin")
     twin.add_dirichlet("midplane", np.zeros(3))
     twin.add_dirichlet("symmetry", 0.0, component=1)
-    R = v["R"]
+    R = v.R
     from tribofx.laws import named_viscosity
 
     counter = (plane_surface_mesh(3, (-R, R), R / 4) if surface.startswith("plane")
                else cap_surface_mesh(10 * R, (0.0, 0.0, -10 * R), (-R, R), 7))
     p0 = Case.scales(v)[1]
-    mu = (named_viscosity("barus", v["mu"], alpha=0.7 / p0) if surface == "plane-barus"
-          else v["mu"])
+    mu = (named_viscosity("barus", v.mu, alpha=0.7 / p0) if surface == "plane-barus"
+          else v.mu)
     meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter),
                   mu, V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
                   eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
                   quadrature_degree=2, name="meshed",
                   quadrature="vertex" if surface == "curved" else "gauss")
-    rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v["theta_l"]))) < 1e-6 * R  # noqa
+    rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v.theta_l))) < 1e-6 * R  # noqa
     meshed.add_pressure_bc(rim)
     twin_problem = Problem([twin, meshed], name="meshed_taylor")
     for a, b in zip(twin_problem.u, problem.u):   # same mesh, same spaces: the solved state
@@ -236,7 +236,7 @@ def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
     from tribofx.forms.ehl import tangential_gradient_constraint
 
     v, (_, film, _), _ = light_load
-    R = v["R"]
+    R = v.R
     Xc = np.array([0.0, 0.0, R])
     c = np.array([0.3, -0.7, 0.2])
     A = np.array([[2.0, 0.5, 0.0], [0.5, -1.0, 0.3], [0.0, 0.3, 1.0]]) / R
@@ -425,11 +425,11 @@ def _mid_plane_reaction(run, v):
     from tribofx.meshes.ball import MIDPLANE
 
     ball = run[0]
-    mu, lm = lame_parameters(v["E"], v["nu"])
+    mu, lm = lame_parameters(v.E, v.nu)
     w = fem.Function(ball.V)
     dofs = fem.locate_dofs_topological(ball.V.sub(2), 2, ball.facet_tags.find(MIDPLANE))
     w.x.array[dofs] = 1.0
-    mat = "linear" if v["model"] == "linear" else "neo-hookean"
+    mat = "linear" if v.model == "linear" else "neo-hookean"
     form = internal_virtual_work(ball.u, w, "3d", mat, {"mu": mu, "lmbda": lm},
                                  ufl.Measure("dx", ball.mesh))
     return 2.0 * MPI.COMM_WORLD.allreduce(fem.assemble_scalar(fem.form(form)), op=MPI.SUM)
@@ -457,7 +457,7 @@ def test_large_load_40N():
             print(W, model, {k: m[k] for k in ("W", "reaction", "h_central", "h_min", "p_max",
                                                "a_p", "friction_coefficient", "iterations")})
     v = values(W=40.0, theta_l=55.0)
-    a_h = hertz(40.0, v["R"], v["E"], v["nu"]).a
+    a_h = hertz(40.0, v.R, v.E, v.nu).a
     for model in ("finite", "linear"):
         m = res[40.0, model]
         # global equilibrium of the solved state: the mid-plane reaction balances the
@@ -506,7 +506,7 @@ def test_chapter_point_40N_muU_0078():
     with solvers.run_settings("direct"):
         run, out = _solve(v)
     m = out[-1]
-    a_h = hertz(40.0, v["R"], v["E"], v["nu"]).a
+    a_h = hertz(40.0, v.R, v.E, v.nu).a
     m["a_p"], m["reaction"] = _pressure_radius(run), _mid_plane_reaction(run, v)
     print({k: m[k] for k in ("W", "reaction", "h_central", "h_min", "x_h_min", "y_h_min",
                              "p_max", "a_p", "friction_coefficient")})
@@ -625,5 +625,5 @@ def test_chapter_point_without_zig_zag_on_29k_unknowns():
     m = out[-1]
     assert abs(m["W"] / 40.0 - 1) <= 1e-4
     assert m["film_oscillation"] <= 0.02
-    h_c = hamrock_dowson(40.0, v["mu"], v["U"], v["R"], Case.e_star(v))[0]
+    h_c = hamrock_dowson(40.0, v.mu, v.U, v.R, Case.e_star(v))[0]
     assert abs(m["h_central"] / h_c - 1) < 0.15

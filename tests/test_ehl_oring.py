@@ -24,7 +24,7 @@ FAST = {"mesh": 2, "U": 1000, "p_s": 0.5, "formulation": "displacement", "cavita
 
 
 def values(**overrides):
-    v = resolve(Case.params, {k: str(x) for k, x in {**FAST, **overrides}.items()})
+    v = resolve(Case.Params, {k: str(x) for k, x in {**FAST, **overrides}.items()})
     Case.validate(v)
     return v
 
@@ -32,8 +32,8 @@ def values(**overrides):
 @pytest.fixture(scope="module")
 def solved():
     v = values()
-    seal = build(v, v["U"])
-    its = solve_to(seal, v, v["U"], [0.5])
+    seal = build(v, v.U)
+    its = solve_to(seal, v, v.U, [0.5])
     return v, seal, its
 
 
@@ -87,11 +87,11 @@ def test_radial_equilibrium_hoop_force(solved):
     :func:`momentum_bound`).  The film carries the squeeze: positive radial load.
     """
     v, seal, _ = solved
-    mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
+    mat = {"mu1": v.mu1, "mu2": v.mu2, "kappa": v.kappa}
     msh = seal.body.mesh
     F = km.deformation_gradient(seal.body.u, "axisymmetric")
     P = hf.first_piola(F, "mooney-rivlin", mat)
-    dx = ufl.Measure("dx", msh, metadata={"quadrature_degree": 2 * v["degree"]})
+    dx = ufl.Measure("dx", msh, metadata={"quadrature_degree": 2 * v.degree})
     hoop = msh.comm.allreduce(fem.assemble_scalar(fem.form(2 * ufl.pi * P[2, 2] * dx)),
                               op=MPI.SUM)
     f = seal.forces()
@@ -158,8 +158,8 @@ def test_barus_film_tangent_taylor():
     seal above: the μ(p) of the Reynolds rows and of the fluid traction enters the
     tangent exactly."""
     v = values(viscosity="barus", alpha_p=0.1)
-    seal = build(v, v["U"])
-    solve_to(seal, v, v["U"], [0.5])
+    seal = build(v, v.U)
+    solve_to(seal, v, v.U, [0.5])
     orders = _seal_taylor_orders(seal, seed=2)
     assert_exact(orders)
 
@@ -194,8 +194,8 @@ def test_mixed_solid_tangent_taylor_and_newton():
     iterations leave one pre-asymptotic increment order, measured 1.5, while the
     residual falls 30 → 6e-3 → 1e-4 → 8e-9)."""
     v = values(formulation="mixed")
-    seal = build(v, v["U"])
-    solve_to(seal, v, v["U"], [0.5])
+    seal = build(v, v.U)
+    solve_to(seal, v, v.U, [0.5])
     orders = _seal_taylor_orders(seal, seed=3)
     assert_exact(orders)
     seal.set_pressure(0.52)
@@ -218,7 +218,7 @@ def test_mixed_solid_film_is_free_of_oscillations():
     """
     v = values(formulation="mixed", U=400, p_s=1)
     seal = build(v, 1000.0)
-    solve_to(seal, v, v["U"], [1.0])
+    solve_to(seal, v, v.U, [1.0])
     m = seal.measures()
     assert m["oscillation"] < 0.02 and m["flux_spread"] < 0.03, m
 
@@ -242,7 +242,7 @@ def test_jfo_film_carries_its_flux_through_the_cavitated_outlet():
     """
     v = values(formulation="mixed", cavitation="jfo", U=400, p_s=1)
     seal = build(v, 1000.0)
-    solve_to(seal, v, v["U"], [1.0])
+    solve_to(seal, v, v.U, [1.0])
     pr, m = seal.profile(), seal.measures()
     orders = _seal_taylor_orders(seal, seed=4)
     assert_exact(orders)
@@ -250,7 +250,7 @@ def test_jfo_film_carries_its_flux_through_the_cavitated_outlet():
         return
     cav = pr["lam"] > 1e-3
     assert cav.sum() >= 3 and np.all(np.abs(pr["p"][cav]) < 1e-9), pr["p"][cav]
-    carried = ((1 - pr["lam"]) * pr["h"] * 0.5 * v["U"])[cav]
+    carried = ((1 - pr["lam"]) * pr["h"] * 0.5 * v.U)[cav]
     outer = carried[len(carried) // 2:]              # sorted by z: the air-side half
     assert cav[-1] and np.max(np.abs(outer / m["flux"] - 1)) < 0.02, (carried, m["flux"])
 
@@ -263,7 +263,7 @@ def test_bad_input():
                 {"stroke": "cycle", "U": "-400", "cavitation": "jfo", "formulation": "mixed"},
                 {"stroke": "cycle"},       # FAST's penalty cavitation
                 {"sigma": "2e-4"}):        # a rough rod in a steady stroke
-        v = resolve(Case.params, {**{k: str(x) for k, x in FAST.items()}, **bad})
+        v = resolve(Case.Params, {**{k: str(x) for k, x in FAST.items()}, **bad})
         with pytest.raises(InputError):
             Case.validate(v)
 
@@ -276,8 +276,8 @@ def test_parallel_matches_serial():
     v = values(mesh=2)
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
-        seal = build(v, v["U"], comm=comm)
-        solve_to(seal, v, v["U"], [0.5])
+        seal = build(v, v.U, comm=comm)
+        solve_to(seal, v, v.U, [0.5])
         m = seal.measures()
         out.append(np.array([m["p_max"], m["h_min"], m["h_at_p_max"],
                              m["load_per_circumference"]]))
@@ -297,8 +297,8 @@ def test_inverse_hydrodynamic_relations(formulation, cavitation):
     oscillations of density 4 (measured: 3 %).
     """
     v = values(mesh=4, formulation=formulation, cavitation=cavitation)
-    seal = build(v, v["U"])
-    solve_to(seal, v, v["U"], [0.5])
+    seal = build(v, v.U)
+    solve_to(seal, v, v.U, [0.5])
     pr, m = seal.profile(), seal.measures()
     if seal.body.mesh.comm.rank != 0:
         return
@@ -306,9 +306,9 @@ def test_inverse_hydrodynamic_relations(formulation, cavitation):
     gp = np.diff(p) / np.diff(z)
     inlet = 0.5 * (z[1:] + z[:-1]) < z[np.argmax(p)]      # outstroke: sealed side
     j = int(np.argmax(np.where(inlet, gp, -np.inf)))
-    h_c = inverse_film(v["mu"], v["U"], gp[j])
+    h_c = inverse_film(v.mu, v.U, gp[j])
     assert abs(m["h_mean"] - h_c) < 0.1 * h_c, (m["h_mean"], h_c)
-    assert abs(2 * m["flux"] / v["U"] - h_c) < 0.1 * h_c, (m["flux"], h_c)
+    assert abs(2 * m["flux"] / v.U - h_c) < 0.1 * h_c, (m["flux"], h_c)
     assert abs(0.5 * (h[j] + h[j + 1]) - 1.5 * h_c) < 0.1 * 1.5 * h_c
 
 
@@ -329,7 +329,7 @@ def test_chapter_speed_film_on_coarse_meshes():
     v = values(formulation="mixed", cavitation="jfo", U=100, p_s=1, mesh=4)
     h = {}
     for key, over in (("d4", {}), ("d4_arc1", {"arc_refine": 1}), ("d8", {"mesh": 8})):
-        w = {**v, **over}
+        w = v.replace(**over)
         seal = build(w, 1000.0)
         solve_to(seal, w, 100.0, [1.0])
         m = seal.measures()
@@ -345,8 +345,8 @@ def test_mesh_convergence():
     v = values()
     hs, osc = [], []
     for n in (2, 4, 8):
-        seal = build(v, v["U"], mesh=n)
-        solve_to(seal, v, v["U"], [0.5])
+        seal = build(v, v.U, mesh=n)
+        solve_to(seal, v, v.U, [0.5])
         m = seal.measures()
         hs.append(m["h_mean"])
         osc.append(m["oscillation"])

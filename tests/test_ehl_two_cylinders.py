@@ -12,13 +12,11 @@ from mpi4py import MPI
 
 from tribofx.cases import ehl_two_cylinders as Case
 from tribofx.output import RunRecord
-from tribofx.params import resolve
 
 
 def values(**over):
     """Case parameters with the overrides ``over``."""
-    v = resolve(Case.params, {})
-    v.update(extent=3.5, **over)
+    v = Case.Params(extent=3.5, **over)
     Case.validate(v)
     return v
 

@@ -9,9 +9,9 @@ from tribofx.params import resolve
 
 
 def run_hertz(tmp_path, **overrides):
-    values = resolve(hertz_case.params, {k: str(v) for k, v in overrides.items()})
+    values = resolve(hertz_case.Params, {k: str(v) for k, v in overrides.items()})
     hertz_case.validate(values)
-    rec = RunRecord("hertz", values, {p.name: p.unit for p in hertz_case.params}, tmp_path,
+    rec = RunRecord("hertz", values, None, tmp_path,
                     MPI.COMM_WORLD)
     rec.profile = None
     hertz_case.run(values, rec)
@@ -81,9 +81,9 @@ def test_hertz_axisymmetric_sphere(tmp_path):
     """
     import math
 
-    v = resolve(hertz_case.params, {"dim": "axisymmetric", "load": str(LOAD_3D)})
+    v = resolve(hertz_case.Params, {"dim": "axisymmetric", "load": str(LOAD_3D)})
     hertz_case.validate(v)
-    u_far = LOAD_3D * (1 + v["nu"]) * (3 - 2 * v["nu"]) / (2 * math.pi * v["E"] * v["R"])
+    u_far = LOAD_3D * (1 + v.nu) * (3 - 2 * v.nu) / (2 * math.pi * v.E * v.R)
     errs = []
     for level in (1, 2):
         res, _ = run_hertz(tmp_path, dim="axisymmetric", load=LOAD_3D, mesh=level, steps=1)

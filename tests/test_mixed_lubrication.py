@@ -64,7 +64,7 @@ def test_expected_gap_and_flow_factors_limits():
 
 def stribeck(rough=True, **over):
     """Run the stribeck case with ``over``; return (run, per-speed results)."""
-    v = resolve(stribeck_case.params, {k: str(x) for k, x in over.items()})
+    v = resolve(stribeck_case.Params, {k: str(x) for k, x in over.items()})
     stribeck_case.validate(v)
     rec = RunRecord(stribeck_case.name, {}, {}, ".", MPI.COMM_WORLD)
     run = stribeck_case.run(v, rec, rough=rough)
@@ -170,12 +170,12 @@ def test_mixed_regime_against_the_jgp_load_sharing():
     speeds = "1000,30,10,3,1"
     _, rough = stribeck(speeds=speeds)
     _, smooth = stribeck(rough=False, speeds=speeds)
-    v = resolve(stribeck_case.params, {"speeds": speeds})
-    p0 = hertz(v["W"], v["R"], v["E"], v["nu"], line=True).p0
+    v = resolve(stribeck_case.Params, {"speeds": speeds})
+    p0 = hertz(v.W, v.R, v.E, v.nu, line=True).p0
     KE, (A, Hc, n) = rough_contact.roughness(v).asperity.parameters["KE"], mixed.GT_FIT
 
     def p_a(h):
-        return KE * A * max(Hc - h / v["sigma"], 0.0) ** n
+        return KE * A * max(Hc - h / v.sigma, 0.0) ** n
 
     for i, U in enumerate(rough["speeds"][1:], start=1):
         share, h_c = jgp_load_sharing(smooth["h_central"][i], p0, p_a)
@@ -231,8 +231,8 @@ def test_creeping_rough_cylinder_approaches_hertz():
         W = np.trapezoid(p, x)
         xbar = np.trapezoid(p * x, x) / W
         a_eff = 2 * np.sqrt(np.trapezoid(p * x * x, x) / W - xbar**2)
-        v = resolve(stribeck_case.params, {})
-        ref = hertz(v["W"], v["R"], v["E"], v["nu"], line=True)
+        v = resolve(stribeck_case.Params, {})
+        ref = hertz(v.W, v.R, v.E, v.nu, line=True)
         dev.append(abs(a_eff / ref.a - 1))
     assert dev[1] < dev[0], dev
     assert dev[1] < ref.p0 / ref.E_star, (dev, ref.p0 / ref.E_star)
@@ -245,8 +245,8 @@ def test_vanishing_roughness_is_the_smooth_film():
     """
     out = []
     for rough in (True, False):
-        v = resolve(stribeck_case.params, {"speeds": "1000", "sigma": "1e-9"})
-        run = rough_contact.build(v, rough=rough)
+        v = resolve(stribeck_case.Params, {"speeds": "1000", "sigma": "1e-9"})
+        run = rough_contact.build(v, "cylinder", 1000.0, rough=rough)
         film = run["film"]
         film.counterpart.offset.value[1] = -0.01
         run["problem"].solve()
@@ -318,7 +318,7 @@ def test_parallel_matches_serial():
         pytest.skip("run under mpiexec -n 2")
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
-        v = resolve(stribeck_case.params, {"speeds": "1000,10"})
+        v = resolve(stribeck_case.Params, {"speeds": "1000,10"})
         rec = RunRecord(stribeck_case.name, {}, {}, ".", comm)
         stribeck_case.run(v, rec, comm=comm)
         res = rec.data["results"]

@@ -36,7 +36,7 @@ U0 = 400.0
 def values(**over):
     """The case's values at density 2 on the unrefined film arc (25 µm: a cycle's default
     is refined once, ``film_setup.arc_halvings``), with ``over``."""
-    return resolve(Case.params, {"mesh": "2", "arc_refine": "0",
+    return resolve(Case.Params, {"mesh": "2", "arc_refine": "0",
                                  **{k: str(x) for k, x in over.items()}})
 
 
@@ -44,7 +44,7 @@ def cycle(v, steps):
     """The seal at U0, its steady outstroke at p_s = 1 MPa, then ``steps`` steps of the cycle."""
     st = cycle_stepper(v)
     seal = st.seal
-    dt = v["period"] / v["cycle_steps"]
+    dt = v.period / v.cycle_steps
     st.run(steps * dt, dt)
     return seal, st
 
@@ -94,7 +94,7 @@ def test_cycle_tangent_is_exact_and_newton_quadratic():
     v = values(stroke="cycle", sigma=2e-4, mesh=4, scheme="bdf2")
     seal, st = cycle(v, 2)
     state = st.state()
-    dt = v["period"] / v["cycle_steps"]
+    dt = v.period / v.cycle_steps
     st.wear.begin_step(dt)
     for c, f in st.schedule:
         c.value = f(st.t + dt)
@@ -151,7 +151,7 @@ def test_film_content_changes_by_the_net_flux_of_each_step(scheme):
     v = values(stroke="cycle", scheme=scheme)
     st = cycle_stepper(v)
     film = st.seal.film
-    dt = v["period"] / v["cycle_steps"]
+    dt = v.period / v.cycle_steps
     C = [film.content()]
     for k in range(4):
         st.run(st.t + dt, dt)
@@ -219,14 +219,14 @@ def test_whole_cycle_keeps_the_oil_balance(scheme):
     the instroke.  About 5 (euler) and 8 (bdf2) min."""
     v = values(stroke="cycle", sigma=2e-4, mesh=4, arc_refine=1, scheme=scheme)
     st = cycle_stepper(v)
-    film, T = st.seal.film, v["period"]
+    film, T = st.seal.film, v.period
     C0, rec = film.content(), [(0.0, 0.0, 0.0, 0.0)]
 
     def on_step(stepper, report):
         q_in, q_out = film.consistent_fluxes()
         rec.append((stepper.t, q_in, q_out, _interior_row_bound(film)))
 
-    st.run(T, T / v["cycle_steps"], on_step=on_step)
+    st.run(T, T / v.cycle_steps, on_step=on_step)
     t, q_in, q_out, bound = np.array(rec).T
     change = film.content() - C0
     net = integral(t, q_in - q_out, scheme)[-1]

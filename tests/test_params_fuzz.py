@@ -5,7 +5,7 @@ another exception (a crash, or a traceback in place of the one-line message)."""
 import pytest
 
 from tribofx.cases import CASES
-from tribofx.params import InputError, resolve
+from tribofx.params import InputError, declared, resolve
 
 BAD = ("0", "-1", "nan", "inf", "-inf", "1e300", "abc", "1.5")
 
@@ -14,10 +14,10 @@ BAD = ("0", "-1", "nan", "inf", "-inf", "1e300", "abc", "1.5")
 def test_every_parameter_fails_cleanly_or_is_valid(name):
     case = CASES[name]
     crashes = []
-    for p in case.params:
+    for p in declared(case.Params):
         for text in BAD:
             try:
-                v = resolve(case.params, {p.name: text})
+                v = resolve(case.Params, {p.name: text})
                 case.validate(v)
                 if hasattr(case, "resolved"):
                     case.resolved(v)

@@ -15,9 +15,9 @@ from tribofx.problem import NewtonDivergence, convergence_orders
 
 
 def run_case(case, tmp_path, **overrides):
-    values = resolve(case.params, {k: str(v) for k, v in overrides.items()})
+    values = resolve(case.Params, {k: str(v) for k, v in overrides.items()})
     case.validate(values)
-    rec = RunRecord(case.name, values, {p.name: p.unit for p in case.params}, tmp_path,
+    rec = RunRecord(case.name, values, None, tmp_path,
                     MPI.COMM_WORLD)
     rec.profile = None
     prob = case.run(values, rec)
@@ -100,7 +100,7 @@ def test_slider_mesh_convergence(tmp_path, degree, rate):
 def test_slider_bad_input():
     for key, text in (("h0", "0"), ("mu", "-1"), ("K", "-1"), ("K", "-2"), ("degree", "3")):
         with pytest.raises(InputError):
-            resolve(reynolds_slider.params, {key: text})
+            resolve(reynolds_slider.Params, {key: text})
 
 
 # ----------------------------------------------------------------------------- cylinder
@@ -141,7 +141,7 @@ def test_cylinder_bad_input():
                                                         "inlet_void": "0.5"},
                  {"cavitation": "jfo", "x_out": "0.1"}):
         with pytest.raises(InputError):
-            v = resolve(reynolds_cylinder.params, over)
+            v = resolve(reynolds_cylinder.Params, over)
             reynolds_cylinder.validate(v)
 
 
@@ -224,12 +224,12 @@ def _advection_zone_bound(prof, v, q_in, q_out, r_final):
     W_e = ω_e h_e max_e |f_h'|, ω_e from D ≤ s h² p_c/(12μ), s ≤ δ/(λ_min + 2δ)
     (p = 0), τ = h_e/√(4v̄² + (12D/h_e)²).  An O(h_e²) bound with no free constant.
     """
-    R, h0, um, mu = v["R"], v["h0"], v["um"], v["mu"]
+    R, h0, um, mu = v.R, v.h0, v.um, v.mu
     _, p_c, _ = reynolds_cylinder.scales(v)
     x, lam, p = prof["x"], prof["lam"], prof["p"]
     h = h0 + x**2 / (2 * R)
     hp = x / R
-    hs = (1 - LAM_IN) * (h0 + v["x_in"] ** 2 / (2 * R))
+    hs = (1 - LAM_IN) * (h0 + v.x_in ** 2 / (2 * R))
     f = (1 - lam) * h
     he = np.diff(x)
     th = 1 - lam
@@ -275,9 +275,9 @@ def test_supg_removes_oscillations_starved_inlet(tmp_path):
     # zones: monotone decrease from λ_in, jump to 0, monotone increase after rupture.
     # Coarse mesh: 100 elements (Δx = 0.04 mm), nested iteration 50 → 100.
     res, rec, _ = _run_starved(tmp_path, 100, True)
-    v = resolve(reynolds_cylinder.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo",
+    v = resolve(reynolds_cylinder.Params, {"inlet_void": str(LAM_IN), "cavitation": "jfo",
                                       "mesh": "100"})
-    dx = (v["x_out"] - v["x_in"]) / 100
+    dx = (v.x_out - v.x_in) / 100
     r_final = rec.data["newton_residuals"][-1]
     print("SUPG:", rec.data["newton_iterations"], res["load_rel_error"], res["x_reformation"],
           res["swift_stieber_x_reformation"])
@@ -344,10 +344,10 @@ def test_serial_and_parallel_agree():
     # the same problem on COMM_WORLD and, on every rank, on COMM_SELF
     out = {}
     for name, comm in (("world", MPI.COMM_WORLD), ("self", MPI.COMM_SELF)):
-        v = resolve(reynolds_cylinder.params, {"cavitation": "jfo", "mesh": "200"})
+        v = resolve(reynolds_cylinder.Params, {"cavitation": "jfo", "mesh": "200"})
         prev = None
-        for n in reynolds_cylinder.mesh_levels(v["mesh"]):
-            film, problem = reynolds_cylinder.build(dict(v, mesh=n), comm=comm)
+        for n in reynolds_cylinder.mesh_levels(v.mesh):
+            film, problem = reynolds_cylinder.build(v.replace(mesh=n), comm=comm)
             if prev is not None:
                 film.set_from_profile(prev)
             problem.solve()
@@ -481,15 +481,15 @@ def test_open_end_supply_starved_inlet(tmp_path):
     # (weak upwind inflow, Robin leak for p = 0) instead of the Dirichlet λ_in, p = 0.
     # (1) Everything that enters is the supply: q_in = q_out = c_in u_m (the analytic
     # flux 11.55 mm²/s) to solver tolerance (rows ≤ 1e-10 of the Couette flux; 1e-9).
-    v = resolve(reynolds_cylinder.params, {"inlet_void": str(LAM_IN), "cavitation": "jfo"})
-    c_in = (1 - LAM_IN) * (v["h0"] + v["x_in"] ** 2 / (2 * v["R"]))
+    v = resolve(reynolds_cylinder.Params, {"inlet_void": str(LAM_IN), "cavitation": "jfo"})
+    c_in = (1 - LAM_IN) * (v.h0 + v.x_in ** 2 / (2 * v.R))
     res, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
                          mesh=100, inlet="supply")
     for key in ("flux_in", "flux_out"):
-        assert res[key] == pytest.approx(c_in * v["um"], rel=1e-9)
+        assert res[key] == pytest.approx(c_in * v.um, rel=1e-9)
     # (2) the same discrete film as the Dirichlet inlet's test above: the reformation node
     # within one element of Swift–Stieber, the load error of order 2 (Δx 0.04 → 0.01)
-    dx = (v["x_out"] - v["x_in"]) / 100
+    dx = (v.x_out - v.x_in) / 100
     assert abs(res["x_reformation"] - res["swift_stieber_x_reformation"]) <= dx
     fine, _, _ = run_case(reynolds_cylinder, tmp_path, cavitation="jfo", inlet_void=LAM_IN,
                           mesh=400, inlet="supply")

@@ -39,7 +39,7 @@ def _last_correction(report, name):
 
 def _hertz_steps(strategy, offsets, friction=0.3, options=None):
     """3D Hertz with friction at prescribed approaches δ (mm): states and reports per step."""
-    v = resolve(hertz_case.params, {"dim": "3", "mesh": "1", "friction": str(friction)})
+    v = resolve(hertz_case.Params, {"dim": "3", "mesh": "1", "friction": str(friction)})
     hertz_case.validate(v)
     with solvers.run_settings(strategy, options):
         body, contact, problem = hertz_case.build(v)
@@ -60,10 +60,10 @@ def _hertz_steps(strategy, offsets, friction=0.3, options=None):
 def test_iterative_matches_direct_through_active_set_changes():
     """Frictional 3D Hertz loaded in three approach steps: the contact zone grows
     (active set changes in every step, stick and slip nodes), fieldsplit = LU."""
-    v = resolve(hertz_case.params, {"dim": "3"})
+    v = resolve(hertz_case.Params, {"dim": "3"})
     hertz_case.validate(v)
-    a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
-    offsets = [0.3 * a**2 / v["R"], 0.6 * a**2 / v["R"], a**2 / v["R"]]
+    a, _ = hertz(v.load, v.R, v.E, v.nu)[:2]
+    offsets = [0.3 * a**2 / v.R, 0.6 * a**2 / v.R, a**2 / v.R]
     pd, bd, cd, direct = _hertz_steps("direct", offsets)
     pi, bi, ci, iterative = _hertz_steps("iterative", offsets)
     assert pd.solver.name == "direct" and pi.solver.name == "iterative"
@@ -91,8 +91,8 @@ def test_iterative_and_lagged_groove_reduced_problem():
     LU; the lagged LU factorises less often than Newton iterates, and its Newton
     iterations are those of LU (the same exact Newton, GMRES to 1e-10)."""
     case = wear_ball_halfspace
-    v = case.resolved(resolve(case.params, {}))
-    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    v = case.resolved(resolve(case.Params, {}))
+    a = hertz(v.F, v.R, v.E, v.nu).a
     h = 0.9 * a
     comm = MPI.COMM_WORLD
     states = {}
@@ -141,8 +141,8 @@ def test_krylov_floor_is_the_newton_test():
     stopping test in every row (krylov_guard): checked on the true residual b − A x of
     each solve of the groove's implicit step, rebuilt here from the KSP's operator."""
     case = wear_ball_halfspace
-    v = case.resolved(resolve(case.params, {}))
-    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    v = case.resolved(resolve(case.Params, {}))
+    a = hertz(v.F, v.R, v.E, v.nu).a
     comm = MPI.COMM_WORLD
     with solvers.run_settings("iterative"):
         stepper, info = case.build(v, comm, h=0.9 * a,
@@ -176,10 +176,10 @@ def test_failed_krylov_solve_falls_back_to_lu(tmp_path):
     and reaches its solution; the events are in the report and in summary.json, and with
     the fallback made to fail too, the error names the Krylov reason and its iteration
     count."""
-    v = resolve(hertz_case.params, {"dim": "3"})
+    v = resolve(hertz_case.Params, {"dim": "3"})
     hertz_case.validate(v)
-    a = hertz(v["load"], v["R"], v["E"], v["nu"])[0]
-    offsets = [0.5 * a**2 / v["R"], a**2 / v["R"]]
+    a = hertz(v.load, v.R, v.E, v.nu)[0]
+    offsets = [0.5 * a**2 / v.R, a**2 / v.R]
     pd, bd, _, direct = _hertz_steps("direct", offsets)
     pi, bi, _, fell = _hertz_steps("iterative", offsets, options={"ksp_max_it": 2})
     comm = bd.mesh.comm
@@ -213,10 +213,10 @@ def test_direct_reuses_symbolic_factorisation():
     PETSc.Log.begin()
     sym, num = PETSc.Log.Event("MatLUFactorSym"), PETSc.Log.Event("MatLUFactorNum")
     before = sym.getPerfInfo()["count"], num.getPerfInfo()["count"]
-    v = resolve(hertz_case.params, {"dim": "3"})
+    v = resolve(hertz_case.Params, {"dim": "3"})
     hertz_case.validate(v)
-    a, _ = hertz(v["load"], v["R"], v["E"], v["nu"])[:2]
-    problem, _, _, steps = _hertz_steps("direct", [0.5 * a**2 / v["R"], a**2 / v["R"]])
+    a, _ = hertz(v.load, v.R, v.E, v.nu)[:2]
+    problem, _, _, steps = _hertz_steps("direct", [0.5 * a**2 / v.R, a**2 / v.R])
     newton = sum(s["report"].iterations for s in steps)
     n_sym = sym.getPerfInfo()["count"] - before[0]
     n_num = num.getPerfInfo()["count"] - before[1]
@@ -252,7 +252,7 @@ def test_rigid_body_modes_are_the_kernel_of_elasticity():
 
 def test_bulk_and_interface_fields():
     """Displacements are the AMG field; facet and replicated unknowns go to the Schur field."""
-    v = resolve(hertz_case.params, {"dim": "3", "mesh": "0", "friction": "0.3"})
+    v = resolve(hertz_case.Params, {"dim": "3", "mesh": "0", "friction": "0.3"})
     hertz_case.validate(v)
     with solvers.run_settings("auto"):
         _, _, problem = hertz_case.build(v)
@@ -339,7 +339,7 @@ def test_iterative_without_bulk_field_falls_back_to_direct():
     """A film alone (reynolds-slider) has nothing for AMG: solver=iterative gives LU."""
     from tribofx.cases import reynolds_slider
 
-    v = resolve(reynolds_slider.params, {})
+    v = resolve(reynolds_slider.Params, {})
     reynolds_slider.validate(v)
     with solvers.run_settings("iterative") as run:
         _, problem = reynolds_slider.build(v)

@@ -18,7 +18,6 @@ from tribofx.references import (
     squeeze_film_under_load,
     squeeze_resistance,
 )
-from tribofx.runner import COMMON_PARAMS
 from tribofx.testing import block_taylor_orders, exact_tangent, smooth_direction
 
 R, MU = 10.0, 1e-7
@@ -26,7 +25,7 @@ R, MU = 10.0, 1e-7
 
 def values(**over):
     """Parameter values of ``ehl-squeeze`` with ``over`` (as text, like ``--set``)."""
-    return resolve(tuple(Case.params) + COMMON_PARAMS, {k: str(x) for k, x in over.items()})
+    return resolve(Case.Params, {k: str(x) for k, x in over.items()})
 
 
 # -- the references -----------------------------------------------------------------------
@@ -72,10 +71,10 @@ def test_thinning_under_load_follows_the_closed_forms():
 def run(v):
     """Step the case; return the stepper and the per-step (t, h_center, force) of the film."""
     st = Case.build(v)
-    film, dim = st.wear, v["dim"]
+    film, dim = st.wear, v.dim
     y0 = float(film.plane.value[dim - 1])
     out = []
-    st.run(v["T"], v["dt"], on_step=lambda s, r: out.append(
+    st.run(v.T, v.dt, on_step=lambda s, r: out.append(
         (s.t, Case.measures(film, v, y0), r.iterations)))
     return st, out
 
@@ -99,7 +98,7 @@ def test_rigid_cylinder_squeezed_at_a_speed():
         L = Case.extent(v)
         forces.append(np.array([m["force"] for _, m, _ in out]))
         assert all(its <= 3 for _, _, its in out)     # nearly linear: Newton at once
-    ref = np.array([squeeze_resistance(2, R, MU, v["h_start"] - v["V"] * t, L) * v["V"]
+    ref = np.array([squeeze_resistance(2, R, MU, v.h_start - v.V * t, L) * v.V
                     for t, _, _ in out])
     e0, e1 = forces[0] / ref - 1, forces[1] / ref - 1
     assert np.all(np.log2(e0 / e1) >= 1.8)
@@ -129,8 +128,8 @@ def test_time_schemes_converge_at_their_orders_under_a_load():
     for scheme, order in (("euler", 0.85), ("bdf2", 1.7)):
         err = np.array([abs(h_end(scheme, n)[0] - h_fine) for n in (4, 8, 16)])
         assert np.all(np.log2(err[:-1] / err[1:]) >= order), (scheme, err)
-    h_ref = squeeze_film_under_load(2, R, MU, 0.05, v["h_start"], [T], Case.extent(v))[0]
-    assert h_fine == pytest.approx(h_ref, abs=0.012 * (v["h_start"] - h_ref))
+    h_ref = squeeze_film_under_load(2, R, MU, 0.05, v.h_start, [T], Case.extent(v))[0]
+    assert h_fine == pytest.approx(h_ref, abs=0.012 * (v.h_start - h_ref))
 
 
 def test_transient_film_tangent_is_exact():
@@ -146,7 +145,7 @@ def _taylor_mid_step(v):
     film = st.wear
     film.begin_step(2.5e-4)
     prob = st.problem
-    dirs = [smooth_direction(u, 1e-4 * v["h_start"] if u is not film.p else 0.01, k)
+    dirs = [smooth_direction(u, 1e-4 * v.h_start if u is not film.p else 0.01, k)
             for k, u in enumerate(prob.u)]
     for name, (orders, rem, floor) in block_taylor_orders(prob, dirs, eps0=1e-1).items():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
@@ -175,7 +174,7 @@ def test_stiff_block_squeezes_like_the_rigid_plane():
         v = values(E1=1e5, E2=E2, T=2e-3, dt=5e-4, scheme="euler")
         _, out = run(v)
         forces.append(np.array([m["force"] for _, m, _ in out]))
-    ell = math.sqrt(2 * R * v["h_start"])
+    ell = math.sqrt(2 * R * v.h_start)
     assert np.all(np.abs(forces[1] / forces[0] - 1) < 2 * (ell / R) ** 2), forces
 
 
@@ -204,7 +203,7 @@ def test_soft_cylinder_traps_a_dimple():
     _, out = run(v)
     m = out[-1][1]
     assert m["h_center"] > 1.1 * m["h_min"]
-    h_rigid = squeeze_film_under_load(2, R, MU, 0.5, v["h_start"], [5e-3], Case.extent(v))[0]
+    h_rigid = squeeze_film_under_load(2, R, MU, 0.5, v.h_start, [5e-3], Case.extent(v))[0]
     assert m["h_min"] > 5 * h_rigid
 
 
@@ -221,7 +220,7 @@ def test_parallel_matches_serial():
         st = Case.build(v, comm=comm)
         film = st.wear
         y0 = float(film.counterpart.offset.value[1])
-        st.run(v["T"], v["dt"])
+        st.run(v.T, v.dt)
         m = Case.measures(film, v, y0)
         out.append(np.array([m["h_center"], m["h_min"], m["p_center"], m["approach"]]))
     # solver tolerance 1e-10 relative: the partitions differ by round-off only
@@ -239,7 +238,7 @@ def test_rigid_sphere_squeezed_at_a_speed():
         v = values(dim=3, E1=1e7, mesh=mesh, T=2.5e-4, dt=2.5e-4, scheme="euler")
         _, out = run(v)
         forces.append(out[-1][1]["force"])
-    ref = squeeze_resistance(3, R, MU, v["h_start"] - v["V"] * v["T"], Case.extent(v)) * v["V"]
+    ref = squeeze_resistance(3, R, MU, v.h_start - v.V * v.T, Case.extent(v)) * v.V
     e0, e1 = forces[0] / ref - 1, forces[1] / ref - 1
     assert math.log2(e0 / e1) >= 1.8
     assert abs((4 * e1 - e0) / 3) <= 0.1 * abs(e0)
@@ -263,13 +262,13 @@ def test_receding_plane_opens_a_cavity_that_keeps_its_fluid():
         film = st.wear
         h_start = film.profile(everywhere=True)["h"]
         its = []
-        st.run(v["T"], v["dt"], on_step=lambda s, r: its.append(r.iterations))
+        st.run(v.T, v.dt, on_step=lambda s, r: its.append(r.iterations))
         prof = film.profile(everywhere=True)
-        assert np.abs(prof["p"]).max() <= 1e-12 * 6 * MU * R / v["h_start"] ** 2
+        assert np.abs(prof["p"]).max() <= 1e-12 * 6 * MU * R / v.h_start ** 2
         inner = np.abs(prof["X"][:, 0]) < 0.9 * Case.extent(v)
         errs.append(np.abs(prof["lam"] - (1 - h_start / prof["h"]))[inner].max())
         centre = prof["lam"][np.argmin(np.abs(prof["X"][:, 0]))]
-        assert centre == pytest.approx(1 - v["h_start"] / (v["h_start"] + v["T"]), abs=1e-5)
+        assert centre == pytest.approx(1 - v.h_start / (v.h_start + v.T), abs=1e-5)
         assert max(its) <= 4
     assert math.log2(errs[0] / errs[1]) >= 1.5
 
@@ -287,7 +286,7 @@ def test_lumped_receding_film_keeps_the_fluid_at_every_node():
     st = Case.build(v)
     film = st.wear
     h_start = film.profile(everywhere=True)["h"]
-    st.run(v["T"], v["dt"])
+    st.run(v.T, v.dt)
     prof = film.profile(everywhere=True)
     inner = np.abs(prof["X"][:, 0]) < 0.9 * Case.extent(v)
     assert np.abs(prof["lam"] - (1 - h_start / prof["h"]))[inner].max() <= 1e-9
@@ -314,7 +313,7 @@ def test_lumped_transport_tangent_is_exact():
             -1, 1, int(np.sum(~fixed)))
         f.x.scatter_forward()
     scales = {id(film.p): 1e-4, id(film.lam): 0.1}
-    dirs = [smooth_direction(u, scales.get(id(u), 1e-4 * v["h_start"]), k)
+    dirs = [smooth_direction(u, scales.get(id(u), 1e-4 * v.h_start), k)
             for k, u in enumerate(prob.u)]
     for name, (orders, rem, floor) in block_taylor_orders(prob, dirs, eps0=1e-1).items():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)

@@ -21,7 +21,7 @@ from tribofx.testing import block_taylor_orders, exact_tangent, penalty_film_dir
 
 def ball(rough=True, comm=MPI.COMM_WORLD, **over):
     """Run ``stribeck geometry=ball`` with ``over``; return (run, per-speed results)."""
-    v = resolve(stribeck_case.params, {"geometry": "ball",
+    v = resolve(stribeck_case.Params, {"geometry": "ball",
                                       **{k: str(x) for k, x in over.items()}})
     stribeck_case.validate(v)
     rec = RunRecord(stribeck_case.name, {}, {}, ".", comm)

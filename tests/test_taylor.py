@@ -279,10 +279,10 @@ def test_bordered_force_control_tangent():
     from tribofx.references import hertz
     from tribofx.testing import border_taylor_orders, smooth_direction
 
-    v = resolve(wear_ball_flat.params, {"scheme": "implicit", "T": "100", "dt": "100"})
+    v = resolve(wear_ball_flat.Params, {"scheme": "implicit", "T": "100", "dt": "100"})
     stepper = wear_ball_flat.build(v)
     control = stepper.hold
-    control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    control.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     for w in stepper.wears:
         w.begin_step(50.0)
     control.parameter.set(1.1 * control.parameter.get())

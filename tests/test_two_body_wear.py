@@ -182,7 +182,7 @@ def test_both_bodies_worn_tangent_taylor():
     from tribofx.params import resolve
     from tribofx.testing import block_taylor_orders, exact_tangent
 
-    v = resolve(Case.params, {"mesh": "0", "cycles": "100", "dt": "10", "fast_steps": "8"})
+    v = resolve(Case.Params, {"mesh": "0", "cycles": "100", "dt": "10", "fast_steps": "8"})
     Case.validate(v)
     run = Case.build(v)
     Case.load_up(run, v)
@@ -195,7 +195,7 @@ def test_both_bodies_worn_tangent_taylor():
     # slide on by a tenth of a fast step, uncommitted: right after a commit the slip is
     # zero and the slipping nodes sit on the kink of the Coulomb cone
     cycle = run["cycle"]
-    cycle.drive(float(run["motion"].value[0]) + 0.1 * 2 * v["A"] / v["fast_steps"])
+    cycle.drive(float(run["motion"].value[0]) + 0.1 * 2 * v.A / v.fast_steps)
     st.problem.solve()
     rng = np.random.default_rng(3 + COMM.rank)
     for problem in (p for p in (st.problem, st.shape) if p is not None):

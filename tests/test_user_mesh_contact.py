@@ -293,12 +293,12 @@ def test_user_cylinder_parallel_equals_serial(tmp_path):
     if comm.rank == 0:
         cylinder_2d(path, a_h / 8, 3 * a_h)
     comm.barrier()
-    values = resolve(hertz_case.params, {"mesh_file": path, "load": str(LOAD_2D),
+    values = resolve(hertz_case.Params, {"mesh_file": path, "load": str(LOAD_2D),
                                         "steps": "1"})
     hertz_case.validate(values)
     results, dofs = [], []
     for c in (comm, MPI.COMM_SELF):
-        rec = RunRecord("hertz", values, {p.name: p.unit for p in hertz_case.params},
+        rec = RunRecord("hertz", values, None,
                         tmp_path, c)
         rec.profile = None
         hertz_case.run(values, rec, comm=c)

@@ -54,7 +54,7 @@ def _cli_results(case, mesh, values, out):
 
 
 def _values(Case, **over):
-    v = resolve(Case.params, {k: str(x) for k, x in over.items()})
+    v = resolve(Case.Params, {k: str(x) for k, x in over.items()})
     Case.validate(v)
     return v
 
@@ -237,7 +237,7 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch, t_c):
                             coated_layer(L, H, t, x, hf, hc / b, comm))
         v = _values(Case, **values, mesh=level)
         run = Case.build(v)
-        Case.load_control(run, v)[0].march(v["W"], v["steps"], predictor=False)
+        Case.load_control(run, v)[0].march(v.W, v.steps, predictor=False)
         ref.append(Case.measures(run, v))
     tol = {key: _agree(key, res[key], ref[0][key], ref[1][key], 1.5,
                        floor=1e-6 * abs(ref[1][key]))
@@ -247,7 +247,7 @@ def test_user_layer_matches_built_layer(tmp_path, monkeypatch, t_c):
         # than the tolerance (else the test could not tell a coating from none)
         v = _values(Case, **dict(values, t_c=0.0), mesh=1)
         run = Case.build(v)
-        Case.load_control(run, v)[0].march(v["W"], v["steps"], predictor=False)
+        Case.load_control(run, v)[0].march(v.W, v.steps, predictor=False)
         plain = Case.measures(run, v)
         print("homogeneous h_min, h_central:", plain["h_min"], plain["h_central"])
         for key in ("h_min", "h_central"):
@@ -324,10 +324,10 @@ def test_user_oring_is_placed_with_its_end_conditions(tmp_path):
     mesh = _oring(tmp_path / "ring.msh")
     # the penalty film: a p condition at both ends (JFO: λ and p at the inlet only)
     v = _values(Case, **ORING_FAST, mesh_file=mesh, cavitation="penalty")
-    seal = build(v, v["U"])
+    seal = build(v, v.U)
     x = seal.body.mesh.geometry.x
     sag = 0.2**2 / (8 * ORING_A)
-    assert x[:, 0].min() == pytest.approx(v["r_rod"] + v["gap0"], abs=1e-12)
+    assert x[:, 0].min() == pytest.approx(v.r_rod + v.gap0, abs=1e-12)
     assert abs(seal.a - ORING_A) < sag and abs(x[:, 1].min() + x[:, 1].max()) < 1e-12
     X = seal.film.Q.tabulate_dof_coordinates()
     for bc, z in zip(seal.film._bcs, (-1, 1)):
@@ -359,7 +359,7 @@ def test_built_section_as_user_mesh_gives_the_built_problem(tmp_path):
     mesh = write_oring_section(tmp_path / "built.msh", *center, a, n=2)
     res = []
     for vv in (v, _values(Case, **ORING_FAST, mesh_file=mesh)):
-        seal = build(vv, vv["U"])
+        seal = build(vv, vv.U)
         res.append(_residual_at_smooth_state(seal.problem, seal.body, seal.film))
     _same_residual(*res)
 
@@ -394,8 +394,8 @@ def test_user_oring_matches_built_section(tmp_path):
     v = _values(Case, **ORING_FAST)
     ref = []
     for n in (4, 8):
-        seal = build(v, v["U"], mesh=n)
-        solve_to(seal, v, v["U"], [0.5])
+        seal = build(v, v.U, mesh=n)
+        solve_to(seal, v, v.U, [0.5])
         ref.append(seal.measures())
     for key in ("load_per_circumference", "friction_force_per_circumference", "p_max",
                 "h_min"):
@@ -515,8 +515,8 @@ def test_built_ball_as_user_mesh_gives_the_built_problem(tmp_path):
 
     v = _values(Case, **BALL_FAST, mesh=0)
     a = Case.hertz_contact(v).a
-    mesh = write_quarter_ball(tmp_path / "built.msh", v["R"], math.radians(v["theta_l"]),
-                              a / 4, v["h_coarse"], 1.6 * a)
+    mesh = write_quarter_ball(tmp_path / "built.msh", v.R, math.radians(v.theta_l),
+                              a / 4, v.h_coarse, 1.6 * a)
     res = []
     for vv in (v, _values(Case, **BALL_FAST, mesh_file=mesh)):
         ball, film, problem = Case.build(vv)

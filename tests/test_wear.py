@@ -37,9 +37,9 @@ MU = 0.3  # Coulomb coefficient of the frictional tests
 
 
 def _run(tmp_path, n, setup=None, **over):
-    values = resolve(wear_pin.params, {k: str(v) for k, v in over.items()})
+    values = resolve(wear_pin.Params, {k: str(v) for k, v in over.items()})
     wear_pin.validate(values)
-    units = {p.name: p.unit for p in wear_pin.params}
+    units = None
     rec = RunRecord("wear-pin", values, units, tmp_path, MPI.COMM_WORLD)
     rec.profile = None
     stepper = wear_pin.run(values, rec, n=n, setup=setup)
@@ -161,7 +161,7 @@ def _pin_steps(comm, n=6, dt=250.0, T=500.0, E=40.0):
     """Rounded pin (R_tip = 4 mm), implicit, on ``comm``: per step the worn area, max
     depth, contact half-width, worn profile (on every rank), the Newton reports and
     the error estimate of the converged step."""
-    values = resolve(wear_pin.params, {"scheme": "implicit", "dt": str(dt), "T": str(T),
+    values = resolve(wear_pin.Params, {"scheme": "implicit", "dt": str(dt), "T": str(T),
                                           "E": str(E)})
     stepper, load = wear_pin.build(values, comm=comm, n=n)
     wear_pin.load_up(stepper, load, values)
@@ -248,7 +248,7 @@ def test_inverting_shape_update_is_rejected(tmp_path, scheme):
     # flat punch: a wear increment k q V Δt = 2.5 mm exceeds the pin height
     # (2 mm), so the uniform shape change w_y = d(1 − y/H) has det G = 1 − d/H < 0;
     # the step must be refused and the state restored (the stepper then cuts Δt)
-    values = resolve(wear_pin.params, {"scheme": scheme, "R_tip": "0", "E": "40"})
+    values = resolve(wear_pin.Params, {"scheme": scheme, "R_tip": "0", "E": "40"})
     stepper, load = wear_pin.build(values, n=4)
     wear_pin.load_up(stepper, load, values)
     w = stepper.wear.body.w
@@ -266,7 +266,7 @@ def test_inverting_shape_update_is_rejected(tmp_path, scheme):
 def _critical(n, E):
     from tribofx.studies.wear_stability import pin_critical_step
 
-    values = resolve(wear_pin.params, {"E": str(E)})
+    values = resolve(wear_pin.Params, {"E": str(E)})
     dt_cr, probe = pin_critical_step(wear_pin, values, n, lo=5.0, hi=2000.0)
     return dt_cr, probe
 
@@ -492,7 +492,7 @@ def test_dt_study_first_order_and_explicit_instability(tmp_path):
     from tribofx.plots.wear import plot_dt_study
     from tribofx.studies.wear_dt_study import run_dt_study
 
-    values = resolve(wear_pin.params, {"E": "80", "T": "400", "study": "dt",
+    values = resolve(wear_pin.Params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "200,50,25,12.5", "study_ref": "richardson",
                                           "study_ref_dt": "3.125"})
     wear_pin.validate(values)
@@ -539,7 +539,7 @@ def test_dt_study_with_bdf2(tmp_path):
     from tribofx.plots.wear import plot_dt_study
     from tribofx.studies.wear_dt_study import run_dt_study
 
-    values = resolve(wear_pin.params, {"E": "80", "T": "400", "study": "dt",
+    values = resolve(wear_pin.Params, {"E": "80", "T": "400", "study": "dt",
                                           "study_dts": "50,25,12.5", "study_ref_dt": "3.125",
                                           "study_schemes": "implicit,bdf2",
                                           "study_critical": "false"})
@@ -560,7 +560,7 @@ def test_dt_study_with_bdf2(tmp_path):
 def test_study_schemes_refused():
     for over in ({"study_schemes": "implicit,crank"}, {"study_schemes": ","},
                  {"study_schemes": "bdf2", "study_ref": "richardson"}):
-        values = resolve(wear_pin.params, {"study": "dt", **over})
+        values = resolve(wear_pin.Params, {"study": "dt", **over})
         with pytest.raises(InputError):
             wear_pin.validate(values)
 
@@ -593,7 +593,7 @@ def test_wear_tangent_taylor(scheme, friction, law, k_grad):
     # directions of size 1e-3 (mm, MPa) stay within every branch of the semismooth
     # law (active set, Coulomb cone, k(d) > 0) for ε ≤ 1e-3, so the remainder of an
     # exact tangent decays like ε² (order 2; a wrong coupling block gives order 1)
-    values = resolve(wear_pin.params, {"scheme": scheme, "E": "40", "friction": str(friction),
+    values = resolve(wear_pin.Params, {"scheme": scheme, "E": "40", "friction": str(friction),
                                           "law": law, "k_grad": str(k_grad)})
     stepper, load = wear_pin.build(values, n=4)
     wear_pin.load_up(stepper, load, values)
@@ -619,7 +619,7 @@ def test_cycle_averaged_wear_tangent_taylor():
     # sliding contact).  Same directions and bound as test_wear_tangent_taylor.  (The
     # implicit slow step iterates these same two problems, Picard, so it adds no tangent)
     scheme = "explicit"
-    values = resolve(wear_pin.params, {"scheme": scheme, "E": "40", "mode": "cyclic",
+    values = resolve(wear_pin.Params, {"scheme": scheme, "E": "40", "mode": "cyclic",
                                           "friction": str(MU), "fast_steps": "4"})
     stepper, load = wear_pin.build(values, n=4)
     wear_pin.load_up(stepper, load, values)
@@ -660,7 +660,7 @@ def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
     over = {"scheme": scheme, "E": "40"}
     if scheme == "cyclic":  # reciprocating, time-scale separation (contact memory, rate_bar)
         over.update(scheme="explicit", mode="cyclic", friction=str(MU), fast_steps="4")
-    values = resolve(wear_pin.params, over)
+    values = resolve(wear_pin.Params, over)
     tmp = Path(comm.bcast(str(tmp_path), root=0))  # one folder for all ranks
     ck, copy = tmp / "ck", tmp / "ck_step1"
     stepper, load = wear_pin.build(values, n=4, checkpoint=ck)
@@ -697,7 +697,7 @@ def test_pressure_dependent_wear_coefficient():
     the solved state is the vertex-rule sum Σ w_i k(p_i) p_i V over the contact nodes,
     recomputed here from the solved multipliers (p = −λ_N) with the law in NumPy, to
     the tolerance of the multiplier rows."""
-    values = resolve(wear_pin.params, {"scheme": "implicit", "E": "40", "k_law": "pressure",
+    values = resolve(wear_pin.Params, {"scheme": "implicit", "E": "40", "k_law": "pressure",
                                           "k_ps": "1.0", "k_m": "2"})
     stepper, load = wear_pin.build(values, n=4)
     wear_pin.load_up(stepper, load, values)
@@ -709,10 +709,10 @@ def test_pressure_dependent_wear_coefficient():
     n_own = c.Q.dofmap.index_map.size_local
     w = c.nodal(ufl.TestFunction(c.Q) * c.surface.weight * c.dsc)[:n_own]
     p = np.maximum(-c.lam_n.x.array[:len(w)], 0.0)
-    k = values["k"] * (1 + (p / 1.0) ** 2)
-    by_hand = MPI.COMM_WORLD.allreduce(float(np.sum(w * k * p * values["V"])), op=MPI.SUM)
-    print("rate", rate, "by hand", by_hand, "k/k0 up to", float(np.max(k)) / values["k"])
-    assert MPI.COMM_WORLD.allreduce(float(np.max(k, initial=0.0)), op=MPI.MAX) > 2 * values["k"]
+    k = values.k * (1 + (p / 1.0) ** 2)
+    by_hand = MPI.COMM_WORLD.allreduce(float(np.sum(w * k * p * values.V)), op=MPI.SUM)
+    print("rate", rate, "by hand", by_hand, "k/k0 up to", float(np.max(k)) / values.k)
+    assert MPI.COMM_WORLD.allreduce(float(np.max(k, initial=0.0)), op=MPI.MAX) > 2 * values.k
     assert rate == pytest.approx(by_hand, rel=1e-9)
     # the tangent with k(p) in the ζ rows
     wear.dt.value = 200.0
@@ -726,7 +726,7 @@ def test_pressure_dependent_wear_coefficient():
 def _pin_run(scheme, dt, tol=0.0, T=400.0, n=6, per="unit_step", controller="i"):
     from tribofx.studies.wear_stability import SubRecord
 
-    v = resolve(wear_pin.params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
+    v = resolve(wear_pin.Params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
                                      "R_tip": "20", "tol": str(tol), "tol_per": per,
                                      "controller": controller})
     wear_pin.validate(v)
@@ -767,7 +767,7 @@ def test_bdf2_wear_is_second_order():
 
 
 def _cyclic_pin_profile(scheme, dt):
-    v = resolve(wear_pin.params, {"scheme": scheme, "dt": str(dt), "T": "400", "E": "40",
+    v = resolve(wear_pin.Params, {"scheme": scheme, "dt": str(dt), "T": "400", "E": "40",
                                      "R_tip": "20", "mode": "cyclic", "friction": "0.3",
                                      "stroke": "1.0", "fast_steps": "8"})
     wear_pin.validate(v)
@@ -811,7 +811,7 @@ def test_bdf2_wear_tangent_taylor():
     """The monolithic BDF2 step (ω = Δt/Δt_prev = 1/2: c₀ = 4/3, c₁ = −1/6, a nonzero
     previous swept volume) has the exact tangent: Taylor order 2 per block, as
     test_wear_tangent_taylor."""
-    values = resolve(wear_pin.params, {"scheme": "bdf2", "E": "40"})
+    values = resolve(wear_pin.Params, {"scheme": "bdf2", "E": "40"})
     stepper, load = wear_pin.build(values, n=4)
     wear_pin.load_up(stepper, load, values)
     stepper.step(200.0)
@@ -918,9 +918,9 @@ def test_error_control_needs_bdf2_and_no_dt_study():
 
     for over in ({"scheme": "implicit", "tol": "1e-5"},
                  {"scheme": "bdf2", "tol": "1e-5", "study": "dt"}):
-        v = resolve(wear_pin.params, over)
+        v = resolve(wear_pin.Params, over)
         with pytest.raises(InputError, match="tol > 0"):
             wear_pin.validate(v)
-    v = resolve(wear_pin.params, {"scheme": "bdf2", "controller": "pi"})
+    v = resolve(wear_pin.Params, {"scheme": "bdf2", "controller": "pi"})
     with pytest.raises(InputError, match="controller chooses the steps"):
         wear_pin.validate(v)

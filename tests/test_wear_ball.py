@@ -29,9 +29,9 @@ def hertz_radius(F, R, E, nu):
 
 
 def _run(tmp_path, comm=MPI.COMM_WORLD, t_stop=None, **over):
-    values = resolve(wear_ball_flat.params, {k: str(v) for k, v in over.items()})
+    values = resolve(wear_ball_flat.Params, {k: str(v) for k, v in over.items()})
     wear_ball_flat.validate(values)
-    units = {p.name: p.unit for p in wear_ball_flat.params}
+    units = None
     rec = RunRecord("wear-ball-flat", values, units, tmp_path, comm)
     rec.profile = None
     wear_ball_flat.run(values, rec, comm=comm, t_stop=t_stop)
@@ -46,14 +46,14 @@ def short_implicit(tmp_path_factory):
 
 def test_unworn_contact_is_hertzian(short_implicit):
     v, res, _ = short_implicit
-    aH = hertz_radius(v["F"], v["R"], v["E"], v["nu"])
+    aH = hertz_radius(v.F, v.R, v.E, v.nu)
     delta = res["approach"][0]
-    print("approach", delta, "Hertz", aH**2 / v["R"], "contact radius", res["contact_radius"][0],
+    print("approach", delta, "Hertz", aH**2 / v.R, "contact radius", res["contact_radius"][0],
           "a_H", aH)
     # the approach (an integral quantity) is a_H²/R; the contact zone is resolved by
     # h = a_H/2, so P1 underestimates the compliance by a few per cent, and the
     # quarter ball adds the compression of the ball body (~ F/(E R) ≈ 1e-4 mm, 2 %)
-    assert delta == pytest.approx(aH**2 / v["R"], rel=0.08)
+    assert delta == pytest.approx(aH**2 / v.R, rel=0.08)
     # the active area jumps by whole node rings (h = a_H/2): radius within h/2
     assert res["contact_radius"][0] == pytest.approx(aH, abs=0.5 * aH / 2)
 
@@ -65,14 +65,14 @@ def test_worn_volume_equals_integrated_rate_and_archard(short_implicit):
     rate = np.asarray(res["wear_rate_integral"])
     dt = np.asarray(res["dt"])[1:]
     integral = np.concatenate([[0.0], np.cumsum(dt * rate[1:])])  # implicit: rate at t_{n+1}
-    print("volume", vol, "∫rate dt", integral, "k F V t", v["k"] * v["F"] * v["V"] * t)
+    print("volume", vol, "∫rate dt", integral, "k F V t", v.k * v.F * v.V * t)
     # the step-averaged Nanson vector of (28) (Simpson, exact for the quadratic
     # cofactor in 3D) makes (w − w_n)·a dŜ the exact swept volume of each facet:
     # only the Newton tolerance remains (1e-10 on residuals ~1e2–1e3)
     assert vol == pytest.approx(integral, rel=1e-9, abs=1e-14)
     # Archard integrated over the contact: rate = k V × (normal force) = k V F
     # since the flat is positioned so that the contact force is F to 1e-8
-    assert vol == pytest.approx(v["k"] * v["F"] * v["V"] * t, rel=1e-7, abs=1e-14)
+    assert vol == pytest.approx(v.k * v.F * v.V * t, rel=1e-7, abs=1e-14)
     assert vol[-1] > 0  # wear happened
 
 
@@ -92,10 +92,10 @@ def test_monolithic_newton_quadratic(short_implicit):
 
 def _one_step(force_control, scheme="implicit", dt=100.0):
     """Build the short case, reach F on the unworn ball and take one step of Δt."""
-    v = resolve(wear_ball_flat.params, {"scheme": scheme, "T": "100", "dt": str(dt),
+    v = resolve(wear_ball_flat.Params, {"scheme": scheme, "T": "100", "dt": str(dt),
                                       "force_control": force_control})
     stepper = wear_ball_flat.build(v)
-    stepper.hold.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    stepper.hold.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     report = stepper.step(dt)
     return stepper, report
 
@@ -191,10 +191,10 @@ def test_filtered_error_estimate_is_the_linearized_response():
     # step again, nonlinearly, with s_n shifted by −ε c₀ d/c₁ (the same right side)
     from tribofx.error_filter import filtered_defect
 
-    v = resolve(wear_ball_flat.params, {"scheme": "bdf2", "T": "100", "dt": "20"})
+    v = resolve(wear_ball_flat.Params, {"scheme": "bdf2", "T": "100", "dt": "20"})
     stepper = wear_ball_flat.build(v)
     control, wear = stepper.hold, stepper.wear
-    control.solve(guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta)
+    control.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     stepper.step(20.0)
     stepper.step(20.0)
     saved = stepper.state()
@@ -252,9 +252,9 @@ def test_rigid_cap_scar_law_and_uniform_pressure(tmp_path):
     late = t >= 400
     a_scar = np.asarray(res["scar_radius"])
     a_cont = np.asarray(res["contact_radius"])
-    a_ref = rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * t)
-    p_scar = wear_ball_flat.late_time_exponent(t, a_scar, v["V"], 400)
-    p_cont = wear_ball_flat.late_time_exponent(t, a_cont, v["V"], 400)
+    a_ref = rigid_cap_radius(v.k, v.F, v.R, v.V * t)
+    p_scar = wear_ball_flat.late_time_exponent(t, a_scar, v.V, 400)
+    p_cont = wear_ball_flat.late_time_exponent(t, a_cont, v.V, 400)
     ratio = np.asarray(res["pressure_ratio"])
     print("t", t, "\nscar", a_scar, "\ncontact", a_cont, "\nrigid cap", a_ref,
           "\nexponents scar %.4f contact %.4f" % (p_scar, p_cont), "\npressure max/min", ratio)
@@ -303,13 +303,13 @@ def test_explicit_conditionally_implicit_unconditionally_stable(tmp_path):
     # the pressure nonuniformity must not grow: it does for the explicit scheme
     # above its critical step (measured by bisection, below) and not for the
     # implicit one (unconditionally stable)
-    v = resolve(wear_ball_flat.params, {})
+    v = resolve(wear_ball_flat.Params, {})
     _, _, rec = _run(tmp_path, t_stop=300.0)
     start = rec.stepper.state()
     s0 = pressure_nonuniformity(rec.stepper.wear.contact)
 
     def growth(scheme, dt, steps=5):
-        stepper = wear_ball_flat.build({**v, "scheme": scheme})
+        stepper = wear_ball_flat.build(v.replace(scheme=scheme))
         # the state is restored by dof index: the rebuilt mesh must be the same
         assert np.array_equal(stepper.wear.body.mesh.geometry.x,
                               rec.stepper.wear.body.mesh.geometry.x)
@@ -345,7 +345,7 @@ def test_bad_input_is_rejected(over, fragment):
 
     assert get_case("wear-ball-flat") is wear_ball_flat
     with pytest.raises(InputError, match=fragment):
-        wear_ball_flat.validate(resolve(wear_ball_flat.params, over))
+        wear_ball_flat.validate(resolve(wear_ball_flat.Params, over))
 
 
 def test_bdf2_with_error_control_conserves_the_worn_volume(tmp_path):
@@ -369,7 +369,7 @@ def test_bdf2_with_error_control_conserves_the_worn_volume(tmp_path):
         c0, c1 = bdf2_coefficients(dt[n + 1] / dt[n]) if n > 0 else (1.0, 0.0)
         assert c0 * dV[n] + c1 * dV[n - 1] == pytest.approx(dt[n + 1] * rate[n + 1], rel=1e-8)
     assert dV[0] == pytest.approx(dt[1] * rate[1], rel=1e-8)
-    assert vol == pytest.approx(v["k"] * v["F"] * v["V"] * t, rel=1e-7, abs=1e-14)
+    assert vol == pytest.approx(v.k * v.F * v.V * t, rel=1e-7, abs=1e-14)
 
 
 @pytest.mark.slow

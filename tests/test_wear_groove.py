@@ -30,7 +30,7 @@ serial = pytest.mark.skipif(MPI.COMM_WORLD.size > 1, reason="serial-only case")
 
 
 def _values(**over):
-    v = resolve(CASE.params, {k: str(x) for k, x in over.items()})
+    v = resolve(CASE.Params, {k: str(x) for k, x in over.items()})
     return CASE.resolved(v)
 
 
@@ -73,13 +73,13 @@ def _check_equilibrium(contact, v, forces, r_final):
     """
     n_u, n_l = _global(contact.body.u), _global(contact.lam_n)
     F_lam, F_T = forces
-    round_off = 100 * np.finfo(float).eps * n_l * 0.5 * v["F"]
+    round_off = 100 * np.finfo(float).eps * n_l * 0.5 * v.F
     d_T = math.sqrt(n_u / 3) * r_final + round_off
     d_lam = d_T + contact.rho_n * math.sqrt(n_l) * r_final
-    print(f"F/2 = {0.5 * v['F']}: F_T = {F_T!r} (bound {d_T:.2e}), F_λ = {F_lam!r} "
+    print(f"F/2 = {0.5 * v.F}: F_T = {F_T!r} (bound {d_T:.2e}), F_λ = {F_lam!r} "
           f"(bound {d_lam:.2e}), residual {r_final:.2e}")
-    assert abs(F_T - 0.5 * v["F"]) <= d_T
-    assert abs(F_lam - 0.5 * v["F"]) <= d_lam
+    assert abs(F_T - 0.5 * v.F) <= d_T
+    assert abs(F_lam - 0.5 * v.F) <= d_lam
 
 
 @pytest.fixture(scope="module")
@@ -93,13 +93,13 @@ def implicit_run():
     rep0 = CASE.initial_contact(stepper, info)
     d = surface_data(contact)
     init = {"pmax": float(d["p"].max()), "X": d["X"], "active": d["active"], "report": rep0,
-            "vertical": _vertical_contact_force(contact, v["R"])}
+            "vertical": _vertical_contact_force(contact, v.R)}
     steps = []
     for _ in range(2):
         a0 = wear.groove_area()
         rep = stepper.step(50.0)
         steps.append({"dA": wear.groove_area() - a0, "rate": wear.averaged_rate_integral(),
-                      "vertical": _vertical_contact_force(contact, v["R"]),
+                      "vertical": _vertical_contact_force(contact, v.R),
                       "reports": rep.reports})
     return stepper, info, v, init, steps
 
@@ -149,7 +149,7 @@ def test_groove_area_balance(implicit_run):
         # global Archard balance of the full groove: (2/L) ∫∫ k p ‖v_T‖ dA = k F V / L;
         # 1 % for ‖v_T‖ = |((I + Grad u) V)_T| ≠ V (surface strain ~ p/E < 1 %) and
         # |λ| ≠ its vertical component on the curved ball (measured 0.1 %)
-        assert 2 * s["rate"] == pytest.approx(v["k"] * v["F"] * v["V"] / v["L"], rel=0.01)
+        assert 2 * s["rate"] == pytest.approx(v.k * v.F * v.V / v.L, rel=0.01)
 
 
 @serial
@@ -231,13 +231,13 @@ def test_explicit_step_uses_the_old_rate():
     # the contact problem was re-solved on the new shape: equilibrium with F/2 again,
     # from the solved fields (reports: shape update, then the contact solve)
     assert len(rep.reports) == 2
-    _check_equilibrium(wear.contact, v, _vertical_contact_force(wear.contact, v["R"]),
+    _check_equilibrium(wear.contact, v, _vertical_contact_force(wear.contact, v.R),
                        rep.reports[-1].residuals[-1])
 
 
 def _coarse(v, comm=MPI.COMM_WORLD):
     """Stepper on the coarse block of :func:`_small_run` (h = 0.9 a), in initial contact."""
-    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    a = hertz(v.F, v.R, v.E, v.nu).a
     h = 0.9 * a
     stepper, info = CASE.build(v, comm, h=h, mesh=groove_mesh(comm, a, h, 1.8, (3, 3, 4)))
     rep0 = CASE.initial_contact(stepper, info)
@@ -302,7 +302,7 @@ def _small_run(comm):
     ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
            for c in (np.abs(X[:, 0]), X[:, 1])]
     return {"area": 2 * wear.groove_area(), "depth": float(lp["depth"].max()),
-            "profile": lp["worn"], "force": _vertical_contact_force(contact, v["R"])[0],
+            "profile": lp["worn"], "force": _vertical_contact_force(contact, v.R)[0],
             "extent": np.array(ext), "iterations": (rep0.iterations, rep1.iterations),
             "owned_u": comm.allgather(wear.body.u.function_space.dofmap.index_map.size_local)}
 
@@ -355,10 +355,10 @@ def test_long_time_groove_follows_the_ball(long_homogeneous):
     A = 2 * wear.groove_area()
     d = float(wear.line_profile()["depth"].max())
     b = 3 * A / (4 * d)  # half-width of the parabolic groove z = y²/2R − d of area A = 4bd/3
-    print("A", A, "d", d, "b", b, "sqrt(2Rd)", math.sqrt(2 * v["R"] * d))
+    print("A", A, "d", d, "b", b, "sqrt(2Rd)", math.sqrt(2 * v.R * d))
     # a groove shaped by the rigid ball: b² = 2 R d; 15 % for the elastic edge
     # rounding and the 0.025 mm mesh across a 0.23 mm half-width
-    assert b**2 == pytest.approx(2 * v["R"] * d, rel=0.15)
+    assert b**2 == pytest.approx(2 * v.R * d, rel=0.15)
     y, pint = wear.averaged_pressure()
     inner = y < 0.6 * b
     ratio = pint[inner] / pint[0]
@@ -387,7 +387,7 @@ def test_graded_layer_shifts_pressure_to_the_centre(long_homogeneous):
         b = 3 * A / (4 * d)
         y, pint = wear.averaged_pressure()
         depth = np.interp(y, lp["worn"][:, 0], lp["depth"])
-        kf = 1 + v["grade_alpha"] * np.maximum(1 - depth / v["grade_depth"], 0) * graded
+        kf = 1 + v.grade_alpha * np.maximum(1 - depth / v.grade_depth, 0) * graded
         inner = y < 0.8 * b
         uniform = kf[inner] * pint[inner] / (kf[0] * pint[0])
         edge = np.interp(0.8 * b, y, pint) / pint[0]

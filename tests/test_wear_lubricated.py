@@ -72,7 +72,7 @@ def test_rough_flat_punch_wears_by_archard():
 
 
 def _run(comm=MPI.COMM_WORLD, **kw):
-    v = resolve(wear_lubricated.params, {"T": 1440.0, "dt": 720.0, **kw})
+    v = resolve(wear_lubricated.Params, {"T": 1440.0, "dt": 720.0, **kw})
     rec = RunRecord(wear_lubricated.name, {}, {}, ".", comm)
     run = wear_lubricated.run(v, rec, comm=comm)
     return v, run, {k: np.asarray(r["value"]) for k, r in rec.data["results"].items()
@@ -104,9 +104,9 @@ def test_running_in_wears_by_the_asperity_load_and_builds_the_film():
     prof = run["film"].profile(everywhere=True)
     A, Hc, n = mixed.GT_FIT
     KE = run["film"].roughness.asperity.parameters["KE"]
-    p_a = KE * A * np.maximum(Hc - prof["h"] / v["sigma"], 0.0) ** n
+    p_a = KE * A * np.maximum(Hc - prof["h"] / v.sigma, 0.0) ** n
     ds = np.linalg.norm(np.diff(prof["x"], axis=0), axis=1)
-    by_hand = v["k"] * v["V"] * np.sum(ds * (p_a[1:] + p_a[:-1]) / 2)
+    by_hand = v.k * v.V * np.sum(ds * (p_a[1:] + p_a[:-1]) / 2)
     assert run["wear"].wear_rate_integral() == pytest.approx(by_hand, rel=1e-10)
     assert r["wear_rate_integral"][-1] == pytest.approx(by_hand, rel=1e-10)
     assert np.all(np.diff(r["asperity_load"]) < 0)

@@ -14,15 +14,16 @@ class _Parser(argparse.ArgumentParser):
 
 def _list():
     from .cases import CASES
-    from .runner import COMMON_PARAMS
+    from .params import declared
+    from .runner import RunOptions
 
     print("every case:")
-    for p in COMMON_PARAMS:
+    for p in declared(RunOptions):
         extra = f" one of {list(p.choices)}" if p.choices else ""
         print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
     for name, case in sorted(CASES.items()):
         print(f"{name}: {case.doc}")
-        for p in case.params:
+        for p in declared(case.Params):
             extra = f" one of {list(p.choices)}" if p.choices else ""
             print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
 

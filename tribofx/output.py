@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .params import CaseParams, declared
+
 __all__ = ["RunRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary", "write_vtx"]
 
 
@@ -36,10 +38,17 @@ class RunRecord:
     of value/unit pairs or plain values), Newton iterations per step, wall time,
     number of unknowns, DOLFINx version and MPI size; ``warnings`` if any
     (:meth:`warn`).
+
+    ``params`` is the case's :class:`~tribofx.params.CaseParams` (the units from its
+    declaration; ``units`` may add more) or {name: value} with ``units`` {name: unit}.
     """
 
     def __init__(self, case, params, units, outdir, comm):
         import dolfinx
+
+        if isinstance(params, CaseParams):
+            units = {**{p.name: p.unit for p in declared(type(params))}, **(units or {})}
+            params = params.as_dict()
 
         self.comm = comm
         self.outdir = Path(outdir)

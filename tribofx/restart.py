@@ -45,11 +45,11 @@ ADDED_PARAMETERS = {"tol_per": "unit_step", "error_filter": False, "controller":
 def open_history(stepper, v, resume):
     """Read back the checkpoint when resuming; return ``stepper.history``.
 
-    ``v``: the run's parameter values.  Raises :class:`InputError` (one line)
-    for an incomplete checkpoint, one written on another number of ranks, or
-    with other physical parameters.
+    ``v``: the run's parameters (a :class:`~tribofx.params.CaseParams`).  Raises
+    :class:`InputError` (one line) for an incomplete checkpoint, one written on
+    another number of ranks, or with other physical parameters.
     """
-    params = {k: x for k, x in v.items() if k not in SOLVER_PARAMETERS}
+    params = {k: x for k, x in v.as_dict().items() if k not in SOLVER_PARAMETERS}
     if resume:
         try:
             stepper.load_checkpoint()
@@ -98,14 +98,15 @@ class SweepJournal:
     Args:
         directory: the checkpoint directory (None: nothing is written, no resume).
         comm: the run's communicator.
-        v: the run's parameter values (a resume must have the same ones).
+        v: the run's parameters, a :class:`~tribofx.params.CaseParams` (a resume must
+            have the same ones).
         resume: read the checkpoint back.
     """
 
     def __init__(self, directory, comm, v, resume=False):
         self.dir = None if directory is None else Path(directory)
         self.comm = comm
-        self.params = jsonable({k: x for k, x in v.items() if k not in SOLVER_PARAMETERS})
+        self.params = jsonable({k: x for k, x in v.as_dict().items() if k not in SOLVER_PARAMETERS})
         self.saved, self.order, self.steps = {}, [], 0
         if resume:
             self._read()

@@ -1,6 +1,7 @@
 """Run a named case: parameters → solve → ``summary.json``, plots and VTX in an output folder."""
 
 import contextlib
+from dataclasses import dataclass
 from pathlib import Path
 
 from mpi4py import MPI
@@ -8,20 +9,22 @@ from mpi4py import MPI
 from . import interrupt, solvers
 from .cases import get_case
 from .output import RunRecord, write_vtx
-from .params import InputError, Param, resolve
+from .params import CaseParams, InputError, declared, param, resolve
 from .reports import RunStop
 
-__all__ = ["COMMON_PARAMS", "run_case"]
+__all__ = ["RunOptions", "run_case"]
 
-#: parameters every case accepts (``--set solver=iterative``)
-COMMON_PARAMS = (
-    Param("solver", str, "auto", "-",
-          "linear solver: direct (MUMPS LU), lagged (GMRES on the LU of an earlier "
-          "Newton matrix), iterative (GMRES, AMG on the bulk, Schur complement of the "
-          f"interface unknowns), auto (from {solvers.AUTO_THRESHOLD} unknowns: iterative "
-          "on 3D tetrahedral meshes, lagged on others; direct below)",
-          choices=solvers.STRATEGIES),
-)
+
+@dataclass(frozen=True)
+class RunOptions(CaseParams):
+    """What every case accepts besides its own parameters (``--set solver=iterative``)."""
+
+    solver: str = param(
+        "auto", "-",
+        "linear solver: direct (MUMPS LU), lagged (GMRES on the LU of an earlier Newton "
+        "matrix), iterative (GMRES, AMG on the bulk, Schur complement of the interface "
+        f"unknowns), auto (from {solvers.AUTO_THRESHOLD} unknowns: iterative on 3D "
+        "tetrahedral meshes, lagged on others; direct below)", choices=solvers.STRATEGIES)
 
 
 def _progress_bar(total, name="run"):
@@ -53,41 +56,45 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     progress with status "interrupted: …" and its state written
     (:mod:`tribofx.interrupt`).
 
-    A case is a module of :mod:`tribofx.cases` with ``name``, ``doc``, ``params``
-    (:class:`Param` tuple), ``resumable`` and the functions ``validate(values)``,
-    ``run(values, record, progress, verbose)`` (returns the problem object; on failure it raises
+    A case is a module of :mod:`tribofx.cases` with ``name``, ``doc``, ``Params``
+    (its :class:`~tribofx.params.CaseParams` dataclass), ``resumable`` and the
+    functions ``validate(params)``, ``run(params, record, progress, verbose)``
+    (returns the problem object; on failure it raises
     :class:`~tribofx.reports.NewtonDivergence`, a :class:`~tribofx.reports.RunStop`,
     with the problem, restored to its last converged state, as ``model``),
-    ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and
-    ``plot(profile, outdir)`` (rank 0; ``profile`` is what ``run`` stored in
-    ``record.profile``).  ``run`` advances ``progress``
-    once per load/time step (a slow-time stepper by time, in nominal steps of its
-    Δt); the bar length is ``values["steps"]`` when present.
+    ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and ``plot(profile,
+    outdir)`` (rank 0; ``profile`` is what ``run`` stored in ``record.profile``).
+    ``run`` advances ``progress`` once per load/time step (a slow-time stepper by
+    time, in nominal steps of its Δt); the bar length is ``progress_total(params)``
+    of the case, or its ``steps``.
     """
     case = get_case(name)
     if resume and not resumable(name):
         raise InputError(f"case {name!r} cannot be resumed (no per-step checkpoint)")
-    params = tuple(case.params) + COMMON_PARAMS
-    values = resolve(params, overrides or {})
+    overrides = dict(overrides or {})
+    common = {p.name for p in declared(RunOptions)}
+    options = resolve(RunOptions, {k: overrides.pop(k) for k in common & set(overrides)})
+    values = resolve(case.Params, overrides)
     case.validate(values)
-    units = {p.name: p.unit for p in params}
     out = Path(out)
     kwargs = {}
     if resumable(name):
         kwargs = {"checkpoint": out / "checkpoint", "resume": resume}
         if resume and not (out / "checkpoint" / "state.json").is_file():
             raise InputError(f"nothing to resume: no checkpoint in {out / 'checkpoint'}")
-    record = RunRecord(name, values, units, out, comm)
+    record = RunRecord(name, {**values.as_dict(), **options.as_dict()},
+                       {p.name: p.unit for p in declared(case.Params) + declared(RunOptions)},
+                       out, comm)
     record.profile = None
     record.data["petsc_options"] = dict(petsc_options or {})
-    total = case.progress_total(values) if hasattr(case, "progress_total") else values.get(
-        "steps", 1)
+    total = case.progress_total(values) if hasattr(case, "progress_total") else getattr(
+        values, "steps", 1)
     bar = _progress_bar(total, name) if progress and comm.rank == 0 else None
     status = "ok"
     prob = None
     try:
         watch = interrupt.watch() if kwargs else contextlib.nullcontext()
-        with solvers.run_settings(values["solver"], petsc_options) as linear, watch:
+        with solvers.run_settings(options.solver, petsc_options) as linear, watch:
             try:
                 prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:

@@ -1,7 +1,8 @@
 """Registry of runnable cases: ``tribofx run CASE``.
 
 A case is a module of this package named for it (``ehl_ball`` is ``ehl-ball``):
-it declares ``name``, ``doc``, ``params`` and ``resumable`` and defines
+it declares ``name``, ``doc``, ``resumable`` and ``Params`` (a frozen dataclass of
+its parameters, :class:`tribofx.params.CaseParams`) and defines
 ``validate(v)``, ``build(v)``, ``run(v, record, progress, verbose, ...)``,
 ``vtx_fields(model)`` and ``plot(profile, outdir)`` (see
 :func:`tribofx.runner.run_case`).  The other modules here are helpers grouped by

@@ -35,6 +35,8 @@ the solved die (its support reaction, from the die's own rows, against the
 contact force).
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
@@ -46,10 +48,10 @@ from ..interfaces import TwoBodyContact
 from ..meshes.block import NAMES, block_mesh
 from ..meshes.ironing import ARC, TOP, die_body
 from ..meshes.user import boundary_facet_size, read_user_mesh
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 
-__all__ = ["build", "check_slide", "doc", "name", "params", "plot", "report", "resumable",
+__all__ = ["build", "check_slide", "doc", "name", "Params", "plot", "report", "resumable",
            "run", "validate", "vtx_fields"]
 
 
@@ -61,24 +63,29 @@ def _slab(comm, L, H, nx, ny, material):
 name = "contact-ironing"
 resumable = False   # no per-step checkpoint
 doc = "stiff half-cylinder die pressed into and slid along a soft neo-Hookean slab"
-params = (
-    Param("E", float, 1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5),
-    Param("friction", float, 0.3, "-", "Coulomb coefficient", lower=0, closed=True),
-    Param("R", float, 3.0, "mm", "die radius", lower=0),
-    Param("L", float, 9.0, "mm", "slab length", lower=0),
-    Param("H", float, 1.0, "mm", "slab height", lower=0),
-    Param("depth", float, 0.5, "mm", "indentation of the die", lower=0),
-    Param("slide", float, 4.0, "mm", "sliding distance of the die", lower=0),
-    Param("n", int, 60, "-", "slab elements along its length", lower=4, upper=2000),
-    Param("press_steps", int, 5, "-", "indentation steps", lower=1, upper=10000),
-    Param("slide_steps", int, 40, "-", "sliding steps", lower=1, upper=10000),
-    Param("mesh_file", str, "", "-",
-          "your own die: a 2D gmsh .msh with physical groups arc (its lower boundary, "
-          "in contact) and top (moved); its x extent centred on b/2 + 1 (b its "
-          "half-width, which replaces R) and its lowest arc point put on the slab top "
-          "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point"),
-)
+
+
+@dataclass(frozen=True)
+class Params(CaseParams):
+    """The parameters of ``contact-ironing`` (``--set KEY=VALUE``)."""
+
+    E: float = param(1.0, "MPa", "Young's modulus of the slab (the die: 1000 E)", lower=0)
+    nu: float = param(0.3, "-", "Poisson's ratio of slab and die", lower=-1, upper=0.5)
+    friction: float = param(0.3, "-", "Coulomb coefficient", lower=0, closed=True)
+    R: float = param(3.0, "mm", "die radius", lower=0)
+    L: float = param(9.0, "mm", "slab length", lower=0)
+    H: float = param(1.0, "mm", "slab height", lower=0)
+    depth: float = param(0.5, "mm", "indentation of the die", lower=0)
+    slide: float = param(4.0, "mm", "sliding distance of the die", lower=0)
+    n: int = param(60, "-", "slab elements along its length", lower=4, upper=2000)
+    press_steps: int = param(5, "-", "indentation steps", lower=1, upper=10000)
+    slide_steps: int = param(40, "-", "sliding steps", lower=1, upper=10000)
+    mesh_file: str = param(
+        "", "-",
+        "your own die: a 2D gmsh .msh with physical groups arc (its lower boundary, "
+        "in contact) and top (moved); its x extent centred on b/2 + 1 (b its "
+        "half-width, which replaces R) and its lowest arc point put on the slab top "
+        "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point")
 
 
 def validate(v):
@@ -87,19 +94,19 @@ def validate(v):
     With ``mesh_file`` the die's half-width is known only once the mesh is
     read: :meth:`build` checks the slide then (:meth:`check_slide`).
     """
-    if v["depth"] >= v["H"]:
+    if v.depth >= v.H:
         raise InputError("depth must be below the slab height H")
-    if not v["mesh_file"]:
-        check_slide(v, v["R"])
+    if not v.mesh_file:
+        check_slide(v, v.R)
 
 
 def check_slide(v, b):
     """Reject a slide that takes the axis of a die of half-width ``b`` off the slab."""
-    if 0.5 * b + 1 + v["slide"] > v["L"]:
-        if v["mesh_file"]:
+    if 0.5 * b + 1 + v.slide > v.L:
+        if v.mesh_file:
             raise InputError(f"the die would slide off the slab: slide > L − b/2 − 1 = "
-                             f"{v['L'] - 0.5 * b - 1:.6g} mm (b = {b:.6g} mm: the "
-                             f"half-width of the die in {v['mesh_file']!r})")
+                             f"{v.L - 0.5 * b - 1:.6g} mm (b = {b:.6g} mm: the "
+                             f"half-width of the die in {v.mesh_file!r})")
         raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
 
 
@@ -109,23 +116,23 @@ def build(v, comm=MPI.COMM_WORLD):
     The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
     and its arc element size ``h_die``.
     """
-    h = v["L"] / v["n"]
-    if v["mesh_file"]:
-        dmsh, dtags, names = read_user_mesh(v["mesh_file"], comm, 2, ("arc", "top"))
+    h = v.L / v.n
+    if v.mesh_file:
+        dmsh, dtags, names = read_user_mesh(v.mesh_file, comm, 2, ("arc", "top"))
         b, h_die = _user_die(dmsh, dtags, names, v)
     else:
-        b, h_die, names = v["R"], h, {"arc": ARC, "top": TOP}
-        dmsh, dtags = die_body(v["R"], 0.5 * v["R"] + 1.0, v["H"] + v["R"], h, comm)
-    mu, lmbda = lame_parameters(v["E"], v["nu"])
-    slab = _slab(comm, v["L"], v["H"], v["n"], max(2, round(v["H"] / h)),
+        b, h_die, names = v.R, h, {"arc": ARC, "top": TOP}
+        dmsh, dtags = die_body(v.R, 0.5 * v.R + 1.0, v.H + v.R, h, comm)
+    mu, lmbda = lame_parameters(v.E, v.nu)
+    slab = _slab(comm, v.L, v.H, v.n, max(2, round(v.H / h)),
                  ("neo-hookean", {"mu": mu, "lmbda": lmbda}))
     slab.add_dirichlet("bottom", np.zeros(2))
-    mu_d, lmbda_d = lame_parameters(1000 * v["E"], v["nu"])
+    mu_d, lmbda_d = lame_parameters(1000 * v.E, v.nu)
     die = Body(dmsh, dtags, names, "plane_strain",
                ("neo-hookean", {"mu": mu_d, "lmbda": lmbda_d}), name="die")
     motion = die.add_dirichlet("top", np.zeros(2))
-    contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v["E"] / min(h, h_die),
-                             friction=v["friction"])
+    contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v.E / min(h, h_die),
+                             friction=v.friction)
     problem = Problem([slab, die, contact], name="ironing", max_it=40)
     return {"slab": slab, "die": die, "contact": contact, "problem": problem,
             "motion": motion, "b": b, "h_die": h_die}
@@ -154,8 +161,8 @@ def run(v, record, progress=None, verbose=False):
         # increments, every node that slid in the last step sits exactly on the
         # Coulomb cone, and round-off (which differs between partitions) picks
         # stick or slip for its first tangent
-        for index, target, steps in ((1, -v["depth"], v["press_steps"]),
-                                     (0, v["slide"], v["slide_steps"])):
+        for index, target, steps in ((1, -v.depth, v.press_steps),
+                                     (0, v.slide, v.slide_steps)):
             phase = Continuation(problem, ConstantParameter(motion, index),
                                  response=reaction, verbose=verbose,
                                  record=record.data["newton_iterations"])
@@ -180,7 +187,7 @@ def report(history, v, record):
     hist = np.array(history).reshape(-1, 4)
     record.result("die_position", hist[:, :2].tolist(), "mm")
     record.result("reaction_force", hist[:, 2:].tolist(), "N/mm")
-    sliding = hist[v["press_steps"]:]
+    sliding = hist[v.press_steps:]
     steady = sliding[len(sliding) // 2:]     # past the transition to steady sliding
     if len(steady) >= 3:
         F = steady[:, 2:]
@@ -191,7 +198,7 @@ def report(history, v, record):
         record.result("smoothness_Fy", float(d2[1]), "-")
     if MPI.COMM_WORLD.rank == 0:
         record.profile = {"position": hist[:, :2], "force": hist[:, 2:],
-                          "press_steps": v["press_steps"]}
+                          "press_steps": v.press_steps}
 
 
 def vtx_fields(run):
@@ -246,7 +253,7 @@ def _user_die(msh, ft, names, v):
 
     y0, tol = extent(x[nodes("arc"), 1])[0], 1e-9 * max(hi - lo, yhi - ylo)
     y_top = extent(x[nodes("top"), 1])[0]
-    path = v["mesh_file"]
+    path = v.mesh_file
     if ylo < y0 - tol:
         raise InputError(f"the die in {path!r} reaches {y0 - ylo:.4g} mm below its "
                          "lowest 'arc' node: 'arc' must be its lower boundary")
@@ -255,5 +262,5 @@ def _user_die(msh, ft, names, v):
                          "node: 'arc' must be its lower boundary")
     xc = 0.5 * b + 1.0
     x[:, 0] += xc - 0.5 * (lo + hi)
-    x[:, 1] += v["H"] - y0
-    return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v["H"]), b))
+    x[:, 1] += v.H - y0
+    return b, boundary_facet_size(msh, ft, names["arc"], near=((xc, v.H), b))

@@ -19,6 +19,8 @@ test to solver tolerance; a coarser slave (master nodes between slave nodes
 receive no force) or non-nested meshes do not.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 import ufl
 from dolfinx import mesh
@@ -27,10 +29,10 @@ from mpi4py import MPI
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..problem import Problem
 
-__all__ = ["build", "doc", "name", "params", "patch_block", "plot", "resumable", "run",
+__all__ = ["build", "doc", "name", "Params", "patch_block", "plot", "resumable", "run",
            "validate", "vtx_fields"]
 
 
@@ -53,38 +55,46 @@ def patch_block(comm, y0, y1, n, name, material):
 name = "contact-patch"
 resumable = False   # no per-step checkpoint
 doc = "contact patch test: two elastic blocks, non-matching meshes, uniform pressure"
-params = (
-    Param("mesh_ratio", float, 2.0, "-", "slave elements per master element (> 1: finer)",
-          lower=0.0, upper=16.0, closed=True),
-    Param("n_master", int, 8, "-", "master elements along the interface", lower=1,
-          upper=512, closed=True),
-    Param("E", float, 10.0, "MPa", "Young's modulus of both blocks", lower=0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio of both blocks", lower=-1, upper=0.5),
-    Param("pressure", float, 0.1, "MPa", "nominal pressure on the slave's top", lower=0),
-)
+
+
+@dataclass(frozen=True)
+class Params(CaseParams):
+    """The parameters of ``contact-patch`` (``--set KEY=VALUE``)."""
+
+    mesh_ratio: float = param(
+        2.0, "-",
+        "slave elements per master element (> 1: finer)",
+        lower=0.0, upper=16.0, closed=True)
+    n_master: int = param(
+        8, "-",
+        "master elements along the interface",
+        lower=1, upper=512, closed=True)
+    E: float = param(10.0, "MPa", "Young's modulus of both blocks", lower=0)
+    nu: float = param(0.3, "-", "Poisson's ratio of both blocks", lower=-1, upper=0.5)
+    pressure: float = param(0.1, "MPa", "nominal pressure on the slave's top", lower=0)
 
 
 def validate(v):
     """Require at least two slave elements along the interface (a patch, not a point)."""
-    n_s = round(v["mesh_ratio"] * v["n_master"])
+    n_s = round(v.mesh_ratio * v.n_master)
     if n_s < 2:
-        raise InputError(f"mesh_ratio·n_master = {v['mesh_ratio'] * v['n_master']:g} gives "
+        raise InputError(f"mesh_ratio·n_master = {v.mesh_ratio * v.n_master:g} gives "
                          f"{n_s} slave element(s): the patch test needs at least 2")
 
 
 def build(v, comm=MPI.COMM_WORLD):
     """Slave and master blocks, contact and problem."""
-    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    mu, lmbda = lame_parameters(v.E, v.nu)
     mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
-    n_s = round(v["mesh_ratio"] * v["n_master"])
+    n_s = round(v.mesh_ratio * v.n_master)
     slave = patch_block(comm, 0.0, 0.5, n_s, "slave", mat)
-    master = patch_block(comm, -0.5, 0.0, v["n_master"], "master", mat)
-    slave.add_traction("top", ufl.as_vector([0.0, -v["pressure"]]))
+    master = patch_block(comm, -0.5, 0.0, v.n_master, "master", mat)
+    slave.add_traction("top", ufl.as_vector([0.0, -v.pressure]))
     slave.add_dirichlet("left", 0.0, component=0)
     master.add_dirichlet("left", 0.0, component=0)
     master.add_dirichlet("bottom", 0.0, component=1)
-    h = 1.0 / max(n_s, v["n_master"])
-    contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v["E"] / h)
+    h = 1.0 / max(n_s, v.n_master)
+    contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v.E / h)
     problem = Problem([slave, master, contact], name="contact_patch")
     return {"slave": slave, "master": master, "contact": contact, "problem": problem}
 
@@ -106,7 +116,7 @@ def run(v, record, progress=None, verbose=False):
     record.result("nodes_in_contact", comm.allreduce(int(np.sum(d["active"])), op=MPI.SUM))
     prof = contact.gather_profile(problem)
     if comm.rank == 0:
-        record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v["pressure"]}
+        record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v.pressure}
     if progress is not None:
         progress.update(1)
     return run

@@ -31,6 +31,7 @@ min(E1, E2)/h with h the smaller contact element size of the two bodies.
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from mpi4py import MPI
@@ -40,51 +41,58 @@ from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import TwoBodyContact
 from ..meshes.hertz import NAMES, hertz_body
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = ["build", "doc", "name", "params", "plot", "reference", "report", "resumable", "run",
+__all__ = ["build", "doc", "name", "Params", "plot", "reference", "report", "resumable", "run",
            "validate", "vtx_fields"]
 
 
 name = "contact-two-cylinders"
 resumable = False   # no per-step checkpoint
 doc = "two elastic plane-strain cylinders (or a cylinder on a block) pressed together"
-params = (
-    Param("R1", float, 10.0, "mm", "radius of the upper (slave) cylinder", lower=0),
-    Param("R2", float, 10.0, "mm", "radius of the lower (master) cylinder; 0: flat block",
-          lower=0, closed=True),
-    Param("E1", float, 10.0, "MPa", "Young's modulus of the upper cylinder", lower=0),
-    Param("E2", float, 10.0, "MPa", "Young's modulus of the lower body", lower=0),
-    Param("nu1", float, 0.3, "-", "Poisson's ratio of the upper cylinder", lower=-1,
-          upper=0.5),
-    Param("nu2", float, 0.3, "-", "Poisson's ratio of the lower body", lower=-1,
-          upper=0.5),
-    Param("load", float, 0.2, "N/mm", "normal load per unit length (full cylinders)",
-          lower=0),
-    Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0,
-          closed=True),
-    Param("mesh", int, 1, "-", "refinement: contact-zone elements a/(6·2^mesh) (of the "
-          "bodies not given by mesh_file, mesh_file2)", lower=0, upper=6, closed=True),
-    Param("steps", int, 2, "-", "load increments", lower=1, upper=100, closed=True),
-    Param("mesh_file", str, "", "-",
-          "your own upper (slave) cylinder: a 2D gmsh .msh of its x >= 0 half, radius R1, "
-          "with physical groups contact, loaded (flat top face, held) and symmetry_x "
-          "(x = 0); moved so that symmetry_x is x = 0 and its lowest contact point is at "
-          "the origin; tip curvature 1/R1 within 5 % of 1/R*; replaces mesh for it"),
-    Param("mesh_file2", str, "", "-",
-          "your own lower (master) body: as mesh_file, radius R2 (R2 = 0: a flat block), "
-          "loaded = its bottom face (pushed up), its highest contact point moved to the "
-          "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*"),
-)
+
+
+@dataclass(frozen=True)
+class Params(CaseParams):
+    """The parameters of ``contact-two-cylinders`` (``--set KEY=VALUE``)."""
+
+    R1: float = param(10.0, "mm", "radius of the upper (slave) cylinder", lower=0)
+    R2: float = param(
+        10.0, "mm",
+        "radius of the lower (master) cylinder; 0: flat block",
+        lower=0, closed=True)
+    E1: float = param(10.0, "MPa", "Young's modulus of the upper cylinder", lower=0)
+    E2: float = param(10.0, "MPa", "Young's modulus of the lower body", lower=0)
+    nu1: float = param(0.3, "-", "Poisson's ratio of the upper cylinder", lower=-1, upper=0.5)
+    nu2: float = param(0.3, "-", "Poisson's ratio of the lower body", lower=-1, upper=0.5)
+    load: float = param(0.2, "N/mm", "normal load per unit length (full cylinders)", lower=0)
+    friction: float = param(0.0, "-", "Coulomb friction coefficient", lower=0, closed=True)
+    mesh: int = param(
+        1, "-",
+        "refinement: contact-zone elements a/(6·2^mesh) (of the "
+        "bodies not given by mesh_file, mesh_file2)",
+        lower=0, upper=6, closed=True)
+    steps: int = param(2, "-", "load increments", lower=1, upper=100, closed=True)
+    mesh_file: str = param(
+        "", "-",
+        "your own upper (slave) cylinder: a 2D gmsh .msh of its x >= 0 half, radius R1, "
+        "with physical groups contact, loaded (flat top face, held) and symmetry_x "
+        "(x = 0); moved so that symmetry_x is x = 0 and its lowest contact point is at "
+        "the origin; tip curvature 1/R1 within 5 % of 1/R*; replaces mesh for it")
+    mesh_file2: str = param(
+        "", "-",
+        "your own lower (master) body: as mesh_file, radius R2 (R2 = 0: a flat block), "
+        "loaded = its bottom face (pushed up), its highest contact point moved to the "
+        "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*")
 
 
 def reference(v):
     """Hertz line contact of the two bodies (a flat for R2 = 0)."""
-    R2 = math.inf if v["R2"] == 0 else v["R2"]
-    return hertz(v["load"], v["R1"], v["E1"], v["nu1"], R2, v["E2"], v["nu2"], line=True)
+    R2 = math.inf if v.R2 == 0 else v.R2
+    return hertz(v.load, v.R1, v.E1, v.nu1, R2, v.E2, v.nu2, line=True)
 
 
 def validate(v):
@@ -105,17 +113,17 @@ def build(v, comm=MPI.COMM_WORLD):
     with h the smaller contact element size of the two bodies.
     """
     h = reference(v)
-    h_fine = h.a / (6 * 2 ** v["mesh"])
+    h_fine = h.a / (6 * 2 ** v.mesh)
     bodies, sizes = [], []
-    for k, (R, E, nu) in enumerate(((v["R1"], v["E1"], v["nu1"]),
-                                    (v["R2"], v["E2"], v["nu2"]))):
-        path = v[("mesh_file", "mesh_file2")[k]]
+    for k, (R, E, nu) in enumerate(((v.R1, v.E1, v.nu1),
+                                    (v.R2, v.E2, v.nu2))):
+        path = (v.mesh_file, v.mesh_file2)[k]
         if path:
             msh, ft, names, h_k, _ = read_hertz_body(
                 path, comm, 2, h.a, R, CURVATURE_TOL / h.R_star, name=f"R{k + 1}",
                 below=k == 1)
         else:
-            size = R if R > 0 else 2 * v["R1"]
+            size = R if R > 0 else 2 * v.R1
             msh, ft = hertz_body(2, size, h_fine, size / 6, 1.5 * h.a, comm, below=k == 1,
                                  block=size if R == 0 else None)
             names, h_k = NAMES, h_fine
@@ -129,9 +137,9 @@ def build(v, comm=MPI.COMM_WORLD):
     upper, lower = bodies
     upper.add_dirichlet("loaded", np.zeros(2))
     push = lower.add_dirichlet("loaded", 0.0, component=1)
-    E_min = min(v["E1"], v["E2"])
+    E_min = min(v.E1, v.E2)
     contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / min(sizes),
-                             friction=v["friction"])
+                             friction=v.friction)
     problem = Problem([upper, lower, contact], name="two_cylinders")
     return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
             "push": push}
@@ -148,8 +156,8 @@ def run(v, record, progress=None, verbose=False):
                            verbose=verbose, record=record.data["newton_iterations"])
     delta = 0.25 * h.a**2 / h.R_star
     try:
-        for k in range(v["steps"]):
-            target = 0.5 * v["load"] * (k + 1) / v["steps"]   # half model
+        for k in range(v.steps):
+            target = 0.5 * v.load * (k + 1) / v.steps   # half model
             delta = control.reach(target, delta * (1 if k == 0 else (k + 1) / k))
             if progress is not None:
                 progress.update(1)
@@ -175,7 +183,7 @@ def report(run, v, record, h):
     record.result("hertz_p_max", h.p0, "MPa")
     record.result("contact_half_width_rel_error", a / h.a - 1)
     record.result("p_max_rel_error", p_max / h.p0 - 1)
-    record.result("contact_element_size", min(v["E1"], v["E2"]) / contact.rho_n,
+    record.result("contact_element_size", min(v.E1, v.E2) / contact.rho_n,
                   "mm (h of rho_N = min(E1, E2)/h)")
     record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
     # equilibrium of the solved upper cylinder: its held face balances the contact

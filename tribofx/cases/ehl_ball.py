@@ -61,6 +61,7 @@ and on the plane: :mod:`tribofx.cases.ehl_ball`.
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -74,20 +75,20 @@ from ..interfaces import Film
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..positions import oscillation_indicator, paraboloid_vertex
 from ..problem import NewtonDivergence, Problem, options_name
 from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal
 from ..sweep import SweepVariant
 from . import film_setup
-from .film_setup import VISCOSITY_PARAMS, at_points, density, film_boundary, speed_list, viscosity
+from .film_setup import FluidParams, at_points, density, film_boundary, speed_list, viscosity
 
 __all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS",
            "VARIANTS", "Z", "build", "check_curvature", "checked_outlet_width", "doc",
            "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
            "hertz_slope", "hertz_start", "large_load", "load", "load_sweep", "measures",
-           "mesh_levels", "name", "outlet_width", "params", "place_user_ball", "plot",
+           "mesh_levels", "name", "outlet_width", "Params", "place_user_ball", "plot",
            "position_control", "progress_total", "resumable", "run", "scales", "set_scales",
            "speed_parameter", "speed_march", "sweep", "thick_film_sweep", "user_rim", "validate",
            "vtx_fields"]
@@ -103,9 +104,9 @@ LEVELS = ((1, 0), (2, 1), (2, 2), (3, 2))
 
 def outlet_width(v):
     """Width ℓ = a (h_c R / a²)^{2/3} (mm) of the outlet constriction at ``v``'s W and U."""
-    a = hertz(v["W"], v["R"], v["E"], v["nu"]).a
-    h_c = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], composite_modulus(v["E"], v["nu"]))[0]
-    return a * (h_c * v["R"] / a**2) ** (2 / 3)
+    a = hertz(v.W, v.R, v.E, v.nu).a
+    h_c = hamrock_dowson(v.W, v.mu, v.U, v.R, composite_modulus(v.E, v.nu))[0]
+    return a * (h_c * v.R / a**2) ** (2 / 3)
 
 
 def checked_outlet_width(v):
@@ -115,14 +116,14 @@ def checked_outlet_width(v):
     except (ArithmeticError, ValueError):
         ell = math.nan
     if not 0 < ell < math.inf:
-        raise InputError(f"W = {v['W']:g} N, U = {v['U']:g} mm/s, R = {v['R']:g} mm, "
-                         f"E = {v['E']:g} MPa give no finite film scale (Hamrock–Dowson)")
+        raise InputError(f"W = {v.W:g} N, U = {v.U:g} mm/s, R = {v.R:g} mm, "
+                         f"E = {v.E:g} MPa give no finite film scale (Hamrock–Dowson)")
     return ell
 
 
 def edge_size(v, mesh, edge_refine):
     """Element size (mm) along the contact edge: a/(4·2^mesh)/2^edge_refine."""
-    return hertz(v["W"], v["R"], v["E"], v["nu"]).a / (4 * 2**mesh) / 2**edge_refine
+    return hertz(v.W, v.R, v.E, v.nu).a / (4 * 2**mesh) / 2**edge_refine
 
 
 def mesh_levels(v):
@@ -133,7 +134,7 @@ def mesh_levels(v):
     2ℓ); none: the cheapest entry of :data:`LEVELS` that does.  If none does,
     the finest candidate with ``resolved`` False.
     """
-    mesh, refine = v["mesh"], v["edge_refine"]
+    mesh, refine = v.mesh, v.edge_refine
     if mesh is not None and refine is not None:
         candidates = [(mesh, refine)]
     elif mesh is not None:
@@ -179,8 +180,8 @@ def place_user_ball(msh, ft, names, v, a):
                 comm.allreduce(float(np.max(x[nodes, k], initial=-np.inf)), op=MPI.MAX))
 
     y0, y1 = extent(_group_nodes(msh, ft, names["symmetry"]), 1)
-    if y1 - y0 > 1e-9 * v["R"]:
-        raise InputError(f"the group 'symmetry' of {v['mesh_file']!r} must be a plane "
+    if y1 - y0 > 1e-9 * v.R:
+        raise InputError(f"the group 'symmetry' of {v.mesh_file!r} must be a plane "
                          f"y = const (spans y = {y0:.6g} … {y1:.6g} mm)")
     cap = _group_nodes(msh, ft, names["lubricated"])
     x0, x1 = extent(cap, 0)
@@ -209,13 +210,13 @@ def check_curvature(msh, cap, v, a):
     n, sq, sqq, sz, sqz = sums
     det = n * sqq - sq * sq
     if n < 6 or not det > 0:
-        raise InputError(f"the cap of {v['mesh_file']!r} has {int(n)} node(s) within the "
+        raise InputError(f"the cap of {v.mesh_file!r} has {int(n)} node(s) within the "
                          f"Hertz radius a = {a:.3g} mm of the contact point (needs >= 6)")
     k = (n * sqz - sq * sz) / det
-    if not abs(k * v["R"] - 1) <= 0.05:
-        raise InputError(f"the cap of {v['mesh_file']!r} has the radius of curvature "
+    if not abs(k * v.R - 1) <= 0.05:
+        raise InputError(f"the cap of {v.mesh_file!r} has the radius of curvature "
                          f"{1 / k if k else math.inf:.4g} mm at the contact: R = "
-                         f"{v['R']} mm must match it within 5 %")
+                         f"{v.R} mm must match it within 5 %")
 
 
 def user_rim(film, v, a):
@@ -224,15 +225,15 @@ def user_rim(film, v, a):
     Raises InputError if there is none, or if the cap does not reach 1.5 a(W)
     from the contact point (the least rim radius √(x² + y²)).
     """
-    tol = 1e-9 * v["R"]
+    tol = 1e-9 * v.R
     rim = film_boundary(film, keep=lambda X: ~np.all(np.abs(X[:, :, 1]) < tol, axis=1))
     if not len(rim):
-        raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} has no rim off "
+        raise InputError(f"the group 'lubricated' of {v.mesh_file!r} has no rim off "
                          "the symmetry plane (p = 0 there)")
     r_cap = float(np.min(np.hypot(rim[:, 0], rim[:, 1])))
     if r_cap < 1.5 * a:
-        raise InputError(f"the cap of {v['mesh_file']!r} reaches r = {r_cap:.3g} mm < "
-                         f"1.5 a = {1.5 * a:.3g} mm (Hertz a at W = {v['W']} N)")
+        raise InputError(f"the cap of {v.mesh_file!r} reaches r = {r_cap:.3g} mm < "
+                         f"1.5 a = {1.5 * a:.3g} mm (Hertz a at W = {v.W} N)")
     return rim
 
 
@@ -243,54 +244,70 @@ name = "ehl-ball"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "soft-EHL: elastic ball sliding on a rigid plane (3D, finite/no-shear/linear)"
-params = (
-    Param("W", float, 10.0, "N", "final load on the whole ball", lower=0.0),
-    Param("steps", int, 3, "-", "load increments (W/steps, …, W)", lower=1, upper=100,
-          closed=True),
-    Param("mu", float, 1e-8, "MPa·s", "viscosity (1e-8 MPa·s = 10 mPa·s)", lower=0.0),
-    Param("U", float, 1e4, "mm/s", "entrainment speed U = V/2 (plane slides at 2U)",
-          lower=0.0),
-    Param("R", float, 12.7, "mm", "ball radius", lower=0.0),
-    Param("E", float, 1.19, "MPa", "Young's modulus of the ball", lower=0.0),
-    Param("nu", float, 0.45, "-", "Poisson's ratio of the ball", lower=-1.0, upper=0.5),
-    Param("theta_l", float, 40.0, "deg", "polar angle of the lubricated cap", lower=5.0,
-          upper=75.0, closed=True),
-    Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
-          choices=("finite", "linear")),
-    Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the ball"),
-    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-    film_setup.formulation_param("displacement"), film_setup.quadrature_param(),
-    Param("penalty", float, 1e-4, "-",
-          "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
-          "Hamrock–Dowson h_c at W)", lower=0.0),
-    Param("mesh", int, None, "-", "element size a/(4·2^mesh) near the contact (default: "
-          "chosen with edge_refine from W and U to resolve the outlet, edge_size)",
-          lower=0, upper=3, closed=True),
-    Param("h_coarse", float, 4.0, "mm", "element size far from the contact", lower=0.0),
-    Param("edge_refine", int, None, "-",
-          "refinement levels of a band along the edge of the contact zone (the "
-          "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
-          "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
-          "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
-          lower=0, upper=3,
-          closed=True),
-    Param("start_speed", float, 30.0, "-",
-          "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
-          "displacement control (thick film), then U is continued down to U",
-          lower=1.0, closed=True),
-    Param("speeds", str, "", "mm/s",
-          "comma-separated entrainment speeds for continuation in U at the final load "
-          "(empty: none); records the friction coefficient vs μU"),
-    Param("compare", str, "none", "-",
-          "all: load sweep (and speeds) of the full model, without shear tractions and "
-          "geometrically linear in one run", choices=("none", "all")),
-    Param("mesh_file", str, "", "-",
-          "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
-          "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
-          "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
-          "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
-          "lowest at z = 0"),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``ehl-ball`` (``--set KEY=VALUE``)."""
+
+    W: float = param(10.0, "N", "final load on the whole ball", lower=0.0)
+    steps: int = param(3, "-", "load increments (W/steps, …, W)", lower=1, upper=100, closed=True)
+    mu: float = param(1e-8, "MPa·s", "viscosity (1e-8 MPa·s = 10 mPa·s)", lower=0.0)
+    U: float = param(1e4, "mm/s", "entrainment speed U = V/2 (plane slides at 2U)", lower=0.0)
+    R: float = param(12.7, "mm", "ball radius", lower=0.0)
+    E: float = param(1.19, "MPa", "Young's modulus of the ball", lower=0.0)
+    nu: float = param(0.45, "-", "Poisson's ratio of the ball", lower=-1.0, upper=0.5)
+    theta_l: float = param(
+        40.0, "deg",
+        "polar angle of the lubricated cap",
+        lower=5.0, upper=75.0, closed=True)
+    model: str = param(
+        "finite", "-",
+        "finite deformation or geometrically linear (EHL)",
+        choices=("finite", "linear"))
+    shear: bool = param(True, "-", "Couette and Poiseuille shear tractions on the ball")
+    supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds equation")
+    formulation: str = film_setup.formulation_param("displacement")
+    quadrature: str = film_setup.quadrature_param()
+    penalty: float = param(
+        1e-4, "-",
+        "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
+        "Hamrock–Dowson h_c at W)",
+        lower=0.0)
+    mesh: int | None = param(
+        None, "-",
+        "element size a/(4·2^mesh) near the contact (default: "
+        "chosen with edge_refine from W and U to resolve the outlet, edge_size)",
+        lower=0, upper=3, closed=True)
+    h_coarse: float = param(4.0, "mm", "element size far from the contact", lower=0.0)
+    edge_refine: int | None = param(
+        None, "-",
+        "refinement levels of a band along the edge of the contact zone (the "
+        "film's outlet ridge and side lobes): size h/2^level within 0.1 a of the "
+        "circle of radius 0.95 a(W) on the undeformed cap (h the size near the "
+        "contact; at 40 N the side-lobe minima lie at 0.94 a; default: with mesh)",
+        lower=0, upper=3, closed=True)
+    start_speed: float = param(
+        30.0, "-",
+        "loads with Hertz a(W) > R/3: each load is reached at start_speed·U by "
+        "displacement control (thick film), then U is continued down to U",
+        lower=1.0, closed=True)
+    speeds: str = param(
+        "", "mm/s",
+        "comma-separated entrainment speeds for continuation in U at the final load "
+        "(empty: none); records the friction coefficient vs μU")
+    compare: str = param(
+        "none", "-",
+        "all: load sweep (and speeds) of the full model, without shear tractions and "
+        "geometrically linear in one run",
+        choices=("none", "all"))
+    mesh_file: str = param(
+        "", "-",
+        "your own quarter ball: a 3D gmsh .msh with physical groups lubricated (the "
+        "cap, p = 0 on its rim), midplane (u = 0), symmetry (plane y = const); "
+        "replaces theta_l, mesh, h_coarse, edge_refine (R, E, nu: Hertz start, scales; cap "
+        "curvature 1/R within 5 %); moved: symmetry at y = 0, cap centred at x = 0, "
+        "lowest at z = 0")
 
 
 #: variants of ``compare=all``: (prefix, label, overrides)
@@ -312,12 +329,12 @@ FILM_OSCILLATION_TOL = 0.05
 
 def e_star(v):
     """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
-    return composite_modulus(v["E"], v["nu"])
+    return composite_modulus(v.E, v.nu)
 
 
 def hertz_contact(v, W=None):
-    """Hertz contact of the ball on the rigid plane at W (default ``v["W"]``, N)."""
-    return hertz(v["W"] if W is None else W, v["R"], v["E"], v["nu"])
+    """Hertz contact of the ball on the rigid plane at W (default ``v.W``, N)."""
+    return hertz(v.W if W is None else W, v.R, v.E, v.nu)
 
 
 def validate(v):
@@ -326,19 +343,19 @@ def validate(v):
     With ``mesh_file`` the cap of the mesh is checked when it is read (:meth:`build`).
     """
     a = hertz_contact(v).a
-    r_cap = v["R"] * math.sin(math.radians(v["theta_l"]))
-    if r_cap < 1.5 * a and not v["mesh_file"]:
+    r_cap = v.R * math.sin(math.radians(v.theta_l))
+    if r_cap < 1.5 * a and not v.mesh_file:
         raise InputError(f"cap radius R sin θ_l = {r_cap:.3g} mm < 1.5 a = {1.5 * a:.3g} mm "
-                         f"(Hertz a at W = {v['W']} N): increase theta_l")
-    if not v["U"] > 0 or not v["mu"] > 0:
+                         f"(Hertz a at W = {v.W} N): increase theta_l")
+    if not v.U > 0 or not v.mu > 0:
         raise InputError("U and mu must be positive (entrainment)")
     checked_outlet_width(v)
-    auto = v["mesh"] is None or v["edge_refine"] is None
-    if auto and not v["mesh_file"] and not mesh_levels(v)[2]:
+    auto = v.mesh is None or v.edge_refine is None
+    if auto and not v.mesh_file and not mesh_levels(v)[2]:
         raise InputError(
-            f"no built mesh{'' if v['mesh'] is None else ' with mesh=' + str(v['mesh'])}"
-            f"{'' if v['edge_refine'] is None else ' edge_refine=' + str(v['edge_refine'])}"
-            f" resolves the film's outlet at W = {v['W']:g} N, U = {v['U']:g} mm/s "
+            f"no built mesh{'' if v.mesh is None else ' with mesh=' + str(v.mesh)}"
+            f"{'' if v.edge_refine is None else ' edge_refine=' + str(v.edge_refine)}"
+            f" resolves the film's outlet at W = {v.W:g} N, U = {v.U:g} mm/s "
             f"(width {outlet_width(v):.3g} mm): raise U, refine, or give mesh_file")
     viscosity(v)
     density(v)
@@ -347,10 +364,10 @@ def validate(v):
 
 def scales(v, W=None, U=None):
     """Hertz a (mm), p0 (MPa), Hamrock–Dowson h_c (mm) and penalty ε (MPa·s/mm)."""
-    W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
+    W, U = (v.W if W is None else W), (v.U if U is None else U)
     h = hertz_contact(v, W)
-    h_c = hamrock_dowson(W, v["mu"], U, v["R"], e_star(v))[0]
-    return h.a, h.p0, h_c, v["penalty"] * 12 * v["mu"] * h.a**2 / h_c**3
+    h_c = hamrock_dowson(W, v.mu, U, v.R, e_star(v))[0]
+    return h.a, h.p0, h_c, v.penalty * 12 * v.mu * h.a**2 / h_c**3
 
 
 def set_scales(film, v, W, U):
@@ -366,42 +383,42 @@ def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
     of ``compare=all`` is ``ehl_ball_full``, ``ehl_ball_no_shear``, ``ehl_ball_linear``).
     """
     a = hertz_contact(v).a
-    th = math.radians(v["theta_l"])
-    if v["mesh_file"]:
-        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, USER_GROUPS)
+    th = math.radians(v.theta_l)
+    if v.mesh_file:
+        msh, ft, names = read_user_mesh(v.mesh_file, comm, 3, USER_GROUPS)
         place_user_ball(msh, ft, names, v, a)
     else:
         level, refine, _ = mesh_levels(v)
         h_fine = a / (4 * 2**level)
         ring = (0.95 * a, h_fine / 2**refine, 0.1 * a) if refine else None
-        msh, ct, ft = quarter_ball(v["R"], th, h_fine, max(v["h_coarse"], h_fine),
+        msh, ct, ft = quarter_ball(v.R, th, h_fine, max(v.h_coarse, h_fine),
                                    1.6 * a, comm, ring=ring)
         names = NAMES
-    mu, lm = lame_parameters(v["E"], v["nu"])
-    law = "linear" if v["model"] == "linear" else "neo-hookean"
+    mu, lm = lame_parameters(v.E, v.nu)
+    law = "linear" if v.model == "linear" else "neo-hookean"
     ball = Body(msh, ft, names, "3d", (law, {"mu": mu, "lmbda": lm}), name="ball",
-                formulation=v["formulation"])
+                formulation=v.formulation)
     ball.add_dirichlet("midplane", np.zeros(3))
     ball.add_dirichlet("symmetry", 0.0, component=1)
-    _, p0, h_c, eps = scales(v, v["W"] / v["steps"])
-    V_plane = np.array([2 * v["U"], 0.0, 0.0])
+    _, p0, h_c, eps = scales(v, v.W / v.steps)
+    V_plane = np.array([2 * v.U, 0.0, 0.0])
     film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
-                density=density(v), quadrature=v["quadrature"],
-                V_counter=V_plane, model=v["model"], shear=v["shear"], supg=v["supg"],
-                eps=eps if v["penalty"] > 0 else None, p_c=p0, film_scale=h_c,
-                speed_scale=v["U"], quadrature_degree=2)
-    if v["mesh_file"]:
-        film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v["R"]))
+                density=density(v), quadrature=v.quadrature,
+                V_counter=V_plane, model=v.model, shear=v.shear, supg=v.supg,
+                eps=eps if v.penalty > 0 else None, p_c=p0, film_scale=h_c,
+                speed_scale=v.U, quadrature_degree=2)
+    if v.mesh_file:
+        film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v.R))
     else:
-        z_cap = cap_height(v["R"], th)
-        film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v["R"])
+        z_cap = cap_height(v.R, th)
+        film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R)
     problem = Problem([ball, film], name=name, max_it=25)
     return ball, film, problem
 
 
 def progress_total(v):
     """Points the progress bar counts: the loads of every variant."""
-    return v["steps"] * (len(VARIANTS) if v["compare"] == "all" else 1)
+    return v.steps * (len(VARIANTS) if v.compare == "all" else 1)
 
 
 def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
@@ -411,15 +428,15 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     converged load and speed step (:class:`tribofx.restart.SweepJournal`);
     ``resume``: continue from it.
     """
-    variants = VARIANTS if v["compare"] == "all" else (("", v["model"], {}),)
+    variants = VARIANTS if v.compare == "all" else (("", v.model, {}),)
     journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-    record.result("mu_U", v["mu"] * v["U"], "N/mm")
+    record.result("mu_U", v.mu * v.U, "N/mm")
     a, p0, _, _ = scales(v)
-    hc, hm = hamrock_dowson(v["W"], v["mu"], v["U"], v["R"], e_star(v))
+    hc, hm = hamrock_dowson(v.W, v.mu, v.U, v.R, e_star(v))
     for key, value in (("hertz_a", a), ("hertz_p0", p0), ("hamrock_dowson_h_c", hc),
                        ("hamrock_dowson_h_min", hm)):
         record.result(key, value, "MPa" if key == "hertz_p0" else "mm")
-    if not v["mesh_file"]:
+    if not v.mesh_file:
         level, refine, resolved = mesh_levels(v)
         record.data["mesh_levels"] = {"mesh": level, "edge_refine": refine}
         if not resolved:
@@ -428,10 +445,10 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
                         f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
                         "at this W and U: expect a zig-zag or a spurious dip of the film")
     record.data["variant_newton_iterations"] = {}
-    record.profile = {"variants": {}, "W": v["W"]}
+    record.profile = {"variants": {}, "W": v.W}
     first = None
     for name, label, over in variants:
-        run = sweep(dict(v, **over), name, label, record, journal, progress, verbose)
+        run = sweep(v.replace(**over), name, label, record, journal, progress, verbose)
         first = first or run
     return first
 
@@ -445,7 +462,7 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     search; the march increments; the film scales); a resumed variant
     restores them and continues on the same sequence of steps.
     """
-    key = name or vv["model"]
+    key = name or vv.model
     run = build(vv, name=options_name("ehl_ball", name))
     film, problem = run[1], run[2]
     record.data["num_dofs"] = problem.num_dofs
@@ -457,7 +474,7 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
     pos = sv.position
     record.data["variant_newton_iterations"][key] = its_all
-    var = {"label": label, "shear": vv["shear"]}
+    var = {"label": label, "shear": vv.shear}
     record.profile["variants"][key] = var
     at = {"leg": 0 if pos is None else pos["leg"]}
 
@@ -498,7 +515,7 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
                 if speed_list(vv):
                     on_speed()
             elif large_load(vv):
-                inner = follow_control(run, vv, vv["W"], vv["W"], verbose)
+                inner = follow_control(run, vv, vv.W, vv.W, verbose)
                 inner.set_secant_state(pos["inner"])
             else:
                 inner = position_control(run, vv, verbose)
@@ -508,7 +525,7 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
                     continue
                 increments = pos["increments"] if j + 1 == at["leg"] else None
                 at["leg"] = j + 1
-                speed_march(run, vv, inner, vv["W"], U,
+                speed_march(run, vv, inner, vv.W, U,
                                 restart=not large_load(vv), record=its_all,
                                 on_speed=on_speed, increments=increments)
         finally:
@@ -532,8 +549,8 @@ def measures(run, v):
     film = run[1]
     prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
     f_plane = film.counter_force()
-    xy = (prof["x"] if v["model"] == "finite" else prof["X"])[:, :2]
-    on = np.abs(prof["X"][:, 1]) < 1e-9 * v["R"]          # the symmetry line y = 0
+    xy = (prof["x"] if v.model == "finite" else prof["X"])[:, :2]
+    on = np.abs(prof["X"][:, 1]) < 1e-9 * v.R          # the symmetry line y = 0
     order = np.argsort(xy[on, 0])
     xx, hh, pp = xy[on, 0][order], prof["h"][on][order], prof["p"][on][order]
     i = int(np.argmin(prof["h"]))
@@ -577,7 +594,7 @@ def _report(steps, speed, v, record, prefix):
     for k in ("W",) + keys:
         record.result(f"{prefix}steps_{k}", [m[k] for m in steps], UNITS[k])
     for m in speed:
-        m["mu_U"] = v["mu"] * m["U"]
+        m["mu_U"] = v.mu * m["U"]
     if len(speed) > 1:
         for k in ("U", "mu_U", "friction_coefficient", "couette_friction_coefficient",
                   "plane_friction_coefficient", "h_central", "h_min", "p_max"):
@@ -658,14 +675,14 @@ def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
     if large_load(v):
         return thick_film_sweep(run, v, on_step, verbose, start, on_accept)
     film, problem = run[1], run[2]
-    W1 = v["W"] / v["steps"]
+    W1 = v.W / v.steps
     inner = position_control(run, v, verbose)
     offset = film.counterpart.offset.value
     # each trial sequence starts at the current position: the converged first
     # state, then the Hertz state predicted for each further load
     held = Hold(inner, W1, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
     if start is None:
-        hertz_start(run, v, W1, v["U"])
+        hertz_start(run, v, W1, v.U)
         its0 = problem.solve_by_homotopy(verbose=verbose).iterations
         if not film.min_film() > 0:
             raise NewtonDivergence(
@@ -673,10 +690,10 @@ def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
                 "under-resolved by the mesh): raise mesh or use fewer load steps")
     else:
         inner.set_secant_state(start["inner"])
-    for k in range(0 if start is None else start["k"], v["steps"]):
+    for k in range(0 if start is None else start["k"], v.steps):
         if k > 0:
-            held.predict = lambda W: hertz_start(run, v, W, v["U"])
-        held.target = v["W"] * (k + 1) / v["steps"]
+            held.predict = lambda W: hertz_start(run, v, W, v.U)
+        held.target = v.W * (k + 1) / v.steps
         its = held.solve(verbose).iterations
         if on_step is not None:
             on_step(held.target, [its0, *its] if k == 0 else its)
@@ -698,12 +715,12 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
     as for :meth:`load_sweep`, with the carrier state restored.
     """
     film, problem = run[1], run[2]
-    U, speed = v["U"], speed_parameter(run)
+    U, speed = v.U, speed_parameter(run)
     if start is None:
         its, k0 = [], 0
-        W0 = min(v["W"] / v["steps"], 0.25 * v["W"])
+        W0 = min(v.W / v.steps, 0.25 * v.W)
         for f in (1.0, 0.3, 3.0, 0.1, 10.0):
-            Us = max(U, f * v["start_speed"] * U)
+            Us = max(U, f * v.start_speed * U)
             speed.set(Us)
             set_scales(film, v, W0, Us)
             hertz_start(run, v, W0, Us)
@@ -719,15 +736,15 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
         W_start = load(run)
     else:
         its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
-        if k0 < v["steps"]:      # the next load starts from the thick-film state
+        if k0 < v.steps:      # the next load starts from the thick-film state
             problem.restore(start["carrier"])
             speed.set(Us)
             set_scales(film, v, W_start, Us)
         else:                    # all loads done: the last load's controller
             inner = follow_control(run, v, W_start, W_start, verbose, its)
             inner.set_secant_state(start["inner"])
-    for k in range(k0, v["steps"]):
-        Wk = v["W"] * (k + 1) / v["steps"]
+    for k in range(k0, v.steps):
+        Wk = v.W * (k + 1) / v.steps
         inner = follow_control(run, v, Wk, W_start, verbose, its)
         inner.advance(Wk, 0.05 * hertz_contact(v).delta)
         set_scales(film, v, Wk, Us)
@@ -740,7 +757,7 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
             on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
                        "inner": inner.secant_state()}, carrier)
         its, W_start = [], Wk
-        if k + 1 < v["steps"] and Us != U:
+        if k + 1 < v.steps and Us != U:
             problem.restore(carrier)
             speed.set(Us)
             set_scales(film, v, Wk, Us)
@@ -799,4 +816,4 @@ def speed_march(run, v, inner, W, U, restart=False, record=None, on_speed=None,
 
 def large_load(v):
     """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
-    return hertz_contact(v).a > v["R"] / 3
+    return hertz_contact(v).a > v.R / 3

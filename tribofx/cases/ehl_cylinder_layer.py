@@ -31,6 +31,7 @@ in ``series_points``).
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -44,14 +45,14 @@ from ..interfaces import Film
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..positions import parabolic_vertex
 from ..problem import Problem, options_name
 from ..references import rigid_clearance
 from ..restart import SweepJournal
 from ..sweep import SweepVariant
 from .film_setup import (
-    VISCOSITY_PARAMS,
+    FluidParams,
     density,
     film_boundary,
     formulation_param,
@@ -61,7 +62,7 @@ from .film_setup import (
 
 __all__ = ["COMPARE", "COMPARE_PLOT", "UNITS", "USER_CELLS", "USER_GROUPS", "arc_half_angle",
            "build", "check_film_length", "check_user_ends", "cylinder_arc", "doc",
-           "load_control", "measures", "name", "params", "place_user_layer", "plot",
+           "load_control", "measures", "name", "Params", "place_user_layer", "plot",
            "progress_total", "read_user_layer", "resumable", "run", "scales", "set_speed",
            "slope", "speed_sweep", "sweep", "validate", "vtx_fields"]
 
@@ -75,21 +76,21 @@ USER_CELLS = ("layer", "coating")
 
 
 def read_user_layer(v, comm, material):
-    """Read and place the layer of ``v["mesh_file"]``; its materials from ``material(E)``.
+    """Read and place the layer of ``v.mesh_file``; its materials from ``material(E)``.
 
     Returns ``(msh, ct, ft, names, materials, x_l)``: ``ct`` the cell tags (None
     without cell groups), ``names`` {group: tag}, ``materials`` {cell tag: law}
     (one law without cell groups), ``x_l`` half the x extent of Γ_l (mm).
     """
-    msh, ft, names, ct, cells = read_user_mesh(v["mesh_file"], comm, 2, USER_GROUPS,
+    msh, ft, names, ct, cells = read_user_mesh(v.mesh_file, comm, 2, USER_GROUPS,
                                                cells=USER_CELLS)
     x_l = place_user_layer(msh, ft, names["lubricated"])
     if "coating" in cells and "layer" not in cells:
-        raise InputError(f"{v['mesh_file']!r} has the cell group 'coating' but no "
+        raise InputError(f"{v.mesh_file!r} has the cell group 'coating' but no "
                          "'layer' (the layer's cells, modulus E)")
-    moduli = {"layer": v["E"], "coating": v["E_c"]}
+    moduli = {"layer": v.E, "coating": v.E_c}
     materials = ({tag: material(moduli[name]) for name, tag in cells.items()} if cells
-                 else material(v["E"]))
+                 else material(v.E))
     return msh, ct, ft, names, materials, x_l
 
 
@@ -117,9 +118,9 @@ def check_user_ends(film, v):
     need it; a closed or split curve has 0 or more than 2 end points.
     """
     ends = film_boundary(film)
-    x_l = v["x_l"]
+    x_l = v.x_l
     if len(ends) != 2 or not np.allclose(np.sort(ends[:, 0]), [-x_l, x_l], atol=1e-9 * x_l):
-        raise InputError(f"the group 'lubricated' of {v['mesh_file']!r} must be one open "
+        raise InputError(f"the group 'lubricated' of {v.mesh_file!r} must be one open "
                          f"curve ending at its two x extremes (has {len(ends)} end "
                          f"point(s) at x = {', '.join(f'{e:.4g}' for e in ends[:, 0])})")
 
@@ -144,58 +145,75 @@ name = "ehl-cylinder-layer"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "soft-EHL: rigid cylinder sliding on a coated elastic layer (finite or linear)"
-params = (
-    Param("W", float, 1.0, "N/mm", "final load per unit length", lower=0.0),
-    Param("steps", int, 10, "-", "load increments (W/steps, 2W/steps, …, W)", lower=1,
-          upper=1000, closed=True),
-    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-    Param("U", float, 1000.0, "mm/s", "sliding speed of the cylinder", lower=0.0),
-    Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
-    Param("H", float, 5.0, "mm", "layer thickness (coating included)", lower=0.0),
-    Param("E", float, 10.0, "MPa", "Young's modulus of the layer", lower=0.0),
-    Param("t_c", float, 0.1, "mm", "coating thickness (0: no coating)", lower=0.0,
-          closed=True),
-    Param("E_c", float, 100.0, "MPa", "Young's modulus of the coating", lower=0.0),
-    Param("nu", float, 0.45, "-", "Poisson's ratio (layer and coating)", lower=-1.0,
-          upper=0.5),
-    Param("x_l", float, 3.0, "mm", "half length of the lubricated zone (p = 0 at ±x_l)",
-          lower=0.0),
-    Param("model", str, "finite", "-", "finite deformation or geometrically linear (EHL)",
-          choices=("finite", "linear")),
-    Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions on the layer"),
-    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds equation"),
-    formulation_param("displacement"),
-    Param("penalty", float, 1e-6, "-",
-          "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
-          lower=0.0),
-    Param("mesh", int, 1, "-", "refinement: element size 0.04/2^mesh mm along Γ_l",
-          lower=0, upper=6, closed=True),
-    Param("degree", int, 2, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-    Param("countersurface", str, "analytic", "-",
-          "cylinder in closed form, or meshed (interval3 arc, C++ projection kernel)",
-          choices=("analytic", "mesh")),
-    Param("cs_facets", int, 400, "-", "interval3 facets of the meshed cylinder arc", lower=1,
-          upper=100000, closed=True),
-    Param("cavitation", str, "penalty", "-",
-          "penalty (Swift–Stieber limit) or jfo (mass-conserving, void fraction λ)",
-          choices=("penalty", "jfo")),
-    Param("alpha", float, 0.0, "-",
-          "lubrication surface S_α = (1 − α) P(γ_l) + α γ_l (0: S = P(γ_l), 1: S = γ_l)",
-          lower=0.0, upper=1.0, closed=True),
-    Param("speeds", str, "", "mm/s",
-          "comma-separated sliding speeds for continuation in U at the final load W "
-          "(empty: none); records the friction coefficient vs μU"),
-    Param("compare", str, "none", "-",
-          "one load sweep per variant in the same run: linear (model = finite and "
-          "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
-          "the variant", choices=("none", "linear", "alpha")),
-    Param("mesh_file", str, "", "-",
-          "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
-          "open curve under the cylinder) and bottom (u = 0), and optionally the cell "
-          "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
-          "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
-          "is at y = 0, its x extent centred below the cylinder axis"),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``ehl-cylinder-layer`` (``--set KEY=VALUE``)."""
+
+    W: float = param(1.0, "N/mm", "final load per unit length", lower=0.0)
+    steps: int = param(
+        10, "-",
+        "load increments (W/steps, 2W/steps, …, W)",
+        lower=1, upper=1000, closed=True)
+    mu: float = param(1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
+    U: float = param(1000.0, "mm/s", "sliding speed of the cylinder", lower=0.0)
+    R: float = param(10.0, "mm", "cylinder radius", lower=0.0)
+    H: float = param(5.0, "mm", "layer thickness (coating included)", lower=0.0)
+    E: float = param(10.0, "MPa", "Young's modulus of the layer", lower=0.0)
+    t_c: float = param(0.1, "mm", "coating thickness (0: no coating)", lower=0.0, closed=True)
+    E_c: float = param(100.0, "MPa", "Young's modulus of the coating", lower=0.0)
+    nu: float = param(0.45, "-", "Poisson's ratio (layer and coating)", lower=-1.0, upper=0.5)
+    x_l: float = param(3.0, "mm", "half length of the lubricated zone (p = 0 at ±x_l)", lower=0.0)
+    model: str = param(
+        "finite", "-",
+        "finite deformation or geometrically linear (EHL)",
+        choices=("finite", "linear"))
+    shear: bool = param(True, "-", "Couette and Poiseuille shear tractions on the layer")
+    supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds equation")
+    formulation: str = formulation_param("displacement")
+    penalty: float = param(
+        1e-6, "-",
+        "relative cavitation penalty ε/ε_ref, ε_ref = 24 μ R/h_r², h_r = rigid film at W",
+        lower=0.0)
+    mesh: int = param(
+        1, "-",
+        "refinement: element size 0.04/2^mesh mm along Γ_l",
+        lower=0, upper=6, closed=True)
+    degree: int = param(2, "-", "Lagrange degree of the displacement", choices=(1, 2))
+    countersurface: str = param(
+        "analytic", "-",
+        "cylinder in closed form, or meshed (interval3 arc, C++ projection kernel)",
+        choices=("analytic", "mesh"))
+    cs_facets: int = param(
+        400, "-",
+        "interval3 facets of the meshed cylinder arc",
+        lower=1, upper=100000, closed=True)
+    cavitation: str = param(
+        "penalty", "-",
+        "penalty (Swift–Stieber limit) or jfo (mass-conserving, void fraction λ)",
+        choices=("penalty", "jfo"))
+    alpha: float = param(
+        0.0, "-",
+        "lubrication surface S_α = (1 − α) P(γ_l) + α γ_l (0: S = P(γ_l), 1: S = γ_l)",
+        lower=0.0, upper=1.0, closed=True)
+    speeds: str = param(
+        "", "mm/s",
+        "comma-separated sliding speeds for continuation in U at the final load W "
+        "(empty: none); records the friction coefficient vs μU")
+    compare: str = param(
+        "none", "-",
+        "one load sweep per variant in the same run: linear (model = finite and "
+        "linear, Fig. 22) or alpha (α = 0, 0.5, 1, Fig. 23); results prefixed by "
+        "the variant",
+        choices=("none", "linear", "alpha"))
+    mesh_file: str = param(
+        "", "-",
+        "your own layer: a 2D gmsh .msh with physical groups lubricated (Γ_l, one "
+        "open curve under the cylinder) and bottom (u = 0), and optionally the cell "
+        "groups layer (E) and coating (E_c; else one material E); replaces H, x_l "
+        "(half the x extent of Γ_l), mesh and t_c; moved so that Γ_l's highest node "
+        "is at y = 0, its x extent centred below the cylinder axis")
 
 
 #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
@@ -221,21 +239,21 @@ def validate(v):
     With ``mesh_file`` H, t_c and x_l come from the mesh; x_l ≤ 0.8 R is then
     checked when the mesh is read (:meth:`build`).
     """
-    if not v["mesh_file"]:
-        if v["t_c"] >= v["H"]:
-            raise InputError(f"coating t_c = {v['t_c']} mm must be thinner than "
-                             f"H = {v['H']} mm")
-        if v["x_l"] >= 3 * v["H"]:
-            raise InputError(f"x_l = {v['x_l']} mm must be < 3H = {3 * v['H']} mm")
-        check_film_length(v["x_l"], v["R"])
+    if not v.mesh_file:
+        if v.t_c >= v.H:
+            raise InputError(f"coating t_c = {v.t_c} mm must be thinner than "
+                             f"H = {v.H} mm")
+        if v.x_l >= 3 * v.H:
+            raise InputError(f"x_l = {v.x_l} mm must be < 3H = {3 * v.H} mm")
+        check_film_length(v.x_l, v.R)
     speeds = speed_list(v)
     viscosity(v)
-    density(v)
-    if v["cavitation"] == "jfo" and not v["U"] > 0:
+    density(v, v.cavitation)
+    if v.cavitation == "jfo" and not v.U > 0:
         raise InputError("cavitation=jfo needs U > 0")
-    if v["compare"] != "none" and speeds:
+    if v.compare != "none" and speeds:
         raise InputError("speeds (continuation in U) is not available with compare")
-    if v["compare"] == "alpha" and v["model"] != "finite":
+    if v.compare == "alpha" and v.model != "finite":
         raise InputError("compare=alpha is a study of the finite-deformation model")
 
 
@@ -247,15 +265,15 @@ def check_film_length(x_l, R):
 
 def scales(v, W=None, U=None):
     """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at W and U."""
-    W, U = (v["W"] if W is None else W), (v["U"] if U is None else U)
-    h_r = rigid_clearance(W, v["mu"], U, v["R"])
-    ell = math.sqrt(2 * v["R"] * h_r)
-    return h_r, 6 * v["mu"] * U * ell / h_r**2, v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3
+    W, U = (v.W if W is None else W), (v.U if U is None else U)
+    h_r = rigid_clearance(W, v.mu, U, v.R)
+    ell = math.sqrt(2 * v.R * h_r)
+    return h_r, 6 * v.mu * U * ell / h_r**2, v.penalty * 12 * v.mu * ell**2 / h_r**3
 
 
 def arc_half_angle(v):
     """Half angle (rad) of the meshed arc: covers the film zone |x| ≤ x_l with 25 % margin."""
-    return math.asin(min(0.95, 1.25 * v["x_l"] / v["R"]))
+    return math.asin(min(0.95, 1.25 * v.x_l / v.R))
 
 
 def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
@@ -268,43 +286,43 @@ def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
     kinematics with α = 0, for checking that they coincide).  ``mesh_file``:
     the user's layer (see the module docstring), ``x_l`` taken from it.
     """
-    H = v["H"]
-    law = "linear" if v["model"] == "linear" else "neo-hookean"
+    H = v.H
+    law = "linear" if v.model == "linear" else "neo-hookean"
 
     def mat(E):
-        mu, lm = lame_parameters(E, v["nu"])
+        mu, lm = lame_parameters(E, v.nu)
         return (law, {"mu": mu, "lmbda": lm})
 
-    if v["mesh_file"]:
+    if v.mesh_file:
         msh, ct, ft, names, materials, x_l = read_user_layer(v, comm, mat)
-        v = dict(v, x_l=x_l)
-        check_film_length(x_l, v["R"])
+        v = v.replace(x_l=x_l)
+        check_film_length(x_l, v.R)
     else:
-        msh, ct, ft = coated_layer(3 * H, H, v["t_c"], v["x_l"], 0.04 / 2 ** v["mesh"],
+        msh, ct, ft = coated_layer(3 * H, H, v.t_c, v.x_l, 0.04 / 2 ** v.mesh,
                                    H / 5, comm)
         names = NAMES
-        materials = {LAYER: mat(v["E"])} | ({COATING: mat(v["E_c"])} if v["t_c"] > 0
+        materials = {LAYER: mat(v.E)} | ({COATING: mat(v.E_c)} if v.t_c > 0
                                            else {})
     layer = Body(msh, ft, names, "plane_strain", materials, cell_tags=ct,
-                 degree=v["degree"], velocity=(v["U"], 0.0), name="layer",
-                 formulation=v["formulation"])
+                 degree=v.degree, velocity=(v.U, 0.0), name="layer",
+                 formulation=v.formulation)
     layer.add_dirichlet("bottom", np.zeros(2))
-    if v["countersurface"] == "mesh":
-        nodes, facets, ctype = cylinder_arc(v["R"], v["cs_facets"], arc_half_angle(v))
-        cylinder = rigid_surface_mesh(nodes + [0.0, v["R"]], facets, ctype)
+    if v.countersurface == "mesh":
+        nodes, facets, ctype = cylinder_arc(v.R, v.cs_facets, arc_half_angle(v))
+        cylinder = rigid_surface_mesh(nodes + [0.0, v.R], facets, ctype)
     else:
-        cylinder = rigid_cylinder(np.array([0.0, v["R"]]), v["R"])
-    h_r, p_s, eps = scales(v, v["W"] / v["steps"])
-    film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v),
-                model=v["model"], shear=v["shear"],
-                supg=v["supg"], cavitation=v["cavitation"],
-                eps=eps if v["penalty"] > 0 else None, p_c=p_s,
-                alpha=v["alpha"] if (v["alpha"] > 0 or intermediate) else None,
-                film_scale=h_r, speed_scale=v["U"])
-    if v["mesh_file"]:
+        cylinder = rigid_cylinder(np.array([0.0, v.R]), v.R)
+    h_r, p_s, eps = scales(v, v.W / v.steps)
+    film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v, v.cavitation),
+                model=v.model, shear=v.shear,
+                supg=v.supg, cavitation=v.cavitation,
+                eps=eps if v.penalty > 0 else None, p_c=p_s,
+                alpha=v.alpha if (v.alpha > 0 or intermediate) else None,
+                film_scale=h_r, speed_scale=v.U)
+    if v.mesh_file:
         check_user_ends(film, v)
-    if v["cavitation"] == "jfo":
-        film.add_inlet(lambda X: np.isclose(X[0], -v["x_l"]))
+    if v.cavitation == "jfo":
+        film.add_inlet(lambda X: np.isclose(X[0], -v.x_l))
     else:
         film.add_pressure_bc()
     problem = Problem([layer, film], name=name, max_it=25)
@@ -322,7 +340,7 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
     resumed variant continues there.
     """
-    name = prefix[:-1] or v["model"]
+    name = prefix[:-1] or v.model
     run = build(v, name=options_name("ehl_cylinder", prefix[:-1]))
     layer, film, problem = run
     journal = journal or SweepJournal(None, layer.mesh.comm, v)
@@ -338,7 +356,7 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
 
     def save(leg, march):
         var.save({"leg": leg, "increments": march.increments,
-                  "W": loads.done if leg == 0 else v["W"], "inner": inner.secant_state(),
+                  "W": loads.done if leg == 0 else v.W, "inner": inner.secant_state(),
                   "scales": film.scale_values()})
 
     def on_step():
@@ -371,12 +389,12 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     with var:
         try:
             if leg == 0:
-                loads.march(v["W"], v["steps"], predictor=False, increments=increments)
+                loads.march(v.W, v.steps, predictor=False, increments=increments)
                 increments = None
             if speed_list(v):
                 if leg == 0:
-                    speed.append(dict(steps[-1], U=v["U"]))
-                speed_sweep(run, v, inner, v["W"], speed_list(v), on_speed, its,
+                    speed.append(dict(steps[-1], U=v.U))
+                speed_sweep(run, v, inner, v.W, speed_list(v), on_speed, its,
                                 start=max(leg - 1, 0), increments=increments,
                                 on_accept=lambda j, march: save(1 + j, march))
         finally:
@@ -391,25 +409,25 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     converged load and speed); ``resume``: continue from it.
     """
     journal = SweepJournal(checkpoint, MPI.COMM_WORLD, v, resume)
-    record.result("mu_U", v["mu"] * v["U"], "N/mm")
-    if v["compare"] == "none":
+    record.result("mu_U", v.mu * v.U, "N/mm")
+    if v.compare == "none":
         return sweep(v, record, progress, verbose, journal=journal)
-    record.result("variants", [name for name, _, _ in COMPARE[v["compare"]]])
+    record.result("variants", [name for name, _, _ in COMPARE[v.compare]])
     first = None
-    for name, label, over in COMPARE[v["compare"]]:
-        run = sweep(dict(v, **over), record, progress, verbose, prefix=f"{name}_",
+    for name, label, over in COMPARE[v.compare]:
+        run = sweep(v.replace(**over), record, progress, verbose, prefix=f"{name}_",
                         journal=journal)
         first = first or run
         if MPI.COMM_WORLD.rank == 0:
             record.profile["variants"][name]["label"] = label
-            record.profile["compare"] = v["compare"]
+            record.profile["compare"] = v.compare
     return first
 
 
 def measures(run, v):
     """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
     film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
-    xx = prof["y"][:, 0] if v["model"] == "finite" else prof["X"][:, 0]
+    xx = prof["y"][:, 0] if v.model == "finite" else prof["X"][:, 0]
     return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
             "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
             "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
@@ -427,21 +445,21 @@ def _report(steps, speed, profiles, v, record, prefix):
     for k in keys:
         record.result(f"{prefix}steps_{k}", [m[k] for m in steps], UNITS[k])
     for m in speed:
-        m["mu_U"] = v["mu"] * m["U"]
+        m["mu_U"] = v.mu * m["U"]
     if len(speed) > 1:
         for k in ("U", "mu_U", "friction_coefficient", "h_min", "p_max", "clearance"):
             record.result(f"{prefix}speed_{k}", [m[k] for m in speed], UNITS[k])
     if MPI.COMM_WORLD.rank == 0:
         prof = record.profile or {"variants": {}}
-        prof["variants"][prefix[:-1] or v["model"]] = {
-            "label": prefix[:-1] or v["model"], "steps": profiles,
+        prof["variants"][prefix[:-1] or v.model] = {
+            "label": prefix[:-1] or v.model, "steps": profiles,
             "speed": ([m["mu_U"] for m in speed], [m["friction_coefficient"] for m in speed])}
         record.profile = prof
 
 
 def progress_total(v):
     """Points the progress bar counts: the loads of every variant."""
-    return v["steps"] * (1 if v["compare"] == "none" else len(COMPARE[v["compare"]]))
+    return v.steps * (1 if v.compare == "none" else len(COMPARE[v.compare]))
 
 
 def vtx_fields(run):
@@ -497,7 +515,7 @@ def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=Non
 def slope(run, v):
     """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
     U = run[0].velocity.value
-    return lambda W: 1 / rigid_clearance(1.0, v["mu"], U[0], v["R"])
+    return lambda W: 1 / rigid_clearance(1.0, v.mu, U[0], v.R)
 
 
 def set_speed(run, v, U):

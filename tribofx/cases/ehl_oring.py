@@ -102,6 +102,7 @@ one time index per sealed pressure, its p_s in ``series_points``).
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
@@ -116,7 +117,7 @@ from ..interfaces import Contact, Film
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..params import InputError, Param, number_list
+from ..params import InputError, number_list, param
 from ..plots import plot_oring, plot_oring_cycle
 from ..positions import oscillation_indicator, parabolic_vertex
 from ..problem import Problem, options_name
@@ -128,7 +129,7 @@ from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
 from ..sweep import SweepVariant
 from .film_setup import (
-    VISCOSITY_PARAMS,
+    FluidParams,
     arc_halvings,
     cavitation_model,
     density,
@@ -140,7 +141,7 @@ from .slow_time import SlowTimeRecords
 
 __all__ = ["AirLayer", "NAMES", "ORingSeal", "UNITS", "USER_GROUPS", "air_end",
            "axial_balance", "build", "cycle_stepper", "doc", "geometry", "integral",
-           "mesh_study", "name", "params", "plot", "progress_total", "reforming", "resumable",
+           "mesh_study", "name", "Params", "plot", "progress_total", "reforming", "resumable",
            "rod_speed", "run", "run_cycle", "solve_to", "transient_seal", "validate",
            "vtx_fields"]
 
@@ -164,10 +165,10 @@ def geometry(v, extent=None):
     circle, radius d/2); the centre is that of its bounding box, the radius a
     the radial half extent, d = 2a.
     """
-    a, b = extent if extent is not None else (0.5 * v["d"],) * 2
-    r_rod = v["r_rod"]
-    center = (r_rod + a + v["gap0"], 0.0)
-    return center, a, r_rod, r_rod + 2 * a * (1 - v["squeeze"]), b - 0.005
+    a, b = extent if extent is not None else (0.5 * v.d,) * 2
+    r_rod = v.r_rod
+    center = (r_rod + a + v.gap0, 0.0)
+    return center, a, r_rod, r_rod + 2 * a * (1 - v.squeeze), b - 0.005
 
 
 def _user_section(v, comm):
@@ -176,17 +177,17 @@ def _user_section(v, comm):
     Returns ``(mesh, facet_tags, names, (a, b))``, a and b the half extents in r
     and z (mm).
     """
-    msh, ft, tags = read_user_mesh(v["mesh_file"], comm, 2, USER_GROUPS)
+    msh, ft, tags = read_user_mesh(v.mesh_file, comm, 2, USER_GROUPS)
     x = msh.geometry.x
     lo = np.array([comm.allreduce(float(np.min(x[:, k], initial=np.inf)), op=MPI.MIN)
                    for k in range(2)])
     hi = np.array([comm.allreduce(float(np.max(x[:, k], initial=-np.inf)), op=MPI.MAX)
                    for k in range(2)])
     a, b = 0.5 * (hi - lo)
-    if v["gap0"] >= a:
-        raise InputError(f"gap0 = {v['gap0']} mm must be below half the radial extent of "
+    if v.gap0 >= a:
+        raise InputError(f"gap0 = {v.gap0} mm must be below half the radial extent of "
                          f"the section ({a:.4g} mm)")
-    x[:, 0] += v["r_rod"] + v["gap0"] - lo[0]
+    x[:, 0] += v.r_rod + v.gap0 - lo[0]
     x[:, 1] -= 0.5 * (lo[1] + hi[1])
     names = {"lubricated": tags["lubricated"], "sealed": tags["sealed"],
              "housing": (tags["sealed"], tags["housing"])}
@@ -205,7 +206,7 @@ class ORingSeal:
     """
 
     def __init__(self, v, U, mesh, comm, name="ehl_oring", roughness=None, transient=None):
-        self.user = bool(v["mesh_file"])
+        self.user = bool(v.mesh_file)
         if self.user:
             msh, ft, names, extent = _user_section(v, comm)
         else:
@@ -215,13 +216,13 @@ class ORingSeal:
         if not self.user:
             msh, _, ft = oring_section(*center, a, mesh, h_l=0.1 / 2 ** arc_halvings(v),
                                        comm=comm)
-        mat = {"mu1": v["mu1"], "mu2": v["mu2"], "kappa": v["kappa"]}
+        mat = {"mu1": v.mu1, "mu2": v.mu2, "kappa": v.kappa}
         E = 3 * (mat["mu1"] + mat["mu2"])
-        deg = v["degree"]
+        deg = v.degree
         self.body = body = Body(msh, ft, names, "axisymmetric", ("mooney-rivlin", mat),
                                 degree=deg, quadrature_degree=2 * deg, name="oring",
-                                formulation=v["formulation"])
-        p0 = min(P_MOUNT, number_list(v["p_s"], "p_s")[0])
+                                formulation=v.formulation)
+        p0 = min(P_MOUNT, number_list(v.p_s, "p_s")[0])
         self.p_s = fem.Constant(msh, p0)
         body.add_follower_pressure("sealed", self.p_s)
         # the ring starts touching the groove bottom and the air-side wall
@@ -231,12 +232,13 @@ class ORingSeal:
         self.wall = Contact(body, "housing", rigid_plane([0.0, z_w], [0.0, -1.0]), E / a,
                             name="wall")
         # film scales: h_ref of Blok's inverse theory at W_REF, ε relative to 12μℓ²/h_ref³
-        h_ref, ell = inverse_film(v["mu"], U, W_REF), 0.25 * a
+        h_ref, ell = inverse_film(v.mu, U, W_REF), 0.25 * a
         self.cavitation = cav = cavitation_model(v)
         self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
-                                viscosity(v), density=density(v), V_counter=[0.0, U],
-                                supg=v["supg"], cavitation=cav, roughness=roughness,
-                                eps=(v["eps"] * 12 * v["mu"] * ell**2 / h_ref**3
+                                viscosity(v), density=density(v, cavitation_model(v)),
+                                V_counter=[0.0, U],
+                                supg=v.supg, cavitation=cav, roughness=roughness,
+                                eps=(v.eps * 12 * v.mu * ell**2 / h_ref**3
                                      if cav == "penalty" else None),
                                 p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),
                                 rtol=1e-8, require_open=True)
@@ -249,7 +251,7 @@ class ORingSeal:
         z_hi = comm.allreduce(float(zs.max(initial=-np.inf)), op=MPI.MAX)
         tol = 1e-8 * a
         if self.user:
-            self._check_ends(film, z_lo, z_hi, tol, v["mesh_file"])
+            self._check_ends(film, z_lo, z_hi, tol, v.mesh_file)
         sealed = lambda y: np.isclose(y[1], z_lo, atol=tol)   # noqa: E731
         air = lambda y: np.isclose(y[1], z_hi, atol=tol)      # noqa: E731
         if transient is not None:      # reciprocating: the air end open in both strokes
@@ -438,7 +440,7 @@ def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw):
     ``name``: the problem's name, options prefix ``tribofx_<name>_``; ``kw``: the
     seal's ``roughness`` and ``transient``.
     """
-    return ORingSeal(v, U, v["mesh"] if mesh is None else mesh, comm, name, **kw)
+    return ORingSeal(v, U, v.mesh if mesh is None else mesh, comm, name, **kw)
 
 
 def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
@@ -450,11 +452,11 @@ def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
     Newton iterations per continuation step.
     """
     if done == 0:
-        seal.mount(v["mount_steps"])
+        seal.mount(v.mount_steps)
     for k, p_s in enumerate(p_s_targets[done:], start=done):
-        seal.ramp(p_s, v["ramp_steps"])
+        seal.ramp(p_s, v.ramp_steps)
         if k == 0 and seal.U != U:
-            seal.speed(U, v["speed_steps"])
+            seal.speed(U, v.speed_steps)
         if on_state is not None:
             on_state(p_s)
     return list(seal.iterations)
@@ -522,9 +524,9 @@ def air_end(seal):
 
 def transient_seal(v, U):
     """Build the seal of ``v`` at rod speed U (mm/s), its film transient (``scheme``), unsolved."""
-    E_star = 3 * (v["mu1"] + v["mu2"]) / 0.75      # ν = 1/2, the rod rigid
-    rough = rough_pair(v["sigma"], E_star, v["mu_b"]) if v["sigma"] > 0 else None
-    return build(v, U, roughness=rough, transient=v["scheme"], name="ehl_oring_cycle")
+    E_star = 3 * (v.mu1 + v.mu2) / 0.75      # ν = 1/2, the rod rigid
+    rough = rough_pair(v.sigma, E_star, v.mu_b) if v.sigma > 0 else None
+    return build(v, U, roughness=rough, transient=v.scheme, name="ehl_oring_cycle")
 
 
 def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
@@ -539,11 +541,11 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
     state.  Returns the Stepper, with ``stepper.seal`` the
     :class:`~tribofx.cases.ehl_oring.ORingSeal`.
     """
-    U, T = v["U"], v["period"]
+    U, T = v.U, v.period
     if seal is None:
         seal = transient_seal(v, U)
         if start:
-            solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
+            solve_to(seal, v, U, number_list(v.p_s, "p_s")[:1])
     film = seal.film
     layer = AirLayer({}, T)
 
@@ -565,7 +567,7 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
 
 def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
-    T = v["period"]
+    T = v.period
     stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
     seal, film = stepper.seal, stepper.seal.film
     keys = ("time", "rod_speed", "h_min", "friction_force", "flux_air", "flux_sealed",
@@ -584,8 +586,8 @@ def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=F
 
     if not resume:
         log(stepper, 0)
-    with sr.closing(report=lambda: _report(sr.hist, record, T, seal, v["scheme"])):
-        stepper.run(v["cycles"] * T, FixedStep(T / v["cycle_steps"]), progress=progress,
+    with sr.closing(report=lambda: _report(sr.hist, record, T, seal, v.scheme)):
+        stepper.run(v.cycles * T, FixedStep(T / v.cycle_steps), progress=progress,
                     on_step=sr.written(lambda st, rep: log(st, rep.iterations)))
     return stepper
 
@@ -640,87 +642,111 @@ name = "ehl-oring"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "soft-EHL of a reciprocating O-ring seal (axisymmetric, housing contact)"
-params = (
-    Param("p_s", str, "1", "MPa", "sealed pressures (comma-separated, increasing)"),
-    Param("U", float, 400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)"),
-    Param("stroke", str, "single", "-", "single (sign of U), both (U and −U, steady) or "
-          "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
-          "tribofx.cases.ehl_oring)",
-          choices=("single", "both", "cycle")),
-    Param("period", float, 0.1, "s", "stroke=cycle: period of the rod's motion", lower=0),
-    Param("cycle_steps", int, 40, "-", "stroke=cycle: time steps per period (halved on "
-          "Newton failure)", lower=4),
-    Param("cycles", float, 1.0, "-", "stroke=cycle: periods to run", lower=0),
-    Param("scheme", str, "euler", "-", "stroke=cycle: time scheme of the film, euler "
-          "or bdf2", choices=("euler", "bdf2")),
-    Param("sigma", float, 0.0, "mm", "stroke=cycle: RMS roughness σ of the rod (0: "
-          "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
-          "ηβσ = σ/β = 0.1)",
-          lower=0, closed=True),
-    Param("mu_b", float, 0.1, "-", "boundary friction of the asperities (sigma > 0)",
-          lower=0, closed=True),
-    Param("mu", float, 5e-8, "MPa·s", "oil viscosity", lower=0),
-    Param("mesh", int, 4, "-", "mesh density n (element 0.1/n mm on the film arc)",
-          lower=1, upper=32, closed=True),
-    Param("arc_refine", int, None, "-", "halvings of the element size on the film arc "
-          "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm; default: 1 with stroke=cycle, "
-          "else 0)", lower=0, upper=3, closed=True),
-    Param("degree", int, 1, "-", "Lagrange degree of the displacement", choices=(1, 2)),
-    formulation_param("mixed"),
-    Param("squeeze", float, 0.1, "-", "radial squeeze (d − groove depth)/d", lower=0,
-          upper=0.3),
-    Param("d", float, 3.5, "mm", "cross-section diameter", lower=0),
-    Param("r_rod", float, 10.0, "mm", "rod radius", lower=0),
-    Param("mu1", float, 2.93, "MPa", "Mooney–Rivlin μ₁", lower=0),
-    Param("mu2", float, 0.73, "MPa", "Mooney–Rivlin μ₂", lower=0, closed=True),
-    Param("kappa", float, 3660.0, "MPa", "bulk modulus", lower=0),
-    Param("cavitation", str, "auto", "-",
-          "penalty (ε⁻¹ min(p, 0), Swift–Stieber limit), jfo (mass-conserving: void "
-          "fraction λ, flooded inlet, natural outlet) or auto: jfo with the mixed solid, "
-          "penalty with the displacement one (a locked, zig-zag surface makes JFO's "
-          "semismooth iteration cycle)", choices=("auto", "penalty", "jfo")),
-    Param("eps", float, 1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³",
-          lower=0),
-    Param("supg", bool, True, "-", "SUPG in the Reynolds equation"),
-    Param("gap0", float, 0.02, "mm", "initial clearance to the rod", lower=0),
-    Param("mount_steps", int, 10, "-", "squeeze increments", lower=1),
-    Param("ramp_steps", int, 4, "-", "p_s increments per target", lower=1),
-    Param("speed_steps", int, 3, "-", "geometric speed increments", lower=1),
-    Param("study", str, "none", "-", "none or mesh (density study, Figs. 18–19)",
-          choices=("none", "mesh")),
-    Param("mesh_levels", str, "1,2,4", "-", "densities of study=mesh"),
-    Param("mesh_file", str, "", "-",
-          "your own cross-section: a 2D gmsh .msh in (r, z) with physical groups "
-          "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
-          "housing (touches groove bottom/wall); replaces d (its radial extent) and "
-          "mesh; moved to r_min = r_rod + gap0, z extent centred at 0"),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``ehl-oring`` (``--set KEY=VALUE``)."""
+
+    p_s: str = param("1", "MPa", "sealed pressures (comma-separated, increasing)")
+    U: float = param(400.0, "mm/s", "rod speed (> 0 outstroke, < 0 instroke)")
+    stroke: str = param(
+        "single", "-",
+        "single (sign of U), both (U and −U, steady) or "
+        "cycle (transient: U cos(2πt/period) from the steady outstroke; first p_s; "
+        "tribofx.cases.ehl_oring)",
+        choices=("single", "both", "cycle"))
+    period: float = param(0.1, "s", "stroke=cycle: period of the rod's motion", lower=0)
+    cycle_steps: int = param(
+        40, "-",
+        "stroke=cycle: time steps per period (halved on "
+        "Newton failure)",
+        lower=4)
+    cycles: float = param(1.0, "-", "stroke=cycle: periods to run", lower=0)
+    scheme: str = param(
+        "euler", "-",
+        "stroke=cycle: time scheme of the film, euler "
+        "or bdf2",
+        choices=("euler", "bdf2"))
+    sigma: float = param(
+        0.0, "mm",
+        "stroke=cycle: RMS roughness σ of the rod (0: "
+        "smooth; > 0: mixed film, Patir–Cheng flow, Greenwood–Tripp asperities, "
+        "ηβσ = σ/β = 0.1)",
+        lower=0, closed=True)
+    mu_b: float = param(
+        0.1, "-",
+        "boundary friction of the asperities (sigma > 0)",
+        lower=0, closed=True)
+    mu: float = param(5e-8, "MPa·s", "oil viscosity", lower=0)
+    mesh: int = param(
+        4, "-",
+        "mesh density n (element 0.1/n mm on the film arc)",
+        lower=1, upper=32, closed=True)
+    arc_refine: int | None = param(
+        None, "-",
+        "halvings of the element size on the film arc "
+        "(0.1/(n·2^k) mm; the bulk keeps 0.4/n mm; default: 1 with stroke=cycle, "
+        "else 0)",
+        lower=0, upper=3, closed=True)
+    degree: int = param(1, "-", "Lagrange degree of the displacement", choices=(1, 2))
+    formulation: str = formulation_param("mixed")
+    squeeze: float = param(0.1, "-", "radial squeeze (d − groove depth)/d", lower=0, upper=0.3)
+    d: float = param(3.5, "mm", "cross-section diameter", lower=0)
+    r_rod: float = param(10.0, "mm", "rod radius", lower=0)
+    mu1: float = param(2.93, "MPa", "Mooney–Rivlin μ₁", lower=0)
+    mu2: float = param(0.73, "MPa", "Mooney–Rivlin μ₂", lower=0, closed=True)
+    kappa: float = param(3660.0, "MPa", "bulk modulus", lower=0)
+    cavitation: str = param(
+        "auto", "-",
+        "penalty (ε⁻¹ min(p, 0), Swift–Stieber limit), jfo (mass-conserving: void "
+        "fraction λ, flooded inlet, natural outlet) or auto: jfo with the mixed solid, "
+        "penalty with the displacement one (a locked, zig-zag surface makes JFO's "
+        "semismooth iteration cycle)",
+        choices=("auto", "penalty", "jfo"))
+    eps: float = param(1e-4, "-", "cavitation penalty ε relative to 12μℓ²/h_ref³", lower=0)
+    supg: bool = param(True, "-", "SUPG in the Reynolds equation")
+    gap0: float = param(0.02, "mm", "initial clearance to the rod", lower=0)
+    mount_steps: int = param(10, "-", "squeeze increments", lower=1)
+    ramp_steps: int = param(4, "-", "p_s increments per target", lower=1)
+    speed_steps: int = param(3, "-", "geometric speed increments", lower=1)
+    study: str = param(
+        "none", "-",
+        "none or mesh (density study, Figs. 18–19)",
+        choices=("none", "mesh"))
+    mesh_levels: str = param("1,2,4", "-", "densities of study=mesh")
+    mesh_file: str = param(
+        "", "-",
+        "your own cross-section: a 2D gmsh .msh in (r, z) with physical groups "
+        "lubricated (Γ_l facing the rod, one open curve), sealed (loaded by p_s), "
+        "housing (touches groove bottom/wall); replaces d (its radial extent) and "
+        "mesh; moved to r_min = r_rod + gap0, z extent centred at 0")
 
 
 def validate(v):
     """Parse the lists and check the consistency of the values."""
     viscosity(v)
-    density({**v, "cavitation": cavitation_model(v)})
-    ps = number_list(v["p_s"], "p_s")
+    density(v, cavitation_model(v))
+    ps = number_list(v.p_s, "p_s")
     if any(p <= 0 for p in ps):
         raise InputError("p_s must be > 0 MPa (frictionless housing: p_s holds the ring)")
     if ps != sorted(ps):
         raise InputError("p_s must be increasing")
-    if v["U"] == 0:
+    if v.U == 0:
         raise InputError("U must be nonzero (mm/s)")
-    if v["stroke"] == "cycle" and (v["U"] < 0 or cavitation_model(v) != "jfo"
-                                   or v["study"] != "none"):
+    if v.stroke == "cycle" and (v.U < 0 or cavitation_model(v) != "jfo"
+                                   or v.study != "none"):
         raise InputError("stroke=cycle starts from the outstroke (U > 0) and needs "
                          "cavitation=jfo (mass-conserving) and study=none")
-    if v["sigma"] > 0 and v["stroke"] != "cycle":
+    if v.sigma > 0 and v.stroke != "cycle":
         raise InputError("sigma (a rough rod) is built for stroke=cycle")
-    levels = number_list(v["mesh_levels"], "mesh_levels")
+    levels = number_list(v.mesh_levels, "mesh_levels")
     if any(k < 1 or k != int(k) for k in levels):
         raise InputError("mesh_levels must be positive integers")
-    if v["mesh_file"]:
-        if v["study"] != "none" or v["arc_refine"]:
+    if v.mesh_file:
+        if v.study != "none" or v.arc_refine:
             raise InputError("mesh_file works with study=none and arc_refine=0 only")
-    elif v["gap0"] >= 0.5 * v["d"]:
+    elif v.gap0 >= 0.5 * v.d:
         raise InputError("gap0 must be below the cross-section radius")
 
 
@@ -732,9 +758,9 @@ UNITS = {"p_max": "MPa", "z_p_max": "mm", "h_at_p_max": "mm", "h_mean": "mm", "h
 
 def progress_total(v):
     """Points the progress bar counts: the sealed pressures of every stroke, or the steps."""
-    if v["stroke"] == "cycle":
-        return nominal_steps(v["cycles"] * v["period"], v["period"] / v["cycle_steps"])
-    return len(number_list(v["p_s"], "p_s")) * (1 if v["stroke"] == "single" else 2)
+    if v.stroke == "cycle":
+        return nominal_steps(v.cycles * v.period, v.period / v.cycle_steps)
+    return len(number_list(v.p_s, "p_s")) * (1 if v.stroke == "single" else 2)
 
 
 def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
@@ -747,13 +773,13 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     ramped from the saved state; ``study=mesh`` is run again whole).
     """
     record.data["parameters"]["arc_refine"]["value"] = arc_halvings(v)   # as used
-    if v["stroke"] == "cycle":
+    if v.stroke == "cycle":
         return run_cycle(v, record, progress, verbose, checkpoint, resume)
     comm = MPI.COMM_WORLD
-    U = v["U"]
-    p_targets = number_list(v["p_s"], "p_s")
+    U = v.U
+    p_targets = number_list(v.p_s, "p_s")
     journal = SweepJournal(checkpoint, comm, v, resume)
-    speeds = [U] if v["stroke"] == "single" else [abs(U), -abs(U)]
+    speeds = [U] if v.stroke == "single" else [abs(U), -abs(U)]
     profiles = {"strokes": {}, "mesh": None, "U": abs(U)}
     prob = None
     for Us in speeds:
@@ -800,7 +826,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         record.data["newton_iterations"].append({tag: its})
         record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
         profiles["strokes"][tag] = states
-    if v["study"] == "mesh":
+    if v.study == "mesh":
         profiles["mesh"] = mesh_study(v, record)
     record.result("p_s", p_targets, "MPa")
     if comm.rank == 0:
@@ -817,11 +843,11 @@ def _record(record, tag, p_s, m):
 def mesh_study(v, record):
     """Outstroke at the first p_s on the densities ``levels``; returns the profiles."""
     rows, out = [], []
-    U = abs(v["U"])
-    for n in [int(k) for k in number_list(v["mesh_levels"], "mesh_levels")]:
+    U = abs(v.U)
+    for n in [int(k) for k in number_list(v.mesh_levels, "mesh_levels")]:
         t0 = time.perf_counter()
         seal = build(v, max(U, 1000.0), mesh=n, name=options_name("ehl_oring", f"density{n}"))
-        its = solve_to(seal, v, U, number_list(v["p_s"], "p_s")[:1])
+        its = solve_to(seal, v, U, number_list(v.p_s, "p_s")[:1])
         m = seal.measures()
         row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
                "h_mean": m["h_mean"],

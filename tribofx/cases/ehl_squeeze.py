@@ -34,6 +34,7 @@ Units: mm, N, s, MPa (viscosity MPa·s).
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import fem
@@ -44,14 +45,14 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film, TwoBodyFilm
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..references import hertz, squeeze_film_under_load, squeeze_resistance
 from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
-from .film_setup import VISCOSITY_PARAMS, density, viscosity
+from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
 
-__all__ = ["build", "doc", "extent", "fraction", "length", "measures", "name", "params",
+__all__ = ["build", "doc", "extent", "fraction", "length", "measures", "name", "Params",
            "plot", "progress_total", "resumable", "run", "speed_scale", "validate",
            "vtx_fields"]
 
@@ -61,74 +62,98 @@ name = "ehl-squeeze"
 resumable = True
 doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
        "plane, at a speed or under a load; rigid-limit references")
-params = (
-    Param("dim", int, 2, "-", "2: cylinder (plane strain, half model), 3: sphere "
-          "(quarter model)", choices=(2, 3)),
-    Param("control", str, "speed", "-", "speed: the plane approaches at V; load: the "
-          "body carries F", choices=("speed", "load")),
-    Param("V", float, 1.0, "mm/s", "approach speed of the plane (control=speed; < 0: "
-          "it recedes, the film cavitates: cavitation=jfo)"),
-    Param("cavitation", str, "none", "-", "none (a full film) or jfo (mass-conserving, "
-          "the void fraction transported in time; dim=2)", choices=("none", "jfo")),
-    Param("lumped", bool, False, "-", "jfo: the content's rate at the nodes (lumped) and "
-          "the SUPG rate weighted by the full-film fraction (forms.jfo.jfo_on_surface)"),
-    Param("F", float, 0.05, "N", "load (control=load; N/mm of the cylinder in 2D)",
-          lower=0.0),
-    Param("R", float, 10.0, "mm", "radius of the cylinder or sphere", lower=0.0),
-    Param("E1", float, 1e5, "MPa", "Young's modulus of the cylinder or sphere (neo-Hookean)",
-          lower=0.0),
-    Param("nu1", float, 0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0,
-          upper=0.5),
-    Param("E2", float, math.inf, "MPa", "Young's modulus of the plane body (inf: rigid; "
-          "finite: an elastic block, the two-body film, dim=2)", lower=0.0, infinite=True),
-    Param("nu2", float, 0.3, "-", "Poisson's ratio of the plane body", lower=-1.0,
-          upper=0.5),
-    Param("mu", float, 1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-    Param("h_start", float, 0.01, "mm", "initial film at the centre", lower=0.0),
-    Param("T", float, 2e-3, "s", "end time", lower=0.0),
-    Param("dt", float, 2.5e-4, "s", "time step", lower=0.0),
-    Param("scheme", str, "bdf2", "-", "time scheme of the squeeze term: euler (backward "
-          "Euler) or bdf2 (second order, started by one Euler step)",
-          choices=("euler", "bdf2")),
-    Param("mesh", int, 0, "-", "element size ℓ/(8·2^mesh) near the centre, "
-          "ℓ = max(√(2R h_start), Hertz half-width)", lower=0, upper=6, closed=True),
-    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds rows"),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``ehl-squeeze`` (``--set KEY=VALUE``)."""
+
+    dim: int = param(
+        2, "-",
+        "2: cylinder (plane strain, half model), 3: sphere "
+        "(quarter model)",
+        choices=(2, 3))
+    control: str = param(
+        "speed", "-",
+        "speed: the plane approaches at V; load: the "
+        "body carries F",
+        choices=("speed", "load"))
+    V: float = param(
+        1.0, "mm/s",
+        "approach speed of the plane (control=speed; < 0: "
+        "it recedes, the film cavitates: cavitation=jfo)")
+    cavitation: str = param(
+        "none", "-",
+        "none (a full film) or jfo (mass-conserving, "
+        "the void fraction transported in time; dim=2)",
+        choices=("none", "jfo"))
+    lumped: bool = param(
+        False, "-",
+        "jfo: the content's rate at the nodes (lumped) and "
+        "the SUPG rate weighted by the full-film fraction (forms.jfo.jfo_on_surface)")
+    F: float = param(0.05, "N", "load (control=load; N/mm of the cylinder in 2D)", lower=0.0)
+    R: float = param(10.0, "mm", "radius of the cylinder or sphere", lower=0.0)
+    E1: float = param(
+        1e5, "MPa",
+        "Young's modulus of the cylinder or sphere (neo-Hookean)",
+        lower=0.0)
+    nu1: float = param(0.3, "-", "Poisson's ratio of the cylinder or sphere", lower=-1.0, upper=0.5)
+    E2: float = param(
+        math.inf, "MPa",
+        "Young's modulus of the plane body (inf: rigid; "
+        "finite: an elastic block, the two-body film, dim=2)",
+        lower=0.0, infinite=True)
+    nu2: float = param(0.3, "-", "Poisson's ratio of the plane body", lower=-1.0, upper=0.5)
+    mu: float = param(1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
+    h_start: float = param(0.01, "mm", "initial film at the centre", lower=0.0)
+    T: float = param(2e-3, "s", "end time", lower=0.0)
+    dt: float = param(2.5e-4, "s", "time step", lower=0.0)
+    scheme: str = param(
+        "bdf2", "-",
+        "time scheme of the squeeze term: euler (backward "
+        "Euler) or bdf2 (second order, started by one Euler step)",
+        choices=("euler", "bdf2"))
+    mesh: int = param(
+        0, "-",
+        "element size ℓ/(8·2^mesh) near the centre, "
+        "ℓ = max(√(2R h_start), Hertz half-width)",
+        lower=0, upper=6, closed=True)
+    supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds rows")
 
 
 def validate(v):
     """Bad input: a one-line error."""
-    if math.isfinite(v["E2"]) and v["dim"] != 2:
+    if math.isfinite(v.E2) and v.dim != 2:
         raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
-    if not v["h_start"] < 0.1 * v["R"]:
-        raise InputError(f"h_start = {v['h_start']} mm must be below R/10 (a thin film)")
-    if v["dt"] > v["T"]:
-        raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
-    if v["control"] == "speed" and v["V"] <= 0 and not (v["V"] < 0 and v["cavitation"]
+    if not v.h_start < 0.1 * v.R:
+        raise InputError(f"h_start = {v.h_start} mm must be below R/10 (a thin film)")
+    if v.dt > v.T:
+        raise InputError(f"dt = {v.dt} s exceeds T = {v.T} s")
+    if v.control == "speed" and v.V <= 0 and not (v.V < 0 and v.cavitation
                                                          == "jfo"):
-        raise InputError(f"V = {v['V']} mm/s: a receding plane (V < 0) needs "
+        raise InputError(f"V = {v.V} mm/s: a receding plane (V < 0) needs "
                          f"cavitation=jfo; V = 0 has no squeeze")
-    if v["lumped"] and v["cavitation"] != "jfo":
+    if v.lumped and v.cavitation != "jfo":
         raise InputError("lumped=true is for cavitation=jfo")
-    if v["cavitation"] == "jfo" and v["dim"] != 2:
+    if v.cavitation == "jfo" and v.dim != 2:
         raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
-    if v["control"] == "speed" and not v["V"] * v["T"] < 0.9 * v["h_start"]:
-        raise InputError(f"V·T = {v['V'] * v['T']:.3g} mm would close the rigid gap "
-                         f"h_start = {v['h_start']} mm; shorten T")
+    if v.control == "speed" and not v.V * v.T < 0.9 * v.h_start:
+        raise InputError(f"V·T = {v.V * v.T:.3g} mm would close the rigid gap "
+                         f"h_start = {v.h_start} mm; shorten T")
     viscosity(v)
-    density(v)
+    density(v, v.cavitation)
 
 
 def fraction(v):
     """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
-    return 0.5 if v["dim"] == 2 else 0.25
+    return 0.5 if v.dim == 2 else 0.25
 
 
 def length(v):
     """ℓ = max(√(2R h_start), Hertz half-width at F) (mm): the film's width."""
-    ell = math.sqrt(2 * v["R"] * v["h_start"])
-    if v["control"] == "load" and v["F"] > 0:
-        ell = max(ell, hertz(v["F"], v["R"], v["E1"], v["nu1"], line=v["dim"] == 2).a)
+    ell = math.sqrt(2 * v.R * v.h_start)
+    if v.control == "load" and v.F > 0:
+        ell = max(ell, hertz(v.F, v.R, v.E1, v.nu1, line=v.dim == 2).a)
     return ell
 
 
@@ -140,14 +165,14 @@ def extent(v):
     growing conductance h³ (ill-conditioned rows) has no business there.  The
     references are taken with the same extent.
     """
-    return min(10 * length(v), 0.5 * v["R"])
+    return min(10 * length(v), 0.5 * v.R)
 
 
 def speed_scale(v):
     """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
-    if v["control"] == "speed":
-        return abs(v["V"])
-    return v["F"] / squeeze_resistance(v["dim"], v["R"], v["mu"], v["h_start"],
+    if v.control == "speed":
+        return abs(v.V)
+    return v.F / squeeze_resistance(v.dim, v.R, v.mu, v.h_start,
                                        extent(v))
 
 
@@ -156,18 +181,18 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
 
     ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
     """
-    dim, R, h0 = v["dim"], v["R"], v["h_start"]
+    dim, R, h0 = v.dim, v.R, v.h_start
     ell, L = length(v), extent(v)
-    h_fine, h_coarse = ell / (8 * 2 ** v["mesh"]), R / (8 * 2 ** v["mesh"])
+    h_fine, h_coarse = ell / (8 * 2 ** v.mesh), R / (8 * 2 ** v.mesh)
     msh, ft = hertz_body(dim, R, h_fine, h_coarse, 2 * ell, comm, cap=L)
     names = {("lubricated" if k == "contact" else k): t for k, t in NAMES.items()}
     names["free"] = FREE
     if dim == 2:
         names.pop("symmetry_y")
-    mu_s, lm = lame_parameters(v["E1"], v["nu1"])
+    mu_s, lm = lame_parameters(v.E1, v.nu1)
     kind = "plane_strain" if dim == 2 else "3d"
     Vs = speed_scale(v)
-    K0 = squeeze_resistance(dim, R, v["mu"], h0, L)
+    K0 = squeeze_resistance(dim, R, v.mu, h0, L)
     # momentum rows relative to the film's force, far below the body's stiffness
     # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
     # the coarse elements h (×100), so a stiff body (the rigid limit) converges
@@ -179,26 +204,26 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
     if dim == 3:
         body.add_dirichlet("symmetry_y", 0.0, component=1)
     up = np.eye(dim)[dim - 1]
-    if v["control"] == "speed":
+    if v.control == "speed":
         body.add_dirichlet("loaded", np.zeros(dim))
     else:   # the model's part of F, uniform over the top face (its discrete area)
         one = fem.form(fem.Constant(msh, 1.0) * body.ds(body.tag("loaded")))
         area = msh.comm.allreduce(fem.assemble_scalar(one), op=MPI.SUM)
-        body.add_traction("loaded", fem.Constant(msh, -fraction(v) * v["F"] / area * up))
+        body.add_traction("loaded", fem.Constant(msh, -fraction(v) * v.F / area * up))
     p_c = K0 * Vs / (ell if dim == 2 else ell * ell)
     # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
     # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
     h_L = h0 + R - math.sqrt(R * R - L * L)
-    floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v["mu"] * h_coarse)
-    kw = dict(density=density(v), supg=v["supg"], p_c=p_c, film_scale=h0,
+    floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v.mu * h_coarse)
+    kw = dict(density=density(v, v.cavitation), supg=v.supg, p_c=p_c, film_scale=h0,
               speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
-              cavitation="penalty" if v["cavitation"] == "none" else "jfo")
+              cavitation="penalty" if v.cavitation == "none" else "jfo")
     bodies = [body]
-    if math.isinf(v["E2"]):
+    if math.isinf(v.E2):
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v), **kw)
     else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
         mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
-        mu_b, lm_b = lame_parameters(v["E2"], v["nu2"])
+        mu_b, lm_b = lame_parameters(v.E2, v.nu2)
         block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
                      name="block", force_scale=f_s, rtol=rtol)
         block.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -210,28 +235,28 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
     def rim(X):
         return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
 
-    if v["cavitation"] == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
+    if v.cavitation == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
         film.add_reservoir(rim, 0.0)
     else:
         film.add_pressure_bc(rim)
-    if math.isinf(v["E2"]):
+    if math.isinf(v.E2):
         film.place_countersurface(h0, np.zeros(3))
         lift = film.counterpart.offset
     film.plane = lift             # the plane's (or the block's) rigid position
     if not steady:
-        film.transient(v["scheme"], lumped=v["lumped"])
+        film.transient(v.scheme, lumped=v.lumped)
     offset = lift
     y0 = float(offset.value[dim - 1])
     schedule = []
-    if v["control"] == "speed":
-        schedule = [(offset, lambda t: y0 * up + v["V"] * t * up)]
+    if v.control == "speed":
+        schedule = [(offset, lambda t: y0 * up + v.V * t * up)]
     return Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
                    name="ehl_squeeze")
 
 
 def progress_total(v):
     """Time steps to T."""
-    return nominal_steps(v["T"], v["dt"])
+    return nominal_steps(v.T, v.dt)
 
 
 def vtx_fields(stepper):
@@ -249,7 +274,7 @@ def plot(profile, outdir):
 
 def measures(film, v, y0):
     """One step's measures: film at the centre and its minimum, force, plane position."""
-    dim = v["dim"]
+    dim = v.dim
     prof = film.profile(everywhere=True)
     r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
     h_c = float(prof["h"][np.argmin(r)])
@@ -264,27 +289,27 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
     stepper = build(v, checkpoint=checkpoint)
     stepper.verbose = verbose
-    film, dim = stepper.wear, v["dim"]
+    film, dim = stepper.wear, v.dim
     keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
             "newton_iterations", "force_rigid", "h_center_rigid")
     sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
                          resume)
     y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
-    R, mu, L = v["R"], v["mu"], extent(v)
+    R, mu, L = v.R, v.mu, extent(v)
 
     def log(t, its):
         m = measures(film, v, y0)
-        h_rigid = v["h_start"] - m["approach"]     # the rigid body's gap at the plane
-        m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v["V"]
-                            if v["control"] == "speed" else v["F"])
-        m["h_center_rigid"] = (h_rigid if v["control"] == "speed" else float(
-            squeeze_film_under_load(dim, R, mu, v["F"], v["h_start"], [t], L)[0]))
+        h_rigid = v.h_start - m["approach"]     # the rigid body's gap at the plane
+        m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v.V
+                            if v.control == "speed" else v.F)
+        m["h_center_rigid"] = (h_rigid if v.control == "speed" else float(
+            squeeze_film_under_load(dim, R, mu, v.F, v.h_start, [t], L)[0]))
         sr.log(its, dict(time=t, newton_iterations=its, **m))
 
     if not resume:
         log(0.0, 0)
     with sr.closing(report=lambda: _report(film, record, sr.hist)):
-        stepper.run(v["T"], FixedStep(v["dt"]), progress=progress,
+        stepper.run(v.T, FixedStep(v.dt), progress=progress,
                     on_step=sr.written(lambda st, rep: log(st.t, rep.iterations)))
     return stepper
 

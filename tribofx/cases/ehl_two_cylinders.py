@@ -29,6 +29,7 @@ both displacements.  Units: mm, N, s, MPa (viscosity MPa·s).
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import fem
@@ -42,11 +43,11 @@ from ..interfaces import Film, TwoBodyFilm
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..motions import Rolling, Sliding
 from ..obstacles import rigid_cylinder, rigid_plane
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz, rigid_clearance
 
-__all__ = ["build", "doc", "measures", "name", "params", "plot", "reference", "report",
+__all__ = ["build", "doc", "measures", "name", "Params", "plot", "reference", "report",
            "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
@@ -54,58 +55,76 @@ name = "ehl-two-cylinders"
 resumable = False   # no per-step checkpoint
 doc = ("soft-EHL line contact of two elastic cylinders (or a cylinder on a block), "
        "rolling and sliding; either body may be rigid")
-params = (
-    Param("R1", float, 10.0, "mm", "radius of the upper cylinder", lower=0.0),
-    Param("R2", float, 10.0, "mm", "radius of the lower cylinder (inf: a block)",
-          lower=0.0, infinite=True),
-    Param("E1", float, 10.0, "MPa", "Young's modulus of the upper body (inf: rigid)",
-          lower=0.0, infinite=True),
-    Param("E2", float, 10.0, "MPa", "Young's modulus of the lower body (inf: rigid)",
-          lower=0.0, infinite=True),
-    Param("nu1", float, 0.45, "-", "Poisson's ratio of the upper body", lower=-1.0,
-          upper=0.5),
-    Param("nu2", float, 0.45, "-", "Poisson's ratio of the lower body", lower=-1.0,
-          upper=0.5),
-    Param("U1", float, 1000.0, "mm/s", "surface speed of the upper body (along +x at "
-          "the contact)"),
-    Param("U2", float, 1000.0, "mm/s", "surface speed of the lower body"),
-    Param("W", float, 0.5, "N/mm", "load per unit length", lower=0.0),
-    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-    Param("extent", float, 4.0, "-", "half length of the film x_l in units of the "
-          "Hertz half-width a", lower=1.0),
-    Param("steps", int, 4, "-", "load steps", lower=1, upper=100, closed=True),
-    Param("mesh", int, 0, "-", "element size a/(8·2^mesh) along the film", lower=0,
-          upper=5, closed=True),
-    Param("penalty", float, 1e-4, "-", "cavitation penalty ε in units of 12μℓ²/h³ "
-          "(0: none)", lower=0.0, closed=True),
-    Param("shear", bool, True, "-", "Couette and Poiseuille shear tractions"),
-    Param("supg", bool, True, "-", "SUPG stabilisation of the Reynolds rows"),
-)
+
+
+@dataclass(frozen=True)
+class Params(CaseParams):
+    """The parameters of ``ehl-two-cylinders`` (``--set KEY=VALUE``)."""
+
+    R1: float = param(10.0, "mm", "radius of the upper cylinder", lower=0.0)
+    R2: float = param(
+        10.0, "mm",
+        "radius of the lower cylinder (inf: a block)",
+        lower=0.0, infinite=True)
+    E1: float = param(
+        10.0, "MPa",
+        "Young's modulus of the upper body (inf: rigid)",
+        lower=0.0, infinite=True)
+    E2: float = param(
+        10.0, "MPa",
+        "Young's modulus of the lower body (inf: rigid)",
+        lower=0.0, infinite=True)
+    nu1: float = param(0.45, "-", "Poisson's ratio of the upper body", lower=-1.0, upper=0.5)
+    nu2: float = param(0.45, "-", "Poisson's ratio of the lower body", lower=-1.0, upper=0.5)
+    U1: float = param(
+        1000.0, "mm/s",
+        "surface speed of the upper body (along +x at "
+        "the contact)")
+    U2: float = param(1000.0, "mm/s", "surface speed of the lower body")
+    W: float = param(0.5, "N/mm", "load per unit length", lower=0.0)
+    mu: float = param(1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
+    extent: float = param(
+        4.0, "-",
+        "half length of the film x_l in units of the "
+        "Hertz half-width a",
+        lower=1.0)
+    steps: int = param(4, "-", "load steps", lower=1, upper=100, closed=True)
+    mesh: int = param(
+        0, "-",
+        "element size a/(8·2^mesh) along the film",
+        lower=0, upper=5, closed=True)
+    penalty: float = param(
+        1e-4, "-",
+        "cavitation penalty ε in units of 12μℓ²/h³ "
+        "(0: none)",
+        lower=0.0, closed=True)
+    shear: bool = param(True, "-", "Couette and Poiseuille shear tractions")
+    supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds rows")
 
 
 def reference(v):
     """Hertz line contact of the pair (the dry limit)."""
-    return hertz(v["W"], v["R1"], v["E1"], v["nu1"], v["R2"], v["E2"], v["nu2"], line=True)
+    return hertz(v.W, v.R1, v.E1, v.nu1, v.R2, v.E2, v.nu2, line=True)
 
 
 def scales(v, W=None):
     """Rigid film h_r (mm), pressure scale p_c (MPa), penalty ε (MPa·s/mm), x_l (mm)."""
     ref = reference(v)
-    u_m = 0.5 * (v["U1"] + v["U2"])
-    h_r = rigid_clearance(v["W"] if W is None else W, v["mu"], 2 * u_m, ref.R_star)
+    u_m = 0.5 * (v.U1 + v.U2)
+    h_r = rigid_clearance(v.W if W is None else W, v.mu, 2 * u_m, ref.R_star)
     ell = math.sqrt(2 * ref.R_star * h_r)
-    return (h_r, max(ref.p0, 6 * v["mu"] * u_m * ell / h_r**2),
-            v["penalty"] * 12 * v["mu"] * ell**2 / h_r**3, v["extent"] * ref.a)
+    return (h_r, max(ref.p0, 6 * v.mu * u_m * ell / h_r**2),
+            v.penalty * 12 * v.mu * ell**2 / h_r**3, v.extent * ref.a)
 
 
 def validate(v):
     """Bad input: a one-line error."""
-    if math.isinf(v["E1"]) and math.isinf(v["E2"]):
+    if math.isinf(v.E1) and math.isinf(v.E2):
         raise InputError("E1 = E2 = inf: two rigid bodies (use the case reynolds-cylinder)")
-    if math.isinf(v["R1"]):
+    if math.isinf(v.R1):
         raise InputError("R1 must be finite (the upper body is a cylinder)")
-    if not v["U1"] + v["U2"] > 0:
-        raise InputError(f"U1 + U2 = {v['U1'] + v['U2']} mm/s: no entrainment into the "
+    if not v.U1 + v.U2 > 0:
+        raise InputError(f"U1 + U2 = {v.U1 + v.U2} mm/s: no entrainment into the "
                          f"film (needs > 0)")
     try:
         h_r, _, _, x_l = scales(v)
@@ -116,7 +135,7 @@ def validate(v):
     if not 0 < h_r < 0.05 * R_star:
         raise InputError(f"the rigid film at W, {h_r:.3g} mm, is not thin against R* = "
                          f"{R_star:.3g} mm: W, U1 + U2 or mu out of range")
-    if x_l > 0.5 * min(v["R1"], v["R2"]):
+    if x_l > 0.5 * min(v.R1, v.R2):
         raise InputError(f"film half length x_l = {x_l:.3g} mm exceeds R/2: lower "
                          f"extent or W")
 
@@ -129,18 +148,18 @@ def build(v, comm=MPI.COMM_WORLD):
     ``sign`` (+1: the film's force on the upper body is the load along +y).
     """
     ref = reference(v)
-    h_r, p_c, eps, x_l = scales(v, v["W"] / v["steps"])
-    h_fine = ref.a / (8 * 2 ** v["mesh"])
-    R1, R2, U = v["R1"], v["R2"], (v["U1"], v["U2"])
+    h_r, p_c, eps, x_l = scales(v, v.W / v.steps)
+    h_fine = ref.a / (8 * 2 ** v.mesh)
+    R1, R2, U = v.R1, v.R2, (v.U1, v.U2)
     shapes = (Rolling((0, R1 + h_r), R1),
               Sliding((1, 0)) if math.isinf(R2) else Rolling((0, -R2), -R2))
     bodies = {}
-    for k, (E, nu) in enumerate(((v["E1"], v["nu1"]), (v["E2"], v["nu2"]))):
+    for k, (E, nu) in enumerate(((v.E1, v.nu1), (v.E2, v.nu2))):
         if math.isinf(E):
             continue
         R = (R1, R2)[k]
         block = 2 * R1 if math.isinf(R) else None
-        xl = x_l if k == 0 or math.isinf(v["E1"]) else x_l + 2 * ref.a
+        xl = x_l if k == 0 or math.isinf(v.E1) else x_l + 2 * ref.a
         msh, ft = roller(R, xl, h_fine, (R if block is None else block) / 4, xl, comm,
                          below=k == 1, block=block)
         if k == 0:
@@ -149,13 +168,13 @@ def build(v, comm=MPI.COMM_WORLD):
         bodies[k] = Body(msh, ft, ROLLER_NAMES, "plane_strain",
                          ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                          name=("upper", "lower")[k])
-    kw = dict(shear=v["shear"], supg=v["supg"], eps=eps if v["penalty"] > 0 else None,
+    kw = dict(shear=v.shear, supg=v.supg, eps=eps if v.penalty > 0 else None,
               p_c=p_c, film_scale=h_r, speed_scale=max(abs(U[0]), abs(U[1])))
     if 0 in bodies and 1 in bodies:
         upper, lower = bodies[0], bodies[1]
         upper.add_dirichlet("loaded", np.zeros(2))
         lift = lower.add_dirichlet("loaded", np.zeros(2))
-        film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", v["mu"],
+        film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", v.mu,
                            motion1=shapes[0], U1=U[0], motion2=shapes[1], U2=U[1], **kw)
         sign = 1.0
     else:   # one rigid body: the film on the other, against a rigid roller or plane
@@ -169,7 +188,7 @@ def build(v, comm=MPI.COMM_WORLD):
             counter = rigid_cylinder([0, R1 + h_r], R1)
         mine = (shapes[k], fem.Constant(body.mesh, float(U[k])))
         other = (shapes[1 - k], fem.Constant(body.mesh, float(U[1 - k])))
-        film = Film(body, "lubricated", counter, v["mu"], motion=mine, V_counter=other,
+        film = Film(body, "lubricated", counter, v.mu, motion=mine, V_counter=other,
                     **kw)
         lift, sign = film.counterpart.offset, (1.0 if k == 0 else -1.0)
     film.add_pressure_bc()
@@ -184,12 +203,12 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     film, problem, sign = run["film"], run["problem"], run["sign"]
     record.data["num_dofs"] = problem.num_dofs
     ref = reference(v)
-    u_m = 0.5 * (v["U1"] + v["U2"])
+    u_m = 0.5 * (v.U1 + v.U2)
     # a rigid upper roller moves down (its film lives on the lower body): δ along −y
     inner = Continuation(problem, ConstantParameter(run["lift"], 1, scale=sign),
                          response=lambda: 1.0 / (sign * film.force()[1]), rtol=1e-6,
                          max_trials=30, verbose=verbose)
-    slope = -1.0 / (4.9 * v["mu"] * u_m * ref.R_star)    # Martin: d(1/W)/dδ, h = h₀ − δ
+    slope = -1.0 / (4.9 * v.mu * u_m * ref.R_star)    # Martin: d(1/W)/dδ, h = h₀ − δ
     held = Hold(inner, 0.0, transform=lambda W: 1.0 / W, slope=slope)
     steps = []
 
@@ -199,7 +218,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
             progress.update(1)
 
     try:
-        held.march(v["W"], v["steps"], on_step=on_load,
+        held.march(v.W, v.steps, on_step=on_load,
                    record=record.data["newton_iterations"])
     except NewtonDivergence as err:
         err.model = run
@@ -238,10 +257,10 @@ def report(run, v, record, steps, ref):
              "approach": "mm"}
     for key, unit in units.items():
         record.result("normal_load" if key == "W" else key, m[key], unit)
-    u_m = 0.5 * (v["U1"] + v["U2"])
+    u_m = 0.5 * (v.U1 + v.U2)
     record.result("hertz_half_width", ref.a, "mm")
     record.result("hertz_p_max", ref.p0, "MPa")
-    record.result("rigid_film_martin", rigid_clearance(m["W"], v["mu"], 2 * u_m,
+    record.result("rigid_film_martin", rigid_clearance(m["W"], v.mu, 2 * u_m,
                                                        ref.R_star), "mm")
     if run["film"].sub.comm.rank == 0:
         record.profile = {"steps": [{k: s[k] for k in ("W", "x", "p", "h")}

@@ -5,34 +5,37 @@ the ``speeds`` parameter of a speed continuation, the fluid's laws from the
 parameters, and the 1D film of a prescribed gap (:func:`rigid_film`).
 """
 
+from dataclasses import dataclass
+from typing import Any
+
 import numpy as np
 from dolfinx import mesh as dmesh
 
 from ..interfaces import RigidFilm
 from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
-from ..params import InputError, Param, number_list
+from ..params import CaseParams, InputError, number_list, param
 from ..problem import Problem
 
 __all__ = [
     "rigid_film",
-    "VISCOSITY_PARAMS", "arc_halvings", "at_points", "cavitation_model", "density",
+    "FluidParams", "arc_halvings", "at_points", "cavitation_model", "density",
     "film_boundary", "formulation_param", "quadrature_param", "speed_list", "viscosity",
 ]
 
 
-def formulation_param(default):
-    """Return the ``formulation`` parameter of a film case: the solid's (u) or (u, p) form.
+def formulation_param(default: str) -> Any:
+    """Return the ``formulation`` field of a film case: the solid's (u) or (u, p) form.
 
     ``mixed`` (:class:`tribofx.body.Body`, ``formulation="mixed"``) is locking-free
     for nearly incompressible solids: a locked P1 surface makes the film zig-zag.
     """
-    return Param("formulation", str, default, "-",
+    return param(default, "-",
                  "solid: displacement (u only) or mixed (u and a P1 volumetric stress: "
                  "locking-free, no film zig-zag for nearly incompressible solids)",
                  choices=("displacement", "mixed"))
 
-def quadrature_param():
-    """Return the ``quadrature`` parameter of a film case: the rule of the film's integrals.
+def quadrature_param() -> Any:
+    """Return the ``quadrature`` field of a film case: the rule of the film's integrals.
 
     Offered by ``ehl-ball`` (verified there); the plane-strain layer and the O-ring
     did not converge with the vertex rule (not investigated yet).
@@ -42,39 +45,44 @@ def quadrature_param():
     chord, below the curved surface by up to h_e²/(8R), which in a thin film
     (h ≲ h_e²/R) is a node-to-node ripple of h (:class:`tribofx.interfaces.Film`).
     """
-    return Param("quadrature", str, "gauss", "-",
+    return param("gauss", "-",
                  "rule of the film integrals: gauss, or vertex (film terms at the nodes: no "
                  "chord sag h_e²/8R of the faceted surface in a thin film; not with a kinked "
                  "meshed countersurface)", choices=("gauss", "vertex"))
 
 
-#: the lubricant's pressure–viscosity law, a parameter set of every case with a film
-VISCOSITY_PARAMS = (
-    Param("viscosity", str, "constant", "-", "viscosity law μ(p): constant (the chapter's), "
-          "barus mu exp(alpha_p p), roelands (index z)", choices=VISCOSITY_LAWS),
-    Param("alpha_p", float, 0.0, "1/MPa", "pressure-viscosity coefficient of barus, and the "
-          "slope roelands matches when z = 0 (0.02 1/MPa = 2e-8 1/Pa, a mineral oil; up to "
-          "100 for studies of a strong pressure dependence at soft-EHL pressures)",
-          lower=0.0, upper=100.0, closed=True),
-    Param("z", float, 0.0, "-", "Roelands' index (0: from alpha_p)", lower=0.0, upper=2.0,
-          closed=True),
-    Param("density", str, "incompressible", "-", "density law ρ(p): incompressible (the "
-          "chapter's) or dowson-higginson (compressible Reynolds; not with jfo)",
-          choices=DENSITY_LAWS),
-)
+@dataclass(frozen=True)
+class FluidParams(CaseParams):
+    """The lubricant's pressure–viscosity and density laws, parameters of every case with a film."""
+
+    viscosity: str = param(
+        "constant", "-",
+        "viscosity law μ(p): constant (the chapter's), barus mu exp(alpha_p p), roelands "
+        "(index z)", choices=VISCOSITY_LAWS)
+    alpha_p: float = param(
+        0.0, "1/MPa",
+        "pressure-viscosity coefficient of barus, and the slope roelands matches when z = 0 "
+        "(0.02 1/MPa = 2e-8 1/Pa, a mineral oil; up to 100 for studies of a strong pressure "
+        "dependence at soft-EHL pressures)", lower=0.0, upper=100.0, closed=True)
+    z: float = param(0.0, "-", "Roelands' index (0: from alpha_p)", lower=0.0, upper=2.0,
+                     closed=True)
+    density: str = param(
+        "incompressible", "-",
+        "density law ρ(p): incompressible (the chapter's) or dowson-higginson (compressible "
+        "Reynolds; not with jfo)", choices=DENSITY_LAWS)
 
 
 def viscosity(v):
     """Return the viscosity law of the values ``v`` (``mu`` is its μ₀, MPa·s)."""
-    if v["viscosity"] != "constant" and not v["alpha_p"] > 0 and not v["z"] > 0:
-        raise InputError(f"viscosity={v['viscosity']} needs alpha_p > 0 (or z > 0 for "
+    if v.viscosity != "constant" and not v.alpha_p > 0 and not v.z > 0:
+        raise InputError(f"viscosity={v.viscosity} needs alpha_p > 0 (or z > 0 for "
                          f"roelands)")
-    return named_viscosity(v["viscosity"], v["mu"], v["alpha_p"], v["z"] or None)
+    return named_viscosity(v.viscosity, v.mu, v.alpha_p, v.z or None)
 
 
 def speed_list(v):
     """Return the positive speeds (mm/s) of the comma-separated parameter ``speeds``."""
-    speeds = number_list(v["speeds"], "speeds", allow_empty=True)
+    speeds = number_list(v.speeds, "speeds", allow_empty=True)
     if any(not U > 0 for U in speeds):
         raise InputError("speeds must be positive (mm/s)")
     return speeds
@@ -122,36 +130,36 @@ def at_points(points, tol):
 def cavitation_model(v):
     """Return the film's cavitation model of the values ``v``.
 
-    ``v["cavitation"]``, or for ``auto`` JFO with the mixed solid and the penalty
+    ``v.cavitation``, or for ``auto`` JFO with the mixed solid and the penalty
     with the displacement one (measured on the O-ring: on the zig-zag surface of
     the locked P1 solid the semismooth JFO iteration cycles, density 2 at 1000 mm/s).
     """
-    if v["cavitation"] != "auto":
-        return v["cavitation"]
-    return "jfo" if v["formulation"] == "mixed" else "penalty"
+    if v.cavitation != "auto":
+        return v.cavitation
+    return "jfo" if v.formulation == "mixed" else "penalty"
 
 
 def arc_halvings(v):
     """Return the halvings k of the seal's film-arc elements (0.1/(n·2^k) mm) of the values ``v``.
 
-    ``v["arc_refine"]``, or by default 1 for the transient cycle (``stroke=cycle``
+    ``v.arc_refine``, or by default 1 for the transient cycle (``stroke=cycle``
     on the built section) and 0 otherwise: at 25 µm (density 4, k = 0) the
     instroke's air-side reformation front sits on one node where p = λ = 0
     (degenerate complementarity), and the semismooth Newton iteration of the first
     instroke can cycle there (measured: the rough seal stops at t ≈ 42 ms); at
     12.5 µm both schemes run whole cycles (tests/test_oring_cycle.py).
     """
-    if v["arc_refine"] is not None:
-        return v["arc_refine"]
-    return 1 if v.get("stroke") == "cycle" and not v.get("mesh_file") else 0
+    if v.arc_refine is not None:
+        return v.arc_refine
+    return 1 if v.stroke == "cycle" and not v.mesh_file else 0
 
 
-def density(v):
-    """Return the density law ρ(p)/ρ₀ of the values ``v``."""
-    if v["density"] != "incompressible" and v.get("cavitation") == "jfo":
+def density(v, cavitation="penalty"):
+    """Return the density law ρ(p)/ρ₀ of the values ``v`` (refused with ``cavitation`` jfo)."""
+    if v.density != "incompressible" and cavitation == "jfo":
         raise InputError("density=dowson-higginson is implemented with penalty or no "
                          "cavitation, not jfo")
-    return named_density(v["density"])
+    return named_density(v.density)
 
 
 def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,

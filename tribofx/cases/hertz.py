@@ -26,6 +26,7 @@ facets near the first-contact point (see :func:`tribofx.cases.curved_bodies.read
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from mpi4py import MPI
@@ -36,7 +37,7 @@ from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Contact
 from ..meshes.hertz import NAMES, hertz_body
 from ..obstacles import rigid_plane, rigid_surface_mesh
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz_reference
 
@@ -44,7 +45,7 @@ from ..references import hertz_reference
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
 __all__ = ["AXISYMMETRIC", "build", "dimension", "doc", "geometric_dim", "hertz_dim",
-           "hertz_reference", "mesh_sizes", "model_fraction", "name", "params", "plot",
+           "hertz_reference", "mesh_sizes", "model_fraction", "name", "Params", "plot",
            "resumable", "run", "validate", "vtx_fields"]
 
 
@@ -72,56 +73,67 @@ name = "hertz"
 resumable = False   # no per-step checkpoint
 doc = ("elastic cylinder (dim=2) or sphere (dim=3: quarter model, dim=axisymmetric: "
        "meridian section) pressed on a rigid plane, vs Hertz")
-params = (
-    Param("dim", dimension, 2, "-", "2: plane-strain cylinder, 3: sphere (quarter model), "
-          "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
-          choices=(2, 3, AXISYMMETRIC)),
-    Param("E", float, 10.0, "MPa", "Young's modulus", lower=0.0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0,
-          upper=0.5),
-    Param("R", float, 10.0, "mm", "radius of the cylinder/sphere", lower=0.0),
-    Param("load", float, None, "N/mm (dim=2) or N (dim=3, axisymmetric)",
-          "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
-          lower=0.0),
-    Param("friction", float, 0.0, "-", "Coulomb friction coefficient", lower=0.0,
-          closed=True),
-    Param("obstacle", str, "analytic", "-", "rigid plane in closed form or as a gmsh mesh",
-          choices=("analytic", "mesh")),
-    Param("material", str, "neo-hookean", "-", "strain energy",
-          choices=("neo-hookean", "linear")),
-    Param("mesh", int, 2, "-",
-          "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
-          "in 3D, a = Hertz contact size (ignored with mesh_file)", lower=0, upper=7,
-          closed=True),
-    Param("steps", int, 2, "-", "load increments", lower=1, upper=1000, closed=True),
-    Param("mesh_file", str, "", "-",
-          "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
-          "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
-          "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
-          "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
-          "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
-          "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
-          "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)"),
-)
+
+
+@dataclass(frozen=True)
+class Params(CaseParams):
+    """The parameters of ``hertz`` (``--set KEY=VALUE``)."""
+
+    dim: int | str = param(
+        2, "-",
+        "2: plane-strain cylinder, 3: sphere (quarter model), "
+        "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
+        choices=(2, 3, AXISYMMETRIC), parse=dimension)
+    E: float = param(10.0, "MPa", "Young's modulus", lower=0.0)
+    nu: float = param(0.3, "-", "Poisson's ratio (compressible law)", lower=-1.0, upper=0.5)
+    R: float = param(10.0, "mm", "radius of the cylinder/sphere", lower=0.0)
+    load: float | None = param(
+        None, "N/mm (dim=2) or N (dim=3, axisymmetric)",
+        "total normal load on the full body (default 0.2 N/mm in 2D, 0.5 N in 3D)",
+        lower=0.0)
+    friction: float = param(0.0, "-", "Coulomb friction coefficient", lower=0.0, closed=True)
+    obstacle: str = param(
+        "analytic", "-",
+        "rigid plane in closed form or as a gmsh mesh",
+        choices=("analytic", "mesh"))
+    material: str = param("neo-hookean", "-", "strain energy", choices=("neo-hookean", "linear"))
+    mesh: int = param(
+        2, "-",
+        "refinement level: contact-zone element size a/(6·2^mesh) in 2D, a/(2·2^mesh) "
+        "in 3D, a = Hertz contact size (ignored with mesh_file)",
+        lower=0, upper=7, closed=True)
+    steps: int = param(2, "-", "load increments", lower=1, upper=1000, closed=True)
+    mesh_file: str = param(
+        "", "-",
+        "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
+        "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
+        "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
+        "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
+        "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
+        "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
+        "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)")
+
+    def __post_init__(self) -> None:
+        if self.load is None:   # the default: 0.2 N/mm (dim=2), 0.5 N (dim=3, axisymmetric)
+            object.__setattr__(self, "load", 0.2 if self.dim == 2 else 0.5)
+        super().__post_init__()
 
 
 def validate(v):
-    """Fill derived defaults and check cross-parameter consistency."""
-    if v["load"] is None:
-        v["load"] = 0.2 if v["dim"] == 2 else 0.5
-    a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
-    if a > 0.5 * v["R"]:
-        raise InputError(f"load too large for a Hertz comparison: a/R = {a / v['R']:.2f} > 0.5")
-    if a < 1e-4 * v["R"]:
-        raise InputError(f"load too small to resolve: a/R = {a / v['R']:.1e} < 1e-4")
+    """Check cross-parameter consistency."""
+    a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, v.R, v.load)
+    if a > 0.5 * v.R:
+        raise InputError(f"load too large for a Hertz comparison: a/R = {a / v.R:.2f} > 0.5")
+    if a < 1e-4 * v.R:
+        raise InputError(f"load too small to resolve: a/R = {a / v.R:.1e} < 1e-4")
 
 
 def mesh_sizes(v):
     """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
-    a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], v["R"], v["load"])
-    plane = geometric_dim(v["dim"]) == 2       # a 2D mesh: cylinder or meridian section
-    per_a = (6 if plane else 2) * 2 ** v["mesh"]
-    return a / per_a, v["R"] / (6 if plane else 4), 1.5 * a
+    a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, v.R, v.load)
+    plane = geometric_dim(v.dim) == 2       # a 2D mesh: cylinder or meridian section
+    per_a = (6 if plane else 2) * 2 ** v.mesh
+    return a / per_a, v.R / (6 if plane else 4), 1.5 * a
 
 
 def build(v, comm=MPI.COMM_WORLD):
@@ -131,33 +143,33 @@ def build(v, comm=MPI.COMM_WORLD):
     (:func:`tribofx.cases.curved_bodies.read_hertz_body`); ρ_N = E/h with h its
     contact element size instead of ``h_fine``.
     """
-    R, dim = v["R"], geometric_dim(v["dim"])
+    R, dim = v.R, geometric_dim(v.dim)
     h_fine, h_coarse, r_fine = mesh_sizes(v)
-    if v["mesh_file"]:
-        a, _ = hertz_reference(hertz_dim(v["dim"]), v["E"], v["nu"], R, v["load"])
-        msh, ft, names, h_fine, _ = read_hertz_body(v["mesh_file"], comm, dim, a, R,
+    if v.mesh_file:
+        a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, R, v.load)
+        msh, ft, names, h_fine, _ = read_hertz_body(v.mesh_file, comm, dim, a, R,
                                                     CURVATURE_TOL / R)
     else:
         msh, ft = hertz_body(dim, R, h_fine, h_coarse, r_fine, comm)
         names = NAMES
     normal = np.eye(dim)[dim - 1]
-    if v["obstacle"] == "analytic":
+    if v.obstacle == "analytic":
         plane = rigid_plane(np.zeros(dim), normal)
     else:
         from ..meshes.obstacles import plane_surface_mesh
 
         plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
                                                        4 * h_fine))
-    mu, lmbda = lame_parameters(v["E"], v["nu"])
-    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v["dim"]]
+    mu, lmbda = lame_parameters(v.E, v.nu)
+    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v.dim]
     body = Body(msh, ft, names, kind,
-                (v["material"], {"mu": mu, "lmbda": lmbda}))
+                (v.material, {"mu": mu, "lmbda": lmbda}))
     body.add_dirichlet("loaded", np.zeros(dim))
     body.add_dirichlet("symmetry_x", 0.0, component=0)
     if dim == 3:
         body.add_dirichlet("symmetry_y", 0.0, component=1)
-    contact = Contact(body, "contact", plane, rho_n=v["E"] / h_fine,
-                      friction=v["friction"])
+    contact = Contact(body, "contact", plane, rho_n=v.E / h_fine,
+                      friction=v.friction)
     problem = Problem([body, contact], name="hertz")
     return body, contact, problem
 
@@ -192,16 +204,16 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     communicator of the mesh (e.g. COMM_SELF for a serial run inside a parallel
     test).
     """
-    R, dim = v["R"], hertz_dim(v["dim"])
+    R, dim = v.R, hertz_dim(v.dim)
     body, contact, problem = run = build(v, comm)
-    frac = model_fraction(v["dim"])
+    frac = model_fraction(v.dim)
     record.data["num_dofs"] = problem.num_dofs
-    a_h, p_h = hertz_reference(dim, v["E"], v["nu"], R, v["load"])
-    axis = geometric_dim(v["dim"]) - 1
+    a_h, p_h = hertz_reference(dim, v.E, v.nu, R, v.load)
+    axis = geometric_dim(v.dim) - 1
     control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
                            response=lambda: contact.force()[axis], verbose=verbose,
                            record=record.data["newton_iterations"])
-    targets = [frac * v["load"] * (k + 1) / v["steps"] for k in range(v["steps"])]
+    targets = [frac * v.load * (k + 1) / v.steps for k in range(v.steps)]
     delta = a_h**2 / R if dim == 3 else 0.5 * a_h**2 / R
     try:
         for k, target in enumerate(targets):
@@ -217,7 +229,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
 
 
 def _report(contact, v, record, frac, a_h, p_h):
-    dim, gdim = v["dim"], geometric_dim(v["dim"])
+    dim, gdim = v.dim, geometric_dim(v.dim)
     area, pmax = contact.measures()
     # half-width; the radius of a quarter disc's area; that of the revolved disc's
     size = {2: area, 3: math.sqrt(4 * area / math.pi),
@@ -230,11 +242,11 @@ def _report(contact, v, record, frac, a_h, p_h):
     record.result("hertz_p_max", p_h, "MPa")
     record.result(f"{key}_rel_error", size / a_h - 1)
     record.result("p_max_rel_error", pmax / p_h - 1)
-    record.result("contact_element_size", v["E"] / contact.rho_n, "mm (h of rho_N = E/h)")
+    record.result("contact_element_size", v.E / contact.rho_n, "mm (h of rho_N = E/h)")
     if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
         delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
         record.result("approach", delta, "mm")
-        record.result("hertz_approach", a_h**2 / v["R"], "mm (half-space)")
+        record.result("hertz_approach", a_h**2 / v.R, "mm (half-space)")
     record.result("normal_load_full_body", float(force[gdim - 1] / frac),
                   "N/mm" if dim == 2 else "N")
     record.result("tangential_force_modelled_part", [float(f) for f in force[: gdim - 1]],

@@ -17,19 +17,20 @@ Units: mm, N, s, MPa (viscosity MPa·s; loads per unit width/length N/mm).
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
 from mpi4py import MPI
 
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence
 from ..references import cylinder_references
-from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
+from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # cylinder_references is re-exported from tribofx.references
-__all__ = ["build", "cylinder_references", "doc", "mesh_levels", "name", "params", "plot",
+__all__ = ["build", "cylinder_references", "doc", "mesh_levels", "name", "Params", "plot",
            "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
@@ -78,60 +79,69 @@ name = "reynolds-cylinder"
 resumable = False   # no per-step checkpoint
 doc = ("rigid cylinder on a rigid plane (1D Reynolds) with cavitation none|penalty|jfo, "
        "vs half-Sommerfeld and Swift–Stieber")
-params = (
-    Param("R", float, 10.0, "mm", "cylinder radius", lower=0.0),
-    Param("h0", float, 0.01, "mm", "minimum film thickness", lower=0.0),
-    Param("um", float, 1000.0, "mm/s", "mean entrainment speed (u1 + u2)/2", lower=0.0),
-    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
-    Param("x_in", float, -2.0, "mm", "inlet position (p = 0)", upper=0.0),
-    Param("x_out", float, 2.0, "mm", "outlet position", lower=0.0),
-    Param("cavitation", str, "penalty", "-", "cavitation model",
-          choices=("none", "penalty", "jfo")),
-    Param("supg", bool, True, "-", "SUPG stabilisation (Remark 3.2)"),
-    Param("mesh", int, 400, "-", "number of elements", lower=2, upper=10**7, closed=True),
-    Param("degree", int, 1, "-", "Lagrange degree of p (jfo: 1 only)", choices=(1, 2)),
-    Param("inlet_void", float, 0.0, "-",
-          "void fraction λ of the supplied film at x_in (jfo; 0: fully flooded, "
-          "> 0: starved inlet)", lower=0.0, upper=1.0, closed=True),
-    Param("inlet", str, "dirichlet", "-", "jfo inlet: dirichlet (λ = inlet_void, p = 0 "
-          "at x_in) or supply (an open end supplied with the content (1 − inlet_void) "
-          "h(x_in), as the reciprocating O-ring's air end)", choices=("dirichlet", "supply")),
-    Param("penalty", float, 1e-6, "-",
-          "relative penalty ε/ε_ref, ε_ref = 12 μ ℓ²/h0³ (MPa·s/mm), ℓ = √(2 R h0)",
-          lower=0.0),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``reynolds-cylinder`` (``--set KEY=VALUE``)."""
+
+    R: float = param(10.0, "mm", "cylinder radius", lower=0.0)
+    h0: float = param(0.01, "mm", "minimum film thickness", lower=0.0)
+    um: float = param(1000.0, "mm/s", "mean entrainment speed (u1 + u2)/2", lower=0.0)
+    mu: float = param(1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0)
+    x_in: float = param(-2.0, "mm", "inlet position (p = 0)", upper=0.0)
+    x_out: float = param(2.0, "mm", "outlet position", lower=0.0)
+    cavitation: str = param("penalty", "-", "cavitation model", choices=("none", "penalty", "jfo"))
+    supg: bool = param(True, "-", "SUPG stabilisation (Remark 3.2)")
+    mesh: int = param(400, "-", "number of elements", lower=2, upper=10**7, closed=True)
+    degree: int = param(1, "-", "Lagrange degree of p (jfo: 1 only)", choices=(1, 2))
+    inlet_void: float = param(
+        0.0, "-",
+        "void fraction λ of the supplied film at x_in (jfo; 0: fully flooded, "
+        "> 0: starved inlet)",
+        lower=0.0, upper=1.0, closed=True)
+    inlet: str = param(
+        "dirichlet", "-",
+        "jfo inlet: dirichlet (λ = inlet_void, p = 0 "
+        "at x_in) or supply (an open end supplied with the content (1 − inlet_void) "
+        "h(x_in), as the reciprocating O-ring's air end)",
+        choices=("dirichlet", "supply"))
+    penalty: float = param(
+        1e-6, "-",
+        "relative penalty ε/ε_ref, ε_ref = 12 μ ℓ²/h0³ (MPa·s/mm), ℓ = √(2 R h0)",
+        lower=0.0)
 
 
 def scales(v):
     """Contact length ℓ = √(2Rh0) (mm), pressure scale 12μu_mℓ/h0² (MPa), ε (MPa·s/mm)."""
-    ell = math.sqrt(2 * v["R"] * v["h0"])
-    p_s = 12 * v["mu"] * v["um"] * ell / v["h0"] ** 2
-    eps = v["penalty"] * 12 * v["mu"] * ell**2 / v["h0"] ** 3
+    ell = math.sqrt(2 * v.R * v.h0)
+    p_s = 12 * v.mu * v.um * ell / v.h0 ** 2
+    eps = v.penalty * 12 * v.mu * ell**2 / v.h0 ** 3
     return ell, p_s, eps
 
 
 def validate(v):
     """Check the interval and, with cavitation, that the outlet lies past the rupture."""
-    if not v["x_in"] < v["x_out"]:
-        raise InputError(f"x_in = {v['x_in']} mm must be < x_out = {v['x_out']} mm")
+    if not v.x_in < v.x_out:
+        raise InputError(f"x_in = {v.x_in} mm must be < x_out = {v.x_out} mm")
     viscosity(v)
-    density(v)
-    if v["cavitation"] == "jfo" and v["degree"] != 1:
+    density(v, v.cavitation)
+    if v.cavitation == "jfo" and v.degree != 1:
         raise InputError("cavitation=jfo needs degree=1 (nodal complementarity)")
-    if v["inlet_void"] > 0 and v["cavitation"] != "jfo":
+    if v.inlet_void > 0 and v.cavitation != "jfo":
         raise InputError("inlet_void > 0 (starved inlet) needs cavitation=jfo")
-    if max(-v["x_in"], v["x_out"]) >= v["R"]:
-        raise InputError(f"x_in, x_out must lie within the cylinder's radius R = {v['R']} mm "
+    if max(-v.x_in, v.x_out) >= v.R:
+        raise InputError(f"x_in, x_out must lie within the cylinder's radius R = {v.R} mm "
                          f"(the gap h0 + x²/(2R) is its parabolic approximation)")
-    if v["cavitation"] != "none":
+    if v.cavitation != "none":
         try:
-            refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"],
-                                       v["x_out"], n=20_000, inlet_void=v["inlet_void"])
+            refs = cylinder_references(v.R, v.h0, v.um, v.mu, v.x_in,
+                                       v.x_out, n=20_000, inlet_void=v.inlet_void)
         except ValueError as err:
             raise InputError(str(err)) from None
         xr = refs["swift_stieber"]["x_rupture"]
-        if v["x_out"] < xr + 0.02 * (v["x_out"] - v["x_in"]):
-            raise InputError(f"x_out = {v['x_out']} mm must lie downstream of the "
+        if v.x_out < xr + 0.02 * (v.x_out - v.x_in):
+            raise InputError(f"x_out = {v.x_out} mm must lie downstream of the "
                              f"cavitation boundary (Swift–Stieber x_r = {xr:.4g} mm)")
 
 
@@ -151,22 +161,22 @@ def mesh_levels(n, coarsest=50):
 
 def build(v, comm=MPI.COMM_WORLD):
     """Return the film of the cylinder gap and its problem (not solved; JFO guess set)."""
-    R, h0 = v["R"], v["h0"]
+    R, h0 = v.R, v.h0
     _, p_s, eps = scales(v)
-    return rigid_film(comm, v["x_in"], v["x_out"], v["mesh"], v["degree"],
-                      lambda x: h0 + x**2 / (2 * R), v["um"], viscosity(v),
-                      cavitation=v["cavitation"], supg=v["supg"], p_c=p_s, eps=eps,
-                      h_ref=h0, lam_in=v["inlet_void"], density=density(v),
-                      supply=v["inlet"] == "supply")
+    return rigid_film(comm, v.x_in, v.x_out, v.mesh, v.degree,
+                      lambda x: h0 + x**2 / (2 * R), v.um, viscosity(v),
+                      cavitation=v.cavitation, supg=v.supg, p_c=p_s, eps=eps,
+                      h_ref=h0, lam_in=v.inlet_void, density=density(v, v.cavitation),
+                      supply=v.inlet == "supply")
 
 
 def run(v, record, progress=None, verbose=False):
     """Solve and record load, peak, rupture point and fluxes against the references."""
-    levels = mesh_levels(v["mesh"])
+    levels = mesh_levels(v.mesh)
     its, prev, run = [], None, None
     try:
         for n in levels:  # nested iteration: each level from the coarser solution
-            run = film, problem = build(dict(v, mesh=n))
+            run = film, problem = build(v.replace(mesh=n))
             if prev is not None:
                 film.set_from_profile(prev)
             report = problem.solve_by_homotopy(verbose=verbose)
@@ -186,13 +196,13 @@ def run(v, record, progress=None, verbose=False):
 
 
 def _report(film, v, record):
-    cav = v["cavitation"]
+    cav = v.cavitation
     ell, p_s, eps = scales(v)
-    refs = cylinder_references(v["R"], v["h0"], v["um"], v["mu"], v["x_in"], v["x_out"],
-                               inlet_void=v["inlet_void"])
+    refs = cylinder_references(v.R, v.h0, v.um, v.mu, v.x_in, v.x_out,
+                               inlet_void=v.inlet_void)
     p, comm = film.p, film.sub.comm
     load = film.integral(ufl.max_value(p, 0) if cav == "none" else p)
-    q_in, q_out = film.consistent_fluxes(inlet=lambda y: np.isclose(y[0], v["x_in"]))
+    q_in, q_out = film.consistent_fluxes(inlet=lambda y: np.isclose(y[0], v.x_in))
     prof = film.profile()
     peak = None
     if comm.rank == 0:
@@ -216,7 +226,7 @@ def _report(film, v, record):
         record.result(f"{key}_x_p_max", float(r["x_p_max"]), "mm")
         record.result(f"{key}_x_rupture", float(r["x_rupture"]), "mm")
         record.result(f"{key}_flux", float(r["flux"]), "mm^2/s")
-    if v["viscosity"] == "constant" and v["density"] == "incompressible":
+    if v.viscosity == "constant" and v.density == "incompressible":
         ref = refs["half_sommerfeld" if cav == "none" else "swift_stieber"]
         record.result("reference", "half_sommerfeld" if cav == "none" else "swift_stieber")
         record.result("load_rel_error", float(load / ref["load"] - 1))

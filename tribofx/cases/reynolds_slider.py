@@ -15,12 +15,13 @@ Units: mm, N, s, MPa (viscosity MPa·s; loads per unit width/length N/mm).
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
 from mpi4py import MPI
 
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..positions import parabolic_vertex
 from ..problem import NewtonDivergence
 from ..references import (
@@ -28,10 +29,10 @@ from ..references import (
     slider_pressure,
     slider_reference,
 )
-from .film_setup import VISCOSITY_PARAMS, density, rigid_film, viscosity
+from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # slider_reference is re-exported from tribofx.references
-__all__ = ["build", "doc", "name", "params", "plot", "resumable", "run", "slider_reference",
+__all__ = ["build", "doc", "name", "Params", "plot", "resumable", "run", "slider_reference",
            "validate", "vtx_fields"]
 
 
@@ -41,25 +42,27 @@ __all__ = ["build", "doc", "name", "params", "plot", "resumable", "run", "slider
 name = "reynolds-slider"
 resumable = False   # no per-step checkpoint
 doc = "rigid plane inclined slider bearing (1D Reynolds), vs the analytic solution"
-params = (
-    Param("K", float, 1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0",
-          lower=-1.0),
-    Param("L", float, 10.0, "mm", "slider length", lower=0.0),
-    Param("h0", float, 0.01, "mm", "outlet (minimum) film thickness", lower=0.0),
-    Param("U", float, 1000.0, "mm/s", "speed of the sliding plane (pad at rest)",
-          lower=0.0),
-    Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0),
-    Param("mesh", int, 200, "-", "number of elements", lower=2, upper=10**7, closed=True),
-    Param("degree", int, 1, "-", "Lagrange degree of the pressure", choices=(1, 2)),
-) + VISCOSITY_PARAMS
+
+
+@dataclass(frozen=True)
+class Params(FluidParams):
+    """The parameters of ``reynolds-slider`` (``--set KEY=VALUE``)."""
+
+    K: float = param(1.0, "-", "inclination: inlet gap h0(1+K) over outlet gap h0", lower=-1.0)
+    L: float = param(10.0, "mm", "slider length", lower=0.0)
+    h0: float = param(0.01, "mm", "outlet (minimum) film thickness", lower=0.0)
+    U: float = param(1000.0, "mm/s", "speed of the sliding plane (pad at rest)", lower=0.0)
+    mu: float = param(1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s oil)", lower=0.0)
+    mesh: int = param(200, "-", "number of elements", lower=2, upper=10**7, closed=True)
+    degree: int = param(1, "-", "Lagrange degree of the pressure", choices=(1, 2))
 
 
 def validate(v):
     """Barus: α p_iso,max < 1 (the reference transform; the fluid stays finite)."""
     viscosity(v)
     density(v)
-    if v["viscosity"] == "barus":
-        ap = v["alpha_p"] * slider_reference(v["K"], v["L"], v["h0"], v["U"], v["mu"])["p_max"]
+    if v.viscosity == "barus":
+        ap = v.alpha_p * slider_reference(v.K, v.L, v.h0, v.U, v.mu)["p_max"]
         if not ap < 0.95:
             raise InputError(f"alpha·p_max of the isoviscous slider = {ap:.3g}: the Barus "
                              f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
@@ -67,9 +70,9 @@ def validate(v):
 
 def build(v, comm=MPI.COMM_WORLD):
     """Return the film of the slider and its problem (not solved)."""
-    K, L, h0 = v["K"], v["L"], v["h0"]
-    return rigid_film(comm, 0.0, L, v["mesh"], v["degree"],
-                      lambda x: h0 * (1 + K - K * x / L), 0.5 * v["U"], viscosity(v),
+    K, L, h0 = v.K, v.L, v.h0
+    return rigid_film(comm, 0.0, L, v.mesh, v.degree,
+                      lambda x: h0 * (1 + K - K * x / L), 0.5 * v.U, viscosity(v),
                       h_ref=h0, density=density(v))
 
 
@@ -86,18 +89,18 @@ def run(v, record, progress=None, verbose=False):
     record.data["newton_residuals"] = [float(r) for r in report.residuals]
     if progress is not None:
         progress.update(1)
-    K, L, h0, U, mu = (v[k] for k in ("K", "L", "h0", "U", "mu"))
+    K, L, h0, U, mu = v.K, v.L, v.h0, v.U, v.mu
     ref = dict(slider_reference(K, L, h0, U, mu))
     load = film.integral(film.p)
     p_ex = slider_pressure(ufl.SpatialCoordinate(film.sub)[0], K, L, h0, U, mu)
-    if v["density"] != "incompressible":    # no closed form
+    if v.density != "incompressible":    # no closed form
         ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
-    elif v["viscosity"] == "barus":   # the exact transform of the isoviscous film
-        a = v["alpha_p"]
+    elif v.viscosity == "barus":   # the exact transform of the isoviscous film
+        a = v.alpha_p
         p_ex = barus_pressure(p_ex, a, ufl.ln)
         ref["p_max"] = barus_pressure(ref["p_max"], a)   # monotone: the same x_p_max
         ref["load"] = film.integral(p_ex)
-    elif v["viscosity"] != "constant":
+    elif v.viscosity != "constant":
         ref = {"load": math.nan, "p_max": math.nan, "x_p_max": math.nan}
     l2 = math.sqrt(film.integral((film.p - p_ex) ** 2))
     nrm = math.sqrt(film.integral(p_ex**2))

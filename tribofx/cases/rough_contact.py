@@ -3,7 +3,7 @@
 The model of ``stribeck`` and ``wear-lubricated``: the body (a plane-strain roller
 or the quarter ball of ``ehl-ball``), the film with a
 :class:`~tribofx.roughness.Roughness` (Patir–Cheng flow factors, Greenwood–Tripp
-asperities with boundary friction μ_b), its parameters (:data:`PARAMS`), the load
+asperities with boundary friction μ_b), its parameters (:class:`RoughContactParams`), the load
 held at W by the plane's approach while the speed is marched down
 (:func:`load_and_slow`), and the measures of a state (:func:`measures`).  Units:
 mm, N, s, MPa.
@@ -11,6 +11,7 @@ mm, N, s, MPa.
 
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import fem
@@ -24,15 +25,16 @@ from ..interfaces import Film
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..obstacles import rigid_plane
-from ..params import InputError, Param, number_list
+from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import composite_modulus, hamrock_dowson, hertz, rigid_clearance
 from ..references_mixed import flat_punch_separation
 from ..roughness import rough_pair
 
 __all__ = [
-    "CAP_RADII", "PARAMS", "build", "check", "first_film", "hertz_contact", "load", "load_and_slow",
-    "measures", "rough_ball", "rough_cylinder", "roughness", "set_speed", "speeds",
+    "CAP_RADII", "RoughContactParams", "build", "check", "first_film", "hertz_contact", "load",
+    "load_and_slow",
+    "measures", "rough_ball", "rough_cylinder", "roughness", "set_speed",
 ]
 
 
@@ -40,48 +42,47 @@ __all__ = [
 CAP_RADII = 3.0
 
 
-def hertz_contact(v, W=None):
-    """Hertz contact at W (default ``v["W"]``): line (N/mm) or point (N, whole ball)."""
-    return hertz(v["W"] if W is None else W, v["R"], v["E"], v["nu"],
-                 line=v["geometry"] == "cylinder")
+def hertz_contact(v, geometry, W=None):
+    """Hertz contact at W (default ``v.W``): line (N/mm, cylinder) or point (N, whole ball)."""
+    return hertz(v.W if W is None else W, v.R, v.E, v.nu, line=geometry == "cylinder")
 
 
-def first_film(v, U, W=None):
+def first_film(v, geometry, U, W=None):
     """Return the film (mm) at load W (default W/steps) and sliding speed U, before σ's floor.
 
     Cylinder: Martin's rigid film; ball: Hamrock–Dowson's central film at the
     entrainment speed U/2.
     """
-    W = v["W"] / v["steps"] if W is None else W
-    if v["geometry"] == "cylinder":
-        return rigid_clearance(W, v["mu"], U, v["R"])
-    return hamrock_dowson(W, v["mu"], U / 2, v["R"], composite_modulus(v["E"], v["nu"]))[0]
+    W = v.W / v.steps if W is None else W
+    if geometry == "cylinder":
+        return rigid_clearance(W, v.mu, U, v.R)
+    return hamrock_dowson(W, v.mu, U / 2, v.R, composite_modulus(v.E, v.nu))[0]
 
 
-def _scales(v, U0):
+def _scales(v, geometry, U0):
     """Film scale h_r (≥ σ), flux floor U_floor = σ³p₀/(12μ a h_r), Hertz contact at W."""
-    ref = hertz_contact(v)
-    h_r = max(first_film(v, U0), v["sigma"])
-    return h_r, v["sigma"] ** 3 * ref.p0 / (12 * v["mu"] * ref.a * h_r), ref
+    ref = hertz_contact(v, geometry)
+    h_r = max(first_film(v, geometry, U0), v.sigma)
+    return h_r, v.sigma ** 3 * ref.p0 / (12 * v.mu * ref.a * h_r), ref
 
 
 def rough_cylinder(v, U0, roughness, comm, shape=False):
     """Build the plane-strain cylinder (``shape``: a shape field; its film face alone wears)."""
-    R = v["R"]
-    h_r, U_floor, ref = _scales(v, U0)
-    x_l, h_fine = 4 * ref.a, ref.a / (8 * 2 ** v["mesh"])
+    R = v.R
+    h_r, U_floor, ref = _scales(v, "cylinder", U0)
+    x_l, h_fine = 4 * ref.a, ref.a / (8 * 2 ** v.mesh)
     msh, ft = roller(R, x_l, h_fine, R / 4, x_l, comm)
-    mu_s, lm = lame_parameters(v["E"], v["nu"])
+    mu_s, lm = lame_parameters(v.E, v.nu)
     body = Body(msh, ft, ROLLER_NAMES, "plane_strain",
                 ("neo-hookean", {"mu": mu_s, "lmbda": lm}), name="cylinder",
-                shape=shape, aux=(v["E"], 0.3))
+                shape=shape, aux=(v.E, 0.3))
     body.add_dirichlet("loaded", np.zeros(2))
     for i in range(2 if shape else 0):   # only the film face wears: the rest keeps its shape
         body.add_shape_dirichlet("loaded", i)
         body.add_shape_dirichlet("free", i, except_on="lubricated")
     speed = fem.Constant(msh, np.array([U0, 0.0]))
-    film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v["mu"], V_counter=speed,
-                roughness=roughness, eps=1e-4 * 24 * v["mu"] * R / h_r**2, p_c=ref.p0,
+    film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v.mu, V_counter=speed,
+                roughness=roughness, eps=1e-4 * 24 * v.mu * R / h_r**2, p_c=ref.p0,
                 film_scale=h_r, speed_scale=max(U0, U_floor), rtol=1e-8)
     film.add_pressure_bc()
     film.counterpart.offset.value[1] = -h_r
@@ -91,31 +92,31 @@ def rough_cylinder(v, U0, roughness, comm, shape=False):
 
 def rough_ball(v, U0, roughness, comm):
     """Build the quarter ball, started under the Hertz pressure of W/steps."""
-    R = v["R"]
-    h_r, U_floor, ref = _scales(v, U0)
+    R = v.R
+    h_r, U_floor, ref = _scales(v, "ball", U0)
     a = ref.a
     theta = math.asin(CAP_RADII * a / R)
-    h_fine = a / (8 * 2 ** v["mesh"])
+    h_fine = a / (8 * 2 ** v.mesh)
     msh, _, ft = quarter_ball(R, theta, h_fine, max(R / 3, h_fine), 1.6 * a, comm)
-    mu_s, lm = lame_parameters(v["E"], v["nu"])
+    mu_s, lm = lame_parameters(v.E, v.nu)
     body = Body(msh, ft, BALL_NAMES, "3d", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                 name="ball")
     body.add_dirichlet("midplane", np.zeros(3))
     body.add_dirichlet("symmetry", 0.0, component=1)
     speed = fem.Constant(msh, np.array([U0, 0.0, 0.0]))
-    film = Film(body, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[2]), v["mu"],
+    film = Film(body, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[2]), v.mu,
                 V_counter=speed, roughness=roughness,
-                eps=1e-4 * 12 * v["mu"] * a**2 / h_r**3, p_c=ref.p0, film_scale=h_r,
+                eps=1e-4 * 12 * v.mu * a**2 / h_r**3, p_c=ref.p0, film_scale=h_r,
                 speed_scale=max(U0, U_floor), rtol=1e-8, quadrature_degree=2)
     z_cap = cap_height(R, theta)
     film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * R)
     # the start where the film is the thicker (h_r above the asperities' separation h_a
     # at the Hertz p₀ of W/steps: flat punch, F_{5/2} fit): the ball under the Hertz
     # pressure, the plane at h_r; else (creeping speeds) undeformed, the plane at h_r
-    start = hertz_contact(v, v["W"] / v["steps"])
+    start = hertz_contact(v, "ball", v.W / v.steps)
     h_a = -math.inf
     if roughness is not None and roughness.asperity is not None:
-        h_a = flat_punch_separation(start.p0, v["sigma"], roughness.asperity.parameters["KE"])
+        h_a = flat_punch_separation(start.p0, v.sigma, roughness.asperity.parameters["KE"])
     if h_r >= h_a:
         film.start_from_pressure(lambda x: start.pressure(np.hypot(x[0], x[1])), h_r,
                                  np.zeros(3))
@@ -125,66 +126,51 @@ def rough_ball(v, U0, roughness, comm):
             "axis": 2, "copies": 2.0}
 
 
-PARAMS = (
-Param("geometry", str, "cylinder", "-", "cylinder (plane strain) or ball (3D quarter)",
-      choices=("cylinder", "ball")),
-Param("W", float, 0.5, "N/mm | N", "load per unit length (cylinder), on the ball (ball)",
-      lower=0.0),
-Param("R", float, 10.0, "mm", "radius", lower=0.0),
-Param("E", float, 10.0, "MPa", "Young's modulus of the body", lower=0.0),
-Param("nu", float, 0.45, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-Param("mu", float, 1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0),
-Param("sigma", float, 1e-3, "mm", "combined RMS roughness σ (on the plane)",
-      lower=0.0),
-Param("mu_b", float, 0.1, "-", "boundary friction coefficient of the asperities",
-      lower=0.0, closed=True),
-Param("eta_beta_sigma", float, 0.1, "-", "ηβσ (asperity density × radius × σ)",
-      lower=0.0),
-Param("sigma_beta", float, 0.1, "-", "σ/β (roughness over asperity radius)",
-      lower=0.0),
-Param("speeds", str, "1000,300,100,30,10,3,1,0.3,0.1,0.03,0.01", "mm/s",
-      "sliding speeds, decreasing (comma-separated)"),
-Param("mesh", int, 0, "-", "element size a/(8·2^mesh) along the film", lower=0,
-      upper=4, closed=True),
-Param("steps", int, 3, "-", "load steps at the first speed", lower=1, upper=50,
-      closed=True),
-)
+@dataclass(frozen=True)
+class RoughContactParams(CaseParams):
+    """Body, load, lubricant, the plane's roughness (``stribeck``, ``wear-lubricated``)."""
+
+    W: float = param(0.5, "N/mm | N", "load per unit length (cylinder), on the ball (ball)",
+                     lower=0.0)
+    R: float = param(10.0, "mm", "radius", lower=0.0)
+    E: float = param(10.0, "MPa", "Young's modulus of the body", lower=0.0)
+    nu: float = param(0.45, "-", "Poisson's ratio", lower=-1.0, upper=0.5)
+    mu: float = param(1e-7, "MPa·s", "viscosity (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
+    sigma: float = param(1e-3, "mm", "combined RMS roughness σ (on the plane)", lower=0.0)
+    mu_b: float = param(0.1, "-", "boundary friction coefficient of the asperities", lower=0.0,
+                        closed=True)
+    eta_beta_sigma: float = param(0.1, "-", "ηβσ (asperity density × radius × σ)", lower=0.0)
+    sigma_beta: float = param(0.1, "-", "σ/β (roughness over asperity radius)", lower=0.0)
+    mesh: int = param(0, "-", "element size a/(8·2^mesh) along the film", lower=0, upper=4,
+                      closed=True)
+    steps: int = param(3, "-", "load steps at the first speed", lower=1, upper=50, closed=True)
 
 
-def speeds(v):
-    """Return the speeds (mm/s), decreasing (one-line error otherwise)."""
-    U = number_list(v["speeds"], "speeds")
-    if any(u <= 0 for u in U) or any(b >= a for a, b in zip(U, U[1:])):
-        raise InputError("speeds must be positive and decreasing")
-    return U
-
-
-def check(v):
-    """Bad input: a one-line error."""
-    U = speeds(v)
-    a = hertz_contact(v).a
-    if not 0 < first_film(v, U[0], v["W"]) < 0.05 * v["R"]:
+def check(v, geometry, speeds):
+    """Bad input (the body ``geometry`` at the decreasing ``speeds``, mm/s): a one-line error."""
+    a = hertz_contact(v, geometry).a
+    if not 0 < first_film(v, geometry, speeds[0], v.W) < 0.05 * v.R:
         raise InputError("the film at the first speed is not thin: W, mu or speeds "
                          "out of range")
-    if 4 * a > 0.5 * v["R"]:
+    if 4 * a > 0.5 * v.R:
         raise InputError(f"load too large: the film (4a = {4 * a:.3g} mm) exceeds R/2")
 
 
 def roughness(v):
     """Return the plane's roughness: Patir–Cheng flow, Greenwood–Tripp asperities, μ_b."""
-    return rough_pair(v["sigma"], v["E"] / (1 - v["nu"] ** 2), v["mu_b"],
-                      v["eta_beta_sigma"], v["sigma_beta"])
+    return rough_pair(v.sigma, v.E / (1 - v.nu ** 2), v.mu_b,
+                      v.eta_beta_sigma, v.sigma_beta)
 
 
-def build(v, comm=MPI.COMM_WORLD, rough=True, shape=False):
-    """Body, rough film and problem at the first speed.
+def build(v, geometry, U0, comm=MPI.COMM_WORLD, rough=True, shape=False):
+    """Body (``geometry`` cylinder or ball), rough film and problem at the speed U0 (mm/s).
 
     ``rough=False``: the same film on smooth surfaces (the chapter's).
     ``shape=True`` (cylinder): the body carries a shape field (wear) and no Problem
     is built (the slow-time stepper builds it: ``run["problem"]`` is None).
     """
-    U0, law = speeds(v)[0], roughness(v) if rough else None
-    if v["geometry"] == "ball":
+    law = roughness(v) if rough else None
+    if geometry == "ball":
         if shape:
             raise ValueError("a worn ball (shape=True) is not built: geometry=cylinder")
         run = rough_ball(v, U0, law, comm)
@@ -212,9 +198,9 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
     # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
     # film's 1/h; steeper once the asperities carry: at least 1/σ)
     held = Hold(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
-        film.min_film(), v["sigma"]) if inner.history else 1.0 / max(h_r, v["sigma"]))
+        film.min_film(), v.sigma) if inner.history else 1.0 / max(h_r, v.sigma))
     its = []
-    held.march(v["W"], v["steps"], record=its)
+    held.march(v.W, v.steps, record=its)
     U_done = speeds[0]
     for U in speeds:
         while U_done > U * (1 + 1e-12):
@@ -258,7 +244,7 @@ def measures(run, v):
     return {"friction_coefficient": abs(float(F[0])) / float(F[n]),
             "film_load_fraction": float(F[n] - Fa[n]) / float(F[n]),
             "asperity_load": float(Fa[n]) * W / float(F[n]),
-            "lambda_ratio": h_c / v["sigma"], "h_central": h_c,
+            "lambda_ratio": h_c / v.sigma, "h_central": h_c,
             "h_min": float(prof["h"].min()), "W": W,
             "p_max": float(prof["p"].max()),
             "p_total_max": float((prof["p"] + prof.get("p_a", 0.0)).max())}

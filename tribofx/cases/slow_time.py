@@ -22,45 +22,63 @@ last accepted step (:meth:`SlowTimeRecords.closing`).
 """
 
 import contextlib
+from dataclasses import dataclass
+from typing import Any
 
 from ..output import VTXSeries
-from ..params import InputError, Param
+from ..params import CaseParams, InputError, param
 from ..reports import RunStop
 from ..restart import open_history, series_stem
 from ..scheme import Scheme
 from ..step_control import ERROR_MEASURES, STEP_RULES, ErrorControl, FixedStep
 
-__all__ = ["SCHEMES", "SlowTimeRecords", "check_scheme", "scheme_params", "step_controller",
-           "wear_fields"]
+__all__ = ["SCHEMES", "FilteredSchemeParams", "SchemeParams", "SlowTimeRecords", "check_scheme",
+           "scheme_param", "step_controller", "wear_fields"]
 
 SCHEMES = ("explicit", "implicit", "bdf2")
 
 
-def scheme_params(default="implicit", note="", filtered=False):
-    """Return ``scheme``, ``tol``, ``tol_per`` and ``controller`` (``note`` ends scheme's help).
+def scheme_param(default: str = "implicit", note: str = "") -> Any:
+    """Return the ``scheme`` field (``note`` ends its help): explicit, implicit or bdf2."""
+    return param(default, "-",
+                 "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
+                 f"started by one implicit step){note}", choices=SCHEMES)
 
-    ``filtered``: also ``error_filter`` (a case whose wear step is one monolithic
-    Newton problem, :func:`tribofx.error_filter.filtered_defect`).
+
+@dataclass(frozen=True)
+class SchemeParams(CaseParams):
+    """The slow-time scheme and its error control, parameters of every wear case."""
+
+    scheme: str = scheme_param()
+    tol: float = param(
+        0.0, "mm",
+        "scheme=bdf2: error control, each step's estimate held at tol·Δt/T so that they add "
+        "up to tol (tol_per=step: at tol; dt: the first step); 0: the fixed step dt",
+        lower=0.0, closed=True)
+    tol_per: str = param(
+        "unit_step", "-",
+        "tol per unit_step (the steps' estimates add up to tol over T) or per step (each "
+        "step's estimate within tol, as ODE codes: for wear that damps its own errors, e.g. "
+        "wear-ball-flat)", choices=ERROR_MEASURES)
+    controller: str = param(
+        "i", "-",
+        "tol: the step-size rule, elementary i (the last estimate) or pi (Gustafsson's "
+        "proportional-integral rule: the last two)", choices=STEP_RULES)
+    #: the filter of :func:`tribofx.error_filter.filtered_defect` (:class:`FilteredSchemeParams`)
+    error_filter = False
+
+
+@dataclass(frozen=True)
+class FilteredSchemeParams(SchemeParams):
+    """:class:`SchemeParams` and ``error_filter``, for a case whose wear step is one Newton problem.
+
+    (:func:`tribofx.error_filter.filtered_defect`.)
     """
-    extra = (Param("error_filter", bool, False, "-",
-                   "tol: filter each step's estimate through the step's implicit operator "
-                   "(the error wear damps within the step is not charged)"),) if filtered else ()
-    return (Param("scheme", str, default, "-",
-                  "slow-time scheme: explicit (θ=0), implicit (θ=1) or bdf2 (second order, "
-                  f"started by one implicit step){note}", choices=SCHEMES),
-            Param("tol", float, 0.0, "mm",
-                  "scheme=bdf2: error control, each step's estimate held at tol·Δt/T so "
-                  "that they add up to tol (tol_per=step: at tol; dt: the first step); 0: "
-                  "the fixed step dt",
-                  lower=0.0, closed=True),
-            Param("tol_per", str, "unit_step", "-",
-                  "tol per unit_step (the steps' estimates add up to tol over T) or per "
-                  "step (each step's estimate within tol, as ODE codes: for wear that "
-                  "damps its own errors, e.g. wear-ball-flat)", choices=ERROR_MEASURES),
-            Param("controller", str, "i", "-",
-                  "tol: the step-size rule, elementary i (the last estimate) or pi "
-                  "(Gustafsson's proportional-integral rule: the last two)",
-                  choices=STEP_RULES), *extra)
+
+    error_filter: bool = param(  # type: ignore[assignment]
+        False, "-",
+        "tol: filter each step's estimate through the step's implicit operator (the error "
+        "wear damps within the step is not charged)")
 
 
 def step_controller(v, dt):
@@ -68,19 +86,19 @@ def step_controller(v, dt):
 
     Error control (``tol`` > 0) starts at ``dt``.
     """
-    if not v["tol"]:
+    if not v.tol:
         return FixedStep(dt)
-    return ErrorControl(dt, v["tol"], per=v["tol_per"], rule=v["controller"],
-                        filtered=bool(v.get("error_filter", False)))
+    return ErrorControl(dt, v.tol, per=v.tol_per, rule=v.controller,
+                        filtered=v.error_filter)
 
 
 def check_scheme(v):
     """One-line error for tol > 0 without bdf2, or a filter or PI controller without tol."""
-    if v["tol"] > 0 and not Scheme.of(v["scheme"]).bdf2:
+    if v.tol > 0 and not Scheme.of(v.scheme).bdf2:
         raise InputError("tol > 0 (error control) needs scheme=bdf2")
-    if v.get("error_filter") and not v["tol"] > 0:
+    if v.error_filter and not v.tol > 0:
         raise InputError("error_filter filters the estimates of the error control: set tol > 0")
-    if v["controller"] != "i" and not v["tol"] > 0:
+    if v.controller != "i" and not v.tol > 0:
         raise InputError("controller chooses the steps of the error control: set tol > 0")
 
 

@@ -27,24 +27,44 @@ body over W: fluid shear plus μ_b times the asperity load),
 ``newton_iterations``; ``stribeck.png``.  Units: mm, N, s, MPa.
 """
 
+from dataclasses import dataclass
+
 from mpi4py import MPI
 
+from ..params import InputError, number_list, param
 from ..problem import NewtonDivergence
-from .rough_contact import PARAMS, build, check, load_and_slow, measures, speeds
+from .rough_contact import RoughContactParams, build, check, load_and_slow, measures
 
-__all__ = ["doc", "name", "params", "plot", "report", "resumable", "run", "validate",
+__all__ = ["Params", "doc", "name", "plot", "report", "resumable", "run", "validate",
            "vtx_fields"]
 
 
 name = "stribeck"
 resumable = False   # no per-step checkpoint
 doc = "Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (mixed EHL)"
-params = PARAMS
+
+
+@dataclass(frozen=True)
+class Params(RoughContactParams):
+    """The parameters of ``stribeck`` (``--set KEY=VALUE``)."""
+
+    geometry: str = param("cylinder", "-", "cylinder (plane strain) or ball (3D quarter)",
+                          choices=("cylinder", "ball"))
+    speeds: str = param("1000,300,100,30,10,3,1,0.3,0.1,0.03,0.01", "mm/s",
+                        "sliding speeds, decreasing (comma-separated)")
+
+
+def speeds(v):
+    """Return the speeds (mm/s), decreasing (one-line error otherwise)."""
+    U = number_list(v.speeds, "speeds")
+    if any(u <= 0 for u in U) or any(b >= a for a, b in zip(U, U[1:])):
+        raise InputError("speeds must be positive and decreasing")
+    return U
 
 
 def validate(v):
     """Bad input: a one-line error."""
-    check(v)
+    check(v, v.geometry, speeds(v))
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
@@ -52,7 +72,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True
 
     ``rough=False``: the smooth film (the chapter's) at the same speeds.
     """
-    run = build(v, comm, rough)
+    run = build(v, v.geometry, speeds(v)[0], comm, rough)
     record.data["num_dofs"] = run["problem"].num_dofs
     rows = []
 
@@ -67,7 +87,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True
         err.model = run
         raise
     finally:
-        report(rows, record, v["geometry"])
+        report(rows, record, v.geometry)
     return run
 
 

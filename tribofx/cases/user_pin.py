@@ -32,8 +32,11 @@ def place_user_pin(msh, ft, names):
     return hi - lo, boundary_facet_size(msh, ft, names["contact"])
 
 
-def user_pin_approach(contact, v):
-    """Return the initial approach of a user's pin: tip height at |x| = W/4 plus qH/E."""
+def user_pin_approach(contact, q, E):
+    """Return the initial approach of a user's pin: tip height at |x| = W/4 plus qH/E.
+
+    ``q``: the traction on the pin's top (MPa), ``E``: its Young's modulus (MPa).
+    """
     msh = contact.body.mesh
     comm = msh.comm
     x = msh.geometry.x
@@ -45,4 +48,4 @@ def user_pin_approach(contact, v):
     quarter = 0.25 * (hi - lo)
     near = np.abs(np.abs(xs[:, 0] - 0.5 * (lo + hi)) - quarter) <= 0.25 * quarter
     rise = comm.allreduce(float(np.max(xs[near, 1], initial=0.0)), op=MPI.MAX)
-    return rise + v["q"] * H / v["E"]
+    return rise + q * H / E

@@ -59,6 +59,7 @@ line y = 0 ([x, z] points, mm).
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -72,14 +73,14 @@ from ..interfaces import Contact, Wear
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..meshes.wear_ball import NAMES, quarter_ball
 from ..obstacles import rigid_plane
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_radius
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
-from .slow_time import check_scheme, scheme_params
+from .slow_time import FilteredSchemeParams, check_scheme
 
 __all__ = ["MODEL_FRACTION", "build", "contact_plane", "doc", "late_time_exponent", "measures",
-           "mesh_sizes", "name", "params", "plot", "progress_total", "resumable", "run",
+           "mesh_sizes", "name", "Params", "plot", "progress_total", "resumable", "run",
            "symmetry_line", "validate", "vtx_fields"]
 
 
@@ -90,61 +91,70 @@ name = "wear-ball-flat"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "elastic ball worn by a sliding rigid flat, quasi-steady state, quarter model (§5.2)"
-params = (
-    *scheme_params(filtered=True),
-    Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-    Param("T", float, 1000.0, "s", "end time", lower=0.0),
-    Param("k", float, 1e-8, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
-          lower=0.0, closed=True),
-    Param("V", float, 10.0, "mm/s", "sliding speed of the rigid flat", lower=0.0),
-    Param("E", float, 1e5, "MPa", "Young's modulus of the ball", lower=0.0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-    Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
-    Param("F", float, 100.0, "N", "normal force on the full ball", lower=0.0),
-    Param("friction", float, 0.4, "-", "Coulomb coefficient μ (K = k/μ)", lower=0.0),
-    Param("mesh", int, 0, "-",
-          "refinement level: contact-zone element size a_H/(2·2^mesh)", lower=0, upper=3,
-          closed=True),
-    Param("h_contact", float, 0.0, "mm",
-          "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
-          lower=0.0, closed=True),
-    Param("force_control", str, "bordered", "-",
-          "the flat's position δ: an unknown of each Newton solve (bordered) or found "
-          "by a secant of complete solves (secant)", choices=("bordered", "secant")),
-    Param("max_cuts", int, 8, "-", "step halvings allowed per step", lower=0, upper=20,
-          closed=True),
-    Param("mesh_file", str, "", "-",
-          "your own ball: a 3D gmsh .msh of the half body y ≥ 0 with physical groups "
-          "contact (the surface the flat wears), loaded (the clamped mid-plane) and "
-          "symmetry_y (on y = 0); its lowest contact point is moved to the origin; "
-          "replaces mesh (R still sets the scar-radius measure and the mesh-size check)"),
-)
+
+
+@dataclass(frozen=True)
+class Params(FilteredSchemeParams):
+    """The parameters of ``wear-ball-flat`` (``--set KEY=VALUE``)."""
+
+    dt: float = param(100.0, "s", "time step Δt (with tol: the first step)", lower=0.0)
+    T: float = param(1000.0, "s", "end time", lower=0.0)
+    k: float = param(
+        1e-8, "mm^3/(N*mm)",
+        "Archard coefficient (rate = k p V)",
+        lower=0.0, closed=True)
+    V: float = param(10.0, "mm/s", "sliding speed of the rigid flat", lower=0.0)
+    E: float = param(1e5, "MPa", "Young's modulus of the ball", lower=0.0)
+    nu: float = param(0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5)
+    R: float = param(5.0, "mm", "ball radius", lower=0.0)
+    F: float = param(100.0, "N", "normal force on the full ball", lower=0.0)
+    friction: float = param(0.4, "-", "Coulomb coefficient μ (K = k/μ)", lower=0.0)
+    mesh: int = param(
+        0, "-",
+        "refinement level: contact-zone element size a_H/(2·2^mesh)",
+        lower=0, upper=3, closed=True)
+    h_contact: float = param(
+        0.0, "mm",
+        "contact-zone element size; 0: a_H/(2·2^mesh) (the chapter's mesh: 0.125)",
+        lower=0.0, closed=True)
+    force_control: str = param(
+        "bordered", "-",
+        "the flat's position δ: an unknown of each Newton solve (bordered) or found "
+        "by a secant of complete solves (secant)",
+        choices=("bordered", "secant"))
+    max_cuts: int = param(8, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
+    mesh_file: str = param(
+        "", "-",
+        "your own ball: a 3D gmsh .msh of the half body y ≥ 0 with physical groups "
+        "contact (the surface the flat wears), loaded (the clamped mid-plane) and "
+        "symmetry_y (on y = 0); its lowest contact point is moved to the origin; "
+        "replaces mesh (R still sets the scar-radius measure and the mesh-size check)")
 
 
 def validate(v):
     """Check cross-parameter consistency."""
-    if v["dt"] > v["T"]:
-        raise InputError(f"time step {v['dt']} s exceeds T = {v['T']} s")
+    if v.dt > v.T:
+        raise InputError(f"time step {v.dt} s exceeds T = {v.T} s")
     check_scheme(v)
-    if v["error_filter"] and v["force_control"] != "bordered":
+    if v.error_filter and v.force_control != "bordered":
         raise InputError("error_filter holds the force by the border: "
                          "force_control=bordered")
-    if v["mesh_file"] and v["h_contact"]:
+    if v.mesh_file and v.h_contact:
         raise InputError("h_contact sets the built mesh: not with mesh_file")
-    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-    if aH > 0.2 * v["R"]:
-        raise InputError(f"load too large for small strains: a_H/R = {aH / v['R']:.2f}")
+    aH = hertz(v.F, v.R, v.E, v.nu).a
+    if aH > 0.2 * v.R:
+        raise InputError(f"load too large for small strains: a_H/R = {aH / v.R:.2f}")
     aT = mesh_sizes(v)[2] / 1.25
-    if aT > 0.6 * v["R"]:
+    if aT > 0.6 * v.R:
         raise InputError(f"scar radius at T ({aT:.3g} mm) beyond 0.6 R: reduce k, V or T")
 
 
 def mesh_sizes(v):
     """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
-    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-    aT = max(float(rigid_cap_radius(v["k"], v["F"], v["R"], v["V"] * v["T"])), 2 * aH)
-    h = v["h_contact"] or aH / (2 * 2 ** v["mesh"])
-    return h, v["R"] / 4, 1.25 * aT
+    aH = hertz(v.F, v.R, v.E, v.nu).a
+    aT = max(float(rigid_cap_radius(v.k, v.F, v.R, v.V * v.T)), 2 * aH)
+    h = v.h_contact or aH / (2 * 2 ** v.mesh)
+    return h, v.R / 4, 1.25 * aT
 
 
 def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
@@ -154,53 +164,53 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     flat so that the contact force of the half contact is F/2.
     """
     h_fine, h_coarse, r_fine = mesh_sizes(v)
-    if v["mesh_file"]:
-        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 3, tuple(NAMES))
+    if v.mesh_file:
+        msh, ft, names = read_user_mesh(v.mesh_file, comm, 3, tuple(NAMES))
         h_fine = _user_ball(msh, ft, names, v)
     else:
-        msh, ft = quarter_ball(v["R"], h_fine, h_coarse, r_fine, comm)
+        msh, ft = quarter_ball(v.R, h_fine, h_coarse, r_fine, comm)
         names = NAMES
-    mu, lmbda = lame_parameters(v["E"], v["nu"])
+    mu, lmbda = lame_parameters(v.E, v.nu)
     # ball frame: the ball material is at rest, the flat moves at V e_x (eqs. 26–27)
     body = Body(msh, ft, names, "3d", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
-                shape=True, aux=(v["E"], 0.3), velocity=np.zeros(3))
+                shape=True, aux=(v.E, 0.3), velocity=np.zeros(3))
     # the mid-plane is the rigid holder: clamped in the ball frame, the flat moves
     body.add_dirichlet("loaded", np.zeros(3))
     body.add_dirichlet("symmetry_y", 0.0, component=1)
     body.add_shape_dirichlet("symmetry_y", 1)
     body.add_shape_dirichlet("loaded", 2)
     contact = Contact(body, "contact", rigid_plane(np.zeros(3), np.array([0.0, 0, 1])),
-                      rho_n=v["E"] / h_fine, friction=v["friction"], slip="eulerian",
-                      V_master=(v["V"], 0.0, 0.0), dtau=1.0)
-    wear = Wear(contact, k=v["k"], speed=v["V"], scheme=v["scheme"])
+                      rho_n=v.E / h_fine, friction=v.friction, slip="eulerian",
+                      V_master=(v.V, 0.0, 0.0), dtau=1.0)
+    wear = Wear(contact, k=v.k, speed=v.V, scheme=v.scheme)
     # the flat's position is state of the contact (its counterpart's state fields):
     # restored by a cut step and by a resume
-    stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+    stepper = Stepper([body, contact, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_ball")
     offset = contact.counterpart.offset
-    Es = composite_modulus(v["E"], v["nu"])
-    a_H = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    Es = composite_modulus(v.E, v.nu)
+    a_H = hertz(v.F, v.R, v.E, v.nu).a
 
     def predictor(dt):
         # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
         h = wear.max_depth()
-        dh2 = float(rigid_cap_depth(v["k"], v["F"], v["R"], v["V"] * dt)) ** 2
+        dh2 = float(rigid_cap_depth(v.k, v.F, v.R, v.V * dt)) ** 2
         return float(offset.value[2]) + math.sqrt(h * h + dh2) - h
 
     def stiffness(dt):
         # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
         # (implicit step) with the wear compliance k V Δt
         a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
-        c_wear = v["k"] * v["V"] * dt if wear.scheme.implicit else 0.0
+        c_wear = v.k * v.V * dt if wear.scheme.implicit else 0.0
         return MODEL_FRACTION * math.pi * a * a / (math.pi * a / (2 * Es) + c_wear)
 
     search = Continuation(stepper.problem, ConstantParameter(offset, 2),
                           response=lambda: float(contact.force()[2]), rtol=1e-8,
                           max_trials=12)
-    stepper.hold = Hold(search, MODEL_FRACTION * v["F"], step_guess=predictor,
+    stepper.hold = Hold(search, MODEL_FRACTION * v.F, step_guess=predictor,
                         step_slope=stiffness,
                         border=((contact.force_functional(2), contact.sub)
-                                if v["force_control"] == "bordered" else None))
+                                if v.force_control == "bordered" else None))
     stepper.h_fine = h_fine
     return stepper
 
@@ -227,16 +237,16 @@ def _user_ball(msh, ft, names, v):
     sym = np.unique(dmesh.entities_to_geometry(
         msh, fdim, ft.find(names["symmetry_y"]), False).ravel())
     off = comm.allreduce(float(np.max(np.abs(x[sym, 1]), initial=0.0)), op=MPI.MAX)
-    if off > 1e-9 * v["R"]:
-        raise InputError(f"mesh file {v['mesh_file']!r}: group 'symmetry_y' is not on "
+    if off > 1e-9 * v.R:
+        raise InputError(f"mesh file {v.mesh_file!r}: group 'symmetry_y' is not on "
                          f"the plane y = 0 (|y| up to {off:.3g} mm)")
-    aH = hertz(v["F"], v["R"], v["E"], v["nu"]).a
+    aH = hertz(v.F, v.R, v.E, v.nu).a
     return boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(3), aH))
 
 
 def progress_total(v):
     """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
-    return nominal_steps(v["T"], v["dt"])
+    return nominal_steps(v.T, v.dt)
 
 
 def measures(stepper, v):
@@ -247,7 +257,7 @@ def measures(stepper, v):
     area = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
     a_c = math.sqrt(area / (MODEL_FRACTION * math.pi))
     h = comm.allreduce(float(np.max(d["depth"], initial=0.0)), op=MPI.MAX)
-    a_s = math.sqrt(max(2 * v["R"] * h - h * h, 0.0))
+    a_s = math.sqrt(max(2 * v.R * h - h * h, 0.0))
     r = np.linalg.norm(d["x"][:, :2], axis=1)
     inner = d["active"] & (r < 0.7 * a_c)
     pmax = comm.allreduce(float(np.max(d["p"][inner], initial=0.0)), op=MPI.MAX)
@@ -267,7 +277,7 @@ def symmetry_line(stepper, v):
     if d is None:
         return None
     r_fine = mesh_sizes(v)[2]
-    sel = (np.abs(d["X_hat"][:, 1]) < 1e-9 * v["R"]) & (d["X_hat"][:, 2] < 0.5 * v["R"]) \
+    sel = (np.abs(d["X_hat"][:, 1]) < 1e-9 * v.R) & (d["X_hat"][:, 2] < 0.5 * v.R) \
         & (np.abs(d["X_hat"][:, 0]) <= 2 * r_fine)
     return {"X_worn": d["X_worn"][sel], "x": d["x"][sel], "p": d["p"][sel]}
 
@@ -330,14 +340,14 @@ def run(v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WOR
 
     if not resume:
         reports = stepper.hold.solve(
-            guess=hertz(v["F"], v["R"], v["E"], v["nu"]).delta).reports
+            guess=hertz(v.F, v.R, v.E, v.nu).delta).reports
         plane = contact_plane(stepper)
         state["initial_plane"] = None if plane is None else plane.tolist()
         log(0.0, int(sum(r.iterations for r in reports)), 0.0)
-    T = v["T"] if t_stop is None else min(t_stop, v["T"])
+    T = v.T if t_stop is None else min(t_stop, v.T)
     with sr.closing(report=lambda: _report(stepper, v, record, sr.hist, state,
                                                time.perf_counter() - t_wall)):
-        stepper.run(T, slow_time.step_controller(v, v["dt"]),
+        stepper.run(T, slow_time.step_controller(v, v.dt),
                     on_step=sr.written(step_done), progress=progress)
     return stepper
 
@@ -365,13 +375,13 @@ def _report(stepper, v, record, hist, state, wall):
     record.result("force_fallbacks", stepper.hold.fallbacks, "-")
     record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
     record.result("steps", len(hist["time"]) - 1, "-")
-    s = v["V"] * np.asarray(hist["time"])
-    record.result("rigid_cap_radius", rigid_cap_radius(v["k"], v["F"], v["R"], s).tolist(),
+    s = v.V * np.asarray(hist["time"])
+    record.result("rigid_cap_radius", rigid_cap_radius(v.k, v.F, v.R, s).tolist(),
                   "mm")
-    record.result("archard_volume", (v["k"] * v["F"] * s).tolist(), "mm^3 (k F V t)")
+    record.result("archard_volume", (v.k * v.F * s).tolist(), "mm^3 (k F V t)")
     for key in ("contact_radius", "scar_radius"):
         record.result(f"{key}_exponent_late",
-                      late_time_exponent(hist["time"], hist[key], v["V"], 0.4 * v["T"]),
+                      late_time_exponent(hist["time"], hist[key], v.V, 0.4 * v.T),
                       "-")
     line = symmetry_line(stepper, v)
     plane = contact_plane(stepper)
@@ -384,8 +394,8 @@ def _report(stepper, v, record, hist, state, wall):
         record.profile = {**hist, "profiles": state["profiles"],
                           "initial_plane": None if initial is None else np.asarray(initial),
                           "final_plane": plane,
-                          "scheme": v["scheme"], "dt": v["dt"], "R": v["R"], "k": v["k"],
-                          "F": v["F"], "V": v["V"]}
+                          "scheme": v.scheme, "dt": v.dt, "R": v.R, "k": v.k,
+                          "F": v.F, "V": v.V}
 
 
 def vtx_fields(stepper):

@@ -26,6 +26,7 @@ Units: mm, N, s, MPa.
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
@@ -39,13 +40,13 @@ from ..interfaces import Contact
 from ..interfaces.steady_wear import SteadyWear
 from ..meshes import halfspace as hs
 from ..obstacles import rigid_sphere
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..references import hertz, rigid_groove_halfwidth
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
-from .slow_time import check_scheme, scheme_params
+from .slow_time import SchemeParams, check_scheme
 
-__all__ = ["build", "doc", "groove_mesh", "initial_contact", "name", "params", "plot",
+__all__ = ["build", "doc", "groove_mesh", "initial_contact", "name", "Params", "plot",
            "progress_total", "resolved", "resumable", "run", "surface_data", "validate",
            "vtx_fields"]
 
@@ -80,58 +81,73 @@ name = "wear-ball-halfspace"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "rigid ball sliding on an elastic half-space: quasi-steady wear groove (§5.3)"
-params = (
-    *scheme_params(),
-    Param("dt", float, 100.0, "s", "time step Δt (with tol: the first step)", lower=0.0),
-    Param("T", float, 1000.0, "s", "end time", lower=0.0),
-    Param("regime", str, "small", "-", "material set: small (E=200 GPa) or finite (E=10 MPa)",
-          choices=("small", "finite")),
-    Param("k", float, None, "mm^3/(N*mm)", "Archard coefficient of the substrate "
-          "(default: 1e-7 small, 1e-4 finite)", lower=0.0, closed=True),
-    Param("V", float, 100.0, "mm/s", "sliding speed", lower=0.0),
-    Param("E", float, None, "MPa", "Young's modulus of the substrate "
-          "(default: 2e5 small, 10 finite)", lower=0.0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-    Param("R", float, 5.0, "mm", "ball radius", lower=0.0),
-    Param("F", float, 10.0, "N", "normal load on the ball", lower=0.0),
-    Param("L", float, 2 * math.pi * 10.0, "mm", "sliding length per cycle (track length)",
-          lower=0.0),
-    Param("mesh", int, 0, "-", "refinement level: h = 0.45 a / 2^mesh at the contact",
-          lower=0, upper=2, closed=True),
-    Param("law", str, "nominal", "-", "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
-          choices=("nominal", "spatial")),
-    Param("graded", bool, False, "-", "functionally graded surface layer (Fig. 10b)"),
-    Param("grade_alpha", float, 1.0, "-", "FGM: E and k at the surface = (1 + α) × substrate",
-          lower=0.0, closed=True),
-    Param("grade_depth", float, None, "mm", "FGM layer thickness (default: 0.01 small, "
-          "0.3 finite)", lower=0.0),
-    Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
-          closed=True),
-)
+
+
+@dataclass(frozen=True)
+class Params(SchemeParams):
+    """The parameters of ``wear-ball-halfspace`` (``--set KEY=VALUE``)."""
+
+    dt: float = param(100.0, "s", "time step Δt (with tol: the first step)", lower=0.0)
+    T: float = param(1000.0, "s", "end time", lower=0.0)
+    regime: str = param(
+        "small", "-",
+        "material set: small (E=200 GPa) or finite (E=10 MPa)",
+        choices=("small", "finite"))
+    k: float | None = param(
+        None, "mm^3/(N*mm)",
+        "Archard coefficient of the substrate "
+        "(default: 1e-7 small, 1e-4 finite)",
+        lower=0.0, closed=True)
+    V: float = param(100.0, "mm/s", "sliding speed", lower=0.0)
+    E: float | None = param(
+        None, "MPa",
+        "Young's modulus of the substrate "
+        "(default: 2e5 small, 10 finite)",
+        lower=0.0)
+    nu: float = param(0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5)
+    R: float = param(5.0, "mm", "ball radius", lower=0.0)
+    F: float = param(10.0, "N", "normal load on the ball", lower=0.0)
+    L: float = param(2 * math.pi * 10.0, "mm", "sliding length per cycle (track length)", lower=0.0)
+    mesh: int = param(
+        0, "-",
+        "refinement level: h = 0.45 a / 2^mesh at the contact",
+        lower=0, upper=2, closed=True)
+    law: str = param(
+        "nominal", "-",
+        "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
+        choices=("nominal", "spatial"))
+    graded: bool = param(False, "-", "functionally graded surface layer (Fig. 10b)")
+    grade_alpha: float = param(
+        1.0, "-",
+        "FGM: E and k at the surface = (1 + α) × substrate",
+        lower=0.0, closed=True)
+    grade_depth: float | None = param(
+        None, "mm",
+        "FGM layer thickness (default: 0.01 small, "
+        "0.3 finite)",
+        lower=0.0)
+    max_cuts: int = param(6, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
 
 
 def resolved(v):
     """Parameters with the regime defaults filled in."""
-    v = dict(v)
-    for key, val in REGIMES[v["regime"]].items():
-        if v.get(key) is None:
-            v[key] = val
-    return v
+    return v.replace(**{key: val for key, val in REGIMES[v.regime].items()
+                        if getattr(v, key) is None})
 
 
 def validate(v):
     """Check cross-parameter consistency."""
     v = resolved(v)
-    if v["dt"] > v["T"]:
-        raise InputError(f"dt = {v['dt']} s exceeds T = {v['T']} s")
+    if v.dt > v.T:
+        raise InputError(f"dt = {v.dt} s exceeds T = {v.T} s")
     check_scheme(v)
-    a = hertz(v["F"], v["R"], v["E"], v["nu"]).a
-    if a > 0.5 * v["R"]:
+    a = hertz(v.F, v.R, v.E, v.nu).a
+    if a > 0.5 * v.R:
         raise InputError(f"Hertz radius a = {a:.3g} mm > R/2: load too high for the ball")
-    if v["L"] < 4 * a:
-        raise InputError(f"L = {v['L']:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
+    if v.L < 4 * a:
+        raise InputError(f"L = {v.L:g} mm is shorter than the contact (4a = {4 * a:.3g} mm):"
                          " one pass per cycle is assumed")
-    b = float(rigid_groove_halfwidth(v["k"], v["F"], v["R"], v["V"] * v["T"], v["L"]))
+    b = float(rigid_groove_halfwidth(v.k, v.F, v.R, v.V * v.T, v.L))
     if b > 5.4 * a:
         raise InputError(f"final groove half-width ≈ {b:.3g} mm exceeds the refined zone "
                          f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
@@ -144,30 +160,30 @@ def build(v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
     the case mesh); ``info``: Hertz a, p₀, δ and h.
     """
     v = resolved(v)
-    a, p0, delta = hertz(v["F"], v["R"], v["E"], v["nu"])[:3]
-    h = 0.45 * a / 2 ** v["mesh"] if h is None else h
+    a, p0, delta = hertz(v.F, v.R, v.E, v.nu)[:3]
+    h = 0.45 * a / 2 ** v.mesh if h is None else h
     msh, ft, sec, sft, area = groove_mesh(comm, a, h) if mesh is None else mesh
-    mu, lmbda = hf.lame_parameters(v["E"], v["nu"])
+    mu, lmbda = hf.lame_parameters(v.E, v.nu)
     w3 = fem.Function(fem.functionspace(msh, ("Lagrange", 1, (3,))), name="shape_change_3d")
     fg = 1.0  # graded layer: a factor of the depth of the worn point below the surface
-    if v["graded"]:
+    if v.graded:
         depth = gf.material_depth(ufl.SpatialCoordinate(msh), w3)
-        fg = gf.graded_factor(depth, v["grade_alpha"], v["grade_depth"])
+        fg = gf.graded_factor(depth, v.grade_alpha, v.grade_depth)
     body = Body(msh, ft, hs.NAMES, "3d", ("neo-hookean", {"mu": mu * fg, "lmbda": lmbda * fg}),
-                quadrature_degree=2, shape=w3, force_scale=v["F"], stiffness=mu)
+                quadrature_degree=2, shape=w3, force_scale=v.F, stiffness=mu)
     body.add_dirichlet("ends", 0.0, component=0)
     body.add_dirichlet("sym", 0.0, component=1)
     body.add_dirichlet("far", 0.0, component=1)
-    body.add_traction("bottom", ufl.as_vector([0.0, 0.0, 0.5 * v["F"] / area]))
-    contact = Contact(body, "top", rigid_sphere(np.array([0.0, 0.0, v["R"]]), v["R"]),
-                      rho_n=v["E"] / h)
+    body.add_traction("bottom", ufl.as_vector([0.0, 0.0, 0.5 * v.F / area]))
+    contact = Contact(body, "top", rigid_sphere(np.array([0.0, 0.0, v.R]), v.R),
+                      rho_n=v.E / h)
     # shape rows to 1e-12 L (3.7e-12 mm): small against the worn-depth increment of one
     # explicit step (Δt k p V ≈ 1e-5 mm at Δt = 0.5 s), not only against the block
-    wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v["k"] * fg,
-                      v["V"], v["L"], law=v["law"], aux=(v["E"], 0.3),
+    wear = SteadyWear(contact, sec, sft, hs.SECTION_NAMES, hs.prolongation, v.k * fg,
+                      v.V, v.L, law=v.law, aux=(v.E, 0.3),
                       fixed={"sym": [0], "far": [0], "bottom": [0, 1]},
-                      scheme=v["scheme"], rtol=1e-12)
-    stepper = Stepper([body, contact, wear], wear, max_cuts=v["max_cuts"],
+                      scheme=v.scheme, rtol=1e-12)
+    stepper = Stepper([body, contact, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
     return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}
 
@@ -186,7 +202,7 @@ def initial_contact(stepper, info, verbose=False):
 
 def progress_total(v):
     """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
-    return nominal_steps(v["T"], v["dt"])
+    return nominal_steps(v.T, v.dt)
 
 
 def vtx_fields(stepper):
@@ -209,8 +225,8 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     ``resume``: continue from it (:mod:`tribofx.restart`).
     """
     v = resolved(v)
-    for key in REGIMES[v["regime"]]:  # record the regime defaults actually used
-        record.data["parameters"][key]["value"] = v[key]
+    for key in REGIMES[v.regime]:  # record the regime defaults actually used
+        record.data["parameters"][key]["value"] = getattr(v, key)
     t_start = time.perf_counter()
     stepper, info = build(v, checkpoint=checkpoint)
     stepper.verbose = verbose
@@ -257,7 +273,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         log(0.0, initial_contact(stepper, info, verbose).iterations, 0.0)
     with sr.closing(report=lambda: _report(stepper, v, record, hist, prof,
                                                time.perf_counter() - t_start)):
-        stepper.run(v["T"], slow_time.step_controller(v, v["dt"]),
+        stepper.run(v.T, slow_time.step_controller(v, v.dt),
                     on_step=sr.written(on_step), progress=progress)
     return stepper
 
@@ -288,6 +304,6 @@ def _report(stepper, v, record, hist, prof, wall):
     o = np.argsort(d["X"][on, 1])
     px0 = np.column_stack([d["X"][on, 1][o], d["p"][on][o]]).tolist()
     record.result("final_pressure_x0", px0, "mm, MPa (y, p at x = 0)")
-    record.profile = {**hist, **prof, "scheme": v["scheme"], "graded": v["graded"],
-                      "R": v["R"], "pressure_x0": px0,
+    record.profile = {**hist, **prof, "scheme": v.scheme, "graded": v.graded,
+                      "R": v.R, "pressure_x0": px0,
                       "pressure_integral": np.column_stack([y, pint]).tolist()}

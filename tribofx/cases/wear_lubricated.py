@@ -28,52 +28,55 @@ Results per step: ``time``, ``wear_volume`` (worn area per unit length, mm²),
 """
 
 import math
+from dataclasses import dataclass
 
 from mpi4py import MPI
 
 from ..continuation import ConstantParameter, Continuation
 from ..hold import Hold
 from ..interfaces import Wear
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..stepper import Stepper, nominal_steps
 from . import rough_contact, slow_time
 
-__all__ = ["build", "doc", "name", "params", "plot", "progress_total", "report", "resumable",
+__all__ = ["build", "doc", "name", "Params", "plot", "progress_total", "report", "resumable",
            "run", "validate", "vtx_fields"]
 
-_SHARED = [p for p in rough_contact.PARAMS if p.name not in ("speeds", "geometry")]
 
 
 name = "wear-lubricated"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "running-in of a soft cylinder worn by its asperity contact under mixed lubrication"
-params = (*_SHARED,
-          Param("V", float, 1.0, "mm/s", "sliding speed of the plane (mixed regime)",
-                lower=0.0),
-          Param("U_start", float, 1000.0, "mm/s", "speed at which W is reached (full film)",
-                lower=0.0),
-          Param("k", float, 1e-5, "mm^3/(N*mm)",
-                "Archard coefficient (1e-5 mm³/(N·mm) = 1e-2 mm³/(N·m): an elastomer "
-                "on a rough counterface)", lower=0.0),
-          Param("T", float, 7200.0, "s", "slow time (sliding distance V·T)", lower=0.0),
-          Param("dt", float, 720.0, "s", "slow-time step", lower=0.0),
-          *slow_time.scheme_params(),
-          Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0,
-                upper=20, closed=True))
+
+
+@dataclass(frozen=True)
+class Params(rough_contact.RoughContactParams, slow_time.SchemeParams):
+    """The parameters of ``wear-lubricated`` (``--set KEY=VALUE``)."""
+
+    V: float = param(1.0, "mm/s", "sliding speed of the plane (mixed regime)", lower=0.0)
+    U_start: float = param(1000.0, "mm/s", "speed at which W is reached (full film)", lower=0.0)
+    k: float = param(
+        1e-5, "mm^3/(N*mm)",
+        "Archard coefficient (1e-5 mm³/(N·mm) = 1e-2 mm³/(N·m): an elastomer "
+        "on a rough counterface)",
+        lower=0.0)
+    T: float = param(7200.0, "s", "slow time (sliding distance V·T)", lower=0.0)
+    dt: float = param(720.0, "s", "slow-time step", lower=0.0)
+    max_cuts: int = param(6, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
 
 
 def validate(v):
     """Bad input: a one-line error."""
-    if v["V"] >= v["U_start"]:
+    if v.V >= v.U_start:
         raise InputError("V must be below U_start (W is reached at U_start)")
     slow_time.check_scheme(v)
-    rough_contact.check(dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder"))
+    rough_contact.check(v, "cylinder", [v.U_start, v.V])
 
 
 def progress_total(v):
     """Return the number of slow steps."""
-    return nominal_steps(v["T"], v["dt"])
+    return nominal_steps(v.T, v.dt)
 
 
 def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
@@ -82,11 +85,10 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     Returns the run dict of :func:`tribofx.cases.rough_contact.build` with ``wear`` and
     ``stepper``; ``problem`` is the stepper's monolithic Problem.
     """
-    s = dict(v, speeds=f"{v['U_start']},{v['V']}", geometry="cylinder")
-    run = rough_contact.build(s, comm, shape=True)
+    run = rough_contact.build(v, "cylinder", v.U_start, comm, shape=True)
     film = run["film"]
-    wear = Wear(film, k=v["k"], speed=v["V"], scheme=v["scheme"])
-    stepper = Stepper([run["body"], film, wear], wear, max_cuts=v["max_cuts"],
+    wear = Wear(film, k=v.k, speed=v.V, scheme=v.scheme)
+    stepper = Stepper([run["body"], film, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_lubricated",
                       problem_kw={"max_it": 30})
     offset = film.counterpart.offset
@@ -104,8 +106,8 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     search = Continuation(stepper.problem, ConstantParameter(offset, 1),
                           response=lambda: math.log(max(float(film.force()[1]), 1e-300)),
                           rtol=1e-7, max_trials=30)
-    stepper.hold = Hold(search, math.log(v["W"]), step_guess=predictor,
-                        step_slope=lambda dt: 1.0 / max(film.min_film(), v["sigma"]))
+    stepper.hold = Hold(search, math.log(v.W), step_guess=predictor,
+                        step_slope=lambda dt: 1.0 / max(film.min_film(), v.sigma))
     run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
     return run
 
@@ -138,14 +140,14 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
             state["times"].append(t)
 
     if resume:   # the state is the checkpoint's; the speed is V
-        rough_contact.set_speed(run, v["V"])
+        rough_contact.set_speed(run, v.V)
     else:
         its = []
-        rough_contact.load_and_slow(run, v, [v["U_start"], v["V"]], verbose,
+        rough_contact.load_and_slow(run, v, [v.U_start, v.V], verbose,
                                    lambda U, n: its.append(n))
         log(0.0, sum(its) + stepper.start(), 0.0)
     with sr.closing(report=lambda: report(run, v, record, sr.hist, state), model=run):
-        stepper.run(v["T"], slow_time.step_controller(v, v["dt"]), progress=progress,
+        stepper.run(v.T, slow_time.step_controller(v, v.dt), progress=progress,
                     on_step=sr.written(lambda st, rep: log(st.t, rep.iterations, rep.dt,
                                                            rep.error, rep.rejected)))
     return run

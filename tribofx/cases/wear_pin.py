@@ -55,6 +55,7 @@ reported).  Writes ``error_vs_dt.png``,
 
 import math
 import sys
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
@@ -70,15 +71,15 @@ from ..laws import Law
 from ..meshes.pin import NAMES, pin_body, tip_height
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
-from ..params import InputError, Param, number_list
+from ..params import InputError, number_list, param
 from ..references import hertz
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from ..studies.wear_dt_study import run_dt_study
 from . import slow_time
-from .slow_time import SCHEMES, check_scheme, scheme_params
+from .slow_time import SCHEMES, SchemeParams, check_scheme
 from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["build", "doc", "load_up", "n_elements", "name", "params", "plot", "progress_total",
+__all__ = ["build", "doc", "load_up", "n_elements", "name", "Params", "plot", "progress_total",
            "resumable", "run", "slow_step", "study_lists", "study_schemes", "validate",
            "vtx_fields"]
 
@@ -87,118 +88,139 @@ name = "wear-pin"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "plane-strain pin with rounded tip worn on a sliding rigid flat (§4.4)"
-params = (
-    *scheme_params(),
-    Param("dt", float, 200.0, "s", "time step Δt", lower=0.0),
-    Param("T", float, 1000.0, "s", "end time", lower=0.0),
-    Param("k", float, 5e-6, "mm^3/(N*mm)", "Archard coefficient (rate = k p V)",
-          lower=0.0, closed=True),
-    Param("V", float, 10.0, "mm/s", "sliding speed of the rigid plane", lower=0.0,
-          closed=True),
-    Param("E", float, 640.0, "MPa", "Young's modulus", lower=0.0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5),
-    Param("mesh", int, 1, "-", "refinement level: n × n structured mesh, n = 10·2^mesh",
-          lower=0, upper=4, closed=True),
-    Param("q", float, 2.0, "MPa", "uniform traction on the top face", lower=0.0),
-    Param("W", float, 2.0, "mm", "pin width", lower=0.0),
-    Param("H", float, 2.0, "mm", "pin height", lower=0.0),
-    Param("R_tip", float, 4.0, "mm", "tip radius (0: flat-ended punch)", lower=0.0,
-          closed=True),
-    Param("law", str, "nominal", "-", "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
-          choices=("nominal", "spatial")),
-    Param("k_grad", float, 0.0, "1/mm",
-          "depth gradient g of the wear coefficient, k(d) = k max(1 + g d, 0)"),
-    Param("k_law", str, "constant", "-", "wear coefficient against the contact pressure: "
-          "constant (Archard) or pressure, k(p) = k (1 + (p/k_ps)^k_m) (mild to severe)",
-          choices=("constant", "pressure")),
-    Param("k_ps", float, 1.0, "MPa", "transition pressure of k_law=pressure", lower=0.0),
-    Param("k_m", float, 2.0, "-", "exponent of k_law=pressure", lower=0.0, upper=10.0,
-          closed=True),
-    Param("friction", float, 0.0, "-",
-          "Coulomb coefficient μ (> 0: dissipation-driven wear, K = k/μ)",
-          lower=0.0, closed=True),
-    Param("mode", str, "steady", "-",
-          "steady sliding (Eulerian slip) or cyclic (reciprocating, time-scale separation)",
-          choices=("steady", "cyclic")),
-    Param("stroke", float, 1.0, "mm", "cyclic: peak-to-peak stroke 2A of the flat",
-          lower=0.0),
-    Param("fast_steps", int, 8, "-", "cyclic: fast sub-steps per cycle (multiple of 4)",
-          lower=4, upper=100000, closed=True),
-    Param("cycles_per_step", float, 0.0, "-",
-          "cyclic: cycles per slow step (0: Δt = dt)", lower=0.0, closed=True),
-    Param("max_cuts", int, 6, "-", "step halvings allowed per step", lower=0, upper=20,
-          closed=True),
-    Param("study", str, "none", "-",
-          "none: one run; dt: explicit and implicit error versus Δt study (Figs. 3-4)",
-          choices=("none", "dt")),
-    Param("study_dts", str, "200,100,50,20,10,5", "s",
-          "study=dt: comma-separated time steps"),
-    Param("study_meshes", str, "", "-",
-          "study=dt: comma-separated mesh levels (n = 10·2^level; empty: mesh)"),
-    Param("study_ref_dt", float, 0.78125, "s",
-          "study=dt: time step of the implicit reference run", lower=0.0),
-    Param("study_ref", str, "fine", "-",
-          "study=dt: reference = implicit run at study_ref_dt (fine) or Richardson "
-          "2 p(study_ref_dt) - p(2 study_ref_dt)", choices=("fine", "richardson")),
-    Param("study_schemes", str, "explicit,implicit", "-",
-          "study=dt: schemes compared (explicit, implicit, bdf2; with bdf2 the "
-          "reference is a BDF2 run)"),
-    Param("study_critical", bool, True, "-",
-          "study=dt: also compute the explicit critical step of each mesh"),
-    Param("mesh_file", str, "", "-",
-          "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
-          "(loaded), sides (x fixed); replaces W, H, R_tip, mesh (lowest tip point "
-          "moved to y = 0)"),
-)
+
+
+@dataclass(frozen=True)
+class Params(SchemeParams):
+    """The parameters of ``wear-pin`` (``--set KEY=VALUE``)."""
+
+    dt: float = param(200.0, "s", "time step Δt", lower=0.0)
+    T: float = param(1000.0, "s", "end time", lower=0.0)
+    k: float = param(
+        5e-6, "mm^3/(N*mm)",
+        "Archard coefficient (rate = k p V)",
+        lower=0.0, closed=True)
+    V: float = param(10.0, "mm/s", "sliding speed of the rigid plane", lower=0.0, closed=True)
+    E: float = param(640.0, "MPa", "Young's modulus", lower=0.0)
+    nu: float = param(0.3, "-", "Poisson's ratio", lower=-1.0, upper=0.5)
+    mesh: int = param(
+        1, "-",
+        "refinement level: n × n structured mesh, n = 10·2^mesh",
+        lower=0, upper=4, closed=True)
+    q: float = param(2.0, "MPa", "uniform traction on the top face", lower=0.0)
+    W: float = param(2.0, "mm", "pin width", lower=0.0)
+    H: float = param(2.0, "mm", "pin height", lower=0.0)
+    R_tip: float = param(4.0, "mm", "tip radius (0: flat-ended punch)", lower=0.0, closed=True)
+    law: str = param(
+        "nominal", "-",
+        "Archard law: nominal (eq. 14) or spatial (eqs. 15-16)",
+        choices=("nominal", "spatial"))
+    k_grad: float = param(
+        0.0, "1/mm",
+        "depth gradient g of the wear coefficient, k(d) = k max(1 + g d, 0)")
+    k_law: str = param(
+        "constant", "-",
+        "wear coefficient against the contact pressure: "
+        "constant (Archard) or pressure, k(p) = k (1 + (p/k_ps)^k_m) (mild to severe)",
+        choices=("constant", "pressure"))
+    k_ps: float = param(1.0, "MPa", "transition pressure of k_law=pressure", lower=0.0)
+    k_m: float = param(2.0, "-", "exponent of k_law=pressure", lower=0.0, upper=10.0, closed=True)
+    friction: float = param(
+        0.0, "-",
+        "Coulomb coefficient μ (> 0: dissipation-driven wear, K = k/μ)",
+        lower=0.0, closed=True)
+    mode: str = param(
+        "steady", "-",
+        "steady sliding (Eulerian slip) or cyclic (reciprocating, time-scale separation)",
+        choices=("steady", "cyclic"))
+    stroke: float = param(1.0, "mm", "cyclic: peak-to-peak stroke 2A of the flat", lower=0.0)
+    fast_steps: int = param(
+        8, "-",
+        "cyclic: fast sub-steps per cycle (multiple of 4)",
+        lower=4, upper=100000, closed=True)
+    cycles_per_step: float = param(
+        0.0, "-",
+        "cyclic: cycles per slow step (0: Δt = dt)",
+        lower=0.0, closed=True)
+    max_cuts: int = param(6, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
+    study: str = param(
+        "none", "-",
+        "none: one run; dt: explicit and implicit error versus Δt study (Figs. 3-4)",
+        choices=("none", "dt"))
+    study_dts: str = param("200,100,50,20,10,5", "s", "study=dt: comma-separated time steps")
+    study_meshes: str = param(
+        "", "-",
+        "study=dt: comma-separated mesh levels (n = 10·2^level; empty: mesh)")
+    study_ref_dt: float = param(
+        0.78125, "s",
+        "study=dt: time step of the implicit reference run",
+        lower=0.0)
+    study_ref: str = param(
+        "fine", "-",
+        "study=dt: reference = implicit run at study_ref_dt (fine) or Richardson "
+        "2 p(study_ref_dt) - p(2 study_ref_dt)",
+        choices=("fine", "richardson"))
+    study_schemes: str = param(
+        "explicit,implicit", "-",
+        "study=dt: schemes compared (explicit, implicit, bdf2; with bdf2 the "
+        "reference is a BDF2 run)")
+    study_critical: bool = param(
+        True, "-",
+        "study=dt: also compute the explicit critical step of each mesh")
+    mesh_file: str = param(
+        "", "-",
+        "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
+        "(loaded), sides (x fixed); replaces W, H, R_tip, mesh (lowest tip point "
+        "moved to y = 0)")
 
 
 def validate(v):
     """Check cross-parameter consistency."""
-    if v["mesh_file"] and v["study"] != "none":
+    if v.mesh_file and v.study != "none":
         raise InputError("mesh_file works with study=none only")
-    R = v["R_tip"]
-    if R and R < v["W"] / 2:
-        raise InputError(f"R_tip = {R} mm must be 0 (flat) or >= W/2 = {v['W'] / 2} mm")
-    if tip_height(v["W"] / 2, R) >= 0.5 * v["H"]:
+    R = v.R_tip
+    if R and R < v.W / 2:
+        raise InputError(f"R_tip = {R} mm must be 0 (flat) or >= W/2 = {v.W / 2} mm")
+    if tip_height(v.W / 2, R) >= 0.5 * v.H:
         raise InputError("the rounded tip must be lower than half the pin height")
-    if v["mode"] == "cyclic":
-        if v["friction"] <= 0:
+    if v.mode == "cyclic":
+        if v.friction <= 0:
             raise InputError("mode=cyclic needs friction > 0 (Lagrangian Coulomb friction)")
-        if v["fast_steps"] % 4:
-            raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
-        if v["V"] <= 0:
+        if v.fast_steps % 4:
+            raise InputError(f"fast_steps = {v.fast_steps} must be a multiple of 4")
+        if v.V <= 0:
             raise InputError("mode=cyclic needs V > 0")
     check_scheme(v)
-    if v["tol"] > 0 and v["study"] == "dt":
+    if v.tol > 0 and v.study == "dt":
         raise InputError("tol > 0 (error control) is not for study=dt (fixed steps)")
-    if slow_step(v) > v["T"]:
-        raise InputError(f"time step {slow_step(v)} s exceeds T = {v['T']} s")
-    if v["study"] == "dt":
+    if slow_step(v) > v.T:
+        raise InputError(f"time step {slow_step(v)} s exceeds T = {v.T} s")
+    if v.study == "dt":
         dts, levels = study_lists(v)
-        if not dts or any(d <= 0 or d > v["T"] for d in dts):
-            raise InputError(f"study_dts = {v['study_dts']!r}: need 0 < Δt <= T")
+        if not dts or any(d <= 0 or d > v.T for d in dts):
+            raise InputError(f"study_dts = {v.study_dts!r}: need 0 < Δt <= T")
         if any(not 0 <= m <= 4 for m in levels):
-            raise InputError(f"study_meshes = {v['study_meshes']!r}: levels 0..4")
-        if v["mode"] != "steady":
+            raise InputError(f"study_meshes = {v.study_meshes!r}: levels 0..4")
+        if v.mode != "steady":
             raise InputError("study=dt supports mode=steady only")
-        if "bdf2" in study_schemes(v) and v["study_ref"] == "richardson":
+        if "bdf2" in study_schemes(v) and v.study_ref == "richardson":
             raise InputError("study_ref=richardson extrapolates a first-order "
                              "reference: use study_ref=fine with bdf2")
-        r = v["study_ref_dt"] * (2 if v["study_ref"] == "richardson" else 1)
-        if r > v["T"] or r >= min(dts):
+        r = v.study_ref_dt * (2 if v.study_ref == "richardson" else 1)
+        if r > v.T or r >= min(dts):
             raise InputError("study_ref_dt must be below the study time steps")
 
 
 def slow_step(v):
     """Slow time step Δt (s): ``dt``, or cycles_per_step · 2 stroke / V in cyclic mode."""
-    if v["mode"] == "cyclic" and v["cycles_per_step"] > 0:
-        return v["cycles_per_step"] * 2 * v["stroke"] / v["V"]
-    return v["dt"]
+    if v.mode == "cyclic" and v.cycles_per_step > 0:
+        return v.cycles_per_step * 2 * v.stroke / v.V
+    return v.dt
 
 
 def n_elements(v):
     """Elements per side of the structured mesh."""
-    return 10 * 2 ** v["mesh"]
+    return 10 * 2 ** v.mesh
 
 
 def build(v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
@@ -210,37 +232,37 @@ def build(v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
     checkpoint.
     """
     n = n_elements(v) if n is None else n
-    W, E, mu = v["W"], v["E"], v["friction"]
-    cyclic = v["mode"] == "cyclic"
-    if v["mesh_file"]:
-        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(NAMES))
+    W, E, mu = v.W, v.E, v.friction
+    cyclic = v.mode == "cyclic"
+    if v.mesh_file:
+        msh, ft, names = read_user_mesh(v.mesh_file, comm, 2, tuple(NAMES))
         W, h = place_user_pin(msh, ft, names)
     else:
-        msh, ft = pin_body(W, v["H"], v["R_tip"] if v["R_tip"] > 0 else math.inf, n, comm)
+        msh, ft = pin_body(W, v.H, v.R_tip if v.R_tip > 0 else math.inf, n, comm)
         names, h = NAMES, W / n
-    lame_mu, lmbda = lame_parameters(E, v["nu"])
+    lame_mu, lmbda = lame_parameters(E, v.nu)
     # the pin is at rest; in steady sliding the plane moves at V e_x (v_T = −V e_x, eq. 26)
     body = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": lame_mu,
                                                                  "lmbda": lmbda}),
                 shape=True, aux=(E, 0.3), velocity=(0.0, 0.0) if mu > 0 else None)
     load = fem.Constant(msh, 1.0)
-    body.add_traction("top", load * ufl.as_vector([0.0, -v["q"]]))
+    body.add_traction("top", load * ufl.as_vector([0.0, -v.q]))
     body.add_dirichlet("sides", 0.0, component=0)
     body.add_shape_dirichlet("sides", 0)
     body.add_shape_dirichlet("top", 1)
     contact = Contact(body, "contact", rigid_plane(np.zeros(2), np.array([0.0, 1.0])),
                       rho_n=E / h, friction=mu,
-                      slip="lagrangian" if cyclic else "eulerian", V_master=(v["V"], 0.0))
+                      slip="lagrangian" if cyclic else "eulerian", V_master=(v.V, 0.0))
     if setup is not None:
         setup(body, contact)
-    k = (Law(wf.pressure_dependent_coefficient, k0=v["k"], p_s=v["k_ps"], m=v["k_m"])
-         if v["k_law"] == "pressure" else v["k"])
-    wear = Wear(contact, k=k, speed=v["V"], law=v["law"], k_grad=v["k_grad"],
-                scheme=v["scheme"], averaged=cyclic)
-    cycle = ReciprocatingCycle(contact, v["stroke"], v["fast_steps"], v["V"]) \
+    k = (Law(wf.pressure_dependent_coefficient, k0=v.k, p_s=v.k_ps, m=v.k_m)
+         if v.k_law == "pressure" else v.k)
+    wear = Wear(contact, k=k, speed=v.V, law=v.law, k_grad=v.k_grad,
+                scheme=v.scheme, averaged=cyclic)
+    cycle = ReciprocatingCycle(contact, v.stroke, v.fast_steps, v.V) \
         if cyclic else None
     stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],
-                      max_cuts=v["max_cuts"], checkpoint=checkpoint, name="wear_pin")
+                      max_cuts=v.max_cuts, checkpoint=checkpoint, name="wear_pin")
     return stepper, load
 
 
@@ -252,11 +274,11 @@ def load_up(stepper, load, v, verbose=False):
     nodes start active; a failed solve halves the load increment.  Returns
     the Newton iterations spent.
     """
-    R = v["R_tip"]
-    a = min(hertz(v["q"] * v["W"], R, v["E"], 0.3, line=True).a, v["W"] / 2) if R else 0.0
-    delta0 = (a * a / (2 * R) if a else 0.0) + v["q"] * v["H"] / v["E"]
-    if v["mesh_file"]:   # a user's tip: its middle half starts in contact
-        delta0 = user_pin_approach(stepper.wear.contact, v)
+    R = v.R_tip
+    a = min(hertz(v.q * v.W, R, v.E, 0.3, line=True).a, v.W / 2) if R else 0.0
+    delta0 = (a * a / (2 * R) if a else 0.0) + v.q * v.H / v.E
+    if v.mesh_file:   # a user's tip: its middle half starts in contact
+        delta0 = user_pin_approach(stepper.wear.contact, v.q, v.E)
     stepper.wear.body.u.x.array.reshape(-1, 2)[:, 1] = -delta0
     load.value = 0.0
     control = Continuation(stepper.problem, ConstantParameter(load), verbose=verbose)
@@ -266,26 +288,26 @@ def load_up(stepper, load, v, verbose=False):
 
 def study_lists(v):
     """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
-    dts = number_list(v["study_dts"], "study_dts", allow_empty=True)
-    levels = number_list(v["study_meshes"], "study_meshes", int, True) or [v["mesh"]]
+    dts = number_list(v.study_dts, "study_dts", allow_empty=True)
+    levels = number_list(v.study_meshes, "study_meshes", int, True) or [v.mesh]
     return dts, levels
 
 
 def study_schemes(v):
     """Schemes of ``study=dt`` (one-line error if unknown or none)."""
-    schemes = [x.strip() for x in v["study_schemes"].split(",") if x.strip()]
+    schemes = [x.strip() for x in v.study_schemes.split(",") if x.strip()]
     if not schemes or any(x not in SCHEMES for x in schemes):
-        raise InputError(f"study_schemes = {v['study_schemes']!r}: a comma-separated "
+        raise InputError(f"study_schemes = {v.study_schemes!r}: a comma-separated "
                          "list of explicit, implicit, bdf2")
     return list(dict.fromkeys(schemes))
 
 
 def progress_total(v):
     """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
-    if v["study"] == "dt":
+    if v.study == "dt":
         dts, levels = study_lists(v)
         return len(study_schemes(v)) * len(dts) * len(levels)
-    return nominal_steps(v["T"], slow_step(v))
+    return nominal_steps(v.T, slow_step(v))
 
 
 def vtx_fields(stepper):
@@ -309,7 +331,7 @@ def run(v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=
     ``checkpoint``: directory of the per-step checkpoint (state and the
     histories so far); ``resume``: continue from it instead of t = 0.
     """
-    if v["study"] == "dt":
+    if v.study == "dt":
         dts, levels = study_lists(v)
         ns = [10 * 2**m for m in levels] if n is None else [n]
         return run_dt_study(sys.modules[__name__], v, record, ns, dts, progress=progress,
@@ -350,7 +372,7 @@ def run(v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=
         log(0.0, load_up(stepper, load, v, verbose) + stepper.start(), 0.0)
     with sr.closing(report=lambda: _report(stepper, v, record, sr.hist, profiles,
                                                ptimes)):
-        stepper.run(v["T"], slow_time.step_controller(v, slow_step(v)),
+        stepper.run(v.T, slow_time.step_controller(v, slow_step(v)),
                     on_step=sr.written(on_step), progress=progress)
     return stepper
 
@@ -370,4 +392,4 @@ def _report(stepper, v, record, hist, profiles, ptimes):
         record.result("final_profile_deformed", d["x"].tolist(), "mm (current)")
         record.result("final_pressure", d["p"].tolist(), "MPa")
         record.profile = {**hist, "profiles": profiles, "times": ptimes,
-                          "scheme": v["scheme"], "dt": slow_step(v)}
+                          "scheme": v.scheme, "dt": slow_step(v)}

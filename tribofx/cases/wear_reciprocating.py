@@ -57,6 +57,7 @@ Results per slow step and outputs: :mod:`tribofx.cases.wear_reciprocating`.
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import ufl
@@ -72,14 +73,14 @@ from ..meshes.block import block_mesh
 from ..meshes.pin import NAMES as PIN_NAMES
 from ..meshes.pin import pin_body, tip_height
 from ..meshes.user import read_user_mesh
-from ..params import InputError, Param
+from ..params import InputError, param
 from ..references import hertz
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
 from . import slow_time
-from .slow_time import check_scheme, scheme_params
+from .slow_time import SchemeParams, check_scheme, scheme_param
 from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["build", "cell_coordinates", "check_stroke", "doc", "load_up", "name", "params",
+__all__ = ["build", "cell_coordinates", "check_stroke", "doc", "load_up", "name", "Params",
            "period", "plot", "progress_total", "resumable", "run", "snapshot", "validate",
            "vtx_fields"]
 
@@ -134,43 +135,56 @@ name = "wear-reciprocating"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
 doc = "elastic pin on an elastic block, reciprocating sliding, both worn (§5.1, Fig. 5)"
-params = (
-    *scheme_params("explicit", "; implicit ones with the Picard iteration of cycles, "
-                   "tol on the cycle-averaged shapes"),
-    Param("E_pin", float, 20.0, "MPa", "Young's modulus of the pin", lower=0.0),
-    Param("E_block", float, 10.0, "MPa", "Young's modulus of the block", lower=0.0),
-    Param("nu", float, 0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5),
-    Param("friction", float, 0.3, "-", "Coulomb coefficient μ", lower=0.0),
-    Param("K_pin", float, 1e-4, "mm^3/(N*mm)", "nominal wear coefficient of the pin (eq. 14)",
-          lower=0.0),
-    Param("K_block", float, 5e-5, "mm^3/(N*mm)",
-          "nominal wear coefficient of the block (eq. 14)", lower=0.0, closed=True),
-    Param("A", float, 0.5, "mm", "amplitude of the reciprocating motion (stroke 2A)",
-          lower=0.0),
-    Param("V", float, 10.0, "mm/s", "sliding speed", lower=0.0),
-    Param("F", float, 1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0),
-    Param("cycles", float, 2000.0, "-", "loading cycles of the run (T = cycles·4A/V)",
-          lower=0.0),
-    Param("dt", float, 40.0, "s", "slow time step Δt (Δt·V/(4A) cycles per step; "
-          "with tol: the first step)", lower=0.0),
-    Param("W", float, 2.0, "mm", "pin width", lower=0.0),
-    Param("H", float, 2.0, "mm", "pin height", lower=0.0),
-    Param("R_tip", float, 2.0, "mm", "tip radius", lower=0.0),
-    Param("L", float, 6.0, "mm", "block length", lower=0.0),
-    Param("D", float, 1.5, "mm", "block depth", lower=0.0),
-    Param("mesh", int, 1, "-", "refinement: pin n × n, n = 10·2^mesh; block at 4/3 the size",
-          lower=0, upper=4, closed=True),
-    Param("fast_steps", int, 16, "-", "fast sub-steps per cycle (multiple of 4)", lower=4,
-          upper=100000, closed=True),
-    Param("max_cuts", int, 4, "-", "step halvings allowed per step", lower=0, upper=20,
-          closed=True),
-    Param("mesh_file", str, "", "-",
-          "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
-          "(loaded by F: traction F/l, l its length) and sides (held laterally); its "
-          "lowest tip point moved to y = 0 and its x extent centred on x = 0; replaces "
-          "W (its x extent: L >= W + 2A + 1), H, R_tip and the pin's mesh (h = mean tip "
-          "facet length: rho_N = min(E)/h, block elements 4h/3)"),
-)
+
+
+@dataclass(frozen=True)
+class Params(SchemeParams):
+    """The parameters of ``wear-reciprocating`` (``--set KEY=VALUE``)."""
+
+    scheme: str = scheme_param("explicit", "; implicit ones with the Picard iteration of cycles, "
+        "tol on the cycle-averaged shapes")
+    E_pin: float = param(20.0, "MPa", "Young's modulus of the pin", lower=0.0)
+    E_block: float = param(10.0, "MPa", "Young's modulus of the block", lower=0.0)
+    nu: float = param(0.3, "-", "Poisson's ratio of both bodies", lower=-1.0, upper=0.5)
+    friction: float = param(0.3, "-", "Coulomb coefficient μ", lower=0.0)
+    K_pin: float = param(
+        1e-4, "mm^3/(N*mm)",
+        "nominal wear coefficient of the pin (eq. 14)",
+        lower=0.0)
+    K_block: float = param(
+        5e-5, "mm^3/(N*mm)",
+        "nominal wear coefficient of the block (eq. 14)",
+        lower=0.0, closed=True)
+    A: float = param(0.5, "mm", "amplitude of the reciprocating motion (stroke 2A)", lower=0.0)
+    V: float = param(10.0, "mm/s", "sliding speed", lower=0.0)
+    F: float = param(1.0, "N/mm", "normal force on the pin per unit thickness", lower=0.0)
+    cycles: float = param(2000.0, "-", "loading cycles of the run (T = cycles·4A/V)", lower=0.0)
+    dt: float = param(
+        40.0, "s",
+        "slow time step Δt (Δt·V/(4A) cycles per step; "
+        "with tol: the first step)",
+        lower=0.0)
+    W: float = param(2.0, "mm", "pin width", lower=0.0)
+    H: float = param(2.0, "mm", "pin height", lower=0.0)
+    R_tip: float = param(2.0, "mm", "tip radius", lower=0.0)
+    L: float = param(6.0, "mm", "block length", lower=0.0)
+    D: float = param(1.5, "mm", "block depth", lower=0.0)
+    mesh: int = param(
+        1, "-",
+        "refinement: pin n × n, n = 10·2^mesh; block at 4/3 the size",
+        lower=0, upper=4, closed=True)
+    fast_steps: int = param(
+        16, "-",
+        "fast sub-steps per cycle (multiple of 4)",
+        lower=4, upper=100000, closed=True)
+    max_cuts: int = param(4, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
+    mesh_file: str = param(
+        "", "-",
+        "your own pin: a 2D gmsh .msh with physical groups contact (the tip), top "
+        "(loaded by F: traction F/l, l its length) and sides (held laterally); its "
+        "lowest tip point moved to y = 0 and its x extent centred on x = 0; replaces "
+        "W (its x extent: L >= W + 2A + 1), H, R_tip and the pin's mesh (h = mean tip "
+        "facet length: rho_N = min(E)/h, block elements 4h/3)")
 
 
 def validate(v):
@@ -180,18 +194,18 @@ def validate(v):
     :meth:`build` checks the stroke then (:meth:`check_stroke`); the tip
     checks are those of the built circular tip.
     """
-    if not v["mesh_file"]:
-        if v["R_tip"] < v["W"] / 2:
-            raise InputError(f"R_tip = {v['R_tip']} mm must be >= W/2 = {v['W'] / 2} mm")
-        if tip_height(v["W"] / 2, v["R_tip"]) >= 0.5 * v["H"]:
+    if not v.mesh_file:
+        if v.R_tip < v.W / 2:
+            raise InputError(f"R_tip = {v.R_tip} mm must be >= W/2 = {v.W / 2} mm")
+        if tip_height(v.W / 2, v.R_tip) >= 0.5 * v.H:
             raise InputError("the rounded tip must be lower than half the pin height")
-        check_stroke(v, v["W"])
+        check_stroke(v, v.W)
     check_scheme(v)
-    if v["fast_steps"] % 4:
-        raise InputError(f"fast_steps = {v['fast_steps']} must be a multiple of 4")
-    if v["dt"] > period(v) * v["cycles"]:
-        raise InputError(f"time step {v['dt']} s exceeds T = "
-                         f"{period(v) * v['cycles']} s")
+    if v.fast_steps % 4:
+        raise InputError(f"fast_steps = {v.fast_steps} must be a multiple of 4")
+    if v.dt > period(v) * v.cycles:
+        raise InputError(f"time step {v.dt} s exceeds T = "
+                         f"{period(v) * v.cycles} s")
 
 
 def check_stroke(v, W):
@@ -200,16 +214,16 @@ def check_stroke(v, W):
     The pin must stay on the block with 0.5 mm to spare at either end of the
     stroke: L ≥ W + 2A + 1 mm.
     """
-    if v["L"] < W + 2 * v["A"] + 1.0:
-        where = f" (W = {W:.6g} mm: the width of the pin in {v['mesh_file']!r})" \
-            if v["mesh_file"] else ""
-        raise InputError(f"block length L = {v['L']} mm must exceed W + 2A + 1 = "
-                         f"{W + 2 * v['A'] + 1.0:.6g} mm{where}")
+    if v.L < W + 2 * v.A + 1.0:
+        where = f" (W = {W:.6g} mm: the width of the pin in {v.mesh_file!r})" \
+            if v.mesh_file else ""
+        raise InputError(f"block length L = {v.L} mm must exceed W + 2A + 1 = "
+                         f"{W + 2 * v.A + 1.0:.6g} mm{where}")
 
 
 def period(v):
     """Δτ of one cycle, 4A/V (s)."""
-    return 4 * v["A"] / v["V"]
+    return 4 * v.A / v.V
 
 
 def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
@@ -219,57 +233,57 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     (height above the lowest tip point), ``top_length`` (ℓ of the traction
     F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
     """
-    if v["mesh_file"]:
-        msh, ft, names = read_user_mesh(v["mesh_file"], comm, 2, tuple(PIN_NAMES))
+    if v.mesh_file:
+        msh, ft, names = read_user_mesh(v.mesh_file, comm, 2, tuple(PIN_NAMES))
         W, h = place_user_pin(msh, ft, names)
         check_stroke(v, W)
         _centre_on_axis(msh)
         H = comm.allreduce(float(np.max(msh.geometry.x[:, 1], initial=-np.inf)),
                            op=MPI.MAX)
     else:
-        n = 10 * 2 ** v["mesh"]
-        W, H, h = v["W"], v["H"], v["W"] / n
-        msh, ft = pin_body(W, H, v["R_tip"], n, comm)
+        n = 10 * 2 ** v.mesh
+        W, H, h = v.W, v.H, v.W / n
+        msh, ft = pin_body(W, H, v.R_tip, n, comm)
         names = PIN_NAMES
-    mu, lmbda = lame_parameters(v["E_pin"], v["nu"])
+    mu, lmbda = lame_parameters(v.E_pin, v.nu)
     pin = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu, "lmbda": lmbda}),
-               shape=True, aux=(v["E_pin"], 0.3), name="pin")
+               shape=True, aux=(v.E_pin, 0.3), name="pin")
     # the top's length: the traction F/ℓ loads the pin with F whatever its top
     top = comm.allreduce(fem.assemble_scalar(fem.form(
         fem.Constant(msh, 1.0) * pin.ds(pin.tag("top")))), op=MPI.SUM) \
-        if v["mesh_file"] else W
+        if v.mesh_file else W
     load = fem.Constant(msh, 1.0)
-    pin.add_traction("top", load * ufl.as_vector([0.0, -v["F"] / top]))
+    pin.add_traction("top", load * ufl.as_vector([0.0, -v.F / top]))
     pin.add_dirichlet("sides", 0.0, component=0)
     pin.add_shape_dirichlet("sides", 0)
     pin.add_shape_dirichlet("top", 1)
     hb = 4 * h / 3                       # the slave (pin) is the finer surface
-    bmsh, bft = block_mesh(comm, (-v["L"] / 2, -v["D"]), (v["L"] / 2, 0.0),
-                           round(v["L"] / hb), max(2, round(v["D"] / hb)))
-    mu, lmbda = lame_parameters(v["E_block"], v["nu"])
+    bmsh, bft = block_mesh(comm, (-v.L / 2, -v.D), (v.L / 2, 0.0),
+                           round(v.L / hb), max(2, round(v.D / hb)))
+    mu, lmbda = lame_parameters(v.E_block, v.nu)
     block = Body(bmsh, bft, BLOCK_NAMES, "plane_strain",
                  ("neo-hookean", {"mu": mu, "lmbda": lmbda}), shape=True,
-                 aux=(v["E_block"], 0.3), name="block")
+                 aux=(v.E_block, 0.3), name="block")
     motion = block.add_dirichlet("bottom", np.zeros(2))
     for name, c in (("bottom", 0), ("bottom", 1), ("sides", 0)):
         block.add_shape_dirichlet(name, c)
     contact = TwoBodyContact(pin, "contact", block, "top",
-                             rho_n=min(v["E_pin"], v["E_block"]) / h, friction=v["friction"])
-    mu_f = v["friction"]
-    wear_pin = Wear(contact.wear_surface("slave"), k=v["K_pin"] * mu_f,
-                    scheme=v["scheme"], averaged=True, name="wear_pin")
-    wear_block = Wear(contact.wear_surface("master"), k=v["K_block"] * mu_f,
-                      scheme=v["scheme"], averaged=True, name="wear_block")
+                             rho_n=min(v.E_pin, v.E_block) / h, friction=v.friction)
+    mu_f = v.friction
+    wear_pin = Wear(contact.wear_surface("slave"), k=v.K_pin * mu_f,
+                    scheme=v.scheme, averaged=True, name="wear_pin")
+    wear_block = Wear(contact.wear_surface("master"), k=v.K_block * mu_f,
+                      scheme=v.scheme, averaged=True, name="wear_block")
 
     def drive(position):
         """Move the block's bottom to ``position``; the block translated as predictor."""
         block.u.x.array.reshape(-1, 2)[:, 0] += position - float(motion.value[0])
         motion.value[0] = position
 
-    cycle = ReciprocatingCycle(contact, 2 * v["A"], v["fast_steps"], v["V"], drive=drive,
+    cycle = ReciprocatingCycle(contact, 2 * v.A, v.fast_steps, v.V, drive=drive,
                                force=lambda: block.reaction("bottom", 0))
     stepper = Stepper([pin, block, contact, wear_pin, wear_block], [wear_pin, wear_block],
-                      cycle=cycle, parameters=[load, motion], max_cuts=v["max_cuts"],
+                      cycle=cycle, parameters=[load, motion], max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_reciprocating",
                       problem_kw={"max_it": 40})
     return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
@@ -279,7 +293,7 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
 
 def progress_total(v):
     """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
-    return nominal_steps(v["cycles"] * period(v), v["dt"])
+    return nominal_steps(v.cycles * period(v), v.dt)
 
 
 def load_up(run, v, verbose=False):
@@ -291,13 +305,12 @@ def load_up(run, v, verbose=False):
     (:func:`tribofx.cases.user_pin.user_pin_approach` with the pin's
     traction q = F/ℓ and modulus).
     """
-    if v["mesh_file"]:
-        delta0 = user_pin_approach(
-            run["wear_pin"].contact, {"q": v["F"] / run["top_length"], "E": v["E_pin"]})
+    if v.mesh_file:
+        delta0 = user_pin_approach(run["wear_pin"].contact, v.F / run["top_length"], v.E_pin)
     else:
-        a = min(hertz(v["F"], v["R_tip"], v["E_pin"], v["nu"], math.inf, v["E_block"],
-                      v["nu"], line=True).a, v["W"] / 2)
-        delta0 = a * a / (2 * v["R_tip"]) + v["F"] * v["H"] / (v["W"] * v["E_pin"])
+        a = min(hertz(v.F, v.R_tip, v.E_pin, v.nu, math.inf, v.E_block,
+                      v.nu, line=True).a, v.W / 2)
+        delta0 = a * a / (2 * v.R_tip) + v.F * v.H / (v.W * v.E_pin)
     run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
     run["load"].value = 0.0
     control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
@@ -371,7 +384,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         if st.last_increments is not None:   # dissipation of the step's (last) cycle
             d_pin = st.last_increments[0]
             n = contact.Q.dofmap.index_map.size_local
-            cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v["K_pin"]
+            cyc_d = comm.allreduce(float(d_pin[:n] @ w_ref[:n]), op=MPI.SUM) / v.K_pin
             energy[0] += cyc_d * dt / tau
         else:
             cyc_d = None
@@ -380,7 +393,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
                      ("worn_area_block", wb.worn_volume()),
                      ("dissipated_energy", energy[0]), ("cycle_dissipation", cyc_d),
                      ("drive_work", cycle.work), ("drive_work_bound", cycle.work_bound),
-                     ("friction_force_ratio", cycle.sliding_force_ratio(v["F"])),
+                     ("friction_force_ratio", cycle.sliding_force_ratio(v.F)),
                      ("rate_integral_pin", wp.wear_rate_integral()),
                      ("rate_integral_block", wb.wear_rate_integral()),
                      ("normal_force", float(contact.forces()[0][1])),
@@ -395,11 +408,11 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     def report():
         _report(run, record, hist, shots)
         if record.profile is not None:
-            half = 0.5 * v["L"] + v["A"] + 0.1
-            record.profile["view"] = ((-half, half), (-v["D"] - 0.1, 0.6 * run["H"]))
+            half = 0.5 * v.L + v.A + 0.1
+            record.profile["view"] = ((-half, half), (-v.D - 0.1, 0.6 * run["H"]))
 
     with sr.closing(report=report, model=run):
-        st.run(v["cycles"] * tau, slow_time.step_controller(v, v["dt"]), progress=progress,
+        st.run(v.cycles * tau, slow_time.step_controller(v, v.dt), progress=progress,
                on_step=sr.written(lambda s, rep: log(s.t, rep.dt, rep.iterations, rep.picard,
                                                      rep.error, rep.rejected)))
         shots["worn"] = snapshot(run)

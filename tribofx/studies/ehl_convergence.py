@@ -12,18 +12,18 @@ def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORL
     """Film measures at one load W for the mesh levels ``levels`` (all else as in ``v``).
 
     Each level (element size 0.04/2^level mm along Γ_l) is loaded in ``steps``
-    increments (default ``v["steps"]``) to W (default ``v["W"]``).  Returns a list
+    increments (default ``v.steps``) to W (default ``v.W``).  Returns a list
     of dicts (level, h_fine, num_dofs, h_min, h_central, p_max, newton_iterations)
     and, from the second level on, the differences ``d_h_min``, ``d_p_max`` to the
     previous level (relative to the finer value).
     """
-    if v.get("mesh_file"):
+    if v.mesh_file:
         raise InputError("mesh_convergence refines the built layer: not with mesh_file")
-    W = v["W"] if W is None else W
-    steps = v["steps"] if steps is None else steps
+    W = v.W if W is None else W
+    steps = v.steps if steps is None else steps
     rows = []
     for level in levels:
-        vv = dict(v, mesh=int(level), W=W, steps=steps)
+        vv = v.replace(mesh=int(level), W=W, steps=steps)
         run = Case.build(vv, comm)
         loads, _ = Case.load_control(run, vv)
         loads.march(W, steps, predictor=False)

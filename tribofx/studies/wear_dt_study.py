@@ -27,9 +27,9 @@ __all__ = ["run_dt_study"]
 
 def _study_run(case, v, n, scheme, dt, verbose=False):
     """One run of a study; returns (stepper, dict with status, profiles, costs)."""
-    over = {**v, "study": "none", "scheme": scheme, "dt": dt}
+    over = v.replace(study="none", scheme=scheme, dt=dt)
     if scheme == "explicit":
-        over["max_cuts"] = 0  # at its nominal Δt: a failure is the instability
+        over = over.replace(max_cuts=0)  # at its nominal Δt: a failure is the instability
     sub = SubRecord()
     t0 = time.perf_counter()
     status = "ok"
@@ -71,8 +71,8 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     run's stepper of the last mesh; ``record.profile`` holds what
     :func:`tribofx.plots.wear.plot_dt_study` needs.
     """
-    T = v["T"]
-    ref_dt = v["study_ref_dt"]
+    T = v.T
+    ref_dt = v.study_ref_dt
     schemes = case.study_schemes(v)
     ref_scheme = "bdf2" if "bdf2" in schemes else "implicit"
     names = ("error", "maxerror", "unstable", "oscillation", "status", "checkerboard",
@@ -80,7 +80,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     res = {f"{name}_{s}": {} for s in schemes for name in names}
     res.update({key: {} for key in ("dt_cr", "reference_wall_time", "reference_correction",
                                     "checkerboard_reference")})
-    plots = {"study": "dt", "dts": list(dts), "E": v["E"], "T": T, "meshes": {},
+    plots = {"study": "dt", "dts": list(dts), "E": v.E, "T": T, "meshes": {},
              "schemes": schemes}
     prob_ref = None
     for n in ns:
@@ -92,7 +92,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
                                    f"{ref['status']}")
         p_ref = ref["final_profile"]
         correction = 0.0
-        if v["study_ref"] == "richardson":
+        if v.study_ref == "richardson":
             _, coarse = _study_run(case, v, n, "implicit", 2 * ref_dt, verbose)
             if not coarse["status"] == "ok":
                 raise NewtonDivergence(f"study reference run ({key}, Δt = {2 * ref_dt} s) "
@@ -103,7 +103,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
         res["reference_correction"][key] = correction
         res["checkerboard_reference"][key] = ref["checkerboard"]
         dt_cr = None
-        if v["study_critical"] and "explicit" in schemes:
+        if v.study_critical and "explicit" in schemes:
             try:
                 dt_cr = pin_critical_step(case, v, n, lo=0.01, hi=1e4)[0]
             except (ValueError, NewtonDivergence):
@@ -148,7 +148,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
              "reference": "s", "checkerboard_reference": "mm"}
     for name, val in res.items():
         record.result(f"study_{name}", val, units.get(name.split("_")[0], units.get(name, "-")))
-    ref_txt = (f"{ref_scheme}, Δt = {ref_dt:g} s" if v["study_ref"] == "fine" else
+    ref_txt = (f"{ref_scheme}, Δt = {ref_dt:g} s" if v.study_ref == "fine" else
                f"Richardson 2 p({ref_dt:g} s) − p({2 * ref_dt:g} s), implicit")
     record.result("study_reference", ref_txt, "-")
     record.result("study_unstable_criterion",

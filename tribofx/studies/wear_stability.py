@@ -78,10 +78,10 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     unstable, both checked).  Returns ``(dt_cr, probe)`` with ``probe`` the list of
     (Δt, a_steps/a_0) evaluated.
     """
-    v = {**v, "scheme": "explicit", "R_tip": 0.0}
+    v = v.replace(scheme="explicit", R_tip=0.0)
     stepper, load = case.build(v, n=n)
     case.load_up(stepper, load, v)
-    seed_checkerboard(stepper.wear, v["W"], n, eps)
+    seed_checkerboard(stepper.wear, v.W, n, eps)
     stepper.problem.solve_by_homotopy()
     stepper.problem.commit()
     start = stepper.state()
@@ -117,7 +117,7 @@ def pressure_nonuniformity(contact):
 def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI.COMM_WORLD):
     """Largest stable explicit Δt (s) of ``wear-ball-flat`` from a developed scar (bisection).
 
-    The implicit scheme (``v["dt"]``) runs to ``t0`` on the mesh of ``v``; its
+    The implicit scheme (``v.dt``) runs to ``t0`` on the mesh of ``v``; its
     state is copied into an explicit stepper on the same mesh, which takes one
     step of Δt and then ``steps`` more.  Wear evens out the pressure (the
     continuous problem is dissipative): an unstable Δt amplifies the highest
@@ -134,9 +134,9 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     probe)``, ``probe`` the list of (Δt, nonuniformity ratio).
     """
     rec = SubRecord()
-    implicit = wear_ball_flat.run({**v, "scheme": "implicit"}, rec, comm=comm, t_stop=t0)
+    implicit = wear_ball_flat.run(v.replace(scheme="implicit"), rec, comm=comm, t_stop=t0)
     start = implicit.state()
-    stepper = wear_ball_flat.build({**v, "scheme": "explicit"}, comm=comm)
+    stepper = wear_ball_flat.build(v.replace(scheme="explicit"), comm=comm)
     if not np.array_equal(stepper.wear.body.mesh.geometry.x, implicit.wear.body.mesh.geometry.x):
         raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
     probe = []
