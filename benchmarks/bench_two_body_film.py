@@ -46,7 +46,7 @@ def split(level):
     v = resolve(Case.Params, {"mesh": str(level)})
     rec = RunRecord(Case.name, {}, {}, Path("."), MPI.COMM_WORLD)
     run = Case.run(v, rec)
-    film, problem, lift = run["film"], run["problem"], run["lift"]
+    film, problem, lift = run.film, run.problem, run.lift
     lift.value[1] *= 0.98                      # a new approach: a few Newton iterations
     timer = Timer()
     timer.time_split(film, ("add_residual", "add_jacobian", "_kernel"), problem)

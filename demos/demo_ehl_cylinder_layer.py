@@ -161,8 +161,9 @@ if comm.rank == 0:
 # +
 run = lubricated_layer(0.1, cavitation="jfo")
 jfo = sweep(run, [0.1])[-1]
-q_in, q_out = run[1].consistent_fluxes()
-prof = comm.bcast(run[1].profile(), root=0)
+film = run[1]
+q_in, q_out = film.consistent_fluxes()
+prof = comm.bcast(film.profile(), root=0)
 i = int(np.argmax(prof["p"]))
 r = i + int(np.nonzero(prof["lam"][i:] > 1e-8)[0][0])      # first cavitated node
 h_rupture = 0.5 * (prof["h"][r - 1] + prof["h"][r])

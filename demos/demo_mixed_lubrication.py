@@ -93,11 +93,11 @@ print(f"K E* = {rough.asperity.parameters['KE']:.4g} MPa, σ = {rough.sigma} mm"
     if comm.rank == 0 else None
 V, k, dt = speeds[-1], 1e-5, 720.0          # mm/s, mm³/(N·mm), s
 run = rough_contact.build(v, "cylinder", speeds[0], comm, shape=True)
-film = run["film"]
+film = run.film
 wear = Wear(film, k=k, speed=V)
-stepper = Stepper([run["body"], film, wear], wear, name="running_in",
+stepper = Stepper([run.body, film, wear], wear, name="running_in",
                   problem_kw={"max_it": 30})
-run["problem"] = stepper.problem
+run.problem = stepper.problem
 rows = []
 rough_contact.load_and_slow(run, v, speeds, on_speed=lambda U, n: rows.append(
     dict(rough_contact.measures(run, v), U=U, newton_iterations=n)))

@@ -63,7 +63,7 @@ def test_film_matches_hamrock_dowson(light_load):
     d_c, d_m, d_x = m["h_central"] / hc - 1, m["h_min"] / hm - 1, h_ext / hc - 1
     print(f"h_c = {m['h_central']:.5g} mm (HD {hc:.5g}, {100 * d_c:+.1f} %), "
           f"h_min = {m['h_min']:.5g} mm (HD {hm:.5g}, {100 * d_m:+.1f} %), dofs "
-          f"{run[2].num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
+          f"{run.problem.num_dofs}; mesh 0: h_c = {m0['h_central']:.5g} mm, "
           f"extrapolated h_c = {h_ext:.5g} mm ({100 * d_x:+.1f} %)")
     # equilibrium of the solved state (not the load controller's own stopping test): the
     # reaction of the held mid-plane, from the bulk stresses, balances the film force
@@ -330,7 +330,7 @@ def test_film_force_on_ball_and_plane_balance():
         v = values(W=3.0, steps=1, mesh=0, model=model)
         run = Case.build(v)
         Case.load_sweep(run, v, lambda W, its: None)
-        film = run[1]
+        film = run.film
         f_ball, f_plane = film.force()[0], film.counter_force()[0]
         parts = _film_imbalance(film, model)
         print(model, "x-force on the ball", f_ball, "on the plane", f_plane, "flank, slope",
@@ -395,7 +395,7 @@ def _pressure_radius(run):
     r = in-plane distance of the current cap point from the contact axis; for
     the Hertz pressure p0 (1 − r²/a²)^{1/2} on a flat disc a_p = a exactly.
     """
-    film = run[1]
+    film = run.film
     x = ufl.SpatialCoordinate(film.sub) + film.u_s
     r2 = x[0] ** 2 + x[1] ** 2
     num, den = (MPI.COMM_WORLD.allreduce(fem.assemble_scalar(fem.form(f * film.dx)),
@@ -424,7 +424,7 @@ def _mid_plane_reaction(run, v):
     from tribofx.forms.hyperelastic import internal_virtual_work, lame_parameters
     from tribofx.meshes.ball import MIDPLANE
 
-    ball = run[0]
+    ball = run.ball
     mu, lm = lame_parameters(v.E, v.nu)
     w = fem.Function(ball.V)
     dofs = fem.locate_dofs_topological(ball.V.sub(2), 2, ball.facet_tags.find(MIDPLANE))
@@ -534,7 +534,7 @@ def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
     for level in (0, 1):
         v = values(W=10.0, mesh=0, edge_refine=level)
         a = Case.hertz_contact(v).a
-        ball = Case.build(v)[0]
+        ball = Case.build(v).ball
         msh, facets = ball.mesh, ball.facet_tags.find(LUBRICATED)
         msh.topology.create_connectivity(2, 3)
         nodes = dmesh.entities_to_geometry(msh, 2, facets, False)

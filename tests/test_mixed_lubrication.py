@@ -226,7 +226,7 @@ def test_creeping_rough_cylinder_approaches_hertz():
     dev = []
     for sigma in (1e-3, 1e-4):
         run, _ = stribeck(speeds="1e-6", sigma=sigma)
-        pr = run["film"].profile(everywhere=True)
+        pr = run.film.profile(everywhere=True)
         x, p = pr["x"][:, 0], pr["p"] + pr["p_a"]
         W = np.trapezoid(p, x)
         xbar = np.trapezoid(p * x, x) / W
@@ -247,9 +247,9 @@ def test_vanishing_roughness_is_the_smooth_film():
     for rough in (True, False):
         v = resolve(stribeck_case.Params, {"speeds": "1000", "sigma": "1e-9"})
         run = rough_contact.build(v, "cylinder", 1000.0, rough=rough)
-        film = run["film"]
+        film = run.film
         film.counterpart.offset.value[1] = -0.01
-        run["problem"].solve()
+        run.problem.solve()
         prof = film.profile(everywhere=True)
         out.append(np.r_[film.force(), prof["p"].max()])
     assert np.allclose(out[0], out[1], rtol=1e-8, atol=0), out
@@ -300,8 +300,8 @@ def test_rough_film_tangent_is_exact():
     """
     run, res = stribeck(speeds="1000,10", mesh=0)
     assert 0.3 < res["lambda_ratio"][-1] < 2.0
-    prob = run["problem"]
-    dirs = penalty_film_directions(prob, run["film"].p, 11)
+    prob = run.problem
+    dirs = penalty_film_directions(prob, run.film.p, 11)
     for name, (orders, rem, floor) in block_taylor_orders(prob, dirs, eps0=1.0).items():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 

@@ -42,7 +42,8 @@ def _hertz_steps(strategy, offsets, friction=0.3, options=None):
     v = resolve(hertz_case.Params, {"dim": "3", "mesh": "1", "friction": str(friction)})
     hertz_case.validate(v)
     with solvers.run_settings(strategy, options):
-        body, contact, problem = hertz_case.build(v)
+        model = hertz_case.build(v)
+        body, contact, problem = model.body, model.contact, model.problem
     delta = ConstantParameter(contact.counterpart.offset, 2)
     out = []
     for d in offsets:
@@ -255,7 +256,7 @@ def test_bulk_and_interface_fields():
     v = resolve(hertz_case.Params, {"dim": "3", "mesh": "0", "friction": "0.3"})
     hertz_case.validate(v)
     with solvers.run_settings("auto"):
-        _, _, problem = hertz_case.build(v)
+        problem = hertz_case.build(v).problem
     bulk, rest = solvers.bulk_fields(problem)
     assert [problem.u[k].name for k in bulk] == ["displacement"]
     assert [problem.u[k].name for k in rest] == ["contact_pressure_nominal",

@@ -57,8 +57,8 @@ def test_ball_mixed_film_tangent_is_exact():
     """
     run, res = ball(speeds="10", steps=1)
     assert 0.8 < res["film_load_fraction"][0] < 0.99 and res["lambda_ratio"][0] < 1
-    prob = run["problem"]
-    dirs = penalty_film_directions(prob, run["film"].p, 5)
+    prob = run.problem
+    dirs = penalty_film_directions(prob, run.film.p, 5)
     for name, (orders, rem, floor) in block_taylor_orders(prob, dirs, eps0=1.0).items():
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 

@@ -171,31 +171,37 @@ def test_wear_reciprocating_bdf2_error_follows_tol(tmp_path):
         assert max(err) <= 2 * tol
 
 
-def test_both_bodies_worn_tangent_taylor():
-    """Exact tangent with both bodies worn (eqs. 17-18): after one slow step of the
+@pytest.mark.parametrize("scheme", ["explicit", "bdf2"])
+def test_both_bodies_worn_tangent_taylor(scheme):
+    """Exact tangent with both bodies worn (eqs. 17-18): after a slow step of the
     §5.1 case, the fast-time problem (pin and block displacements on their worn shapes,
     the two-body contact multipliers) and the slow-time shape problem of both bodies
     (w and ζ of pin and block, driven by their cycle-averaged rates) have Taylor
-    remainders of order 2.  Directions: 1e-6 mm and 1e-6 MPa keep the active and stick
-    sets (as tests/test_two_body.py)."""
+    remainders of order 2.  BDF2: at its second step, whose shape rows carry the
+    volume swept in the first (weights c₀, c₁ ≠ 0).  Directions: 1e-6 mm and 1e-6 MPa
+    keep the active and stick sets (as tests/test_two_body.py)."""
     from tribofx.cases import wear_reciprocating as Case
     from tribofx.params import resolve
     from tribofx.testing import block_taylor_orders, exact_tangent
 
-    v = resolve(Case.Params, {"mesh": "0", "cycles": "100", "dt": "10", "fast_steps": "8"})
+    v = resolve(Case.Params, {"mesh": "0", "cycles": "100", "dt": "10", "fast_steps": "8",
+                              "scheme": scheme})
     Case.validate(v)
     run = Case.build(v)
     Case.load_up(run, v)
-    st = run["stepper"]
+    st = run.stepper
     st.start()
-    st.step(10.0)
-    for wear in (run["wear_pin"], run["wear_block"]):
+    for _ in range(2 if scheme == "bdf2" else 1):
+        st.step(10.0)
+    for wear in (run.wear_pin, run.wear_block):
         assert wear.max_depth() > 0
-        wear.dt.value = 10.0
+        wear.dt.value = 10.0   # the residual of the step (end_step zeroed Δt)
+        if scheme == "bdf2":   # the second step's weights and the first step's volumes
+            assert wear.bdf.c1.value != 0 and np.abs(wear.bdf.swept_old.x.array).max() > 0
     # slide on by a tenth of a fast step, uncommitted: right after a commit the slip is
     # zero and the slipping nodes sit on the kink of the Coulomb cone
-    cycle = run["cycle"]
-    cycle.drive(float(run["motion"].value[0]) + 0.1 * 2 * v.A / v.fast_steps)
+    cycle = run.cycle
+    cycle.drive(float(run.motion.value[0]) + 0.1 * 2 * v.A / v.fast_steps)
     st.problem.solve()
     rng = np.random.default_rng(3 + COMM.rank)
     for problem in (p for p in (st.problem, st.shape) if p is not None):

@@ -101,13 +101,13 @@ def test_running_in_wears_by_the_asperity_load_and_builds_the_film():
     assert len(r["time"]) == 3
     swept = np.cumsum(r["dt"] * r["wear_rate_integral"])
     assert np.allclose(r["wear_volume"], swept, rtol=1e-6, atol=1e-12), (r["wear_volume"], swept)
-    prof = run["film"].profile(everywhere=True)
+    prof = run.film.profile(everywhere=True)
     A, Hc, n = mixed.GT_FIT
-    KE = run["film"].roughness.asperity.parameters["KE"]
+    KE = run.film.roughness.asperity.parameters["KE"]
     p_a = KE * A * np.maximum(Hc - prof["h"] / v.sigma, 0.0) ** n
     ds = np.linalg.norm(np.diff(prof["x"], axis=0), axis=1)
     by_hand = v.k * v.V * np.sum(ds * (p_a[1:] + p_a[:-1]) / 2)
-    assert run["wear"].wear_rate_integral() == pytest.approx(by_hand, rel=1e-10)
+    assert run.wear.wear_rate_integral() == pytest.approx(by_hand, rel=1e-10)
     assert r["wear_rate_integral"][-1] == pytest.approx(by_hand, rel=1e-10)
     assert np.all(np.diff(r["asperity_load"]) < 0)
     assert np.all(np.diff(r["friction_coefficient"]) < 0)

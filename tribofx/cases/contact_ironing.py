@@ -38,6 +38,7 @@ contact force).
 from dataclasses import dataclass
 
 import numpy as np
+from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
@@ -51,7 +52,7 @@ from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 
-__all__ = ["build", "check_slide", "doc", "name", "Params", "plot", "report", "resumable",
+__all__ = ["Model", "Params", "build", "check_slide", "doc", "name", "plot", "report", "resumable",
            "run", "validate", "vtx_fields"]
 
 
@@ -110,6 +111,23 @@ def check_slide(v, b):
         raise InputError("the die would slide off the slab: slide > L − R/2 − 1")
 
 
+@dataclass
+class Model:
+    """What :func:`build` assembles: the slab, the die, their contact, the problem.
+
+    ``motion``: the Dirichlet value of the die's top (its prescribed displacement, a Constant);
+    ``b``: the die's half-width at the slab, ``h_die``: its contact element size (mm).
+    """
+
+    slab: Body
+    die: Body
+    contact: TwoBodyContact
+    problem: Problem
+    motion: fem.Constant
+    b: float
+    h_die: float
+
+
 def build(v, comm=MPI.COMM_WORLD):
     """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
@@ -134,17 +152,16 @@ def build(v, comm=MPI.COMM_WORLD):
     contact = TwoBodyContact(slab, "top", die, "arc", rho_n=v.E / min(h, h_die),
                              friction=v.friction)
     problem = Problem([slab, die, contact], name="ironing", max_it=40)
-    return {"slab": slab, "die": die, "contact": contact, "problem": problem,
-            "motion": motion, "b": b, "h_die": h_die}
+    return Model(slab, die, contact, problem, motion, b, h_die)
 
 
 def run(v, record, progress=None, verbose=False):
     """Press, then slide; the die's reaction force at every converged step."""
     run = build(v)
-    contact, problem, motion = run["contact"], run["problem"], run["motion"]
+    contact, problem, motion = run.contact, run.problem, run.motion
     record.data["num_dofs"] = problem.num_dofs
-    record.result("die_half_width", run["b"], "mm")
-    record.result("die_element_size", run["h_die"], "mm")
+    record.result("die_half_width", run.b, "mm")
+    record.result("die_element_size", run.h_die, "mm")
     history = []
 
     def reaction():
@@ -174,7 +191,7 @@ def run(v, record, progress=None, verbose=False):
     finally:
         report(history, v, record)
         on_die = contact.forces(problem)[1]
-        die = run["die"]
+        die = run.die
         record.result("equilibrium_error", [abs(die.reaction("top", c) + float(on_die[c]))
                                             for c in (0, 1)], "N/mm")
         record.result("equilibrium_bound", die.V.dofmap.index_map.size_global * 2
@@ -203,7 +220,7 @@ def report(history, v, record):
 
 def vtx_fields(run):
     """Displacements of slab and die."""
-    return {"slab": [run["slab"].u], "die": [run["die"].u]}
+    return {"slab": [run.slab.u], "die": [run.die.u]}
 
 
 def plot(profile, outdir):

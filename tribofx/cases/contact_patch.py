@@ -32,7 +32,7 @@ from ..interfaces import TwoBodyContact
 from ..params import CaseParams, InputError, param
 from ..problem import Problem
 
-__all__ = ["build", "doc", "name", "Params", "patch_block", "plot", "resumable", "run",
+__all__ = ["Model", "Params", "build", "doc", "name", "patch_block", "plot", "resumable", "run",
            "validate", "vtx_fields"]
 
 
@@ -82,6 +82,16 @@ def validate(v):
                          f"{n_s} slave element(s): the patch test needs at least 2")
 
 
+@dataclass
+class Model:
+    """What :func:`build` assembles: the two blocks, their contact, the problem."""
+
+    slave: Body
+    master: Body
+    contact: TwoBodyContact
+    problem: Problem
+
+
 def build(v, comm=MPI.COMM_WORLD):
     """Slave and master blocks, contact and problem."""
     mu, lmbda = lame_parameters(v.E, v.nu)
@@ -96,13 +106,13 @@ def build(v, comm=MPI.COMM_WORLD):
     h = 1.0 / max(n_s, v.n_master)
     contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v.E / h)
     problem = Problem([slave, master, contact], name="contact_patch")
-    return {"slave": slave, "master": master, "contact": contact, "problem": problem}
+    return Model(slave, master, contact, problem)
 
 
 def run(v, record, progress=None, verbose=False):
     """Solve once; record the mean and the largest relative deviation of the traction."""
     run = build(v)
-    contact, problem = run["contact"], run["problem"]
+    contact, problem = run.contact, run.problem
     record.data["num_dofs"] = problem.num_dofs
     record.data["newton_iterations"].append(problem.solve_by_homotopy(verbose=verbose).iterations)
     d = contact.nodal_data(problem)
@@ -124,7 +134,7 @@ def run(v, record, progress=None, verbose=False):
 
 def vtx_fields(run):
     """Displacements of both blocks."""
-    return {"slave": [run["slave"].u], "master": [run["master"].u]}
+    return {"slave": [run.slave.u], "master": [run.master.u]}
 
 
 def plot(profile, outdir):

@@ -34,6 +34,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from dolfinx import fem
 from mpi4py import MPI
 
 from ..body import Body
@@ -46,8 +47,8 @@ from ..problem import NewtonDivergence, Problem
 from ..references import hertz
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = ["build", "doc", "name", "Params", "plot", "reference", "report", "resumable", "run",
-           "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "name", "plot", "reference", "report", "resumable",
+           "run", "validate", "vtx_fields"]
 
 
 name = "contact-two-cylinders"
@@ -105,6 +106,20 @@ def validate(v):
         raise InputError(f"load too small to resolve: a/R* = {h.a / h.R_star:.1e}")
 
 
+@dataclass
+class Model:
+    """What :func:`build` assembles: the two cylinders, their contact, the problem.
+
+    ``push``: the Dirichlet value of the lower cylinder's loaded face (its lift).
+    """
+
+    upper: Body
+    lower: Body
+    contact: TwoBodyContact
+    problem: Problem
+    push: fem.Constant
+
+
 def build(v, comm=MPI.COMM_WORLD):
     """Upper body, lower body, contact and problem (unloaded).
 
@@ -141,17 +156,16 @@ def build(v, comm=MPI.COMM_WORLD):
     contact = TwoBodyContact(upper, "contact", lower, "contact", rho_n=E_min / min(sizes),
                              friction=v.friction)
     problem = Problem([upper, lower, contact], name="two_cylinders")
-    return {"upper": upper, "lower": lower, "contact": contact, "problem": problem,
-            "push": push}
+    return Model(upper, lower, contact, problem, push)
 
 
 def run(v, record, progress=None, verbose=False):
     """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
     run = build(v)
-    contact, problem = run["contact"], run["problem"]
+    contact, problem = run.contact, run.problem
     record.data["num_dofs"] = problem.num_dofs
     h = reference(v)
-    control = Continuation(problem, ConstantParameter(run["push"]),
+    control = Continuation(problem, ConstantParameter(run.push),
                            response=lambda: contact.forces(problem)[0][1],
                            verbose=verbose, record=record.data["newton_iterations"])
     delta = 0.25 * h.a**2 / h.R_star
@@ -171,7 +185,7 @@ def run(v, record, progress=None, verbose=False):
 
 def report(run, v, record, h):
     """Contact half-width (sum of active lumped current lengths) and peak pressure."""
-    contact, problem = run["contact"], run["problem"]
+    contact, problem = run.contact, run.problem
     d = contact.nodal_data(problem)
     comm = contact.slave.mesh.comm
     a = comm.allreduce(float(np.sum(d["weight"][d["active"]])), op=MPI.SUM)
@@ -187,7 +201,7 @@ def report(run, v, record, h):
                   "mm (h of rho_N = min(E1, E2)/h)")
     record.result("normal_load_full_body", 2 * float(on_upper[1]), "N/mm")
     # equilibrium of the solved upper cylinder: its held face balances the contact
-    upper = run["upper"]
+    upper = run.upper
     record.result("equilibrium_error",
                   abs(upper.reaction("loaded", 1) + float(on_upper[1])), "N/mm")
     record.result("equilibrium_bound", upper.V.dofmap.index_map.size_global * 2
@@ -200,7 +214,7 @@ def report(run, v, record, h):
 
 def vtx_fields(run):
     """Displacements of both bodies (one file per mesh)."""
-    return {"upper": [run["upper"].u], "lower": [run["lower"].u]}
+    return {"upper": [run.upper.u], "lower": [run.lower.u]}
 
 
 def plot(profile, outdir):

@@ -62,6 +62,7 @@ and on the plane: :mod:`tribofx.cases.ehl_ball`.
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -84,14 +85,13 @@ from ..sweep import SweepVariant
 from . import film_setup
 from .film_setup import FluidParams, at_points, density, film_boundary, speed_list, viscosity
 
-__all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS",
-           "VARIANTS", "Z", "build", "check_curvature", "checked_outlet_width", "doc",
+__all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS", "VARIANTS",
+           "Z", "Model", "Params", "build", "check_curvature", "checked_outlet_width", "doc",
            "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
            "hertz_slope", "hertz_start", "large_load", "load", "load_sweep", "measures",
-           "mesh_levels", "name", "outlet_width", "Params", "place_user_ball", "plot",
-           "position_control", "progress_total", "resumable", "run", "scales", "set_scales",
-           "speed_parameter", "speed_march", "sweep", "thick_film_sweep", "user_rim", "validate",
-           "vtx_fields"]
+           "mesh_levels", "name", "outlet_width", "place_user_ball", "plot", "position_control",
+           "progress_total", "resumable", "run", "scales", "set_scales", "speed_march",
+           "speed_parameter", "sweep", "thick_film_sweep", "user_rim", "validate", "vtx_fields"]
 
 
 #: largest element size along the contact edge, in units of the outlet width ℓ
@@ -376,6 +376,14 @@ def set_scales(film, v, W, U):
     film.set_scales(p_c=p0, eps=eps, film_scale=h_c, speed_scale=U)
 
 
+class Model(NamedTuple):
+    """What :func:`build` assembles: the quarter ball, its film on the plane, the problem."""
+
+    ball: Body
+    film: Film
+    problem: Problem
+
+
 def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
     """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
 
@@ -413,7 +421,7 @@ def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
         z_cap = cap_height(v.R, th)
         film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R)
     problem = Problem([ball, film], name=name, max_it=25)
-    return ball, film, problem
+    return Model(ball, film, problem)
 
 
 def progress_total(v):
@@ -464,13 +472,13 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     """
     key = name or vv.model
     run = build(vv, name=options_name("ehl_ball", name))
-    film, problem = run[1], run[2]
+    film, problem = run.film, run.problem
     record.data["num_dofs"] = problem.num_dofs
     # (the plane's offset is state); the series' "time" is the point's index, its
     # (W, U) in series_points
     sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
                       record, vtx_fields(run), f"{name}_" if name else "",
-                      ("steps", "speed"), run[0].mesh.comm, progress)
+                      ("steps", "speed"), run.ball.mesh.comm, progress)
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
     pos = sv.position
     record.data["variant_newton_iterations"][key] = its_all
@@ -546,7 +554,7 @@ def film_oscillation(h_axis, p_axis):
 
 def measures(run, v):
     """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
-    film = run[1]
+    film = run.film
     prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
     f_plane = film.counter_force()
     xy = (prof["x"] if v.model == "finite" else prof["X"])[:, :2]
@@ -603,7 +611,7 @@ def _report(steps, speed, v, record, prefix):
 
 def vtx_fields(run):
     """Displacement (bulk) and film pressure (cap submesh)."""
-    ball, film, _ = run
+    ball, film = run.ball, run.film
     return {"displacement": [ball.u], "pressure": [film.p]}
 
 
@@ -630,20 +638,20 @@ def plot(profile, outdir):
 
 def speed_parameter(run, on_set=None):
     """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
-    return ConstantParameter(run[1].V_counter, 0, on_set=on_set, scale=2.0)
+    return ConstantParameter(run.film.V_counter, 0, on_set=on_set, scale=2.0)
 
 
 def hertz_start(run, v, W, U):
     """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
     h = hertz_contact(v, W)
-    run[1].start_from_pressure(
+    run.film.start_from_pressure(
         lambda x: h.pressure(np.hypot(x[0], x[1])),
         scales(v, W, U)[2], np.zeros(3))
 
 
 def load(run):
     """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
-    return 2.0 * float(run[1].force()[Z])
+    return 2.0 * float(run.film.force()[Z])
 
 
 def position_control(run, v, verbose=False, on_set=None, record=None):
@@ -651,7 +659,7 @@ def position_control(run, v, verbose=False, on_set=None, record=None):
 
     A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
     """
-    film, problem = run[1], run[2]
+    film, problem = run.film, run.problem
     return Continuation(problem, ConstantParameter(film.counterpart.offset, Z, on_set),
                         response=lambda: load(run), rtol=1e-4, max_trials=40,
                         verbose=verbose, max_step=0.1 * hertz_contact(v).delta,
@@ -674,7 +682,7 @@ def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
     """
     if large_load(v):
         return thick_film_sweep(run, v, on_step, verbose, start, on_accept)
-    film, problem = run[1], run[2]
+    film, problem = run.film, run.problem
     W1 = v.W / v.steps
     inner = position_control(run, v, verbose)
     offset = film.counterpart.offset.value
@@ -714,7 +722,7 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
     from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
     as for :meth:`load_sweep`, with the carrier state restored.
     """
-    film, problem = run[1], run[2]
+    film, problem = run.film, run.problem
     U, speed = v.U, speed_parameter(run)
     if start is None:
         its, k0 = [], 0
@@ -770,7 +778,7 @@ def follow_control(run, v, Wk, W_start, verbose=False, record=None):
     Every trial position sets the scales of the load reached last (≤ Wk;
     ``W_start`` before the first) at the current speed.
     """
-    film, speed = run[1], speed_parameter(run)
+    film, speed = run.film, speed_parameter(run)
 
     def follow(z):
         W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
@@ -790,7 +798,7 @@ def speed_march(run, v, inner, W, U, restart=False, record=None, on_speed=None,
     A failed step is cut (six times at most).  ``on_speed(march)`` after every
     converged step; ``increments``: those of an interrupted march (resumed).
     """
-    film = run[1]
+    film = run.film
     offset = film.counterpart.offset.value
     speed = speed_parameter(run, on_set=lambda Uv: set_scales(film, v, W, Uv))
     last = {"U": speed.get()}

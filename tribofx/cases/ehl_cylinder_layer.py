@@ -32,6 +32,7 @@ in ``series_points``).
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -60,11 +61,11 @@ from .film_setup import (
     viscosity,
 )
 
-__all__ = ["COMPARE", "COMPARE_PLOT", "UNITS", "USER_CELLS", "USER_GROUPS", "arc_half_angle",
-           "build", "check_film_length", "check_user_ends", "cylinder_arc", "doc",
-           "load_control", "measures", "name", "Params", "place_user_layer", "plot",
-           "progress_total", "read_user_layer", "resumable", "run", "scales", "set_speed",
-           "slope", "speed_sweep", "sweep", "validate", "vtx_fields"]
+__all__ = ["COMPARE", "COMPARE_PLOT", "UNITS", "USER_CELLS", "USER_GROUPS", "Model", "Params",
+           "arc_half_angle", "build", "check_film_length", "check_user_ends", "cylinder_arc", "doc",
+           "load_control", "measures", "name", "place_user_layer", "plot", "progress_total",
+           "read_user_layer", "resumable", "run", "scales", "set_speed", "slope", "speed_sweep",
+           "sweep", "validate", "vtx_fields"]
 
 
 #: boundary names a user's layer must carry
@@ -276,6 +277,14 @@ def arc_half_angle(v):
     return math.asin(min(0.95, 1.25 * v.x_l / v.R))
 
 
+class Model(NamedTuple):
+    """What :func:`build` assembles: the layer, the film under the rigid cylinder, the problem."""
+
+    layer: Body
+    film: Film
+    problem: Problem
+
+
 def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
     """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
@@ -328,7 +337,7 @@ def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
     problem = Problem([layer, film], name=name, max_it=25)
     film.counterpart.offset.value[1] = h_r
     film.jfo_initial_guess()
-    return layer, film, problem
+    return Model(layer, film, problem)
 
 
 def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
@@ -342,7 +351,7 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     """
     name = prefix[:-1] or v.model
     run = build(v, name=options_name("ehl_cylinder", prefix[:-1]))
-    layer, film, problem = run
+    layer, film, problem = run.layer, run.film, run.problem
     journal = journal or SweepJournal(None, layer.mesh.comm, v)
     record.data["num_dofs"] = problem.num_dofs
     var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
@@ -426,7 +435,8 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
 
 def measures(run, v):
     """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
-    film, prof, f = run[1], run[1].profile(everywhere=True), run[1].force()
+    film = run.film
+    prof, f = film.profile(everywhere=True), film.force()
     xx = prof["y"][:, 0] if v.model == "finite" else prof["X"][:, 0]
     return {"h_min": float(prof["h"].min()), "h_central": float(np.interp(0, xx, prof["h"])),
             "p_max": float(prof["p"].max()), "x_p_max": parabolic_vertex(xx, prof["p"]),
@@ -464,7 +474,7 @@ def progress_total(v):
 
 def vtx_fields(run):
     """Displacement (bulk) and film pressure (Γ_l submesh)."""
-    layer, film, _ = run
+    layer, film = run.layer, run.film
     return {"displacement": [layer.u], "pressure": [film.p]}
 
 
@@ -496,7 +506,7 @@ def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=Non
     then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
     iterations of the trials of each load.
     """
-    _, film, problem = run
+    film, problem = run.film, run.problem
     inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
                          response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
                          verbose=verbose)
@@ -514,13 +524,13 @@ def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=Non
 
 def slope(run, v):
     """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
-    U = run[0].velocity.value
+    U = run.layer.velocity.value
     return lambda W: 1 / rigid_clearance(1.0, v.mu, U[0], v.R)
 
 
 def set_speed(run, v, U):
     """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
-    layer, film, _ = run
+    layer, film = run.layer, run.film
     layer.velocity.value[0] = U
     h_r, p_s, eps = scales(v, U=U)
     film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
@@ -537,7 +547,7 @@ def speed_sweep(run, v, inner, W, speeds, on_speed=None, record=None, start=0,
     the speed marched to).  ``increments``: those of an interrupted march to
     ``speeds[start]`` (a resumed run).
     """
-    layer = run[0]
+    layer = run.layer
     held = Hold(inner, W, transform=lambda W: 1 / W,
                         slope=slope(run, v))
     at = {"j": start}

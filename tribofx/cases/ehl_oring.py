@@ -139,11 +139,10 @@ from .film_setup import (
 )
 from .slow_time import SlowTimeRecords
 
-__all__ = ["AirLayer", "NAMES", "ORingSeal", "UNITS", "USER_GROUPS", "air_end",
-           "axial_balance", "build", "cycle_stepper", "doc", "geometry", "integral",
-           "mesh_study", "name", "Params", "plot", "progress_total", "reforming", "resumable",
-           "rod_speed", "run", "run_cycle", "solve_to", "transient_seal", "validate",
-           "vtx_fields"]
+__all__ = ["NAMES", "UNITS", "USER_GROUPS", "AirLayer", "ORingSeal", "Params", "air_end",
+           "axial_balance", "build", "cycle_stepper", "doc", "geometry", "integral", "mesh_study",
+           "name", "plot", "progress_total", "reforming", "resumable", "rod_speed", "run",
+           "run_cycle", "solve_to", "transient_seal", "validate", "vtx_fields"]
 
 
 P_MOUNT = 0.1        # MPa, sealed pressure during the squeeze

@@ -52,9 +52,8 @@ from ..stepper import Stepper, nominal_steps
 from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
 
-__all__ = ["build", "doc", "extent", "fraction", "length", "measures", "name", "Params",
-           "plot", "progress_total", "resumable", "run", "speed_scale", "validate",
-           "vtx_fields"]
+__all__ = ["Params", "build", "doc", "extent", "fraction", "length", "measures", "name", "plot",
+           "progress_total", "resumable", "run", "speed_scale", "validate", "vtx_fields"]
 
 
 name = "ehl-squeeze"

@@ -47,7 +47,7 @@ from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz, rigid_clearance
 
-__all__ = ["build", "doc", "measures", "name", "Params", "plot", "reference", "report",
+__all__ = ["Model", "Params", "build", "doc", "measures", "name", "plot", "reference", "report",
            "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
@@ -140,6 +140,22 @@ def validate(v):
                          f"extent or W")
 
 
+@dataclass
+class Model:
+    """What :func:`build` assembles: the bodies by name, the film, the problem.
+
+    ``lift``: what moves the lower body (a Dirichlet value, or the countersurface's
+    offset of a one-body film); ``sign`` (+1: the film's force on the upper body is
+    the load along +y).
+    """
+
+    bodies: dict
+    film: Film | TwoBodyFilm
+    problem: Problem
+    lift: fem.Constant
+    sign: float
+
+
 def build(v, comm=MPI.COMM_WORLD):
     """Bodies, film and problem with the upper body h_r(W/steps) above the lower one.
 
@@ -193,19 +209,18 @@ def build(v, comm=MPI.COMM_WORLD):
         lift, sign = film.counterpart.offset, (1.0 if k == 0 else -1.0)
     film.add_pressure_bc()
     problem = Problem([*bodies.values(), film], name="ehl_two_cylinders", max_it=25)
-    return {"bodies": bodies, "film": film, "problem": problem, "lift": lift,
-            "sign": sign}
+    return Model(bodies, film, problem, lift, sign)
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     """March the load to W (the approach found per load by a secant on 1/W)."""
     run = build(v, comm)
-    film, problem, sign = run["film"], run["problem"], run["sign"]
+    film, problem, sign = run.film, run.problem, run.sign
     record.data["num_dofs"] = problem.num_dofs
     ref = reference(v)
     u_m = 0.5 * (v.U1 + v.U2)
     # a rigid upper roller moves down (its film lives on the lower body): δ along −y
-    inner = Continuation(problem, ConstantParameter(run["lift"], 1, scale=sign),
+    inner = Continuation(problem, ConstantParameter(run.lift, 1, scale=sign),
                          response=lambda: 1.0 / (sign * film.force()[1]), rtol=1e-6,
                          max_trials=30, verbose=verbose)
     slope = -1.0 / (4.9 * v.mu * u_m * ref.R_star)    # Martin: d(1/W)/dδ, h = h₀ − δ
@@ -230,10 +245,10 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
 
 def measures(run, v):
     """Return the film at the current load: h at x = 0, h_min, p_max, forces, profile."""
-    film = run["film"]
+    film = run.film
     prof = film.profile(everywhere=True)
     X = prof["X"][:, 0]
-    m = {"W": float(run["sign"] * film.force()[1]), "h_central": float(
+    m = {"W": float(run.sign * film.force()[1]), "h_central": float(
         prof["h"][np.argmin(np.abs(X))]), "h_min": float(prof["h"].min()),
         "p_max": float(prof["p"].max()), "x": prof["x"][:, 0], "h": prof["h"],
         "p": prof["p"]}
@@ -241,9 +256,9 @@ def measures(run, v):
         on1, on2 = film.forces()
     else:
         on = film.force()
-        on1, on2 = (on, -on) if run["sign"] > 0 else (-on, on)
+        on1, on2 = (on, -on) if run.sign > 0 else (-on, on)
     m["friction_force_upper"], m["friction_force_lower"] = float(on1[0]), float(on2[0])
-    m["approach"] = float(run["lift"].value[1]) * (1 if run["sign"] > 0 else -1)
+    m["approach"] = float(run.lift.value[1]) * (1 if run.sign > 0 else -1)
     return m
 
 
@@ -262,14 +277,14 @@ def report(run, v, record, steps, ref):
     record.result("hertz_p_max", ref.p0, "MPa")
     record.result("rigid_film_martin", rigid_clearance(m["W"], v.mu, 2 * u_m,
                                                        ref.R_star), "mm")
-    if run["film"].sub.comm.rank == 0:
+    if run.film.sub.comm.rank == 0:
         record.profile = {"steps": [{k: s[k] for k in ("W", "x", "p", "h")}
                                     for s in steps]}
 
 
 def vtx_fields(run):
     """Displacements of the elastic bodies (one file per mesh)."""
-    return {b.name: [b.u] for b in run["bodies"].values()}
+    return {b.name: [b.u] for b in run.bodies.values()}
 
 
 def plot(profile, outdir):

@@ -6,7 +6,7 @@ parameters, and the 1D film of a prescribed gap (:func:`rigid_film`).
 """
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -16,11 +16,9 @@ from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import CaseParams, InputError, number_list, param
 from ..problem import Problem
 
-__all__ = [
-    "rigid_film",
-    "FluidParams", "arc_halvings", "at_points", "cavitation_model", "density",
-    "film_boundary", "formulation_param", "quadrature_param", "speed_list", "viscosity",
-]
+__all__ = ["FilmModel", "FluidParams", "arc_halvings", "at_points", "cavitation_model", "density",
+           "film_boundary", "formulation_param", "quadrature_param", "rigid_film", "speed_list",
+           "viscosity"]
 
 
 def formulation_param(default: str) -> Any:
@@ -162,6 +160,13 @@ def density(v, cavitation="penalty"):
     return named_density(v.density)
 
 
+class FilmModel(NamedTuple):
+    """A film and its :class:`Problem` (:func:`rigid_film`)."""
+
+    film: RigidFilm
+    problem: Problem
+
+
 def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,
                p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None, supply=False):
     """Return the film of a 1D gap on [x0, x1] (flow entering at x0) and its :class:`Problem`.
@@ -172,7 +177,7 @@ def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=F
     film scale of the tolerances and, times v̄, the flux scale of the JFO
     complementarity rows.  ``supply`` (JFO): the inlet is an open end supplied with
     the content (1 − λ_in) h(x0) (:meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.add_inflow`)
-    instead of the Dirichlet conditions on λ and p.  Returns ``(film, problem)``.
+    instead of the Dirichlet conditions on λ and p.  Returns a :class:`FilmModel`.
     """
     msh = dmesh.create_interval(comm, n, [x0, x1])
     film = RigidFilm(msh, gap, vbar, mu, degree=degree, cavitation=cavitation, supg=supg,
@@ -186,4 +191,4 @@ def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=F
         film.jfo_initial_guess()
     else:
         film.add_pressure_bc()
-    return film, Problem([film], name="reynolds", max_it=50, max_backtracks=8)
+    return FilmModel(film, Problem([film], name="reynolds", max_it=50, max_backtracks=8))

@@ -27,6 +27,7 @@ facets near the first-contact point (see :func:`tribofx.cases.curved_bodies.read
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from mpi4py import MPI
@@ -44,8 +45,8 @@ from ..references import hertz_reference
 # hertz_reference is re-exported from tribofx.references
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = ["AXISYMMETRIC", "build", "dimension", "doc", "geometric_dim", "hertz_dim",
-           "hertz_reference", "mesh_sizes", "model_fraction", "name", "Params", "plot",
+__all__ = ["AXISYMMETRIC", "Model", "Params", "build", "dimension", "doc", "geometric_dim",
+           "hertz_dim", "hertz_reference", "mesh_sizes", "model_fraction", "name", "plot",
            "resumable", "run", "validate", "vtx_fields"]
 
 
@@ -136,6 +137,14 @@ def mesh_sizes(v):
     return a / per_a, v.R / (6 if plane else 4), 1.5 * a
 
 
+class Model(NamedTuple):
+    """What :func:`build` assembles: the body, its contact with the plane, the problem."""
+
+    body: Body
+    contact: Contact
+    problem: Problem
+
+
 def build(v, comm=MPI.COMM_WORLD):
     """Body, contact interface and :class:`Problem` of the case (not yet loaded).
 
@@ -170,14 +179,12 @@ def build(v, comm=MPI.COMM_WORLD):
         body.add_dirichlet("symmetry_y", 0.0, component=1)
     contact = Contact(body, "contact", plane, rho_n=v.E / h_fine,
                       friction=v.friction)
-    problem = Problem([body, contact], name="hertz")
-    return body, contact, problem
+    return Model(body, contact, Problem([body, contact], name="hertz"))
 
 
-def vtx_fields(run):
+def vtx_fields(model):
     """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
-    body, contact, _ = run
-    return {"displacement": [body.u], "contact": [contact.lam_n]}
+    return {"displacement": [model.body.u], "contact": [model.contact.lam_n]}
 
 
 def plot(profile, outdir):
@@ -205,7 +212,8 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     test).
     """
     R, dim = v.R, hertz_dim(v.dim)
-    body, contact, problem = run = build(v, comm)
+    model = build(v, comm)
+    contact, problem = model.contact, model.problem
     frac = model_fraction(v.dim)
     record.data["num_dofs"] = problem.num_dofs
     a_h, p_h = hertz_reference(dim, v.E, v.nu, R, v.load)
@@ -221,11 +229,11 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
             if progress is not None:
                 progress.update(1)
     except NewtonDivergence as err:
-        err.model = run  # restored to the last converged load step
+        err.model = model  # restored to the last converged load step
         raise
     finally:
         _report(contact, v, record, frac, a_h, p_h)
-    return run
+    return model
 
 
 def _report(contact, v, record, frac, a_h, p_h):

@@ -30,7 +30,7 @@ from ..references import cylinder_references
 from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # cylinder_references is re-exported from tribofx.references
-__all__ = ["build", "cylinder_references", "doc", "mesh_levels", "name", "Params", "plot",
+__all__ = ["Params", "build", "cylinder_references", "doc", "mesh_levels", "name", "plot",
            "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
@@ -245,7 +245,7 @@ def _report(film, v, record):
 
 def vtx_fields(run):
     """Pressure, film thickness (and void fraction for JFO) on the interval mesh."""
-    film = run[0]
+    film = run.film
     return {"reynolds": [film.p, film.h_fun] + ([film.lam] if film.lam is not None else [])}
 
 

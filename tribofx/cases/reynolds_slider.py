@@ -32,7 +32,7 @@ from ..references import (
 from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # slider_reference is re-exported from tribofx.references
-__all__ = ["build", "doc", "name", "Params", "plot", "resumable", "run", "slider_reference",
+__all__ = ["Params", "build", "doc", "name", "plot", "resumable", "run", "slider_reference",
            "validate", "vtx_fields"]
 
 
@@ -131,7 +131,7 @@ def run(v, record, progress=None, verbose=False):
 
 def vtx_fields(run):
     """Pressure and film thickness on the interval mesh."""
-    return {"reynolds": [run[0].p, run[0].h_fun]}
+    return {"reynolds": [run.film.p, run.film.h_fun]}
 
 
 def plot(profile, outdir):

@@ -12,6 +12,7 @@ mm, N, s, MPa.
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from dolfinx import fem
@@ -31,11 +32,9 @@ from ..references import composite_modulus, hamrock_dowson, hertz, rigid_clearan
 from ..references_mixed import flat_punch_separation
 from ..roughness import rough_pair
 
-__all__ = [
-    "CAP_RADII", "RoughContactParams", "build", "check", "first_film", "hertz_contact", "load",
-    "load_and_slow",
-    "measures", "rough_ball", "rough_cylinder", "roughness", "set_speed",
-]
+__all__ = ["CAP_RADII", "Model", "RoughContactParams", "build", "check", "first_film",
+           "hertz_contact", "load", "load_and_slow", "measures", "rough_ball", "rough_cylinder",
+           "roughness", "set_speed"]
 
 
 #: the ball's cap radius R sin θ_l in Hertz radii (inlet and outlet on the cap)
@@ -66,6 +65,28 @@ def _scales(v, geometry, U0):
     return h_r, v.sigma ** 3 * ref.p0 / (12 * v.mu * ref.a * h_r), ref
 
 
+@dataclass
+class Model:
+    """The body on the rough sliding plane (:func:`build`).
+
+    ``speed``: the plane's sliding velocity (a Constant, mm/s); ``ref``: the Hertz
+    contact at W; ``U_floor``: the floor of the film's flux scale (mm/s); ``axis``:
+    the normal's component; ``copies``: the symmetry copies of the modelled body
+    (the whole cylinder 1, the quarter ball 2: the load is ``copies`` times the
+    film's force); ``problem``: the monolithic problem (None while a slow-time
+    stepper is to build it).
+    """
+
+    body: Body
+    film: Film
+    speed: fem.Constant
+    ref: Any
+    U_floor: float
+    axis: int
+    copies: float
+    problem: Problem | None
+
+
 def rough_cylinder(v, U0, roughness, comm, shape=False):
     """Build the plane-strain cylinder (``shape``: a shape field; its film face alone wears)."""
     R = v.R
@@ -86,8 +107,7 @@ def rough_cylinder(v, U0, roughness, comm, shape=False):
                 film_scale=h_r, speed_scale=max(U0, U_floor), rtol=1e-8)
     film.add_pressure_bc()
     film.counterpart.offset.value[1] = -h_r
-    return {"body": body, "film": film, "speed": speed, "ref": ref, "U_floor": U_floor,
-            "axis": 1, "copies": 1.0}
+    return Model(body, film, speed, ref, U_floor, axis=1, copies=1.0, problem=None)
 
 
 def rough_ball(v, U0, roughness, comm):
@@ -122,8 +142,7 @@ def rough_ball(v, U0, roughness, comm):
                                  np.zeros(3))
     else:
         film.counterpart.offset.value[2] = -h_r
-    return {"body": body, "film": film, "speed": speed, "ref": ref, "U_floor": U_floor,
-            "axis": 2, "copies": 2.0}
+    return Model(body, film, speed, ref, U_floor, axis=2, copies=2.0, problem=None)
 
 
 @dataclass(frozen=True)
@@ -167,7 +186,7 @@ def build(v, geometry, U0, comm=MPI.COMM_WORLD, rough=True, shape=False):
 
     ``rough=False``: the same film on smooth surfaces (the chapter's).
     ``shape=True`` (cylinder): the body carries a shape field (wear) and no Problem
-    is built (the slow-time stepper builds it: ``run["problem"]`` is None).
+    is built (the slow-time stepper builds it: ``run.problem`` is None).
     """
     law = roughness(v) if rough else None
     if geometry == "ball":
@@ -176,8 +195,8 @@ def build(v, geometry, U0, comm=MPI.COMM_WORLD, rough=True, shape=False):
         run = rough_ball(v, U0, law, comm)
     else:
         run = rough_cylinder(v, U0, law, comm, shape)
-    run["problem"] = None if shape else Problem([run["body"], run["film"]],
-                                                name="stribeck", max_it=30)
+    if not shape:
+        run.problem = Problem([run.body, run.film], name="stribeck", max_it=30)
     return run
 
 
@@ -190,9 +209,9 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
     Between speeds, 8 geometric steps per decade, a failed step retried at its
     square root.
     """
-    film, problem = run["film"], run["problem"]
-    h_r = -float(film.counterpart.offset.value[run["axis"]])
-    inner = Continuation(problem, ConstantParameter(film.counterpart.offset, run["axis"]),
+    film, problem = run.film, run.problem
+    h_r = -float(film.counterpart.offset.value[run.axis])
+    inner = Continuation(problem, ConstantParameter(film.counterpart.offset, run.axis),
                          response=lambda: math.log(max(load(run), 1e-300)),
                          rtol=1e-7, max_trials=30, verbose=verbose)
     # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
@@ -225,20 +244,20 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
 
 def set_speed(run, U):
     """Sliding speed U (mm/s); the flux scale U h_r of the tolerances follows it."""
-    run["speed"].value[0] = U
-    run["film"].set_scales(speed_scale=max(U, run["U_floor"]))
+    run.speed.value[0] = U
+    run.film.set_scales(speed_scale=max(U, run.U_floor))
 
 
 def load(run):
     """Load carried by the whole body (N/mm or N): film and asperities."""
-    return run["copies"] * float(run["film"].force()[run["axis"]])
+    return run.copies * float(run.film.force()[run.axis])
 
 
 def measures(run, v):
     """Return friction coefficient, film and asperity loads, λ = h_c/σ, h, p maxima."""
-    film = run["film"]
-    n, F, Fa = run["axis"], film.force(), film.asperity_force()
-    W = run["copies"] * float(F[n])
+    film = run.film
+    n, F, Fa = run.axis, film.force(), film.asperity_force()
+    W = run.copies * float(F[n])
     prof = film.profile(everywhere=True)
     h_c = float(prof["h"][np.argmin(np.linalg.norm(prof["X"][:, :n], axis=1))])
     return {"friction_coefficient": abs(float(F[0])) / float(F[n]),

@@ -35,8 +35,7 @@ from ..params import InputError, number_list, param
 from ..problem import NewtonDivergence
 from .rough_contact import RoughContactParams, build, check, load_and_slow, measures
 
-__all__ = ["Params", "doc", "name", "plot", "report", "resumable", "run", "validate",
-           "vtx_fields"]
+__all__ = ["Params", "doc", "name", "plot", "report", "resumable", "run", "validate", "vtx_fields"]
 
 
 name = "stribeck"
@@ -73,7 +72,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True
     ``rough=False``: the smooth film (the chapter's) at the same speeds.
     """
     run = build(v, v.geometry, speeds(v)[0], comm, rough)
-    record.data["num_dofs"] = run["problem"].num_dofs
+    record.data["num_dofs"] = run.problem.num_dofs
     rows = []
 
     def on_speed(U, iterations):
@@ -105,7 +104,7 @@ def report(rows, record, geometry="cylinder"):
 
 def vtx_fields(run):
     """Displacement of the cylinder."""
-    return {"displacement": [run["body"].u]}
+    return {"displacement": [run.body.u]}
 
 
 def plot(profile, outdir):

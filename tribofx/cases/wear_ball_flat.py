@@ -79,8 +79,8 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import FilteredSchemeParams, check_scheme
 
-__all__ = ["MODEL_FRACTION", "build", "contact_plane", "doc", "late_time_exponent", "measures",
-           "mesh_sizes", "name", "Params", "plot", "progress_total", "resumable", "run",
+__all__ = ["MODEL_FRACTION", "Params", "build", "contact_plane", "doc", "late_time_exponent",
+           "measures", "mesh_sizes", "name", "plot", "progress_total", "resumable", "run",
            "symmetry_line", "validate", "vtx_fields"]
 
 

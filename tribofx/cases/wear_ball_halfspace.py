@@ -27,6 +27,7 @@ Units: mm, N, s, MPa.
 import math
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import ufl
@@ -46,7 +47,7 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import SchemeParams, check_scheme
 
-__all__ = ["build", "doc", "groove_mesh", "initial_contact", "name", "Params", "plot",
+__all__ = ["Model", "Params", "build", "doc", "groove_mesh", "initial_contact", "name", "plot",
            "progress_total", "resolved", "resumable", "run", "surface_data", "validate",
            "vtx_fields"]
 
@@ -153,11 +154,22 @@ def validate(v):
                          f"(5.4a = {5.4 * a:.3g} mm): reduce k, V or T, or increase L")
 
 
+class Model(NamedTuple):
+    """What :func:`build` assembles: the stepper of the block's body, contact and steady wear.
+
+    ``hertz``: the unworn contact it starts from, {"a" (mm), "p0" (MPa), "delta" (the
+    approach, mm), "h" (the contact element size, mm)}.
+    """
+
+    stepper: Stepper
+    hertz: dict
+
+
 def build(v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
-    """Body, contact, steady wear and stepper; returns ``(stepper, info)``.
+    """Body, contact, steady wear and stepper, the :class:`Model` of the case.
 
     ``h``, ``mesh``: contact element size (mm) and ``groove_mesh`` output (default:
-    the case mesh); ``info``: Hertz a, p₀, δ and h.
+    the case mesh).
     """
     v = resolved(v)
     a, p0, delta = hertz(v.F, v.R, v.E, v.nu)[:3]
@@ -185,7 +197,7 @@ def build(v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
                       scheme=v.scheme, rtol=1e-12)
     stepper = Stepper([body, contact, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="groove", problem_class=wear.problem_class)
-    return stepper, {"a": a, "p0": p0, "delta": delta, "h": h}
+    return Model(stepper, {"a": a, "p0": p0, "delta": delta, "h": h})
 
 
 def initial_contact(stepper, info, verbose=False):

@@ -39,8 +39,8 @@ from ..params import InputError, param
 from ..stepper import Stepper, nominal_steps
 from . import rough_contact, slow_time
 
-__all__ = ["build", "doc", "name", "Params", "plot", "progress_total", "report", "resumable",
-           "run", "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "name", "plot", "progress_total", "report",
+           "resumable", "run", "validate", "vtx_fields"]
 
 
 
@@ -79,16 +79,28 @@ def progress_total(v):
     return nominal_steps(v.T, v.dt)
 
 
+@dataclass
+class Model(rough_contact.Model):
+    """The rough cylinder of :class:`tribofx.cases.rough_contact.Model` with its wear.
+
+    ``stepper``: the slow time (its monolithic problem is ``problem``); ``track``:
+    (t, plane position) of the accepted steps.
+    """
+
+    wear: Wear
+    stepper: Stepper
+    track: list
+
+
 def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     """Cylinder with a shape field, rough film, wear, stepper and the load control.
 
-    Returns the run dict of :func:`tribofx.cases.rough_contact.build` with ``wear`` and
-    ``stepper``; ``problem`` is the stepper's monolithic Problem.
+    Returns the :class:`Model`; ``problem`` is the stepper's monolithic Problem.
     """
     run = rough_contact.build(v, "cylinder", v.U_start, comm, shape=True)
-    film = run["film"]
+    film = run.film
     wear = Wear(film, k=v.k, speed=v.V, scheme=v.scheme)
-    stepper = Stepper([run["body"], film, wear], wear, max_cuts=v.max_cuts,
+    stepper = Stepper([run.body, film, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_lubricated",
                       problem_kw={"max_it": 30})
     offset = film.counterpart.offset
@@ -108,15 +120,15 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                           rtol=1e-7, max_trials=30)
     stepper.hold = Hold(search, math.log(v.W), step_guess=predictor,
                         step_slope=lambda dt: 1.0 / max(film.min_film(), v.sigma))
-    run.update(wear=wear, stepper=stepper, problem=stepper.problem, track=track)
-    return run
+    return Model(**{**vars(run), "problem": stepper.problem}, wear=wear, stepper=stepper,
+                 track=track)
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
         checkpoint=None, resume=False):
     """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
     run = build(v, comm, checkpoint)
-    stepper, wear, film = run["stepper"], run["wear"], run["film"]
+    stepper, wear, film = run.stepper, run.wear, run.film
     stepper.verbose = stepper.hold.search.verbose = verbose
     keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
             "film_load_fraction", "friction_coefficient", "h_central", "h_min",
@@ -133,7 +145,7 @@ def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
                      "wear_rate_integral": wear.wear_rate_integral(),
                      "newton_iterations": its, "error_estimate": error,
                      "rejected": rejected})
-        run["track"].append((t, float(film.counterpart.offset.value[1])))
+        run.track.append((t, float(film.counterpart.offset.value[1])))
         d = wear.gather_shape()
         if d is not None:
             state["profiles"].append(d["X_worn"].tolist())
@@ -167,7 +179,7 @@ def report(run, v, record, hist, state):
         record.result("worn_profiles", {"time": state["times"],
                                         "X_worn": state["profiles"]},
                       "s, mm (worn configuration, nodes of the film face by X̂₀)")
-    prof = run["film"].profile()
+    prof = run.film.profile()
     if prof is not None:
         film = {"x": prof["X"][:, 0].tolist(),
                 **{k: prof[k].tolist() for k in ("h", "p", "p_a")}}
@@ -177,7 +189,7 @@ def report(run, v, record, hist, state):
 
 def vtx_fields(run):
     """Displacement and shape change of the cylinder."""
-    return {"displacement": [run["body"].u, run["body"].w]}
+    return {"displacement": [run.body.u, run.body.w]}
 
 
 def plot(profile, outdir):

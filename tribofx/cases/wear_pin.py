@@ -56,6 +56,7 @@ reported).  Writes ``error_vs_dt.png``,
 import math
 import sys
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import ufl
@@ -79,9 +80,9 @@ from . import slow_time
 from .slow_time import SCHEMES, SchemeParams, check_scheme
 from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["build", "doc", "load_up", "n_elements", "name", "Params", "plot", "progress_total",
-           "resumable", "run", "slow_step", "study_lists", "study_schemes", "validate",
-           "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "load_up", "n_elements", "name", "plot",
+           "progress_total", "resumable", "run", "slow_step", "study_lists", "study_schemes",
+           "validate", "vtx_fields"]
 
 
 name = "wear-pin"
@@ -223,6 +224,16 @@ def n_elements(v):
     return 10 * 2 ** v.mesh
 
 
+class Model(NamedTuple):
+    """What :func:`build` assembles: the stepper of the pin's body, contact and wear.
+
+    ``load``: the factor (0 → 1) of the traction q on the top face.
+    """
+
+    stepper: Stepper
+    load: fem.Constant
+
+
 def build(v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
     """Body, contact, wear and slow-time stepper of the case; returns ``(stepper, load)``.
 
@@ -263,7 +274,7 @@ def build(v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
         if cyclic else None
     stepper = Stepper([body, contact, wear], wear, cycle=cycle, parameters=[load],
                       max_cuts=v.max_cuts, checkpoint=checkpoint, name="wear_pin")
-    return stepper, load
+    return Model(stepper, load)
 
 
 def load_up(stepper, load, v, verbose=False):

@@ -80,7 +80,7 @@ from . import slow_time
 from .slow_time import SchemeParams, check_scheme, scheme_param
 from .user_pin import place_user_pin, user_pin_approach
 
-__all__ = ["build", "cell_coordinates", "check_stroke", "doc", "load_up", "name", "Params",
+__all__ = ["Model", "Params", "build", "cell_coordinates", "check_stroke", "doc", "load_up", "name",
            "period", "plot", "progress_total", "resumable", "run", "snapshot", "validate",
            "vtx_fields"]
 
@@ -226,6 +226,31 @@ def period(v):
     return 4 * v.A / v.V
 
 
+@dataclass
+class Model:
+    """What :func:`build` assembles: pin and block, their contact, each one's wear, the stepper.
+
+    ``load``: the factor (0 → 1) of the force F on the pin's top; ``motion``: the
+    block's prescribed displacement (a Constant); ``cycle``: the fast reciprocating
+    cycle; ``W``, ``H``: the pin's width and height, ``top_length`` its loaded
+    length, ``h`` the contact element size (mm).
+    """
+
+    pin: Body
+    block: Body
+    contact: TwoBodyContact
+    wear_pin: Wear
+    wear_block: Wear
+    stepper: Stepper
+    load: fem.Constant
+    motion: fem.Constant
+    cycle: ReciprocatingCycle
+    W: float
+    H: float
+    top_length: float
+    h: float
+
+
 def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
     """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
 
@@ -286,9 +311,8 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                       cycle=cycle, parameters=[load, motion], max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_reciprocating",
                       problem_kw={"max_it": 40})
-    return {"pin": pin, "block": block, "contact": contact, "wear_pin": wear_pin,
-            "wear_block": wear_block, "stepper": stepper, "load": load, "motion": motion,
-            "cycle": cycle, "W": W, "H": H, "top_length": top, "h": h}
+    return Model(pin, block, contact, wear_pin, wear_block, stepper, load, motion, cycle, W, H,
+                 top, h)
 
 
 def progress_total(v):
@@ -306,14 +330,14 @@ def load_up(run, v, verbose=False):
     traction q = F/ℓ and modulus).
     """
     if v.mesh_file:
-        delta0 = user_pin_approach(run["wear_pin"].contact, v.F / run["top_length"], v.E_pin)
+        delta0 = user_pin_approach(run.wear_pin.contact, v.F / run.top_length, v.E_pin)
     else:
         a = min(hertz(v.F, v.R_tip, v.E_pin, v.nu, math.inf, v.E_block,
                       v.nu, line=True).a, v.W / 2)
         delta0 = a * a / (2 * v.R_tip) + v.F * v.H / (v.W * v.E_pin)
-    run["pin"].u.x.array.reshape(-1, 2)[:, 1] = -delta0
-    run["load"].value = 0.0
-    control = Continuation(run["stepper"].problem, ConstantParameter(run["load"]),
+    run.pin.u.x.array.reshape(-1, 2)[:, 1] = -delta0
+    run.load.value = 0.0
+    control = Continuation(run.stepper.problem, ConstantParameter(run.load),
                            verbose=verbose)
     control.march(1.0, steps=2, predictor=False)
     return int(sum(control.record))
@@ -326,24 +350,24 @@ def snapshot(run):
     block at −A (a), the run-in to the centre (b), the first quarter to +A
     (c); then restarts, so the state is that of a cycle start again.
     """
-    st, cyc = run["stepper"], run["cycle"]
+    st, cyc = run.stepper, run.cycle
     P = st.problem
     shots = []
     cyc.start()
     P.commit()
     P.solve_by_homotopy()
     P.commit()
-    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    shots.append([cell_coordinates(run.pin), cell_coordinates(run.block)])
     for pos in cyc.run_in:
         cyc.move(pos)
         P.solve_by_homotopy()
         P.commit()
-    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    shots.append([cell_coordinates(run.pin), cell_coordinates(run.block)])
     for pos in cyc.positions[:cyc.fast_steps // 4]:
         cyc.move(pos)
         P.solve_by_homotopy()
         P.commit()
-    shots.append([cell_coordinates(run["pin"]), cell_coordinates(run["block"])])
+    shots.append([cell_coordinates(run.pin), cell_coordinates(run.block)])
     st.restart()
     return shots
 
@@ -355,14 +379,14 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     ``resume``: continue from it (:mod:`tribofx.restart`).
     """
     run = build(v, checkpoint=checkpoint)
-    st, contact, cycle = run["stepper"], run["contact"], run["cycle"]
-    wp, wb = run["wear_pin"], run["wear_block"]
+    st, contact, cycle = run.stepper, run.contact, run.cycle
+    wp, wb = run.wear_pin, run.wear_block
     st.verbose = verbose
-    for key, val, unit in (("pin_width", run["W"], "mm"), ("pin_height", run["H"], "mm"),
-                           ("pin_top_length", run["top_length"], "mm"),
-                           ("contact_element_size", run["h"], "mm")):
+    for key, val, unit in (("pin_width", run.W, "mm"), ("pin_height", run.H, "mm"),
+                           ("pin_top_length", run.top_length, "mm"),
+                           ("contact_element_size", run.h, "mm")):
         record.result(key, val, unit)
-    pin = run["pin"]
+    pin = run.pin
     # the pin's vertical equilibrium: Σ of its momentum rows along y (each below
     # atol_u at a solved state) is F − (contact force along y)
     record.result("normal_force_bound", pin.V.dofmap.index_map.size_global * 2
@@ -409,7 +433,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
         _report(run, record, hist, shots)
         if record.profile is not None:
             half = 0.5 * v.L + v.A + 0.1
-            record.profile["view"] = ((-half, half), (-v.D - 0.1, 0.6 * run["H"]))
+            record.profile["view"] = ((-half, half), (-v.D - 0.1, 0.6 * run.H))
 
     with sr.closing(report=report, model=run):
         st.run(v.cycles * tau, slow_time.step_controller(v, v.dt), progress=progress,
@@ -433,8 +457,8 @@ def _report(run, record, hist, shots):
     record.result("accepted_steps", len(hist["time"]) - 1, "-")
     record.result("rejected_steps", int(sum(hist["rejected"])), "-")
     prof = {}
-    for key in ("wear_pin", "wear_block"):
-        d = run[key].gather_shape()
+    for key, wear in (("wear_pin", run.wear_pin), ("wear_block", run.wear_block)):
+        d = wear.gather_shape()
         if d is not None:
             prof[key] = {"X_hat": d["X_hat"], "X_worn": d["X_worn"], "x": d["x"],
                          "depth": d["depth"]}
@@ -447,7 +471,7 @@ def _report(run, record, hist, shots):
 
 def vtx_fields(run):
     """Displacement and shape change of both bodies (one file per mesh)."""
-    return {"pin": [run["pin"].u, run["pin"].w], "block": [run["block"].u, run["block"].w]}
+    return {"pin": [run.pin.u, run.pin.w], "block": [run.block.u, run.block.w]}
 
 
 def plot(profile, outdir):

@@ -29,7 +29,7 @@ def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORL
         loads.march(W, steps, predictor=False)
         m = Case.measures(run, vv)
         row = {"level": int(level), "h_fine": 0.04 / 2 ** int(level),
-               "num_dofs": run[2].num_dofs, "h_min": m["h_min"], "h_central": m["h_central"],
+               "num_dofs": run.problem.num_dofs, "h_min": m["h_min"], "h_central": m["h_central"],
                "p_max": m["p_max"], "newton_iterations": list(loads.record)}
         if rows:
             for k in ("h_min", "p_max"):
