@@ -65,8 +65,8 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and ``plot(profile,
     outdir)`` (rank 0; ``profile`` is what ``run`` stored in ``record.profile``).
     ``run`` advances ``progress`` once per load/time step (a slow-time stepper by
-    time, in nominal steps of its Δt); the bar length is ``progress_total(params)``
-    of the case, or its ``steps``.
+    time, in nominal steps of its Δt); the bar length is the case's
+    ``progress_total(params)``.
     """
     case = get_case(name)
     if resume and not resumable(name):
@@ -87,9 +87,7 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
                        out, comm)
     record.profile = None
     record.data["petsc_options"] = dict(petsc_options or {})
-    total = case.progress_total(values) if hasattr(case, "progress_total") else getattr(
-        values, "steps", 1)
-    bar = _progress_bar(total, name) if progress and comm.rank == 0 else None
+    bar = _progress_bar(case.progress_total(values), name) if progress and comm.rank == 0 else None
     status = "ok"
     prob = None
     try:

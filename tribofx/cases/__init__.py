@@ -4,6 +4,7 @@ A case is a module of this package named for it (``ehl_ball`` is ``ehl-ball``):
 it declares ``name``, ``doc``, ``resumable`` and ``Params`` (a frozen dataclass of
 its parameters, :class:`tribofx.params.CaseParams`) and defines
 ``validate(v)``, ``build(v)``, ``run(v, record, progress, verbose, ...)``,
+``progress_total(v)`` (the steps its progress bar counts),
 ``vtx_fields(model)`` and ``plot(profile, outdir)`` (see
 :func:`tribofx.runner.run_case`).  The other modules here are helpers grouped by
 subject (``film_setup``, ``slow_time``, ``rough_contact``, ``curved_bodies``,

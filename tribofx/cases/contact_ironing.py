@@ -52,8 +52,8 @@ from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 
-__all__ = ["Model", "Params", "build", "check_slide", "doc", "name", "plot", "report", "resumable",
-           "run", "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "check_slide", "doc", "name", "plot", "progress_total",
+           "report", "resumable", "run", "validate", "vtx_fields"]
 
 
 def _slab(comm, L, H, nx, ny, material):
@@ -153,6 +153,11 @@ def build(v, comm=MPI.COMM_WORLD):
                              friction=v.friction)
     problem = Problem([slab, die, contact], name="ironing", max_it=40)
     return Model(slab, die, contact, problem, motion, b, h_die)
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the indentation's, then the sliding's."""
+    return v.press_steps + v.slide_steps
 
 
 def run(v, record, progress=None, verbose=False):

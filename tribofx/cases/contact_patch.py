@@ -32,8 +32,8 @@ from ..interfaces import TwoBodyContact
 from ..params import CaseParams, InputError, param
 from ..problem import Problem
 
-__all__ = ["Model", "Params", "build", "doc", "name", "patch_block", "plot", "resumable", "run",
-           "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "name", "patch_block", "plot", "progress_total",
+           "resumable", "run", "validate", "vtx_fields"]
 
 
 def patch_block(comm, y0, y1, n, name, material):
@@ -107,6 +107,11 @@ def build(v, comm=MPI.COMM_WORLD):
     contact = TwoBodyContact(slave, "bottom", master, "top", rho_n=v.E / h)
     problem = Problem([slave, master, contact], name="contact_patch")
     return Model(slave, master, contact, problem)
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the one solve."""
+    return 1
 
 
 def run(v, record, progress=None, verbose=False):

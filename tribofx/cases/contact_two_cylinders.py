@@ -47,8 +47,8 @@ from ..problem import NewtonDivergence, Problem
 from ..references import hertz
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
-__all__ = ["Model", "Params", "build", "doc", "name", "plot", "reference", "report", "resumable",
-           "run", "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "name", "plot", "progress_total", "reference",
+           "report", "resumable", "run", "validate", "vtx_fields"]
 
 
 name = "contact-two-cylinders"
@@ -157,6 +157,11 @@ def build(v, comm=MPI.COMM_WORLD):
                              friction=v.friction)
     problem = Problem([upper, lower, contact], name="two_cylinders")
     return Model(upper, lower, contact, problem, push)
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the load steps."""
+    return v.steps
 
 
 def run(v, record, progress=None, verbose=False):

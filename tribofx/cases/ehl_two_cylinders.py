@@ -47,8 +47,8 @@ from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz, rigid_clearance
 
-__all__ = ["Model", "Params", "build", "doc", "measures", "name", "plot", "reference", "report",
-           "resumable", "run", "scales", "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "measures", "name", "plot", "progress_total",
+           "reference", "report", "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
 name = "ehl-two-cylinders"
@@ -210,6 +210,11 @@ def build(v, comm=MPI.COMM_WORLD):
     film.add_pressure_bc()
     problem = Problem([*bodies.values(), film], name="ehl_two_cylinders", max_it=25)
     return Model(bodies, film, problem, lift, sign)
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the load steps."""
+    return v.steps
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):

@@ -47,7 +47,7 @@ from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
 __all__ = ["AXISYMMETRIC", "Model", "Params", "build", "dimension", "doc", "geometric_dim",
            "hertz_dim", "hertz_reference", "mesh_sizes", "model_fraction", "name", "plot",
-           "resumable", "run", "validate", "vtx_fields"]
+           "progress_total", "resumable", "run", "validate", "vtx_fields"]
 
 
 #: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
@@ -201,6 +201,11 @@ def model_fraction(dim):
     of the revolved (full) sphere, its measures weighted by 2πR.
     """
     return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the load steps."""
+    return v.steps
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):

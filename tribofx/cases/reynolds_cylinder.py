@@ -31,7 +31,7 @@ from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # cylinder_references is re-exported from tribofx.references
 __all__ = ["Params", "build", "cylinder_references", "doc", "mesh_levels", "name", "plot",
-           "resumable", "run", "scales", "validate", "vtx_fields"]
+           "progress_total", "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
 def _peak_and_rupture(prof, crossing):
@@ -168,6 +168,11 @@ def build(v, comm=MPI.COMM_WORLD):
                       cavitation=v.cavitation, supg=v.supg, p_c=p_s, eps=eps,
                       h_ref=h0, lam_in=v.inlet_void, density=density(v, v.cavitation),
                       supply=v.inlet == "supply")
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the nested solve, once."""
+    return 1
 
 
 def run(v, record, progress=None, verbose=False):

@@ -32,8 +32,8 @@ from ..references import (
 from .film_setup import FluidParams, density, rigid_film, viscosity
 
 # slider_reference is re-exported from tribofx.references
-__all__ = ["Params", "build", "doc", "name", "plot", "resumable", "run", "slider_reference",
-           "validate", "vtx_fields"]
+__all__ = ["Params", "build", "doc", "name", "plot", "progress_total", "resumable", "run",
+           "slider_reference", "validate", "vtx_fields"]
 
 
 # --------------------------------------------------------------------------- slider case
@@ -74,6 +74,11 @@ def build(v, comm=MPI.COMM_WORLD):
     return rigid_film(comm, 0.0, L, v.mesh, v.degree,
                       lambda x: h0 * (1 + K - K * x / L), 0.5 * v.U, viscosity(v),
                       h_ref=h0, density=density(v))
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: the one solve."""
+    return 1
 
 
 def run(v, record, progress=None, verbose=False):

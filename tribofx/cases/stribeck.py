@@ -35,7 +35,8 @@ from ..params import InputError, number_list, param
 from ..problem import NewtonDivergence
 from .rough_contact import RoughContactParams, build, check, load_and_slow, measures
 
-__all__ = ["Params", "doc", "name", "plot", "report", "resumable", "run", "validate", "vtx_fields"]
+__all__ = ["Params", "doc", "name", "plot", "progress_total", "report", "resumable", "run",
+           "validate", "vtx_fields"]
 
 
 name = "stribeck"
@@ -64,6 +65,11 @@ def speeds(v):
 def validate(v):
     """Bad input: a one-line error."""
     check(v, v.geometry, speeds(v))
+
+
+def progress_total(v):
+    """Return the steps the progress bar counts: one per speed."""
+    return len(speeds(v))
 
 
 def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
