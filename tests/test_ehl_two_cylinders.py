@@ -78,7 +78,6 @@ def test_stiff_lower_block_reproduces_the_rigid_plane(tmp_path):
     assert np.all(_rel(block, rigid) < tol), (_rel(block, rigid), tol)
 
 
-@pytest.mark.slow
 def test_film_thickness_speed_exponent_soft_regime(tmp_path):
     """h_c ∝ U^n with n between Herrebrugh's isoviscous-elastic asymptote 0.6 and 0.8.
 
@@ -86,10 +85,12 @@ def test_film_thickness_speed_exponent_soft_regime(tmp_path):
     asymptote of large elastic deformation) as the Hertz approach a²/(2R*)
     outgrows the film.  Here a²/(2R*) ≈ 3 h_c: well into the elastic regime,
     so n is nearer 0.6 than 1 (n < 0.8), and not below the asymptote (≥ 0.6 − the
-    discretisation's share, (h_e/a)² ≈ 1.6 %).
+    discretisation's share, (h_e/a)² ≈ 1.6 %).  In the default run: the one
+    independent soft-EHL reference there, as a rate (measured n = 0.647).
     """
     h = [solve(tmp_path / f"U{U}", U1=U, U2=U)["h_central"] for U in (250.0, 1000.0)]
     n = math.log(h[1] / h[0]) / math.log(4.0)
+    print("h_c", h, "exponent", n)
     assert 0.6 - 0.016 < n < 0.8, n
 
 
