@@ -354,7 +354,7 @@ def late_window(t1, dt_e, tol):
     def build(**over):
         v = resolve(wear_ball_flat.Params, {"mesh": str(args.mesh), **{
             k: x for k, x in sets.items() if k not in SOLVE_ONLY}, **over})
-        st = wear_ball_flat.build(v)
+        st = wear_ball_flat.build(v).stepper
         return v, st
 
     vb, sb = build(scheme="bdf2", dt="100", tol="1e-3", tol_per="step")

@@ -280,7 +280,7 @@ def test_bordered_force_control_tangent():
     from tribofx.testing import border_taylor_orders, smooth_direction
 
     v = resolve(wear_ball_flat.Params, {"scheme": "implicit", "T": "100", "dt": "100"})
-    stepper = wear_ball_flat.build(v)
+    stepper = wear_ball_flat.build(v).stepper
     control = stepper.hold
     control.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     for w in stepper.wears:

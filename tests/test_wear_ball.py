@@ -94,7 +94,7 @@ def _one_step(force_control, scheme="implicit", dt=100.0):
     """Build the short case, reach F on the unworn ball and take one step of Δt."""
     v = resolve(wear_ball_flat.Params, {"scheme": scheme, "T": "100", "dt": str(dt),
                                       "force_control": force_control})
-    stepper = wear_ball_flat.build(v)
+    stepper = wear_ball_flat.build(v).stepper
     stepper.hold.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     report = stepper.step(dt)
     return stepper, report
@@ -192,7 +192,7 @@ def test_filtered_error_estimate_is_the_linearized_response():
     from tribofx.error_filter import filtered_defect
 
     v = resolve(wear_ball_flat.Params, {"scheme": "bdf2", "T": "100", "dt": "20"})
-    stepper = wear_ball_flat.build(v)
+    stepper = wear_ball_flat.build(v).stepper
     control, wear = stepper.hold, stepper.wear
     control.solve(guess=hertz(v.F, v.R, v.E, v.nu).delta)
     stepper.step(20.0)
@@ -309,7 +309,7 @@ def test_explicit_conditionally_implicit_unconditionally_stable(tmp_path):
     s0 = pressure_nonuniformity(rec.stepper.wear.contact)
 
     def growth(scheme, dt, steps=5):
-        stepper = wear_ball_flat.build(v.replace(scheme=scheme))
+        stepper = wear_ball_flat.build(v.replace(scheme=scheme)).stepper
         # the state is restored by dof index: the rebuilt mesh must be the same
         assert np.array_equal(stepper.wear.body.mesh.geometry.x,
                               rec.stepper.wear.body.mesh.geometry.x)

@@ -89,7 +89,7 @@ class Params(CaseParams):
         "y = H; rho_N = E/min(L/n, h), h its arc facet size within b of that point")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Reject a die that would slide off the slab or indent through it.
 
     With ``mesh_file`` the die's half-width is known only once the mesh is
@@ -128,7 +128,7 @@ class Model:
     h_die: float
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
     The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
@@ -155,12 +155,12 @@ def build(v, comm=MPI.COMM_WORLD):
     return Model(slab, die, contact, problem, motion, b, h_die)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the indentation's, then the sliding's."""
     return v.press_steps + v.slide_steps
 
 
-def run(v, record, progress=None, verbose=False):
+def run(v: Params, record, progress=None, verbose=False):
     """Press, then slide; the die's reaction force at every converged step."""
     run = build(v)
     contact, problem, motion = run.contact, run.problem, run.motion

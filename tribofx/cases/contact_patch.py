@@ -74,7 +74,7 @@ class Params(CaseParams):
     pressure: float = param(0.1, "MPa", "nominal pressure on the slave's top", lower=0)
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Require at least two slave elements along the interface (a patch, not a point)."""
     n_s = round(v.mesh_ratio * v.n_master)
     if n_s < 2:
@@ -92,7 +92,7 @@ class Model:
     problem: Problem
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """Slave and master blocks, contact and problem."""
     mu, lmbda = lame_parameters(v.E, v.nu)
     mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
@@ -109,12 +109,12 @@ def build(v, comm=MPI.COMM_WORLD):
     return Model(slave, master, contact, problem)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the one solve."""
     return 1
 
 
-def run(v, record, progress=None, verbose=False):
+def run(v: Params, record, progress=None, verbose=False):
     """Solve once; record the mean and the largest relative deviation of the traction."""
     run = build(v)
     contact, problem = run.contact, run.problem

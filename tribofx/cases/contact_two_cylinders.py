@@ -96,7 +96,7 @@ def reference(v):
     return hertz(v.load, v.R1, v.E1, v.nu1, R2, v.E2, v.nu2, line=True)
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Reject loads with a/R* > 0.3 (no Hertz comparison) or a/R* < 1e-4."""
     h = reference(v)
     if h.a > 0.3 * h.R_star:
@@ -120,7 +120,7 @@ class Model:
     push: fem.Constant
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """Upper body, lower body, contact and problem (unloaded).
 
     A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
@@ -159,12 +159,12 @@ def build(v, comm=MPI.COMM_WORLD):
     return Model(upper, lower, contact, problem, push)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the load steps."""
     return v.steps
 
 
-def run(v, record, progress=None, verbose=False):
+def run(v: Params, record, progress=None, verbose=False):
     """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
     run = build(v)
     contact, problem = run.contact, run.problem

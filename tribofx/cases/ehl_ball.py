@@ -337,7 +337,7 @@ def hertz_contact(v, W=None):
     return hertz(v.W if W is None else W, v.R, v.E, v.nu)
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check that the cap holds the contact and the inlet: R sin θ_l ≥ 1.5 a(W).
 
     With ``mesh_file`` the cap of the mesh is checked when it is read (:meth:`build`).
@@ -384,7 +384,7 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
+def build(v: Params, comm=MPI.COMM_WORLD, name="ehl_ball") -> Model:
     """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
 
     ``name``: the problem's name, options prefix ``tribofx_<name>_`` (a variant
@@ -424,12 +424,12 @@ def build(v, comm=MPI.COMM_WORLD, name="ehl_ball"):
     return Model(ball, film, problem)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Points the progress bar counts: the loads of every variant."""
     return v.steps * (len(VARIANTS) if v.compare == "all" else 1)
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
 
     ``checkpoint``: directory of the sweep's checkpoint, written after every

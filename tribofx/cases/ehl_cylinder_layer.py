@@ -32,7 +32,7 @@ in ``series_points``).
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -218,7 +218,8 @@ class Params(FluidParams):
 
 
 #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
-COMPARE = {
+#: variants of ``compare``: (name, label, the parameters it changes)
+COMPARE: dict[str, tuple[tuple[str, str, dict[str, Any]], ...]] = {
     "linear": (("finite", "finite deformation", {"model": "finite"}),
                ("linear", "geometrically linear", {"model": "linear"})),
     "alpha": (("alpha0", "α = 0 (S = P(γ_l))", {"alpha": 0.0}),
@@ -234,7 +235,7 @@ UNITS = {"W": "N/mm", "h_min": "mm", "h_central": "mm", "p_max": "MPa",
          "friction_coefficient": "-", "clearance": "mm", "U": "mm/s", "mu_U": "N/mm"}
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Geometric consistency of the layer and the lubricated zone.
 
     With ``mesh_file`` H, t_c and x_l come from the mesh; x_l ≤ 0.8 R is then
@@ -285,7 +286,7 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder"):
+def build(v: Params, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder") -> Model:
     """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
     ``name``: the problem's name (options prefix ``tribofx_<name>_``; a variant of
@@ -411,7 +412,7 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     return run
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
 
     ``checkpoint``: directory of the sweep's checkpoint (written after every
@@ -467,7 +468,7 @@ def _report(steps, speed, profiles, v, record, prefix):
         record.profile = prof
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Points the progress bar counts: the loads of every variant."""
     return v.steps * (1 if v.compare == "none" else len(COMPARE[v.compare]))
 

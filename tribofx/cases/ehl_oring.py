@@ -103,6 +103,7 @@ one time index per sealed pressure, its p_s in ``series_points``).
 import math
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import ufl
@@ -433,7 +434,7 @@ class ORingSeal:
         return res
 
 
-def build(v, U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw):
+def build(v: "Params", U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw):
     """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``.
 
     ``name``: the problem's name, options prefix ``tribofx_<name>_``; ``kw``: the
@@ -722,7 +723,7 @@ class Params(FluidParams):
         "mesh; moved to r_min = r_rod + gap0, z extent centred at 0")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Parse the lists and check the consistency of the values."""
     viscosity(v)
     density(v, cavitation_model(v))
@@ -755,14 +756,14 @@ UNITS = {"p_max": "MPa", "z_p_max": "mm", "h_at_p_max": "mm", "h_mean": "mm", "h
          "oscillation": "-", "flux_spread": "-", "axial_balance": "-"}
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Points the progress bar counts: the sealed pressures of every stroke, or the steps."""
     if v.stroke == "cycle":
         return nominal_steps(v.cycles * v.period, v.period / v.cycle_steps)
     return len(number_list(v.p_s, "p_s")) * (1 if v.stroke == "single" else 2)
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Mount, pressurise and solve each stroke; optionally the mesh study.
 
     ``checkpoint``: directory of the sweep's checkpoint, written after every
@@ -779,7 +780,7 @@ def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
     p_targets = number_list(v.p_s, "p_s")
     journal = SweepJournal(checkpoint, comm, v, resume)
     speeds = [U] if v.stroke == "single" else [abs(U), -abs(U)]
-    profiles = {"strokes": {}, "mesh": None, "U": abs(U)}
+    profiles: dict[str, Any] = {"strokes": {}, "mesh": None, "U": abs(U)}
     prob = None
     for Us in speeds:
         tag = "out" if Us > 0 else "in"

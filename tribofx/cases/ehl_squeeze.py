@@ -120,7 +120,7 @@ class Params(FluidParams):
     supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds rows")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Bad input: a one-line error."""
     if math.isfinite(v.E2) and v.dim != 2:
         raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
@@ -253,7 +253,7 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
                    name="ehl_squeeze")
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Time steps to T."""
     return nominal_steps(v.T, v.dt)
 
@@ -284,7 +284,7 @@ def measures(film, v, y0):
             "content": film.content() / fraction(v)}
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
     stepper = build(v, checkpoint=checkpoint)
     stepper.verbose = verbose

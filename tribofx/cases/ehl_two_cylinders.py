@@ -117,7 +117,7 @@ def scales(v, W=None):
             v.penalty * 12 * v.mu * ell**2 / h_r**3, v.extent * ref.a)
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Bad input: a one-line error."""
     if math.isinf(v.E1) and math.isinf(v.E2):
         raise InputError("E1 = E2 = inf: two rigid bodies (use the case reynolds-cylinder)")
@@ -156,7 +156,7 @@ class Model:
     sign: float
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """Bodies, film and problem with the upper body h_r(W/steps) above the lower one.
 
     Returns a dict: ``bodies``, ``film``, ``problem``, ``lift`` (the Constant
@@ -190,7 +190,7 @@ def build(v, comm=MPI.COMM_WORLD):
         upper, lower = bodies[0], bodies[1]
         upper.add_dirichlet("loaded", np.zeros(2))
         lift = lower.add_dirichlet("loaded", np.zeros(2))
-        film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", v.mu,
+        film: Film | TwoBodyFilm = TwoBodyFilm(upper, "lubricated", lower, "lubricated", v.mu,
                            motion1=shapes[0], U1=U[0], motion2=shapes[1], U2=U[1], **kw)
         sign = 1.0
     else:   # one rigid body: the film on the other, against a rigid roller or plane
@@ -212,12 +212,12 @@ def build(v, comm=MPI.COMM_WORLD):
     return Model(bodies, film, problem, lift, sign)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the load steps."""
     return v.steps
 
 
-def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
+def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     """March the load to W (the approach found per load by a secant on 1/W)."""
     run = build(v, comm)
     film, problem, sign = run.film, run.problem, run.sign

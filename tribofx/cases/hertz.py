@@ -120,7 +120,7 @@ class Params(CaseParams):
         super().__post_init__()
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
     a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, v.R, v.load)
     if a > 0.5 * v.R:
@@ -145,7 +145,7 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """Body, contact interface and :class:`Problem` of the case (not yet loaded).
 
     ``mesh_file``: the user's body
@@ -203,12 +203,12 @@ def model_fraction(dim):
     return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[dim]
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the load steps."""
     return v.steps
 
 
-def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
+def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     """Load the body to ``load`` and record contact size and peak pressure.
 
     The plane's position δ is driven by :meth:`Continuation.reach` so that the

@@ -120,7 +120,7 @@ def scales(v):
     return ell, p_s, eps
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check the interval and, with cavitation, that the outlet lies past the rupture."""
     if not v.x_in < v.x_out:
         raise InputError(f"x_in = {v.x_in} mm must be < x_out = {v.x_out} mm")
@@ -159,7 +159,7 @@ def mesh_levels(n, coarsest=50):
     return out
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD):
     """Return the film of the cylinder gap and its problem (not solved; JFO guess set)."""
     R, h0 = v.R, v.h0
     _, p_s, eps = scales(v)
@@ -170,12 +170,12 @@ def build(v, comm=MPI.COMM_WORLD):
                       supply=v.inlet == "supply")
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the nested solve, once."""
     return 1
 
 
-def run(v, record, progress=None, verbose=False):
+def run(v: Params, record, progress=None, verbose=False):
     """Solve and record load, peak, rupture point and fluxes against the references."""
     levels = mesh_levels(v.mesh)
     its, prev, run = [], None, None

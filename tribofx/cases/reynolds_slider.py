@@ -57,7 +57,7 @@ class Params(FluidParams):
     degree: int = param(1, "-", "Lagrange degree of the pressure", choices=(1, 2))
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Barus: α p_iso,max < 1 (the reference transform; the fluid stays finite)."""
     viscosity(v)
     density(v)
@@ -68,7 +68,7 @@ def validate(v):
                              f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
 
 
-def build(v, comm=MPI.COMM_WORLD):
+def build(v: Params, comm=MPI.COMM_WORLD):
     """Return the film of the slider and its problem (not solved)."""
     K, L, h0 = v.K, v.L, v.h0
     return rigid_film(comm, 0.0, L, v.mesh, v.degree,
@@ -76,12 +76,12 @@ def build(v, comm=MPI.COMM_WORLD):
                       h_ref=h0, density=density(v))
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: the one solve."""
     return 1
 
 
-def run(v, record, progress=None, verbose=False):
+def run(v: Params, record, progress=None, verbose=False):
     """Solve, then record load, peak pressure and the L2 error against the analytic p."""
     run = film, problem = build(v)
     record.data["num_dofs"] = problem.num_dofs

@@ -62,17 +62,17 @@ def speeds(v):
     return U
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Bad input: a one-line error."""
     check(v, v.geometry, speeds(v))
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: one per speed."""
     return len(speeds(v))
 
 
-def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
+def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
     """Reach W at the first speed, then march the speed down; record per speed.
 
     ``rough=False``: the smooth film (the chapter's) at the same speeds.

@@ -60,6 +60,7 @@ line y = 0 ([x, z] points, mm).
 import math
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -79,9 +80,9 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import FilteredSchemeParams, check_scheme
 
-__all__ = ["MODEL_FRACTION", "Params", "build", "contact_plane", "doc", "late_time_exponent",
-           "measures", "mesh_sizes", "name", "plot", "progress_total", "resumable", "run",
-           "symmetry_line", "validate", "vtx_fields"]
+__all__ = ["MODEL_FRACTION", "Model", "Params", "build", "contact_plane", "doc",
+           "late_time_exponent", "measures", "mesh_sizes", "name", "plot", "progress_total",
+           "resumable", "run", "symmetry_line", "validate", "vtx_fields"]
 
 
 MODEL_FRACTION = 0.5  # the quarter ball carries half of the contact (and of the wear)
@@ -131,7 +132,7 @@ class Params(FilteredSchemeParams):
         "replaces mesh (R still sets the scar-radius measure and the mesh-size check)")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
     if v.dt > v.T:
         raise InputError(f"time step {v.dt} s exceeds T = {v.T} s")
@@ -157,7 +158,17 @@ def mesh_sizes(v):
     return h, v.R / 4, 1.25 * aT
 
 
-def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+class Model(NamedTuple):
+    """What :func:`build` assembles: the stepper with its load hold.
+
+    ``h_fine``: the element size of the contact zone (mm).
+    """
+
+    stepper: Stepper
+    h_fine: float
+
+
+def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     """Body, contact, wear, stepper and force control of the case (not yet loaded).
 
     Returns the :class:`tribofx.stepper.Stepper`; its ``control`` positions the
@@ -211,8 +222,7 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                         step_slope=stiffness,
                         border=((contact.force_functional(2), contact.sub)
                                 if v.force_control == "bordered" else None))
-    stepper.h_fine = h_fine
-    return stepper
+    return Model(stepper, h_fine)
 
 
 def _user_ball(msh, ft, names, v):
@@ -244,7 +254,7 @@ def _user_ball(msh, ft, names, v):
     return boundary_facet_size(msh, ft, names["contact"], near=(np.zeros(3), aH))
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
     return nominal_steps(v.T, v.dt)
 
@@ -291,7 +301,7 @@ def contact_plane(stepper):
     return np.column_stack([d["x"][a, 0], d["x"][a, 1], d["p"][a]])
 
 
-def run(v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
+def run(v: Params, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
         t_stop=None, checkpoint=None, resume=False):
     """Integrate the wear of the ball from t = 0 to T; record per-step histories.
 
@@ -301,12 +311,12 @@ def run(v, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WOR
     continue from it (:mod:`tribofx.restart`).  Returns the stepper.
     """
     t_wall = time.perf_counter()
-    stepper = build(v, comm=comm, checkpoint=checkpoint)
+    stepper, h_fine = build(v, comm=comm, checkpoint=checkpoint)
     stepper.verbose = stepper.hold.search.verbose = verbose
     record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
     record.stepper = stepper
     comm = stepper.comm
-    record.result("h_contact_zone", stepper.h_fine, "mm")
+    record.result("h_contact_zone", h_fine, "mm")
     keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
             "scar_radius", "pressure_ratio", "newton_iterations", "wear_rate_integral",
             "error_estimate", "rejected")

@@ -136,7 +136,7 @@ def resolved(v):
                         if getattr(v, key) is None})
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
     v = resolved(v)
     if v.dt > v.T:
@@ -165,13 +165,14 @@ class Model(NamedTuple):
     hertz: dict
 
 
-def build(v, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None):
+def build(v: Params, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None) -> Model:
     """Body, contact, steady wear and stepper, the :class:`Model` of the case.
 
     ``h``, ``mesh``: contact element size (mm) and ``groove_mesh`` output (default:
     the case mesh).
     """
     v = resolved(v)
+    assert v.k is not None and v.E is not None   # the regime's defaults, filled
     a, p0, delta = hertz(v.F, v.R, v.E, v.nu)[:3]
     h = 0.45 * a / 2 ** v.mesh if h is None else h
     msh, ft, sec, sft, area = groove_mesh(comm, a, h) if mesh is None else mesh
@@ -212,7 +213,7 @@ def initial_contact(stepper, info, verbose=False):
     return rep
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: nominal steps of dt to T (by time)."""
     return nominal_steps(v.T, v.dt)
 
@@ -230,7 +231,7 @@ def plot(profile, outdir):
     plot_groove(profile, outdir)
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Integrate the groove from t = 0 to T; record per-step histories.
 
     ``checkpoint``: directory of the per-step checkpoint (state and histories);

@@ -66,7 +66,7 @@ class Params(rough_contact.RoughContactParams, slow_time.SchemeParams):
     max_cuts: int = param(6, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Bad input: a one-line error."""
     if v.V >= v.U_start:
         raise InputError("V must be below U_start (W is reached at U_start)")
@@ -74,7 +74,7 @@ def validate(v):
     rough_contact.check(v, "cylinder", [v.U_start, v.V])
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the number of slow steps."""
     return nominal_steps(v.T, v.dt)
 
@@ -92,7 +92,7 @@ class Model(rough_contact.Model):
     track: list
 
 
-def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     """Cylinder with a shape field, rough film, wear, stepper and the load control.
 
     Returns the :class:`Model`; ``problem`` is the stepper's monolithic Problem.
@@ -104,7 +104,8 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                       checkpoint=checkpoint, name="wear_lubricated",
                       problem_kw={"max_it": 30})
     offset = film.counterpart.offset
-    track = []   # (t, plane position) of the accepted steps (appended by ``run``)
+    # (t, plane position) of the accepted steps (appended by ``run``)
+    track: list[tuple[float, float]] = []
 
     def predictor(dt):
         # the plane follows the worn surface: its last rate (none before two steps;
@@ -124,7 +125,7 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                  track=track)
 
 
-def run(v, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
+def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
         checkpoint=None, resume=False):
     """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
     run = build(v, comm, checkpoint)

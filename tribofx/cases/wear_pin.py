@@ -175,7 +175,7 @@ class Params(SchemeParams):
         "moved to y = 0)")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
     if v.mesh_file and v.study != "none":
         raise InputError("mesh_file works with study=none only")
@@ -234,7 +234,7 @@ class Model(NamedTuple):
     load: fem.Constant
 
 
-def build(v, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None):
+def build(v: Params, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None) -> Model:
     """Body, contact, wear and slow-time stepper of the case; returns ``(stepper, load)``.
 
     ``load`` is the factor (Constant) of the top traction.  ``setup(body,
@@ -313,7 +313,7 @@ def study_schemes(v):
     return list(dict.fromkeys(schemes))
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
     if v.study == "dt":
         dts, levels = study_lists(v)
@@ -335,7 +335,7 @@ def plot(profile, outdir):
     return plot_wear_pin(profile, outdir)
 
 
-def run(v, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
+def run(v: Params, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
         resume=False):
     """Integrate the wear of the pin from t = 0 to T; record per-step histories.
 

@@ -187,7 +187,7 @@ class Params(SchemeParams):
         "facet length: rho_N = min(E)/h, block elements 4h/3)")
 
 
-def validate(v):
+def validate(v: Params) -> None:
     """Reject a stroke off the block, a tip lower than the pin and a step above T.
 
     With ``mesh_file`` the pin's width is known only once the mesh is read:
@@ -251,7 +251,7 @@ class Model:
     h: float
 
 
-def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
+def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
 
     The dict also holds the pin's geometry as used: ``W`` (width), ``H``
@@ -315,7 +315,7 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None):
                  top, h)
 
 
-def progress_total(v):
+def progress_total(v: Params) -> int:
     """Return the slow steps the progress bar counts: nominal steps to T = cycles·Δτ."""
     return nominal_steps(v.cycles * period(v), v.dt)
 
@@ -372,7 +372,7 @@ def snapshot(run):
     return shots
 
 
-def run(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
 
     ``checkpoint``: directory of the per-step checkpoint (state and histories);

@@ -136,7 +136,7 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     rec = SubRecord()
     implicit = wear_ball_flat.run(v.replace(scheme="implicit"), rec, comm=comm, t_stop=t0)
     start = implicit.state()
-    stepper = wear_ball_flat.build(v.replace(scheme="explicit"), comm=comm)
+    stepper = wear_ball_flat.build(v.replace(scheme="explicit"), comm=comm).stepper
     if not np.array_equal(stepper.wear.body.mesh.geometry.x, implicit.wear.body.mesh.geometry.x):
         raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
     probe = []
