@@ -60,7 +60,7 @@ def run(dim):
     over = {"dim": dim, "control": "load", "E1": 1e7, "F": 0.05 if dim == 2 else 0.02,
             "T": 1e-3, "dt": 2.5e-4}
     v = resolve(Case.Params, {k: str(x) for k, x in over.items()})
-    st = Case.build(v)
+    st = Case.build(v).stepper
     st.run(2 * v.dt, v.dt)                  # two steps: the BDF2 history is full
     film = st.wear
     t0 = time.perf_counter()
@@ -70,7 +70,7 @@ def run(dim):
     t_tr = per_iteration(st.problem)
     # the same mesh, body and film with the chapter's steady rows (the body held at its
     # top, since a steady film cannot carry a load alone), the same unknowns
-    steady = Case.build(v.replace(control="speed"), steady=True).problem
+    steady = Case.build(v.replace(control="speed"), steady=True).stepper.problem
     t_st = per_iteration(steady)
     return {"dim": dim, "unknowns": st.problem.num_dofs, "unknowns_steady": steady.num_dofs,
             "begin_step_s": t_begin, "iteration_transient_s": t_tr,

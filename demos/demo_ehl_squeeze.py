@@ -66,12 +66,12 @@ def squeeze(**over):
     v = resolve(ehl_squeeze.Params,
                 {k: str(x) for k, x in dict(control="load", dt=over["T"] / steps,
                                             **over).items()})
-    stepper = ehl_squeeze.build(v)        # Body + Film(...).transient("bdf2") + Stepper
-    film = stepper.wear
-    y0 = float(film.counterpart.offset.value[1])
+    model = ehl_squeeze.build(v)    # Body + Film(...).transient("bdf2") + Stepper, the plane
+    stepper = model.stepper
+    y0 = float(model.plane.value[1])
     out = []
     stepper.run(v.T, v.dt, on_step=lambda st, rep: out.append(
-        (st.t, ehl_squeeze.measures(film, v, y0))))
+        (st.t, ehl_squeeze.measures(model, v, y0))))
     return v, out
 # -
 

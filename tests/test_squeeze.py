@@ -70,12 +70,12 @@ def test_thinning_under_load_follows_the_closed_forms():
 # -- the transient film ---------------------------------------------------------------------
 def run(v):
     """Step the case; return the stepper and the per-step (t, h_center, force) of the film."""
-    st = Case.build(v)
-    film, dim = st.wear, v.dim
-    y0 = float(film.plane.value[dim - 1])
+    model = Case.build(v)
+    st, dim = model.stepper, v.dim
+    y0 = float(model.plane.value[dim - 1])
     out = []
     st.run(v.T, v.dt, on_step=lambda s, r: out.append(
-        (s.t, Case.measures(film, v, y0), r.iterations)))
+        (s.t, Case.measures(model, v, y0), r.iterations)))
     return st, out
 
 
@@ -140,7 +140,7 @@ def test_transient_film_tangent_is_exact():
 
 def _taylor_mid_step(v):
     """Two BDF2 steps (the history full), a third begun: exact tangent in every block."""
-    st = Case.build(v)
+    st = Case.build(v).stepper
     st.run(5e-4, 2.5e-4)
     film = st.wear
     film.begin_step(2.5e-4)
@@ -217,11 +217,11 @@ def test_parallel_matches_serial():
     v = values(control="load", F=0.5, E1=10, nu1=0.45, T=2e-3, dt=1e-3)
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
-        st = Case.build(v, comm=comm)
-        film = st.wear
-        y0 = float(film.counterpart.offset.value[1])
+        model = Case.build(v, comm=comm)
+        st = model.stepper
+        y0 = float(model.plane.value[1])
         st.run(v.T, v.dt)
-        m = Case.measures(film, v, y0)
+        m = Case.measures(model, v, y0)
         out.append(np.array([m["h_center"], m["h_min"], m["p_center"], m["approach"]]))
     # solver tolerance 1e-10 relative: the partitions differ by round-off only
     assert np.allclose(out[0], out[1], rtol=1e-6, atol=0)
@@ -258,7 +258,7 @@ def test_receding_plane_opens_a_cavity_that_keeps_its_fluid():
     errs = []
     for mesh in (0, 1):
         v = values(V=-1.0, cavitation="jfo", E1=1e7, T=2e-3, dt=5e-4, mesh=mesh)
-        st = Case.build(v)
+        st = Case.build(v).stepper
         film = st.wear
         h_start = film.profile(everywhere=True)["h"]
         its = []
@@ -283,7 +283,7 @@ def test_lumped_receding_film_keeps_the_fluid_at_every_node():
     The node next to the rim reservoir (λ = 0 imposed) is left out, as above.
     """
     v = values(V=-1.0, cavitation="jfo", E1=1e7, T=2e-3, dt=5e-4, mesh=0, lumped=True)
-    st = Case.build(v)
+    st = Case.build(v).stepper
     film = st.wear
     h_start = film.profile(everywhere=True)["h"]
     st.run(v.T, v.dt)
@@ -301,7 +301,7 @@ def test_lumped_transport_tangent_is_exact():
     """
     v = values(V=-1.0, cavitation="jfo", E1=1e5, T=1e-3, dt=2.5e-4, lumped=True,
                scheme="bdf2")
-    st = Case.build(v)
+    st = Case.build(v).stepper
     st.run(5e-4, 2.5e-4)
     film = st.wear
     film.begin_step(2.5e-4)

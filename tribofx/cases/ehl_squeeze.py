@@ -35,6 +35,7 @@ Units: mm, N, s, MPa (viscosity MPa·s).
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from dolfinx import fem
@@ -52,8 +53,8 @@ from ..stepper import Stepper, nominal_steps
 from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
 
-__all__ = ["Params", "build", "doc", "extent", "fraction", "length", "measures", "name", "plot",
-           "progress_total", "resumable", "run", "speed_scale", "validate", "vtx_fields"]
+__all__ = ["Model", "Params", "build", "doc", "extent", "fraction", "length", "measures", "name",
+           "plot", "progress_total", "resumable", "run", "speed_scale", "validate", "vtx_fields"]
 
 
 name = "ehl-squeeze"
@@ -175,7 +176,17 @@ def speed_scale(v):
                                        extent(v))
 
 
-def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
+class Model(NamedTuple):
+    """What :func:`build` assembles: the stepper (bodies, transient film).
+
+    ``plane``: the plane's (or the block's) rigid position, a Constant (mm).
+    """
+
+    stepper: Stepper
+    plane: fem.Constant
+
+
+def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None, steady=False) -> Model:
     """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
 
     ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
@@ -241,7 +252,6 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
     if math.isinf(v.E2):
         film.place_countersurface(h0, np.zeros(3))
         lift = film.counterpart.offset
-    film.plane = lift             # the plane's (or the block's) rigid position
     if not steady:
         film.transient(v.scheme, lumped=v.lumped)
     offset = lift
@@ -249,8 +259,8 @@ def build(v, comm=MPI.COMM_WORLD, checkpoint=None, steady=False):
     schedule = []
     if v.control == "speed":
         schedule = [(offset, lambda t: y0 * up + v.V * t * up)]
-    return Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
-                   name="ehl_squeeze")
+    return Model(Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
+                         name="ehl_squeeze"), lift)
 
 
 def progress_total(v: Params) -> int:
@@ -258,9 +268,9 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.T, v.dt)
 
 
-def vtx_fields(stepper):
+def vtx_fields(model):
     """Displacement of the body; film pressure (on Γ_l)."""
-    film = stepper.wear
+    film = model.stepper.wear
     return {"displacement": [film.body.u], "pressure": [film.p]}
 
 
@@ -271,33 +281,34 @@ def plot(profile, outdir):
     plot_squeeze(profile, outdir)
 
 
-def measures(film, v, y0):
+def measures(model, v, y0):
     """One step's measures: film at the centre and its minimum, force, plane position."""
-    dim = v.dim
+    dim, film = v.dim, model.stepper.wear
     prof = film.profile(everywhere=True)
     r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
     h_c = float(prof["h"][np.argmin(r)])
     force = float(film.force()[dim - 1]) / fraction(v)
     return {"h_center": h_c, "h_min": film.min_film(), "force": force,
-            "approach": float(film.plane.value[dim - 1]) - y0,
+            "approach": float(model.plane.value[dim - 1]) - y0,
             "p_center": float(prof["p"][np.argmin(r)]),
             "content": film.content() / fraction(v)}
 
 
 def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
     """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
-    stepper = build(v, checkpoint=checkpoint)
+    model = build(v, checkpoint=checkpoint)
+    stepper = model.stepper
     stepper.verbose = verbose
     film, dim = stepper.wear, v.dim
     keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
             "newton_iterations", "force_rigid", "h_center_rigid")
     sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
                          resume)
-    y0 = sr.history.setdefault("y0", float(film.plane.value[dim - 1]))
+    y0 = sr.history.setdefault("y0", float(model.plane.value[dim - 1]))
     R, mu, L = v.R, v.mu, extent(v)
 
     def log(t, its):
-        m = measures(film, v, y0)
+        m = measures(model, v, y0)
         h_rigid = v.h_start - m["approach"]     # the rigid body's gap at the plane
         m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v.V
                             if v.control == "speed" else v.F)
@@ -307,10 +318,10 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
 
     if not resume:
         log(0.0, 0)
-    with sr.closing(report=lambda: _report(film, record, sr.hist)):
+    with sr.closing(report=lambda: _report(film, record, sr.hist), model=model):
         stepper.run(v.T, FixedStep(v.dt), progress=progress,
                     on_step=sr.written(lambda st, rep: log(st.t, rep.iterations)))
-    return stepper
+    return model
 
 
 def _report(film, record, hist):
