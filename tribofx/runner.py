@@ -59,10 +59,11 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     A case is a module of :mod:`tribofx.cases` with ``name``, ``doc``, ``Params``
     (its :class:`~tribofx.params.CaseParams` dataclass), ``resumable`` and the
     functions ``validate(params)``, ``run(params, record, progress, verbose)``
-    (returns the problem object; on failure it raises
+    (returns its model, what its ``build`` assembled; on failure it raises
     :class:`~tribofx.reports.NewtonDivergence`, a :class:`~tribofx.reports.RunStop`,
-    with the problem, restored to its last converged state, as ``model``),
-    ``vtx_fields(problem)`` ({file stem: [Functions on one mesh]}) and ``plot(profile,
+    with the model, restored to its last converged state, as ``model``),
+    ``progress_total(params)``, ``vtx_fields(model)`` ({file stem: [Functions on one
+    mesh]}) and ``plot(profile,
     outdir)`` (rank 0; ``profile`` is what ``run`` stored in ``record.profile``).
     ``run`` advances ``progress`` once per load/time step (a slow-time stepper by
     time, in nominal steps of its Δt); the bar length is the case's
