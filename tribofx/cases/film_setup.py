@@ -152,7 +152,7 @@ def arc_halvings(v):
     return 1 if v.stroke == "cycle" and not v.mesh_file else 0
 
 
-def density(v, cavitation="penalty"):
+def density(v, cavitation=None):
     """Return the density law ρ(p)/ρ₀ of the values ``v`` (refused with ``cavitation`` jfo)."""
     if v.density != "incompressible" and cavitation == "jfo":
         raise InputError("density=dowson-higginson is implemented with penalty or no "

@@ -75,7 +75,7 @@ class FilteredSchemeParams(SchemeParams):
     (:func:`tribofx.error_filter.filtered_defect`.)
     """
 
-    error_filter: bool = param(  # type: ignore[assignment]
+    error_filter: bool = param(
         False, "-",
         "tol: filter each step's estimate through the step's implicit operator (the error "
         "wear damps within the step is not charged)")
