@@ -283,12 +283,12 @@ def _steady_departure(seal, stepper):
     Newton from the transient state); the state is restored."""
     film = seal.film
     m = seal.measures()
-    state, weights = stepper.state(), [float(c.value) for c in film.time_weights]
-    for c in film.time_weights:
+    state, weights = stepper.state(), [float(c.value) for c in film.history.weights]
+    for c in film.history.weights:
         c.value = 0.0
     stepper.problem.solve()
     ref = seal.measures()
-    for c, w in zip(film.time_weights, weights):
+    for c, w in zip(film.history.weights, weights):
         c.value = w
     stepper.restore(state)
     return np.array([m[k] / ref[k] - 1 for k in ("h_min", "h_mean", "p_max")])

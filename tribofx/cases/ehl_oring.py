@@ -596,7 +596,7 @@ def integral(t, q, scheme):
     """Q(t_n) = ∫₀^t_n q dt by the film's own scheme over the recorded steps ``t`` (s).
 
     c₀(Q_{n+1} − Q_n) + c₁(Q_n − Q_{n−1}) = Δt_{n+1} q(t_{n+1}), the weights of
-    :meth:`~tribofx.interfaces.film_transient.TransientFilm.begin_step` (the first
+    :meth:`tribofx.interfaces.Film.begin_step` (the first
     step, and every step of "euler", backward Euler).  A content whose rate is q
     changes by exactly Q.
     """

@@ -45,6 +45,17 @@ projection point, the traction the body's 2πR times the hoop stretch r/R).
 
 Stopping test: :mod:`tribofx.interfaces.reynolds_film`.
 
+The parts of a film.  :class:`Film` derives :class:`~tribofx.interfaces.reynolds_film.ReynoldsFilm`,
+the pressure rows it shares with :class:`~tribofx.interfaces.RigidFilm` (the
+Reynolds/JFO rows, the pressure and inlet conditions on ∂Γ_l, the scales and
+tolerances, the JFO starting guess and end fluxes); it owns its
+:class:`~tribofx.interfaces.surface.Surface` (the submesh of Γ_l, shared with a
+wear of the same boundary), its counterpart, its fluid laws (bound to the
+submesh) and, once transient (:meth:`Film.transient`), a
+:class:`~tribofx.interfaces.film_history.FilmHistory`.  Below the component
+protocol come its starting states (:meth:`Film.start_from_pressure`) and its
+outputs (forces on both walls, minimum film, profile).
+
 Row scaling (``row_scaling=True``, the default).  The Newton line search of
 :class:`tribofx.problem.Problem` compares 2-norms of the whole residual; the
 film rows are therefore multiplied by physical factors that give every row the
@@ -60,6 +71,8 @@ factorisation breaks down after a poor line-search step).
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
+import dataclasses
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -68,11 +81,12 @@ from mpi4py import MPI
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
 from ..forms import mixed
+from ..forms import squeeze as sq
 from ..laws import viscosity_law
-from ..problem import BlockTolerance
-from .film_outputs import FilmOutputs
-from .film_start import FilmStart
-from .film_transient import TransientFilm
+from ..problem import BlockTolerance, Problem
+from ..scheme import BDF2, Scheme
+from .film_history import FilmHistory, content_space
+from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .surface import Surface
 
@@ -112,7 +126,7 @@ def _is_motion(spec):
     return isinstance(spec, tuple) and len(spec) == 2 and callable(spec[0])
 
 
-class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
+class Film(ReynoldsFilm):
     """Soft-EHL film on ``boundary`` of ``body`` against ``counterpart``.
 
     Args:
@@ -160,6 +174,7 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
     """
 
     CAVITATION = ("penalty", "jfo")
+    averaged = False      # the slow-time protocol: a transient film is not cycle-averaged
 
     def __init__(self, body, boundary, counterpart, mu, V_counter=None, model="finite",
                  shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
@@ -262,7 +277,10 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
                 self.w_solid = body.weight * (1 + body.u[0] / X[0])
             self.w_film = 2 * ufl.pi * self.kin.y[0]
         self._jumps = cavitation == "jfo"
-        self._post = None
+        self._post = None          # the compiled forms of the outputs
+        self._pa_nodal = None      # the nodal asperity pressure's Expression (rough films)
+        self.history = None        # a transient film's FilmHistory (transient())
+        self._content_form = self._conductance = None
         self._dry = None
         self._init_rows()
 
@@ -423,3 +441,309 @@ class Film(FilmOutputs, FilmStart, TransientFilm, ReynoldsFilm):
     def commit(self):
         """Accept the converged step (the counterpart's history moves on)."""
         self.counterpart.commit()
+
+    # -- time: a transient film (tribofx.forms.squeeze) ---------------------------------------
+    @property
+    def scheme(self):
+        """The implicit scheme of a transient film's rates, None for the steady film."""
+        return None if self.history is None else self.history.scheme
+
+    def transient(self, scheme=BDF2, lumped=False):
+        """Make the film transient, integrated by ``scheme``; returns self.
+
+        ``scheme``: :data:`~tribofx.scheme.IMPLICIT` (backward Euler, ``"euler"``)
+        or :data:`~tribofx.scheme.BDF2` (``"bdf2"``).  The film gets a
+        :class:`~tribofx.interfaces.film_history.FilmHistory` (``self.history``),
+        and its rows the rates of :mod:`tribofx.forms.squeeze`:
+
+        * the Reynolds (or JFO transport) rows the rate of the fluid content
+          c = ρ θ h J_S w at fixed reference point X, and the mean velocity relative
+          to the moving lubrication surface, v̄ − (I − ν⊗ν) ẏ;
+        * the layer velocity the displacement rate u̇ (rows and Couette traction);
+        * ẏ follows by the chain rule (:func:`tribofx.forms.squeeze.surface_rate`)
+          from the rates of u_s and of the countersurface's rigid translation.
+
+        The film then answers the slow-time protocol of
+        :class:`tribofx.stepper.Stepper` (:meth:`begin_step`, :meth:`end_step`).
+        Call before the :class:`tribofx.problem.Problem` is built (the rows are
+        built with the rates).  Needs the Gauss quadrature of Γ_l (the history of
+        the content c lives at its points).  ``lumped`` (JFO): the content's rate
+        on the vertex rule, its history at the nodes of each cell (discontinuous
+        P1), and weighted by the full-film fraction in SUPG; on a curve also the
+        Constant ``vertex_couette`` ω (0 until set), the vertex rule's share of
+        the cavitated Couette flux (:func:`tribofx.forms.jfo.jfo_on_surface`).
+        """
+        scheme = Scheme.of(scheme)
+        if not scheme.implicit:
+            raise ValueError(f"a transient film is implicit: euler or bdf2, not {scheme.name}")
+        if self.history is not None:
+            raise ValueError("the film is already transient")
+        md = self.dx.metadata()
+        if md.get("quadrature_rule") == "vertex":
+            raise ValueError("a transient film needs quadrature='gauss'")
+        if lumped and self.lam is None:
+            raise ValueError("a lumped transient film is for cavitation='jfo'")
+        self.lumped = bool(lumped)
+        if lumped and self._jumps:   # ω of jfo_on_surface(vertex=): 0 until set (reforming films)
+            self.vertex_couette = fem.Constant(self.sub, 0.0)
+        sub, body = self.sub, self.body
+        Cq = content_space(sub, md["quadrature_degree"], lumped)
+        H = self.history = FilmHistory(scheme, Cq, self.Vs, body.u.function_space,
+                                       getattr(self.counterpart, "offset", None), body.mesh,
+                                       sub, self.name)
+        w_sub = [self._mirror(c) for c in H.weights]   # the weights on the submesh
+        self.film_rate = sq.backward_difference(self._content(), *H.content, *w_sub)
+        u_rate = sq.backward_difference(self.u_s, *H.trace, *w_sub)
+        # ẏ by the chain rule: y(x, c) moves with a common translation of x and c
+        c_rate = None
+        if H.offset is not None:
+            c_rate = sq.backward_difference(H.offset, *H.offset_history, *w_sub)
+        y_rate = sq.surface_rate(self.kin.y, self.u_s, u_rate, c_rate)
+        self.kin = sq.moving_surface(self.kin, layer_rate=u_rate)
+        self.kin_reynolds = sq.moving_surface(self.kin, surface_rate=y_rate)
+        self.kin_bulk = sq.moving_surface(self.kin_bulk,
+                                          layer_rate=sq.backward_difference(
+                                              body.u, *H.displacement, *H.weights))
+        self._tractions()
+        self._content_expr = fem.Expression(self._content(), Cq.element.interpolation_points)
+        cells = sub.topology.index_map(sub.topology.dim).size_global
+        one = fem.form(fem.Constant(sub, 1.0) * self.dx)
+        self._cell_size = (self._sum(one) / cells) ** (1 / sub.topology.dim)
+        return self
+
+    def history_fields(self):
+        """Return the history's fields of a transient film (none when steady)."""
+        return [] if self.history is None else self.history.fields()
+
+    # -- slow-time protocol (tribofx.stepper.Stepper) ------------------------------------
+    def shape_unknowns(self):
+        """No shape unknowns: the film's unknowns are solved with the body's."""
+        return []
+
+    def min_volume_factor(self):
+        """No shape change: +inf (the Stepper's mesh check passes)."""
+        return np.inf
+
+    def begin_step(self, dt):
+        """Start a step of Δt (s): the history moves on (:meth:`FilmHistory.advance`).
+
+        The stopping tolerance of the Reynolds rows follows the step: the speed
+        ℓ_e/Δt of the mean element ℓ_e joins U (a content error of rtol·h_ref at a
+        node is a flux imbalance of that size) and the rows' round-off floor
+        (:meth:`row_round_off`) is added.
+        """
+        if self.history is None:
+            raise ValueError("begin_step of a steady film: call film.transient() first")
+        self.refresh()
+        self.history.advance(dt, self.u_s, self.body.u, self._content_expr)
+        self._rate_speed = self._cell_size / dt      # the Reynolds rows' tolerance
+        self._round_off = self.row_round_off()
+        self.set_scales()
+
+    def row_round_off(self):
+        """Round-off floor of the Reynolds rows at the current state (mm²/s; mm³/s revolved).
+
+        A row sums Poiseuille fluxes K (p_i − p_j) with K = w h³/(12 μ h_e) of its
+        elements: p known to an ulp or so (≈ eps |p|, whatever the iteration)
+        leaves ≈ 2 eps K |p| to 4 eps K |p| per row.  Where the film is thick this
+        exceeds rtol·U·h_ref: the seal's flank opens to h = 0.84 mm in the
+        instroke (K ≈ 3.6e9 mm³/(MPa·s) at p_s = 1 MPa), whose rows stopped at
+        6.5e-7 mm³/s against a tolerance of 6.5e-7 (measured).  Returns
+        4 eps max K |p| over the nodes (every rank), added to the p tolerance of
+        the step (:meth:`begin_step`).
+        """
+        if self._conductance is None:
+            kin, mu = self._flux_kinematics()
+            self._conductance = fem.Expression(
+                self.w_film * kin.h**3 * abs(self.p) / (12 * mu * ufl.CellDiameter(self.sub)),
+                self.Q.element.interpolation_points)
+        Kp = fem.Function(self.Q)
+        Kp.interpolate(self._conductance)
+        local = float(np.max(np.abs(Kp.x.array), initial=0.0))
+        return 4 * np.finfo(float).eps * self.sub.comm.allreduce(local, op=MPI.MAX)
+
+    def end_step(self):
+        """Nothing: the outputs of the step keep its rates (the next step resets them)."""
+
+    def _content(self):
+        """UFL content ρ θ h J_S w per unit reference measure (h, J_S: any ``kin`` of the film).
+
+        A rough film with average flow stores the expected gap h_T(h) (Patir & Cheng:
+        the squeeze term is ∂h_T/∂t), the gap its flux is written on.
+        """
+        kin, rough = self.kin, self._rough
+        if rough is not None and rough[0] is not None:
+            kin = dataclasses.replace(kin, h=mixed.expected_gap(kin.h, self.roughness.sigma))
+        return sq.film_content(kin, self.lam, self.rho_p, self.w_film)
+
+    def content(self):
+        """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks; form compiled once).
+
+        mm² per unit length in the plane, mm³ in 3D and revolved.  A lumped film
+        integrates it by the vertex rule of its rate: the content the discrete
+        rows conserve (its change over a step is the net flux of
+        :meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.consistent_fluxes`).
+        """
+        if self._content_form is None:
+            dx = self.nodal_dx if self.lumped else self.dx
+            self._content_form = fem.form(self._content() * dx)
+        return self._sum(self._content_form)
+
+    # -- starting states ---------------------------------------------------------------
+
+    def place_countersurface(self, h0, at):
+        """Translate a rigid countersurface along its normal so that h = ``h0`` (mm) at ``at``.
+
+        ``at`` is a reference point; the node of Γ_l nearest to it is used.  The
+        counterpart must have a rigid translation ``offset`` (mm).
+        """
+        if not hasattr(self.counterpart, "offset"):
+            raise ValueError("place_countersurface needs a rigid countersurface (offset)")
+        self.refresh()
+        gdim = self.body.gdim
+        n = self.Q.dofmap.index_map.size_local
+        h = self._film_thickness()
+        nu = fem.Function(self.V1)
+        # × N·N (= 1): an Expression needs a coefficient of the submesh (ν of a plane is constant)
+        nu.interpolate(fem.Expression(self.kin.nu * ufl.dot(self.N, self.N),
+                                      self.V1.element.interpolation_points))
+        d2 = np.sum((self._X1[:n] - np.asarray(at, float)[:gdim]) ** 2, axis=1)
+        i = int(np.argmin(d2)) if n else 0
+        loc = (float(d2[i]) if n else np.inf,
+               (float(h[i]), nu.x.array.reshape(-1, gdim)[i].copy()) if n else None)
+        _, (h_c, nu_c) = min(self.body.mesh.comm.allgather(loc), key=lambda t: t[0])
+        self.counterpart.offset.value[:] += (h_c - h0) * nu_c
+        self.refresh()
+
+    def start_from_pressure(self, pressure, h0, at, verbose=False):
+        """Set an initial state: the body under a prescribed film pressure, film ``h0`` at ``at``.
+
+        ``pressure`` is a callable of the reference coordinates (3, n) → p (MPa),
+        e.g. the Hertz pressure; the body is solved under it as a follower load
+        (:class:`PrescribedPressure`, no shear), p is set to it (g to 0) as the
+        first pressure iterate and a rigid countersurface is placed so that the
+        film is ``h0`` (mm) at the node nearest to ``at``.  Returns the Newton report.
+        """
+        if self._dry is None:
+            dry = PrescribedPressure(self)
+            self._dry = (dry, Problem([self.body, dry], name=f"{self.name}_dry"))
+        dry, problem = self._dry
+        dry.p.interpolate(pressure)
+        report = problem.solve(verbose=verbose)
+        self.p.x.array[:] = dry.p.x.array
+        if self.g is not None:
+            self.g.x.array[:] = 0.0
+        self.place_countersurface(h0, at)
+        return report
+
+    # -- outputs -------------------------------------------------------------------------
+
+
+    def _post_forms(self):
+        if self._post is None:
+            em = [self.emap]
+            gdim = self.body.gdim
+            counter = ft.countersurface_traction(
+                self.p, self.grad_gamma(self.p), self.kin, self.mu_p,
+                factors=self.shear_factors(self.kin.h))
+            self._post = {
+                "force": [fem.form(self.traction[i] * self.w_solid * self.ds, entity_maps=em)
+                          for i in range(gdim)],
+                "couette": [fem.form(self._couette[i] * self.w_solid * self.ds, entity_maps=em)
+                            for i in range(gdim)],
+                "counter": [fem.form(counter[i] * self.kin.stretch * self.w_film * self.dx)
+                            for i in range(gdim)],
+                "asperity": None if self.asperity is None else [
+                    fem.form(self.asperity[i] * self.w_solid * self.ds, entity_maps=em)
+                    for i in range(gdim)],
+                "y": fem.Expression(self.kin.y, self.V1.element.interpolation_points),
+            }
+        return self._post
+
+    def _nodal(self, key):
+        f = fem.Function(self.V1)
+        f.interpolate(self._post_forms()[key])
+        return f.x.array
+
+    def _vector_integral(self, key):
+        """Refresh the kernel data; the components of the post-processing form ``key``."""
+        self.refresh()
+        return np.array([self._sum(f) for f in self._post_forms()[key]])
+
+    def force(self):
+        """Force of the film on the modelled part of the body.
+
+        N/mm per unit thickness in plane strain; N in 3D (a quarter model: a
+        quarter of the full body's); axisymmetric: the revolved body's, N (2πR-weighted).
+        """
+        return self._vector_integral("force")
+
+    def counter_force(self):
+        """Force of the film on the countersurface (units and parts as :meth:`force`).
+
+        ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
+        (:func:`forms.film_traction.countersurface_traction`): what a friction rig measures
+        on the rigid counterpart.  The film's momentum balance makes this
+        −:meth:`force` up to the shear where the layer's area differs from S's,
+        ∫ shear (j − ds_S/dS) dS (steep flanks of a thick film); the
+        geometrically linear model's traction −pN also leaves out the pressure on
+        the displacement's slope, ∫ p grad_S(ν·u) ds_S (tests/test_ehl_ball.py).
+        """
+        return self._vector_integral("counter")
+
+    def asperity_force(self):
+        """Force of the asperity contact on the body (N; N/mm): pressure and boundary friction."""
+        if self.asperity is None:
+            return np.zeros(self.body.gdim)
+        return self._vector_integral("asperity")
+
+    def couette_force(self):
+        """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""
+        return self._vector_integral("couette")
+
+    def min_film(self):
+        """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
+        self.refresh()
+        n = self.Q.dofmap.index_map.size_local
+        return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
+                                       op=MPI.MIN)
+
+    def admissible(self):
+        """Line-search test: True, or with ``require_open`` an open film and fluid at every node.
+
+        Open: h > 0, or on rough surfaces h > −4σ (the nominal surfaces may
+        overlap where the asperities carry; the Greenwood–Tripp fit ends at 4σ).
+        """
+        floor = 0.0 if self.roughness is None else -4 * self.roughness.sigma
+        return not self.require_open or (self.has_fluid() and self.min_film() > floor)
+
+    def profile(self, everywhere=False):
+        """Nodal X, x (current), y (projection), h, p (λ, p_a) of Γ_l, sorted by X₀.
+
+        On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
+        are P1 nodal values (the trace interpolated at the vertices).
+        """
+        self.refresh()
+        gdim = self.body.gdim
+        n = self.Q.dofmap.index_map.size_local
+        # Q, V1 (and Ql) share the P1 layout of the same submesh
+        self._u1.interpolate(self.u_s)
+        x = self._X1 + self._u1.x.array.reshape(-1, gdim)
+        d = {"X": self._X1[:n], "x": x[:n], "y": self._nodal("y").reshape(-1, gdim)[:n],
+             "h": self._film_thickness()[:n].copy(), "p": self.p.x.array[:n].copy()}
+        if self.lam is not None:
+            d["lam"] = self.lam.x.array[:n].copy()
+        if self.asperity is not None:
+            d["p_a"] = self._asperity_pressure(d["h"], n)
+        return self._gather(d, "X", everywhere)
+
+    def _asperity_pressure(self, h, n):
+        """Nodal asperity pressure p_a(h) (MPa) of the roughness's law at the nodal gaps."""
+        if self._pa_nodal is None:
+            hf, out = fem.Function(self.Q), fem.Function(self.Q)
+            expr = fem.Expression(self._rough[2](hf), self.Q.element.interpolation_points)
+            self._pa_nodal = (hf, out, expr)
+        hf, out, expr = self._pa_nodal
+        hf.x.array[:n] = h
+        out.interpolate(expr)
+        return out.x.array[:n].copy()

@@ -15,7 +15,7 @@ through the film; trace rows as a displacement (mm) ≤ rtol·h_ref, g rows (MPa
 ≤ rtol·p_c/ℓ_l, complementarity rows (dimensionless) ≤ rtol; U, h_ref and p_c are
 the speed, film and pressure scales of :meth:`Film.set_scales`.  A transient
 film adds to U the speed ℓ_e/Δt of its mean element ℓ_e over the step
-(:meth:`tribofx.interfaces.film_transient.TransientFilm.begin_step`): a content
+(:meth:`tribofx.interfaces.Film.begin_step`): a content
 error of rtol·h_ref at a node is a flux imbalance of that size, and the
 rounding of the content's rate grows like 1/Δt as a step is cut.
 """
@@ -47,6 +47,9 @@ class ReynoldsFilm(ComponentBase):
     :meth:`_init_rows`.
     """
 
+    body = None              # the lubricated body (None: a film between rigid surfaces)
+    roughness = None         # a rough film's Roughness, and its laws bound to the film
+    _rough = None
     kin_reynolds = None      # a transient film's kinematics relative to S(t)
     film_rate = None         # a transient film's rate of the fluid content
     lumped = False           # a transient JFO film's nodal content rate (forms.jfo)
@@ -237,12 +240,12 @@ class ReynoldsFilm(ComponentBase):
     def _flux_kinematics(self):
         """Kinematics and viscosity of the fluxes in the rows: (kin, μ).
 
-        A transient film (:class:`~tribofx.interfaces.film_transient.TransientFilm`)
+        A transient film (:meth:`tribofx.interfaces.Film.transient`)
         takes the mean velocity relative to the moving surface S(t); a mixed film
         the average-flow gap and velocity (:func:`tribofx.forms.mixed.average_flow`).
         """
         kin, mu = self.kin_reynolds or self.kin, self.mu_p
-        rough = getattr(self, "_rough", None)
+        rough = self._rough
         if rough is not None and rough[0] is not None:
             kin, mu = mixed.average_flow(kin, mu, self.roughness.sigma, rough[0], rough[1],
                                          self.roughness.share)
@@ -265,7 +268,7 @@ class ReynoldsFilm(ComponentBase):
         1 on a curve (fluxes per unit length), the diameter of a surface Γ_l,
         2π r_max for an axisymmetric film.
         """
-        if getattr(self, "body", None) is not None and self.body.kind == "axisymmetric":
+        if self.body is not None and self.body.kind == "axisymmetric":
             r = self.sub.geometry.x[:, 0].max(initial=0.0)
             return 2 * np.pi * self.sub.comm.allreduce(float(r), op=MPI.MAX)
         return 1.0 if self.sub.topology.dim == 1 else self.length

@@ -143,7 +143,8 @@ class TwoBodyFilm(KernelAssembly, Film):
 
     def history_fields(self):
         """Return the film's histories and the master's displacements at t_n, t_{n−1}."""
-        return super().history_fields() + (self._master_hist if self.scheme is not None else [])
+        return super().history_fields() + (self._master_hist if self.history is not None
+                                           else [])
 
     def begin_step(self, dt):
         """Start a step (:meth:`Film.begin_step`) and move the master's history on."""
@@ -156,9 +157,9 @@ class TwoBodyFilm(KernelAssembly, Film):
     def _master_rates(self, keys):
         """Per gathered master node: k₀ (1/s) and z (mm/s) of ẋ = k₀ x + z (0, 0 when steady)."""
         d = self.body.gdim
-        if self.scheme is None:
+        if self.history is None:
             return 0.0, np.zeros((len(keys), d))
-        inv_dt, c0, c1 = (float(c.value) for c in self.time_weights)
+        inv_dt, c0, c1 = (float(c.value) for c in self.history.weights)
         u_n, u_nm1 = (self.side.gather(lambda nd, f=f: f.x.array.reshape(-1, d)[nd])[1]
                       for f in self._master_hist)
         k0 = inv_dt * c0
@@ -169,9 +170,9 @@ class TwoBodyFilm(KernelAssembly, Film):
         fields = (self.body.u, self.master.u, self.gap, self.v_master, self.t_nodal)
         ref = list(self._facet_ref) if self._facet_ref is not None else []
         hist = []
-        if self.scheme is not None:       # the master's rates: its history and the weights
+        if self.history is not None:      # the master's rates: its history and the weights
             hist = [f.x.array for f in self._master_hist] + [
-                np.array([float(c.value) for c in self.time_weights])]
+                np.array([float(c.value) for c in self.history.weights])]
         return [f.x.array for f in fields] + [np.array([float(self.U2.value)])] + ref + hist
 
     def _kernel(self):
