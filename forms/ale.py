@@ -23,10 +23,18 @@ boundary (set by the driver as Dirichlet conditions on the normal component).
 Lengths in mm.
 """
 
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
 import ufl
 
 from .hyperelastic import first_piola, strain_energy
 from .kinematics import grad3
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
 
 __all__ = [
     "aux_elasticity",
@@ -42,17 +50,17 @@ __all__ = [
 ]
 
 
-def _check(kind):
+def _check(kind: str) -> None:
     if kind not in ("3d", "plane_strain"):
         raise ValueError(f"worn-body kinematics support '3d' and 'plane_strain', not {kind!r}")
 
 
-def shape_gradient(w):
+def shape_gradient(w: Expr) -> Expr:
     """G = Grad_X̂ Ψ = I + Grad_X̂ w (gdim × gdim)."""
     return ufl.Identity(len(w)) + ufl.grad(w)
 
 
-def cofactor(G):
+def cofactor(G: Expr) -> Expr:
     """Cofactor matrix cof G = det(G) G^{-T}, written polynomially (no division) in 2D/3D."""
     n = G.ufl_shape[0]
     if n == 2:
@@ -63,7 +71,7 @@ def cofactor(G):
         for i in range(3)])
 
 
-def nanson_vector(w, N_hat):
+def nanson_vector(w: Expr, N_hat: Expr) -> Expr:
     """Unnormalised worn normal a = cof(G) N̂ with |a| = dS/dŜ = j_w (Nanson's formula).
 
     On a boundary facet cof(G) N̂ depends on the tangential derivative of w only,
@@ -72,7 +80,7 @@ def nanson_vector(w, N_hat):
     return cofactor(shape_gradient(w)) * N_hat
 
 
-def swept_nanson_vector(w, w_old, N_hat):
+def swept_nanson_vector(w: Expr, w_old: Expr, N_hat: Expr) -> Expr:
     """Time average over a step of the Nanson vector, ∫₀¹ cof(G(s)) N̂ ds, G(s) linear in s.
 
     For a P1 boundary facet whose vertices move linearly from w_n to w, the
@@ -87,17 +95,20 @@ def swept_nanson_vector(w, w_old, N_hat):
             + nanson_vector(w, N_hat)) / 6
 
 
-def _G3(w, kind):
+def _G3(w: ufl.Coefficient, kind: str) -> Expr:
     _check(kind)
     return ufl.Identity(3) + grad3(w, kind)
 
 
-def deformation_gradient_worn(u, w, kind):
+def deformation_gradient_worn(u: ufl.Coefficient, w: ufl.Coefficient, kind: str) -> Expr:
     """F = (I + Grad_X̂ u)(I + Grad_X̂ w)⁻¹ (3×3; plane strain embeds F₃₃ = 1)."""
     return (ufl.Identity(3) + grad3(u, kind)) * ufl.inv(_G3(w, kind))
 
 
-def internal_virtual_work_worn(u, w, du, kind, material, params, dx):
+def internal_virtual_work_worn(
+    u: ufl.Coefficient, w: ufl.Coefficient, du: ufl.Coefficient | ufl.Argument, kind: str,
+    material: str, params: Mapping[str, Expr | float], dx: ufl.Measure,
+) -> ufl.Form:
     """∫_Ω P(F) : Grad_X δu dV pulled back to Ω̂: ∫ P : (Grad_X̂ δu G⁻¹) det G dV̂."""
     G = _G3(w, kind)
     Ginv = ufl.inv(G)
@@ -106,20 +117,27 @@ def internal_virtual_work_worn(u, w, du, kind, material, params, dx):
     return ufl.inner(P, grad3(du, kind) * Ginv) * ufl.det(G) * dx
 
 
-def stored_energy_worn(u, w, kind, material, params, dx):
+def stored_energy_worn(
+    u: ufl.Coefficient, w: ufl.Coefficient, kind: str, material: str,
+    params: Mapping[str, Expr | float], dx: ufl.Measure,
+) -> ufl.Form:
     """Return the stored energy ∫_Ω ψ(F) dV pulled back to Ω̂: ∫ ψ(F) det G dV̂."""
     G = _G3(w, kind)
     F = (ufl.Identity(3) + grad3(u, kind)) * ufl.inv(G)
     return strain_energy(F, material, params) * ufl.det(G) * dx
 
 
-def traction_work_worn(traction, w, du, N_hat, ds):
+def traction_work_worn(
+    traction: Expr, w: Expr, du: Expr, N_hat: Expr, ds: ufl.Measure
+) -> ufl.Form:
     """Work of a dead nominal traction T* given per unit *worn* area: ∫ T*·δu j_w dŜ."""
     a = nanson_vector(w, N_hat)
     return ufl.dot(traction, du) * ufl.sqrt(ufl.dot(a, a)) * ds
 
 
-def aux_elasticity(w, dw, mu, lmbda, dx):
+def aux_elasticity(
+    w: Expr, dw: Expr, mu: Expr | float, lmbda: Expr | float, dx: ufl.Measure
+) -> ufl.Form:
     """Auxiliary (mesh-motion) linear elasticity ∫ σ(w) : ε(δw) dV̂ on the initial mesh.
 
     ``mu``, ``lmbda`` are Lamé constants of the fictitious material (MPa); only
@@ -130,7 +148,7 @@ def aux_elasticity(w, dw, mu, lmbda, dx):
             + lmbda * ufl.tr(eps) * ufl.div(dw)) * dx
 
 
-def shape_multiplier_work(zeta, dw, a, ds):
+def shape_multiplier_work(zeta: Expr, dw: Expr, a: Expr, ds: ufl.Measure) -> ufl.Form:
     """Work of the shape-update multiplier on the auxiliary problem, ∫ ζ δw·a dŜ (eq. 28).
 
     The discrete shape evolution law (28), (w − w_n)·a = −Δt Ẇ j_w on Γ̂_c, is

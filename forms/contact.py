@@ -25,9 +25,16 @@ a nonsmooth but semismooth function of the unknowns; ``ufl.derivative`` of the
 ``conditional`` branches gives the exact generalised Jacobian.  Units: mm, MPa.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import ufl
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
 
 __all__ = [
     "constant_friction",
@@ -60,20 +67,22 @@ class ContactGeometry:
     projection: ufl.core.expr.Expr
 
 
-def plane_countersurface(x, point, normal):
+def plane_countersurface(x: Expr, point: Expr, normal: Expr) -> ContactGeometry:
     """Rigid plane through ``point`` with unit outer normal ``normal`` (pointing to the body)."""
     g = ufl.dot(x - point, normal)
     return ContactGeometry(gap=g, normal=normal, projection=x - g * normal)
 
 
-def _radial(x, center, axis):
+def _radial(x: Expr, center: Expr, axis: Expr | None) -> Expr:
     d = x - center
     if axis is not None:
         d = d - ufl.dot(d, axis) * axis
     return d
 
 
-def cylinder_countersurface(x, center, radius, axis=None):
+def cylinder_countersurface(
+    x: Expr, center: Expr, radius: Expr | float, axis: Expr | None = None
+) -> ContactGeometry:
     """Rigid cylinder (disc in 2D) of ``radius`` about ``center``; body outside it.
 
     In 3D ``axis`` is the unit axis of the cylinder; in 2D pass ``axis=None``.
@@ -84,12 +93,15 @@ def cylinder_countersurface(x, center, radius, axis=None):
     return ContactGeometry(gap=r - radius, normal=n, projection=x - (r - radius) * n)
 
 
-def sphere_countersurface(x, center, radius):
+def sphere_countersurface(x: Expr, center: Expr, radius: Expr | float) -> ContactGeometry:
     """Rigid sphere of ``radius`` about ``center``; body outside it."""
     return cylinder_countersurface(x, center, radius, axis=None)
 
 
-def meshed_countersurface(x, x0, gap0, normal0, dnormal_dx, xbar0, dxbar_dx, d2xbar_dx2=None):
+def meshed_countersurface(
+    x: Expr, x0: Expr, gap0: Expr, normal0: Expr, dnormal_dx: Expr, xbar0: Expr,
+    dxbar_dx: Expr, d2xbar_dx2: Expr | None = None,
+) -> ContactGeometry:
     """Countersurface given as a mesh, through closest-point data at the expansion point x0.
 
     The C++ kernel returns, at the current slave positions x0, the gap g₀, the
@@ -112,12 +124,14 @@ def meshed_countersurface(x, x0, gap0, normal0, dnormal_dx, xbar0, dxbar_dx, d2x
     return ContactGeometry(gap=g, normal=normal0 + dnormal_dx * d, projection=xbar)
 
 
-def lagrangian_slip(geometry, xbar_old):
+def lagrangian_slip(geometry: ContactGeometry, xbar_old: Expr) -> Expr:
     """Slip increment s = x̄(x) − x̄_old of the projection point over a load step (mm)."""
     return geometry.projection - xbar_old
 
 
-def eulerian_slip(u, geometry, V, V_master, dtau):
+def eulerian_slip(
+    u: Expr, geometry: ContactGeometry, V: Expr, V_master: Expr, dtau: Expr | float
+) -> Expr:
     """Steady sliding slip v_T Δτ with v = F V (eq. 26) and v_T its tangential part (eq. 27).
 
     ``V`` is the background velocity of the slave body in its reference frame,
@@ -131,7 +145,11 @@ def eulerian_slip(u, geometry, V, V_master, dtau):
     return (vrel - ufl.dot(vrel, n) * n) * dtau
 
 
-def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None, mu=None):
+def contact_tractions(
+    geometry: ContactGeometry, lam_n: Expr, rho_n: Expr | float, lam_t: Expr | None = None,
+    rho_t: Expr | float | None = None, slip: Expr | None = None,
+    mu: float | Callable[[Expr], Expr] | None = None,
+) -> tuple[Expr, Expr | None]:
     """Nominal tractions (T_N, T_T) of the Alart–Curnier law as UFL expressions.
 
     T_N ≤ 0 is the nominal normal traction (eq. 9); T_T the frictional traction,
@@ -143,6 +161,8 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
     t_n = ufl.conditional(ufl.lt(lhat_n, 0), lhat_n, 0)
     if lam_t is None:
         return t_n, None
+    # friction gives lam_t with rho_t, slip and mu (the lines below raise on a None)
+    assert rho_t is not None and slip is not None and mu is not None
     n = geometry.normal
     # tangential parts only: a Lagrangian slip is a chord of a curved countersurface
     lhat_t = lam_t - ufl.dot(lam_t, n) * n + rho_t * (slip - ufl.dot(slip, n) * n)
@@ -153,9 +173,12 @@ def contact_tractions(geometry, lam_n, rho_n, lam_t=None, rho_t=None, slip=None,
 
 
 def augmented_lagrangian_contact(
-    u, v, geometry, lam_n, mu_n, rho_n, ds, lam_t=None, mu_t=None, rho_t=None, slip=None, mu=None,
-    weight=1,
-):
+    u: ufl.Coefficient, v: Expr, geometry: ContactGeometry, lam_n: Expr, mu_n: Expr,
+    rho_n: Expr | float, ds: ufl.Measure, lam_t: Expr | None = None,
+    mu_t: Expr | None = None, rho_t: Expr | float | None = None,
+    slip: Expr | None = None, mu: float | Callable[[Expr], Expr] | None = None,
+    weight: Expr | float = 1,
+) -> tuple[ufl.Form, ufl.Form, ufl.Form | None]:
     """Contact residual blocks (eq. 8 with the Alart–Curnier constraint equations).
 
     Args:
@@ -186,11 +209,14 @@ def augmented_lagrangian_contact(
     R_t = None
     if lam_t is not None:
         R_u += ufl.dot(t_t, ufl.derivative(geometry.projection, u, v)) * weight * ds
+        assert rho_t is not None    # given with lam_t (1/None raises)
         R_t = -(1 / rho_t) * ufl.dot(lam_t - t_t, mu_t) * ds
     return R_u, R_n, R_t
 
 
-def multiplier_regularisation(lam, mu, rho, ds):
+def multiplier_regularisation(
+    lam: Expr, mu: Expr, rho: Expr | float, ds: ufl.Measure
+) -> ufl.Form:
     """Return the linear part −∫ (1/ρ) λ·δλ dS of the Alart–Curnier constraint rows.
 
     Of −(1/ρ)(λ − T(λ, g)): the part that stays when T is evaluated outside UFL
@@ -199,12 +225,14 @@ def multiplier_regularisation(lam, mu, rho, ds):
     return -(1 / rho) * ufl.inner(lam, mu) * ds
 
 
-def constant_friction(p, mu):
+def constant_friction(p: Expr, mu: Expr | float) -> Expr:
     """Coulomb's constant friction coefficient μ (the chapter's)."""
     return mu + 0 * p
 
 
-def pressure_dependent_friction(p, mu0, p0, n):
+def pressure_dependent_friction(
+    p: Expr, mu0: Expr | float, p0: Expr | float, n: Expr | float
+) -> Expr:
     """μ(p) = μ₀ (1 + p/p₀)^(−n): friction falling with the contact pressure p ≥ 0 (MPa).
 
     The form of rubber-like (real area of contact) friction, μ ∝ p^(−n) above p₀

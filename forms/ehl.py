@@ -77,11 +77,20 @@ pressure gradient through a cellwise constant submesh field g = Grad_Γ p·T
 Units: mm, N, s, MPa (viscosity MPa·s, μU in N/mm).
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import ufl
 
 from . import reynolds as rf
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .contact import ContactGeometry
 
 __all__ = [
     "MODELS",
@@ -108,13 +117,13 @@ class WeightedMeasure:
     S pulled back to Γ_l, with the weight w = ds_S/dS.
     """
 
-    def __init__(self, weight, measure):
+    def __init__(self, weight: Expr | float, measure: ufl.Measure | WeightedMeasure) -> None:
         self.weight, self.measure = weight, measure
 
-    def __rmul__(self, integrand):
+    def __rmul__(self, integrand: Expr) -> ufl.Form:
         return (integrand * self.weight) * self.measure
 
-    def __call__(self, *args, **kwargs):
+    def __call__(self, *args: object, **kwargs: object) -> WeightedMeasure:
         """Return the weighted measure with new subdomain data/metadata."""
         return WeightedMeasure(self.weight, self.measure(*args, **kwargs))
 
@@ -139,21 +148,23 @@ class LubricationKinematics:
     nu: ufl.core.expr.Expr
     y: ufl.core.expr.Expr
     A: ufl.core.expr.Expr
-    stretch: ufl.core.expr.Expr
+    stretch: ufl.core.expr.Expr | float
     vbar: ufl.core.expr.Expr
     v_layer: ufl.core.expr.Expr
     v_counter: ufl.core.expr.Expr | None = None
 
-    def grad(self, f, grad_gamma=ufl.grad):
+    def grad(self, f: Expr, grad_gamma: Callable[[Expr], Expr] = ufl.grad) -> Expr:
         """Surface gradient grad_S f = A^{-T} Grad_Γ f of a scalar field on Γ_l."""
         return ufl.inv(self.A).T * grad_gamma(f)
 
-    def div(self, w, grad_gamma=ufl.grad):
+    def div(self, w: Expr, grad_gamma: Callable[[Expr], Expr] = ufl.grad) -> Expr:
         """Surface divergence div_S w = tr(Grad_Γ w · A^{-1}) of a vector field on Γ_l."""
         return ufl.tr(grad_gamma(w) * ufl.inv(self.A))
 
 
-def cylinder_countersurface(x, center, radius):
+def cylinder_countersurface(
+    x: Expr, center: Expr, radius: Expr | float
+) -> tuple[Expr, Expr, Expr, Expr]:
     """Closed-form projection onto the cylinder: (h, ν, y, ∂P/∂x) at the UFL position x."""
     d = x - center
     r = ufl.sqrt(ufl.dot(d, d))
@@ -162,7 +173,7 @@ def cylinder_countersurface(x, center, radius):
     return r - radius, nu, center + radius * nu, dP
 
 
-def tangential_gradient(N):
+def tangential_gradient(N: Expr) -> Callable[[Expr], Expr]:
     """Return f ↦ Grad_Γ f, the gradient projected with (I − N⊗N) (N: reference normal).
 
     UFL's grad of an expression of the spatial coordinate on a facet submesh
@@ -171,14 +182,16 @@ def tangential_gradient(N):
     """
     PN = ufl.Identity(len(N)) - ufl.outer(N, N)
 
-    def grad_gamma(f):
+    def grad_gamma(f: Expr) -> Expr:
         g = ufl.grad(f)
         return PN * g if len(g.ufl_shape) == 1 else g * PN
 
     return grad_gamma
 
 
-def countersurface_projection(geometry, x):
+def countersurface_projection(
+    geometry: Callable[[Expr], ContactGeometry], x: Expr
+) -> tuple[Expr, Expr, Expr, Expr]:
     """Lubrication projection (h, ν, y, ∂P/∂x) at x of a countersurface, eqs. (36–37).
 
     ``geometry`` maps a UFL position to the closest-point geometry
@@ -191,8 +204,12 @@ def countersurface_projection(geometry, x):
     return g.gap, g.normal, g.projection, ufl.diff(g.projection, xv)
 
 
-def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="finite",
-                           surface=None, alpha=None, V_counter=None):
+def lubrication_kinematics(
+    X: Expr, disp: Expr, grad_disp: Expr, N: Expr, center: Expr | None,
+    radius: Expr | float | None, V: Expr, model: str = "finite",
+    surface: Callable[[Expr], tuple[Expr, Expr, Expr, Expr]] | None = None,
+    alpha: Expr | float | None = None, V_counter: Expr | Callable[[Expr], Expr] | None = None,
+) -> LubricationKinematics:
     """Lubrication surface S = P(γ_l) on a rigid cylinder, as UFL of the displacement.
 
     Args:
@@ -235,6 +252,7 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
                                      v_counter=k0.v_counter)
     x = X + disp
     if surface is None:
+        assert center is not None and radius is not None   # the analytic cylinder's
         h, nu, y, dP = cylinder_countersurface(x, center, radius)
     else:
         h, nu, y, dP = surface(x)
@@ -255,7 +273,7 @@ def lubrication_kinematics(X, disp, grad_disp, N, center, radius, V, model="fini
                                  v_counter=v_counter)
 
 
-def planar_kinematics(x, h, vbar):
+def planar_kinematics(x: Expr, h: Expr, vbar: Expr) -> LubricationKinematics:
     """Kinematics of the traditional planar Reynolds equation (§6.6) between rigid surfaces.
 
     The lubrication surface is the reference line (plane) itself: A = I,
@@ -269,7 +287,10 @@ def planar_kinematics(x, h, vbar):
                                  A=ufl.Identity(gdim), stretch=1, vbar=vbar, v_layer=vbar)
 
 
-def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha, V_counter=None):
+def intermediate_surface(
+    h: Expr, nu: Expr, y: Expr, dP: Expr, Ft: Expr, N: Expr, V: Expr, alpha: Expr | float,
+    V_counter: Expr | None = None,
+) -> LubricationKinematics:
     """Kinematics on the intermediate lubrication surface S_α (Fig. 23), plane (gdim = 2).
 
     With y = P(x) the projection onto the countersurface and x the layer point,
@@ -302,8 +323,14 @@ def intermediate_surface(h, nu, y, dP, Ft, N, V, alpha, V_counter=None):
                                  vbar=vbar, v_layer=v_layer, v_counter=v_counter)
 
 
-def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=None,
-                        nodal_dx=None, grad_gamma=ufl.grad, rho=1, rate=None):
+def reynolds_on_surface(
+    p: Expr, dp: Expr, kin: LubricationKinematics, mu: Expr | float,
+    dx: ufl.Measure | WeightedMeasure, eps: Expr | float | None = None, supg: bool = False,
+    p_c: Expr | float = 1.0, h_e: Expr | float | None = None,
+    nodal_dx: ufl.Measure | WeightedMeasure | None = None,
+    grad_gamma: Callable[[Expr], Expr] = ufl.grad, rho: Expr | float = 1,
+    rate: Expr | None = None,
+) -> ufl.Form:
     """Reynolds residual (49) on S pulled back to Γ_l (p = 0 on ∂S by Dirichlet).
 
     ``dx`` is the measure of Γ_l (the facet submesh), ``eps`` the penalty of
@@ -320,10 +347,10 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     dS = WeightedMeasure(kin.stretch, dx)
     raw, w = (dx.measure, dx.weight) if isinstance(dx, WeightedMeasure) else (dx, 1)
 
-    def grad(f):
+    def grad(f: Expr) -> Expr:
         return kin.grad(f, grad_gamma)
 
-    def div(w):
+    def div(w: Expr) -> Expr:
         return kin.div(w, grad_gamma)
 
     F = rf.reynolds_residual(p, dp, kin.h, kin.vbar, mu, dS, grad=grad, rho=rho)
@@ -331,6 +358,7 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
         F += rate * dp * raw
     if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
         D = kin.h**2 * p_c / (12 * mu)
+        assert h_e is not None      # SUPG takes the element size
         tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         # the strong residual per unit area of S: the rate over J_S w
         F += rf.supg_stabilisation(p, 0.0, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
@@ -341,7 +369,7 @@ def reynolds_on_surface(p, dp, kin, mu, dx, eps=None, supg=False, p_c=1.0, h_e=N
     return F
 
 
-def trace_constraint(u_s, u, du_s, ds):
+def trace_constraint(u_s: Expr, u: Expr, du_s: Expr, ds: ufl.Measure) -> ufl.Form:
     """Residual ∫_Γl (u_s − u)·δu_s dS that makes the submesh field u_s the trace of u.
 
     u_s and u have the same degree on Γ_l, so the L2 projection is the identity.
@@ -349,12 +377,16 @@ def trace_constraint(u_s, u, du_s, ds):
     return ufl.dot(u_s - u, du_s) * ds
 
 
-def tangential_gradient_constraint(g, p, dg, T, dx, grad_gamma=None):
+def tangential_gradient_constraint(
+    g: Expr, p: Expr, dg: Expr, T: Expr | None, dx: ufl.Measure,
+    grad_gamma: Callable[[Expr], Expr] | None = None,
+) -> ufl.Form:
     """Residual ∫_Γl (g − Grad_Γ p·T) δg dS: g is the tangential pressure derivative.
 
     Vector g (DG0, any gdim): ∫_Γl (g − Grad_Γ p)·δg dS with ``grad_gamma`` the
     projected gradient (:func:`tangential_gradient`); exact for P1 p on affine cells.
     """
     if len(ufl.shape(g)) == 1:
+        assert grad_gamma is not None   # a vector g takes the projected gradient
         return ufl.dot(g - grad_gamma(p), dg) * dx
     return (g - ufl.dot(ufl.grad(p), T)) * dg * dx

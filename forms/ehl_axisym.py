@@ -32,10 +32,19 @@ da/dA = (r/R)|F₂ T|, so the axisymmetric nominal traction is the plane one of
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import ufl
 
 from .kinematics import deformation_gradient, nanson_normal
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .ehl import LubricationKinematics
 
 __all__ = [
     "film_flux",
@@ -43,7 +52,7 @@ __all__ = [
 ]
 
 
-def follower_pressure_traction(p, u, N):
+def follower_pressure_traction(p: Expr | float, u: ufl.Coefficient, N: Expr) -> Expr:
     """Nominal traction −p J F^{-T} N (MPa per reference area 2πR dS) of a follower pressure.
 
     Axisymmetric Nanson formula (eq. 9) with the 3×3 F; returns the r–z components.
@@ -52,7 +61,10 @@ def follower_pressure_traction(p, u, N):
     return -p * ufl.as_vector([a[0], a[1]])
 
 
-def film_flux(kin, p, mu, grad_gamma, lam=None):
+def film_flux(
+    kin: LubricationKinematics, p: Expr, mu: Expr | float,
+    grad_gamma: Callable[[Expr], Expr], lam: Expr | None = None,
+) -> Expr:
     """Axial volume flux per unit circumference q = θ(h v̄_z − h³/(12μ) ∂p/∂z) (mm²/s), eq. (48).
 
     θ = 1 − λ with the JFO void fraction ``lam`` (eq. 57; None: θ = 1).

@@ -7,14 +7,25 @@ Every function takes the :class:`forms.ehl.LubricationKinematics` of the film
 (evaluated with the bulk displacement for the layer's rows) and returns UFL.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import ufl
 
 from .wear import WearLoad
 
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .ehl import LubricationKinematics
+
 __all__ = ["countersurface_traction", "film_virtual_work", "film_wear_load", "fluid_traction"]
 
 
-def film_virtual_work(traction, v, ds, weight=1):
+def film_virtual_work(
+    traction: Expr, v: Expr, ds: ufl.Measure, weight: Expr | float = 1
+) -> ufl.Form:
     """Film term of the solid's virtual work (62): −∫_Γl T·δφ w dS.
 
     ``traction`` is the nominal fluid traction T (:func:`fluid_traction`, MPa),
@@ -25,7 +36,11 @@ def film_virtual_work(traction, v, ds, weight=1):
     return -ufl.dot(traction, v) * weight * ds
 
 
-def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite", factors=None):
+def fluid_traction(
+    p: Expr | float, dpdT: Expr, kin: LubricationKinematics, F: Expr, N: Expr, T: Expr | None,
+    mu: Expr | float, shear: bool = True, model: str = "finite",
+    factors: tuple[Expr, Expr] | None = None,
+) -> Expr:
     """Nominal traction (MPa per reference length) of the film on the layer, eq. (46).
 
     Args:
@@ -69,7 +84,10 @@ def fluid_traction(p, dpdT, kin, F, N, T, mu, shear=True, model="finite", factor
     return Tn
 
 
-def countersurface_traction(p, grad_gamma_p, kin, mu, factors=None):
+def countersurface_traction(
+    p: Expr, grad_gamma_p: Expr, kin: LubricationKinematics, mu: Expr | float,
+    factors: tuple[Expr, Expr] | None = None,
+) -> Expr:
     """Film traction on the countersurface per unit area of S (MPa): (46) at the other wall.
 
     −p ν + (μ/h)(v_layer − v_counter) − (h/2) grad_S p: the pressure along the
@@ -88,7 +106,9 @@ def countersurface_traction(p, grad_gamma_p, kin, mu, factors=None):
     return -p * kin.nu + c * v_rel - d * grad_S_p
 
 
-def film_wear_load(p, kin, F, N, model="finite"):
+def film_wear_load(
+    p: Expr, kin: LubricationKinematics, F: Expr, N: Expr, model: str = "finite"
+) -> WearLoad:
     """Return the film as a driver of Archard wear of the layer (:class:`forms.wear.WearLoad`).
 
     The normal traction is the pressure part of (46) along the current normal,

@@ -16,9 +16,15 @@ Units: p and the parameters in MPa, MPa·s and 1/MPa (2·10⁻⁸ Pa⁻¹ = 0.02
 mineral oil's pressure–viscosity coefficient).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import ufl
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
 
 __all__ = [
     "DOWSON_HIGGINSON_A",
@@ -37,17 +43,17 @@ ROELANDS_P_R = 196.0
 _LN_MU_INF = -23.486  # ln(6.31e-11)
 
 
-def constant_viscosity(p, mu0):
+def constant_viscosity(p: Expr, mu0: Expr | float) -> Expr:
     """μ = μ₀ (the chapter's isoviscous fluid)."""
     return mu0 + 0 * p
 
 
-def barus_viscosity(p, mu0, alpha):
+def barus_viscosity(p: Expr, mu0: Expr | float, alpha: Expr | float) -> Expr:
     """Barus: μ = μ₀ exp(α p⁺) (α in 1/MPa)."""
     return mu0 * ufl.exp(alpha * ufl.max_value(p, 0))
 
 
-def roelands_viscosity(p, mu0, z):
+def roelands_viscosity(p: Expr, mu0: Expr | float, z: Expr | float) -> Expr:
     """Roelands: μ = μ₀ exp{(ln μ₀ − ln μ_∞)[(1 + p⁺/p_R)^z − 1]}.
 
     μ_∞ = 6.31·10⁻⁵ Pa·s, p_R = 196 MPa, z the pressure–viscosity index (≈ 0.6 for
@@ -57,7 +63,7 @@ def roelands_viscosity(p, mu0, z):
                          * ((1 + ufl.max_value(p, 0) / ROELANDS_P_R) ** z - 1))
 
 
-def roelands_index(mu0, alpha):
+def roelands_index(mu0: float, alpha: float) -> float:
     """Return the z for which Roelands' law has Barus' slope α: α p_R/(ln μ₀ − ln μ_∞)."""
     return alpha * ROELANDS_P_R / (math.log(mu0) - _LN_MU_INF)
 
@@ -66,12 +72,14 @@ def roelands_index(mu0, alpha):
 DOWSON_HIGGINSON_A = 590.0
 
 
-def constant_density(p, rho=1.0):
+def constant_density(p: Expr, rho: Expr | float = 1.0) -> Expr:
     """ρ/ρ₀ = 1: the chapter's incompressible fluid."""
     return rho + 0 * p
 
 
-def dowson_higginson_density(p, a=DOWSON_HIGGINSON_A, b=1.34):
+def dowson_higginson_density(
+    p: Expr, a: Expr | float = DOWSON_HIGGINSON_A, b: Expr | float = 1.34
+) -> Expr:
     """Dowson–Higginson: ρ/ρ₀ = (a + b p⁺)/(a + p⁺), p and a in MPa (→ b for p → ∞)."""
     pp = ufl.max_value(p, 0)
     return (a + b * pp) / (a + pp)

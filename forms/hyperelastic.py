@@ -27,9 +27,17 @@ boundaries zig-zag node to node (a locked P1 surface cannot take the smooth
 shape the film or the contact asks of it).
 """
 
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
 import ufl
 
 from .kinematics import deformation_gradient, grad3, reference_volume_factor
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
 
 __all__ = [
     "body_force_work",
@@ -51,23 +59,27 @@ __all__ = [
 MATERIALS = ("neo-hookean", "mooney-rivlin", "linear")
 
 
-def lame_parameters(E, nu):
+def lame_parameters(E: float, nu: float) -> tuple[float, float]:
     """Lamé constants (μ, λ) from Young's modulus E (MPa) and Poisson's ratio ν."""
     return E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
 
 
-def _neo_hookean_parts(F, mu, lmbda):
+def _neo_hookean_parts(
+    F: Expr, mu: Expr | float, lmbda: Expr | float
+) -> tuple[Expr, Expr, Expr | float]:
     J = ufl.det(F)
     return mu / 2 * (ufl.tr(F.T * F) - 3 - 2 * ufl.ln(J)), ufl.ln(J), lmbda
 
 
-def neo_hookean(F, mu, lmbda):
+def neo_hookean(F: Expr, mu: Expr | float, lmbda: Expr | float) -> Expr:
     """Compressible neo-Hookean ψ = μ/2 (I₁ − 3 − 2 ln J) + λ/2 (ln J)²."""
     psi, g, K = _neo_hookean_parts(F, mu, lmbda)
     return psi + K / 2 * g**2
 
 
-def _mooney_rivlin_parts(F, mu1, mu2, kappa):
+def _mooney_rivlin_parts(
+    F: Expr, mu1: Expr | float, mu2: Expr | float, kappa: Expr | float
+) -> tuple[Expr, Expr, Expr | float]:
     J = ufl.det(F)
     C = F.T * F
     I1 = ufl.tr(C)
@@ -75,7 +87,9 @@ def _mooney_rivlin_parts(F, mu1, mu2, kappa):
     return mu1 / 2 * (J ** (-2 / 3) * I1 - 3) + mu2 / 2 * (J ** (-4 / 3) * I2 - 3), J - 1, kappa
 
 
-def mooney_rivlin(F, mu1, mu2, kappa):
+def mooney_rivlin(
+    F: Expr, mu1: Expr | float, mu2: Expr | float, kappa: Expr | float
+) -> Expr:
     """Nearly incompressible Mooney–Rivlin, ψ = μ₁/2 (Ī₁ − 3) + μ₂/2 (Ī₂ − 3) + κ/2 (J − 1)².
 
     Isochoric invariants Ī₁ = J^{-2/3} I₁, Ī₂ = J^{-4/3} I₂; small-strain shear
@@ -85,18 +99,22 @@ def mooney_rivlin(F, mu1, mu2, kappa):
     return psi + K / 2 * g**2
 
 
-def _linear_parts(F, mu, lmbda):
+def _linear_parts(
+    F: Expr, mu: Expr | float, lmbda: Expr | float
+) -> tuple[Expr, Expr, Expr | float]:
     eps = ufl.sym(F - ufl.Identity(3))
     return mu * ufl.inner(eps, eps), ufl.tr(eps), lmbda
 
 
-def linear_elastic(F, mu, lmbda):
+def linear_elastic(F: Expr, mu: Expr | float, lmbda: Expr | float) -> Expr:
     """Geometrically linear (small-strain) Hooke law written as ψ(F) with ε = sym(F − I)."""
     psi, g, K = _linear_parts(F, mu, lmbda)
     return psi + K / 2 * g**2
 
 
-def volumetric_split(F, material, params):
+def volumetric_split(
+    F: Expr, material: str, params: Mapping[str, Expr | float]
+) -> tuple[Expr, Expr, Expr | float]:
     """Return (ψ_r(F), g(J), K) with ψ = ψ_r + K/2 g² (see the module docstring)."""
     if material == "neo-hookean":
         return _neo_hookean_parts(F, params["mu"], params["lmbda"])
@@ -107,13 +125,18 @@ def volumetric_split(F, material, params):
     raise ValueError(f"unknown material {material!r}; expected one of {MATERIALS}")
 
 
-def mixed_strain_energy(F, p, material, params):
+def mixed_strain_energy(
+    F: Expr, p: Expr, material: str, params: Mapping[str, Expr | float]
+) -> Expr:
     """Mixed energy density ψ_r(F) + p g(J) − p²/(2K) of eq. (M) without the β term (MPa)."""
     psi, g, K = volumetric_split(F, material, params)
     return psi + p * g - p**2 / (2 * K)
 
 
-def mixed_virtual_work(u, p, v, q, kind, material, params, dx, beta):
+def mixed_virtual_work(
+    u: ufl.Coefficient, p: Expr, v: ufl.Coefficient | ufl.Argument, q: Expr, kind: str,
+    material: str, params: Mapping[str, Expr | float], dx: ufl.Measure, beta: Expr | float,
+) -> tuple[ufl.Form, ufl.Form]:
     """Residuals (R_u, R_p) of the mixed energy (M): its derivatives along (δu, δp) = (v, q).
 
         R_u = ∫ ∂ψ_m/∂F : Grad δu dV,   ψ_m = ψ_r(F) + p g(J) − p²/(2K),
@@ -131,7 +154,7 @@ def mixed_virtual_work(u, p, v, q, kind, material, params, dx, beta):
     return R_u, R_p
 
 
-def strain_energy(F, material, params):
+def strain_energy(F: Expr, material: str, params: Mapping[str, Expr | float]) -> Expr:
     """Dispatch on ``material`` in :data:`MATERIALS` with parameter dict ``params``.
 
     neo-hookean and linear take ``mu``, ``lmbda``; mooney-rivlin takes ``mu1``,
@@ -141,13 +164,16 @@ def strain_energy(F, material, params):
     return psi + K / 2 * g**2
 
 
-def first_piola(F, material, params):
+def first_piola(F: Expr, material: str, params: Mapping[str, Expr | float]) -> Expr:
     """First Piola–Kirchhoff stress P = ∂ψ/∂F (3×3) via ``ufl.variable``/``ufl.diff``."""
     F = ufl.variable(F)
     return ufl.diff(strain_energy(F, material, params), F)
 
 
-def internal_virtual_work(u, v, kind, material, params, dx):
+def internal_virtual_work(
+    u: ufl.Coefficient, v: ufl.Coefficient | ufl.Argument, kind: str, material: str,
+    params: Mapping[str, Expr | float], dx: ufl.Measure,
+) -> ufl.Form:
     """Return the internal virtual work ∫ P : Grad δφ dV of eq. (7), 2πR-weighted if axisym."""
     F = deformation_gradient(u, kind)
     P = first_piola(F, material, params)
@@ -155,20 +181,27 @@ def internal_virtual_work(u, v, kind, material, params, dx):
     return ufl.inner(P, grad3(v, kind)) * w * dx
 
 
-def stored_energy(u, kind, material, params, dx):
+def stored_energy(
+    u: ufl.Coefficient, kind: str, material: str, params: Mapping[str, Expr | float],
+    dx: ufl.Measure,
+) -> ufl.Form:
     """Return the stored energy ∫ ψ(F) dV (2πR-weighted if axisym), the potential of eq. (7)."""
     F = deformation_gradient(u, kind)
     w = reference_volume_factor(u.ufl_function_space().mesh, kind)
     return strain_energy(F, material, params) * w * dx
 
 
-def external_virtual_work(traction, v, kind, ds):
+def external_virtual_work(
+    traction: Expr, v: ufl.Coefficient | ufl.Argument, kind: str, ds: ufl.Measure
+) -> ufl.Form:
     """Virtual work ∫ T*·δφ dS of a prescribed nominal traction T* (MPa), eq. (7)."""
     w = reference_volume_factor(v.ufl_function_space().mesh, kind)
     return ufl.dot(traction, v) * w * ds
 
 
-def body_force_work(force, v, kind, dx):
+def body_force_work(
+    force: Expr, v: ufl.Coefficient | ufl.Argument, kind: str, dx: ufl.Measure
+) -> ufl.Form:
     """Virtual work ∫ B·δφ dV of a dead body force B (N/mm³ per reference volume), eq. (7)."""
     w = reference_volume_factor(v.ufl_function_space().mesh, kind)
     return ufl.dot(force, v) * w * dx

@@ -7,10 +7,20 @@ a reciprocating seal).  The Reynolds rows without cavitation and the
 kinematics are in :mod:`forms.ehl`.  Units: mm, s, MPa.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
 import ufl
 
 from . import reynolds as rf
 from .ehl import WeightedMeasure
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .ehl import LubricationKinematics
 
 __all__ = ["VERTEX_DELTA", "couette_flux", "jfo_inflow", "jfo_on_surface"]
 
@@ -20,9 +30,14 @@ __all__ = ["VERTEX_DELTA", "couette_flux", "jfo_inflow", "jfo_on_surface"]
 VERTEX_DELTA = 0.05
 
 
-def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, supg=True,
-                   grad_gamma=ufl.grad, T=None, ds_ends=None, weight=1, rate=None,
-                   lumped=False, inflow=None, vertex=None):
+def jfo_on_surface(
+    p: Expr, lam: Expr, dp: Expr, dlam: Expr, kin: LubricationKinematics, mu: Expr | float,
+    dx: ufl.Measure, p_c: Expr | float, q_ref: Expr | float, h_e: Expr | float,
+    nodal_dx: ufl.Measure, supg: bool = True, grad_gamma: Callable[[Expr], Expr] = ufl.grad,
+    T: Expr | None = None, ds_ends: ufl.Measure | None = None, weight: Expr | float = 1,
+    rate: Expr | None = None, lumped: bool = False,
+    inflow: tuple[ufl.Measure, Expr | float] | None = None, vertex: Expr | float | None = None,
+) -> tuple[ufl.Form, ufl.Form]:
     """JFO mass-conserving Reynolds equation (57) on S pulled back to Γ_l.
 
     Returns (transport, constraint): the transport residual
@@ -78,10 +93,10 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     """
     dS = WeightedMeasure(kin.stretch * weight, dx)
 
-    def grad(f):
+    def grad(f: Expr) -> Expr:
         return kin.grad(f, grad_gamma)
 
-    def div(w):
+    def div(w: Expr) -> Expr:
         return kin.div(weight * w, grad_gamma) / weight
 
     lam_c = ufl.min_value(lam, 1.0)   # an iterate with λ > 1 cannot balance the fluxes
@@ -103,6 +118,7 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
         # They are added element by element, without interior-facet integrals:
         # −Σ_F [[w_t]] δp = −Σ_e ∫_e d(w_t δp)/dX dX + [w_t δp] at the ends of Γ_l.
         # With them the discrete fluxes balance exactly (sum of the rows = end fluxes).
+        assert T is not None    # given with ds_ends (the line below raises on None)
         w_t = weight * couette_flux(kin, lam_c, T)
         n = ufl.FacetNormal(ds_ends.ufl_domain())
         F -= ufl.dot(grad_gamma(w_t * dp), T) * dx
@@ -110,17 +126,23 @@ def jfo_on_surface(p, lam, dp, dlam, kin, mu, dx, p_c, q_ref, h_e, nodal_dx, sup
     if vertex is not None:
         # the divergence form with its jumps is −∫ w_t dδp/dX dX + [w_t δp] (above);
         # the share ω(1 − s) of its integral moves from the Gauss to the vertex rule
+        assert T is not None    # given with vertex (the line below raises on None)
         w_t = weight * couette_flux(kin, lam_c, T)
         s = rf.jfo_film_fraction(p, lam, p_c, delta=VERTEX_DELTA)
         dw = vertex * (1 - s) * w_t * ufl.dot(grad_gamma(dp), T)
         F += dw * dx - dw * nodal_dx
     if inflow is not None:
+        assert T is not None    # given with inflow (jfo_inflow raises on None)
         F += jfo_inflow(kin, lam_c, p, dp, inflow[1], T, inflow[0], mu, h_e, weight)
     C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=weight * q_ref / h_e)
     return F, C
 
 
-def jfo_inflow(kin, lam, p, dp, supply, T, ds_in, mu, h_e, weight=1, leak=1e3):
+def jfo_inflow(
+    kin: LubricationKinematics, lam: Expr | float, p: Expr, dp: Expr, supply: Expr | float,
+    T: Expr, ds_in: ufl.Measure, mu: Expr | float, h_e: Expr | float,
+    weight: Expr | float = 1, leak: float = 1e3,
+) -> ufl.Form:
     """Open end of a curve Γ_l (gdim = 2) to a reservoir at p = 0 with a lubricant supply, JFO.
 
     The divergence form of the transport rows carries the Couette flux w θ h v_n
@@ -150,7 +172,7 @@ def jfo_inflow(kin, lam, p, dp, supply, T, ds_in, mu, h_e, weight=1, leak=1e3):
                      + kappa * p) * dp * ds_in
 
 
-def couette_flux(kin, lam, T):
+def couette_flux(kin: LubricationKinematics, lam: Expr | float, T: Expr) -> Expr:
     """Couette volume flux θ h v̄·t_S along S (mm²/s), θ = 1 − λ, gdim = 2 (eq. 40).
 
     t_S = A T/|A T| is the unit tangent of S in the direction of the reference

@@ -11,7 +11,15 @@ function serves all three kinematic kinds:
 Lengths in mm.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import ufl
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh
+    from ufl.core.expr import Expr
 
 __all__ = [
     "AXIS_TOL",
@@ -28,12 +36,12 @@ __all__ = [
 KINDS = ("3d", "plane_strain", "axisymmetric")
 
 
-def _check(kind):
+def _check(kind: str) -> None:
     if kind not in KINDS:
         raise ValueError(f"unknown kinematic kind {kind!r}; expected one of {KINDS}")
 
 
-def grad3(v, kind):
+def grad3(v: ufl.Coefficient | ufl.Argument, kind: str) -> Expr:
     """Return the reference gradient of a displacement-like field ``v`` as a 3×3 tensor.
 
     For plane strain the third row/column vanish; for axisymmetry the (3,3)
@@ -54,7 +62,7 @@ def grad3(v, kind):
 AXIS_TOL = 1e-12
 
 
-def axis_safe_hoop(v, X):
+def axis_safe_hoop(v: ufl.Coefficient | ufl.Argument, X: Expr) -> Expr:
     """Hoop term v_R/R, by its limit ∂v_R/∂R on the axis (R = 0, where v_R = 0).
 
     A vertex-rule point on the axis (a contact node at r = 0) would otherwise give
@@ -68,12 +76,12 @@ def axis_safe_hoop(v, X):
     return v[0] * inv_r + on_axis * ufl.grad(v)[0, 0]
 
 
-def deformation_gradient(u, kind):
+def deformation_gradient(u: ufl.Coefficient, kind: str) -> Expr:
     """Deformation gradient F = I + Grad u (3×3 for every ``kind``) — chapter eq. (1)."""
     return ufl.Identity(3) + grad3(u, kind)
 
 
-def reference_volume_factor(mesh, kind):
+def reference_volume_factor(mesh: Mesh, kind: str) -> Expr | float:
     """Factor multiplying dX in volume and surface integrals: 2πR for axisymmetry, else 1."""
     _check(kind)
     if kind == "axisymmetric":
@@ -81,24 +89,24 @@ def reference_volume_factor(mesh, kind):
     return 1
 
 
-def _embed_normal(N, kind):
+def _embed_normal(N: Expr, kind: str) -> Expr:
     if kind == "3d":
         return N
     return ufl.as_vector([N[0], N[1], 0])
 
 
-def nanson_normal(F, N, kind):
+def nanson_normal(F: Expr, N: Expr, kind: str) -> Expr:
     """Nanson's formula: n da = J F^{-T} N dA; returns the (unnormalised) vector J F^{-T} N."""
     return ufl.det(F) * ufl.inv(F).T * _embed_normal(N, kind)
 
 
-def area_ratio(F, N, kind):
+def area_ratio(F: Expr, N: Expr, kind: str) -> Expr:
     """Area ratio j = da/dA = J |F^{-T} N| of a boundary with reference normal N (eq. 9)."""
     a = nanson_normal(F, N, kind)
     return ufl.sqrt(ufl.dot(a, a))
 
 
-def spatial_position(u):
+def spatial_position(u: ufl.Coefficient) -> Expr:
     """Return the current position x = X + u (eq. 1)."""
     return ufl.SpatialCoordinate(u.ufl_function_space().mesh) + u
 

@@ -40,12 +40,19 @@ surfaces' speeds).  The asperities, not the film, wear the surface: Archard's la
 (:func:`asperity_wear_load`).  Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import ufl
 
 from .ehl import LubricationKinematics
 from .wear import WearLoad
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
 
 __all__ = [
     "GT_FIT",
@@ -67,12 +74,15 @@ __all__ = [
 GT_FIT = (4.4086e-5, 4.0, 6.804)
 
 
-def patir_cheng_pressure_factor(H, C=0.90, r=0.56):
+def patir_cheng_pressure_factor(H: Expr, C: Expr | float = 0.90, r: Expr | float = 0.56) -> Expr:
     """Pressure flow factor φ_x = 1 − C e^{−rH} (isotropic: C = 0.90, r = 0.56; H > 0.5)."""
     return 1 - C * ufl.exp(-r * H)
 
 
-def patir_cheng_shear_factor(H, A1=1.899, a1=0.98, a2=0.92, a3=0.05, A2=1.126, a4=0.25):
+def patir_cheng_shear_factor(
+    H: Expr, A1: Expr | float = 1.899, a1: Expr | float = 0.98, a2: Expr | float = 0.92,
+    a3: Expr | float = 0.05, A2: Expr | float = 1.126, a4: Expr | float = 0.25,
+) -> Expr:
     """Shear flow factor Φ_s(H) of one rough surface (isotropic coefficients, H ≤ 5 / > 5)."""
     Hs = ufl.max_value(H, 1e-12)
     Hl = ufl.min_value(Hs, 5.0)      # both branches are evaluated: no overflow of e^{a3 H²}
@@ -80,7 +90,7 @@ def patir_cheng_shear_factor(H, A1=1.899, a1=0.98, a2=0.92, a3=0.05, A2=1.126, a
     return ufl.conditional(ufl.le(H, 5.0), low, A2 * ufl.exp(-a4 * Hs))
 
 
-def patir_cheng_couette_factor(H, eps=1.0 / 300):
+def patir_cheng_couette_factor(H: Expr, eps: Expr | float = 1.0 / 300) -> Expr:
     """Couette shear factor over H, φ_f(H)/H, of Gaussian roughness (Patir & Cheng 1979).
 
     The mean wall shear of sliding is (μ Δv/h) φ_f = (μ Δv/σ) φ_f/H, with
@@ -116,7 +126,9 @@ _PHI_F_SERIES = (1.0, 1 / 9, 1 / 33, 0.011655011655011656, 0.005439005439005439,
                  0.0028794734677087615, 0.0016670635865682307)
 
 
-def patir_cheng_poiseuille_factor(H, D=1.40, s=0.66):
+def patir_cheng_poiseuille_factor(
+    H: Expr, D: Expr | float = 1.40, s: Expr | float = 0.66
+) -> Expr:
     """Poiseuille shear factor φ_fp = 1 − D e^{−sH} (Patir & Cheng 1979, isotropic).
 
     Fitted for H > 0.5; H is held at 0.5 below (φ_fp = −0.006 there, ≈ 0).
@@ -124,7 +136,10 @@ def patir_cheng_poiseuille_factor(H, D=1.40, s=0.66):
     return 1 - D * ufl.exp(-s * ufl.max_value(H, 0.5))
 
 
-def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_max=7.0):
+def patir_cheng_roughness_shear_factor(
+    H: Expr, A3: Expr | float = 11.1, a4: Expr | float = 2.31, a5: Expr | float = 2.38,
+    a6: Expr | float = 0.11, H_max: Expr | float = 7.0,
+) -> Expr:
     """Roughness shear factor over H, Φ_fs(H)/H (Patir & Cheng 1979, isotropic).
 
     Φ_fs = A3 H^a4 e^{−a5 H + a6 H²} for 0.5 ≤ H ≤ 7, 0 above (the fit is 0.013
@@ -137,7 +152,11 @@ def patir_cheng_roughness_shear_factor(H, A3=11.1, a4=2.31, a5=2.38, a6=0.11, H_
                            A3 * Hc ** (a4 - 1) * ufl.exp(-a5 * Hc + a6 * Hc**2), 0.0)
 
 
-def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, share):
+def rough_shear_factors(
+    h: Expr, mu: Expr | float, sigma: Expr | float, couette: Callable[[Expr], Expr],
+    poiseuille: Callable[[Expr], Expr], roughness_shear: Callable[[Expr], Expr] | None,
+    share: float,
+) -> tuple[Expr, Expr]:
     """Return the factors of the wall traction of a rough film (Patir & Cheng 1979).
 
     The tangential traction on either wall is (μ Δv/σ)(φ_f/H + |s| Φ_fs/H) +
@@ -160,7 +179,7 @@ def rough_shear_factors(h, mu, sigma, couette, poiseuille, roughness_shear, shar
     return (mu / sigma) * c, 0.5 * expected_gap(h, sigma) * poiseuille(H)
 
 
-def expected_gap(h, sigma):
+def expected_gap(h: Expr, sigma: Expr | float) -> Expr:
     """Return the expected local gap h_T of a Gaussian roughness σ about the gap h (mm).
 
     Bounded below by 1e-9 σ: in floating point the two terms cancel to 0 (or
@@ -174,12 +193,12 @@ def expected_gap(h, sigma):
     return ufl.max_value(h_T, 1e-9 * sigma)
 
 
-def asperity_constant(eta, beta, sigma):
+def asperity_constant(eta: float, beta: float, sigma: float) -> float:
     """K = (16√2/15) π (ηβσ)² √(σ/β) (dimensionless; η in 1/mm², β and σ in mm)."""
     return 16 * math.sqrt(2) / 15 * math.pi * (eta * beta * sigma) ** 2 * math.sqrt(sigma / beta)
 
 
-def greenwood_tripp_pressure(h, sigma, KE):
+def greenwood_tripp_pressure(h: Expr, sigma: Expr | float, KE: Expr | float) -> Expr:
     """Asperity pressure p_a = K E* F_{5/2}(h/σ) (MPa) with the fit :data:`GT_FIT`.
 
     ``KE``: the product K E* (MPa).
@@ -189,7 +208,10 @@ def greenwood_tripp_pressure(h, sigma, KE):
     return KE * A * s**n
 
 
-def average_flow(kin, mu, sigma, phi_x, phi_s, share):
+def average_flow(
+    kin: LubricationKinematics, mu: Expr | float, sigma: Expr | float,
+    phi_x: Callable[[Expr], Expr], phi_s: Callable[[Expr], Expr], share: float,
+) -> tuple[LubricationKinematics, Expr]:
     """Kinematics and viscosity that make the smooth Reynolds forms the average-flow ones.
 
     The flux is written on the expected gap h_T (> 0 for every nominal h, also
@@ -211,7 +233,10 @@ def average_flow(kin, mu, sigma, phi_x, phi_s, share):
         mu / phi_x(H)
 
 
-def asperity_traction(p_a, kin, F, N, mu_b=0.0, delta_v=1e-3, floor_v=1e-12):
+def asperity_traction(
+    p_a: Expr, kin: LubricationKinematics, F: Expr, N: Expr, mu_b: float = 0.0,
+    delta_v: float = 1e-3, floor_v: float = 1e-12,
+) -> Expr:
     """Nominal traction of the asperities on the layer (MPa per reference area).
 
     −p_a J F⁻ᵀN (the normal pressure on the current surface, Nanson) and the
@@ -238,7 +263,7 @@ def asperity_traction(p_a, kin, F, N, mu_b=0.0, delta_v=1e-3, floor_v=1e-12):
     return T
 
 
-def asperity_wear_load(p_a, kin, F, N):
+def asperity_wear_load(p_a: Expr, kin: LubricationKinematics, F: Expr, N: Expr) -> WearLoad:
     """Return the asperity contact as the load of Archard wear (:class:`forms.wear.WearLoad`).
 
     Mixed lubrication wears the surface where the asperities touch: the normal

@@ -55,7 +55,17 @@ The planar/traditional form (§6.6) is obtained with ``grad = ufl.grad``,
 operators grad_S, div_S and surface measure ds_S instead.  Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
 import ufl
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .ehl import WeightedMeasure
 
 __all__ = [
     "cavitation_penalty",
@@ -72,12 +82,15 @@ __all__ = [
 ]
 
 
-def poiseuille_conductance(h, mu):
+def poiseuille_conductance(h: Expr, mu: Expr | float) -> Expr:
     """Poiseuille flow factor h³/(12μ) (mm³/(MPa·s)) of eq. (40)."""
     return h**3 / (12 * mu)
 
 
-def reynolds_flux(p, h, vbar, mu, grad=ufl.grad, rho=1):
+def reynolds_flux(
+    p: Expr, h: Expr, vbar: Expr, mu: Expr | float,
+    grad: Callable[[Expr], Expr] = ufl.grad, rho: Expr | float = 1,
+) -> Expr:
     """Flux per unit width q = ρ(−h³/(12μ) grad p + h v̄) (eq. 40; mm²/s).
 
     ``rho``: the density relative to the ambient one (1: the chapter's incompressible
@@ -87,8 +100,12 @@ def reynolds_flux(p, h, vbar, mu, grad=ufl.grad, rho=1):
     return rho * (-poiseuille_conductance(h, mu) * grad(p) + h * vbar)
 
 
-def reynolds_residual(p, dp, h, vbar, mu, dx, grad=ufl.grad, dhdt=None, q_star=None,
-                      ds=None, rho=1):
+def reynolds_residual(
+    p: Expr, dp: Expr, h: Expr, vbar: Expr, mu: Expr | float,
+    dx: ufl.Measure | WeightedMeasure, grad: Callable[[Expr], Expr] = ufl.grad,
+    dhdt: Expr | None = None, q_star: Expr | float | None = None, ds: ufl.Measure | None = None,
+    rho: Expr | float = 1,
+) -> ufl.Form:
     """Weak form (49) of the Reynolds equation (39)–(40), no cavitation.
 
     ∫ (∂h/∂t δp − q·grad δp) dx + ∫ q* δp ds; ``dhdt`` (mm/s) and the prescribed
@@ -104,7 +121,11 @@ def reynolds_residual(p, dp, h, vbar, mu, dx, grad=ufl.grad, dhdt=None, q_star=N
     return F
 
 
-def jfo_residual(p, lam, dp, h, vbar, mu, dx, grad=ufl.grad, div=ufl.div, rate=None):
+def jfo_residual(
+    p: Expr, lam: Expr | float, dp: Expr, h: Expr, vbar: Expr, mu: Expr | float,
+    dx: ufl.Measure | WeightedMeasure, grad: Callable[[Expr], Expr] = ufl.grad,
+    div: Callable[[Expr], Expr] = ufl.div, rate: Expr | None = None,
+) -> ufl.Form:
     """Weak form (57) of the JFO mass-conserving Reynolds equation.
 
     ``lam`` is the void fraction λ = 1 − ϱ̄ (continuous field, so the jump term
@@ -120,8 +141,11 @@ def jfo_residual(p, lam, dp, h, vbar, mu, dx, grad=ufl.grad, div=ufl.div, rate=N
     return F
 
 
-def reynolds_strong_residual(p, lam, h, vbar, mu, grad=ufl.grad, div=ufl.div, rate=None,
-                             rho=1):
+def reynolds_strong_residual(
+    p: Expr, lam: Expr | float, h: Expr, vbar: Expr, mu: Expr | float,
+    grad: Callable[[Expr], Expr] = ufl.grad, div: Callable[[Expr], Expr] = ufl.div,
+    rate: Expr | None = None, rho: Expr | float = 1,
+) -> Expr:
     """Strong residual R = div(θρhv̄) − div(θρ h³/(12μ) grad p) + ∂(θρh)/∂t, θ = 1 − λ.
 
     Pass ``lam = 0`` for the model without (or with penalty) cavitation; ``rho`` as
@@ -134,7 +158,7 @@ def reynolds_strong_residual(p, lam, h, vbar, mu, grad=ufl.grad, div=ufl.div, ra
     return R
 
 
-def supg_tau(h_e, vbar, diffusivity):
+def supg_tau(h_e: Expr | float, vbar: Expr, diffusivity: Expr | float) -> Expr:
     """SUPG parameter τ = h_e/√(4|v̄|² + (12D/h_e)²) (s); see the module docstring.
 
     ``h_e`` is the element size (mm), ``diffusivity`` D (mm²/s).  Requires
@@ -143,8 +167,11 @@ def supg_tau(h_e, vbar, diffusivity):
     return h_e / ufl.sqrt(4 * ufl.inner(vbar, vbar) + (12 * diffusivity / h_e) ** 2)
 
 
-def supg_stabilisation(p, lam, dp, h, vbar, mu, tau, dx, grad=ufl.grad, div=ufl.div,
-                       rate=None, rho=1):
+def supg_stabilisation(
+    p: Expr, lam: Expr | float, dp: Expr, h: Expr, vbar: Expr, mu: Expr | float, tau: Expr,
+    dx: ufl.Measure | WeightedMeasure, grad: Callable[[Expr], Expr] = ufl.grad,
+    div: Callable[[Expr], Expr] = ufl.div, rate: Expr | None = None, rho: Expr | float = 1,
+) -> ufl.Form:
     """SUPG term ∫ τ (v̄·grad δp) R dx of Remark 3.2 (to be added to eq. 57 or 49).
 
     Consistent: it vanishes for the exact solution (R = 0).
@@ -153,12 +180,17 @@ def supg_stabilisation(p, lam, dp, h, vbar, mu, tau, dx, grad=ufl.grad, div=ufl.
     return tau * ufl.inner(vbar, grad(dp)) * R * dx
 
 
-def cavitation_penalty(p, dp, eps, dx):
+def cavitation_penalty(
+    p: Expr, dp: Expr, eps: Expr | float, dx: ufl.Measure | WeightedMeasure
+) -> ufl.Form:
     """Penalty approximation of p ≥ 0: ∫ ε⁻¹ min(p, 0) δp dx, ε in MPa·s/mm."""
     return (1 / eps) * ufl.min_value(p, 0) * dp * dx
 
 
-def jfo_complementarity(p, lam, dlam, p_c, dx, weight=1):
+def jfo_complementarity(
+    p: Expr, lam: Expr, dlam: Expr, p_c: Expr | float, dx: ufl.Measure,
+    weight: Expr | float = 1,
+) -> ufl.Form:
     """Constraint ∫ w min(p/p_c, λ) δλ dx enforcing (52): p ≥ 0, λ ≥ 0, pλ = 0.
 
     ``p_c`` (MPa) scales the pressure against the void fraction; ``weight`` w
@@ -168,7 +200,7 @@ def jfo_complementarity(p, lam, dlam, p_c, dx, weight=1):
     return weight * ufl.min_value(p / p_c, lam) * dlam * dx
 
 
-def jfo_film_fraction(p, lam, p_c, delta=1e-6):
+def jfo_film_fraction(p: Expr, lam: Expr, p_c: Expr | float, delta: float = 1e-6) -> Expr:
     """Continuous full-film fraction s = (p⁺/p_c + δ)/(p⁺/p_c + λ⁺ + 2δ) ∈ (0, 1).
 
     s ≈ 1 in the full film (λ = 0, p > 0), s ≈ 0 in the cavitated zone (p = 0,
@@ -180,7 +212,9 @@ def jfo_film_fraction(p, lam, p_c, delta=1e-6):
     return a / (a + ufl.max_value(lam, 0) + delta)
 
 
-def jfo_diffusivity(p, lam, h, mu, p_c, delta=1e-6):
+def jfo_diffusivity(
+    p: Expr, lam: Expr, h: Expr, mu: Expr | float, p_c: Expr | float, delta: float = 1e-6
+) -> Expr:
     """Diffusivity D = s h² p_c/(12μ) (mm²/s) of the single-field JFO variable.
 
     s is the full-film fraction of :func:`jfo_film_fraction` (D = 0 in the

@@ -34,14 +34,25 @@ c = ρ θ (g + ν₀·u), the classical EHL squeeze term ∂(ρθh)/∂t.
 Units: mm, s, MPa; c in mm (per unit reference length or area), rates mm/s.
 """
 
+from __future__ import annotations
+
 import dataclasses
+from typing import TYPE_CHECKING
 
 import ufl
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .ehl import LubricationKinematics
 
 __all__ = ["backward_difference", "film_content", "moving_surface", "surface_rate"]
 
 
-def film_content(kin, lam=None, rho=1, weight=1):
+def film_content(
+    kin: LubricationKinematics, lam: Expr | None = None, rho: Expr | float = 1,
+    weight: Expr | float = 1,
+) -> Expr:
     """Fluid content c = ρ θ h J_S w per unit reference measure of Γ_l (mm).
 
     ``lam``: the JFO void fraction (θ = 1 − min(λ, 1); None: a full film,
@@ -52,7 +63,9 @@ def film_content(kin, lam=None, rho=1, weight=1):
     return rho * theta * kin.h * kin.stretch * weight
 
 
-def backward_difference(f, f_n, f_nm1, inv_dt, c0, c1):
+def backward_difference(
+    f: Expr, f_n: Expr, f_nm1: Expr, inv_dt: Expr | float, c0: Expr | float, c1: Expr | float
+) -> Expr:
     """Rate (c₀ (f − f_n) + c₁ (f_n − f_{n−1}))/Δt of a history (BDF1/BDF2, variable step).
 
     ``inv_dt`` = 1/Δt (0 between steps: the steady film); (c₀, c₁) = (1, 0) is
@@ -62,7 +75,9 @@ def backward_difference(f, f_n, f_nm1, inv_dt, c0, c1):
     return inv_dt * (c0 * (f - f_n) + c1 * (f_n - f_nm1))
 
 
-def moving_surface(kin, layer_rate=None, surface_rate=None):
+def moving_surface(
+    kin: LubricationKinematics, layer_rate: Expr | None = None, surface_rate: Expr | None = None
+) -> LubricationKinematics:
     """Kinematics of a transient film: the layer's displacement rate and S's motion.
 
     ``layer_rate`` u̇ (mm/s, at X): added to the layer velocity, v_layer += (I − ν⊗ν) u̇;
@@ -82,7 +97,9 @@ def moving_surface(kin, layer_rate=None, surface_rate=None):
     return dataclasses.replace(kin, v_layer=v_layer, vbar=vbar)
 
 
-def surface_rate(y, u, u_rate, c_rate=None):
+def surface_rate(
+    y: Expr, u: ufl.Coefficient, u_rate: Expr, c_rate: Expr | None = None
+) -> Expr:
     """Velocity ẏ of the point of S carrying X, by the chain rule (mm/s).
 
     y is a UFL expression of the layer displacement ``u`` (through x = X + u) and

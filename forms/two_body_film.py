@@ -37,14 +37,23 @@ order), and keeps the film's momentum balance exact.
 Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import ufl
 
 from .ehl import LubricationKinematics
 
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
 __all__ = ["layer_surface_kinematics", "nodal_equality", "traction_collocation"]
 
 
-def layer_surface_kinematics(X, disp, grad_disp, N, h, V, w):
+def layer_surface_kinematics(
+    X: Expr, disp: Expr, grad_disp: Expr, N: Expr, h: Expr, V: Expr | None, w: Expr
+) -> LubricationKinematics:
     """Kinematics of the lubrication surface S = γ_l (the slave's current boundary).
 
     Args:
@@ -73,7 +82,7 @@ def layer_surface_kinematics(X, disp, grad_disp, N, h, V, w):
                                  v_counter=v_counter)
 
 
-def nodal_equality(f, df, c, nodal_dx):
+def nodal_equality(f: Expr, df: Expr, c: Expr | float, nodal_dx: ufl.Measure) -> ufl.Form:
     """Linear half c ∫ f·δf of the nodal rows f_k = (kernel value)_k (vertex rule ``nodal_dx``).
 
     The kernel adds −c w_k (value)_k with w_k = ∫ φ_k ``nodal_dx``, so the row
@@ -82,7 +91,7 @@ def nodal_equality(f, df, c, nodal_dx):
     return c * ufl.inner(f, df) * nodal_dx
 
 
-def traction_collocation(t, traction, dt, ds_vertex):
+def traction_collocation(t: Expr, traction: Expr, dt: Expr, ds_vertex: ufl.Measure) -> ufl.Form:
     """Residual ∫_Γl (t − T)·δt dS with the vertex rule: t is the traction T at the nodes.
 
     ``traction`` is the nominal fluid traction (46) on the slave (bulk side:

@@ -20,9 +20,24 @@ volume removed per unit initial area and time is Ẇ j_w = k_A |λ| ‖v_T‖ wi
 j_w = dS/dŜ (the rate forms below take j_w where they need it).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import ufl
+
+if TYPE_CHECKING:
+    from typing import TypeVar
+
+    import numpy as np
+    import numpy.typing as npt
+    from ufl.core.expr import Expr
+
+    # a number or an array of nodal values (cycle averages at the slow time scale)
+    Values = TypeVar("Values", float, npt.NDArray[np.float64])
+    # a UFL expression or an array of nodal values (a dissipation density)
+    Density = TypeVar("Density", Expr, npt.NDArray[np.float64])
 
 __all__ = [
     "WearLoad",
@@ -40,12 +55,14 @@ __all__ = [
 ]
 
 
-def archard_nominal(K, D_nominal):
+def archard_nominal(K: Expr | float, D_nominal: Density) -> Density:
     """Nominal Archard law Ẇ = K Ḋ (eq. 14); K in mm³/(N·mm)·(1/μ) = 1/MPa."""
     return K * D_nominal
 
 
-def archard_pressure_form(k, T_n, slip_speed, J=None):
+def archard_pressure_form(
+    k: Expr | float, T_n: Expr | float, slip_speed: Expr | float, J: Expr | None = None
+) -> Expr:
     """Archard law in the pressure form Ẇ = k |T_N| ‖v_T‖ (frictionless or K = k/μ).
 
     With ``J`` given, the spatial law (15) in pressure form, ẇ = k |t_N| ‖v_T‖,
@@ -63,7 +80,9 @@ def archard_pressure_form(k, T_n, slip_speed, J=None):
     return rate if J is None else rate / J
 
 
-def archard_dissipation_form(k, mu, t_t, v_t, J=None):
+def archard_dissipation_form(
+    k: Expr | float, mu: Expr | float, t_t: Expr, v_t: Expr, J: Expr | None = None
+) -> Expr:
     """Archard law driven by the frictional dissipation, Ẇ = K Ḋ, K = k/μ (eqs. 13–14).
 
     ``t_t`` is the nominal friction traction and ``v_t`` the slip velocity (or a
@@ -83,7 +102,7 @@ def archard_dissipation_form(k, mu, t_t, v_t, J=None):
     return rate if J is None else rate / J
 
 
-def cycle_average_rate(increment, period):
+def cycle_average_rate(increment: Values, period: float) -> Values:
     """Average wear rate at the slow time scale, W̄̇ = ΔW / Δτ (eq. 23).
 
     ``increment`` is the wear ΔW accumulated over one fast-time cycle of duration
@@ -93,7 +112,7 @@ def cycle_average_rate(increment, period):
     return increment / period
 
 
-def depth_graded_coefficient(k0, grad, depth):
+def depth_graded_coefficient(k0: Expr | float, grad: Expr | float, depth: Expr) -> Expr:
     """Wear coefficient varying linearly with the worn depth, k = k₀ max(1 + g d, 0).
 
     A graded surface layer (chapter §5.3, Fig. 10b): g > 0 when the coefficient
@@ -125,20 +144,22 @@ class WearLoad:
             all given or all None.
     """
 
-    normal: object
-    pressure: object = None
-    slip_speed: object = None
-    shear: object = None
-    slip: object = None
-    friction: object = None
+    normal: ufl.core.expr.Expr | float
+    pressure: ufl.core.expr.Expr | float | None = None
+    slip_speed: ufl.core.expr.Expr | float | None = None
+    shear: ufl.core.expr.Expr | None = None
+    slip: ufl.core.expr.Expr | None = None
+    friction: ufl.core.expr.Expr | float | None = None
 
     @property
-    def law_pressure(self):
+    def law_pressure(self) -> ufl.core.expr.Expr | float:
         """The pressure p of k(p): ``pressure``, or −T_N."""
         return -self.normal if self.pressure is None else self.pressure
 
 
-def archard_rate(k, load, speed=None, J=None):
+def archard_rate(
+    k: Expr | float, load: WearLoad, speed: Expr | float | None = None, J: Expr | None = None
+) -> Expr:
     """Nominal Archard rate per unit initial area, Ẇ j_w, of one :class:`WearLoad` (eqs. 14–17).
 
     Without a friction traction (``load.shear`` None): the pressure form k |T_N|
@@ -150,16 +171,19 @@ def archard_rate(k, load, speed=None, J=None):
     """
     if load.shear is None:
         v = speed if load.slip_speed is None else load.slip_speed
+        assert v is not None        # a speed is given (a product with None raises)
         return archard_pressure_form(k, load.normal, v, J)
+    # shear, slip and friction come together (k/None and a dot with None raise)
+    assert load.friction is not None and load.slip is not None
     return archard_dissipation_form(k, load.friction, load.shear, load.slip, J)
 
 
-def wear_depth(w, N_hat):
+def wear_depth(w: Expr, N_hat: Expr) -> Expr:
     """Wear depth d = −w·N̂ below the initial surface (mm), N̂ its outer unit normal."""
     return -ufl.dot(w, N_hat)
 
 
-def bdf2_coefficients(omega):
+def bdf2_coefficients(omega: float) -> tuple[float, float]:
     """Variable-step BDF2 weights (c₀, c₁) of the swept volumes, ω = Δt_{n+1}/Δt_n.
 
     For y' = f: c₀ (y_{n+1} − y_n) + c₁ (y_n − y_{n−1}) = Δt_{n+1} f_{n+1} with
@@ -169,7 +193,10 @@ def bdf2_coefficients(omega):
     return (1 + 2 * omega) / (1 + omega), -omega**2 / (1 + omega)
 
 
-def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds, bdf2=None):
+def shape_update_residual(
+    w: Expr, w_old: Expr, a: Expr, rate_density: Expr, dt: Expr | float, eta: Expr,
+    ds: ufl.Measure, bdf2: tuple[Expr | float, Expr | float, Expr] | None = None,
+) -> ufl.Form:
     """Weak form of the discrete shape evolution law (28) on the contact boundary.
 
     ∫_Γ̂c η [(w − w_n)·a + Δt Ẇ_{n+θ} j_w] dŜ = 0, where ``a`` is the Nanson
@@ -198,12 +225,14 @@ def shape_update_residual(w, w_old, a, rate_density, dt, eta, ds, bdf2=None):
     return eta * (c0 * ufl.dot(w - w_old, a) + c1 * swept_old + dt * rate_density) * ds
 
 
-def constant_coefficient(p, k):
+def constant_coefficient(p: Expr, k: Expr | float) -> Expr:
     """Archard's constant wear coefficient k (mm³/(N·mm))."""
     return k + 0 * p
 
 
-def pressure_dependent_coefficient(p, k0, p_s, m):
+def pressure_dependent_coefficient(
+    p: Expr, k0: Expr | float, p_s: Expr | float, m: Expr | float
+) -> Expr:
     """k(p) = k₀ (1 + (p⁺/p_s)^m): mild wear below the pressure p_s, severe above (MPa).
 
     A smooth transition of the kind seen in wear maps (Lim & Ashby 1987); any

@@ -26,9 +26,18 @@ in the worn configuration, d = −X·e_z = −(Ẑ + w_z) (material is removed, 
 moved, by wear).  Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import ufl
 
 from .wear import archard_pressure_form
+
+if TYPE_CHECKING:
+    from ufl.core.expr import Expr
+
+    from .contact import ContactGeometry
 
 __all__ = [
     "nodal_rate_form",
@@ -40,12 +49,12 @@ __all__ = [
 ]
 
 
-def material_depth(X_hat, w):
+def material_depth(X_hat: Expr, w: Expr) -> Expr:
     """Depth below the initial surface z = 0 of the worn point X = X̂ + w (eq. 19₁), mm."""
     return -(X_hat[2] + w[2]) if len(w) == 3 else -(X_hat[1] + w[1])
 
 
-def graded_factor(depth, alpha, thickness):
+def graded_factor(depth: Expr, alpha: Expr | float, thickness: Expr | float) -> Expr:
     """FGM layer (Fig. 10b): 1 + α max(1 − d/h_L, 0) for d ≥ 0 (1 below the layer).
 
     Multiplies the substrate modulus E and the substrate wear coefficient k:
@@ -54,7 +63,7 @@ def graded_factor(depth, alpha, thickness):
     return 1 + alpha * ufl.max_value(1 - depth / thickness, 0)
 
 
-def groove_slip_speed(u, geometry, V):
+def groove_slip_speed(u: Expr, geometry: ContactGeometry, V: Expr) -> Expr:
     """‖v_T‖ of the Eulerian slip velocity, v = F V (eq. 26), v_T its tangential part (eq. 27).
 
     ``V`` is the background velocity of the worn half-space in the ball frame
@@ -66,7 +75,9 @@ def groove_slip_speed(u, geometry, V):
     return ufl.sqrt(ufl.dot(vt, vt))
 
 
-def groove_rate_density(k, T_n, slip_speed, J=None):
+def groove_rate_density(
+    k: Expr | float, T_n: Expr, slip_speed: Expr | float, J: Expr | None = None
+) -> Expr:
     """Nominal Archard rate per unit initial area, Ẇ j_w = k |T_N| ‖v_T‖ (eq. 14, pressure form).
 
     T_N is the contact multiplier (nominal traction per unit *initial* area, so
@@ -76,7 +87,7 @@ def groove_rate_density(k, T_n, slip_speed, J=None):
     return archard_pressure_form(k, T_n, slip_speed, J)
 
 
-def path_averaged_rate(P_line, rate_nodal, L):
+def path_averaged_rate(P_line: Any, rate_nodal: Any, L: float) -> Any:
     """Cross-section nodal wear rate of the path average (1/L) ∫ Ẇ dx (§5.3; eqs. 22–23).
 
     ``rate_nodal`` holds ∫_Γ̂c Ẇ j_w φ_i dŜ for the P1 basis functions φ_i of the
@@ -90,7 +101,7 @@ def path_averaged_rate(P_line, rate_nodal, L):
     return (P_line.T @ rate_nodal) / L
 
 
-def nodal_rate_form(rate_density, eta, ds):
+def nodal_rate_form(rate_density: Expr, eta: Expr, ds: ufl.Measure) -> ufl.Form:
     """Return the form ∫ Ẇ j_w η dŜ of the nodal wear rates (mm³/s, vertex rule ``ds``).
 
     Assembled, it is the r of :func:`path_averaged_rate` (the right-hand side of the

@@ -20,11 +20,19 @@ midplane, symmetry), the names the case ``ehl-ball`` reads from a user's mesh
 mesh, a template for one's own.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    import os
+
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["BALL_NAMES", "FREE", "GROUP_NAMES", "LUBRICATED", "MIDPLANE", "SYMMETRY", "cap_height",
            "quarter_ball", "write_quarter_ball"]
@@ -37,12 +45,15 @@ GROUP_NAMES = {LUBRICATED: "lubricated", FREE: "free", MIDPLANE: "midplane",
 BALL_NAMES = {"lubricated": LUBRICATED, "midplane": MIDPLANE, "symmetry": SYMMETRY}
 
 
-def cap_height(R, theta_l):
+def cap_height(R: float, theta_l: float) -> float:
     """Height z_cap = R (1 − cos θ_l) (mm) of the boundary circle of the lubricated cap."""
     return R * (1 - math.cos(theta_l))
 
 
-def _build(R, theta_l, h_fine, h_coarse, r_fine, ring=None):
+def _build(
+    R: float, theta_l: float, h_fine: float, h_coarse: float, r_fine: float,
+    ring: tuple[float, float, float] | None = None,
+) -> None:
     occ = gmsh.model.occ
     z_cap = cap_height(R, theta_l)
     ball = occ.addSphere(0, 0, R, R)
@@ -54,7 +65,7 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine, ring=None):
     occ.removeAllDuplicates()
     occ.synchronize()
     tol = 1e-8 * R
-    tags = {LUBRICATED: [], FREE: [], MIDPLANE: [], SYMMETRY: []}
+    tags: dict[int, list[int]] = {LUBRICATED: [], FREE: [], MIDPLANE: [], SYMMETRY: []}
     for dim, tag in gmsh.model.getEntities(2):
         x, y, z = occ.getCenterOfMass(dim, tag)
         if abs(y) < tol:
@@ -69,6 +80,7 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine, ring=None):
             tags[FREE].append(tag)
     vols = [t for _, t in gmsh.model.getEntities(3)]
     gmsh.model.addPhysicalGroup(3, vols, 1, name="ball")
+    k: int | str            # a group's tag here, a field option's name below
     for k, v in tags.items():
         gmsh.model.addPhysicalGroup(2, v, k, name=GROUP_NAMES[k])
     p0 = occ.addPoint(0, 0, 0)
@@ -106,7 +118,10 @@ def _build(R, theta_l, h_fine, h_coarse, r_fine, ring=None):
     gmsh.model.mesh.generate(3)
 
 
-def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, ring=None):
+def quarter_ball(
+    R: float, theta_l: float, h_fine: float, h_coarse: float, r_fine: float,
+    comm: MPI.Comm = MPI.COMM_WORLD, ring: tuple[float, float, float] | None = None,
+) -> tuple[Mesh, MeshTags, MeshTags]:
     """Build the quarter ball and return ``(mesh, cell_tags, facet_tags)``.
 
     Args:
@@ -127,10 +142,12 @@ def quarter_ball(R, theta_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, ring
     gmsh.model.remove()
     if not initialized:
         gmsh.finalize()
+    # the model tags its cells and its boundary
+    assert data.cell_tags is not None and data.facet_tags is not None
     return data.mesh, data.cell_tags, data.facet_tags
 
 
-def _start(theta_l):
+def _start(theta_l: float) -> bool:
     """Check the cap angle, start gmsh (if needed) and a new model; whether it was running."""
     if not 0 < theta_l < 0.5 * math.pi:
         raise ValueError(f"cap angle must be in (0, π/2), got {theta_l}")
@@ -142,7 +159,10 @@ def _start(theta_l):
     return initialized
 
 
-def write_quarter_ball(path, R, theta_l, h_fine, h_coarse, r_fine, ring=None):
+def write_quarter_ball(
+    path: str | os.PathLike[str], R: float, theta_l: float, h_fine: float, h_coarse: float,
+    r_fine: float, ring: tuple[float, float, float] | None = None,
+) -> str | os.PathLike[str]:
     """Write the quarter ball of :func:`quarter_ball` to the gmsh file ``path`` (one process).
 
     The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid

@@ -22,11 +22,18 @@ in mm.  For a ball on it, :func:`meshes.hertz.hertz_body` (dim 3) gives the
 quarter sphere touching the origin from above.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import gmsh
 from mpi4py import MPI
 
 from .model import distributed_model
 from .sizing import point_refinement
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["BOTTOM", "NAMES", "SIDES", "SYMMETRY_X", "SYMMETRY_Y", "TOP", "contact_block"]
 
@@ -35,14 +42,16 @@ NAMES = {"top": TOP, "bottom": BOTTOM, "symmetry_x": SYMMETRY_X, "symmetry_y": S
          "sides": SIDES}
 
 
-def _build(L, H, h_fine, h_coarse, r_fine, quarter):
+def _build(
+    L: float, H: float, h_fine: float, h_coarse: float, r_fine: float, quarter: bool
+) -> None:
     occ = gmsh.model.occ
     x0 = 0.0 if quarter else -L
     occ.addBox(x0, x0, -H, L - x0, L - x0, H)
     origin = None if quarter else occ.addPoint(0.0, 0.0, 0.0)
     occ.synchronize()
     tol = 1e-8 * L
-    tags = {k: [] for k in NAMES.values()}
+    tags: dict[int, list[int]] = {k: [] for k in NAMES.values()}
     for dim, tag in gmsh.model.getEntities(2):
         x, y, z = occ.getCenterOfMass(dim, tag)
         if abs(z) < tol:
@@ -68,7 +77,10 @@ def _build(L, H, h_fine, h_coarse, r_fine, quarter):
     gmsh.model.mesh.generate(3)
 
 
-def contact_block(L, H, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, quarter=True):
+def contact_block(
+    L: float, H: float, h_fine: float, h_coarse: float, r_fine: float,
+    comm: MPI.Comm = MPI.COMM_WORLD, quarter: bool = True,
+) -> tuple[Mesh, MeshTags]:
     """Build the block and return ``(mesh, facet_tags)`` (see the module docstring).
 
     Args:
@@ -84,4 +96,5 @@ def contact_block(L, H, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, quarter=T
         raise ValueError("contact_block needs 0 < h_fine <= h_coarse, 0 < r_fine < L, H > 0")
     data = distributed_model("contact_block", lambda: _build(L, H, h_fine, h_coarse, r_fine,
                                                              quarter), comm, 3)
+    assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags

@@ -14,8 +14,20 @@ FAR (y = L_y), ENDS (x = ±L_x).  Cross-section (2D, coordinates (y, z)): TOP,
 BOTTOM, SYM, FAR.  Lengths in mm.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 from dolfinx import mesh as dmesh
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    from mpi4py import MPI
+
+    # a boundary rule: (tag, marker of the points x (gdim × n) on that boundary)
+    Rule = tuple[int, Callable[[npt.NDArray[np.float64]], npt.NDArray[np.bool_]]]
 
 __all__ = ["BOTTOM", "ENDS", "FAR", "NAMES", "SECTION_NAMES", "SYM", "TOP", "cross_section",
            "graded_grid", "halfspace_block", "prolongation"]
@@ -26,7 +38,7 @@ NAMES = {"top": TOP, "bottom": BOTTOM, "sym": SYM, "far": FAR, "ends": ENDS}
 SECTION_NAMES = {"top": TOP, "bottom": BOTTOM, "sym": SYM, "far": FAR}
 
 
-def graded_grid(length, fine, h, n_coarse):
+def graded_grid(length: float, fine: float, h: float, n_coarse: int) -> npt.NDArray[np.float64]:
     """Nodes 0 = s_0 < … < s_n = ``length``: uniform spacing ≈ h on [0, fine], then geometric.
 
     The coarse part has ``n_coarse`` elements whose sizes grow by a constant
@@ -50,15 +62,18 @@ def graded_grid(length, fine, h, n_coarse):
     return np.asarray(s)
 
 
-def _map(msh, grids):
+def _map(msh: dmesh.Mesh, grids: Sequence[npt.NDArray[np.float64]]) -> None:
     """Map a mesh on the index box [0, n_0] × … to the graded coordinates ``grids``."""
     x = msh.geometry.x
     for d, g in enumerate(grids):
         x[:, d] = np.interp(x[:, d], np.arange(len(g)), g)
 
 
-def _tags(msh, rules):
+def _tags(msh: dmesh.Mesh, rules: Sequence[Rule]) -> dmesh.MeshTags:
     fdim = msh.topology.dim - 1
+    # lists of the rules' arrays, then their concatenation
+    facets: list[npt.NDArray[np.int32]] | npt.NDArray[np.int32]
+    values: list[npt.NDArray[np.int32]] | npt.NDArray[np.int32]
     facets, values = [], []
     for tag, rule in rules:
         f = dmesh.locate_entities_boundary(msh, fdim, rule)
@@ -71,7 +86,10 @@ def _tags(msh, rules):
     return dmesh.meshtags(msh, fdim, facets.astype(np.int32), values[order][idx])
 
 
-def grids(Lx, Ly, H, h, lx, ly, lz, nc, hx=None):
+def grids(
+    Lx: float, Ly: float, H: float, h: float, lx: float, ly: float, lz: float,
+    nc: Sequence[int], hx: float | None = None,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Return the graded 1D grids: x over [−L_x, L_x], y over [0, L_y], z over [−H, 0].
 
     ``h`` is the fine spacing in y and z, ``hx`` (default h) along x; ``nc`` the
@@ -84,7 +102,10 @@ def grids(Lx, Ly, H, h, lx, ly, lz, nc, hx=None):
     return gx, gy, gz
 
 
-def halfspace_block(comm, gx, gy, gz):
+def halfspace_block(
+    comm: MPI.Comm, gx: npt.NDArray[np.float64], gy: npt.NDArray[np.float64],
+    gz: npt.NDArray[np.float64],
+) -> tuple[dmesh.Mesh, dmesh.MeshTags]:
     """Hexahedral block on the tensor grid gx × gy × gz; returns ``(mesh, facet_tags)``."""
     n = [len(gx) - 1, len(gy) - 1, len(gz) - 1]
     msh = dmesh.create_box(comm, [np.zeros(3), np.array(n, dtype=float)], n,
@@ -101,7 +122,9 @@ def halfspace_block(comm, gx, gy, gz):
     return msh, ft
 
 
-def cross_section(comm, gy, gz):
+def cross_section(
+    comm: MPI.Comm, gy: npt.NDArray[np.float64], gz: npt.NDArray[np.float64]
+) -> tuple[dmesh.Mesh, dmesh.MeshTags]:
     """Quadrilateral cross-section mesh on gy × gz (coordinates (y, z)); ``(mesh, facet_tags)``."""
     n = [len(gy) - 1, len(gz) - 1]
     msh = dmesh.create_rectangle(comm, [np.zeros(2), np.array(n, dtype=float)], n,
@@ -117,7 +140,10 @@ def cross_section(comm, gy, gz):
     return msh, ft
 
 
-def prolongation(X3, X2, components=None):
+def prolongation(
+    X3: npt.NDArray[np.float64], X2: npt.NDArray[np.float64],
+    components: Sequence[tuple[int, int]] | None = None,
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], tuple[int, int]]:
     """Extrusion map (rows, cols, shape) of the 0/1 matrix P: 3D nodal values = P · 2D values.
 
     ``X3`` (n3 × ≥3) and ``X2`` (n2 × 2) are the node coordinates of the 3D and 2D

@@ -14,11 +14,18 @@ within the distance L of the axis (its rim exactly on the circle x = L, or
 x² + y² = L²), the rest of the curved surface 5 (free).  Lengths in mm.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import gmsh
 from mpi4py import MPI
 
 from .model import distributed_model
 from .sizing import point_refinement
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["AXIS", "AXISYMMETRIC_NAMES", "CONTACT", "FREE", "LOADED", "NAMES", "SYMMETRY_X",
            "SYMMETRY_Y", "hertz_body", "sphere_section"]
@@ -32,7 +39,7 @@ AXIS = SYMMETRY_X
 AXISYMMETRIC_NAMES = {"contact": CONTACT, "loaded": LOADED, "axis": AXIS}
 
 
-def _split_cap(dim, R, cap):
+def _split_cap(dim: int, R: float, cap: float) -> float:
     """Cut the body at the cap's rim (z or y = R − √(R² − L²)) so the cap is a surface of its own.
 
     The cut is a segment (2D) or a quarter disc (3D) of the body's section there;
@@ -54,12 +61,15 @@ def _split_cap(dim, R, cap):
     return z
 
 
-def _boundary(dim, tag):
+def _boundary(dim: int, tag: int) -> bool:
     """Whether entity ``tag`` of dimension dim − 1 bounds one body piece only."""
     return len(gmsh.model.getAdjacencies(dim - 1, tag)[0]) == 1
 
 
-def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None, cap=None):
+def _build_2d(
+    R: float, h_fine: float, h_coarse: float, r_fine: float, below: bool = False,
+    block: float | None = None, cap: float | None = None,
+) -> None:
     occ = gmsh.model.occ
     s = -1.0 if below else 1.0
     y_load = s * R
@@ -102,14 +112,17 @@ def _build_2d(R, h_fine, h_coarse, r_fine, below=False, block=None, cap=None):
     gmsh.model.mesh.generate(2)
 
 
-def _build_3d(R, h_fine, h_coarse, r_fine, cap=None):
+def _build_3d(
+    R: float, h_fine: float, h_coarse: float, r_fine: float, cap: float | None = None
+) -> None:
     occ = gmsh.model.occ
     ball = occ.addSphere(0, 0, R, R)
     box = occ.addBox(0, 0, 0, R, R, R)
     occ.intersect([(3, ball)], [(3, box)])
     occ.synchronize()
     z_cap = _split_cap(3, R, cap) if cap is not None else None
-    tags = {CONTACT: [], LOADED: [], SYMMETRY_X: [], SYMMETRY_Y: [], FREE: []}
+    tags: dict[int, list[int]] = {CONTACT: [], LOADED: [], SYMMETRY_X: [], SYMMETRY_Y: [],
+                                  FREE: []}
     for dim, tag in gmsh.model.getEntities(2):
         x, y, z = occ.getCenterOfMass(dim, tag)
         if not _boundary(3, tag):
@@ -135,8 +148,11 @@ def _build_3d(R, h_fine, h_coarse, r_fine, cap=None):
     gmsh.model.mesh.generate(3)
 
 
-def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=False,
-               block=None, cap=None):
+def hertz_body(
+    dim: int, R: float, h_fine: float, h_coarse: float, r_fine: float,
+    comm: MPI.Comm = MPI.COMM_WORLD, below: bool = False, block: float | None = None,
+    cap: float | None = None,
+) -> tuple[Mesh, MeshTags]:
     """Build the symmetry-reduced Hertz body and return ``(mesh, facet_tags)``.
 
     Args:
@@ -155,17 +171,20 @@ def hertz_body(dim, R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=Fals
     """
     if dim not in (2, 3):
         raise ValueError(f"dim must be 2 or 3, got {dim}")
-    def build():
+    def build() -> None:
         if dim == 2:
             _build_2d(R, h_fine, h_coarse, r_fine, below, block, cap)
         else:
             _build_3d(R, h_fine, h_coarse, r_fine, cap)
 
     data = distributed_model(f"hertz{dim}d", build, comm, dim)
+    assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags
 
 
-def sphere_section(R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+def sphere_section(
+    R: float, h_fine: float, h_coarse: float, r_fine: float, comm: MPI.Comm = MPI.COMM_WORLD
+) -> tuple[Mesh, MeshTags]:
     """Meridian section of the lower hemisphere of a sphere: an axisymmetric body.
 
     The quarter disc x ≥ 0 of radius R centred at (0, R), cut at the equator

@@ -9,9 +9,16 @@ Cell tags: 1 layer, 2 coating.  Facet tags: 1 lubricated Γ_l, 2 free top,
 3 bottom (bonded to the substrate), 4 lateral sides.  Lengths in mm.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["BOTTOM", "COATING", "FREE_TOP", "LAYER", "LUBRICATED", "SIDES", "coated_layer"]
 
@@ -19,7 +26,7 @@ LAYER, COATING = 1, 2
 LUBRICATED, FREE_TOP, BOTTOM, SIDES = 1, 2, 3, 4
 
 
-def _build(L, H, t_c, x_l, h_fine, h_coarse):
+def _build(L: float, H: float, t_c: float, x_l: float, h_fine: float, h_coarse: float) -> None:
     geo = gmsh.model.geo
     P = {}
     coords = {"bl": (-L, -H), "br": (L, -H), "tr": (L, 0), "tlr": (x_l, 0),
@@ -69,7 +76,10 @@ def _build(L, H, t_c, x_l, h_fine, h_coarse):
     gmsh.model.mesh.generate(2)
 
 
-def coated_layer(L, H, t_c, x_l, h_fine, h_coarse, comm=MPI.COMM_WORLD):
+def coated_layer(
+    L: float, H: float, t_c: float, x_l: float, h_fine: float, h_coarse: float,
+    comm: MPI.Comm = MPI.COMM_WORLD,
+) -> tuple[Mesh, MeshTags, MeshTags]:
     """Build the coated layer and return ``(mesh, cell_tags, facet_tags)``.
 
     Args:
@@ -95,4 +105,6 @@ def coated_layer(L, H, t_c, x_l, h_fine, h_coarse, comm=MPI.COMM_WORLD):
     gmsh.model.remove()
     if not initialized:
         gmsh.finalize()
+    # the model tags its cells and its boundary
+    assert data.cell_tags is not None and data.facet_tags is not None
     return data.mesh, data.cell_tags, data.facet_tags

@@ -1,12 +1,22 @@
 """Build a gmsh model on rank 0 and distribute it as a DOLFINx mesh (shared by the builders)."""
 
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
 import gmsh
 from dolfinx.io import gmsh as gmshio
+
+if TYPE_CHECKING:
+    from mpi4py import MPI
 
 __all__ = ["distributed_model"]
 
 
-def distributed_model(name, build, comm, gdim):
+def distributed_model(
+    name: str, build: Callable[[], None], comm: MPI.Comm, gdim: int
+) -> gmshio.MeshData:
     """Run ``build()`` on rank 0 into a new gmsh model ``name``; return the model's mesh data.
 
     gmsh is initialised (and finalised again) here unless the caller already

@@ -5,13 +5,23 @@ Returns plain arrays ``(nodes, facets, cell_type)`` in the kernel's packing:
 facet normals oriented towards the deformable body.  Lengths in mm.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import gmsh
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["cap_surface_mesh", "plane_surface_mesh"]
 
 
-def plane_surface_mesh(gdim, extent, size, height=0.0):
+def plane_surface_mesh(
+    gdim: int, extent: tuple[float, float], size: float, height: float = 0.0
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int32], str]:
     """Mesh of the rigid plane {x_gdim = height} with normal +e_gdim.
 
     Args:
@@ -58,7 +68,10 @@ def plane_surface_mesh(gdim, extent, size, height=0.0):
     return np.ascontiguousarray(nodes, dtype=np.float64), facets, cell_type
 
 
-def cap_surface_mesh(radius, centre, extent, n, quadratic=True):
+def cap_surface_mesh(
+    radius: float, centre: Sequence[float], extent: tuple[float, float], n: int,
+    quadratic: bool = True,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int32], str]:
     """Structured mesh of the sphere cap {|x − centre| = radius, z > centre_z} over a square.
 
     Every node lies on the sphere; the facets are biquadratic (``quadrilateral9``,

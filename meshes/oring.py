@@ -21,11 +21,19 @@ housing), the names the case ``ehl-oring`` reads from a user's mesh
 mesh, a template for one's own.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    import os
+
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["GROUP_NAMES", "HOUSING", "LUBRICATED", "SEALED", "oring_section",
            "write_oring_section"]
@@ -35,7 +43,7 @@ LUBRICATED, SEALED, HOUSING = 1, 2, 3
 GROUP_NAMES = {LUBRICATED: "lubricated", SEALED: "sealed", HOUSING: "housing"}
 
 
-def _build(r_c, z_c, a, h_l, h_b):
+def _build(r_c: float, z_c: float, a: float, h_l: float, h_b: float) -> None:
     geo = gmsh.model.geo
     c = geo.addPoint(r_c, z_c, 0)
     angles = (-45, 0, 45, 90, 135, 180, 225, 270)   # vertices at the initial contact points
@@ -71,7 +79,10 @@ def _build(r_c, z_c, a, h_l, h_b):
     gmsh.model.mesh.generate(2)
 
 
-def oring_section(r_c, z_c, a, n=1, h_l=0.1, h_b=0.4, comm=MPI.COMM_WORLD):
+def oring_section(
+    r_c: float, z_c: float, a: float, n: float = 1, h_l: float = 0.1, h_b: float = 0.4,
+    comm: MPI.Comm = MPI.COMM_WORLD,
+) -> tuple[Mesh, MeshTags, MeshTags]:
     """Build the O-ring cross-section and return ``(mesh, cell_tags, facet_tags)``.
 
     Args:
@@ -96,10 +107,15 @@ def oring_section(r_c, z_c, a, n=1, h_l=0.1, h_b=0.4, comm=MPI.COMM_WORLD):
     gmsh.model.remove()
     if not initialized:
         gmsh.finalize()
+    # the model tags its cells and its boundary
+    assert data.cell_tags is not None and data.facet_tags is not None
     return data.mesh, data.cell_tags, data.facet_tags
 
 
-def write_oring_section(path, r_c, z_c, a, n=1, h_l=0.1, h_b=0.4):
+def write_oring_section(
+    path: str | os.PathLike[str], r_c: float, z_c: float, a: float, n: float = 1,
+    h_l: float = 0.1, h_b: float = 0.4,
+) -> str | os.PathLike[str]:
     """Write the cross-section of :func:`oring_section` to the gmsh file ``path`` (one process).
 
     The physical groups are named (:data:`GROUP_NAMES`), so the file is a valid

@@ -9,11 +9,17 @@ Facet tags: 1 tip (potential contact surface), 2 top (loaded), 3 sides
 x = ±W/2 (laterally constrained).  Lengths in mm.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
 
 __all__ = ["CONTACT", "NAMES", "SIDES", "TOP", "pin_body", "tip_height"]
 
@@ -21,14 +27,14 @@ CONTACT, TOP, SIDES = 1, 2, 3
 NAMES = {"contact": CONTACT, "top": TOP, "sides": SIDES}  # boundary names of a Body
 
 
-def tip_height(x, R):
+def tip_height(x: float, R: float) -> float:
     """Height of the undeformed tip above its lowest point at abscissa x (mm)."""
     if not R or math.isinf(R):
         return 0.0
     return R - math.sqrt(R * R - x * x)
 
 
-def _build(W, H, R, n):
+def _build(W: float, H: float, R: float, n: int) -> None:
     geo = gmsh.model.geo
     s = tip_height(W / 2, R)
     p1 = geo.addPoint(-W / 2, s, 0)
@@ -56,7 +62,9 @@ def _build(W, H, R, n):
     gmsh.model.mesh.generate(2)
 
 
-def pin_body(W, H, R, n, comm=MPI.COMM_WORLD):
+def pin_body(
+    W: float, H: float, R: float, n: int, comm: MPI.Comm = MPI.COMM_WORLD
+) -> tuple[Mesh, MeshTags]:
     """Build the pin and return ``(mesh, facet_tags)``.
 
     Args:
@@ -81,4 +89,5 @@ def pin_body(W, H, R, n, comm=MPI.COMM_WORLD):
     gmsh.model.remove()
     if not initialized:
         gmsh.finalize()
+    assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags

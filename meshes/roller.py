@@ -15,6 +15,10 @@ origin.  Facet tags: 1 lubricated, 2 loaded (the flat face or the block's
 bottom), 5 free.  Lengths in mm.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import gmsh
 from mpi4py import MPI
 
@@ -25,10 +29,16 @@ from .sizing import point_refinement
 __all__ = ["LUBRICATED", "ROLLER_NAMES", "roller"]
 
 LUBRICATED = 1
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
+
 ROLLER_NAMES = {"lubricated": LUBRICATED, "loaded": LOADED, "free": FREE}
 
 
-def _build(R, x_l, h_fine, h_coarse, r_fine, below, block):
+def _build(
+    R: float, x_l: float, h_fine: float, h_coarse: float, r_fine: float, below: bool,
+    block: float | None,
+) -> None:
     occ = gmsh.model.occ
     s = -1.0 if below else 1.0
     if block is not None:
@@ -69,7 +79,10 @@ def _build(R, x_l, h_fine, h_coarse, r_fine, below, block):
     gmsh.model.mesh.generate(2)
 
 
-def roller(R, x_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=False, block=None):
+def roller(
+    R: float, x_l: float, h_fine: float, h_coarse: float, r_fine: float,
+    comm: MPI.Comm = MPI.COMM_WORLD, below: bool = False, block: float | None = None,
+) -> tuple[Mesh, MeshTags]:
     """Build the roller (or block) and return ``(mesh, facet_tags)``; see the module docstring.
 
     Args:
@@ -84,4 +97,5 @@ def roller(R, x_l, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD, below=False, b
     """
     data = distributed_model("roller", lambda: _build(R, x_l, h_fine, h_coarse, r_fine,
                                                       below, block), comm, 2)
+    assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags

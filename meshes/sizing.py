@@ -1,11 +1,15 @@
 """gmsh mesh-size field shared by the mesh builders: refinement around one point."""
 
+from __future__ import annotations
+
 import gmsh
 
 __all__ = ["point_refinement"]
 
 
-def point_refinement(h_fine, h_coarse, r_fine, R, point_tag):
+def point_refinement(
+    h_fine: float, h_coarse: float, r_fine: float, R: float, point_tag: int
+) -> None:
     """Size h_fine within r_fine of gmsh point ``point_tag``, growing to h_coarse over 0.6 R.
 
     Also sets the meshing options (frontal-Delaunay surfaces, smoothed and

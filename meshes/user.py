@@ -17,7 +17,11 @@ dimension) and cells of dimension d.  Every problem is reported as a one-line
   empty, or a cell lies outside the named cell groups the file has.
 """
 
+from __future__ import annotations
+
 import os
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import basix
 import gmsh
@@ -30,20 +34,28 @@ from mpi4py import MPI
 
 from .errors import InputError
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    # {physical name: (dimension, tag)} of a gmsh file's physical groups
+    Groups = dict[str, tuple[int, int]]
+
 __all__ = ["boundary_facet_size", "num_cell_vertices", "read_user_mesh"]
 
 
-def num_cell_vertices(cell_type):
+def num_cell_vertices(cell_type: dmesh.CellType) -> int:
     """Return the number of vertices of a DOLFINx cell type (basix's reference topology)."""
     return len(basix.topology(basix.CellType[cell_type.name])[0])
 
 
-def _error(msg):
+def _error(msg: str) -> InputError:
     return InputError(msg)
 
 
-def _open_on_root(path, comm, gdim):
+def _open_on_root(path: str, comm: MPI.Comm, gdim: int) -> tuple[str | None, Groups, int]:
     """Open ``path`` in gmsh on rank 0: (message or None, {name: (dim, tag)}, mesh dim)."""
+    msg: str | None
+    groups: Groups
     msg, groups, dim = None, {}, -1
     if comm.rank == 0:
         if not os.path.isfile(path):
@@ -61,7 +73,12 @@ def _open_on_root(path, comm, gdim):
     return comm.bcast((msg, groups, dim), root=0)
 
 
-def read_user_mesh(path, comm, gdim, required, cells=None):
+def read_user_mesh(
+    path: str | os.PathLike[str], comm: MPI.Comm, gdim: int, required: Sequence[str],
+    cells: Sequence[str] | None = None,
+) -> (tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]
+      | tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int], dmesh.MeshTags | None,
+              dict[str, int]]):
     """Read a gmsh mesh for a case of dimension ``gdim`` with named boundaries ``required``.
 
     Args:
@@ -130,7 +147,10 @@ def read_user_mesh(path, comm, gdim, required, cells=None):
             _cell_groups(msh, data.cell_tags, groups, cells, gdim, path))
 
 
-def _cell_groups(msh, ct, groups, cells, gdim, path):
+def _cell_groups(
+    msh: dmesh.Mesh, ct: dmesh.MeshTags | None, groups: Mapping[str, tuple[int, int]],
+    cells: Sequence[str], gdim: int, path: str,
+) -> dict[str, int]:
     """Return {name: tag} of the cell groups ``cells`` in the file.
 
     InputError if one of them is empty, or (when any is present) a cell lies
@@ -140,6 +160,7 @@ def _cell_groups(msh, ct, groups, cells, gdim, path):
     present = {n: groups[n][1] for n in cells if n in groups and groups[n][0] == gdim}
     if not present:
         return present
+    assert ct is not None       # cells in named groups: the file tags cells
     n_local = msh.topology.index_map(gdim).size_local
     owned = ct.indices < n_local
     for name, tag in present.items():
@@ -154,7 +175,7 @@ def _cell_groups(msh, ct, groups, cells, gdim, path):
     return present
 
 
-def _check_cells(msh, cell_tags, path):
+def _check_cells(msh: dmesh.Mesh, cell_tags: dmesh.MeshTags | None, path: str) -> None:
     """Raise InputError if a cell is inverted or degenerate (see the module docstring).
 
     gmsh orients the elements of one entity consistently, so the sign of det J is
@@ -188,7 +209,10 @@ def _check_cells(msh, cell_tags, path):
                      f"of {total}")
 
 
-def boundary_facet_size(msh, ft, tag, near=None):
+def boundary_facet_size(
+    msh: dmesh.Mesh, ft: dmesh.MeshTags, tag: int,
+    near: tuple[Sequence[float] | npt.NDArray[np.float64], float] | None = None,
+) -> float:
     """Mean longest edge of the facets tagged ``tag`` (2D: their mean length).
 
     The element size a case takes from a user's mesh where its own mesh has a
@@ -203,6 +227,7 @@ def boundary_facet_size(msh, ft, tag, near=None):
     facets = ft.find(tag)
     facets = facets[facets < im.size_local]
     nv = num_cell_vertices(msh.topology.entity_types[fdim][0])
+    geo: npt.NDArray[np.int32] | npt.NDArray[np.int64]    # then as int64, nv columns
     geo = dmesh.entities_to_geometry(msh, fdim, facets, False)
     geo = np.asarray(geo, dtype=np.int64).reshape(len(facets), -1)[:, :nv] if len(facets) \
         else np.zeros((0, nv), dtype=np.int64)     # a rank without such facets: no rows

@@ -13,6 +13,10 @@ Facet tags: 1 spherical surface (potential contact), 2 mid-plane z = R
 Lengths in mm.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import gmsh
 from dolfinx.io import gmsh as gmshio
 from mpi4py import MPI
@@ -21,17 +25,20 @@ from .sizing import point_refinement
 
 __all__ = ["CONTACT", "LOADED", "NAMES", "SYMMETRY_Y", "quarter_ball"]
 
+if TYPE_CHECKING:
+    from dolfinx.mesh import Mesh, MeshTags
+
 CONTACT, LOADED, SYMMETRY_Y = 1, 2, 4
 NAMES = {"contact": CONTACT, "loaded": LOADED, "symmetry_y": SYMMETRY_Y}  # of a Body
 
 
-def _build(R, h_fine, h_coarse, r_fine):
+def _build(R: float, h_fine: float, h_coarse: float, r_fine: float) -> None:
     occ = gmsh.model.occ
     ball = occ.addSphere(0, 0, R, R)
     box = occ.addBox(-R, 0, 0, 2 * R, R, R)
     occ.intersect([(3, ball)], [(3, box)])
     occ.synchronize()
-    tags = {CONTACT: [], LOADED: [], SYMMETRY_Y: []}
+    tags: dict[int, list[int]] = {CONTACT: [], LOADED: [], SYMMETRY_Y: []}
     for dim, tag in gmsh.model.getEntities(2):
         _, y, z = occ.getCenterOfMass(dim, tag)
         if abs(y) < 1e-8 * R:
@@ -55,7 +62,9 @@ def _build(R, h_fine, h_coarse, r_fine):
     gmsh.model.mesh.generate(3)
 
 
-def quarter_ball(R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
+def quarter_ball(
+    R: float, h_fine: float, h_coarse: float, r_fine: float, comm: MPI.Comm = MPI.COMM_WORLD
+) -> tuple[Mesh, MeshTags]:
     """Build the quarter ball and return ``(mesh, facet_tags)``.
 
     Args:
@@ -80,4 +89,5 @@ def quarter_ball(R, h_fine, h_coarse, r_fine, comm=MPI.COMM_WORLD):
     gmsh.model.remove()
     if not initialized:
         gmsh.finalize()
+    assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags

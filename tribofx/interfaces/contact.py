@@ -23,6 +23,10 @@ from a factory ``counterpart(V_sub)``.  Nothing here assumes the counterpart is
 rigid.  Units: mm, N, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -37,6 +41,18 @@ from ..params import InputError
 from ..problem import BlockTolerance
 from ..protocols import ComponentBase
 from .surface import Surface, node_to_dof
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    from ..body import Body
+    from ..forms.contact import ContactGeometry
+    from ..laws import Law
+    from ..protocols import Counterpart
 
 __all__ = ["Contact", "gather_nodal", "node_to_dof"]
 
@@ -61,8 +77,15 @@ class Contact(ComponentBase):
         rtol: relative size of the gap tolerance (see :meth:`tolerances`).
     """
 
-    def __init__(self, body, boundary, counterpart, rho_n, friction=0.0, rho_t=None,
-                 slip="lagrangian", V_master=None, dtau=1.0, name="contact", rtol=1e-10):
+    lam_t: fem.Function | None
+    slip: ufl.core.expr.Expr | None
+    _post: dict[str, Any] | None
+
+    def __init__(self, body: Body, boundary: str,
+                 counterpart: Callable[[fem.FunctionSpace], Counterpart], rho_n: float,
+                 friction: float | Law = 0.0, rho_t: float | None = None,
+                 slip: str = "lagrangian", V_master: npt.ArrayLike | None = None,
+                 dtau: float = 1.0, name: str = "contact", rtol: float = 1e-10) -> None:
         if slip not in ("lagrangian", "eulerian"):
             raise ValueError(f"unknown slip {slip!r}")
         law = friction_law(friction)
@@ -78,7 +101,7 @@ class Contact(ComponentBase):
         self.u_sub = fem.Function(self.Vs, name="u_contact")
         self.xbar_n = fem.Function(self.Vs, name="projection_at_last_step")
         self.counterpart = counterpart(self.Vs)
-        self.geometry = self.counterpart.geometry(body.position())
+        self.geometry: ContactGeometry = self.counterpart.geometry(body.position())
         self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
         self.friction_law = law.bind(msh)       # μ(p), p = −T_N: Coulomb's μ by default
         self.rho_n = rho_n
@@ -106,16 +129,16 @@ class Contact(ComponentBase):
 
     # -- laws ------------------------------------------------------------------
     @property
-    def law(self):
+    def law(self) -> dict[str, Any]:
         """Keyword arguments of :func:`tribofx.forms.contact.contact_tractions`."""
         return dict(rho_n=self.rho_n, lam_t=self.lam_t, rho_t=self.rho_t, slip=self.slip,
                     mu=self.friction_law)
 
-    def tractions(self):
+    def tractions(self) -> tuple[ufl.core.expr.Expr, ufl.core.expr.Expr | None]:
         """Nominal (T_N, T_T) of the Alart–Curnier law at the current state (UFL)."""
         return cf.contact_tractions(self.geometry, self.lam_n, **self.law)
 
-    def wear_load(self, slip=None):
+    def wear_load(self, slip: ufl.core.expr.Expr | None = None) -> wf.WearLoad:
         """Return what drives Archard wear here (:class:`tribofx.forms.wear.WearLoad`, UFL).
 
         Frictionless: the pressure form on λ_N (the sliding speed is the Wear's).
@@ -125,29 +148,31 @@ class Contact(ComponentBase):
         t_n, t_t = self.tractions()
         if self.lam_t is None:
             return wf.WearLoad(normal=self.lam_n, pressure=-t_n)
+        assert self.slip is not None        # set with λ_T (friction > 0)
         v_t = self.slip / self.dtau if slip is None else slip
         return wf.WearLoad(normal=self.lam_n, pressure=-t_n, shear=t_t, slip=v_t,
                            friction=self.friction_law(-t_n))
 
     # -- component protocol --------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """λ_N (and λ_T), plus the counterpart's unknowns."""
         return [self.lam_n] + ([self.lam_t] if self.lam_t is not None else []) \
             + list(self.counterpart.unknowns())
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Contact virtual work on u's row, the constraint rows of λ_N and λ_T."""
         mu_t = ufl.TestFunction(self.Vs) if self.lam_t is not None else None
         R_u, R_n, R_t = cf.augmented_lagrangian_contact(
             self.body.u, self.body.v, self.geometry, self.lam_n, ufl.TestFunction(self.Q),
             self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction_law,
             weight=self.surface.weight)
-        out = [(self.body.u, R_u), (self.lam_n, R_n)]
+        out: list[tuple[fem.Function, ufl.Form]] = [(self.body.u, R_u), (self.lam_n, R_n)]
         if R_t is not None:
+            assert self.lam_t is not None   # R_t exists only with λ_T
             out.append((self.lam_t, R_t))
         return out
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Zero friction multiplier where u is prescribed on contact nodes.
 
         A slave node whose displacement component is prescribed (e.g. on a
@@ -169,15 +194,15 @@ class Contact(ComponentBase):
                                            self.Vs.sub(c)))
         return out
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Dirichlet conditions sorted by unknown."""
         return {self.lam_t: self.bcs()} if self.lam_t is not None else {}
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the submesh ↔ bulk entity map."""
         return [self.emap]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Copy u to the submesh and let the counterpart project the slave nodes."""
         gdim = self.body.gdim
         ub = self.body.u.x.array.reshape(-1, gdim)
@@ -185,7 +210,7 @@ class Contact(ComponentBase):
         us[self.sub_dofs] = ub[self.bulk_dofs]
         self.counterpart.update(self.positions())
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Constraint rows over their lumped measure: a gap (slip) ≤ rtol·G/ρ_N mm.
 
         A gap error g moves the augmented traction by ρ_N g, so this bounds the
@@ -201,30 +226,30 @@ class Contact(ComponentBase):
                 atol, "mm", ufl.dot(ufl.TestFunction(self.Vs), ones) * self.dsc)
         return out
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Multipliers, the slip history and the counterpart's state."""
         return (self.unknowns() + [self.xbar_n] + list(self.counterpart.state_fields())
                 + self.friction_law.state_fields())
 
-    def commit(self):
+    def commit(self) -> None:
         """Accept the converged step: the slip history moves to the current state."""
         self.refresh()
         self.xbar_n.interpolate(self._xbar_expr)
         self.counterpart.commit()
 
     # -- outputs ---------------------------------------------------------------------
-    def positions(self):
+    def positions(self) -> npt.NDArray[np.float64]:
         """Return slave-node positions x = X + u, shape (n_sub_dofs, gdim), dof order."""
         return self.X_sub + self.u_sub.x.array.reshape(-1, self.body.gdim)
 
-    def force_functional(self, i):
+    def force_functional(self, i: int) -> ufl.Form:
         """Component ``i`` of :meth:`force` as a UFL functional of the unknowns (N)."""
         tn, tt = self.tractions()
         n = self.geometry.normal
         force = -tn * n - (tt if tt is not None else 0 * n)
         return force[i] * self.surface.weight * self.dsc
 
-    def _forms(self):
+    def _forms(self) -> dict[str, Any]:
         if self._post is None:
             tn, tt = self.tractions()
             em = [self.emap]
@@ -245,14 +270,14 @@ class Contact(ComponentBase):
             }
         return self._post
 
-    def _sum(self, form):
+    def _sum(self, form: fem.Form) -> float:
         return self.body.mesh.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
 
-    def nodal(self, form):
+    def nodal(self, form: fem.Form | ufl.Form) -> npt.NDArray[np.float64]:
         """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
         return self.surface.nodal(form)
 
-    def force(self):
+    def force(self) -> npt.NDArray[np.float64]:
         """Total force exerted by the counterpart on the modelled body (N; N/mm in plane strain).
 
         The modelled part of a symmetry-reduced body (a quarter sphere: a quarter of
@@ -260,11 +285,11 @@ class Contact(ComponentBase):
         """
         return np.array([self._sum(f) for f in self._forms()["force"]])
 
-    def traction_magnitudes(self):
+    def traction_magnitudes(self) -> tuple[float, ...]:
         """(∫ |T_N| dS, ∫ ‖T_T‖ dS): total normal and frictional traction magnitudes (N)."""
         return tuple(self._sum(f) for f in self._forms()["magnitudes"])
 
-    def nodal_data(self):
+    def nodal_data(self) -> dict[str, npt.NDArray[Any]]:
         """Per owned submesh node: reference X, current x, Cauchy pressure p = −T_N/j, weight.
 
         The weight is the lumped current area (length in 2D, per radian·2π in
@@ -279,7 +304,7 @@ class Contact(ComponentBase):
         return {"X": self.X_sub[:n_own], "x": x[:n_own], "p": p[:n_own],
                 "weight": wj[:n_own], "active": act[:n_own] > 0}
 
-    def measures(self):
+    def measures(self) -> tuple[float, float]:
         """Global contact area (sum of active lumped current weights) and peak pressure."""
         d = self.nodal_data()
         comm = self.body.mesh.comm
@@ -287,16 +312,18 @@ class Contact(ComponentBase):
         pmax = comm.allreduce(float(np.max(d["p"], initial=0.0)), op=MPI.MAX)
         return area, pmax
 
-    def gather_profile(self):
+    def gather_profile(self) -> dict[str, npt.NDArray[Any]] | None:
         """All nodal contact data on rank 0 (None elsewhere), sorted by reference X[0]."""
         return gather_nodal(self.body.mesh.comm, self.nodal_data())
 
 
-def gather_nodal(comm, data):
+def gather_nodal(comm: MPI.Comm,
+                 data: Mapping[str, npt.NDArray[Any]]) -> dict[str, npt.NDArray[Any]] | None:
     """Concatenate the ranks' nodal ``data`` (dict of arrays) on rank 0, sorted by X[:, 0]."""
     allp = comm.gather(data, root=0)
     if comm.rank != 0:
         return None
+    assert allp is not None                 # the root's gather is the list
     out = {k: np.concatenate([a[k] for a in allp]) for k in data}
     order = np.argsort(out["X"][:, 0])
     return {k: v[order] for k, v in out.items()}

@@ -6,20 +6,37 @@ in 2D and t₁ × t₂/|t₁ × t₂| in 3D; a point of it is Σ N_i(ξ) x_i wit
 shape functions N = (1 − Σ ξ^a, ξ^1, ...).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from typing import TypeAlias
+
+    import numpy.typing as npt
+
+    #: a pairing of slave nodes with master facets: the master facets (m, d) (node
+    #: indices) and the facet of every slave node (n,)
+    Pairing: TypeAlias = tuple[npt.NDArray[np.int32], npt.NDArray[np.int32]]
+    #: a pairing, or master facets alone (None in place of the facet per node)
+    Segments: TypeAlias = tuple[npt.NDArray[np.int32], npt.NDArray[np.int32] | None]
 
 __all__ = ["eulerian_slip_constants", "keep_reference_facets", "normals", "plane_coordinates",
            "same_pairing", "shape_values"]
 
 
-def shape_values(xi):
+def shape_values(xi: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """P1 facet shape functions at ξ: (n,) in 2D → (n, 2); (n, 2) in 3D → (n, 3)."""
     xi = np.asarray(xi)
     xi = xi.reshape(len(xi), 1 if xi.ndim == 1 else xi.shape[1])
     return np.c_[1 - xi.sum(axis=1), xi]
 
 
-def plane_coordinates(x, facet):
+def plane_coordinates(
+        x: npt.NDArray[np.float64], facet: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Coordinates of points x (n, d) on their facets (n, d, d vertices), unclamped.
 
     Returns ξ (n, d − 1) of the projection onto the facet's line/plane, the
@@ -39,7 +56,7 @@ def plane_coordinates(x, facet):
     return xi, np.linalg.norm(x - foot, axis=1), size
 
 
-def normals(facet):
+def normals(facet: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     """Return the unit outward normals (n, d) of oriented facets (n, d, d), as the kernels."""
     if facet.shape[1] == 2:
         t = facet[:, 1] - facet[:, 0]
@@ -49,7 +66,9 @@ def normals(facet):
     return n / np.linalg.norm(n, axis=1)[:, None]
 
 
-def keep_reference_facets(xs, xm, seg, proj, reference, sticky):
+def keep_reference_facets(xs: npt.NDArray[np.float64], xm: npt.NDArray[np.float64],
+                          seg: npt.NDArray[np.int32], proj: dict[str, npt.NDArray[Any]],
+                          reference: Pairing | None, sticky: float) -> dict[str, npt.NDArray[Any]]:
     """Pairing with hysteresis: a node keeps its reference facet while it still projects there.
 
     A node keeps ``reference[k]`` while its plane coordinates on that facet are
@@ -82,14 +101,15 @@ def keep_reference_facets(xs, xm, seg, proj, reference, sticky):
     return proj
 
 
-def same_pairing(a, b):
+def same_pairing(a: Segments | None, b: Segments | None) -> bool:
     """Whether two pairings (segments, facets) have the same segments (and facets, if given)."""
     if a is None or b is None or a[0].shape != b[0].shape or not np.array_equal(a[0], b[0]):
         return False
     return a[1] is None or b[1] is None or np.array_equal(a[1], b[1])
 
 
-def eulerian_slip_constants(facet_ref, V, dtau):
+def eulerian_slip_constants(facet_ref: npt.NDArray[np.float64], V: npt.NDArray[np.float64],
+                            dtau: float) -> npt.NDArray[np.float64]:
     """Per node the constants c of the Eulerian slip s = c^a t_a (eq. 27) on its facet.
 
     ``facet_ref`` (n, d, d): the reference vertices of each node's master facet; the

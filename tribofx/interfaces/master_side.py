@@ -10,7 +10,10 @@ tree of the search (refitted while the facets stay the same), and maps the
 gathered nodes to the rows and columns of a :class:`tribofx.problem.Problem`.
 """
 
+from __future__ import annotations
+
 import weakref
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -23,17 +26,33 @@ from ..two_body import MasterSurface, MasterSurface3
 from . import facets
 from .surface import node_to_dof
 
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    import numpy.typing as npt
+    from petsc4py import PETSc
+
+    from ..body import Body
+    from ..problem import Problem
+    from .facets import Pairing
+
+    #: global (rows, cols) of dofs in a problem (−1: not in it, or not solved for)
+    RowsCols = tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]
+    #: a kernel evaluation's cache: (the state's arrays it was evaluated at, its data)
+    KernelCache = tuple[Sequence[npt.NDArray[Any]], dict[str, Any]]
+
 __all__ = ["KernelAssembly", "MasterSide", "cached_state"]
 
 
-def _vertex_dofs(body, fs):
+def _vertex_dofs(body: Body, fs: npt.NDArray[np.int32]) -> npt.NDArray[np.int64]:
     """Per facet the (P1 block) dofs of its vertices, local indices."""
     msh = body.mesh
     geo = dmesh.entities_to_geometry(msh, msh.topology.dim - 1, fs, False)
     return node_to_dof(body.V)[geo]
 
 
-def cached_state(cache, key, comm):
+def cached_state(cache: KernelCache | None, key: Sequence[npt.NDArray[Any]],
+                 comm: MPI.Comm) -> dict[str, Any] | None:
     """Return the data of ``cache`` = (key, data) if its key equals ``key`` on all ranks.
 
     A kernel evaluation is collective (the master is gathered), so the cache hit is
@@ -41,13 +60,23 @@ def cached_state(cache, key, comm):
     """
     same = cache is not None and len(cache[0]) == len(key) and all(
         a.shape == b.shape and np.array_equal(a, b) for a, b in zip(cache[0], key))
-    return cache[1] if comm.allreduce(same, op=MPI.LAND) else None
+    # a hit on all ranks is a hit on this one: cache is not None
+    return cast("KernelCache", cache)[1] if comm.allreduce(same, op=MPI.LAND) else None
 
 
 class MasterSide:
     """The boundary ``boundary`` of ``master`` as the master of a two-body interface."""
 
-    def __init__(self, master, boundary):
+    _tree: Any          # the C++ box tree (MasterSurface or MasterSurface3), no stub
+    _segments: npt.NDArray[np.int32] | None
+    _ring: npt.NDArray[np.int64] | None
+    _ring_seg: npt.NDArray[np.int32] | None
+    _ref_keys: npt.NDArray[np.int64] | None
+    _ref: npt.NDArray[np.float64] | None
+    _seg: npt.NDArray[np.int32] | None
+    _rows: dict[int, tuple[weakref.ref[Problem], RowsCols]]
+
+    def __init__(self, master: Body, boundary: str) -> None:
         self.body = master
         self.gdim = d = master.gdim
         mfacets = master.facets(boundary)
@@ -74,13 +103,14 @@ class MasterSide:
         self._ref_keys = self._ref = None
         self._seg, self._rows = None, {}
 
-    def dofs(self):
+    def dofs(self) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
         """Local (P1 block) dofs of the master boundary and their global block indices."""
         dofs = np.unique(self.seg_local)
         im = self.body.V.dofmap.index_map
         return dofs, im.local_to_global(dofs.astype(np.int32))
 
-    def gather(self, local):
+    def gather(self, local: Callable[[npt.NDArray[np.int64]], npt.NDArray[Any]]
+               ) -> tuple[npt.NDArray[np.int64], npt.NDArray[Any]]:
         """Concatenate per-node arrays ``local(dofs)`` of every rank, one row per global node."""
         dofs, keys = self.dofs()
         parts = self.body.mesh.comm.allgather((keys, local(dofs)))
@@ -88,7 +118,9 @@ class MasterSide:
         uniq, first = np.unique(allk, return_index=True)
         return uniq, np.concatenate([p[1] for p in parts])[first]
 
-    def current(self):
+    def current(
+            self
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int32]]:
         """Return current master positions (n_m, d), global node keys, facets (all ranks)."""
         m, d = self.body, self.gdim
         X = m.V.tabulate_dof_coordinates()[:, :d]
@@ -102,14 +134,17 @@ class MasterSide:
             self._seg = seg.astype(np.int32)
         return x, keys, self._seg
 
-    def reference(self, keys):
+    def reference(self, keys: npt.NDArray[np.int64]) -> npt.NDArray[np.float64]:
         """Return the reference positions of the gathered nodes ``keys`` (cached)."""
         if self._ref_keys is None or not np.array_equal(self._ref_keys, keys):
             X = self.body.V.tabulate_dof_coordinates()[:, :self.gdim]
             self._ref_keys, self._ref = self.gather(lambda nd: X[nd])
+        assert self._ref is not None        # set with _ref_keys
         return self._ref
 
-    def project(self, xs, reference, sticky):
+    def project(self, xs: npt.NDArray[np.float64], reference: Pairing | None, sticky: float
+                ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64],
+                           npt.NDArray[np.int32], dict[str, npt.NDArray[Any]]]:
         """Project the slave positions ``xs`` (n, d) onto the current master boundary.
 
         The box tree is refitted (rebuilt when the gathered facets change); a node
@@ -119,8 +154,9 @@ class MasterSide:
         ``distance``.
         """
         xm, keys, seg = self.current()
-        if self._tree is None or self._segments.shape != seg.shape \
-                or not np.array_equal(self._segments, seg):
+        # _segments (the tree's facets) is None only before the first search, with _tree
+        if self._tree is None or cast("npt.NDArray[np.int32]", self._segments).shape != seg.shape \
+                or not np.array_equal(cast("npt.NDArray[np.int32]", self._segments), seg):
             surface = MasterSurface if self.gdim == 2 else MasterSurface3
             self._tree, self._segments = surface(np.ascontiguousarray(xm), seg), seg
         else:
@@ -129,7 +165,7 @@ class MasterSide:
         proj = facets.keep_reference_facets(xs, xm, seg, proj, reference, sticky)
         return xm, keys, seg, proj
 
-    def rows(self, problem):
+    def rows(self, problem: Problem) -> RowsCols:
         """Return global (rows, cols) (n_m, d) of the gathered master nodes in ``problem``."""
         ref, rows = self._rows.get(id(problem), (None, None))
         if ref is None or ref() is not problem:     # a problem's layout is fixed: once
@@ -140,17 +176,23 @@ class MasterSide:
                 np.stack([mcol[d * nd + c] for c in range(d)], 1)])
             rows = (rc[:, :d], rc[:, d:])
             self._rows[id(problem)] = (weakref.ref(problem), rows)
+        assert rows is not None             # stored with its problem, or just computed
         return rows
 
-    def ring_rows(self, rm, cm, seg, facet):
+    def ring_rows(self, rm: npt.NDArray[np.int64], cm: npt.NDArray[np.int64],
+                  seg: npt.NDArray[np.int32], facet: npt.NDArray[np.int32]) -> RowsCols:
         """Rows and columns (n, d·width) of the master nodes of every facet near ``facet``.
 
         A node paired with facet f may slide onto any facet sharing a node with f
         during the iterations (:func:`tribofx.pattern.facet_rings`), so those
         couplings are preallocated.
         """
-        if not facets.same_pairing(self._ring_seg, (seg, None)):
+        # NOTE: _ring_seg is the facets array, not a (segments, facets) pairing, so
+        # same_pairing compares its first row with ``seg`` and is always False: the
+        # rings are rebuilt on every call (correct, but the cache never hits)
+        if not facets.same_pairing(self._ring_seg, (seg, None)):  # type: ignore[arg-type]
             self._ring, self._ring_seg = facet_rings(seg), seg
+        assert self._ring is not None       # set with _ring_seg
         ring = self._ring[facet]
         valid = ring >= 0
         width = self.gdim * ring.shape[1]
@@ -174,11 +216,21 @@ class KernelAssembly(ComponentBase):
     assembles = True
     iterates = True
 
-    def _kernel_ready(self):
+    side: MasterSide
+    sub: dmesh.Mesh
+    _facet_ref: Pairing | None
+    _facet_committed: Pairing | None
+
+    if TYPE_CHECKING:   # given by the subclass
+        def _kernel(self) -> dict[str, Any]: ...
+
+        def _rows(self, problem: Problem, k: dict[str, Any]) -> RowsCols: ...
+
+    def _kernel_ready(self) -> bool:
         """Whether the kernel has a committed state to evaluate (always, by default)."""
         return True
 
-    def couplings(self, problem):
+    def couplings(self, problem: Problem) -> RowsCols:
         """Dense blocks (rows, cols) of the entries the kernel may add in the next solve.
 
         Per owned slave node its slots and the nodes of every master facet sharing
@@ -190,18 +242,19 @@ class KernelAssembly(ComponentBase):
         rr, cc = self.side.ring_rows(*self.side.rows(problem), k["seg"], k["facet"])
         return np.c_[rows, rr], np.c_[cols, cc]
 
-    def evaluate(self, problem):
+    def evaluate(self, problem: Problem) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64],
+                                                  npt.NDArray[np.int64], npt.NDArray[np.int64]]:
         """Kernel residuals and tangents of the owned slave nodes, with their rows/columns."""
         k = self._kernel()
         rows, cols = self._rows(problem, k)
         return k["r"], k["J"], rows, cols
 
-    def add_residual(self, b, problem):
+    def add_residual(self, b: PETSc.Vec, problem: Problem) -> None:
         """Add the kernel residual of every owned slave node to ``b`` (global rows, C++)."""
         r, _, rows, _ = self.evaluate(problem)
         add_vector_blocks(b, rows, r)
 
-    def add_jacobian(self, A, problem):
+    def add_jacobian(self, A: PETSc.Mat, problem: Problem) -> None:
         """Add the kernel's dense tangent block of every owned slave node to ``A`` (C++).
 
         Inserted by :func:`tribofx.petsc_insert.add_matrix_blocks` (unused slots −1).
@@ -209,11 +262,11 @@ class KernelAssembly(ComponentBase):
         _, J, rows, cols = self.evaluate(problem)
         add_matrix_blocks(A, rows, cols, J)
 
-    def reset_iterate(self):
+    def reset_iterate(self) -> None:
         """Start a Newton solve (or a restore): the pairing's reference is the committed one."""
         self._facet_ref = self._facet_committed
 
-    def accept_iterate(self):
+    def accept_iterate(self) -> bool:
         """Move the pairing's reference to the current (accepted) Newton iterate.
 
         Returns whether any slave node changed facet (on any rank): the residual at

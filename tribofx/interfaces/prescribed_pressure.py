@@ -1,11 +1,21 @@
 """A dry start for a film: the lubricated boundary under a prescribed pressure."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import ufl
 from dolfinx import fem
 
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
 from ..protocols import ComponentBase
+
+if TYPE_CHECKING:
+    from dolfinx import mesh as dmesh
+
+    from ..problem import BlockTolerance
+    from .film import Film
 
 __all__ = ["PrescribedPressure"]
 
@@ -20,7 +30,7 @@ class PrescribedPressure(ComponentBase):
     deformed state.
     """
 
-    def __init__(self, film):
+    def __init__(self, film: Film) -> None:
         self.film = film
         self.p = fem.Function(film.Q, name=f"{film.name}_prescribed_pressure")
         f, body = film, film.body
@@ -30,39 +40,39 @@ class PrescribedPressure(ComponentBase):
                                           ufl.FacetNormal(body.mesh), f.T_b, f.mu_p,
                                           shear=False, model=f.model)
 
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return the film's trace u_s."""
         return [self.film.u_s]
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Prescribed-pressure work on u, trace rows on u_s."""
         f, body = self.film, self.film.body
         return [(body.u, ft.film_virtual_work(self.traction, body.v, f.ds, f.w_solid)),
                 (f.u_s, f.trace_scale * ef.trace_constraint(f.u_s, body.u, ufl.TestFunction(f.Vs),
                                                      f.ds))]
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Return no conditions."""
         return []
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Return no conditions."""
         return {}
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the film's entity map."""
         return [self.film.emap]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Nothing to refresh (the pressure part of the traction needs no countersurface)."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Return the film's trace tolerance."""
         return {self.film.u_s: self.film.tolerances()[self.film.u_s]}
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function]:
         """Return the prescribed pressure and the trace."""
         return [self.p, self.film.u_s]
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing to accept."""

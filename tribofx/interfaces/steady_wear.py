@@ -34,6 +34,10 @@ explicit: the rate of the known state, frozen by :meth:`begin_step`; or BDF2),
 Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, cast
+
 import numpy as np
 import ufl
 from dolfinx import fem, la
@@ -51,6 +55,19 @@ from ..reduced import AlgebraicRow, ReducedProblem, Reduction
 from ..scheme import IMPLICIT, Scheme
 from ..submesh import facet_submesh
 
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping, Sequence
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    from .contact import Contact
+
+    #: the extrusion of a mesh: P[rows, cols] = 1, shape (n3, n2)
+    #: (:func:`tribofx.meshes.halfspace.prolongation`)
+    ExtrusionMap = tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], tuple[int, int]]
+
 __all__ = ["Extrusion", "SteadyWear"]
 
 
@@ -67,7 +84,8 @@ class Extrusion:
     The PETSc matrix holds the owned rows; its columns are owned by rank 0.
     """
 
-    def __init__(self, rows, cols, shape, comm, n_own, n_glob):
+    def __init__(self, rows: npt.NDArray[np.int64], cols: npt.NDArray[np.int64],
+                 shape: tuple[int, int], comm: MPI.Comm, n_own: int, n_glob: int) -> None:
         self.rows, self.cols, self.shape, self.comm = rows, cols, shape, comm
         own = rows < n_own
         self.rows_own, self.cols_own = rows[own], cols[own]
@@ -78,32 +96,34 @@ class Extrusion:
         n2 = shape[1]
         self.mat = PETSc.Mat().createAIJ(
             size=((n_own, n_glob), (n2 if comm.rank == 0 else 0, n2)),
-            csr=(indptr, self.cols_own[order].astype(PETSc.IntType),
-                 np.ones(len(self.rows_own))), comm=comm)
+            # petsc4py's stub types csr as Sequences and comm as a PETSc.Comm; arrays and
+            # an mpi4py communicator are what it takes
+            csr=(indptr, self.cols_own[order].astype(PETSc.IntType),  # type: ignore[arg-type]
+                 np.ones(len(self.rows_own))), comm=comm)  # type: ignore[arg-type]
         self.mat.assemble()
 
-    def apply(self, v2):
+    def apply(self, v2: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """P v₂ on the local body dofs (owned and ghost)."""
         out = np.zeros(self.shape[0])
         out[self.rows] = v2[self.cols]
         return out
 
-    def transpose(self, v3):
+    def transpose(self, v3: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """Pᵀ v₃ (sum over the x layers of the owned entries, summed over the ranks)."""
         loc = np.bincount(self.cols_own, weights=v3[self.rows_own], minlength=self.shape[1])
         return self.comm.allreduce(loc, op=MPI.SUM) if self.comm.size > 1 else loc
 
     @property
-    def T(self):  # noqa: N802 - matrix-like transpose for forms.wear_groove.path_averaged_rate
+    def T(self) -> _Transposed:  # noqa: N802 - matrix-like transpose for forms.wear_groove.path_averaged_rate
         """Object whose ``@`` applies Pᵀ."""
         return _Transposed(self)
 
 
 class _Transposed:
-    def __init__(self, P):
+    def __init__(self, P: Extrusion) -> None:
         self.P = P
 
-    def __matmul__(self, v):
+    def __matmul__(self, v: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         return self.P.transpose(v)
 
 
@@ -135,9 +155,15 @@ class SteadyWear(ComponentBase):
     problem_class = ReducedProblem  # the problem class the stepper builds
     averaged = False  # no fast-time cycles: the rate is path-averaged in closed form
 
-    def __init__(self, contact, section, section_tags, section_names, prolongation, k, V, L,
-                 law="nominal", aux=(1.0, 0.3), fixed=None,
-                 scheme=IMPLICIT, rtol=1e-10):
+    _lumped: fem.Form | None
+    _line_forms: tuple[fem.Form, npt.NDArray[np.float64]] | None
+
+    def __init__(self, contact: Contact, section: dmesh.Mesh, section_tags: dmesh.MeshTags,
+                 section_names: Mapping[str, int], prolongation: Callable[..., ExtrusionMap],
+                 k: float | ufl.core.expr.Expr, V: float, L: float,
+                 law: str = "nominal", aux: tuple[float, float] = (1.0, 0.3),
+                 fixed: Mapping[str, Sequence[int]] | None = None,
+                 scheme: Scheme | str = IMPLICIT, rtol: float = 1e-10) -> None:
         scheme = Scheme.of(scheme)
         if scheme.theta not in (0, 1):
             raise ValueError(f"theta = {scheme.theta}: 0 (explicit) or 1 (implicit)")
@@ -153,9 +179,9 @@ class SteadyWear(ComponentBase):
                                                  "groove line")
         self.V2 = fem.functionspace(section, ("Lagrange", 1, (2,)))
         self.Q2 = fem.functionspace(self.line, ("Lagrange", 1))
-        self.w2 = fem.Function(self.V2, name="shape_change")
-        self.w2n = fem.Function(self.V2, name="shape_change_old")
-        self.zeta = fem.Function(self.Q2, name="shape_multiplier")
+        self.w2: fem.Function = fem.Function(self.V2, name="shape_change")
+        self.w2n: fem.Function = fem.Function(self.V2, name="shape_change_old")
+        self.zeta: fem.Function = fem.Function(self.Q2, name="shape_multiplier")
         self.dt = fem.Constant(section, 0.0)
         self.dsl = ufl.Measure("ds", section, subdomain_data=section_tags,
                                subdomain_id=self.names["top"],
@@ -184,7 +210,7 @@ class SteadyWear(ComponentBase):
         self.Pc = Extrusion(*prolongation(contact.Q.tabulate_dof_coordinates(),
                                           self.Q2.tabulate_dof_coordinates()[:, :2]),
                             body.mesh.comm, imQ.size_local, imQ.size_global)
-        self._rate_fixed = None
+        self._rate_fixed: npt.NDArray[np.float64] | None = None
         fdim = section.topology.dim - 1
         self._bcs = []
         for name, comps in (fixed or {}).items():
@@ -207,7 +233,7 @@ class SteadyWear(ComponentBase):
         self._lumped = self._line_forms = None
 
     # -- scheme controls ---------------------------------------------------------------
-    def begin_step(self, dt, freeze=None):
+    def begin_step(self, dt: float, freeze: bool | None = None) -> None:
         """Start a step of Δt (s): w₂ₙ ← w₂; ``freeze`` (default: θ = 0) the current rate.
 
         BDF2: the area swept in the previous step is kept before w₂ₙ moves on
@@ -218,19 +244,19 @@ class SteadyWear(ComponentBase):
         self.w2n.x.array[:] = self.w2.x.array
         freeze = self.scheme.theta == 0 if freeze is None else freeze
         self._rate_fixed = self.rate_vector() if freeze else None
-        self.dt.value = float(dt)
+        self.dt.value = float(dt)  # type: ignore[assignment]  # dolfinx types it NDArray
 
-    def end_step(self):
+    def end_step(self) -> None:
         """No wear in later plain contact solves."""
-        self.dt.value = 0.0
+        self.dt.value = 0.0  # type: ignore[assignment]  # (a float works)
         self._rate_fixed = None
 
     # -- component protocol ------------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return w₂ and ζ."""
         return [self.w2, self.zeta]
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Auxiliary elasticity with the ζ term on w₂'s row; eq. (28) without its rate on ζ's."""
         dw, eta = ufl.TestFunction(self.V2), ufl.TestFunction(self.Q2)
         mu_a, lmbda_a = self._aux
@@ -240,51 +266,52 @@ class SteadyWear(ComponentBase):
                                        bdf2=self.bdf.weights if self.scheme.bdf2 else None)
         return [(self.w2, R_w), (self.zeta, R_z)]
 
-    def shape_unknowns(self):
+    def shape_unknowns(self) -> list[fem.Function]:
         """Return the unknowns of the shape step (28): w₂ and ζ."""
         return [self.w2, self.zeta]
 
-    def reductions(self):
+    def reductions(self) -> list[Reduction]:
         """Return the reduction: the body's shape field is the extruded section field."""
+        assert self.body.w is not None      # an image shape field (__init__)
         return [Reduction(self.body.w, self.w2, self.Pw)]
 
-    def algebraic_rows(self):
+    def algebraic_rows(self) -> list[AlgebraicRow]:
         """Return the path-averaged rate (Δt/L) P_cᵀ r on ζ's rows."""
         return [AlgebraicRow(self.zeta, self.rate_form, self.Pc,
                              lambda: float(self.dt.value) / self.L,
                              lambda: self._rate_fixed)]
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Zero normal motion of the cross-section boundaries."""
         return list(self._bcs)
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Dirichlet conditions sorted by unknown."""
         return {self.w2: list(self._bcs)}
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the contact's entity map (the rate form) and the line's."""
         return [self.contact.emap, self.emap2]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """w₃ = P w₂ is kept by the problem; nothing else."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Shape rows: rtol·E_a·L (aux); update rows over the line measure: rtol·L mm."""
         Lb = self.body.length
         w = ufl.TestFunction(self.Q2) * self.dsl
         return {self.w2: BlockTolerance(self.rtol * 2 * self._aux[0] * Lb, "aux"),
                 self.zeta: BlockTolerance(self.rtol * Lb, "mm", w)}
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Shape, its history, the multiplier and the BDF2 history."""
         return [self.w2, self.w2n, self.zeta] + self.bdf.state_fields()
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing beyond the state."""
 
     # -- BDF2 -------------------------------------------------------------------------
-    def _line(self):
+    def _line(self) -> tuple[fem.Form, npt.NDArray[np.float64]]:
         """Return the compiled swept-area form ∫η (w₂ − w₂ₙ)·a dŝ and the weights ∫η dŝ.
 
         Compiled on first use; the weights once (the initial line does not move;
@@ -299,20 +326,23 @@ class SteadyWear(ComponentBase):
             self._line_forms = (swept, fem.assemble_vector(ones).array)
         return self._line_forms
 
-    def _per_length(self, num):
+    def _per_length(self, num: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """Return ``num`` per unit initial line length, num_j / ∫η_j dŝ."""
         w = self._line()[1]
         return np.divide(num, w, out=np.zeros_like(num), where=w > 0)
 
-    def _swept(self):
+    def _swept(self) -> npt.NDArray[np.float64]:
         """Nodal area swept per unit initial line length, ∫η(w₂ − w₂ₙ)·a dŝ / ∫η dŝ."""
         return self._per_length(fem.assemble_vector(self._line()[0]).array)
 
-    def _nodal_rate(self):
+    def _nodal_rate(self) -> npt.NDArray[np.float64]:
         """Nodal rate of the swept area per unit line length, (1/L)(P_cᵀ r)_j / ∫η_j dŝ."""
         return self._per_length(self.Pc.transpose(self.rate_vector()) / self.L)
 
-    def step_error(self, filter=None):
+    def step_error(
+            self,
+            filter: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]] | None = None,
+    ) -> float | None:
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
 
         :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept areas per unit
@@ -326,40 +356,41 @@ class SteadyWear(ComponentBase):
         return self.bdf.error(self._swept(), self.body.mesh.comm)
 
     @property
-    def error_order(self):
+    def error_order(self) -> int:
         """Order in Δt of the last :meth:`step_error`."""
         return self.bdf.error_order
 
     # -- outputs -----------------------------------------------------------------------
-    def rate_vector(self):
+    def rate_vector(self) -> npt.NDArray[np.float64]:
         """Nodal 3D wear rate r_i = ∫_Γ̂c Ẇ j_w φ_i dŜ (mm³/s) at the current state (owned)."""
+        assert self.body.w is not None      # an image shape field (__init__)
         self.body.w.x.array[:] = self.Pw.apply(self.w2.x.array)
         vec = fem.assemble_vector(self._rate_compiled)
         vec.scatter_reverse(la.InsertMode.add)
         return vec.array[:self.contact.Q.dofmap.index_map.size_local].copy()
 
-    def min_volume_factor(self):
+    def min_volume_factor(self) -> float:
         """Smallest det(I + Grad w₂) over the cross-section cells (≤ 0: inverted)."""
         self._detG.interpolate(self._detG_expr)
         return float(np.min(self._detG.x.array))
 
-    def groove_area(self):
+    def groove_area(self) -> float:
         """Worn cross-section area of the modelled part, ∫ (1 − det G₂) dÂ (mm²)."""
-        return float(fem.assemble_scalar(self._area))
+        return float(cast("float", fem.assemble_scalar(self._area)))   # a real build
 
-    def averaged_rate_integral(self):
+    def averaged_rate_integral(self) -> float:
         """(1/L) ∫_Γ̂c Ẇ j_w dŜ: growth rate of the groove area (mm²/s) at the current state."""
         comm = self.body.mesh.comm
         return comm.allreduce(float(np.sum(self.rate_vector())), op=MPI.SUM) / self.L
 
-    def line_profile(self):
+    def line_profile(self) -> dict[str, npt.NDArray[np.float64]]:
         """Top line of the cross-section: initial Ŷ, worn (Y, Z) and depth −w_z, sorted by Ŷ."""
         X2 = self._X2[self._top2]
         w = self.w2.x.array.reshape(-1, 2)[self._top2]
         o = np.argsort(X2[:, 0])
         return {"Y_hat": X2[o, 0], "worn": (X2 + w)[o], "depth": -w[o, 1]}
 
-    def averaged_pressure(self):
+    def averaged_pressure(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """Nominal pressure integrated along the sliding path, ∫ p dx (N/mm), per line node.
 
         Lumped: (P_cᵀ(p_i w_i))_j / ∫ φ_j dy with p = −λ_N (nominal) and w_i = ∫ φ_i dŜ

@@ -8,6 +8,10 @@ of the same vertices, the reference positions of the submesh nodes, the
 vertex-quadrature measure of the nodal scheme, and lumped nodal assembly.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 import ufl
 from dolfinx import fem, la
@@ -15,10 +19,16 @@ from dolfinx import fem, la
 from ..meshes.user import num_cell_vertices
 from ..submesh import facet_submesh
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    import ufl.core.expr
+
+    from ..body import Body
+
 __all__ = ["Surface", "node_to_dof"]
 
 
-def node_to_dof(V):
+def node_to_dof(V: fem.FunctionSpace) -> npt.NDArray[np.int64]:
     """Map geometry-node index → block dof of a Lagrange space on a P1-geometry mesh."""
     msh = V.mesh
     xdm = msh.geometry.dofmaps[0]
@@ -44,7 +54,7 @@ class Surface:
         n_own: number of owned submesh dofs (they come first).
     """
 
-    def __init__(self, body, boundary):
+    def __init__(self, body: Body, boundary: str) -> None:
         msh, gdim = body.mesh, body.gdim
         self.body = body
         self.sub, self.emap, gmap = facet_submesh(msh, body.facet_tags, body.tag(boundary),
@@ -63,7 +73,7 @@ class Surface:
         self.n_own = self.Q.dofmap.index_map.size_local
         self.weight = self._nodal_weight()
 
-    def _nodal_weight(self):
+    def _nodal_weight(self) -> ufl.core.expr.Expr | float:
         """Return the reference measure factor of the nodal (vertex-rule) terms on this surface.
 
         1, except on an axisymmetric body: there the vertex rule applied to 2πR
@@ -87,7 +97,7 @@ class Surface:
         omega.x.array[:] = np.divide(area, length, out=np.zeros_like(area), where=length > 0)
         return omega
 
-    def nodal(self, form):
+    def nodal(self, form: fem.Form | ufl.Form) -> npt.NDArray[np.float64]:
         """Assembled (ghost-updated) vector of the linear ``form`` on the submesh dofs."""
         if not isinstance(form, fem.Form):
             form = fem.form(form, entity_maps=[self.emap])

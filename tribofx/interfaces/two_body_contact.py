@@ -30,6 +30,10 @@ per unit thickness in plane strain, N on a 3D model (a quarter model carries a
 quarter of the full bodies' force).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -41,6 +45,14 @@ from . import facets, two_body_wear
 from .master_side import KernelAssembly, MasterSide, cached_state
 from .surface import Surface
 from .two_body_outputs import TwoBodyOutputs
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    from dolfinx import mesh as dmesh
+
+    from ..body import Body
+    from ..problem import Problem
+    from .master_side import KernelCache, RowsCols
 
 __all__ = ["TwoBodyContact"]
 
@@ -64,9 +76,15 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
     #: relative hysteresis of the master-segment choice (see :meth:`_pairs`)
     STICKY = 0.05
 
-    def __init__(self, slave, slave_boundary, master, master_boundary, rho_n, friction=0.0,
-                 rho_t=None, name="contact", rtol=1e-10, slip="lagrangian", V_master=None,
-                 dtau=1.0):
+    #: the master material points of the last commit: global master node keys (n, d)
+    #: of each slave node's facet and its coordinates ξ (n,) in 2D, (n, 2) in 3D
+    _old: tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]] | None
+    _cache: KernelCache | None
+
+    def __init__(self, slave: Body, slave_boundary: str, master: Body, master_boundary: str,
+                 rho_n: float, friction: float = 0.0, rho_t: float | None = None,
+                 name: str = "contact", rtol: float = 1e-10, slip: str = "lagrangian",
+                 V_master: npt.ArrayLike | None = None, dtau: float = 1.0) -> None:
         for b in (slave, master):
             if (b.gdim, b.kind) not in ((2, "plane_strain"), (3, "3d")):
                 raise ValueError("TwoBodyContact is implemented for plane strain and 3D")
@@ -113,11 +131,13 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         self._cache = None
         self._post = None
 
-    def _lumped(self, form):
+    def _lumped(self, form: fem.Form | ufl.Form) -> npt.NDArray[np.float64]:
         """Assembled (ghost-updated) vector of a linear form on the slave submesh."""
         return self.surface.nodal(form)
 
-    def _pairs(self):
+    def _pairs(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64],
+                              npt.NDArray[np.int32], npt.NDArray[np.float64],
+                              dict[str, npt.NDArray[Any]]]:
         """Return master data, slave positions and projections (box tree refitted).
 
         The reference is the pairing of the last accepted Newton iterate (the
@@ -131,13 +151,13 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         return xm, keys, seg, xs, proj
 
     # -- kernel evaluation -------------------------------------------------------------
-    def _state_key(self):
+    def _state_key(self) -> list[npt.NDArray[Any]]:
         return [self.slave.u.x.array, self.master.u.x.array, self.lam_n.x.array] + \
             ([self.lam_t.x.array] if self.lam_t is not None else []) + \
             (list(self._old) if self._old is not None else []) + \
             (list(self._facet_ref) if self._facet_ref is not None else [])
 
-    def _kernel(self):
+    def _kernel(self) -> dict[str, Any]:
         """Kernel data of the owned slave nodes at the current state, computed once per state.
 
         SNES asks for the residual and then the Jacobian at the same iterate, and
@@ -158,6 +178,7 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         if self.slip_kind == "eulerian":     # no history: the old-facet slots repeat the facet
             old_seg, xi_old = seg[f], self._eulerian_constants(keys, seg, f)
         else:
+            assert self._old is not None    # made by commit() above
             old_seg, xi_old = np.searchsorted(keys, self._old[0]), self._old[1]
         n = len(self._q)
         qv = np.zeros((n, num_local(d)))
@@ -175,7 +196,8 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         self._cache = ([a.copy() for a in key], data)
         return data
 
-    def _eulerian_constants(self, keys, seg, f):
+    def _eulerian_constants(self, keys: npt.NDArray[np.int64], seg: npt.NDArray[np.int32],
+                            f: npt.NDArray[np.int32]) -> npt.NDArray[np.float64]:
         """Per slave node the constants c of the Eulerian slip (eq. 27) on its master facet.
 
         The master's material moves with ``V_master`` along its own reference surface
@@ -183,9 +205,10 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         :func:`tribofx.interfaces.facets.eulerian_slip_constants` of the reference facets.
         """
         Xref = self.side.reference(keys)
+        assert self.V_master is not None    # eulerian slip needs it (__init__)
         return facets.eulerian_slip_constants(Xref[seg[f]], self.V_master, self.dtau)
 
-    def _rows(self, problem, k):
+    def _rows(self, problem: Problem, k: dict[str, Any]) -> RowsCols:
         """Global rows and columns (n, L) of the local unknowns of ``k`` in ``problem``."""
         if id(problem) in k["rows"]:
             return k["rows"][id(problem)]
@@ -211,11 +234,11 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         return rows, cols
 
     # -- component protocol --------------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """λ_N (and λ_T)."""
         return [self.lam_n] + ([self.lam_t] if self.lam_t is not None else [])
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Return the linear part −∫(1/ρ) λ·δλ dS of the constraint rows (rest: kernel)."""
         out = [(self.lam_n, cf.multiplier_regularisation(
             self.lam_n, ufl.TestFunction(self.Q), self.rho_n, self.dsc))]
@@ -224,22 +247,22 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
                 self.lam_t, ufl.TestFunction(self.Vs), self.rho_t, self.dsc)))
         return out
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Return no conditions."""
         return []
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Return no conditions."""
         return {}
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the submesh ↔ slave entity map."""
         return [self.emap]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Nothing to refresh: the kernel runs inside the assembly (it needs the layout)."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Constraint rows over their lumped measure: a gap ≤ rtol·G/ρ_N mm (as Contact)."""
         G = min(self.slave.stiffness, self.master.stiffness)
         atol = max(self.rtol * G / self.rho_n,
@@ -251,11 +274,11 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
                 atol, "mm", ufl.dot(ufl.TestFunction(self.Vs), ones) * self.dsc)
         return out
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function]:
         """Return the multipliers (the slip history is committed data)."""
         return self.unknowns()
 
-    def commit(self):
+    def commit(self) -> None:
         """Accept the converged step: the master material points of the projections.
 
         The pairing is that of the converged state's kernel evaluation (not a new
@@ -274,23 +297,25 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
         xi, _, _ = facets.plane_coordinates(k["q"][:, :d], k["q"][:, d:d + d * d].reshape(-1, d, d))
         self._old = (k["keys"][k["seg"][k["facet"]]], xi[:, 0] if d == 2 else xi)
 
-    def _kernel_ready(self):
+    def _kernel_ready(self) -> bool:
         """Whether the slip history exists (the kernel needs the committed points)."""
         return self._old is not None
 
     # -- wear of both surfaces (eqs. 17-18) --------------------------------------------
-    def dissipation_increment(self):
+    def dissipation_increment(self) -> npt.NDArray[np.float64]:
         """Frictional dissipation per unit reference slave area since the last commit (N/mm).
 
         See :func:`tribofx.interfaces.two_body_wear.dissipation_increment`.
         """
         return two_body_wear.dissipation_increment(self)
 
-    def master_transfer(self, volume):
+    def master_transfer(
+            self, volume: npt.NDArray[np.float64]
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
         """Per-slave-node volumes onto the master nodes (eq. 18); see :mod:`.two_body_wear`."""
         return two_body_wear.master_transfer(self, volume)
 
-    def wear_surface(self, side):
+    def wear_surface(self, side: str) -> two_body_wear.WearSurface:
         """Return the ``"slave"`` or ``"master"`` side for a :class:`~tribofx.interfaces.Wear`."""
         if side not in ("slave", "master"):
             raise ValueError(f"side {side!r}: 'slave' or 'master'")

@@ -8,6 +8,10 @@
   of a :class:`tribofx.interfaces.Wear` (``contact.wear_surface(side)``).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -17,10 +21,15 @@ from ..forms import wear as wf
 from . import facets
 from .surface import Surface
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    from .two_body_contact import TwoBodyContact
+
 __all__ = ["WearSurface", "dissipation_increment", "master_transfer"]
 
 
-def dissipation_increment(contact):
+def dissipation_increment(contact: TwoBodyContact) -> npt.NDArray[np.float64]:
     """Frictional dissipation per unit reference slave area since the last commit (N/mm).
 
     ΔD⁽¹⁾ = T_T·Δs_T per owned slave node (λ-dof order): T_T the nominal
@@ -53,7 +62,9 @@ def dissipation_increment(contact):
     return np.sum(T_t * s_t, axis=1)
 
 
-def master_transfer(contact, volume):
+def master_transfer(
+        contact: TwoBodyContact, volume: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
     """Distribute per-slave-node volumes onto the master nodes of their projections.
 
     ``volume`` (n_owned_slave,) is split between the d nodes of the current
@@ -83,7 +94,7 @@ class WearSurface:
     eq. (18) on the master (see :meth:`TwoBodyContact.master_transfer`).
     """
 
-    def __init__(self, contact, side):
+    def __init__(self, contact: TwoBodyContact, side: str) -> None:
         self.contact, self.side = contact, side
         body = contact.slave if side == "slave" else contact.master
         sf = contact.surface if side == "slave" else Surface(body, contact.master_boundary)
@@ -92,7 +103,7 @@ class WearSurface:
         self.sub_dofs, self.bulk_dofs, self.X_sub = sf.sub_dofs, sf.bulk_dofs, sf.X_sub
         self.lam_t, self.friction = contact.lam_t, contact.friction
         self.slip_kind = contact.slip_kind
-        self._inc = fem.Function(self.Q)
+        self._inc: fem.Function = fem.Function(self.Q)
         if side == "master":
             im = body.V.dofmap.index_map
             key = np.zeros(len(self._inc.x.array), dtype=np.int64)
@@ -100,11 +111,11 @@ class WearSurface:
             self._key = key
             self._weight = sf.nodal(ufl.TestFunction(self.Q) * self.dsc)
 
-    def nodal(self, form):
+    def nodal(self, form: fem.Form | ufl.Form) -> npt.NDArray[np.float64]:
         """Assembled (ghost-updated) vector of a linear form on this surface's dofs."""
         return self.surface.nodal(form)
 
-    def wear_increment(self, K):
+    def wear_increment(self, K: float) -> npt.NDArray[np.float64]:
         """ΔW per unit reference area of this surface, all local dofs (mm), coefficient K.
 
         Slave: K ΔD⁽¹⁾ (eq. 17).  Master: the volumes K ΔD⁽¹⁾ w_c of the slave
@@ -126,7 +137,7 @@ class WearSurface:
         return np.divide(vol[pos], self._weight, out=np.zeros_like(self._weight),
                          where=self._weight > 0)
 
-    def nodal_data(self):
+    def nodal_data(self) -> dict[str, npt.NDArray[np.float64]]:
         """Per owned node: reference X and current x = X + u (mm)."""
         n = self.surface.n_own
         u = self.body.u.x.array.reshape(-1, self.body.gdim)

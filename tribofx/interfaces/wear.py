@@ -58,6 +58,10 @@ with its area factors j⁽²⁾/j⁽¹⁾ (see :meth:`TwoBodyContact.master_tran
 Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, cast
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -71,6 +75,22 @@ from ..problem import BlockTolerance
 from ..protocols import ComponentBase
 from ..scheme import IMPLICIT, Scheme
 from .contact import node_to_dof
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    from ..body import Body
+    from ..laws import Law
+
+    class ShapedBody(Body):
+        """A :class:`tribofx.body.Body` with ``shape=True``: w and w_n are Functions."""
+
+        w: fem.Function
+        w_n: fem.Function
 
 __all__ = ["LAWS", "Wear"]
 
@@ -107,8 +127,17 @@ class Wear(ComponentBase):
             the body size, hence a default two decades below the contact gap's.
     """
 
-    def __init__(self, contact, k, speed=0.0, law="nominal", k_grad=0.0,
-                 scheme=IMPLICIT, averaged=False, name="wear", rtol=1e-12):
+    #: the driving interfaces, duck-typed (:class:`tribofx.protocols.WearDriver`: a
+    #: Contact, a Film, a side of a two-body contact or the user's own; what each
+    #: answers beyond the protocol is probed with hasattr/getattr)
+    drivers: list[Any]
+    contact: Any
+    body: ShapedBody    # checked in __init__
+    _post: dict[str, Any] | None
+
+    def __init__(self, contact: Any, k: float | Law, speed: float = 0.0, law: str = "nominal",
+                 k_grad: float = 0.0, scheme: Scheme | str = IMPLICIT, averaged: bool = False,
+                 name: str = "wear", rtol: float = 1e-12) -> None:
         scheme = Scheme.of(scheme)
         drivers = list(contact) if isinstance(contact, (list, tuple)) else [contact]
         contact = drivers[0]
@@ -158,7 +187,7 @@ class Wear(ComponentBase):
         self.a = ale.swept_nanson_vector(w, w_n, self.N_hat)
         self.a_end = ale.nanson_vector(w, self.N_hat)    # the reaction's direction
         if averaged:
-            self.rate_density = self.rate_bar
+            self.rate_density: ufl.core.expr.Expr = self.rate_bar
         else:  # t_{n+θ}: implicit (u, λ, w)_{n+1}; explicit the known state and w_n
             self.rate_density = self.rate(w if scheme.implicit else w_n)
         # trace map of w: contact-submesh dof → dof of the shape space
@@ -167,10 +196,11 @@ class Wear(ComponentBase):
         node_of_bulk[node_to_dof(body.V)] = np.arange(len(gmap_w))
         self._bulk_dofs_w = gmap_w[node_of_bulk[self.surface.bulk_dofs]]
         self._post = None
-        self._bdf_forms = {}
+        self._bdf_forms: dict[str, fem.Form] = {}
 
     # -- the wear law ------------------------------------------------------------
-    def rate(self, w, slip=None):
+    def rate(self, w: fem.Function,
+             slip: ufl.core.expr.Expr | None = None) -> ufl.core.expr.Expr:
         """Wear rate per unit initial area Ẇ j_w (mm/s) at shape ``w`` and the interfaces' state.
 
         The sum over the driving interfaces of Archard's law for each one's
@@ -190,18 +220,18 @@ class Wear(ComponentBase):
             # sliding Ẇ = (k/μ) T_T·v_T = k |T_N| ‖v_T‖ whatever the law
             k = wf.depth_graded_coefficient(self.k_law(load.law_pressure), self.k_grad, depth)
             total = total + wf.archard_rate(k, load, speed=self.speed, J=J)
-        return total
+        return cast("ufl.core.expr.Expr", total)     # a sum over at least one driver
 
     # -- component protocol --------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return the multiplier ζ of the shape constraint (w is the body's)."""
         return [self.zeta]
 
-    def shape_unknowns(self):
+    def shape_unknowns(self) -> list[fem.Function]:
         """Unknowns of the shape step: w and ζ."""
         return [self.body.w, self.zeta]
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """ζ δw·a on the shape row, the discrete shape evolution law (28) on ζ's row."""
         c = self.surface
         dw = ufl.TestFunction(self.body.Vw)
@@ -212,15 +242,15 @@ class Wear(ComponentBase):
                                                      self.rate_density, self.dt, eta,
                                                      c.dsc, bdf2=bdf2))]
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """No Dirichlet conditions of its own (the body holds those of w)."""
         return []
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Dirichlet conditions sorted by unknown (none)."""
         return {}
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the submesh ↔ bulk entity maps of the surface and of the interfaces."""
         out = [self.surface.emap]
         for d in self.drivers:
@@ -228,27 +258,27 @@ class Wear(ComponentBase):
             out += [m for m in maps if all(m is not o for o in out)]
         return out
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Nothing computed outside UFL (the contact refreshes its counterpart)."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """ζ rows over their lumped measure: a normal shape change ≤ rtol·L (mm)."""
         eta = ufl.TestFunction(self.surface.Q)
         return {self.zeta: BlockTolerance(self.rtol * self.body.length, "mm",
                                           eta * self.surface.dsc)}
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """ζ, the cycle-averaged rate, the BDF2 history and the wear law's parameters.
 
         (w, w_n: the body's.)
         """
         return [self.zeta, self.rate_bar] + self.bdf.state_fields() + self.k_law.state_fields()
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing: the shape history moves on in :meth:`begin_step` of the slow time."""
 
     # -- slow time -------------------------------------------------------------------
-    def begin_step(self, dt):
+    def begin_step(self, dt: float) -> None:
         """Start a slow step of Δt (s): w_n ← w, Δt set.
 
         BDF2: the volume swept in the previous step, (w − w_n)·a per node, is kept
@@ -257,10 +287,11 @@ class Wear(ComponentBase):
         """
         if self.scheme.bdf2:
             self.bdf.begin_step(dt, self.swept_volume, self._nodal_rate)
-        self.dt.value = float(dt)
+        self.dt.value = float(dt)  # type: ignore[assignment]  # dolfinx types it NDArray
         self.body.w_n.x.array[:] = self.body.w.x.array
 
-    def _nodal_value(self, key, integrand):
+    def _nodal_value(self, key: str,
+                     integrand: ufl.core.expr.Expr) -> npt.NDArray[np.float64]:
         """Return nodal values of ``integrand``, the vertex rule's lumping ∫η_i f/∫η_i.
 
         The form of ``key`` is compiled once.
@@ -273,15 +304,18 @@ class Wear(ComponentBase):
         den = self.surface.nodal(self._forms()["lumped"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
 
-    def lumped_weight(self):
+    def lumped_weight(self) -> npt.NDArray[np.float64]:
         """Nodal lumped area of the worn surface (mm², the rows of ζ; owned and ghosts)."""
         return self.surface.nodal(self._forms()["lumped"])
 
-    def swept_volume(self):
+    def swept_volume(self) -> npt.NDArray[np.float64]:
         """Nodal (w − w_n)·a(w, w_n) per unit initial area."""
         return self._nodal_value("swept", ufl.dot(self.body.w - self.body.w_n, self.a))
 
-    def step_error(self, filter=None):
+    def step_error(
+            self,
+            filter: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]] | None = None,
+    ) -> float | None:
         """Return the error estimate of the last BDF2 step (mm, all ranks), or None.
 
         :meth:`tribofx.bdf2.SweptHistory.error` of the nodal swept volumes per unit
@@ -293,11 +327,11 @@ class Wear(ComponentBase):
                               filter)
 
     @property
-    def error_order(self):
+    def error_order(self) -> int:
         """Order in Δt of the last :meth:`step_error`."""
         return self.bdf.error_order
 
-    def set_start_rate(self, rate):
+    def set_start_rate(self, rate: npt.NDArray[np.float64]) -> None:
         """Nodal rate Ẇ j_w (mm/s) at the start of a cycle-driven step (``rate_bar``'s layout).
 
         A BDF2 first step is checked against forward Euler from the rate at t_n;
@@ -307,16 +341,16 @@ class Wear(ComponentBase):
         if self.scheme.bdf2:
             self.bdf.set_start_rate(rate)
 
-    def _nodal_rate(self):
+    def _nodal_rate(self) -> npt.NDArray[np.float64]:
         """Nodal Ẇ j_w (mm/s) of the current state."""
         return self._nodal_value("rate", self.rate_density)
 
-    def end_step(self):
+    def end_step(self) -> None:
         """End a slow step: Δt = 0, so that a later contact solve does not wear."""
-        self.dt.value = 0.0
+        self.dt.value = 0.0  # type: ignore[assignment]  # (a float works)
 
     # -- outputs ---------------------------------------------------------------------
-    def _forms(self):
+    def _forms(self) -> dict[str, Any]:
         if self._post is None:
             c, b = self.surface, self.body
             em = self.entity_maps()
@@ -342,21 +376,21 @@ class Wear(ComponentBase):
             self._N_nodal = n / np.linalg.norm(n, axis=1)[:, None]
         return self._post
 
-    def _sum(self, form):
+    def _sum(self, form: fem.Form) -> float:
         return self.body.mesh.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
 
-    def worn_volume(self):
+    def worn_volume(self) -> float:
         """Worn volume ∫_Ω̂ (1 − det G) dV̂ (mm³; per unit thickness, mm², in plane strain)."""
         return self._sum(self._forms()["volume"])
 
-    def wear_rate_integral(self):
+    def wear_rate_integral(self) -> float:
         """∫_Γc Ẇ dS = ∫_Γ̂c Ẇ j_w dŜ at the current state (mm³/s; mm²/s per mm in 2D).
 
         With ``averaged``: the integral of ``rate_bar`` (the rate of the last step).
         """
         return self._sum(self._forms()["rate"])
 
-    def nodal_increment(self):
+    def nodal_increment(self) -> npt.NDArray[np.float64]:
         """Wear increment K T_T·Δs (mm) per unit initial area of the last fast sub-step.
 
         Lagrangian friction only; call after the sub-step's solve and before the
@@ -371,7 +405,7 @@ class Wear(ComponentBase):
         num, den = self.surface.nodal(f["increment"]), self.surface.nodal(f["lumped"])
         return np.divide(num, den, out=np.zeros_like(num), where=den > 0)
 
-    def min_volume_factor(self):
+    def min_volume_factor(self) -> float:
         """Smallest det(I + Grad w) over all cells (≤ 0: the worn mesh is inverted)."""
         f = self._forms()
         f["detG"].interpolate(f["detG_expr"])
@@ -379,7 +413,7 @@ class Wear(ComponentBase):
         local = float(np.min(f["detG"].x.array[:n], initial=np.inf))
         return self.body.mesh.comm.allreduce(local, op=MPI.MIN)
 
-    def nodal_shape_data(self):
+    def nodal_shape_data(self) -> dict[str, npt.NDArray[Any]]:
         """Per owned contact node: the contact's nodal data and X̂, X = X̂ + w, depth −w·N̂ (mm)."""
         self._forms()
         c, gdim = self.surface, self.body.gdim
@@ -393,13 +427,13 @@ class Wear(ComponentBase):
         d["depth"] = -np.sum(ws[:n_own] * self._N_nodal[:n_own], axis=1)
         return d
 
-    def max_depth(self):
+    def max_depth(self) -> float:
         """Largest wear depth over the contact nodes (mm, on every rank)."""
         d = self.nodal_shape_data()
         return self.body.mesh.comm.allreduce(float(np.max(d["depth"], initial=0.0)),
                                              op=MPI.MAX)
 
-    def gather_shape(self, root_only=True):
+    def gather_shape(self, root_only: bool = True) -> dict[str, npt.NDArray[Any]] | None:
         """:meth:`nodal_shape_data` of all ranks, sorted by X̂[0], on rank 0 (None elsewhere).
 
         ``root_only=False``: the same dict on every rank.
