@@ -23,6 +23,10 @@ unknown of the body: the stabilised perturbed-Lagrangian (u, p) form of
 elements of a nearly incompressible solid (the O-ring's elastomer).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, cast, overload
+
 import numpy as np
 import ufl
 from dolfinx import fem, la
@@ -35,6 +39,17 @@ from .params import InputError
 from .problem import BlockTolerance
 from .protocols import ComponentBase
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    #: a material: (law of :mod:`tribofx.forms.hyperelastic`, {parameter: value}), each
+    #: value a number or a UFL expression (e.g. a modulus graded with the depth)
+    Material = tuple[str, Mapping[str, Any]]
+
 __all__ = ["AXISYMMETRIC_MOTION", "FORMULATIONS", "Body", "shear_modulus"]
 
 #: why an axisymmetric body's material or countersurface moves only along the axis
@@ -46,7 +61,7 @@ AXISYMMETRIC_MOTION = (
 FORMULATIONS = ("displacement", "mixed")
 
 
-def shear_modulus(material, params):
+def shear_modulus(material: str, params: Mapping[str, Any]) -> float:
     """Small-strain shear modulus (MPa) of a law of :mod:`tribofx.forms.hyperelastic`."""
     if "mu" in params:
         return float(params["mu"])
@@ -91,10 +106,24 @@ class Body(ComponentBase):
         alpha: the stabilisation factor α of the mixed formulation (−).
     """
 
-    def __init__(self, mesh, facet_tags, names, kind, material, cell_tags=None, degree=1,
-                 quadrature_degree=None, shape=False, aux=(1.0, 0.3), velocity=None,
-                 name="body", rtol=1e-10, force_scale=None, stiffness=None,
-                 formulation="displacement", alpha=0.1):
+    w: fem.Function | None
+    w_n: fem.Function | None
+    p: fem.Function | None
+    velocity: fem.Constant | None
+    _bcs: list[fem.DirichletBC]
+    _w_bcs: list[fem.DirichletBC]
+    _loads: list[ufl.Form]
+    _multiplier_fixes: list[tuple[npt.NDArray[np.int32], int | None]]
+
+    def __init__(self, mesh: dmesh.Mesh, facet_tags: dmesh.MeshTags, names: Mapping[str, int],
+                 kind: str, material: Material | dict[int, Material],
+                 cell_tags: dmesh.MeshTags | None = None, degree: int = 1,
+                 quadrature_degree: int | None = None,
+                 shape: bool | str | fem.Function = False,
+                 aux: tuple[float, float] = (1.0, 0.3), velocity: npt.ArrayLike | None = None,
+                 name: str = "body", rtol: float = 1e-10, force_scale: float | None = None,
+                 stiffness: float | None = None, formulation: str = "displacement",
+                 alpha: float = 0.1) -> None:
         if kind not in kin.KINDS:
             raise ValueError(f"unknown kind {kind!r}; expected one of {kin.KINDS}")
         if formulation not in FORMULATIONS:
@@ -166,7 +195,7 @@ class Body(ComponentBase):
                              f"known: {', '.join(self.names)}")
         return self.names[name]
 
-    def facets(self, name):
+    def facets(self, name: str) -> npt.NDArray[np.int32]:
         """Local facet indices of the boundary ``name`` (error if empty on all ranks)."""
         facets = self.facet_tags.find(self.tag(name))
         if self.mesh.comm.allreduce(len(facets), op=MPI.SUM) == 0:
@@ -174,7 +203,16 @@ class Body(ComponentBase):
         return facets
 
     # -- boundary conditions and loads ------------------------------------------
-    def add_dirichlet(self, name: str, value, component: int | None = None):
+    @overload
+    def add_dirichlet(self, name: str, value: fem.Function,
+                      component: int | None = None) -> fem.Function: ...
+
+    @overload
+    def add_dirichlet(self, name: str, value: npt.ArrayLike,
+                      component: int | None = None) -> fem.Constant: ...
+
+    def add_dirichlet(self, name: str, value: npt.ArrayLike | fem.Function,
+                      component: int | None = None) -> fem.Constant | fem.Function:
         """Prescribe u (or one ``component``) on boundary ``name``; returns the value holder.
 
         ``value``: a vector, a scalar (with ``component``) or a Function of the
@@ -193,17 +231,17 @@ class Body(ComponentBase):
             self._bcs.append(fem.dirichletbc(c, dofs, self.V))
         else:
             Vc = self.V.sub(component)
-            c = fem.Constant(self.mesh, float(value))
+            c = fem.Constant(self.mesh, float(cast("float", value)))  # a scalar here
             dofs = fem.locate_dofs_topological(Vc, fdim, facets)
             self._bcs.append(fem.dirichletbc(c, dofs, Vc))
         self._multiplier_fixes.append((facets, component))
         return c
 
-    def prescribed(self):
+    def prescribed(self) -> list[tuple[npt.NDArray[np.int32], int | None]]:
         """(facets, component) pairs where u is prescribed (component None: all)."""
         return list(self._multiplier_fixes)
 
-    def add_traction(self, name, traction):
+    def add_traction(self, name: str, traction: ufl.core.expr.Expr) -> None:
         """Dead nominal traction T* (UFL vector, MPa) on boundary ``name``.
 
         On a body with a shape field the traction is per unit *worn* area.
@@ -215,11 +253,11 @@ class Body(ComponentBase):
         else:
             self._loads.append(hf.external_virtual_work(traction, self.v, self.kind, ds))
 
-    def add_body_force(self, force):
+    def add_body_force(self, force: ufl.core.expr.Expr) -> None:
         """Dead body force B (UFL vector, N/mm³ per unit reference volume): ∫ B·δu dV."""
         self._loads.append(hf.body_force_work(force, self.v, self.kind, self.dx))
 
-    def add_follower_pressure(self, name, pressure):
+    def add_follower_pressure(self, name: str, pressure: ufl.core.expr.Expr | float) -> None:
         """Follower pressure p (MPa) on boundary ``name``: T = −p J F⁻ᵀ N (Nanson)."""
         F = kin.deformation_gradient(self.u, self.kind)
         t = -pressure * kin.nanson_normal(F, ufl.FacetNormal(self.mesh), self.kind)
@@ -227,7 +265,8 @@ class Body(ComponentBase):
         self._loads.append(hf.external_virtual_work(t, self.v, self.kind,
                                                     self.ds(self.tag(name))))
 
-    def add_shape_dirichlet(self, name, component, except_on=None):
+    def add_shape_dirichlet(self, name: str, component: int,
+                            except_on: str | None = None) -> None:
         """Zero normal motion of the worn boundary: w[component] = 0 on boundary ``name``.
 
         ``except_on``: a boundary whose nodes stay free (e.g. the worn boundary where
@@ -249,18 +288,18 @@ class Body(ComponentBase):
         self._w_bcs.append(fem.dirichletbc(fem.Constant(self.mesh, 0.0), dofs, Vc))
 
     # -- kinematics ----------------------------------------------------------------
-    def position(self):
+    def position(self) -> ufl.core.expr.Expr:
         """Return the current position x = X̂ + u (UFL) of the initial mesh's points."""
         return kin.spatial_position(self.u)
 
-    def deformation_gradient(self):
+    def deformation_gradient(self) -> ufl.core.expr.Expr:
         """F relative to the current reference (worn if the body has a shape field)."""
         if self.w is not None:
             return ale.deformation_gradient_worn(self.u, self.w, self.kind)
         return kin.deformation_gradient(self.u, self.kind)
 
     # -- component protocol (tribofx.problem) ---------------------------------------
-    def internal_work(self):
+    def internal_work(self) -> ufl.Form:
         """Return the internal virtual work of eq. (7) over all materials (worn if shaped).
 
         Mixed formulation: the u row of the mixed energy (its p row is the second
@@ -276,9 +315,9 @@ class Body(ComponentBase):
                                                     params, dx)
             else:
                 R += hf.internal_virtual_work(self.u, self.v, self.kind, law, params, dx)
-        return R
+        return cast("ufl.Form", R)   # a sum over at least one material
 
-    def _mixed(self):
+    def _mixed(self) -> tuple[ufl.Form, ufl.Form]:
         """(R_u, R_p) of the mixed formulation summed over the materials."""
         R_u = R_p = 0
         q = ufl.TestFunction(self.Q)
@@ -287,9 +326,9 @@ class Body(ComponentBase):
             ru, rp = hf.mixed_virtual_work(self.u, self.p, self.v, q, self.kind, law, params,
                                            dx, self._beta)
             R_u, R_p = R_u + ru, R_p + rp
-        return R_u, R_p
+        return cast("tuple[ufl.Form, ufl.Form]", (R_u, R_p))
 
-    def strain_energy(self):
+    def strain_energy(self) -> float:
         """Return the stored energy ∫ ψ(F) dV of the current state (N·mm; N·mm/mm in 2D)."""
         E = 0
         for tag, (law, params) in self.materials.items():
@@ -301,14 +340,15 @@ class Body(ComponentBase):
                 E += hf.mixed_strain_energy(F, self.p, law, params) * self.weight * dx
             else:
                 E += hf.stored_energy(self.u, self.kind, law, params, dx)
-        return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(E)), op=MPI.SUM)
+        return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(cast("ufl.Form", E))),
+                                        op=MPI.SUM)
 
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return u, and w for a shaped body or p for a mixed one."""
-        return ([self.u] + ([self.w] if self.shape_is_unknown else [])
+        return ([self.u] + ([cast("fem.Function", self.w)] if self.shape_is_unknown else [])
                 + ([self.p] if self.p is not None else []))
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Return the rows: internal work minus loads (u), volumetric (p), auxiliary (w)."""
         R = self.internal_work()
         for load in self._loads:
@@ -318,6 +358,7 @@ class Body(ComponentBase):
             out.append((self.p, self._mixed()[1]))
         if self.shape_is_unknown:
             mu_a, lmbda_a = self._aux
+            assert self.w is not None   # a shape unknown is a Function
             out.append((self.w, ale.aux_elasticity(self.w, ufl.TestFunction(self.Vw), mu_a,
                                                    lmbda_a, self.dx)))
         return out
@@ -343,27 +384,28 @@ class Body(ComponentBase):
         # on a held dof nothing else acts: internal work = loads + support force
         return self.mesh.comm.allreduce(fem.assemble_scalar(fem.form(R)), op=MPI.SUM)
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Dirichlet conditions of u (and w)."""
         return self._bcs + self._w_bcs
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Dirichlet conditions sorted by unknown."""
         out = {self.u: list(self._bcs)}
         if self.shape_is_unknown:
+            assert self.w is not None
             out[self.w] = list(self._w_bcs)
         if self.p is not None:
             out[self.p] = []
         return out
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return no entity maps: a body's forms live on its own mesh."""
         return []
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Nothing computed outside UFL."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Momentum rows: nodal force ≤ rtol·(force scale) (N; N/mm in plane strain).
 
         The force scale is ``force_scale`` or G·L^{d−1}, G the body's shear modulus
@@ -376,6 +418,7 @@ class Body(ComponentBase):
             else self.stiffness * self.length**d
         out = {self.u: BlockTolerance(self.rtol * scale, "N" if d == 2 else "N/mm")}
         if self.shape_is_unknown:
+            assert self.w is not None
             out[self.w] = BlockTolerance(self.rtol * self._aux[0] * self.length**d, "aux")
         if self.p is not None:
             # volumetric rows ∫ (g − p/K) δp dV: rtol of the body's volume (strain × volume)
@@ -383,9 +426,10 @@ class Body(ComponentBase):
                                          "mm³" if d == 2 else "mm²")
         return out
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function]:
         """Return u (and w, w_n)."""
-        return self.unknowns() + ([self.w_n] if self.shape_is_unknown else [])
+        return self.unknowns() + ([cast("fem.Function", self.w_n)] if self.shape_is_unknown
+                                  else [])
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing to move on for the bulk."""

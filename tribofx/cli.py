@@ -1,18 +1,24 @@
 """Command line: ``tribofx list`` and ``tribofx run CASE [--set k=v ...] [--out DIR]``."""
 
+from __future__ import annotations
+
 import argparse
 import sys
+from typing import TYPE_CHECKING, NoReturn
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 __all__ = ["main"]
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):
+    def error(self, message: str) -> NoReturn:
         sys.stderr.write(f"tribofx: error: {message}\n")
         sys.exit(2)
 
 
-def _list():
+def _list() -> None:
     from .cases import CASES
     from .params import declared
     from .runner import RunOptions
@@ -28,7 +34,7 @@ def _list():
             print(f"    {p.name} = {p.default!r} [{p.unit}]  {p.doc}{extra}")
 
 
-def _run_file(path):
+def _run_file(path: str) -> tuple[str, dict[str, str]]:
     """Case name and parameters {key: text} of a TOML run file."""
     import tomllib
 
@@ -48,7 +54,7 @@ def _run_file(path):
     if not isinstance(params, dict) or set(data) - {"case", "parameters"}:
         raise InputError(f"run file {path!r}: only 'case' and a [parameters] table are allowed")
 
-    def text(v):
+    def text(v: object) -> str:
         if isinstance(v, bool):
             return str(v).lower()
         if isinstance(v, list):   # e.g. p_s = [1, 5]: the comma-separated form of --set
@@ -58,7 +64,7 @@ def _run_file(path):
     return case, {k: text(v) for k, v in params.items()}
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tribofx`` command; returns the exit status."""
     parser = _Parser(prog="tribofx", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -84,7 +90,7 @@ def main(argv=None):
         return 0
     from .params import InputError
 
-    overrides = {}
+    overrides: dict[str, str] = {}
     if args.case.endswith(".toml"):
         try:
             args.case, overrides = _run_file(args.case)

@@ -1,14 +1,24 @@
 """Lifetimes of PETSc objects owned by problems: weak callbacks, collective destruction."""
 
+from __future__ import annotations
+
 import atexit
 import weakref
+from typing import TYPE_CHECKING, cast
 
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from dolfinx.fem.petsc import NonlinearProblem
+
+    from .problem import Problem
 
 __all__ = ["LIFETIMES", "weak_callback"]
 
 
-def weak_callback(method):
+def weak_callback[**P, R](method: Callable[P, R]) -> Callable[P, R]:
     """Wrap the bound ``method`` as a PETSc callback that does not keep its object alive.
 
     SNES keeps its callbacks in C, out of sight of Python's garbage collector: a
@@ -19,8 +29,8 @@ def weak_callback(method):
     """
     ref = weakref.WeakMethod(method)
 
-    def call(*args, **kwargs):
-        return ref()(*args, **kwargs)
+    def call(*args: P.args, **kwargs: P.kwargs) -> R:
+        return cast("Callable[P, R]", ref())(*args, **kwargs)  # called while its object lives
 
     return call
 
@@ -40,10 +50,15 @@ class _Lifetimes:
     the object goes with its Problem.
     """
 
-    def __init__(self):
+    live: dict[int, NonlinearProblem]
+    dead: set[int]
+    count: int
+
+    def __init__(self) -> None:
         self.live, self.dead, self.count = {}, set(), 0
 
-    def keep(self, problem, nlp, comm):
+    def keep(self, problem: Problem, nlp: NonlinearProblem,
+             comm: MPI.Comm) -> NonlinearProblem | None:
         """Hold ``nlp`` of ``problem`` until every rank has freed the problem."""
         if comm.size == 1:
             return nlp
@@ -53,7 +68,7 @@ class _Lifetimes:
         weakref.finalize(problem, self.dead.add, key)
         return None
 
-    def release(self, comm=MPI.COMM_WORLD, everything=False):
+    def release(self, comm: MPI.Comm = MPI.COMM_WORLD, everything: bool = False) -> None:
         """Destroy, collectively, what every rank has freed (or ``everything``)."""
         if comm.size == 1 or not self.live:
             return

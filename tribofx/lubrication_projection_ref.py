@@ -9,6 +9,8 @@ For testing only (brute-force facet search).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import numpy.typing as npt
 
@@ -17,10 +19,13 @@ from tribofx.lubrication_projection import LubricationResult
 from tribofx.projection import _validate
 from tribofx.projection_ref import _evaluate, closest_point_projection_ref
 
+if TYPE_CHECKING:
+    from tribofx.facet_elements_ref import FacetElement
+
 __all__ = ["lubrication_projection_ref"]
 
 
-def _third_derivatives(el, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
+def _third_derivatives(el: FacetElement, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
     """x_,abc (m, tdim, tdim, tdim, g) of the facet map.
 
     Zero for intervals and triangles (at most quadratic); a tensor-product
@@ -43,7 +48,8 @@ def _third_derivatives(el, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
     return d3
 
 
-def _second_derivative(el, x: np.ndarray, X: np.ndarray, xi: np.ndarray) -> np.ndarray:
+def _second_derivative(el: FacetElement, x: np.ndarray, X: np.ndarray,
+                       xi: np.ndarray) -> np.ndarray:
     """d2y_i/dx_j dx_k (m, g, g, g) of interior projections."""
     xs, t, d = _evaluate(el, X, xi)
     d3 = _third_derivatives(el, X, xi)

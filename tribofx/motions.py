@@ -8,8 +8,16 @@ from the shape V̂ (dimensionless), which evaluates on a UFL vector (the film's
 forms) and on NumPy points (n, 2) (the two-body film kernel's master data).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, overload
+
 import numpy as np
 import ufl
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    import ufl.core.expr
 
 __all__ = ["Rolling", "Sliding"]
 
@@ -20,10 +28,17 @@ class Rolling:
     Counter-clockwise for U > 0: the lowest point of a cylinder moves along +x.
     """
 
-    def __init__(self, center, radius):
+    def __init__(self, center: npt.ArrayLike, radius: float) -> None:
         self.center, self.radius = np.asarray(center, float)[:2], float(radius)
 
-    def __call__(self, X):
+    @overload
+    def __call__(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+
+    @overload
+    def __call__(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr: ...
+
+    def __call__(self, X: npt.NDArray[np.float64] | ufl.core.expr.Expr
+                 ) -> npt.NDArray[np.float64] | ufl.core.expr.Expr:
         """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
         c, R = self.center, self.radius
         if isinstance(X, np.ndarray):
@@ -34,11 +49,18 @@ class Rolling:
 class Sliding:
     """Uniform translation along ``direction`` (a unit vector): V̂ = direction."""
 
-    def __init__(self, direction):
+    def __init__(self, direction: npt.ArrayLike) -> None:
         d = np.asarray(direction, float)
         self.direction = d / np.linalg.norm(d)
 
-    def __call__(self, X):
+    @overload
+    def __call__(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+
+    @overload
+    def __call__(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr: ...
+
+    def __call__(self, X: npt.NDArray[np.float64] | ufl.core.expr.Expr
+                 ) -> npt.NDArray[np.float64] | ufl.core.expr.Expr:
         """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
         if isinstance(X, np.ndarray):
             return np.tile(self.direction[:X.shape[1]], (len(X), 1))

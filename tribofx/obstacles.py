@@ -12,11 +12,25 @@ them at the current slave node positions and is called before every residual
 assembly, so that the Newton tangent stays consistent.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 import ufl
 from dolfinx import fem
 
 from .forms import contact as cf
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    from .forms.contact import ContactGeometry
+    from .protocols import Counterpart
 
 __all__ = [
     "AnalyticObstacle",
@@ -37,23 +51,23 @@ class _RigidMotion:
     ``state_fields()``; a deformable master body answers the same questions.
     """
 
-    def _init_motion(self, mesh, gdim):
+    def _init_motion(self, mesh: dmesh.Mesh, gdim: int) -> None:
         self.offset = fem.Constant(mesh, np.zeros(gdim))
         self.offset_n = fem.Constant(mesh, np.zeros(gdim))
 
-    def motion_since_commit(self):
+    def motion_since_commit(self) -> ufl.core.expr.Expr:
         """UFL displacement of the master's material points since the last commit."""
         return self.offset - self.offset_n
 
-    def commit(self):
+    def commit(self) -> None:
         """Make the current position the reference of the next step's slip."""
         self.offset_n.value[:] = self.offset.value
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Constant]:
         """Return the position constants."""
         return [self.offset, self.offset_n]
 
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return no unknowns: a rigid countersurface has none."""
         return []
 
@@ -70,7 +84,9 @@ class AnalyticObstacle(_RigidMotion):
         axis: unit axis of a 3D cylinder.
     """
 
-    def __init__(self, mesh, shape, point, normal=None, radius=None, axis=None):
+    def __init__(self, mesh: dmesh.Mesh, shape: str, point: npt.ArrayLike,
+                 normal: Iterable[float] | None = None, radius: float | None = None,
+                 axis: Iterable[float] | None = None) -> None:
         if shape not in ("plane", "cylinder", "sphere"):
             raise ValueError(f"unknown obstacle shape {shape!r}")
         gdim = mesh.geometry.dim
@@ -81,7 +97,7 @@ class AnalyticObstacle(_RigidMotion):
         self._radius = radius
         self._axis = None if axis is None else ufl.as_vector(list(map(float, axis)))
 
-    def geometry(self, x):
+    def geometry(self, x: ufl.core.expr.Expr) -> ContactGeometry:
         """Closest-point geometry of the (translated) obstacle at the UFL position ``x``."""
         c = ufl.as_vector(list(map(float, self.point))) + self.offset
         if self.shape == "plane":
@@ -90,7 +106,7 @@ class AnalyticObstacle(_RigidMotion):
             return cf.cylinder_countersurface(x, c, self._radius, self._axis)
         return cf.sphere_countersurface(x, c, self._radius)
 
-    def update(self, x_nodes):
+    def update(self, x_nodes: npt.NDArray[np.float64]) -> None:
         """Nothing to refresh for a closed-form obstacle."""
 
 
@@ -107,7 +123,8 @@ class MeshedObstacle(_RigidMotion):
             :func:`tribofx.projection.closest_point_projection`.
     """
 
-    def __init__(self, mesh, V_sub, nodes, facets, cell_type):
+    def __init__(self, mesh: dmesh.Mesh, V_sub: fem.FunctionSpace, nodes: npt.ArrayLike,
+                 facets: npt.ArrayLike, cell_type: str) -> None:
         from .lubrication_projection import lubrication_projection
 
         self._project = lubrication_projection
@@ -128,14 +145,14 @@ class MeshedObstacle(_RigidMotion):
         self.dxbar = fem.Function(T, name="dxbar_dx")
         self.d2xbar = fem.Function(T3, name="d2xbar_dx2")
 
-    def geometry(self, x):
+    def geometry(self, x: ufl.core.expr.Expr) -> ContactGeometry:
         """Second-order expansion of the kernel data about the last update point."""
         return cf.meshed_countersurface(
             x, self.x0, self.gap0, self.normal0, self.dnormal, self.xbar0, self.dxbar,
             self.d2xbar,
         )
 
-    def update(self, x_nodes):
+    def update(self, x_nodes: npt.NDArray[np.float64]) -> None:
         """Project the slave nodes ``x_nodes`` (n, gdim) — ordered as the P1 dofs — and store."""
         off = self.offset.value
         res = self._project(x_nodes - off, self.nodes, self.facets, self.cell_type)
@@ -148,22 +165,26 @@ class MeshedObstacle(_RigidMotion):
         self.d2xbar.x.array[:] = res.d2y_dx2.ravel()
 
 
-def rigid_plane(point, normal):
+def rigid_plane(point: npt.ArrayLike,
+                normal: Iterable[float]) -> Callable[[fem.FunctionSpace], Counterpart]:
     """Counterpart factory: the rigid plane through ``point`` with unit normal ``normal``."""
     return lambda Vs: AnalyticObstacle(Vs.mesh, "plane", point, normal=normal)
 
 
-def rigid_cylinder(center, radius, axis=None):
+def rigid_cylinder(center: npt.ArrayLike, radius: float, axis: Iterable[float] | None = None
+                   ) -> Callable[[fem.FunctionSpace], Counterpart]:
     """Counterpart factory: a rigid cylinder (disc in 2D) of ``radius`` about ``center``."""
     return lambda Vs: AnalyticObstacle(Vs.mesh, "cylinder", center, radius=radius, axis=axis)
 
 
-def rigid_sphere(center, radius):
+def rigid_sphere(center: npt.ArrayLike,
+                 radius: float) -> Callable[[fem.FunctionSpace], Counterpart]:
     """Counterpart factory: a rigid sphere of ``radius`` about ``center``."""
     return lambda Vs: AnalyticObstacle(Vs.mesh, "sphere", center, radius=radius)
 
 
-def rigid_surface_mesh(nodes, facets, cell_type):
+def rigid_surface_mesh(nodes: npt.ArrayLike, facets: npt.ArrayLike,
+                       cell_type: str) -> Callable[[fem.FunctionSpace], Counterpart]:
     """Counterpart factory: a rigid surface mesh projected by the C++ kernel.
 
     ``nodes`` (n, gdim) float, ``facets`` (m, k) int32, ``cell_type`` as for

@@ -1,18 +1,28 @@
 """Run outputs: ``summary.json``, VTX (.bp) fields for ParaView and PNG plots."""
 
+from __future__ import annotations
+
 import json
 import math
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from .params import CaseParams, declared
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from dolfinx import fem
+    from dolfinx.io import VTXWriter
+    from mpi4py import MPI
+
 __all__ = ["RunRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary", "write_vtx"]
 
 
-def jsonable(obj):
+def jsonable(obj: object) -> Any:
     """``obj`` with NumPy arrays and scalars (also inside dicts, lists, tuples) as JSON types.
 
     An infinite float (e.g. ``E2=inf``, a rigid body) becomes the string "inf"
@@ -43,17 +53,21 @@ class RunRecord:
     declaration; ``units`` may add more) or {name: value} with ``units`` {name: unit}.
     """
 
-    def __init__(self, case, params, units, outdir, comm):
+    profile: Any   # what a case's run keeps for its plot (``plot(profile, outdir)``)
+
+    def __init__(self, case: str, params: CaseParams | Mapping[str, Any],
+                 units: Mapping[str, str] | None, outdir: str | Path, comm: MPI.Comm) -> None:
         import dolfinx
 
         if isinstance(params, CaseParams):
             units = {**{p.name: p.unit for p in declared(type(params))}, **(units or {})}
             params = params.as_dict()
+        units = cast("Mapping[str, str]", units)   # given with a dict of parameters
 
         self.comm = comm
         self.outdir = Path(outdir)
         self.t0 = time.perf_counter()
-        self.data = {
+        self.data: dict[str, Any] = {
             "case": case,
             "status": "running",
             "units": {"length": "mm", "force": "N", "stress": "MPa", "time": "s"},
@@ -66,15 +80,15 @@ class RunRecord:
             "mpi_size": comm.size,
         }
 
-    def result(self, key, value, unit="-"):
+    def result(self, key: str, value: object, unit: str = "-") -> None:
         """Record a scalar or list result with its unit."""
         self.data["results"][key] = {"value": value, "unit": unit}
 
-    def warn(self, message):
+    def warn(self, message: str) -> None:
         """Record a warning (``warnings`` of the summary; the CLI prints them)."""
         self.data.setdefault("warnings", []).append(message)
 
-    def write(self, status):
+    def write(self, status: str) -> dict[str, Any]:
         """Write ``summary.json`` with ``status`` ("ok" or "failed: …")."""
         self.data["status"] = status
         self.data["wall_time_s"] = time.perf_counter() - self.t0
@@ -82,7 +96,7 @@ class RunRecord:
         return self.data
 
 
-def write_summary(comm, path, data):
+def write_summary(comm: MPI.Comm, path: str | Path, data: Mapping[str, Any]) -> None:
     """Write the dict ``data`` as JSON to ``path`` on rank 0 (NumPy values converted)."""
     if comm.rank == 0:
         path = Path(path)
@@ -90,7 +104,8 @@ def write_summary(comm, path, data):
         path.write_text(json.dumps(jsonable(data), indent=2))
 
 
-def write_vtx(comm, path, functions, t=0.0):
+def write_vtx(comm: MPI.Comm, path: str | Path, functions: list[fem.Function],
+              t: float = 0.0) -> None:
     """Write ``functions`` (same mesh, Lagrange) to the VTX file ``path``."""
     from dolfinx.io import VTXWriter
 
@@ -111,40 +126,44 @@ class VTXSeries:
     (a resumed sweep with nothing left to do) leaves no empty file.
     """
 
-    def __init__(self, comm, outdir, groups):
+    writers: list[VTXWriter]
+
+    def __init__(self, comm: MPI.Comm, outdir: str | Path | None,
+                 groups: Mapping[str, list[fem.Function]]) -> None:
         self.comm, self.groups, self.writers = comm, groups, []
         self.outdir = None if comm.bcast(outdir is None, root=0) else Path(
             comm.bcast(str(outdir), root=0))   # one file for all ranks
 
-    def _open(self):
+    def _open(self) -> None:
         from dolfinx.io import VTXWriter
 
+        assert self.outdir is not None   # opened by write() only while not closed
         if self.comm.rank == 0:
             self.outdir.mkdir(parents=True, exist_ok=True)
         self.comm.barrier()
         self.writers = [VTXWriter(self.comm, str(self.outdir / f"{stem}.bp"), fns, engine="BP4")
                         for stem, fns in self.groups.items()]
 
-    def write(self, t):
+    def write(self, t: float) -> None:
         """Write every group at time ``t`` (collective; the first write opens the files)."""
         if self.outdir is not None and not self.writers:
             self._open()
         for w in self.writers:
             w.write(float(t))
 
-    def close(self):
+    def close(self) -> None:
         """Close the files (no further write)."""
         for w in self.writers:
             w.close()
         self.writers, self.outdir = [], None
 
-    def __enter__(self):
+    def __enter__(self) -> VTXSeries:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
 
-def bp4_steps(path):
+def bp4_steps(path: str | Path) -> int:
     """Return the number of steps in the BP4 file ``path`` (index: 64 bytes + 64 per step)."""
     return (Path(path, "md.idx").stat().st_size - 64) // 64

@@ -16,13 +16,15 @@ against its bounds.  Every violation raises :class:`InputError` with a one-line
 message; the CLI turns it into exit status 2.
 """
 
+from __future__ import annotations
+
 import dataclasses
 import math
 import types
 import typing
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, Self
+from typing import Any, Self, overload
 
 from .meshes.errors import InputError
 
@@ -57,7 +59,7 @@ class Param:
     closed: bool = False
     infinite: bool = False
 
-    def parse(self, text):
+    def parse(self, text: str) -> Any:
         """Convert ``text`` to the parameter's type and check its range."""
         try:
             if self.type is bool:
@@ -74,7 +76,7 @@ class Param:
         self.check(value)
         return value
 
-    def check(self, value):
+    def check(self, value: object) -> None:
         """Raise :class:`InputError` if ``value`` is outside the allowed set or range."""
         if self.choices is not None and value not in self.choices:
             raise InputError(
@@ -171,7 +173,18 @@ def resolve[P: CaseParams](cls: type[P], overrides: Mapping[str, Any]) -> P:
     return cls(**values)
 
 
-def number_list(text, name, kind=float, allow_empty=False):
+@overload
+def number_list(text: str, name: str, kind: type[int],
+                allow_empty: bool = False) -> list[int]: ...
+
+
+@overload
+def number_list(text: str, name: str, kind: Callable[[str], float] = float,
+                allow_empty: bool = False) -> list[float]: ...
+
+
+def number_list(text: str, name: str, kind: Callable[[str], float] = float,
+                allow_empty: bool = False) -> list[int] | list[float]:
     """Numbers of a comma- (or semicolon-) separated parameter text, e.g. ``"0.5,1"``.
 
     Raises :class:`InputError` (one line, naming the parameter) for a malformed

@@ -14,14 +14,21 @@ during the iterations fall back to PETSc's own allocation (the option
 NEW_NONZERO_ALLOCATION_ERR is off).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 from mpi4py import MPI
 from petsc4py import PETSc
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
 __all__ = ["facet_rings", "grow"]
 
 
-def grow(A, rows, cols):
+def grow(A: PETSc.Mat, rows: npt.ArrayLike, cols: npt.ArrayLike) -> PETSc.Mat | None:
     """Matrix with the pattern of ``A`` plus the entries rows[k, i] × cols[k, j], or None.
 
     Args:
@@ -46,23 +53,24 @@ def grow(A, rows, cols):
     row_of = keys // N
     indptr = np.searchsorted(row_of, np.arange(nloc + 1)).astype(PETSc.IntType)
     M = PETSc.Mat().create(comm=A.getComm())
-    M.setSizes(A.getSizes())
+    # petsc4py's stubs: getSizes' pairs and NumPy index arrays are what these calls take
+    M.setSizes(A.getSizes())  # type: ignore[arg-type]
     M.setType(A.getType())
     M.setOptionsPrefix(A.getOptionsPrefix())
-    M.setPreallocationCSR((indptr, (keys % N).astype(PETSc.IntType)))
+    M.setPreallocationCSR((indptr, (keys % N).astype(PETSc.IntType)))  # type: ignore[arg-type]
     M.setLGMap(*A.getLGMap())
-    M.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
+    M.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)  # type: ignore[arg-type]
     return M
 
 
-def facet_rings(facets):
+def facet_rings(facets: npt.NDArray[np.integer]) -> npt.NDArray[np.int64]:
     """Per facet, the nodes of every facet sharing a node with it, padded with −1.
 
     ``facets`` (m, k) node indices; returns (m, width) int.  A contact node paired
     with facet f may slide onto any facet of its ring during Newton's iterations, so
     the ring's nodes belong to its preallocated couplings.
     """
-    node_facets = [[] for _ in range(int(facets.max(initial=-1)) + 1)]
+    node_facets: list[list[int]] = [[] for _ in range(int(facets.max(initial=-1)) + 1)]
     for i, f in enumerate(facets):
         for v in f:
             node_facets[v].append(i)

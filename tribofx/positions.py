@@ -18,12 +18,19 @@ second difference of the nodal profile, :func:`oscillation_indicator`, measures
 it.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["oscillation_indicator", "parabolic_vertex", "paraboloid_vertex"]
 
 
-def parabolic_vertex(x, f, kind="max"):
+def parabolic_vertex(x: npt.ArrayLike, f: npt.ArrayLike, kind: str = "max") -> float:
     """Position of the extreme of the nodal profile f at positions x (sorted here).
 
     Returns the vertex of the parabola through the extreme node i and nodes
@@ -51,7 +58,8 @@ def parabolic_vertex(x, f, kind="max"):
     return float(np.clip(xv, x0, x2))
 
 
-def paraboloid_vertex(xy, f, kind="min", k=12):
+def paraboloid_vertex(xy: npt.ArrayLike, f: npt.ArrayLike, kind: str = "min",
+                      k: int = 12) -> tuple[float, ...]:
     """Position (x, y) of the extreme of a field f given at scattered surface points xy.
 
     Fits f ≈ c₀ + g·ξ + ½ ξᵀHξ (ξ = x − x_i, six coefficients) by least squares
@@ -84,7 +92,7 @@ def paraboloid_vertex(xy, f, kind="min", k=12):
     return tuple(float(v) for v in xy[i] + step)
 
 
-def oscillation_indicator(h, p, threshold):
+def oscillation_indicator(h: npt.ArrayLike, p: npt.ArrayLike, threshold: float) -> float:
     """Zig-zag amplitude of a film profile in its loaded zone p > threshold.
 
     ``h``, ``p``: nodal film thickness and pressure along a line, sorted by

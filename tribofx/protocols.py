@@ -17,7 +17,19 @@ interface (or interfaces) whose load wears the surface: ``Contact``, ``Film``,
 a side of a ``TwoBodyContact`` (cycle-averaged wear only) or the user's own.
 """
 
-from typing import Protocol, runtime_checkable
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
+
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
+    import ufl.core.expr
+    from petsc4py import PETSc
+
+    from .forms.contact import ContactGeometry
+    from .forms.wear import WearLoad
+    from .problem import Problem
 
 __all__ = ["Component", "ComponentBase", "Counterpart", "WearDriver"]
 
@@ -102,13 +114,14 @@ class ComponentBase:
     def commit(self) -> None:
         """Accept a converged step (nothing to move on)."""
 
-    def add_residual(self, b, problem) -> None:
+    def add_residual(self, b: PETSc.Vec, problem: Problem) -> None:
         """Add terms assembled outside UFL to the block residual ``b`` (none)."""
 
-    def add_jacobian(self, A, problem) -> None:
+    def add_jacobian(self, A: PETSc.Mat, problem: Problem) -> None:
         """Add terms assembled outside UFL to the block Jacobian ``A`` (none)."""
 
-    def couplings(self, problem):
+    def couplings(self, problem: Problem
+                  ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]] | None:
         """Return (rows, cols) of the entries it may add in the next solve, or None."""
         return None
 
@@ -136,10 +149,10 @@ class ComponentBase:
 class Counterpart(Protocol):
     """A rigid countersurface of a contact or a film (built by a factory of ``V_sub``)."""
 
-    def geometry(self, x):
+    def geometry(self, x: ufl.core.expr.Expr) -> ContactGeometry:
         """Closest-point geometry (gap, normal, projection) at the UFL position ``x``."""
 
-    def update(self, x_nodes) -> None:
+    def update(self, x_nodes: npt.NDArray[np.float64]) -> None:
         """Refresh kernel data at the slave nodes ``x_nodes`` (n, gdim)."""
 
     def unknowns(self) -> list:
@@ -148,7 +161,7 @@ class Counterpart(Protocol):
     def state_fields(self) -> list:
         """Its state (position, motion history)."""
 
-    def motion_since_commit(self):
+    def motion_since_commit(self) -> ufl.core.expr.Expr:
         """Its rigid motion since the last commit (UFL vector; the Lagrangian slip's)."""
 
     def commit(self) -> None:
@@ -166,7 +179,7 @@ class WearDriver(Protocol):
     the vertex-rule measure and the nodal maps).
     """
 
-    def wear_load(self, slip=None):
+    def wear_load(self, slip: ufl.core.expr.Expr | None = None) -> WearLoad:
         """UFL :class:`tribofx.forms.wear.WearLoad` (per unit initial area) of the state.
 
         ``slip``: a slip increment instead of the slip velocity (the wear increment

@@ -31,8 +31,10 @@ it by bisection, :func:`tribofx.studies.wear_stability.pin_critical_step` and
 :func:`tribofx.studies.wear_stability.ball_critical_step`).
 """
 
+from __future__ import annotations
+
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar, overload
 
 import numpy as np
 
@@ -41,6 +43,15 @@ from .references_squeeze import (
     squeeze_film_under_load,
     squeeze_resistance,
 )
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
+    import ufl.core.expr
+
+    #: a float or an array of them, the same type out as in
+    FloatOrArray = TypeVar("FloatOrArray", float, npt.NDArray[np.float64])
 
 __all__ = [
     "HertzContact",
@@ -67,7 +78,7 @@ __all__ = [
 # --------------------------------------------------------------------------- Hertz contact
 
 
-def composite_modulus(E1, nu1, E2=math.inf, nu2=0.0):
+def composite_modulus(E1: float, nu1: float, E2: float = math.inf, nu2: float = 0.0) -> float:
     """Contact (plane-strain composite) modulus E* of two elastic bodies, MPa.
 
     1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂  (Johnson, *Contact Mechanics*, 1985, §4.2).
@@ -87,7 +98,7 @@ def composite_modulus(E1, nu1, E2=math.inf, nu2=0.0):
     return 1.0 / c
 
 
-def composite_radius(R1, R2=math.inf):
+def composite_radius(R1: float, R2: float = math.inf) -> float:
     """Relative (composite) radius of curvature R* of two surfaces in contact, mm.
 
     1/R* = 1/R₁ + 1/R₂ (Johnson 1985, §4.1).  Convention: a radius is positive for
@@ -112,12 +123,13 @@ class HertzContact(NamedTuple):
     E_star: float   #: composite modulus E*, MPa
     R_star: float   #: composite radius R*, mm
 
-    def pressure(self, r):
+    def pressure(self, r: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Return p₀√(1 − r²/a²) (MPa, 0 outside) at r (mm) from the centre line/point."""
         return self.p0 * np.sqrt(np.maximum(0.0, 1.0 - np.asarray(r) ** 2 / self.a**2))
 
 
-def hertz(load, R1, E1, nu1, R2=math.inf, E2=math.inf, nu2=0.0, *, line=False):
+def hertz(load: float, R1: float, E1: float, nu1: float, R2: float = math.inf,
+          E2: float = math.inf, nu2: float = 0.0, *, line: bool = False) -> HertzContact:
     """Hertz contact of two elastic bodies: size, peak pressure and approach.
 
     With E* = :func:`composite_modulus` (E₁, ν₁, E₂, ν₂) and R* =
@@ -157,7 +169,8 @@ def hertz(load, R1, E1, nu1, R2=math.inf, E2=math.inf, nu2=0.0, *, line=False):
     return HertzContact(a, 3 * load / (2 * math.pi * a * a), a * a / Rs, Es, Rs)
 
 
-def hertz_reference(dim, E, nu, R, load):
+def hertz_reference(dim: int, E: float, nu: float, R: float,
+                    load: float) -> tuple[float, float]:
     """Hertz contact of an elastic cylinder (dim = 2) or sphere (dim = 3) on a rigid plane.
 
     The rigid-plane convenience of :func:`hertz`: returns ``(a, p_max)``, the contact
@@ -171,7 +184,23 @@ def hertz_reference(dim, E, nu, R, load):
 # --------------------------------------------------------------------------- rigid lubrication
 
 
-def slider_pressure(x, K, L, h0, U, mu):
+@overload
+def slider_pressure(x: float, K: float, L: float, h0: float, U: float, mu: float) -> float: ...
+
+
+@overload
+def slider_pressure(x: npt.NDArray[np.float64], K: float, L: float, h0: float, U: float,
+                    mu: float) -> npt.NDArray[np.float64]: ...
+
+
+@overload
+def slider_pressure(x: ufl.core.expr.Expr, K: float, L: float, h0: float, U: float,
+                    mu: float) -> ufl.core.expr.Expr: ...
+
+
+def slider_pressure(x: float | npt.NDArray[np.float64] | ufl.core.expr.Expr, K: float, L: float,
+                    h0: float, U: float,
+                    mu: float) -> float | npt.NDArray[np.float64] | ufl.core.expr.Expr:
     """Pressure (MPa) of the plane inclined slider bearing at x (mm), 0 ≤ x ≤ L.
 
     Film h = h₀(1 + K − Kx/L) (outlet film h₀, inlet h₀(1 + K)), one surface sliding
@@ -190,7 +219,26 @@ def slider_pressure(x, K, L, h0, U, mu):
     return 6 * mu * U * L / h0**2 * K * s * (1 - s) / ((2 + K) * (1 + K - K * s) ** 2)
 
 
-def barus_pressure(p_iso, alpha, log=math.log):
+@overload
+def barus_pressure(p_iso: float, alpha: float,
+                   log: Callable[[float], float] = math.log) -> float: ...
+
+
+@overload
+def barus_pressure(p_iso: npt.NDArray[np.float64], alpha: float,
+                   log: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]]
+                   ) -> npt.NDArray[np.float64]: ...
+
+
+@overload
+def barus_pressure(p_iso: ufl.core.expr.Expr, alpha: float,
+                   log: Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr]
+                   ) -> ufl.core.expr.Expr: ...
+
+
+def barus_pressure(p_iso: float | npt.NDArray[np.float64] | ufl.core.expr.Expr, alpha: float,
+                   log: Callable[[Any], Any] = math.log
+                   ) -> float | npt.NDArray[np.float64] | ufl.core.expr.Expr:
     """Pressure of a Barus fluid μ₀ e^{αp} from the isoviscous one of the same film: p(x).
 
     With the reduced pressure q = (1 − e^{−αp})/α, h³/(12μ₀e^{αp}) ∇p = h³/(12μ₀) ∇q,
@@ -202,7 +250,7 @@ def barus_pressure(p_iso, alpha, log=math.log):
     return -log(1 - alpha * p_iso) / alpha
 
 
-def slider_reference(K, L, h0, U, mu):
+def slider_reference(K: float, L: float, h0: float, U: float, mu: float) -> dict[str, Any]:
     """Plane inclined slider bearing: pressure, load, peak pressure and its position.
 
     With :func:`slider_pressure` p(x) (same arguments and validity; K = h_in/h₀ − 1),
@@ -215,7 +263,7 @@ def slider_reference(K, L, h0, U, mu):
     Returns a dict with ``pressure`` (callable of x, NumPy), ``load`` (N/mm),
     ``p_max`` (MPa) and ``x_p_max`` (mm).
     """
-    def pressure(x):
+    def pressure(x: npt.ArrayLike) -> npt.NDArray[np.float64]:
         return slider_pressure(np.asarray(x, dtype=float), K, L, h0, U, mu)
 
     if abs(K) < 1e-12:
@@ -225,20 +273,21 @@ def slider_reference(K, L, h0, U, mu):
     return {"pressure": pressure, "load": load, "p_max": float(pressure(x_m)), "x_p_max": x_m}
 
 
-def _cumtrapz(f, x):
+def _cumtrapz(f: npt.NDArray[np.float64], x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     out = np.zeros_like(f)
     out[1:] = np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(x))
     return out
 
 
-def _simpson(f, x):
+def _simpson(f: npt.NDArray[np.float64], x: npt.NDArray[np.float64]) -> float:
     n = len(x) - 1
     assert n % 2 == 0
     dx = (x[-1] - x[0]) / n
     return dx / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
 
 
-def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
+def cylinder_references(R: float, h0: float, um: float, mu: float, x_in: float, x_out: float,
+                        n: int = 200_000, inlet_void: float = 0.0) -> dict[str, dict[str, Any]]:
     """Half-Sommerfeld and Swift–Stieber solutions of the rigid cylinder–plane contact.
 
     Rigid cylinder of radius R (mm) near a rigid plane, parabolic gap
@@ -274,7 +323,7 @@ def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
     """
     n += n % 2
 
-    def gap(x):
+    def gap(x: FloatOrArray) -> FloatOrArray:
         return h0 + x**2 / (2 * R)
 
     c = 12 * mu * um
@@ -296,12 +345,12 @@ def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
                                "p_max": p[i], "x_p_max": x[i], "x_rupture": xr,
                                "h_star": hs, "flux": hs * um}
 
-    def G(xa, xb, hs):
+    def G(xa: float, xb: float, hs: float) -> float:
         xs = np.linspace(xa, xb, n // 4 + 1)
         hh = gap(xs)
         return _simpson((hh - hs) / hh**3, xs)
 
-    def bisect(f, a, b):
+    def bisect(f: Callable[[float], float], a: float, b: float) -> float:
         for _ in range(80):
             m = 0.5 * (a + b)
             a, b = (m, b) if f(m) > 0 else (a, m)
@@ -338,7 +387,7 @@ def cylinder_references(R, h0, um, mu, x_in, x_out, n=200_000, inlet_void=0.0):
     return refs
 
 
-def rigid_clearance(W, mu, U, R):
+def rigid_clearance(W: float, mu: float, U: float, R: float) -> float:
     """Minimum film h₀ (mm) of a rigid cylinder in pure sliding on a plane at load W.
 
     Martin (1916, *Engineering* 102, 119) with the Reynolds (Swift–Stieber) exit
@@ -355,7 +404,8 @@ def rigid_clearance(W, mu, U, R):
 # --------------------------------------------------------------------------- soft EHL
 
 
-def hamrock_dowson(W, mu, U, R, E_star, k=1.0):
+def hamrock_dowson(W: float, mu: float, U: float, R: float, E_star: float,
+                   k: float = 1.0) -> tuple[float, float]:
     """Isoviscous-elastic (soft-EHL) central and minimum film (mm) of Hamrock & Dowson (1978).
 
     B.J. Hamrock, D. Dowson, "Elastohydrodynamic lubrication of elliptical contacts
@@ -389,7 +439,7 @@ def hamrock_dowson(W, mu, U, R, E_star, k=1.0):
     return Hc * R, Hm * R
 
 
-def inverse_film(mu, U, w):
+def inverse_film(mu: float, U: float, w: float) -> float:
     """Film thickness h_c (mm) at the pressure maximum by the inverse hydrodynamic theory.
 
     Blok (1963, "Inverse problems in hydrodynamic lubrication and design directives
@@ -412,7 +462,7 @@ def inverse_film(mu, U, w):
 # --------------------------------------------------------------------------- Archard wear
 
 
-def rigid_cap_depth(k, F, R, s):
+def rigid_cap_depth(k: float, F: float, R: float, s: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Worn depth h (mm) of a rigid ball sliding on a flat by Archard's law, h = √(kFs/(πR)).
 
     Archard (1953): worn volume k F s.  A rigid sphere worn flat to depth h loses
@@ -425,7 +475,7 @@ def rigid_cap_depth(k, F, R, s):
     return np.sqrt(k * F * np.asarray(s, dtype=float) / (math.pi * R))
 
 
-def rigid_cap_radius(k, F, R, s):
+def rigid_cap_radius(k: float, F: float, R: float, s: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Scar radius a (mm) of a rigid ball worn flat by Archard's law, a = (4kFRs/π)^{1/4}.
 
     The flat-scar radius a² ≈ 2Rh of :func:`rigid_cap_depth` (same arguments and
@@ -435,7 +485,8 @@ def rigid_cap_radius(k, F, R, s):
     return (4 * k * F * R * np.asarray(s, dtype=float) / math.pi) ** 0.25
 
 
-def rigid_groove_halfwidth(k, F, R, s, L):
+def rigid_groove_halfwidth(k: float, F: float, R: float, s: npt.ArrayLike,
+                           L: float) -> npt.NDArray[np.float64]:
     """Half-width b (mm) of the groove worn by a rigid ball on a track by Archard's law.
 
     The ball (radius R, load F) slides the distance s over a closed track of length

@@ -12,19 +12,27 @@
 Units: mm, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 __all__ = ["flat_punch_separation", "greenwood_tripp_f52", "jgp_load_sharing"]
 
 
-def greenwood_tripp_f52(H, n=200_001, span=12.0):
+def greenwood_tripp_f52(H: float, n: int = 200_001, span: float = 12.0) -> float:
     """F_{5/2}(H) by the trapezoidal rule on [H, H + span] (relative error < 1e-8 for H ≥ −4)."""
     s = np.linspace(H, H + span, n)
     f = (s - H) ** 2.5 * np.exp(-0.5 * s**2) / np.sqrt(2 * np.pi)
     return float(np.trapezoid(f, s))
 
 
-def flat_punch_separation(p, sigma, KE, fit=(4.4086e-5, 4.0, 6.804)):
+def flat_punch_separation(p: float, sigma: float, KE: float,
+                          fit: tuple[float, float, float] = (4.4086e-5, 4.0, 6.804)) -> float:
     """Separation h (mm) at which K E* A (H_c − h/σ)^n equals the pressure p (MPa), p > 0.
 
     ``KE``: K E* (MPa); ``fit``: (A, H_c, n) of the F_{5/2} fit.
@@ -33,7 +41,8 @@ def flat_punch_separation(p, sigma, KE, fit=(4.4086e-5, 4.0, 6.804)):
     return sigma * (Hc - (p / (KE * A)) ** (1.0 / n))
 
 
-def jgp_load_sharing(h_smooth, p0, p_a, exponents=(-0.2, -0.4)):
+def jgp_load_sharing(h_smooth: float, p0: float, p_a: Callable[[float], float],
+                     exponents: tuple[float, float] = (-0.2, -0.4)) -> tuple[float, float]:
     """Return (film share 1/γ₁, central film h_c) of Johnson, Greenwood & Poon (1972).
 
     The film carries W/γ₁, the asperities W/γ₂ (1/γ₁ + 1/γ₂ = 1).  Each part acts

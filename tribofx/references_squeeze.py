@@ -25,16 +25,25 @@ h(t)^{−1/2} = h₀^{−1/2} + W' t/(6√2 π μ R^{3/2}); :func:`squeeze_film_
 integrates the exact-gap law by RK4.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
 
 __all__ = ["squeeze_closed_form", "squeeze_film_under_load", "squeeze_resistance"]
 
 _XG, _WG = np.polynomial.legendre.leggauss(20)
 
 
-def _quad(f, L, n=200):
+def _quad(f: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]], L: float,
+          n: int = 200) -> float:
     """∫_0^L f dx, 20-point Gauss on [0, 1e-7 L] and n intervals of ratio 1.08 up to L.
 
     Each interval spans 8 % of its distance from 0, so every length scale of the
@@ -46,7 +55,8 @@ def _quad(f, L, n=200):
     return float(np.sum(0.5 * (b - a) * _WG * f(s)))
 
 
-def squeeze_resistance(dim, R, mu, h0, extent=None):
+def squeeze_resistance(dim: int, R: float, mu: float, h0: float,
+                       extent: float | None = None) -> float:
     """Resistance K = W/V of the rigid squeeze film with the exact gap (N·s/mm², N·s/mm).
 
     ``dim`` 2: cylinder, the load per unit length of both halves (W' = K V,
@@ -57,7 +67,8 @@ def squeeze_resistance(dim, R, mu, h0, extent=None):
     if not 0 < L <= R:
         raise ValueError(f"extent {L} must lie in (0, R]")
 
-    def h(x):   # h₀ + R − √(R² − x²) without the cancellation near the axis
+    def h(x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        # h₀ + R − √(R² − x²) without the cancellation near the axis
         return h0 + x * x / (R + np.sqrt(R * R - x * x))
 
     if dim == 2:
@@ -67,7 +78,7 @@ def squeeze_resistance(dim, R, mu, h0, extent=None):
     raise ValueError(f"dim must be 2 or 3, got {dim}")
 
 
-def squeeze_closed_form(dim, R, mu, h0):
+def squeeze_closed_form(dim: int, R: float, mu: float, h0: float) -> tuple[float, float]:
     """Classical (parabolic-gap, infinite-film) resistance and centre pressure per unit speed.
 
     Returns (K, p0/V): cylinder K = 3√2 π μ (R/h₀)^{3/2}, p0/V = 6μR/h₀²;
@@ -80,7 +91,9 @@ def squeeze_closed_form(dim, R, mu, h0):
     raise ValueError(f"dim must be 2 or 3, got {dim}")
 
 
-def squeeze_film_under_load(dim, R, mu, W, h0, times, extent=None, steps=2000):
+def squeeze_film_under_load(dim: int, R: float, mu: float, W: float, h0: float,
+                            times: npt.ArrayLike, extent: float | None = None,
+                            steps: int = 2000) -> npt.NDArray[np.float64]:
     """Film thickness h(t) at ``times`` (s, ascending, ≥ 0) under a constant load W.
 
     dh/dt = −W/K(h) with K of :func:`squeeze_resistance`, integrated by
@@ -92,7 +105,7 @@ def squeeze_film_under_load(dim, R, mu, W, h0, times, extent=None, steps=2000):
     T = float(times.max(initial=0.0))
     out = np.empty_like(times)
 
-    def f(h):
+    def f(h: float) -> float:
         return -W / squeeze_resistance(dim, R, mu, h, extent)
 
     grid = np.unique(np.concatenate([np.linspace(0.0, T, steps + 1), times]))

@@ -1,8 +1,14 @@
 """Newton outcomes: per-block stopping tolerances, reports with observed orders, divergence."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["BlockTolerance", "NewtonDivergence", "NewtonReport", "RunStop",
            "convergence_orders"]
@@ -66,11 +72,12 @@ class NewtonReport:
     names: list = field(default_factory=list)
     linear_fallbacks: list = field(default_factory=list)
 
-    def rates(self, floor=1e-13):
+    def rates(self, floor: float = 1e-13) -> npt.NDArray[np.float64]:
         """Observed convergence orders of the residual history (see :func:`convergence_orders`)."""
         return convergence_orders(self.residuals, floor)
 
-    def increment_orders(self, block=0, floor=1e-13):
+    def increment_orders(self, block: int | str = 0,
+                         floor: float = 1e-13) -> npt.NDArray[np.float64]:
         """Observed orders of the corrections max |Δx| of one block (index or unknown name).
 
         With an ill-conditioned Jacobian (film rows whose conductivity h³ spans
@@ -84,7 +91,8 @@ class NewtonReport:
         return convergence_orders([d[block] for d in self.increments], floor)
 
 
-def convergence_orders(residuals, floor=1e-13):
+def convergence_orders(residuals: npt.ArrayLike,
+                       floor: float = 1e-13) -> npt.NDArray[np.float64]:
     """Observed orders log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of a residual history.
 
     Residuals below ``floor`` × r₀ are at round-off and are dropped first.

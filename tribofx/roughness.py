@@ -17,25 +17,34 @@ Defaults: isotropic Patir–Cheng flow factors, Greenwood–Tripp asperities.
 Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Literal
+
 from .forms import mixed
 from .laws import Law
+
+if TYPE_CHECKING:
+    from dolfinx import mesh as dmesh
+
+    from .laws import BoundLaw
 
 __all__ = ["Roughness", "greenwood_tripp", "patir_cheng_pressure", "patir_cheng_shear",
            "patir_cheng_shear_stress", "rough_pair"]
 
 
-def patir_cheng_pressure():
+def patir_cheng_pressure() -> Law:
     """φ_x(H), isotropic (Patir & Cheng 1978): 1 − 0.90 e^{−0.56H}."""
     return Law(mixed.patir_cheng_pressure_factor, C=0.90, r=0.56)
 
 
-def patir_cheng_shear():
+def patir_cheng_shear() -> Law:
     """Φ_s(H) of one rough surface, isotropic (Patir & Cheng 1979)."""
     return Law(mixed.patir_cheng_shear_factor, A1=1.899, a1=0.98, a2=0.92, a3=0.05,
                A2=1.126, a4=0.25)
 
 
-def patir_cheng_shear_stress():
+def patir_cheng_shear_stress() -> tuple[Law, Law, Law]:
     """(φ_f/H, φ_fp, Φ_fs/H) of the wall shear, isotropic (Patir & Cheng 1979)."""
     return (Law(mixed.patir_cheng_couette_factor, eps=1.0 / 300),
             Law(mixed.patir_cheng_poiseuille_factor, D=1.40, s=0.66),
@@ -43,13 +52,14 @@ def patir_cheng_shear_stress():
                 a6=0.11, H_max=7.0))
 
 
-def greenwood_tripp(KE, sigma):
+def greenwood_tripp(KE: float, sigma: float) -> Law:
     """p_a(h) = K E* F_{5/2}(h/σ) (MPa) with K E* (MPa) and σ (mm); reference value K E*."""
     return Law(lambda h, KE, sigma: mixed.greenwood_tripp_pressure(h, sigma, KE),
                KE=KE, sigma=sigma)
 
 
-def rough_pair(sigma, E_star, mu_b, eta_beta_sigma=0.1, sigma_beta=0.1, share=-1.0):
+def rough_pair(sigma: float, E_star: float, mu_b: float, eta_beta_sigma: float = 0.1,
+               sigma_beta: float = 0.1, share: float = -1.0) -> Roughness:
     """Patir–Cheng flow and Greenwood–Tripp asperities of a rough pair, as :class:`Roughness`.
 
     ``sigma`` σ (mm), ``E_star`` the contact modulus (MPa), ``mu_b`` the boundary
@@ -80,8 +90,11 @@ class Roughness:
             ε_v = δ_v (|v_layer|² + |v_counter|²)^½ (:func:`forms.mixed.asperity_traction`).
     """
 
-    def __init__(self, sigma, asperity=None, flow="patir-cheng", share=-1.0, mu_b=0.0,
-                 delta_v=1e-3, shear="patir-cheng"):
+    def __init__(self, sigma: float, asperity: Law | None = None,
+                 flow: Literal["patir-cheng"] | tuple[Law, Law] | None = "patir-cheng",
+                 share: float = -1.0, mu_b: float = 0.0, delta_v: float = 1e-3,
+                 shear: (Literal["patir-cheng"] | tuple[Law, Law, Law | None]
+                         | None) = "patir-cheng") -> None:
         self.sigma, self.share, self.mu_b, self.delta_v = float(sigma), float(share), \
             float(mu_b), float(delta_v)
         self.asperity = asperity
@@ -89,7 +102,8 @@ class Roughness:
             else flow
         self.shear = patir_cheng_shear_stress() if shear == "patir-cheng" else shear
 
-    def bind(self, mesh):
+    def bind(self, mesh: dmesh.Mesh) -> tuple[BoundLaw | None, BoundLaw | None, BoundLaw | None,
+                                              tuple[BoundLaw | None, ...] | None]:
         """Return the bound laws (phi_x, phi_s, p_a, shear) on ``mesh`` (None where absent).
 
         ``shear`` is the tuple (φ_f/H, φ_fp, Φ_fs/H) or None.

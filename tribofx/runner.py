@@ -1,8 +1,11 @@
 """Run a named case: parameters → solve → ``summary.json``, plots and VTX in an output folder."""
 
+from __future__ import annotations
+
 import contextlib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from mpi4py import MPI
 
@@ -11,6 +14,11 @@ from .cases import get_case
 from .output import RunRecord, write_vtx
 from .params import CaseParams, InputError, declared, param, resolve
 from .reports import RunStop
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from tqdm import tqdm
 
 __all__ = ["RunOptions", "run_case"]
 
@@ -27,19 +35,21 @@ class RunOptions(CaseParams):
         "tetrahedral meshes, lagged on others; direct below)", choices=solvers.STRATEGIES)
 
 
-def _progress_bar(total, name="run"):
+def _progress_bar(total: int, name: str = "run") -> tqdm:
     from tqdm import tqdm
 
     return tqdm(total=total, desc=name, unit="step")
 
 
-def resumable(name):
+def resumable(name: str) -> bool:
     """Whether case ``name`` writes a checkpoint each step and can be resumed (it says so)."""
     return bool(get_case(name).resumable)
 
 
-def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=True,
-             verbose=False, petsc_options=None, resume=False):
+def run_case(name: str, overrides: Mapping[str, str] | None = None, out: str | Path = "results",
+             comm: MPI.Comm = MPI.COMM_WORLD, progress: bool = True, verbose: bool = False,
+             petsc_options: Mapping[str, str | None] | None = None,
+             resume: bool = False) -> dict[str, Any]:
     """Run case ``name`` with ``overrides`` {key: text}; returns the summary dict.
 
     ``petsc_options`` {key: value} go to every problem of the run
@@ -78,7 +88,7 @@ def run_case(name, overrides=None, out="results", comm=MPI.COMM_WORLD, progress=
     values = resolve(case.Params, overrides)
     case.validate(values)
     out = Path(out)
-    kwargs = {}
+    kwargs: dict[str, Any] = {}
     if resumable(name):
         kwargs = {"checkpoint": out / "checkpoint", "resume": resume}
         if resume and not (out / "checkpoint" / "state.json").is_file():

@@ -6,14 +6,24 @@ state from a measured growth (:func:`growth_probe` of a
 :class:`tribofx.stepper.Stepper`).  Used by :mod:`tribofx.studies.wear_stability`.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any
 
 from .problem import NewtonDivergence
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable
+
+    from .stepper import Stepper
 
 __all__ = ["bisect_critical_step", "growth_probe"]
 
 
-def growth_probe(stepper, start, steps, measure, probe=None, settle=0):
+def growth_probe(stepper: Stepper, start: dict[str, Any], steps: int,
+                 measure: Callable[[], float], probe: list[tuple[float, float]] | None = None,
+                 settle: int = 0) -> Callable[[float], float]:
     """Stability probe of the slow-time scheme: ``growth(Δt)`` for :func:`bisect_critical_step`.
 
     ``growth(Δt)`` restores the state ``start`` (a :meth:`Stepper.state`), takes
@@ -27,7 +37,7 @@ def growth_probe(stepper, start, steps, measure, probe=None, settle=0):
     scheme, jumps in its first step whatever Δt).  Each (Δt, growth) is appended
     to ``probe`` (a list).
     """
-    def growth(dt):
+    def growth(dt: float) -> float:
         stepper.restore(start)
         try:
             for _ in range(settle):
@@ -46,7 +56,8 @@ def growth_probe(stepper, start, steps, measure, probe=None, settle=0):
     return growth
 
 
-def bisect_critical_step(growth, lo, hi, iters, tol=1.0, probe=()):
+def bisect_critical_step(growth: Callable[[float], float], lo: float, hi: float, iters: int,
+                         tol: float = 1.0, probe: Iterable[tuple[float, float]] = ()) -> float:
     """Critical step by bisection on log Δt: ``growth(Δt) <= tol`` is stable.
 
     ``lo`` must be stable and ``hi`` unstable (both checked; ``probe``, the

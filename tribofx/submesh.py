@@ -1,13 +1,21 @@
 """Facet submeshes: the home of fields that live only on a boundary (multipliers, pressure)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
 __all__ = ["facet_submesh"]
 
 
-def facet_submesh(msh, facet_tags, tag, what):
+def facet_submesh(msh: dmesh.Mesh, facet_tags: dmesh.MeshTags, tag: int | tuple[int, ...],
+                  what: str) -> tuple[dmesh.Mesh, dmesh.EntityMap, npt.NDArray[np.int32]]:
     """Submesh of the facets tagged ``tag``; returns ``(submesh, entity_map, geometry_map)``.
 
     ``tag``: a tag value or a tuple of values (the union of those boundaries).

@@ -26,8 +26,26 @@ log₂(r(ε)/r(ε/2)) are returned with the remainders relative to the linear te
   (:class:`tribofx.bordered.Border`: ∂R/∂δ, ∂G/∂x, ∂G/∂δ).
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, cast
+
 import numpy as np
 from petsc4py import PETSc
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    import ufl
+    from dolfinx import fem
+
+    from .bordered import Border
+    from .problem import Problem
+
+    #: a direction: one entry per unknown, its owned array or a ``fem.Function``
+    Direction = Sequence[npt.NDArray[np.float64]] | Sequence[fem.Function]
+    #: (observed orders, relative remainders) of a Taylor test
+    Orders = tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
 
 __all__ = ["block_taylor_orders", "block_vector", "border_taylor_orders", "exact_tangent",
            "form_taylor_orders",
@@ -35,24 +53,26 @@ __all__ = ["block_taylor_orders", "block_vector", "border_taylor_orders", "exact
            "taylor_orders"]
 
 
-def _replicated(problem, f):
+def _replicated(problem: Problem, f: fem.Function) -> bool:
     return f.function_space.mesh.comm.size == 1 and problem.snes.comm.size > 1
 
 
-def owned_arrays(problem, functions=None):
+def owned_arrays(problem: Problem, functions: Sequence[fem.Function | npt.NDArray[np.float64]]
+                 | None = None) -> list[npt.NDArray[np.float64]]:
     """Owned entries of each unknown (a replicated unknown is owned by rank 0)."""
     out = []
     for ui, f in zip(problem.u, functions or problem.u):
         V = ui.function_space
         if _replicated(problem, ui):
-            n = len(f.x.array) if problem.snes.comm.rank == 0 else 0
+            # a replicated unknown's entry must be a Function here (an array has no .x)
+            n = len(cast("fem.Function", f).x.array) if problem.snes.comm.rank == 0 else 0
         else:
             n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
         out.append(np.asarray(f.x.array[:n] if hasattr(f, "x") else f[:n]))
     return out
 
 
-def smooth_direction(f, scale, seed):
+def smooth_direction(f: fem.Function, scale: float, seed: int) -> fem.Function:
     """Return a smooth random direction in the space of ``f`` (x and y enter).
 
     Each component is scale·sin(c₀ + 2c₁x + 3c₂y) with c uniform in [−1, 1]³: of size
@@ -69,7 +89,8 @@ def smooth_direction(f, scale, seed):
     return d
 
 
-def penalty_film_directions(problem, p, seed, scale=1e-7, p_scale=1e-4):
+def penalty_film_directions(problem: Problem, p: fem.Function, seed: int, scale: float = 1e-7,
+                            p_scale: float = 1e-4) -> list[npt.NDArray[np.float64]]:
     """Owned random directions of every unknown; the film pressure ``p`` off its kink.
 
     A penalty film's ε⁻¹ min(p, 0) has a kink at p = 0 (semismooth), where no
@@ -84,14 +105,16 @@ def penalty_film_directions(problem, p, seed, scale=1e-7, p_scale=1e-4):
     return owned_arrays(problem, dirs)
 
 
-def block_vector(problem, arrays):
+def block_vector(problem: Problem, arrays: Sequence[npt.NDArray[np.float64]]) -> PETSc.Vec:
     """PETSc vector of the problem's layout from the owned arrays of each unknown."""
-    x = problem.snes.getFunction()[0].duplicate()
+    # petsc4py's stub: SNES.getFunction returns (Vec, (function, args, kwargs))
+    x = problem.snes.getFunction()[0].duplicate()  # type: ignore[index]
     x.setArray(np.concatenate(arrays))
     return x
 
 
-def taylor_orders(problem, direction, eps0=1e-3, n=4):
+def taylor_orders(problem: Problem, direction: Direction, eps0: float = 1e-3,
+                  n: int = 4) -> Orders:
     """Orders log₂(r(ε)/r(ε/2)) at the current unknowns along ``direction``.
 
     ``direction``: one entry per unknown of ``problem.u`` (same order), either
@@ -104,10 +127,10 @@ def taylor_orders(problem, direction, eps0=1e-3, n=4):
     b0, A = problem.assemble()
     b0 = b0.copy()
     x0 = block_vector(problem, owned_arrays(problem))
-    d = block_vector(problem, direction)
+    d = block_vector(problem, cast("list[npt.NDArray[np.float64]]", direction))  # arrays by now
     Ad = A.createVecLeft()
     A.mult(d, Ad)
-    rem = []
+    rem: Any = []   # the remainders: a list, then its array
     for k in range(n):
         eps = eps0 * 2.0**-k
         x = x0.copy()
@@ -115,17 +138,19 @@ def taylor_orders(problem, direction, eps0=1e-3, n=4):
         r = problem.residual_at(x)
         r.axpy(-1.0, b0)
         r.axpy(-eps, Ad)
-        rem.append(r.norm(PETSc.NormType.NORM_2))
+        rem.append(r.norm(PETSc.NormType.NORM_2))  # type: ignore[arg-type]  # (stub: int)
         for v in (x, r):
             v.destroy()
     for ui, a in zip(problem.u, saved):
         ui.x.array[:] = a
     problem.refresh()
     rem = np.array(rem)
-    return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())
+    return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * cast(float, Ad.norm()))
 
 
-def block_taylor_orders(problem, direction, eps0=1e-3, n=4):
+def block_taylor_orders(problem: Problem, direction: Direction, eps0: float = 1e-3,
+                        n: int = 4) -> dict[str, tuple[npt.NDArray[np.float64],
+                                                       npt.NDArray[np.float64], float]]:
     """:func:`taylor_orders` along each unknown's part of ``direction`` alone.
 
     A combined direction measures the remainder against ‖J d‖, which the stiffest
@@ -142,23 +167,27 @@ def block_taylor_orders(problem, direction, eps0=1e-3, n=4):
         direction = owned_arrays(problem, direction)
     b, A = problem.assemble()
     x = block_vector(problem, owned_arrays(problem))
-    size = (A.norm(PETSc.NormType.NORM_INFINITY) * x.norm(PETSc.NormType.NORM_INFINITY)
+    # petsc4py's stubs: NormType's members are typed int, and norm() returns a float
+    # or (NORM_1_AND_2) a pair
+    size = (cast(float, A.norm(PETSc.NormType.NORM_INFINITY))  # type: ignore[arg-type]
+            * cast(float, x.norm(PETSc.NormType.NORM_INFINITY))  # type: ignore[arg-type]
             * np.sqrt(x.getSize()))
     x.destroy()
     out = {}
     for k, ui in enumerate(problem.u):
-        alone = [d if j == k else np.zeros_like(d) for j, d in enumerate(direction)]
+        alone = [d if j == k else np.zeros_like(d)
+                 for j, d in enumerate(cast("list[npt.NDArray[np.float64]]", direction))]
         dv = block_vector(problem, alone)
         Ad = A.createVecLeft()
         A.mult(dv, Ad)
-        floor = 20 * np.finfo(float).eps * size / (eps0 * max(Ad.norm(), 1e-300))
+        floor = 20 * np.finfo(float).eps * size / (eps0 * max(cast(float, Ad.norm()), 1e-300))
         for v in (dv, Ad):
             v.destroy()
         out[ui.name] = (*taylor_orders(problem, alone, eps0, n), floor)
     return out
 
 
-def residual_floor(problem, samples=3, seed=0):
+def residual_floor(problem: Problem, samples: int = 3, seed: int = 0) -> float:
     """Round-off floor of ‖R‖ (2-norm) at the current state of ``problem``.
 
     The largest ‖R‖ over ``samples`` perturbations of every unknown by one ulp
@@ -175,14 +204,16 @@ def residual_floor(problem, samples=3, seed=0):
             for u, a in zip(problem.u, saved):
                 u.x.array[:] = a * (1 + np.finfo(float).eps * rng.choice((-1.0, 1.0), a.shape))
                 u.x.scatter_forward()
-            worst = max(worst, problem.assemble()[0].norm())   # the problem's own b
+            worst = max(worst, cast(float, problem.assemble()[0].norm()))   # its own b
     finally:
         for u, a in zip(problem.u, saved):
             u.x.array[:] = a
     return worst
 
 
-def exact_tangent(orders, remainders, floor, min_order=1.8):
+def exact_tangent(orders: Sequence[float] | npt.NDArray[np.float64],
+                  remainders: Sequence[float] | npt.NDArray[np.float64], floor: float,
+                  min_order: float = 1.8) -> bool:
     """Whether a Taylor test shows an exact tangent.
 
     Second order (every observed order above ``min_order``, 1.8: the ε-range where
@@ -197,7 +228,8 @@ def exact_tangent(orders, remainders, floor, min_order=1.8):
     return bool(np.max(remainders) < floor and not first_order)
 
 
-def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
+def form_taylor_orders(R: ufl.Form, u: fem.Function, du: fem.Function, eps0: float = 1e-3,
+                       n: int = 4) -> Orders:
     """Orders and relative remainders of one bare residual form ``R`` in ``u`` along ``du``.
 
     J = ``ufl.derivative(R, u)``, both assembled by DOLFINx (no component, no
@@ -212,9 +244,10 @@ def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
     A = fem_petsc.assemble_matrix(fem.form(ufl.derivative(R, u)))
     A.assemble()
 
-    def residual():
+    def residual() -> PETSc.Vec:
         b = fem_petsc.assemble_vector(form_R)
-        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD,  # type: ignore[arg-type]
+                      mode=PETSc.ScatterMode.REVERSE)  # type: ignore[arg-type]
         return b
 
     b0 = residual()
@@ -222,7 +255,7 @@ def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
     d.array[:] = du.x.array[:len(d.array)]
     Ad = A.createVecLeft()
     A.mult(d, Ad)
-    rem = []
+    rem: Any = []   # the remainders: a list, then its array
     for k in range(n):
         eps = eps0 * 2.0**-k
         u.x.array[:] = base + eps * du.x.array
@@ -233,10 +266,11 @@ def form_taylor_orders(R, u, du, eps0=1e-3, n=4):
         r.destroy()
     u.x.array[:] = base
     rem = np.array(rem)
-    return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * Ad.norm())
+    return np.log2(rem[:-1] / rem[1:]), rem / (eps0 * cast(float, Ad.norm()))
 
 
-def border_taylor_orders(border, direction, eps0=1e-3, n=4):
+def border_taylor_orders(border: Border, direction: Direction, eps0: float = 1e-3,
+                         n: int = 4) -> dict[str, Orders]:
     """Taylor orders of a :class:`tribofx.bordered.Border`'s b, c and d at the current state.
 
     b = ∂R/∂δ and d = ∂G/∂δ along δ (steps ε·``eps0`` in the parameter's units),
@@ -253,16 +287,17 @@ def border_taylor_orders(border, direction, eps0=1e-3, n=4):
     G0, d = border.value(), border.derivative()
     b, c = border.vectors()
     x0 = block_vector(problem, owned_arrays(problem))
-    dx = block_vector(problem, direction)
+    dx = block_vector(problem, cast("list[npt.NDArray[np.float64]]", direction))  # arrays by now
     cdx = c.dot(dx)
-    rem = {"b": [], "c": [], "d": []}
+    rem: dict[str, list[float]] = {"b": [], "c": [], "d": []}
+    r: Any   # a residual, then the remainders of one kind and their array
     for k in range(n):
         eps = eps0 * 2.0**-k
         par.set(delta0 + eps)
         r = problem.residual_at(x0)
         r.axpy(-1.0, R0)
         r.axpy(-eps, b)
-        rem["b"].append(r.norm())
+        rem["b"].append(cast(float, r.norm()))
         rem["d"].append(abs(border.value() - G0 - eps * d))
         par.set(delta0)
         x = x0.copy()
@@ -271,7 +306,7 @@ def border_taylor_orders(border, direction, eps0=1e-3, n=4):
         rem["c"].append(abs(border.value() - G0 - eps * cdx))
         for v in (x, r):
             v.destroy()
-    scale = {"b": eps0 * b.norm(), "c": eps0 * abs(cdx), "d": eps0 * abs(d)}
+    scale = {"b": eps0 * cast(float, b.norm()), "c": eps0 * abs(cdx), "d": eps0 * abs(d)}
     for ui, a in zip(problem.u, saved):
         ui.x.array[:] = a
     problem.refresh()

@@ -47,9 +47,16 @@ The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
   are in the header of ``cpp_kernels/src/two_body_film.hpp``.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import _cpp
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["NUM_LOCAL", "NUM_LOCAL_FILM", "MasterSurface", "MasterSurface3", "film_node_residuals",
            "node_residuals", "num_local"]
@@ -64,12 +71,15 @@ MasterSurface = _cpp.MasterSurface
 MasterSurface3 = _cpp.MasterSurface3
 
 
-def num_local(gdim):
+def num_local(gdim: int) -> int:
     """Local unknowns per slave node: x, the master facet's d nodes, the old facet's, λ."""
     return gdim + 2 * gdim * gdim + 1 + gdim
 
 
-def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False):
+def node_residuals(q: npt.ArrayLike, xi_old: npt.ArrayLike, w: npt.ArrayLike,
+                   w_c: npt.ArrayLike, rho_n: float, rho_t: float | None = None,
+                   mu: float = 0.0, eulerian: bool = False
+                   ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Residuals (n, 13) and tangents (n, 13, 13) of n slave nodes (see the module docstring).
 
     Args:
@@ -91,13 +101,15 @@ def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False)
     rho_t = rho_n if rho_t is None else rho_t
     args = (float(rho_n), float(rho_t), float(mu), mu > 0, bool(eulerian))
     if three:
-        xi = np.ascontiguousarray(xi_old, dtype=np.float64).reshape(-1, 2)
+        xi: npt.NDArray[np.float64] = np.ascontiguousarray(xi_old, dtype=np.float64).reshape(-1, 2)
         return _cpp.two_body_nodes_3d(q, xi, *vec, *args)
     xi = np.ascontiguousarray(xi_old, dtype=np.float64).ravel()
     return _cpp.two_body_nodes(q, xi, *vec, *args)
 
 
-def film_node_residuals(q, data, w, w_c, c_h, c_w):
+def film_node_residuals(q: npt.ArrayLike, data: npt.ArrayLike, w: npt.ArrayLike,
+                        w_c: npt.ArrayLike, c_h: float,
+                        c_w: float) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Residuals (n, 11) and tangents (n, 11, 11) of n film nodes (see the module docstring).
 
     Args:

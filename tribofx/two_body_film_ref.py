@@ -6,12 +6,21 @@ J[:, k] = Im r(q + i h e_k)/h: exact to round-off and independent of the
 kernel's dual numbers.  Used by the tests.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["film_node_residual", "film_node_residuals"]
 
 
-def film_node_residual(q, data, w, w_c, c_h, c_w):
+def film_node_residual(q: npt.NDArray[np.float64 | np.complex128],
+                       data: npt.NDArray[np.float64], w: float, w_c: float, c_h: float,
+                       c_w: float) -> npt.NDArray[np.float64 | np.complex128]:
     """Residual (11,) of one film node; q may be complex (complex-step tangent)."""
     x, a, b, t = q[0:2], q[2:4], q[4:6], q[9:11]     # q[6:9] (h, w): rows from UFL
     c1, c2, k0, z1, z2 = data[0], data[1], data[2], data[3:5], data[5:7]
@@ -30,7 +39,10 @@ def film_node_residual(q, data, w, w_c, c_h, c_w):
     return r
 
 
-def film_node_residuals(q, data, w, w_c, c_h, c_w, h=1e-30):
+def film_node_residuals(q: npt.ArrayLike, data: npt.NDArray[np.float64],
+                        w: npt.NDArray[np.float64], w_c: npt.NDArray[np.float64], c_h: float,
+                        c_w: float, h: float = 1e-30
+                        ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Residuals (n, 11) and complex-step tangents (n, 11, 11), as the C++ kernel."""
     q = np.asarray(q, float).reshape(-1, 11)
     r = np.zeros_like(q)

@@ -6,17 +6,28 @@ complex-step differentiation, J[:, k] = Im r(q + i h e_k)/h, exact to round-off
 for a real-analytic branch and independent of the kernel's dual numbers.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, cast
+
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    #: a real node's unknowns, or complex ones (the complex-step tangent)
+    Local = npt.NDArray[np.float64 | np.complex128]
 
 __all__ = ["node_residual", "node_residual_3d", "node_residuals", "project", "project_3d"]
 
 
-def project(nodes, segments, points):
+def project(nodes: npt.NDArray[np.float64], segments: npt.NDArray[np.int32],
+            points: npt.ArrayLike) -> dict[str, np.ndarray]:
     """Nearest segment of each point: dict of ``facet``, clamped ``xi``, ``distance``."""
     a, b = nodes[segments[:, 0]], nodes[segments[:, 1]]
     t = b - a
     l2 = np.sum(t * t, axis=1)
-    out = {"facet": [], "xi": [], "distance": []}
+    out: dict[str, list[Any]] = {"facet": [], "xi": [], "distance": []}
     for x in np.asarray(points, float):
         xi = np.clip(np.sum((x - a) * t, axis=1) / l2, 0.0, 1.0)
         d = np.linalg.norm(x - a - xi[:, None] * t, axis=1)
@@ -28,7 +39,9 @@ def project(nodes, segments, points):
             "distance": np.array(out["distance"])}
 
 
-def _closest_on_triangle(x, a, b, c):
+def _closest_on_triangle(x: npt.NDArray[np.float64], a: npt.NDArray[np.float64],
+                         b: npt.NDArray[np.float64],
+                         c: npt.NDArray[np.float64]) -> tuple[float, float, float]:
     """Nearest point of x on triangle (a, b, c) as (distance, ξ¹, ξ²).
 
     The plane projection if inside, else the nearest of the three clamped edge points.
@@ -46,12 +59,13 @@ def _closest_on_triangle(x, a, b, c):
         d = np.linalg.norm(x - p - s * e)
         if best is None or d < best[0]:
             best = (d, *to_xi(s))
-    return best
+    return cast("tuple[float, float, float]", best)   # set at the first edge
 
 
-def project_3d(nodes, triangles, points):
+def project_3d(nodes: npt.NDArray[np.float64], triangles: npt.NDArray[np.int32],
+               points: npt.ArrayLike) -> dict[str, np.ndarray]:
     """Nearest triangle of each point: dict of ``facet``, ``xi`` (n, 2), ``distance``."""
-    out = {"facet": [], "xi": [], "distance": []}
+    out: dict[str, list[Any]] = {"facet": [], "xi": [], "distance": []}
     for x in np.asarray(points, float):
         cand = [_closest_on_triangle(x, *nodes[t]) for t in triangles]
         d = np.array([c[0] for c in cand])
@@ -63,7 +77,8 @@ def project_3d(nodes, triangles, points):
             "distance": np.array(out["distance"])}
 
 
-def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
+def node_residual_3d(q: Local, xi_old: npt.NDArray[np.float64], w: float, w_c: float,
+                     rho_n: float, rho_t: float, mu: float, eulerian: bool = False) -> Local:
     """Residual (25,) of one 3D slave node; q may be complex (complex-step tangent)."""
     x, a, b, c = q[0:3], q[3:6], q[6:9], q[9:12]
     ya, yb, yc = q[12:15], q[15:18], q[18:21]
@@ -101,7 +116,8 @@ def node_residual_3d(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
     return r
 
 
-def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
+def node_residual(q: Local, xi_old: float, w: float, w_c: float, rho_n: float, rho_t: float,
+                  mu: float, eulerian: bool = False) -> Local:
     """Residual (13,) of one slave node; q may be complex (complex-step tangent)."""
     x, a, b, c, e = q[0:2], q[2:4], q[4:6], q[6:8], q[8:10]
     lam_n, lam_t = q[10], q[11:13]
@@ -113,7 +129,7 @@ def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
     g = (x - xb) @ n
     lhat = lam_n + rho_n * g
     T_n = lhat if lhat.real < 0 else 0.0 * lhat
-    T_t = np.zeros(2, dtype=q.dtype)
+    T_t: np.ndarray = np.zeros(2, dtype=q.dtype)
     if mu > 0:
         s = xi_old * t if eulerian else xb - (c + xi_old * (e - c))
         h = (lam_t - (lam_t @ n) * n) + rho_t * (s - (s @ n) * n)
@@ -131,7 +147,10 @@ def node_residual(q, xi_old, w, w_c, rho_n, rho_t, mu, eulerian=False):
     return r
 
 
-def node_residuals(q, xi_old, w, w_c, rho_n, rho_t=None, mu=0.0, eulerian=False, h=1e-30):
+def node_residuals(q: npt.ArrayLike, xi_old: npt.NDArray[np.float64],
+                   w: npt.NDArray[np.float64], w_c: npt.NDArray[np.float64], rho_n: float,
+                   rho_t: float | None = None, mu: float = 0.0, eulerian: bool = False,
+                   h: float = 1e-30) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Residuals (n, L) and complex-step tangents (n, L, L), as the C++ kernel (L = 13 or 25)."""
     rho_t = rho_n if rho_t is None else rho_t
     q = np.asarray(q, float)

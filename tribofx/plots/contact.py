@@ -1,15 +1,21 @@
 """Plots of contact results: the Hertz pressure profile."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
 
 from .common import pyplot
 
 __all__ = ["plot_hertz_pressure"]
 
 
-def plot_hertz_pressure(profile, path):
+def plot_hertz_pressure(profile: Mapping[str, Any], path: str | Path) -> None:
     """Nodal contact pressure against the Hertz distribution p₀√(1 − r²/a²)."""
     plt = pyplot()
     a, p0 = profile["a"], profile["p0"]

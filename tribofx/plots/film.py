@@ -1,8 +1,17 @@
 """Plots of lubricating-film results: pressure/film profiles, film maps, friction against μU."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping, Sequence
+    from types import ModuleType
+
+    from matplotlib.figure import Figure
 
 from .common import pyplot
 
@@ -11,13 +20,14 @@ __all__ = ["plot_ball_film", "plot_film_profiles", "plot_friction_vs_speed", "pl
            "plot_reynolds_cylinder", "plot_slider", "plot_squeeze", "plot_stribeck"]
 
 
-def _save(plt, fig, path):
+def _save(plt: ModuleType, fig: Figure, path: str | Path) -> None:
     fig.tight_layout()
     fig.savefig(Path(path), dpi=120)
     plt.close(fig)
 
 
-def plot_film_profiles(steps, path, title, variants=None):
+def plot_film_profiles(steps: Sequence[Mapping[str, Any]] | None, path: str | Path, title: str,
+                       variants: Mapping[str, Mapping[str, Any]] | None = None) -> None:
     """p(x) and h(x) per load step (colour), optionally per variant (line style).
 
     ``steps``: list of {"W", "x", "p", "h"} of one model; ``variants``: instead a
@@ -54,7 +64,8 @@ def plot_film_profiles(steps, path, title, variants=None):
     _save(plt, fig, path)
 
 
-def plot_friction_vs_speed(curves, path):
+def plot_friction_vs_speed(curves: Mapping[str | None, tuple[Sequence[float], Sequence[float]]],
+                           path: str | Path) -> None:
     """Friction coefficient against μU (N/m), one curve per {label: (mu_U, friction)}."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(5, 4))
@@ -71,7 +82,8 @@ def plot_friction_vs_speed(curves, path):
     _save(plt, fig, path)
 
 
-def plot_ball_film(variants, W, outdir):
+def plot_ball_film(variants: Mapping[str, Mapping[str, Any]], W: float,
+                   outdir: str | Path) -> None:
     """Ball-on-plane film: ``film_map.png`` and ``centerline.png`` in ``outdir``.
 
     The map shows h over the (x, y) projection of the first variant (mirrored in
@@ -111,7 +123,7 @@ def plot_ball_film(variants, W, outdir):
     _save(plt, fig, outdir / "centerline.png")
 
 
-def plot_slider(profile, path):
+def plot_slider(profile: Mapping[str, Any], path: str | Path) -> None:
     """Slider pressure against the analytic solution, and the film thickness."""
     from ..references import slider_reference
 
@@ -134,7 +146,7 @@ def plot_slider(profile, path):
     _save(plt, fig, path)
 
 
-def plot_reynolds_cylinder(profile, path):
+def plot_reynolds_cylinder(profile: Mapping[str, Any], path: str | Path) -> None:
     """Rigid cylinder: pressure vs half-Sommerfeld / Swift–Stieber, film, void fraction."""
     plt = pyplot()
     pr = profile
@@ -164,7 +176,10 @@ def plot_reynolds_cylinder(profile, path):
     _save(plt, fig, path)
 
 
-def _oring_axes(plt, groups, title):
+def _oring_axes(plt: ModuleType,
+                groups: Mapping[str, tuple[Callable[[Mapping[str, Any]], str],
+                                           Sequence[Mapping[str, Any]]]],
+                title: str) -> Figure:
     """Plot p and h against z of the states of ``groups`` ({line style: [state]})."""
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6.5), sharex=True)
     h_scale = 1e-3
@@ -186,7 +201,7 @@ def _oring_axes(plt, groups, title):
     return fig
 
 
-def plot_oring_cycle(hist, outdir):
+def plot_oring_cycle(hist: Mapping[str, Sequence[float]], outdir: str | Path) -> None:
     """O-ring over a reciprocating stroke: ``cycle.png``, rod speed, h_min, friction, air flux.
 
     ``hist``: the per-step lists of :mod:`tribofx.cases.ehl_oring` (time in s).
@@ -206,7 +221,7 @@ def plot_oring_cycle(hist, outdir):
     _save(plt, fig, Path(outdir) / "cycle.png")
 
 
-def plot_oring(profile, outdir):
+def plot_oring(profile: Mapping[str, Any], outdir: str | Path) -> None:
     """O-ring film: ``profiles.png`` (Fig. 17, outstroke solid, instroke dashed, per p_s).
 
     ``profile``: {"U": |U|, "strokes": {"out"/"in": [{"p_s", "z", "h", "p"}]}, "mesh":
@@ -224,7 +239,7 @@ def plot_oring(profile, outdir):
         _save(plt, fig, Path(outdir) / "mesh_study.png")
 
 
-def plot_squeeze(profile, outdir):
+def plot_squeeze(profile: Mapping[str, Any], outdir: str | Path) -> None:
     """Plot ``squeeze.png`` and ``squeeze_profiles.png`` of ``ehl-squeeze``.
 
     The first: film at the centre, minimum film and force against time, with the
@@ -265,7 +280,8 @@ def plot_squeeze(profile, outdir):
     _save(plt, fig, Path(outdir) / "squeeze_profiles.png")
 
 
-def plot_stribeck(rows, path, body="cylinder"):
+def plot_stribeck(rows: Sequence[Mapping[str, float]], path: str | Path,
+                  body: str = "cylinder") -> None:
     """Friction coefficient and film load fraction against speed (log), λ = h_c/σ on top."""
     plt = pyplot()
     U = [r["U"] for r in rows]
@@ -285,7 +301,7 @@ def plot_stribeck(rows, path, body="cylinder"):
     _save(plt, fig, path)
 
 
-def plot_running_in(profile, path):
+def plot_running_in(profile: Mapping[str, Any], path: str | Path) -> None:
     """Worn profiles (depth against x) and the load share and friction against time."""
     plt = pyplot()
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))

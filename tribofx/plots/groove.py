@@ -1,21 +1,30 @@
 """Plots of the wear groove of a ball sliding on a half-space (chapter §5.3, Figs. 9–10)."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping, Sequence
+
+    import numpy.typing as npt
 
 from .common import pyplot
 
 __all__ = ["plot_groove", "plot_pressure_across"]
 
 
-def _both_halves(p):
+def _both_halves(p: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Mirror a half profile (y ≥ 0) to both halves of the groove."""
     p = np.asarray(p)
     return np.vstack([p[::-1] * [-1, 1], p[1:]])
 
 
-def plot_groove(profile, outdir, compare=None):
+def plot_groove(profile: Mapping[str, Any], outdir: str | Path,
+                compare: Mapping[str, Any] | None = None) -> None:
     """``groove_profiles.png``, ``pressure_maps.png``, ``pressure_across.png``.
 
     ``profile``: the case's record (times, worn top-line profiles (y, z) in mm,
@@ -62,7 +71,9 @@ def plot_groove(profile, outdir, compare=None):
     plot_pressure_across(entries, outdir / "pressure_across.png", profile["times"][-1], ymax)
 
 
-def plot_pressure_across(entries, path, t, ymax):
+def plot_pressure_across(entries: Sequence[tuple[str, Sequence[tuple[float, float]],
+                                                 Sequence[tuple[float, float]]]],
+                         path: str | Path, t: float, ymax: float) -> None:
     """Pressure across the groove at x = 0 and ∫ p dx versus y (Fig. 10 bottom).
 
     ``entries``: list of (label, [(y, p)], [(y, ∫p dx)]) in mm, MPa and N/mm, e.g.

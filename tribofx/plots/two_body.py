@@ -1,8 +1,17 @@
 """Plots of the two-body wear case: the configurations of Fig. 5 and the wear histories."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    import numpy.typing as npt
+    from matplotlib.axes import Axes
 
 from .common import pyplot
 
@@ -11,16 +20,20 @@ __all__ = ["plot_reciprocating"]
 _COLUMNS = ("start of the run-in (−A)", "start of the cycle (centre)", "right-most (+A)")
 
 
-def _draw(ax, cells, color):
+def _draw(ax: Axes, cells: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64],
+                                 npt.NDArray[np.float64]], color: str) -> None:
     """Worn undeformed mesh (grey fill) and deformed mesh (edges) of one body."""
     from matplotlib.collections import PolyCollection
 
     X, w, u = cells
-    ax.add_collection(PolyCollection(X + w, facecolor="0.88", edgecolor="none"))
-    ax.add_collection(PolyCollection(X + w + u, facecolor="none", edgecolor=color, lw=0.25))
+    # matplotlib's stub wants a Sequence of polygons; an (n, k, 2) array is one
+    ax.add_collection(PolyCollection(X + w,  # type: ignore[arg-type]
+                                     facecolor="0.88", edgecolor="none"))
+    ax.add_collection(PolyCollection(X + w + u,  # type: ignore[arg-type]
+                                     facecolor="none", edgecolor=color, lw=0.25))
 
 
-def plot_reciprocating(profile, outdir):
+def plot_reciprocating(profile: Mapping[str, Any], outdir: str | Path) -> None:
     """``fig5.png``: initial and worn, undeformed and deformed; ``wear.png``: histories."""
     plt = pyplot()
     outdir = Path(outdir)

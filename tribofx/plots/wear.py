@@ -1,6 +1,9 @@
 """Plots of the wear cases: worn profiles, wear histories, error versus Δt, scar growth."""
 
+from __future__ import annotations
+
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -8,10 +11,16 @@ from ..references import rigid_cap_radius
 from ..scheme import Scheme
 from .common import pyplot
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping, Sequence
+
+    import numpy.typing as npt
+    from matplotlib.axes import Axes
+
 __all__ = ["error_curve", "plot_dt_study", "plot_wear_ball", "plot_wear_pin"]
 
 
-def plot_wear_pin(profile, outdir):
+def plot_wear_pin(profile: Mapping[str, Any], outdir: str | Path) -> None:
     """Worn profiles at every step (``profiles.png``) and wear history (``wear.png``)."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 3.5))
@@ -36,7 +45,9 @@ def plot_wear_pin(profile, outdir):
     plt.close(fig)
 
 
-def error_curve(ax, dts, errors, unstable, color, label, dt_cr=None):
+def error_curve(ax: Axes, dts: npt.ArrayLike, errors: Sequence[float | None],
+                unstable: Sequence[bool], color: str, label: str,
+                dt_cr: float | None = None) -> None:
     """One error-versus-Δt curve (log-log) of a Fig. 4 panel.
 
     ``errors``: per Δt, None for a failed run; ``unstable``: per Δt, drawn as red
@@ -54,7 +65,7 @@ def error_curve(ax, dts, errors, unstable, color, label, dt_cr=None):
         ax.axvline(dt_cr, color=color, ls=":", lw=1)
 
 
-def plot_dt_study(study, outdir):
+def plot_dt_study(study: Mapping[str, Any], outdir: str | Path) -> None:
     """Plot ``study=dt``: ``error_vs_dt.png`` and ``profiles.png``.
 
     ``error_vs_dt.png``: log-log, a panel per scheme (explicit, implicit, bdf2), one curve per
@@ -128,7 +139,7 @@ def plot_dt_study(study, outdir):
     plt.close(fig)
 
 
-def plot_wear_ball(profile, outdir):
+def plot_wear_ball(profile: Mapping[str, Any], outdir: str | Path) -> None:
     """Plot ``pressure.png``, ``profiles.png`` and ``scar.png`` of ``wear-ball-flat``.
 
     Initial/final pressure on the contact plane, worn profile along y = 0 at

@@ -1,14 +1,23 @@
 """Mesh convergence of ``ehl-cylinder-layer``: the film measures at one load on refined layers."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 from mpi4py import MPI
 
 from ..cases import ehl_cylinder_layer as Case
 from ..params import InputError
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
 __all__ = ["mesh_convergence"]
 
 
-def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORLD):
+def mesh_convergence(v: Case.Params, levels: Iterable[int] = (0, 1, 2), W: float | None = None,
+                     steps: int | None = None,
+                     comm: MPI.Comm = MPI.COMM_WORLD) -> list[dict[str, Any]]:
     """Film measures at one load W for the mesh levels ``levels`` (all else as in ``v``).
 
     Each level (element size 0.04/2^level mm along Γ_l) is loaded in ``steps``
@@ -21,7 +30,7 @@ def mesh_convergence(v, levels=(0, 1, 2), W=None, steps=None, comm=MPI.COMM_WORL
         raise InputError("mesh_convergence refines the built layer: not with mesh_file")
     W = v.W if W is None else W
     steps = v.steps if steps is None else steps
-    rows = []
+    rows: list[dict[str, Any]] = []
     for level in levels:
         vv = v.replace(mesh=int(level), W=W, steps=steps)
         run = Case.build(vv, comm)

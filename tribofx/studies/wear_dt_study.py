@@ -7,8 +7,11 @@ unstable runs (:mod:`tribofx.studies.wear_stability`) and records errors, costs
 and profiles.  Units: s, mm.
 """
 
+from __future__ import annotations
+
 import math
 import time
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from mpi4py import MPI
@@ -22,10 +25,21 @@ from .wear_stability import (
     pin_critical_step,
 )
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
+    from types import ModuleType
+
+    from tqdm import tqdm
+
+    from ..cases import wear_pin
+    from ..output import RunRecord
+    from ..stepper import Stepper
+
 __all__ = ["run_dt_study"]
 
 
-def _study_run(case, v, n, scheme, dt, verbose=False):
+def _study_run(case: ModuleType, v: wear_pin.Params, n: int, scheme: str, dt: float,
+               verbose: bool = False) -> tuple[Stepper | None, dict[str, Any]]:
     """One run of a study; returns (stepper, dict with status, profiles, costs)."""
     over = v.replace(study="none", scheme=scheme, dt=dt)
     if scheme == "explicit":
@@ -56,7 +70,9 @@ def _study_run(case, v, n, scheme, dt, verbose=False):
     return prob, out
 
 
-def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
+def run_dt_study(case: ModuleType, v: wear_pin.Params, record: RunRecord | SubRecord,
+                 ns: Iterable[int], dts: Sequence[float], progress: tqdm | None = None,
+                 verbose: bool = False) -> Stepper | None:
     """``study=dt`` of ``wear-pin`` on the n × n meshes ``ns`` for the time steps ``dts``.
 
     ``case``: the pin case (the module :mod:`tribofx.cases.wear_pin`, its
@@ -77,7 +93,7 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
     ref_scheme = "bdf2" if "bdf2" in schemes else "implicit"
     names = ("error", "maxerror", "unstable", "oscillation", "status", "checkerboard",
              "wall_time", "newton")
-    res = {f"{name}_{s}": {} for s in schemes for name in names}
+    res: dict[str, dict[str, Any]] = {f"{name}_{s}": {} for s in schemes for name in names}
     res.update({key: {} for key in ("dt_cr", "reference_wall_time", "reference_correction",
                                     "checkerboard_reference")})
     plots = {"study": "dt", "dts": list(dts), "E": v.E, "T": T, "meshes": {},
@@ -109,8 +125,8 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
             except (ValueError, NewtonDivergence):
                 dt_cr = None
         res["dt_cr"][key] = dt_cr
-        runs = {"reference": {"dt": ref_dt, "profiles": ref["profiles"],
-                              "final_profile": p_ref}}
+        runs: dict[str | tuple[str, float], dict[str, Any]] = {
+            "reference": {"dt": ref_dt, "profiles": ref["profiles"], "final_profile": p_ref}}
         for scheme in schemes:
             for name in names:
                 res[f"{name}_{scheme}"][key] = []
@@ -119,15 +135,15 @@ def run_dt_study(case, v, record, ns, dts, progress=None, verbose=False):
                 ok = r["status"] == "ok"
                 if ok:
                     diff = r["final_profile"] - p_ref
-                    err = float(np.linalg.norm(diff))
-                    maxerr = float(np.max(np.linalg.norm(diff, axis=1)))
-                    osc = oscillation_ratio(diff[:, 1])
+                    err: float | None = float(np.linalg.norm(diff))
+                    maxerr: float | None = float(np.max(np.linalg.norm(diff, axis=1)))
+                    osc: float | None = oscillation_ratio(diff[:, 1])
                 else:
                     err = maxerr = osc = None
                 res[f"error_{scheme}"][key].append(err)
                 res[f"maxerror_{scheme}"][key].append(maxerr)
                 res[f"unstable_{scheme}"][key].append(
-                    bool(not ok or osc > OSCILLATION_TOL
+                    bool(not ok or cast(float, osc) > OSCILLATION_TOL   # ok: osc is a float
                          or (scheme == "explicit" and dt_cr is not None and dt > dt_cr)))
                 res[f"oscillation_{scheme}"][key].append(osc)
                 res[f"status_{scheme}"][key].append(r["status"])

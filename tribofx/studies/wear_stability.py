@@ -11,7 +11,10 @@ Both critical steps bisect with :func:`tribofx.stability.bisect_critical_step`;
 the chapter gives only the scaling Δt_cr ∼ h/E.  Units: s, mm.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from mpi4py import MPI
@@ -20,6 +23,14 @@ from ..cases import wear_ball_flat
 from ..cases.wear_ball_flat import MODEL_FRACTION
 from ..stability import bisect_critical_step, growth_probe
 
+if TYPE_CHECKING:
+    from types import ModuleType
+
+    import numpy.typing as npt
+
+    from ..cases import wear_pin
+    from ..interfaces import Contact, Wear
+
 __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
            "oscillation_ratio", "pin_critical_step", "pressure_nonuniformity",
            "seed_checkerboard"]
@@ -27,7 +38,7 @@ __all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_a
 OSCILLATION_TOL = 0.7  # unstable: node-to-node oscillating part of the error > 70 %
 
 
-def oscillation_ratio(err):
+def oscillation_ratio(err: npt.ArrayLike) -> float:
     """Share of the node-to-node alternating mode in a nodal error e_i (nodes sorted by X̂).
 
     ‖(e_{i−1} − 2 e_i + e_{i+1})/4‖ / ‖e_i‖ over the interior nodes: ≈ 1 for an
@@ -39,7 +50,7 @@ def oscillation_ratio(err):
     return float(np.linalg.norm(hp) / den) if den > 0 else 0.0
 
 
-def seed_checkerboard(wear, W, n, eps):
+def seed_checkerboard(wear: Wear, W: float, n: int, eps: float) -> None:
     """Add a wear-depth perturbation ε(−1)^i to the contact nodes x_i = −W/2 + i h of a flat pin."""
     w = wear.body.w
     X = w.function_space.tabulate_dof_coordinates()
@@ -49,20 +60,23 @@ def seed_checkerboard(wear, W, n, eps):
     w.x.scatter_forward()
 
 
-def checkerboard_amplitude(wear):
+def checkerboard_amplitude(wear: Wear) -> float:
     """Amplitude of the node-to-node alternating mode of the wear depth on Γ̂_c (mm).
 
     Projection of d_i − mean(d) onto (−1)^i − mean((−1)^i), nodes sorted by X̂;
     the same value on every rank.
     """
     d = wear.gather_shape(root_only=False)
+    assert d is not None   # root_only=False: the dict on every rank
     depth = d["depth"] - np.mean(d["depth"])
     s = (-1.0) ** np.arange(len(depth))
     s -= s.mean()
     return float(depth @ s / (s @ s))
 
 
-def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
+def pin_critical_step(case: ModuleType, v: wear_pin.Params, n: int, lo: float, hi: float,
+                      steps: int = 3, iters: int = 12,
+                      eps: float = 1e-6) -> tuple[float, list[tuple[float, float]]]:
     """Largest stable Δt (s) of the explicit scheme on an n × n flat-ended pin (eq. 31).
 
     The stability probe: the flat pin in the homogeneous state (parameters ``v``
@@ -86,7 +100,7 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     stepper.problem.commit()
     start = stepper.state()
     a0 = checkerboard_amplitude(stepper.wear)
-    probe = []
+    probe: list[tuple[float, float]] = []
     growth = growth_probe(stepper, start, steps,
                           lambda: checkerboard_amplitude(stepper.wear) / a0, probe)
     dt_cr = bisect_critical_step(growth, lo, hi, iters, probe=probe)
@@ -94,7 +108,7 @@ def pin_critical_step(case, v, n, lo, hi, steps=3, iters=12, eps=1e-6):
     return dt_cr, probe
 
 
-def pressure_nonuniformity(contact):
+def pressure_nonuniformity(contact: Contact) -> float:
     """Relative standard deviation of the nodal contact pressure over the inner scar.
 
     Area-weighted over the active nodes within 0.7 of the contact radius of the
@@ -114,7 +128,9 @@ def pressure_nonuniformity(contact):
     return math.sqrt(max(swp2 / sw - mean * mean, 0.0)) / mean if mean > 0 else math.inf
 
 
-def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI.COMM_WORLD):
+def ball_critical_step(v: wear_ball_flat.Params, t0: float, lo: float, hi: float, steps: int = 5,
+                       iters: int = 4, growth_tol: float = 2.0, comm: MPI.Comm = MPI.COMM_WORLD
+                       ) -> tuple[float, list[tuple[float, float]]]:
     """Largest stable explicit Δt (s) of ``wear-ball-flat`` from a developed scar (bisection).
 
     The implicit scheme (``v.dt``) runs to ``t0`` on the mesh of ``v``; its
@@ -139,7 +155,7 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
     stepper = wear_ball_flat.build(v.replace(scheme="explicit"), comm=comm).stepper
     if not np.array_equal(stepper.wear.body.mesh.geometry.x, implicit.wear.body.mesh.geometry.x):
         raise RuntimeError("rebuilt mesh differs from the implicit run's: cannot restore its state")
-    probe = []
+    probe: list[tuple[float, float]] = []
     growth = growth_probe(stepper, start, steps,
                           lambda: pressure_nonuniformity(stepper.wear.contact), probe, settle=1)
     return bisect_critical_step(growth, lo, hi, iters, tol=growth_tol, probe=probe), probe
@@ -148,10 +164,12 @@ def ball_critical_step(v, t0, lo, hi, steps=5, iters=4, growth_tol=2.0, comm=MPI
 class SubRecord:
     """Minimal stand-in for :class:`tribofx.output.RunRecord` for the runs of a study."""
 
-    def __init__(self):
-        self.data = {"newton_iterations": [], "results": {}}
+    profile: Any   # what the run keeps for its plot, as on a RunRecord
+
+    def __init__(self) -> None:
+        self.data: dict[str, Any] = {"newton_iterations": [], "results": {}}
         self.profile = None
 
-    def result(self, key, value, unit="-"):
+    def result(self, key: str, value: object, unit: str = "-") -> None:
         """Record ``key`` = ``value`` (unit) as :meth:`RunRecord.result` does."""
         self.data["results"][key] = {"value": value, "unit": unit}
