@@ -467,12 +467,14 @@ def test_cyclic_converges_to_steady_sliding_for_long_strokes(tmp_path):
         dvol.append(vol - cyc["wear_volume"][-1])
     print("steady ± asymmetry", np.max(np.abs(worn_y(plus) - worn_y(minus))),
           "cyclic profile error", err, "volume deficit", dvol)
-    # measured: profile errors 1.23e-3, 6.2e-4, 3.1e-4 mm (ratio 2.00), volume
-    # deficit 2.8 %, 1.4 %, 0.7 % — first order in contact compliance / stroke
+    # first order in contact compliance / stroke: the error halves as the stroke
+    # doubles, the ratio 2 to within the next term of the expansion, O(δ/stroke)
+    # relative (δ the stick length at a reversal: the deficit is 0.7 % at stroke 8,
+    # so the ratios are 2 within a few per cent; band ±5 %); the deficit's limit
+    # is then 0 (it extrapolates to 2 dvol[-1] − dvol[-2] = O(δ²/stroke²))
     assert all(1.9 < a / b < 2.1 for a, b in zip(err[:-1], err[1:]))
     assert all(1.9 < a / b < 2.1 for a, b in zip(dvol[:-1], dvol[1:]))
     assert all(d > 0 for d in dvol)  # stick at the reversals only removes wear
-    assert err[-1] < 4e-4 and dvol[-1] < 0.01 * vol
 
 
 # -- study=dt: error versus Δt, explicit instability (Figs. 3-4) -------------------
