@@ -12,7 +12,12 @@ sets the weights at the start of each step and estimates the step's error for
 the step controller :class:`tribofx.step_control.ErrorControl`.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
+
 import numpy as np
+import numpy.typing as npt
 from dolfinx import fem
 from mpi4py import MPI
 
@@ -32,7 +37,11 @@ class SweptHistory:
     (:func:`tribofx.forms.wear.shape_update_residual`, ``bdf2=``:attr:`weights`).
     """
 
-    def __init__(self, Q, name):
+    _omega: float | None                      # Δt_{n+1}/Δt_n (None on a first step)
+    _rate0: npt.NDArray[np.float64] | None    # the rate at the start of a first step
+    _pred: npt.NDArray[np.float64] | None     # the predictor s^P (from the third step)
+
+    def __init__(self, Q: fem.FunctionSpace, name: str) -> None:
         msh = Q.mesh
         self.c0, self.c1 = fem.Constant(msh, 1.0), fem.Constant(msh, 0.0)
         self.swept_old = fem.Function(Q, name=f"{name}_previous_swept_volume")
@@ -43,15 +52,16 @@ class SweptHistory:
         self.error_order = 2
 
     @property
-    def weights(self):
+    def weights(self) -> tuple[fem.Constant, fem.Constant, fem.Function]:
         """``(c0, c1, swept_old)`` of the BDF2 residual."""
         return self.c0, self.c1, self.swept_old
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """s_n, Δt_n, s_{n−1}, Δt_{n−1} (restored with a failed step)."""
         return [self.swept_old, self.dt_prev, self.swept_old2, self.dt_prev2]
 
-    def begin_step(self, dt, swept, rate):
+    def begin_step(self, dt: float, swept: Callable[[], npt.NDArray[np.float64]],
+                   rate: Callable[[], npt.ArrayLike]) -> None:
         """Start a step of Δt (s), before the interface's history moves on.
 
         ``swept()``: nodal swept volumes of the step just ended (called when there
@@ -67,18 +77,21 @@ class SweptHistory:
                 r1 = self.swept_old.x.array / prev
                 r0 = self.swept_old2.x.array / prev2
                 self._pred = dt * (r1 + (r1 - r0) * (dt + prev) / (prev + prev2))
-        self.dt_prev2.value = prev
+        # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+        self.dt_prev2.value = prev  # type: ignore[assignment]
         self._omega = dt / prev if prev > 0 else None
         self._rate0 = None if prev > 0 else np.asarray(rate(), dtype=float)
         self.c0.value, self.c1.value = wf.bdf2_coefficients(self._omega or 0.0)
-        self.dt_prev.value = float(dt)
+        self.dt_prev.value = float(dt)  # type: ignore[assignment]  # (as above)
 
-    def set_start_rate(self, rate):
+    def set_start_rate(self, rate: npt.ArrayLike) -> None:
         """Nodal rate at the start of a first step, when it is known only then (cycles)."""
         if self._rate0 is not None:
             self._rate0 = np.array(rate, dtype=float)
 
-    def error(self, swept, comm, filter=None):
+    def error(self, swept: npt.NDArray[np.float64], comm: MPI.Comm,
+              filter: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]]
+              | None = None) -> float | None:
         """Return the error estimate (mm) of the step just solved (all ranks), or None.
 
         ``swept``: the step's nodal swept volumes (owned entries); ``filter``: None,
@@ -95,6 +108,7 @@ class SweptHistory:
             return None
         n = len(swept)
         if self._omega is None:
+            assert self._rate0 is not None      # the test above: set on a first step
             d, self.error_order = 0.5 * (swept + float(self.dt_prev.value) * self._rate0[:n]), 2
         elif self._pred is None:
             d, self.error_order = swept - self._omega * self.swept_old.x.array[:n], 2

@@ -30,17 +30,29 @@ that c·Δx is the exact linearization also while prescribed values are being
 reached.  Units: those of the parameter (mm) and of G (N).
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
+
 import numpy as np
+import numpy.typing as npt
 import ufl
 from dolfinx import fem, la
 from mpi4py import MPI
 from petsc4py import PETSc
 from ufl.algorithms import expand_derivatives
 
+if TYPE_CHECKING:
+    from dolfinx.mesh import EntityMap, Mesh
+
+    from .continuation import ConstantParameter
+    from .problem import Problem
+
 __all__ = ["Border", "solve_like"]
 
 
-def solve_like(ksp, b, x):
+def solve_like(ksp: PETSc.KSP, b: PETSc.Vec, x: PETSc.Vec) -> bool:
     """Solve K x = b as ``ksp`` does (its operators, type, tolerances and set-up PC).
 
     A second KSP that shares ``ksp``'s PC: no new factorization, and ``ksp``'s
@@ -54,12 +66,12 @@ def solve_like(ksp, b, x):
     other.setPC(ksp.getPC())
     try:
         other.solve(b, x)
-        return other.getConvergedReason() > 0
+        return cast(int, other.getConvergedReason()) > 0   # (petsc4py stub: the reason class)
     finally:
         other.destroy()
 
 
-def _compiled(form, emaps):
+def _compiled(form: ufl.Form, emaps: Sequence[EntityMap] | None) -> fem.Form | None:
     """Compiled ``form`` (None if its derivative expanded to nothing)."""
     form = expand_derivatives(form)
     return None if form.empty() else fem.form(form, entity_maps=emaps)
@@ -78,7 +90,8 @@ class Border:
         rtol: the equation is solved when |G − G*| ≤ rtol |G*|.
     """
 
-    def __init__(self, problem, parameter, functional, target, mesh, rtol=1e-8):
+    def __init__(self, problem: Problem, parameter: ConstantParameter, functional: ufl.Form,
+                 target: float, mesh: Mesh, rtol: float = 1e-8) -> None:
         if problem.assembles_outside_ufl:
             raise ValueError("a border needs a residual in UFL alone (no assembled terms)")
         self.problem, self.parameter = problem, parameter
@@ -101,33 +114,34 @@ class Border:
         self._c = [_compiled(ufl.derivative(functional, u, ufl.TestFunction(u.function_space)),
                              emaps) for u in problem.u]
         # owned Dirichlet dofs of each unknown (zero rows of b)
-        self._fixed = []
+        self._fixed: list[npt.NDArray[np.int32]] = []
         for u in problem.u:
             n_own = problem.owned_size(u)
+            dofs: list[npt.NDArray[np.int32]] | npt.NDArray[np.int32]
             dofs = [bc.dof_indices()[0] for c in problem.components
                     for v, bcs in c.bcs_by_unknown().items() if v is u for bc in bcs]
             dofs = np.concatenate(dofs) if dofs else np.zeros(0, dtype=np.int32)
             self._fixed.append(dofs[dofs < n_own])
         self.step = (0.0, 0.0)       # (δ at the iterate, Δδ of its Newton step)
-        self.history = []            # |g|/|G*| at each iterate of the last solve
+        self.history: list[float] = []   # |g|/|G*| at each iterate of the last solve
 
     # -- the functional and its derivatives --------------------------------------------
-    def _scalar(self, form):
+    def _scalar(self, form: fem.Form | None) -> float:
         comm = self.problem.snes.comm.tompi4py()
         return 0.0 if form is None else comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)
 
-    def value(self):
+    def value(self) -> float:
         """G at the current unknowns and δ."""
         return self._scalar(self._G)
 
-    def derivative(self):
+    def derivative(self) -> float:
         """Return d = ∂G/∂δ at the current unknowns and δ."""
         return self._scalar(self._d)
 
-    def _block_vector(self, forms, zero_fixed):
+    def _block_vector(self, forms: Sequence[fem.Form | None], zero_fixed: bool) -> PETSc.Vec:
         """PETSc vector of the problem's layout assembled from one form per unknown."""
         P = self.problem
-        out = P.snes.getFunction()[0].duplicate()
+        out = P.snes.getFunction()[0].duplicate()  # type: ignore[index]  # stub: (Vec, ...)
         parts = []
         for u, form, fixed in zip(P.u, forms, self._fixed):
             n_own = P.owned_size(u)
@@ -143,12 +157,12 @@ class Border:
         out.setArray(np.concatenate(parts))
         return out
 
-    def vectors(self):
+    def vectors(self) -> tuple[PETSc.Vec, PETSc.Vec]:
         """(b, c): ∂R/∂δ (Dirichlet rows zero) and ∂G/∂x at the current unknowns (PETSc)."""
         return self._block_vector(self._b, True), self._block_vector(self._c, False)
 
     # -- the Newton step (called by NewtonControl) -------------------------------------
-    def correct(self, x, y):
+    def correct(self, x: PETSc.Vec, y: PETSc.Vec) -> None:
         """Border the SNES step ``y`` (K y = R at ``x``): y ← y + Δδ z; remember Δδ.
 
         An iterate without contact (d − c·z = 0: G does not depend on δ), or a
@@ -161,7 +175,7 @@ class Border:
         step = self.condense(y, self.value() - self.target)
         self.step = (self.parameter.get(), step or 0.0)
 
-    def condense(self, y, g=0.0):
+    def condense(self, y: PETSc.Vec, g: float = 0.0) -> float | None:
         """Eliminate δ from a solve ``y`` = K⁻¹r at the current state: y ← y + Δδ z.
 
         Δδ = (c·y − g)/(d − c·z), z = K⁻¹b: with r = R the bordered Newton step
@@ -177,19 +191,19 @@ class Border:
             schur = self.derivative() - c.dot(z)
             if schur == 0 or not np.isfinite(schur):
                 return None
-            step = (c.dot(y) - g) / schur
+            step = cast(float, (c.dot(y) - g) / schur)     # (real PETSc scalars)
             y.axpy(step, z)
             return step
         finally:
             for v in (b, c, z):
                 v.destroy()
 
-    def trial(self, alpha):
+    def trial(self, alpha: float) -> None:
         """Set δ to that of the trial x − α y of the line search."""
         delta, step = self.step
         self.parameter.set(delta + alpha * step)
 
-    def converged(self):
+    def converged(self) -> bool:
         """Whether |g| ≤ rtol |G*| at the current unknowns and δ (recorded in :attr:`history`)."""
         r = abs(self.value() - self.target) / max(abs(self.target), 1e-300)
         self.history.append(r)

@@ -4,22 +4,31 @@ Written by :meth:`tribofx.stepper.Stepper.run` after every accepted step and rea
 back by ``--resume`` (:mod:`tribofx.restart`).
 """
 
+from __future__ import annotations
+
 import json
 import os
+from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from mpi4py import MPI
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 __all__ = ["Checkpoint", "assign_fields", "field_arrays", "field_names"]
 
 
-def field_arrays(objects):
+def field_arrays(objects: Iterable[fem.Function | fem.Constant]) -> list[npt.NDArray[Any]]:
     """Return copies of the values of ``objects`` (Functions: local arrays with ghosts)."""
     return [(f.x.array if hasattr(f, "x") else np.asarray(f.value)).copy() for f in objects]
 
 
-def assign_fields(objects, arrays):
+def assign_fields(objects: Iterable[fem.Function | fem.Constant],
+                  arrays: Iterable[npt.NDArray[Any]]) -> None:
     """Set ``objects`` (Functions, Constants) to ``arrays`` (as from :func:`field_arrays`)."""
     for f, a in zip(objects, arrays):
         if hasattr(f, "x"):
@@ -28,7 +37,7 @@ def assign_fields(objects, arrays):
             f.value = a
 
 
-def field_names(objects):
+def field_names(objects: Iterable[fem.Function | fem.Constant]) -> list[str]:
     """Return names of ``objects`` for a checkpoint (Functions by name, Constants by index)."""
     return [getattr(f, "name", None) or f"constant{i}" for i, f in enumerate(objects)]
 
@@ -46,10 +55,11 @@ class Checkpoint:
     must be the same (shared) on all ranks.
     """
 
-    def __init__(self, directory, comm):
+    def __init__(self, directory: str | os.PathLike[str], comm: MPI.Comm) -> None:
         self.dir, self.comm = Path(directory), comm
 
-    def write(self, state, names, history=None):
+    def write(self, state: dict[str, Any], names: Iterable[str],
+              history: dict[str, Any] | None = None) -> None:
         """Write ``state`` (``fields``: arrays, ``steps``: int, other JSON scalars); ``names``.
 
         ``history``: a JSON-able dict of the run's records so far (the case's
@@ -72,7 +82,7 @@ class Checkpoint:
             os.replace(tmp, self.dir / "state.json")
         self.comm.barrier()
 
-    def read(self):
+    def read(self) -> dict[str, Any]:
         """Return the state dict written last (one-line error for another partition)."""
         error, meta, fields, torn = None, None, [], False
         try:
@@ -94,6 +104,7 @@ class Checkpoint:
         if self.comm.allreduce(torn, op=MPI.LOR):
             raise ValueError(f"checkpoint {self.dir} is incomplete (killed while writing); "
                              "restart the run without --resume")
+        assert meta is not None     # read (no error on any rank)
         own = ("mpi_size", "fields", "shapes", "history")
         return {**{k: x for k, x in meta.items() if k not in own}, "fields": fields,
                 "history": meta.get("history", {})}

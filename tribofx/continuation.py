@@ -20,9 +20,56 @@ Two strategies:
 Each converged step is committed (histories such as the Lagrangian slip move on).
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, NoReturn, Protocol, TypeAlias, cast
+
 import numpy as np
+import numpy.typing as npt
 
 from .problem import NewtonDivergence
+
+if TYPE_CHECKING:
+    from dolfinx import fem
+
+    from .bordered import Border
+    from .hold import HoldReport
+    from .reports import NewtonReport
+
+    #: Newton iterations of an accepted step: a count, or the counts of its trials (a
+    #: list; nested when the problem is itself a search, a Hold)
+    Iterations: TypeAlias = int | list["Iterations"]
+    #: the measured response of a response-controlled continuation
+    Response: TypeAlias = Callable[[], float]
+
+    class Solvable(Protocol):
+        """What a continuation drives: a :class:`tribofx.problem.Problem`, a Hold, ..."""
+
+        @property
+        def u(self) -> list[fem.Function]:
+            """The unknowns (the secant predictor's)."""
+
+        def solve(self, verbose: bool = False) -> NewtonReport | HoldReport:
+            """Solve at the current parameter (raises NewtonDivergence)."""
+
+        def state(self) -> list:
+            """Copy of the state."""
+
+        def restore(self, state: list) -> None:
+            """Restore a :meth:`state`."""
+
+        def commit(self) -> None:
+            """Accept the converged state."""
+
+    class Parameter(Protocol):
+        """The driven scalar: a :class:`ConstantParameter`, a Hold's target, ..."""
+
+        def get(self) -> float:
+            """Return the current value."""
+
+        def set(self, value: float) -> None:
+            """Set the value."""
 
 __all__ = ["ConstantParameter", "Continuation"]
 
@@ -35,7 +82,8 @@ class ConstantParameter:
     the entrainment speed U).
     """
 
-    def __init__(self, constant, index: int | None = None, on_set=None, scale: float = 1.0):
+    def __init__(self, constant: fem.Constant, index: int | None = None,
+                 on_set: Callable[[float], object] | None = None, scale: float = 1.0) -> None:
         self.constant, self.index, self.on_set = constant, index, on_set
         self.scale = float(scale)
 
@@ -47,7 +95,8 @@ class ConstantParameter:
     def set(self, value: float) -> None:
         """Set the value (and run ``on_set``)."""
         if self.index is None:
-            self.constant.value = self.scale * float(value)
+            # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+            self.constant.value = self.scale * float(value)  # type: ignore[assignment]
         else:
             self.constant.value[self.index] = self.scale * float(value)
         if self.on_set is not None:
@@ -74,35 +123,43 @@ class Continuation:
             state fails, so more trials only repeat it.
     """
 
-    def __init__(self, problem, parameter, response=None, verbose=False, rtol=1e-6,
-                 max_trials=25, record=None, admissible=None, max_step=None):
+    def __init__(self, problem: Solvable, parameter: Parameter,
+                 response: Response | None = None, verbose: bool = False,
+                 rtol: float = 1e-6, max_trials: int = 25,
+                 record: list[Iterations] | None = None,
+                 admissible: Callable[[], bool] | None = None,
+                 max_step: float | None = None) -> None:
         self.problem, self.parameter, self.response = problem, parameter, response
         self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
         self.admissible, self.max_step = admissible, max_step
         self.min_bound = 1e-4   # step-limited secant: give up below min_bound·max_step
         self.record = record if record is not None else []
-        self.reports = []  # the report of every Newton solve, failed ones included
+        # the report of every Newton solve, failed ones included
+        self.reports: list[NewtonReport | HoldReport | None] = []
         self.done = parameter.get()
-        self.history = []  # (parameter, response) of converged steps
-        self._states = []  # (parameter, unknown arrays) of the last two converged steps
-        self.increments = None  # (first, next) increment of the march in progress
+        # (parameter, response) of converged steps (response None: no response)
+        self.history: list[tuple[float, float | None]] = []
+        # (parameter, unknown arrays) of the last two converged steps
+        self._states: list[tuple[float, list[npt.NDArray[Any]]]] = []
+        # (first, next) increment of the march in progress
+        self.increments: tuple[float, float] | None = None
 
     # -- helpers -------------------------------------------------------------------
 
-    def _give_up(self, saved, message):
+    def _give_up(self, saved: list, message: str) -> NoReturn:
         """Restore the entry state and parameter; raise NewtonDivergence(message)."""
         self.problem.restore(saved)
         self.parameter.set(self.done)
         raise NewtonDivergence(message)
 
-    def solve_once(self, border=None):
+    def solve_once(self, border: Border | None = None) -> NewtonReport | HoldReport:
         """One Newton solve of the problem at the current parameter; its report is kept.
 
         ``border``: a :class:`tribofx.bordered.Border` joined to the solve (the
         parameter an unknown).  Every report, of failed solves too, goes to
         :attr:`reports`.
         """
-        kw = {} if border is None else {"border": border}
+        kw: dict[str, Any] = {} if border is None else {"border": border}
         try:
             report = self.problem.solve(verbose=self.verbose, **kw)
         except NewtonDivergence as err:
@@ -111,14 +168,14 @@ class Continuation:
         self.reports.append(report)
         return report
 
-    def _solve_at(self, value):
+    def _solve_at(self, value: float) -> Iterations:
         self.parameter.set(value)
         iterations = self.solve_once().iterations
         if self.admissible is not None and not self.admissible():
             raise NewtonDivergence(f"converged to an inadmissible state at {value:g}")
         return iterations
 
-    def _distinct(self, ra, rb):
+    def _distinct(self, ra: float, rb: float) -> bool:
         """Two responses differ by more than the tolerance (a secant through them is sound)."""
         return abs(rb - ra) > self.rtol * max(abs(ra), abs(rb))
 
@@ -130,10 +187,11 @@ class Continuation:
         """
         if len(self.history) < 2:
             return None
-        (pa, ra), (pb, rb) = self.history[-2:]
+        # (responses are floats: a continuation that has a response)
+        (pa, ra), (pb, rb) = cast("list[tuple[float, float]]", self.history[-2:])
         return (rb - ra) / (pb - pa) if pb != pa and self._distinct(ra, rb) else None
 
-    def accept(self, iterations):
+    def accept(self, iterations: Iterations) -> float | None:
         """Commit the converged state at the current parameter; record it; return the response."""
         self.problem.commit()
         self.done = self.parameter.get()
@@ -149,11 +207,11 @@ class Continuation:
         self.parameter.set(value)
         self.done = self.parameter.get()
 
-    def secant_state(self) -> dict:
+    def secant_state(self) -> dict[str, Any]:
         """Return what a resumed search needs (JSON): ``done`` and the last two points."""
         return {"done": self.done, "history": [list(h) for h in self.history[-2:]]}
 
-    def set_secant_state(self, saved: dict) -> None:
+    def set_secant_state(self, saved: dict[str, Any]) -> None:
         """Restore a :meth:`secant_state` (the trials of a resumed search are then the same)."""
         self.done = float(saved["done"])
         self.history = [tuple(h) for h in saved["history"]]
@@ -168,7 +226,7 @@ class Continuation:
         self._states = (self._states + [(self.parameter.get(),
                                          [f.x.array.copy() for f in unknowns])])[-2:]
 
-    def _predict(self, value):
+    def _predict(self, value: float) -> None:
         """Secant predictor of the unknowns at ``value`` from the last two converged states."""
         if len(self._states) < 2:
             return
@@ -182,7 +240,7 @@ class Continuation:
     # -- strategies ------------------------------------------------------------------
     def march(self, target: float, steps: int = 1, predictor: bool = True,
               min_fraction: float = 2.0**-10, geometric: bool = False,
-              increments=None) -> list:
+              increments: Sequence[float] | None = None) -> list[float | None]:
         """Natural-parameter continuation from the current value to ``target``.
 
         ``steps`` equal increments; a failed step is cut in half (down to
@@ -241,14 +299,15 @@ class Continuation:
         step.  Raises NewtonDivergence (state: last converged) when the step falls
         below ``min_fraction``·``step``.  Returns the parameter reached.
         """
-        r = self.response()
+        # (self.response is set: a response-controlled march)
+        r = cast("Response", self.response)()
         sign = np.sign(target - r)
         h = float(step)
         while (target - r) * sign > self.rtol * abs(target):
             saved = self.problem.state()
             try:
                 its = self._solve_at(self.done + h)
-                if (self.response() - r) * sign <= 0:
+                if (cast("Response", self.response)() - r) * sign <= 0:
                     raise NewtonDivergence("the response does not move towards the target")
             except NewtonDivergence:
                 self.problem.restore(saved)
@@ -258,7 +317,7 @@ class Continuation:
                     raise NewtonDivergence(f"response-controlled march stalled at {r:g} "
                                            f"(step {h:.2e})") from None
                 continue
-            r = self.accept(its)
+            r = cast(float, self.accept(its))
             h = np.sign(step) * min(abs(step), growth * abs(h))
         if abs(r - target) <= self.rtol * abs(target):
             return self.done
@@ -283,12 +342,14 @@ class Continuation:
         """
         saved = self.problem.state()
         iterations = []
+        f0: float | None
         d0, f0 = self.done, None
         bound, base = self.max_step, (saved, self.parameter.get())
         if guess is None:
-            if len(self.history) >= 2 and self._distinct(self.history[-2][1],
-                                                         self.history[-1][1]):
-                (pa, ra), (pb, rb) = self.history[-2:]
+            # (the responses are floats: a response-controlled continuation)
+            if len(self.history) >= 2 and self._distinct(cast(float, self.history[-2][1]),
+                                                         cast(float, self.history[-1][1])):
+                (pa, ra), (pb, rb) = cast("list[tuple[float, float]]", self.history[-2:])
                 guess = pb + (target - rb) * (pb - pa) / (rb - ra)
             else:
                 guess = self.done
@@ -303,15 +364,15 @@ class Continuation:
                 else:
                     self.problem.restore(base[0])
                     bound = 0.5 * abs(d1 - base[1])
-                    if bound < self.min_bound * self.max_step:
+                    if bound < self.min_bound * cast(float, self.max_step):  # (bound: max_step)
                         stuck = True   # the trials have shrunk onto the base state: it fails
                         break
                     d1 = base[1] + np.sign(d1 - base[1]) * bound
                 continue
             if bound is not None:
                 base = (self.problem.state(), d1)
-                bound = min(self.max_step, 1.5 * bound)
-            f1 = self.response()
+                bound = min(cast(float, self.max_step), 1.5 * bound)
+            f1 = cast("Response", self.response)()
             if abs(f1 - target) <= self.rtol * abs(target):
                 break
             if (f0 is None or f1 == f0) and slope is not None:

@@ -27,14 +27,28 @@ the residual (Eulerian slip, frictionless contact), an approximation with
 Lagrangian slip.  Units: mm.
 """
 
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
 from dolfinx import fem
 
 from .bordered import solve_like
 
+if TYPE_CHECKING:
+    from .bordered import Border
+    from .interfaces import Wear
+    from .problem import Problem
+
 __all__ = ["filtered_defect"]
 
 
-def filtered_defect(problem, wear, defect, border=None, wears=None):
+def filtered_defect(problem: Problem, wear: Wear, defect: npt.NDArray[np.float64],
+                    border: Border | None = None,
+                    wears: Iterable[Wear] | None = None) -> npt.NDArray[np.float64]:
     """Return the filtered estimate e (owned nodal swept volumes, mm) of the ``defect`` d.
 
     ``problem``: the monolithic :class:`tribofx.problem.Problem` just converged
@@ -49,19 +63,21 @@ def filtered_defect(problem, wear, defect, border=None, wears=None):
     wears = [wear] if wears is None else list(wears)
     ended = [float(w.dt.value) for w in wears]
     for w in wears:
-        w.dt.value = float(w.bdf.dt_prev.value)
+        # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+        w.dt.value = float(w.bdf.dt_prev.value)  # type: ignore[assignment]
     try:
         return _filtered(problem, wear, defect, border)
     finally:
         for w, dt in zip(wears, ended):
-            w.dt.value = dt
+            w.dt.value = dt  # type: ignore[assignment]  # (as above)
 
 
-def _filtered(problem, wear, defect, border):
+def _filtered(problem: Problem, wear: Wear, defect: npt.NDArray[np.float64],
+              border: Border | None) -> npt.NDArray[np.float64]:
     zeta, w = wear.zeta, wear.body.w
     n = problem.owned_size(zeta)
     weight = wear.lumped_weight()[:n]
-    rhs = problem.snes.getFunction()[0].duplicate()
+    rhs = problem.snes.getFunction()[0].duplicate()  # type: ignore[index]  # stub: (Vec, ...)
     rhs.set(0.0)
     arr = rhs.getArray()
     arr[problem.block_slice(zeta)] = weight * float(wear.bdf.c0.value) * defect[:n]

@@ -31,11 +31,22 @@ retry inside it, and the step cutting of the continuation or stepper that
 drives it.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, cast
 
 from .bordered import Border
 from .continuation import Continuation
 from .reports import NewtonDivergence
+
+if TYPE_CHECKING:
+    import ufl
+    from dolfinx import fem, mesh
+
+    from .continuation import ConstantParameter, Iterations, Parameter
+    from .problem import Problem
 
 __all__ = ["Hold", "HoldReport"]
 
@@ -81,9 +92,14 @@ class Hold:
             fallback.  None: the secant alone.
     """
 
-    def __init__(self, search: Continuation, target: float, *, slope=None, guess=None,
-                 predict=None, transform=None, step_guess=None, step_slope=None,
-                 border=None):
+    def __init__(self, search: Continuation, target: float, *,
+                 slope: float | Callable[[float], float] | None = None,
+                 guess: Callable[[], float] | None = None,
+                 predict: Callable[[float], object] | None = None,
+                 transform: Callable[[float], float] | None = None,
+                 step_guess: Callable[[float], float] | None = None,
+                 step_slope: Callable[[float], float] | None = None,
+                 border: tuple[ufl.Form, mesh.Mesh] | None = None) -> None:
         if search.response is None:
             raise ValueError("a hold needs a response-controlled search (Continuation(..., "
                              "response=...))")
@@ -91,21 +107,23 @@ class Hold:
         self.slope, self.guess, self.predict = slope, guess, predict
         self.transform = transform if transform is not None else (lambda value: value)
         self.step_guess, self.step_slope = step_guess, step_slope
+        # (a bordered hold's search drives a Problem by a Constant's parameter)
         self.border = None if border is None else Border(
-            search.problem, search.parameter, border[0], self.transform(target), border[1],
-            rtol=search.rtol)
+            cast("Problem", search.problem), cast("ConstantParameter", search.parameter),
+            border[0], self.transform(target), border[1], rtol=search.rtol)
         self.fallbacks = 0
-        self._step: tuple | None = None   # (guess, slope) of the slow step in progress
+        # (guess, slope) of the slow step in progress
+        self._step: tuple[float | None, float | None] | None = None
         self._steps: Continuation | None = None   # the load march of :meth:`march`
-        self._on_step = None
+        self._on_step: Callable[[], object] | None = None
 
     @property
-    def parameter(self):
+    def parameter(self) -> Parameter:
         """The search's parameter (the one the hold moves)."""
         return self.search.parameter
 
     @property
-    def u(self):
+    def u(self) -> list[fem.Function]:
         """Unknowns of the search's problem (for the predictor of an outer continuation)."""
         return self.search.problem.u
 
@@ -118,8 +136,9 @@ class Hold:
         """Set the held target."""
         self.target = float(value)
 
-    def march(self, target: float, steps: int = 1, *, on_step=None, record=None,
-              predictor: bool = True, min_fraction: float = 2.0**-10) -> list:
+    def march(self, target: float, steps: int = 1, *, on_step: Callable[[], object] | None = None,
+              record: list[Iterations] | None = None, predictor: bool = True,
+              min_fraction: float = 2.0**-10) -> list[float | None]:
         """Step the held target from its value to ``target`` (the load march); returns targets.
 
         ``steps`` equal steps; each is one :meth:`solve` (the search finds the
@@ -139,7 +158,7 @@ class Hold:
         return self._steps.march(target, steps, predictor=predictor,
                                  min_fraction=min_fraction)
 
-    def _stepped(self):
+    def _stepped(self) -> float:
         if self._on_step is not None:
             self._on_step()
         return self.target
@@ -181,9 +200,10 @@ class Hold:
         finally:
             reports = self.search.reports[n0:]
             del self.search.reports[n0:]
-        return HoldReport(iterations=self.search.record[-1], reports=reports)
+        # (the search's last record is the list of its trials' iterations)
+        return HoldReport(iterations=cast(list, self.search.record[-1]), reports=reports)
 
-    def _estimates(self):
+    def _estimates(self) -> tuple[float | None, float | None]:
         """(first trial, first-update slope) of a solve outside the slow time."""
         search = self.search
         slope = search.history_slope()
@@ -192,10 +212,11 @@ class Hold:
         guess = self.guess() if self.guess is not None else None
         if guess is None and len(search.history) == 1 and slope:
             # one converged point: the first trial along the estimated slope
-            guess = search.done + (self.transform(self.target) - search.history[-1][1]) / slope
+            guess = search.done + (self.transform(self.target)
+                                   - cast(float, search.history[-1][1])) / slope
         return guess, slope
 
-    def _reach(self, guess, slope):
+    def _reach(self, guess: float | None, slope: float | None) -> None:
         """Solve bordered (if there is a border), and by the secant without one or on failure."""
         target = self.transform(self.target)
         if self.border is not None:
@@ -206,14 +227,16 @@ class Hold:
                 self.fallbacks += 1
         self.search.reach(target, guess=guess, slope=slope)
 
-    def _bordered(self, guess, target):
+    def _bordered(self, guess: float | None, target: float) -> None:
         """One Newton solve with the parameter an unknown, from ``guess``; restored on failure."""
-        search, problem = self.search, self.search.problem
+        # (a bordered hold's search drives a Problem: the Border is built on it)
+        search, problem = self.search, cast("Problem", self.search.problem)
         entry = self.parameter.get()
         if problem.snes.getLineSearch().getType() != "basic":
             raise NewtonDivergence("the bordered solve needs SNES's basic line search")
         if guess is not None:
             self.parameter.set(guess)
+        assert self.border is not None      # _reach calls it when there is one
         self.border.target = target
         try:
             report = search.solve_once(border=self.border)
@@ -223,11 +246,11 @@ class Hold:
             raise
         search.accept([report.iterations])
 
-    def state(self):
+    def state(self) -> list:
         """State of the search's problem (its parameter included)."""
         return self.search.problem.state()
 
-    def restore(self, state) -> None:
+    def restore(self, state: list) -> None:
         """Restore a :meth:`state`."""
         self.search.problem.restore(state)
 

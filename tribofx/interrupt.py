@@ -9,9 +9,13 @@ with status 130, and ``tribofx run ... --resume`` continues from the checkpoint.
 A second signal stops the process at once (default action).
 """
 
+from __future__ import annotations
+
 import os
 import signal
+from collections.abc import Iterator
 from contextlib import contextmanager
+from types import FrameType
 
 from mpi4py import MPI
 
@@ -27,7 +31,7 @@ class Interrupted(RunStop):
     """A run stopped by SIGINT/SIGTERM after an accepted (checkpointed) step."""
 
 
-def _handler(signum, frame):
+def _handler(signum: int, frame: FrameType | None) -> None:
     if _flag["signal"]:          # a second signal: stop now, the default way
         signal.signal(signum, signal.SIG_DFL)
         os.kill(os.getpid(), signum)
@@ -35,7 +39,7 @@ def _handler(signum, frame):
     _flag["signal"] = signum
 
 
-def arm():
+def arm() -> None:
     """(Re-)install the handlers inside :func:`watch`.
 
     Libraries initialised after :func:`watch` replace them (gmsh resets SIGTERM
@@ -48,7 +52,7 @@ def arm():
 
 
 @contextmanager
-def watch():
+def watch() -> Iterator[None]:
     """Within the block, SIGINT and SIGTERM set a flag for :func:`check`."""
     old = {s: signal.getsignal(s) for s in _SIGNALS}
     _flag.update(signal=0, active=True)
@@ -61,7 +65,7 @@ def watch():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
 
 
-def check(comm, t=None):
+def check(comm: MPI.Comm, t: float | None = None) -> None:
     """Raise :class:`Interrupted` on all ranks of ``comm`` if any rank got a signal."""
     got = comm.allreduce(_flag["signal"], op=MPI.MAX)
     arm()

@@ -39,17 +39,24 @@ ones too (measured: the soft-EHL ball at 40 N, 64k unknowns, GMRES at its
 step), and each failed solve costs the iteration cap before the LU.
 """
 
+from __future__ import annotations
+
 import sys
 import weakref
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
+import numpy.typing as npt
 from mpi4py import MPI
 from petsc4py import PETSc
+
+if TYPE_CHECKING:
+    from .problem import Problem
 
 __all__ = ["KrylovGuard", "reason_name"]
 
 
-def reason_name(reason, kind=PETSc.KSP.ConvergedReason):
+def reason_name(reason: int, kind: type = PETSc.KSP.ConvergedReason) -> str:
     """Name of a PETSc converged reason: ``DIVERGED_BREAKDOWN`` for KSP's -5.
 
     ``kind``: the reason enumeration, KSP's (default) or ``PETSc.SNES.ConvergedReason``.
@@ -69,33 +76,35 @@ class KrylovGuard:
             becomes that LU for the rest of the run (None: never).
     """
 
-    def __init__(self, eta=0.1, package="mumps", switch_after=None):
+    def __init__(self, eta: float = 0.1, package: str = "mumps",
+                 switch_after: int | None = None) -> None:
         self.eta, self.package = float(eta), package
         self.switch_after = switch_after
         self._failed = 0
-        self.fallbacks = []
-        self._direct = None
-        self._bound = None
+        self.fallbacks: list[dict[str, Any]] = []
+        self._direct: PETSc.KSP | None = None
+        self._bound: tuple[npt.NDArray[np.float64], float] | None = None
 
-    def install(self, problem):
+    def install(self, problem: Problem) -> None:
         """Add the floor test and the fallback to ``problem``'s KSP (weakly referenced)."""
         ref = weakref.ref(problem)
         ksp = problem.snes.getKSP()
 
-        def floor(ksp, its, rnorm):
+        def floor(ksp: PETSc.KSP, its: int, rnorm: float) -> int:
             p = ref()
             return 0 if p is None else self._floor_test(p, ksp, its, rnorm)
 
-        def post(ksp, b, x):
+        def post(ksp: PETSc.KSP, b: PETSc.Vec, x: PETSc.Vec) -> None:
             p = ref()
             if p is not None:
                 self._fallback(p, ksp, b, x)
 
-        ksp.addConvergenceTest(floor)
+        # (petsc4py's stub wants the reason class from the test; the reasons are ints)
+        ksp.addConvergenceTest(floor)  # type: ignore[arg-type]
         ksp.setPostSolve(post)
 
     # -- the floor -----------------------------------------------------------------------
-    def bound(self, problem):
+    def bound(self, problem: Problem) -> tuple[npt.NDArray[np.float64], float]:
         """Owned rows' bound η·atol_i·w_k, and its global 2-norm (computed once)."""
         if self._bound is None:
             n = sum(problem.owned_size(ui) for ui in problem.u)
@@ -106,7 +115,7 @@ class KrylovGuard:
             self._bound = (rows, np.sqrt(comm.allreduce(float(rows @ rows), op=MPI.SUM)))
         return self._bound
 
-    def _floor_test(self, problem, ksp, its, rnorm):
+    def _floor_test(self, problem: Problem, ksp: PETSc.KSP, its: int, rnorm: float) -> int:
         if its == 0 or ksp.getPCSide() != PETSc.PC.Side.RIGHT:
             return 0     # rnorm is the true residual's 2-norm only under right preconditioning
         rows, norm = self.bound(problem)
@@ -119,8 +128,9 @@ class KrylovGuard:
         return PETSc.KSP.ConvergedReason.CONVERGED_ATOL if ok else 0
 
     # -- the fallback --------------------------------------------------------------------
-    def _fallback(self, problem, ksp, b, x):
-        reason = ksp.getConvergedReason()
+    def _fallback(self, problem: Problem, ksp: PETSc.KSP, b: PETSc.Vec, x: PETSc.Vec) -> None:
+        # (petsc4py's stubs type the reasons as their enumeration class: they are ints)
+        reason = cast(int, ksp.getConvergedReason())
         if reason >= 0:
             return
         self._failed += 1
@@ -137,7 +147,7 @@ class KrylovGuard:
         d = self._direct
         d.setOperators(A)
         d.solve(b, x)
-        ok = d.getConvergedReason() > 0 and np.isfinite(x.norm())
+        ok = cast(int, d.getConvergedReason()) > 0 and np.isfinite(x.norm())
         d.reset()                    # the factor is freed: a fallback is the exception
         newton = problem.snes.getIterationNumber()
         event = {"newton_iteration": int(newton), "krylov": ksp.getType(),
@@ -150,12 +160,12 @@ class KrylovGuard:
                 f"tribofx: {problem.name}: {ksp.getType().upper()} {event['reason']} after "
                 f"{its} iterations in Newton iteration {newton}; solved by "
                 f"{self.package.upper()} LU instead ({event['direct']})\n")
-        if ok:
-            ksp.setConvergedReason(PETSc.KSP.ConvergedReason.CONVERGED_ITS)
+        if ok:   # (petsc4py's stub wants the reason class; the reason is an int)
+            ksp.setConvergedReason(PETSc.KSP.ConvergedReason.CONVERGED_ITS)  # type: ignore[arg-type]
         if ok and self.switch_after and self._failed >= self.switch_after:
             self._switch(problem, ksp)
 
-    def _switch(self, problem, ksp):
+    def _switch(self, problem: Problem, ksp: PETSc.KSP) -> None:
         """Make ``ksp`` the direct solve for the rest of the run (the fallback's LU)."""
         ksp.setType("preonly")
         pc = ksp.getPC()

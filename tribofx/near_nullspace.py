@@ -5,13 +5,22 @@ elasticity operator; the translations and rotations of each displacement-like
 field, in the layout of the fieldsplit's bulk block, are that kernel.
 """
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
+
 import numpy as np
+import numpy.typing as npt
 from petsc4py import PETSc
+
+if TYPE_CHECKING:
+    from dolfinx import fem
 
 __all__ = ["near_nullspace", "orthonormalise", "rigid_body_modes"]
 
 
-def rigid_body_modes(V):
+def rigid_body_modes(V: fem.FunctionSpace) -> npt.NDArray[np.float64]:
     """Rigid-body modes of the vector space ``V`` (2D: 3, 3D: 6), on its owned dofs.
 
     Returns an array (modes, owned dofs · bs) in the space's blocked layout:
@@ -36,7 +45,8 @@ def rigid_body_modes(V):
     return np.array([m.ravel() for m in modes])
 
 
-def near_nullspace(spaces, sizes, comm):
+def near_nullspace(spaces: Sequence[fem.FunctionSpace], sizes: Sequence[int],
+                   comm: PETSc.Comm) -> PETSc.NullSpace:
     """PETSc near-nullspace of the bulk block: the rigid-body modes of each space.
 
     Args:
@@ -54,23 +64,23 @@ def near_nullspace(spaces, sizes, comm):
             s = sum(sizes[:j])
             arr[s:s + sizes[j]] = mode
             v = PETSc.Vec().createMPI((sum(sizes), PETSc.DECIDE), comm=comm)
-            v.setArray(arr)
+            v.setArray(arr)  # type: ignore[arg-type]  # petsc4py stub: Sequence, not ndarray
             vecs.append(v)
     # MatNullSpaceCreate needs an orthonormal basis
     return PETSc.NullSpace().create(vectors=orthonormalise(vecs), comm=comm)
 
 
-def orthonormalise(vecs):
+def orthonormalise(vecs: Sequence[PETSc.Vec]) -> list[PETSc.Vec]:
     """Orthonormalise PETSc vectors in place by modified Gram–Schmidt.
 
     Returns the orthonormal vectors (a nearly dependent vector, norm below 1e-12
     after projection, is dropped).
     """
-    out = []
+    out: list[PETSc.Vec] = []
     for v in vecs:
         for q in out:
             v.axpy(-v.dot(q), q)
-        n = v.norm()
+        n = cast(float, v.norm())   # the 2-norm (the stub's tuple is NORM_1_AND_2's)
         if n > 1e-12:
             v.scale(1.0 / n)
             out.append(v)

@@ -10,10 +10,28 @@ contact-constraint rows, a flux for Reynolds rows.  The iteration stops when
 every block is converged, never on one 2-norm over mixed units.
 """
 
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
+
 import numpy as np
+import numpy.typing as npt
+import ufl
 from dolfinx import fem, la
 from mpi4py import MPI
 from petsc4py import PETSc
+
+if TYPE_CHECKING:
+    from dolfinx.mesh import EntityMap
+
+    from .bordered import Border
+    from .problem import ProblemComponent
+    from .reports import BlockTolerance, NewtonReport
+
+    #: one block of rows: (unknown's name, slice of its owned rows, its stopping
+    #: tolerance, the lumped row weights w or None)
+    BlockRows: TypeAlias = tuple[str, slice, BlockTolerance, npt.NDArray[np.float64] | None]
 
 __all__ = ["NewtonControl"]
 
@@ -32,11 +50,40 @@ class NewtonControl:
     before the line search, its equation joins the stopping test.
     """
 
-    border = None
+    border: Border | None = None
 
-    def _collect_tolerances(self, overrides):
+    if TYPE_CHECKING:   # what it reads of its tribofx.problem.Problem
+        components: list[ProblemComponent]
+        u: list[fem.Function]
+        snes: PETSc.SNES
+        name: str
+        max_it: int
+        max_backtracks: int
+        line_search: str
+        stall_window: int | None
+        _verbose: bool
+        _report: NewtonReport | None
+        _tolerances: list[BlockRows]
+        _cache: tuple[npt.NDArray[Any], PETSc.Vec] | None
+
+        def owned_size(self, ui: fem.Function) -> int:
+            """Rows of ``ui`` owned by this rank."""
+
+        def set_unknowns(self, x: PETSc.Vec) -> None:
+            """Copy the block vector ``x`` into the unknowns."""
+
+        def _owned(self, vec: la.Vector, ui: fem.Function) -> npt.NDArray[np.float64]: ...
+
+        def _emaps(self) -> list[EntityMap] | None: ...
+
+        def _residual(self, snes: PETSc.SNES, x: PETSc.Vec, b: PETSc.Vec) -> None: ...
+
+        def _evaluate(self, snes: PETSc.SNES, x: PETSc.Vec, b: PETSc.Vec) -> None: ...
+
+    def _collect_tolerances(
+            self, overrides: Mapping[fem.Function, BlockTolerance]) -> list[BlockRows]:
         """Per block: (name, slice of owned rows, BlockTolerance, row weights or None)."""
-        tol = {}
+        tol: dict[int, BlockTolerance] = {}
         for c in self.components:
             for ui, t in c.tolerances().items():
                 tol.setdefault(id(ui), t)
@@ -50,7 +97,8 @@ class NewtonControl:
                 raise ValueError(f"no stopping tolerance for unknown {ui.name!r}")
             w = None
             if t.weight is not None:
-                vec = fem.assemble_vector(fem.form(t.weight, entity_maps=self._emaps()))
+                vec = fem.assemble_vector(fem.form(cast(ufl.Form, t.weight),  # a UFL form
+                                                   entity_maps=self._emaps()))
                 vec.scatter_reverse(la.InsertMode.add)
                 w = self._owned(vec, ui).copy()
                 w[w <= 0] = 1.0
@@ -58,7 +106,7 @@ class NewtonControl:
             start += n
         return blocks
 
-    def _block_norms(self, b):
+    def _block_norms(self, b: PETSc.Vec) -> list[float]:
         arr = b.getArray(readonly=True)
         comm = b.comm.tompi4py()
         out = []
@@ -67,7 +115,7 @@ class NewtonControl:
             out.append(comm.allreduce(float(np.max(np.abs(r), initial=0.0)), op=MPI.MAX))
         return out
 
-    def _accept_iterate(self, snes):
+    def _accept_iterate(self, snes: PETSc.SNES) -> float | None:
         """Let components with a Newton-iterate history accept the current iterate.
 
         (The two-body pairing's hysteresis reference.)  If one moved on, the
@@ -81,20 +129,21 @@ class NewtonControl:
         changed = [c.accept_iterate() for c in movers]
         if not any(changed):
             return None
-        b = snes.getFunction()[0]
+        b = snes.getFunction()[0]  # type: ignore[index]  # petsc4py stub: it is (Vec, ...)
         self._cache = None
         self._evaluate(snes, x, b)
         fnorm = b.norm()
         snes.setFunctionNorm(fnorm)
         return fnorm
 
-    def _converged(self, snes, it, norms):
+    def _converged(self, snes: PETSc.SNES, it: int, norms: tuple[float, float, float]) -> int:
+        assert self._report is not None     # SNES runs the test inside solve(), which sets it
         fnorm = norms[2]
         if it > 0:
             moved = self._accept_iterate(snes)
             fnorm = fnorm if moved is None else moved
         self._report.linear_iterations = snes.getLinearSolveIterations()
-        b = snes.getFunction()[0]
+        b = snes.getFunction()[0]  # type: ignore[index]  # petsc4py stub: it is (Vec, ...)
         blocks = self._block_norms(b)
         self._report.residuals.append(fnorm)
         self._report.blocks.append(blocks)
@@ -109,7 +158,8 @@ class NewtonControl:
                               zip(self._tolerances, blocks))
             print(f"  {self.name} newton {it:2d}: |R| = {fnorm:.3e}   {parts}")
         if not np.isfinite(fnorm):
-            return PETSc.SNES.ConvergedReason.DIVERGED_FNORM_NAN
+            # (petsc4py's stub omits this reason)
+            return PETSc.SNES.ConvergedReason.DIVERGED_FNORM_NAN  # type: ignore[attr-defined]
         held = self.border is None or self.border.converged()
         if self._verbose and self.border is not None and snes.comm.rank == 0:
             print(f"  {self.name} newton {it:2d}: |G - G*|/|G*| = {self.border.history[-1]:.2e}"
@@ -122,14 +172,14 @@ class NewtonControl:
             return PETSc.SNES.ConvergedReason.DIVERGED_DTOL
         return PETSc.SNES.ConvergedReason.ITERATING
 
-    def _stalled(self, residuals):
+    def _stalled(self, residuals: Sequence[float]) -> bool:
         """Whether the best residual has not halved over the last ``stall_window`` iterations."""
         w = self.stall_window
         if w is None or len(residuals) <= 2 * w:
             return False
         return min(residuals[-w:]) > 0.5 * min(residuals[:-w])
 
-    def _backtrack(self, x, y):
+    def _backtrack(self, x: PETSc.Vec, y: PETSc.Vec) -> None:
         """Line search: the full Newton step unless it raises ‖R‖₂ (and :meth:`_merit`); then halve.
 
         Semismooth Newton on contact and friction can cycle between active sets;
@@ -148,7 +198,7 @@ class NewtonControl:
             border.trial(1.0)
         if self.max_backtracks == 0:
             return
-        b0 = self.snes.getFunction()[0]
+        b0 = self.snes.getFunction()[0]  # type: ignore[index]  # petsc4py stub: (Vec, ...)
         done = [v <= t.atol for v, (_, _, t, _) in zip(self._block_norms(b0), self._tolerances)]
         r0, r0_all = self._merit(b0, done), self.snes.getFunctionNorm()
         xt, bt = x.duplicate(), x.duplicate()
@@ -160,7 +210,7 @@ class NewtonControl:
             self._cache = None
             self._residual(self.snes, xt, bt)
             self._cache = (xt.getArray(readonly=True).copy(), bt)
-            if self._accept(bt.norm(), r0_all, alpha) or (
+            if self._accept(cast(float, bt.norm()), r0_all, alpha) or (
                     any(done) and self._kept(bt, done)
                     and self._accept(self._merit(bt, done), r0, alpha)):
                 if alpha != 1.0:
@@ -179,12 +229,12 @@ class NewtonControl:
             bt.destroy()
         xt.destroy()
 
-    def _kept(self, b, done):
+    def _kept(self, b: PETSc.Vec, done: Sequence[bool]) -> bool:
         """Whether the blocks converged at the iterate (``done``) are still converged in ``b``."""
         return all(v <= t.atol for v, (_, _, t, _), d in
                    zip(self._block_norms(b), self._tolerances, done) if d)
 
-    def _merit(self, b, done):
+    def _merit(self, b: PETSc.Vec, done: Sequence[bool]) -> float:
         """‖R‖₂ over the blocks not converged at the iterate (``done`` False), all ranks.
 
         A converged block sits at its round-off, which a full step stirs at
@@ -195,13 +245,13 @@ class NewtonControl:
         blocks converged.
         """
         if all(done):
-            return b.norm()
+            return cast(float, b.norm())     # (NORM_2: a float)
         arr = b.getArray(readonly=True)
         sq = sum(float(np.dot(arr[sl], arr[sl]))
                  for (_, sl, _, _), d in zip(self._tolerances, done) if not d)
         return float(np.sqrt(b.comm.tompi4py().allreduce(sq, op=MPI.SUM)))
 
-    def _accept(self, r, r0, alpha):
+    def _accept(self, r: float, r0: float, alpha: float) -> bool:
         """Line-search test of a trial with residual 2-norm ``r`` (``r0`` at the iterate)."""
         ok = all(c.admissible() for c in self.components)
         if self.line_search == "admissible":

@@ -9,6 +9,8 @@ the libraries it was linked against, so the symbol is the one of the PETSc that
 petsc4py itself calls (no path search, no second copy of the library).
 """
 
+from __future__ import annotations
+
 import ctypes
 import functools
 
@@ -18,11 +20,11 @@ __all__ = ["address", "function"]
 
 
 @functools.cache
-def _library():
+def _library() -> ctypes.CDLL:
     return ctypes.CDLL(PETSc.__file__)
 
 
-def function(name):
+def function(name: str) -> ctypes._NamedFuncPointer:
     """Return the C function ``name`` of petsc4py's PETSc (a ctypes function pointer)."""
     try:
         return getattr(_library(), name)
@@ -30,6 +32,6 @@ def function(name):
         raise RuntimeError(f"{name} not found in the PETSc library petsc4py loaded") from None
 
 
-def address(name):
+def address(name: str) -> int | None:
     """Return the address of the C function ``name`` of petsc4py's PETSc (an int)."""
     return ctypes.cast(function(name), ctypes.c_void_p).value

@@ -32,10 +32,15 @@ The stopping test per block in physical units and the backtracking line search
 are :class:`tribofx.newton_control.NewtonControl`'s, which :class:`Problem` extends.
 """
 
+from __future__ import annotations
+
 import re
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
+import numpy.typing as npt
 import ufl
 from dolfinx import fem
 from mpi4py import MPI
@@ -50,6 +55,25 @@ from .newton_control import NewtonControl
 from .protocols import ComponentBase
 from .reports import BlockTolerance, NewtonDivergence, NewtonReport, convergence_orders
 
+if TYPE_CHECKING:
+    from dolfinx import la
+    from dolfinx.mesh import EntityMap
+
+    from .bordered import Border
+    from .newton_control import BlockRows
+    from .protocols import Component
+    from .solvers import DirectSolver, IterativeSolver, OptionValue
+
+    class ProblemComponent(ComponentBase, Component):
+        """A component as a Problem sees it: the hooks of ComponentBase, the Component protocol.
+
+        (Every component derives ComponentBase and answers the protocol; a type
+        checker has no intersection of the two, hence this class, for types only.)
+        """
+
+    #: a DOLFINx assembly function with its arguments: (function, args, keyword args)
+    Assembly: TypeAlias = tuple[Callable[..., None], tuple[Any, ...], dict[str, Any]]
+
 __all__ = [
     "BlockTolerance",
     "NewtonDivergence",
@@ -60,7 +84,7 @@ __all__ = [
 ]
 
 
-def options_name(base, variant=""):
+def options_name(base: str, variant: str = "") -> str:
     """Problem name of ``variant`` (e.g. "no-shear") of a case: ``base_no_shear``.
 
     The name is the options prefix ``tribofx_<name>_`` of the problem's SNES, KSP
@@ -70,7 +94,7 @@ def options_name(base, variant=""):
     return re.sub(r"[^A-Za-z0-9_]", "_", name)
 
 
-def _block_layout(u):
+def _block_layout(u: Sequence[fem.Function]) -> tuple[tuple[int, ...], tuple[int, ...]]:
     """Local offsets of each unknown's owned and ghost entries in a blocked vector.
 
     The layout :func:`dolfinx.la.petsc.create_vector` documents for the ``mpi``
@@ -85,13 +109,13 @@ def _block_layout(u):
     return owned, tuple(int(owned[-1] + x) for x in np.cumsum([0, *ghost]))
 
 
-def _nonzero_or_none(a):
+def _nonzero_or_none(a: ufl.Form) -> ufl.Form | None:
     a = expand_derivatives(a)
     return None if a.empty() else a
 
 
-def _unique(items):
-    out = []
+def _unique[T](items: Iterable[T]) -> list[T]:
+    out: list[T] = []
     for it in items:
         if not any(it is o for o in out):
             out.append(it)
@@ -126,16 +150,21 @@ class Problem(NewtonControl):
     """
 
     _names: dict[str, int] = {}
-    _assemblers = ()      # components with add_residual/add_jacobian (see _create_snes)
+    # components with add_residual/add_jacobian (see _create_snes)
+    _assemblers: Sequence[ProblemComponent] = ()
 
-    def __init__(self, components, unknowns=None, name="problem", solver=None, max_it=30,
-                 max_backtracks=6, petsc_options=None, tolerances=None, line_search="armijo",
-                 stall_window=None):
+    def __init__(self, components: Iterable[ComponentBase],
+                 unknowns: Iterable[fem.Function] | None = None, name: str = "problem",
+                 solver: DirectSolver | IterativeSolver | None = None, max_it: int = 30,
+                 max_backtracks: int = 6, petsc_options: Mapping[str, OptionValue] | None = None,
+                 tolerances: Mapping[fem.Function, BlockTolerance] | None = None,
+                 line_search: str = "armijo", stall_window: int | None = None) -> None:
         if line_search not in ("armijo", "admissible"):
             raise ValueError(f"unknown line search {line_search!r}")
         self.line_search = line_search
         self.stall_window = stall_window
-        self.components = list(components)
+        # (ComponentBase is checked below; the Component protocol is the contract)
+        self.components = cast("list[ProblemComponent]", list(components))
         for c in self.components:
             if not isinstance(c, ComponentBase):
                 raise TypeError(f"{type(c).__name__} is not a component: derive "
@@ -145,7 +174,7 @@ class Problem(NewtonControl):
         for ui in self.u:
             if not any(ui is e for e in every):
                 raise ValueError(f"unknown {ui.name!r} is not owned by any component")
-        rows = {id(ui): 0 for ui in self.u}
+        rows: dict[int, ufl.Form | int] = {id(ui): 0 for ui in self.u}
         for c in self.components:
             for ui, form in c.contributions():
                 if id(ui) in rows:
@@ -153,7 +182,7 @@ class Problem(NewtonControl):
         for ui in self.u:
             if rows[id(ui)] == 0:
                 raise ValueError(f"no residual contribution for unknown {ui.name!r}")
-        self.residual_forms = [rows[id(ui)] for ui in self.u]
+        self.residual_forms = [cast(ufl.Form, rows[id(ui)]) for ui in self.u]   # all nonzero
         count = Problem._names.get(name, 0)
         Problem._names[name] = count + 1
         self.name = name if count == 0 else f"{name}{count}"
@@ -161,7 +190,7 @@ class Problem(NewtonControl):
         self.max_it, self.max_backtracks = int(max_it), int(max_backtracks)
         # DOLFINx sorts the conditions into blocks by space; those on unknowns that
         # are not solved for here are ignored
-        self.bcs = [bc for c in self.components for bc in c.bcs()]
+        self.bcs: list[fem.DirichletBC] = [bc for c in self.components for bc in c.bcs()]
         self._create_snes()
         self.solver = solver if solver is not None else solvers.choose(self)
         defaults = {"snes_type": "newtonls", "snes_linesearch_type": "basic",
@@ -171,11 +200,12 @@ class Problem(NewtonControl):
         opts = PETSc.Options()
         for key, value in defaults.items():
             if not opts.hasName(self.prefix + key):
-                opts[self.prefix + key] = value
+                opts[self.prefix + key] = value  # type: ignore[index]  # petsc4py stub: no __setitem__
         self.snes.setOptionsPrefix(self.prefix)
         self.snes.setFromOptions()
         self.solver.configure(self)
-        self.snes.setConvergenceTest(weak_callback(self._converged))
+        # (petsc4py's stubs type the converged reasons as a class; they are its int values)
+        self.snes.setConvergenceTest(weak_callback(self._converged))  # type: ignore[arg-type]
         # the backtracking of _backtrack (and a border's step) rides on the "basic"
         # line search; another type chosen on the command line (e.g. bt) replaces it
         if self.snes.getLineSearch().getType() == "basic":
@@ -183,15 +213,17 @@ class Problem(NewtonControl):
         self._tolerances = self._collect_tolerances(tolerances or {})
         self._cache = None
         self._report = None
-        self.report = None
-        self._homotopy = None   # (s, R(u₀)) of solve_by_homotopy, None outside it
+        self.report: NewtonReport | None = None
+        # (s, R(u₀)) of solve_by_homotopy, None outside it
+        self._homotopy: tuple[float, PETSc.Vec] | None = None
 
-    def _create_snes(self):
+    def _create_snes(self) -> None:
         """SNES of the blocked UFL system (public NonlinearProblem), residual wrapped."""
         J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
               for uj in self.u] for Fi in self.residual_forms]
+        # (DOLFINx's annotation omits the None of a zero block, which it takes)
         nlp = fem_petsc.NonlinearProblem(
-            self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",
+            self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",  # type: ignore[arg-type]
             petsc_options_prefix=self.prefix, entity_maps=self._emaps())
         self.snes = nlp.solver
         self._x, self._A = nlp.x, nlp.A
@@ -202,23 +234,25 @@ class Problem(NewtonControl):
         self._nlp = LIFETIMES.keep(self, nlp, comm)
         # wrap the residual callback: refresh the components' data at every iterate, then
         # DOLFINx's public blocked assembly with the problem's compiled forms
-        self._assemble_residual = (fem_petsc.assemble_residual,
-                                   (nlp.u, nlp.F, nlp.J, self.bcs, _block_layout(self.u)), {})
+        self._assemble_residual: Assembly = (
+            fem_petsc.assemble_residual,
+            (nlp.u, nlp.F, nlp.J, self.bcs, _block_layout(self.u)), {})
         self.snes.setFunction(weak_callback(self._residual), nlp.b)
         # components that add assembled terms outside UFL (the two-body contact kernel)
         self._assemblers = [c for c in self.components if c.assembles]
-        self._global = {}
+        self._global: dict[int, tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]] = {}
         if self._assemblers:
             A, P = nlp.A, nlp.P_mat
-            self._assemble_jacobian = (fem_petsc.assemble_jacobian, (), {
+            self._assemble_jacobian: Assembly = (fem_petsc.assemble_jacobian, (), {
                 "u": nlp.u, "jacobian": nlp.J, "preconditioner": nlp.preconditioner,
                 "bcs": self.bcs})
             # their couplings (slave-master pairs) may change: the pattern grows as needed
-            A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)
+            # (petsc4py's stub types the option as its enumeration class; it is an int)
+            A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, False)  # type: ignore[arg-type]
             self._jacobian_cb = weak_callback(self._jacobian)
             self.snes.setJacobian(self._jacobian_cb, A, P)
 
-    def owned_size(self, ui) -> int:
+    def owned_size(self, ui: fem.Function) -> int:
         """Return the number of rows of ``ui`` owned by this rank."""
         V = ui.function_space
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
@@ -229,34 +263,34 @@ class Problem(NewtonControl):
             self.owned_size(uj) for uj in self.u[:k])
 
     @property
-    def block_tolerances(self):
+    def block_tolerances(self) -> list[BlockRows]:
         """Per unknown: (name, slice of its owned rows, BlockTolerance, row weights or None)."""
         return list(self._tolerances)
 
-    def block_slice(self, ui):
+    def block_slice(self, ui: fem.Function) -> slice:
         """Slice of the owned rows of unknown ``ui`` in this rank's part of the block vector."""
         k = next(i for i, uj in enumerate(self.u) if uj is ui)
         return self._tolerances[k][1]
 
-    def record_linear_fallback(self, event):
+    def record_linear_fallback(self, event: dict[str, Any]) -> None:
         """Record a linear solve's LU fallback (:mod:`tribofx.krylov_guard`) in the report."""
         if self._report is not None:
             self._report.linear_fallbacks.append(event)
 
-    def _owned(self, vec, ui):
+    def _owned(self, vec: la.Vector, ui: fem.Function) -> npt.NDArray[np.float64]:
         """Owned part of an assembled, reverse-scattered DOLFINx vector of ``ui``'s space."""
         return vec.array[:self.owned_size(ui)]
 
-    def _emaps(self):
+    def _emaps(self) -> list[EntityMap] | None:
         return _unique([m for c in self.components for m in c.entity_maps()]) or None
 
     @property
-    def entity_maps(self):
+    def entity_maps(self) -> list[EntityMap]:
         """Entity maps of the components' mixed-dimensional forms (a list)."""
         return self._emaps() or []
 
     @property
-    def assembles_outside_ufl(self):
+    def assembles_outside_ufl(self) -> bool:
         """Whether a component adds terms assembled outside UFL (the two-body kernels)."""
         return bool(self._assemblers)
 
@@ -266,17 +300,17 @@ class Problem(NewtonControl):
         return self._x.getSize()
 
     @property
-    def A(self):
+    def A(self) -> PETSc.Mat:
         """The PETSc Jacobian matrix."""
         return self._A
 
     # -- callbacks -----------------------------------------------------------
-    def refresh(self):
+    def refresh(self) -> None:
         """Run every component's ``refresh`` at the current values of the unknowns."""
         for c in self.components:
             c.refresh()
 
-    def _residual(self, snes, x, b):
+    def _residual(self, snes: PETSc.SNES, x: PETSc.Vec, b: PETSc.Vec) -> None:
         key = x.getArray(readonly=True)
         if self._cache is not None:
             same = self._cache[0].shape == key.shape and np.array_equal(self._cache[0], key)
@@ -285,7 +319,7 @@ class Problem(NewtonControl):
                 return
         self._evaluate(snes, x, b)
 
-    def _jacobian(self, snes, x, A, P):
+    def _jacobian(self, snes: PETSc.SNES, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
         """Jacobian at ``x``: blocked UFL assembly, then the components' assembled terms."""
         fn, args, kargs = self._assemble_jacobian
         fn(snes, x, A, P, *args, **kargs)
@@ -294,7 +328,7 @@ class Problem(NewtonControl):
         A.assemblyBegin()
         A.assemblyEnd()
 
-    def _grow_pattern(self):
+    def _grow_pattern(self) -> None:
         """Preallocate the couplings the assemblers may add in this solve (:mod:`.pattern`)."""
         blocks = [b for b in (c.couplings(self) for c in self._assemblers) if b is not None]
         if not blocks:
@@ -313,7 +347,7 @@ class Problem(NewtonControl):
             self._A = A
             self.snes.setJacobian(self._jacobian_cb, A, A)
 
-    def global_rows(self, ui):
+    def global_rows(self, ui: fem.Function) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
         """Global rows of the block system of every local dof of ``ui`` (owned, then ghosts).
 
         Blocked spaces are unrolled (dof k of block j at ``bs·j + k``); rows of
@@ -344,16 +378,18 @@ class Problem(NewtonControl):
             self._global[key] = (rows, cols)
         return self._global[key]
 
-    def set_unknowns(self, x):
+    def set_unknowns(self, x: PETSc.Vec) -> None:
         """Copy the block vector ``x`` into the unknowns (ghosts updated)."""
-        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
-        fem_petsc.assign(x, self.u)
+        # (petsc4py's stubs: the modes are ints; DOLFINx's: assign's (Vec, Functions) overload)
+        x.ghostUpdate(addv=PETSc.InsertMode.INSERT,  # type: ignore[arg-type]
+                      mode=PETSc.ScatterMode.FORWARD)  # type: ignore[arg-type]
+        fem_petsc.assign(x, self.u)  # type: ignore[arg-type]
 
-    def _get_unknowns(self, x):
+    def _get_unknowns(self, x: PETSc.Vec) -> None:
         """Copy the unknowns into the block vector ``x``."""
         fem_petsc.assign(self.u, x)
 
-    def _evaluate(self, snes, x, b):
+    def _evaluate(self, snes: PETSc.SNES, x: PETSc.Vec, b: PETSc.Vec) -> None:
         """Residual at ``x`` into ``b``: unknowns ← x, refresh, blocked UFL assembly."""
         self.set_unknowns(x)
         self.refresh()
@@ -366,14 +402,14 @@ class Problem(NewtonControl):
             b.assemblyEnd()
         self._shift_by_homotopy(b)
 
-    def _shift_by_homotopy(self, b):
+    def _shift_by_homotopy(self, b: PETSc.Vec) -> None:
         """Inside :meth:`solve_by_homotopy`: b ← b − (1 − s) R(u₀) (nothing at s = 1)."""
         if self._homotopy is not None and self._homotopy[0] != 1.0:
             s, r0 = self._homotopy
             b.axpy(-(1.0 - s), r0)
 
     # -- solve ---------------------------------------------------------------
-    def solve(self, verbose: bool = False, border=None) -> NewtonReport:
+    def solve(self, verbose: bool = False, border: Border | None = None) -> NewtonReport:
         """Newton from the current values of the unknowns; returns a :class:`NewtonReport`.
 
         Raises :class:`NewtonDivergence` (the unknowns back at their entry
@@ -407,7 +443,7 @@ class Problem(NewtonControl):
                 self._cache[1].destroy()
             self._cache = None
             self.border = None
-        reason = -1 if failure else self.snes.getConvergedReason()
+        reason = -1 if failure else cast(int, self.snes.getConvergedReason())
         if reason == PETSc.SNES.ConvergedReason.DIVERGED_LINEAR_SOLVE:
             failure = f"DIVERGED_LINEAR_SOLVE{self._linear_state()}"
         report = self._report
@@ -456,7 +492,7 @@ class Problem(NewtonControl):
                 return self.solve(verbose=verbose)
             except NewtonDivergence as err:
                 first = str(err)
-            spent = self.report.iterations
+            spent = cast(NewtonReport, self.report).iterations   # solve() has set it
         x0 = self._x
         self._get_unknowns(x0)
         r0 = x0.duplicate()
@@ -471,7 +507,7 @@ class Problem(NewtonControl):
                 try:
                     last = self.solve(verbose=verbose)
                 except NewtonDivergence:
-                    spent += self.report.iterations
+                    spent += cast(NewtonReport, self.report).iterations
                     self.restore(saved)
                     ds *= 0.5
                     if ds < min_step:
@@ -492,14 +528,14 @@ class Problem(NewtonControl):
         self.report = last
         return last
 
-    def _linear_state(self):
+    def _linear_state(self) -> str:
         """Describe the last linear solve's failure for an error message ('' if it converged).
 
         ``: KSP <type> <reason> after <n> iterations``, and whether its LU
         fallback (:mod:`tribofx.krylov_guard`) failed too.
         """
         ksp = self.snes.getKSP()
-        reason = ksp.getConvergedReason()
+        reason = cast(int, ksp.getConvergedReason())
         events = self._report.linear_fallbacks if self._report is not None else []
         failed = [e for e in events if e["direct"] == "failed"]
         if failed:
@@ -511,22 +547,22 @@ class Problem(NewtonControl):
         its = ksp.getIterationNumber()
         return f": KSP {ksp.getType()} {reason_name(reason)} after {its} iterations"
 
-    def _reset_iterates(self):
+    def _reset_iterates(self) -> None:
         """Components with a Newton-iterate history start from their committed one."""
         for c in self.components:
             c.reset_iterate()
 
-    def assemble(self):
+    def assemble(self) -> tuple[PETSc.Vec, PETSc.Mat]:
         """Residual ``b`` and Jacobian ``A`` at the current unknowns (Taylor tests)."""
         x = self._x
         self._get_unknowns(x)
         self._cache = None
-        b = self.snes.getFunction()[0]
+        b = self.snes.getFunction()[0]  # type: ignore[index]  # petsc4py stub: it is (Vec, ...)
         self._residual(self.snes, x, b)
         self.snes.computeJacobian(x, self._A)
         return b, self._A
 
-    def residual_at(self, x):
+    def residual_at(self, x: PETSc.Vec) -> PETSc.Vec:
         """Residual at the block vector ``x`` (a copy; the unknowns end at ``x``)."""
         b = x.duplicate()
         self._cache = None
@@ -534,7 +570,7 @@ class Problem(NewtonControl):
         return b
 
     # -- state ---------------------------------------------------------------
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Functions and Constants making up the state of every component."""
         return _unique([f for c in self.components for f in c.state_fields()])
 

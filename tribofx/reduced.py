@@ -29,10 +29,15 @@ summed over ranks) and ``mat`` (PETSc MPIAIJ: owned image rows × reduced
 columns owned by rank 0).
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol, cast
 
 import dolfinx.fem.petsc as fem_petsc
 import numpy as np
+import numpy.typing as npt
 import ufl
 from dolfinx import fem, la
 from mpi4py import MPI
@@ -41,6 +46,19 @@ from petsc4py import PETSc
 from .lifetimes import weak_callback
 from .problem import Problem, _nonzero_or_none
 
+if TYPE_CHECKING:
+    class LinearMap(Protocol):
+        """A fixed linear map of a reduced unknown into the body (see the module docstring)."""
+
+        #: PETSc MPIAIJ: owned image rows × reduced columns owned by rank 0
+        mat: PETSc.Mat
+
+        def apply(self, v2: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+            """Image values on the local dofs (ghosts included) of the reduced values ``v2``."""
+
+        def transpose(self, v3: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+            """Qᵀ of the owned entries of ``v3``, summed over ranks."""
+
 __all__ = ["AlgebraicRow", "ReducedProblem", "Reduction"]
 
 
@@ -48,9 +66,9 @@ __all__ = ["AlgebraicRow", "ReducedProblem", "Reduction"]
 class Reduction:
     """image = P · reduced: ``image`` a Function on the body, ``reduced`` a replicated unknown."""
 
-    image: object
-    reduced: object
-    P: object
+    image: fem.Function
+    reduced: fem.Function
+    P: LinearMap
 
 
 @dataclass
@@ -61,11 +79,11 @@ class AlgebraicRow:
     vector used instead of r (frozen data, no Jacobian).
     """
 
-    row: object
-    form: object
-    Q: object
-    scale: object
-    fixed: object = None
+    row: fem.Function
+    form: ufl.Form
+    Q: LinearMap
+    scale: Callable[[], float]
+    fixed: Callable[[], npt.NDArray[np.float64] | None] | None = None
 
 
 class ReducedProblem(Problem):
@@ -74,8 +92,8 @@ class ReducedProblem(Problem):
     Arguments as for :class:`tribofx.problem.Problem`.
     """
 
-    def _create_snes(self):
-        self._red = [r for c in self.components for r in c.reductions()]
+    def _create_snes(self) -> None:
+        self._red: list[Reduction] = [r for c in self.components for r in c.reductions()]
         # the communicator of the distributed body (of the unknowns or of the images of
         # the reduced ones); a problem whose meshes are all on COMM_SELF runs serially
         comms = [f.function_space.mesh.comm for f in self.u + [r.image for r in self._red]]
@@ -83,12 +101,13 @@ class ReducedProblem(Problem):
         self.comm = comm
         self._replicated = {id(ui): ui.function_space.mesh.comm.size == 1 and comm.size > 1
                             for ui in self.u}
-        self._alg = [r for c in self.components for r in c.algebraic_rows()]
+        self._alg: list[AlgebraicRow] = [r for c in self.components for r in c.algebraic_rows()]
         by_image = {id(r.reduced): r for r in self._red}
         emaps = self._emaps()
-        kw = {"entity_maps": emaps} if emaps else {}
+        kw: dict[str, Any] = {"entity_maps": emaps} if emaps else {}
         self._F = [fem.form(f, **kw) for f in self.residual_forms]
-        self._J = {}
+        # {(row key, j, "direct"): form, (row key, j, "image"): (form, map)}
+        self._J: dict[tuple[tuple[str, int], int, str], fem.Form | tuple[fem.Form, LinearMap]] = {}
         for i, Fi in enumerate(self.residual_forms):
             for j, uj in enumerate(self.u):
                 self._add_jacobian(("F", i), j, Fi, uj, by_image, kw)
@@ -98,8 +117,8 @@ class ReducedProblem(Problem):
                 self._add_jacobian(("A", k), j, a.form, uj, by_image, kw)
         self._bc_rows = self._collect_bcs()
         sizes = [self.owned_size(ui) for ui in self.u]
-        self._sizes = comm.allgather(sizes)
-        self._starts = comm.allgather(
+        self._sizes: list[list[int]] = comm.allgather(sizes)
+        self._starts: list[list[int]] = comm.allgather(
             [0 if self._replicated[id(ui)] else
              ui.function_space.dofmap.index_map.local_range[0]
              * ui.function_space.dofmap.index_map_bs for ui in self.u])
@@ -110,13 +129,15 @@ class ReducedProblem(Problem):
         b = self._x.duplicate()
         self._set_maps()
         self._get_unknowns(self._x)
-        self._coo = None          # the COO pattern the Jacobian is preallocated with
+        # the COO pattern the Jacobian is preallocated with
+        self._coo: tuple[npt.NDArray[np.integer], npt.NDArray[np.integer]] | None = None
         self._A = self._jacobian_matrix()
         self.snes = PETSc.SNES().create(comm)
         self.snes.setFunction(weak_callback(self._residual), b)
         self.snes.setJacobian(weak_callback(self._jacobian), self._A)
 
-    def _add_jacobian(self, key, j, F, uj, by_image, kw):
+    def _add_jacobian(self, key: tuple[str, int], j: int, F: ufl.Form, uj: fem.Function,
+                      by_image: dict[int, Reduction], kw: dict[str, Any]) -> None:
         """Jacobian block of form F in unknown j: direct, and through uj's image."""
         direct = _nonzero_or_none(ufl.derivative(F, uj, ufl.TrialFunction(uj.function_space)))
         red = by_image.get(id(uj))
@@ -127,10 +148,10 @@ class ReducedProblem(Problem):
         if direct is not None:
             self._J[key, j, "direct"] = fem.form(direct, **kw)
         if via is not None:
-            self._J[key, j, "image"] = (fem.form(via, **kw), red.P)
+            self._J[key, j, "image"] = (fem.form(via, **kw), cast(Reduction, red).P)  # via: red
 
-    def _collect_bcs(self):
-        rows = {}
+    def _collect_bcs(self) -> dict[int, list[fem.DirichletBC]]:
+        rows: dict[int, list[fem.DirichletBC]] = {}
         for c in self.components:
             for ui, bcs in c.bcs_by_unknown().items():
                 if any(ui is v for v in self.u):
@@ -138,27 +159,27 @@ class ReducedProblem(Problem):
         return rows
 
     # -- layout ------------------------------------------------------------------
-    def owned_size(self, ui):
+    def owned_size(self, ui: fem.Function) -> int:
         """Rows of ``ui`` owned by this rank (a replicated unknown's all on rank 0)."""
         V = ui.function_space
         if V.mesh.comm.size == 1 and self.comm.size > 1:  # replicated: owned by rank 0
             return len(ui.x.array) if self.comm.rank == 0 else 0
         return V.dofmap.index_map.size_local * V.dofmap.index_map_bs
 
-    def _owned(self, vec, ui):
+    def _owned(self, vec: la.Vector, ui: fem.Function) -> npt.NDArray[np.float64]:
         return vec.array[:self.owned_size(ui)]
 
-    def block_start(self, k):
+    def block_start(self, k: int) -> int:
         """Global row of the first owned dof of unknown ``k`` on this rank."""
         return self._row0 + int(self._offsets()[1][self.comm.rank][k])
 
-    def _offsets(self):
+    def _offsets(self) -> tuple[npt.NDArray[np.int64], list[npt.NDArray[np.int64]]]:
         """Local offset of each unknown's rows on every rank, and each rank's first row."""
         boff = [np.concatenate([[0], np.cumsum(s)])[:-1] for s in self._sizes]
         roff = np.concatenate([[0], np.cumsum([sum(s) for s in self._sizes])])
         return roff, boff
 
-    def _global_index(self, j, g):
+    def _global_index(self, j: int, g: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
         """Monolithic global index of unknown j's global dof indices ``g``."""
         roff, boff = self._offsets()
         if self._replicated[id(self.u[j])]:
@@ -169,17 +190,17 @@ class ReducedProblem(Problem):
         ob = np.array([b[j] for b in boff])
         return roff[owner] + ob[owner] + g - starts[owner]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Images ← maps of the reduced unknowns, then every component's refresh."""
         self._set_maps()
         super().refresh()
 
-    def _set_maps(self):
+    def _set_maps(self) -> None:
         for r in self._red:
             r.image.x.array[:] = r.P.apply(r.reduced.x.array)
 
     # -- unknowns <-> vector -------------------------------------------------------
-    def set_unknowns(self, x):
+    def set_unknowns(self, x: PETSc.Vec) -> None:
         """Copy the block vector ``x`` into the unknowns (reduced blocks mapped, ghosts updated)."""
         arr = x.getArray(readonly=True)
         i = 0
@@ -194,16 +215,19 @@ class ReducedProblem(Problem):
             i += n
         self._set_maps()
 
-    def _get_unknowns(self, x):
-        x.setArray(np.concatenate([ui.x.array[:self.owned_size(ui)] for ui in self.u]))
+    def _get_unknowns(self, x: PETSc.Vec) -> None:
+        # (petsc4py's stubs type arrays Sequence; they take NumPy arrays)
+        x.setArray(np.concatenate([ui.x.array[:self.owned_size(ui)] for ui in self.u]))  # type: ignore[arg-type]
 
     # -- assembly --------------------------------------------------------------------
-    def _vector(self, form, ui=None, n=None):
+    def _vector(self, form: fem.Form, ui: fem.Function | None = None,
+                n: int | None = None) -> npt.NDArray[np.float64]:
         vec = fem.assemble_vector(form)
         vec.scatter_reverse(la.InsertMode.add)
-        return vec.array[:n].copy() if n is not None else self._owned(vec, ui).copy()
+        return vec.array[:n].copy() if n is not None else self._owned(
+            vec, cast(fem.Function, ui)).copy()     # (n None: ui is given)
 
-    def _alg_vector(self, k):
+    def _alg_vector(self, k: int) -> npt.NDArray[np.float64]:
         a = self._alg[k]
         frozen = a.fixed() if a.fixed is not None else None
         if frozen is not None:
@@ -212,11 +236,11 @@ class ReducedProblem(Problem):
         n = Vr.dofmap.index_map.size_local * Vr.dofmap.index_map_bs
         return self._vector(self._Falg[k], n=n)
 
-    def algebraic_vector(self, k):
+    def algebraic_vector(self, k: int) -> npt.NDArray[np.float64]:
         """Assembled vector r (owned rows) of algebraic row ``k`` at the current state."""
         return self._alg_vector(k)
 
-    def _evaluate(self, snes, x, b):
+    def _evaluate(self, snes: PETSc.SNES, x: PETSc.Vec, b: PETSc.Vec) -> None:
         self.set_unknowns(x)
         self.refresh()
         parts = []
@@ -231,18 +255,18 @@ class ReducedProblem(Problem):
                 bc.set(full, x0=ui.x.array, alpha=-1.0)
                 r = full[:len(r)]
             parts.append(r)
-        b.setArray(np.concatenate(parts) if parts else np.zeros(0))
+        b.setArray(np.concatenate(parts) if parts else np.zeros(0))  # type: ignore[arg-type]  # petsc4py stub: Sequence, not ndarray
         self._shift_by_homotopy(b)
 
-    def _matrices(self, key, j):
+    def _matrices(self, key: tuple[str, int], j: int) -> tuple[list[PETSc.Mat], list[PETSc.Mat]]:
         """Assembled Jacobian blocks (PETSc) of row ``key`` in unknown j (direct, image·P)."""
         out, made = [], []
-        d = self._J.get((key, j, "direct"))
+        d = cast("fem.Form | None", self._J.get((key, j, "direct")))
         if d is not None:
             A = fem_petsc.assemble_matrix(d)
             A.assemble()
             out.append(A)
-        v = self._J.get((key, j, "image"))
+        v = cast("tuple[fem.Form, LinearMap] | None", self._J.get((key, j, "image")))
         if v is not None:
             A = fem_petsc.assemble_matrix(v[0])
             A.assemble()
@@ -250,7 +274,8 @@ class ReducedProblem(Problem):
             out.append(A.matMult(v[1].mat))
         return out, made
 
-    def _jacobian_coo(self):
+    def _jacobian_coo(self) -> tuple[npt.NDArray[np.integer], npt.NDArray[np.integer],
+                                     npt.NDArray[np.float64]]:
         """Return the Jacobian as COO triplets (global rows, columns, values).
 
         Duplicates are summed by PETSc; the Dirichlet rows are identity rows.
@@ -258,18 +283,23 @@ class ReducedProblem(Problem):
         rank = self.comm.rank
         roff, boff = self._offsets()
         my0 = roff[rank]
+        ri: list[npt.NDArray[np.int64]] | npt.NDArray[np.int64]     # per block, then joined
+        ci: list[npt.NDArray[np.int64]] | npt.NDArray[np.int64]
+        vals: list[npt.NDArray[np.float64]] | npt.NDArray[np.float64]
+        made: list[PETSc.Mat]
         ri, ci, vals, made = [], [], [], []
 
-        def add(i, j, A, replicated_rows):
+        def add(i: int, j: int, A: PETSc.Mat, replicated_rows: bool) -> None:
             if replicated_rows and rank != 0:
                 return
             ip, ind, val = A.getValuesCSR()
             nrow = len(ip) - 1
             if nrow == 0 or len(val) == 0:
                 return
-            ri.append(my0 + boff[rank][i] + np.repeat(np.arange(nrow), np.diff(ip)))
-            ci.append(self._global_index(j, np.asarray(ind, dtype=np.int64)))
-            vals.append(val)
+            # (the lists of per-block arrays, joined after the loop)
+            cast(list, ri).append(my0 + boff[rank][i] + np.repeat(np.arange(nrow), np.diff(ip)))
+            cast(list, ci).append(self._global_index(j, np.asarray(ind, dtype=np.int64)))
+            cast(list, vals).append(val)
 
         for i, ui in enumerate(self.u):
             rep = self._replicated[id(ui)]
@@ -308,7 +338,7 @@ class ReducedProblem(Problem):
         vals = np.concatenate([vals[keep], np.ones(len(rbc))])
         return ri, ci, vals
 
-    def _jacobian_matrix(self, A=None):
+    def _jacobian_matrix(self, A: PETSc.Mat | None = None) -> PETSc.Mat:
         """Assemble the Jacobian into ``A`` (None: a new MPIAIJ matrix); returns it.
 
         The matrix is preallocated from the COO pattern (PETSc sums duplicate
@@ -325,14 +355,15 @@ class ReducedProblem(Problem):
             A = PETSc.Mat().create(comm=self.comm)
             A.setSizes(((nloc, self._N), (nloc, self._N)))
             A.setType(PETSc.Mat.Type.AIJ)
+        # (petsc4py's stubs: arrays are not Sequence, the insert mode is an int)
         if not same:
-            A.setPreallocationCOO(ri, ci)
+            A.setPreallocationCOO(ri, ci)  # type: ignore[arg-type]
             self._coo = (ri, ci)
-        A.setValuesCOO(vals, addv=PETSc.InsertMode.INSERT_VALUES)
+        A.setValuesCOO(vals, addv=PETSc.InsertMode.INSERT_VALUES)  # type: ignore[arg-type]
         A.assemble()
         return A
 
-    def _jacobian(self, snes, x, A, P):
+    def _jacobian(self, snes: PETSc.SNES, x: PETSc.Vec, A: PETSc.Mat, P: PETSc.Mat) -> None:
         self.set_unknowns(x)
         self.refresh()
         self._jacobian_matrix(A)

@@ -24,15 +24,28 @@ inner position search) into ``DIR/<variant>/``, and a resumed run restores the
 state and continues from that position on the same step sequence.
 """
 
+from __future__ import annotations
+
 import json
+import os
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from . import interrupt
 from .checkpoint import Checkpoint, assign_fields, field_arrays, field_names
 from .output import jsonable
 from .params import InputError
+
+if TYPE_CHECKING:
+    from dolfinx import fem
+    from mpi4py import MPI
+
+    from .params import CaseParams
+    from .stepper import Stepper
 
 __all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "sweep_stem"]
 
@@ -42,7 +55,7 @@ SOLVER_PARAMETERS = ("solver", "force_control")
 ADDED_PARAMETERS = {"tol_per": "unit_step", "error_filter": False, "controller": "i"}
 
 
-def open_history(stepper, v, resume):
+def open_history(stepper: Stepper, v: CaseParams, resume: bool) -> dict[str, Any]:
     """Read back the checkpoint when resuming; return ``stepper.history``.
 
     ``v``: the run's parameters (a :class:`~tribofx.params.CaseParams`).  Raises
@@ -64,7 +77,7 @@ def open_history(stepper, v, resume):
     return stepper.history
 
 
-def check_parameters(saved, now):
+def check_parameters(saved: Mapping[str, Any], now: Mapping[str, Any]) -> None:
     """Raise InputError (one line) unless the checkpoint's parameters ``saved`` are ``now``."""
     if saved != now:
         diff = sorted(k for k in set(saved) | set(now) if saved.get(k) != now.get(k))
@@ -72,12 +85,12 @@ def check_parameters(saved, now):
                          f"({', '.join(diff)})")
 
 
-def series_stem(stem, stepper, resume):
+def series_stem(stem: str, stepper: Stepper, resume: bool) -> str:
     """File stem of a VTX series: a resumed run's series starts at its restart time."""
     return stem + (f"_from_t{stepper.t:g}" if resume else "")
 
 
-def sweep_stem(stem, n):
+def sweep_stem(stem: str, n: int) -> str:
     """File stem of a sweep's VTX series: a sweep resumed after n points starts at n."""
     return stem + (f"_from_{n}" if n else "")
 
@@ -103,7 +116,12 @@ class SweepJournal:
         resume: read the checkpoint back.
     """
 
-    def __init__(self, directory, comm, v, resume=False):
+    saved: dict[str, dict[str, Any]]    # per variant: the state read back (Checkpoint.read)
+    order: list[str]                    # the variants written, in order
+    steps: int                          # points written (the checkpoints' step count)
+
+    def __init__(self, directory: str | os.PathLike[str] | None, comm: MPI.Comm, v: CaseParams,
+                 resume: bool = False) -> None:
         self.dir = None if directory is None else Path(directory)
         self.comm = comm
         self.params = jsonable({k: x for k, x in v.as_dict().items() if k not in SOLVER_PARAMETERS})
@@ -111,11 +129,12 @@ class SweepJournal:
         if resume:
             self._read()
 
-    def _read(self):
+    def _read(self) -> None:
         top, error = None, None
         if self.comm.rank == 0:     # read once, decided on all ranks (no rank left waiting)
             try:
-                top = json.loads((self.dir / "state.json").read_text())
+                # (no directory: the TypeError below, "cannot resume")
+                top = json.loads((cast(Path, self.dir) / "state.json").read_text())
                 top = {"variants": list(top["variants"]), "parameters": top["parameters"]}
             except (ValueError, OSError, KeyError, TypeError) as err:
                 error = f"cannot resume: {err}"
@@ -125,24 +144,26 @@ class SweepJournal:
         check_parameters(top["parameters"], self.params)
         order = top["variants"]
         try:
-            saved = {name: Checkpoint(self.dir / name, self.comm).read() for name in order}
+            saved = {name: Checkpoint(cast(Path, self.dir) / name, self.comm).read()
+                     for name in order}
         except ValueError as err:    # the same on all ranks (Checkpoint.read)
             raise InputError(f"cannot resume: {err}") from None
         self.saved, self.order = saved, order
         self.steps = max(int(s["steps"]) for s in saved.values()) if saved else 0
 
     # -- reading ----------------------------------------------------------------------
-    def records(self, name, **empty):
+    def records(self, name: str, **empty: Any) -> dict[str, Any]:
         """Return the variant's records: the saved ones on resume, else ``empty``."""
         saved = self.saved.get(name)
         return saved["history"]["records"] if saved is not None else dict(empty)
 
-    def position(self, name):
+    def position(self, name: str) -> dict[str, Any] | None:
         """Return the saved position of the variant (None: a fresh variant)."""
         saved = self.saved.get(name)
         return None if saved is None else saved["history"]["position"]
 
-    def restore(self, name, objects):
+    def restore(self, name: str,
+                objects: Sequence[fem.Function | fem.Constant]) -> list[npt.NDArray[Any]]:
         """Copy the saved arrays of the variant into ``objects`` (Functions, Constants).
 
         Returns the further arrays saved with them (``arrays`` of :meth:`save`).
@@ -160,7 +181,9 @@ class SweepJournal:
         return extra
 
     # -- writing ----------------------------------------------------------------------
-    def save(self, name, objects, records, position, arrays=()):
+    def save(self, name: str, objects: Sequence[fem.Function | fem.Constant],
+             records: Mapping[str, Any], position: Mapping[str, Any],
+             arrays: Iterable[npt.ArrayLike] = ()) -> None:
         """Write the variant's state, records and position; then stop on a signal.
 
         ``objects``: the state (Functions, Constants) restored by :meth:`restore`;

@@ -18,6 +18,8 @@ Everywhere a scheme is asked for, its name is accepted too (:meth:`Scheme.of`):
 ``"explicit"``, ``"implicit"``, ``"euler"`` or ``"bdf2"``.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 __all__ = ["BDF2", "EXPLICIT", "IMPLICIT", "SCHEME_NAMES", "Scheme"]
@@ -35,7 +37,7 @@ class Scheme:
     theta: float = 1.0
     bdf2: bool = False
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not 0.0 <= self.theta <= 1.0:
             raise ValueError(f"theta = {self.theta}: a weight in [0, 1]")
         if self.bdf2 and self.theta != 1.0:

@@ -5,6 +5,8 @@ petsc4py 3.25 binds neither ``SNESSetLagPreconditioner`` nor
 library that petsc4py loaded (:mod:`tribofx.petsc_lib`).
 """
 
+from __future__ import annotations
+
 import ctypes
 
 import numpy as np
@@ -15,7 +17,7 @@ from .petsc_lib import function
 __all__ = ["lag_preconditioner"]
 
 
-def lag_preconditioner(snes, lag=None):
+def lag_preconditioner(snes: PETSc.SNES, lag: int | None = None) -> int:
     """Set (``lag`` given) and return SNES's preconditioner lag.
 
     −1: keep the preconditioner; −2: rebuild it at the next Jacobian, then −1;

@@ -45,10 +45,15 @@ without the ``tribofx_`` prefix applies under every problem's prefix; a key
 with it is set as given.
 """
 
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 from dolfinx.mesh import CellType
 from mpi4py import MPI
 from petsc4py import PETSc
@@ -56,6 +61,14 @@ from petsc4py import PETSc
 from .krylov_guard import KrylovGuard
 from .near_nullspace import near_nullspace
 from .snes_lag import lag_preconditioner
+
+if TYPE_CHECKING:
+    from .problem import Problem
+
+    #: the value of a PETSc option (None: a flag without value)
+    OptionValue: TypeAlias = str | int | float | None
+    #: PETSc options {key: value} without the problem's prefix
+    OptionsDict: TypeAlias = dict[str, OptionValue]
 
 __all__ = [
     "AUTO_THRESHOLD",
@@ -112,7 +125,8 @@ def current_run() -> SolverRun:
 
 
 @contextmanager
-def run_settings(strategy="auto", petsc_options=None):
+def run_settings(strategy: str = "auto",
+                 petsc_options: Mapping[str, OptionValue] | None = None) -> Iterator[SolverRun]:
     """Strategy and extra PETSc options of the problems built inside the block.
 
     Yields the block's :class:`SolverRun`, which records the linear solver of
@@ -131,7 +145,7 @@ def run_settings(strategy="auto", petsc_options=None):
     verbatim = {k: v for k, v in options.items() if k.startswith("tribofx_")}
     run = SolverRun(strategy, {k: v for k, v in options.items() if k not in verbatim})
     for k, v in verbatim.items():
-        opts[k] = v
+        opts[k] = v  # type: ignore[index]  # petsc4py stub: no __setitem__
     _runs.append(run)
     try:
         yield run
@@ -141,12 +155,12 @@ def run_settings(strategy="auto", petsc_options=None):
             opts.delValue(k)
 
 
-def run_options():
+def run_options() -> OptionsDict:
     """Extra PETSc options of the current run (without prefix)."""
     return dict(current_run().options)
 
 
-def choose(problem):
+def choose(problem: Problem) -> DirectSolver | IterativeSolver:
     """Return the run's strategy for ``problem`` (``auto``: by dimension and size)."""
     run = current_run()
     strategy = run.strategy
@@ -169,7 +183,7 @@ def choose(problem):
     return solver
 
 
-def bulk_fields(problem):
+def bulk_fields(problem: Problem) -> tuple[list[int], list[int]]:
     """Return the indices of the bulk unknowns, and of the rest.
 
     Bulk: vector fields on a distributed mesh of the problem's full dimension
@@ -178,6 +192,8 @@ def bulk_fields(problem):
     """
     gdim = max(ui.function_space.mesh.geometry.dim for ui in problem.u)
     size = max(ui.function_space.mesh.comm.size for ui in problem.u)
+    bulk: list[int]
+    rest: list[int]
     bulk, rest = [], []
     for k, ui in enumerate(problem.u):
         V = ui.function_space
@@ -203,27 +219,27 @@ class DirectSolver:
 
     name = "direct"
 
-    def __init__(self, package="mumps", blr=None):
+    def __init__(self, package: str = "mumps", blr: float | None = None) -> None:
         self.package = package
         self.blr = blr
 
-    def options(self, problem=None):
+    def options(self, problem: Problem | None = None) -> OptionsDict:
         """PETSc options of the KSP and PC (without the problem's prefix)."""
-        out = {"ksp_type": "preonly", "pc_type": "lu",
-               "pc_factor_mat_solver_type": self.package}
+        out: OptionsDict = {"ksp_type": "preonly", "pc_type": "lu",
+                            "pc_factor_mat_solver_type": self.package}
         if self.blr is not None:   # BLR factors, and BLR-compressed contribution blocks
             out.update({"mat_mumps_icntl_35": 1, "mat_mumps_cntl_7": self.blr,
                         "mat_mumps_icntl_37": 1})
         return out
 
-    def configure(self, problem):
+    def configure(self, problem: Problem) -> None:
         """Nothing beyond the options for a direct solve."""
 
-    def prepare(self, problem):
+    def prepare(self, problem: Problem) -> None:
         """Grow MUMPS's workspace if the last factorisation ran out of it."""
         grow_workspace(problem.snes.getKSP().getPC())
 
-    def describe(self, problem):
+    def describe(self, problem: Problem) -> str:
         """One line naming the strategy (recorded in ``summary.json``)."""
         blr = f", BLR {self.blr:g}" if self.blr is not None else ""
         return f"direct ({self.package} LU{blr}, {problem.num_dofs} unknowns)"
@@ -233,7 +249,7 @@ class DirectSolver:
 WORKSPACE_ERRORS = (-8, -9, -11, -12, -14, -15, -17, -20)
 
 
-def grow_workspace(pc, cap=10_000):
+def grow_workspace(pc: PETSc.PC, cap: int = 10_000) -> int | None:
     """Double MUMPS's extra workspace ICNTL(14) after a factorisation that ran out of it.
 
     MUMPS sizes its workspace from the analysis, plus ICNTL(14) per cent (20 by
@@ -249,7 +265,9 @@ def grow_workspace(pc, cap=10_000):
     """
     # a factor is queried only after a failed set-up (before the first factorisation
     # MUMPS's data is not allocated); the failure is collective, the reason maybe not
-    if pc.getComm().tompi4py().allreduce(int(pc.getFailedReason()), op=MPI.MAX) == 0:
+    # (petsc4py's stub types the reason as its enumeration class; it is an int)
+    if pc.getComm().tompi4py().allreduce(int(pc.getFailedReason()),  # type: ignore[call-overload]
+                                         op=MPI.MAX) == 0:
         return None
     try:
         F = pc.getFactorMatrix()
@@ -260,7 +278,8 @@ def grow_workspace(pc, cap=10_000):
         return None
     if info in WORKSPACE_ERRORS:
         percent = min(cap, 2 * max(percent, 10))
-        PETSc.Options()[(pc.getOptionsPrefix() or "") + "mat_mumps_icntl_14"] = percent
+        # (petsc4py's stub has no Options.__setitem__)
+        PETSc.Options()[(pc.getOptionsPrefix() or "") + "mat_mumps_icntl_14"] = percent  # type: ignore[index]
     # PETSc skips every numeric factorisation after a failed one (it takes the
     # failure for the analysis's), whatever the failure (workspace, a singular or
     # non-finite matrix of a wild Newton trial): reset the PC, so that the next
@@ -301,17 +320,19 @@ class LaggedSolver(DirectSolver):
     """
 
     name = "lagged"
+    _lag: int       # the preconditioner lag after the last Newton iteration (set in configure)
+    _seen: int      # Krylov fallbacks seen by the monitor (set in configure)
 
-    def __init__(self, package="mumps", blr=1e-5, refactor_its=30, rtol=1e-10, restart=200,
-                 max_it=1000):
+    def __init__(self, package: str = "mumps", blr: float | None = 1e-5, refactor_its: int = 30,
+                 rtol: float = 1e-10, restart: int = 200, max_it: int = 1000) -> None:
         super().__init__(package, blr)
         self.refactor_its, self.rtol, self.restart, self.max_it = (refactor_its, rtol,
                                                                    restart, max_it)
         self.factorisations = 0
-        self._pattern = None
+        self._pattern: PETSc.Mat | None = None
         self.guard = KrylovGuard(package=package)
 
-    def options(self, problem=None):
+    def options(self, problem: Problem | None = None) -> OptionsDict:
         """PETSc options of the KSP and PC (without the problem's prefix)."""
         out = super().options(problem)
         out.update({"ksp_type": "gmres", "ksp_gmres_restart": self.restart,
@@ -321,13 +342,13 @@ class LaggedSolver(DirectSolver):
                     "snes_lag_preconditioner_persists": True})
         return out
 
-    def configure(self, problem):
+    def configure(self, problem: Problem) -> None:
         """Keep the factor across Newton solves; a monitor decides when to refactorise."""
         snes = problem.snes
         lag_preconditioner(snes, -2)       # factorise at the next Jacobian, then keep it
         self.guard.install(problem)
 
-        def monitor(snes, it, fnorm):
+        def monitor(snes: PETSc.SNES, it: int, fnorm: float) -> None:
             # SNES turns a lag of -2 into -1 when it factorises at its next Jacobian
             if self._lag == -2 and lag_preconditioner(snes) == -1:
                 self.factorisations += 1
@@ -342,17 +363,17 @@ class LaggedSolver(DirectSolver):
         self._lag = -2
         snes.setMonitor(monitor)
 
-    def prepare(self, problem):
+    def prepare(self, problem: Problem) -> None:
         """Refactorise after a failed solve or factorisation, or on a new matrix."""
         snes = problem.snes
         ksp = snes.getKSP()
         if (grow_workspace(ksp.getPC()) is not None or problem.A is not self._pattern
-                or ksp.getConvergedReason() < 0):
+                or cast(int, ksp.getConvergedReason()) < 0):
             self._pattern = problem.A
             lag_preconditioner(snes, -2)
         self._lag = lag_preconditioner(snes)
 
-    def describe(self, problem):
+    def describe(self, problem: Problem) -> str:
         """One line naming the strategy (recorded in ``summary.json``)."""
         blr = f", BLR {self.blr:g}" if self.blr is not None else ""
         return (f"lagged (GMRES rtol {self.rtol:g}, {self.package} LU{blr} of an earlier "
@@ -375,12 +396,13 @@ class IterativeSolver:
 
     amg = "gamg"
 
-    def __init__(self, rtol=1e-10, restart=300, max_it=3000):
+    def __init__(self, rtol: float = 1e-10, restart: int = 300, max_it: int = 3000) -> None:
         self.rtol, self.restart, self.max_it = rtol, restart, max_it
-        self._split = None
+        # (bulk IS, interface IS, near-nullspace); the index sets None without an interface
+        self._split: tuple[PETSc.IS | None, PETSc.IS | None, PETSc.NullSpace] | None = None
         self.guard = KrylovGuard(switch_after=2)
 
-    def _amg_options(self, pre):
+    def _amg_options(self, pre: str) -> OptionsDict:
         # Chebyshev on SOR sweeps: on the graded tensor grid of the groove (cell aspect
         # ratios to ~24) it takes the GAMG-CG iterations of the elastic block from 118
         # (Jacobi) to 37; on a uniform cube 18 -> 13 (benchmarks/bench_solvers.py notes)
@@ -390,7 +412,7 @@ class IterativeSolver:
                 f"{pre}mg_levels_pc_type": "sor",
                 f"{pre}mg_levels_ksp_max_it": 2}
 
-    def options(self, problem=None):
+    def options(self, problem: Problem | None = None) -> OptionsDict:
         """PETSc options of the KSP and PC (without the problem's prefix).
 
         With ``problem`` and no interface field: AMG on the whole matrix.
@@ -398,9 +420,9 @@ class IterativeSolver:
         if problem is not None and not bulk_fields(problem)[1]:
             return self.single_field_options()
         # right preconditioning: rtol bounds the true residual of the Newton system
-        out = {"ksp_type": "gmres", "ksp_gmres_restart": self.restart, "ksp_pc_side": "right",
-               "ksp_rtol": self.rtol, "ksp_atol": 0.0, "ksp_max_it": self.max_it,
-               "ksp_gmres_modifiedgramschmidt": None}
+        out: OptionsDict = {"ksp_type": "gmres", "ksp_gmres_restart": self.restart,
+                            "ksp_pc_side": "right", "ksp_rtol": self.rtol, "ksp_atol": 0.0,
+                            "ksp_max_it": self.max_it, "ksp_gmres_modifiedgramschmidt": None}
         out.update({"pc_type": "fieldsplit", "pc_fieldsplit_type": "schur",
                     # upper: S solve, then one bulk V-cycle per GMRES iteration ("full"
                     # applies the V-cycle twice): ball 24.5k 22 % and groove 14k 31 %
@@ -414,13 +436,13 @@ class IterativeSolver:
         out.update(self._amg_options("fieldsplit_bulk_"))
         return out
 
-    def single_field_options(self):
+    def single_field_options(self) -> OptionsDict:
         """Options when there is no interface field: AMG on the whole matrix."""
         out = {k: v for k, v in self.options().items() if k.startswith("ksp_")}
         out.update(self._amg_options(""))
         return out
 
-    def configure(self, problem):
+    def configure(self, problem: Problem) -> None:
         """Index sets of the two fields and the near-nullspace of the bulk one."""
         bulk, rest = bulk_fields(problem)
         if not bulk:
@@ -436,13 +458,15 @@ class IterativeSolver:
         # (docs/architecture.md, "Memory per rank")
         opts = PETSc.Options()
         if not opts.hasName(PRODUCT_CLEAR):
-            opts[PRODUCT_CLEAR] = None
+            opts[PRODUCT_CLEAR] = None  # type: ignore[index]  # petsc4py stub: no __setitem__
 
-        def index_set(ks, bs=1):
+        def index_set(ks: Sequence[int], bs: int = 1) -> PETSc.IS:
+            idx: list[npt.NDArray[np.integer]] | npt.NDArray[np.integer]
             idx = [problem.block_start(k) + np.arange(problem.owned_size(problem.u[k]))
                    for k in ks]
             idx = np.concatenate(idx) if idx else np.zeros(0, dtype=np.int64)
-            iset = PETSc.IS().createGeneral(idx.astype(PETSc.IntType), comm=comm)
+            # (petsc4py's stub types the indices Sequence; it takes an array)
+            iset = PETSc.IS().createGeneral(idx.astype(PETSc.IntType), comm=comm)  # type: ignore[arg-type]
             iset.setBlockSize(bs)    # AMG aggregates nodes (blocks of gdim), not dofs
             return iset
 
@@ -460,12 +484,12 @@ class IterativeSolver:
         ksp.setFromOptions()
         self.guard.install(problem)
 
-    def prepare(self, problem):
+    def prepare(self, problem: Problem) -> None:
         """Near-nullspace on the current matrix (a grown pattern is a new matrix)."""
         if self._split is not None and self._split[0] is None:
             problem.A.setNearNullSpace(self._split[2])
 
-    def describe(self, problem):
+    def describe(self, problem: Problem) -> str:
         """One line naming the strategy and its fields (recorded in ``summary.json``)."""
         bulk, rest = bulk_fields(problem)
         names = lambda ks: "+".join(problem.u[k].name for k in ks) or "-"  # noqa: E731

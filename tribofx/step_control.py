@@ -23,9 +23,15 @@ state and checkpoint (:meth:`StepController.state`), so a resumed run goes on
 with the steps it would have taken.
 """
 
+from __future__ import annotations
+
 from abc import ABC, abstractmethod
+from typing import TYPE_CHECKING, Any, cast
 
 from .reports import NewtonDivergence
+
+if TYPE_CHECKING:
+    from .stepper import Stepper, StepReport
 
 __all__ = ["ERROR_MEASURES", "STEP_RULES", "ErrorControl", "FixedStep", "StepController",
            "step_factor"]
@@ -36,7 +42,7 @@ ERROR_MEASURES = ("unit_step", "step")
 STEP_RULES = ("i", "pi")
 
 
-def step_factor(r, p, r_prev=None):
+def step_factor(r: float, p: float, r_prev: float | None = None) -> float:
     """Return the factor of the next step from the normalized estimate ``r`` = E/allowed.
 
     ``p``: the order of r in Δt.  Both rules aim at r = 0.9^p (the safety factor
@@ -81,21 +87,21 @@ class StepController(ABC):
         return self.dt
 
     # -- state (the stepper's state and checkpoint) -----------------------------------
-    def state(self) -> dict:
+    def state(self) -> dict[str, Any]:
         """Return the controller's part of the stepper's state (JSON)."""
         return {"dt": self.dt, "cuts": self.cuts, "err_prev": self.err_prev}
 
-    def restore(self, state: dict) -> None:
+    def restore(self, state: dict[str, Any]) -> None:
         """Restore a :meth:`state` (``err_prev`` absent in checkpoints before the PI rule)."""
         self.dt, self.cuts = state["dt"], state["cuts"]
         self.err_prev = state.get("err_prev")
 
-    def take_over(self, state: dict) -> None:
+    def take_over(self, state: dict[str, Any]) -> None:
         """Go on from the state of the controller this one replaces (a resumed run)."""
         self.cuts = state["cuts"]
 
     # -- the loop's questions -------------------------------------------------------------
-    def start(self, stepper, T: float) -> None:
+    def start(self, stepper: Stepper, T: float) -> None:
         """Check that the controller can drive ``stepper`` to ``T``; set the first step."""
         if self.dt is None:
             raise ValueError("no step: give Stepper.run a step (s) or a step controller")
@@ -105,10 +111,11 @@ class StepController(ABC):
         """Return the step to try from ``t`` (s)."""
 
     @abstractmethod
-    def failed(self, stepper, h: float, error: NewtonDivergence) -> None:
+    def failed(self, stepper: Stepper, h: float, error: NewtonDivergence) -> None:
         """Cut the step after a Newton failure of ``h`` (state restored), or raise ``error``."""
 
-    def judge(self, stepper, h: float, report, saved) -> bool:
+    def judge(self, stepper: Stepper, h: float, report: StepReport,
+              saved: dict[str, Any] | None) -> bool:
         """Accept the converged step of ``h`` (True), or reject it (state back to ``saved``)."""
         return True
 
@@ -116,20 +123,21 @@ class StepController(ABC):
 class FixedStep(StepController):
     """The nominal step ``dt`` (s), halved on Newton failures (see the module docstring)."""
 
-    def next_step(self, t, T):
+    def next_step(self, t: float, T: float) -> float:
         """Return the nominal step at the current halving level (the last one up to T)."""
-        return min(self.dt / 2**self.cuts, T - t)
+        return min(cast(float, self.dt) / 2**self.cuts, T - t)     # (start() checked dt)
 
-    def failed(self, stepper, h, error):
+    def failed(self, stepper: Stepper, h: float, error: NewtonDivergence) -> None:
         """Halve the step; raise ``error`` beyond ``stepper.max_cuts`` halvings."""
         self.cuts += 1
         if self.cuts > stepper.max_cuts:
             self.cuts -= 1
             raise error
 
-    def judge(self, stepper, h, report, saved):
+    def judge(self, stepper: Stepper, h: float, report: StepReport,
+              saved: dict[str, Any] | None) -> bool:
         """Accept; double the step back once t is aligned with the coarser step."""
-        while self.cuts > 0 and _aligned(stepper.t, self.dt / 2 ** (self.cuts - 1)):
+        while self.cuts > 0 and _aligned(stepper.t, cast(float, self.dt) / 2 ** (self.cuts - 1)):
             self.cuts -= 1
         return True
 
@@ -177,15 +185,15 @@ class ErrorControl(StepController):
         self.T = self.dt_min = 0.0
 
     @property
-    def nominal(self):
+    def nominal(self) -> float:
         """The first step (s): the progress bar counts in it."""
         return self.first
 
-    def take_over(self, state):
+    def take_over(self, state: dict[str, Any]) -> None:
         """Go on with the proposed step, the cut level and the PI memory of ``state``."""
         self.restore(state)
 
-    def start(self, stepper, T):
+    def start(self, stepper: Stepper, T: float) -> None:
         """Refuse wear other than BDF2; the first step unless resumed; Δt_min = 1e-6 T."""
         if not all(w.scheme.bdf2 for w in stepper.wears):
             raise ValueError("error control needs BDF2: Wear(..., scheme=BDF2)")
@@ -194,18 +202,19 @@ class ErrorControl(StepController):
         self.T, self.dt_min = T, 1e-6 * T
         self.rejected = 0
 
-    def next_step(self, t, T):
+    def next_step(self, t: float, T: float) -> float:
         """Return the proposed step (the last one up to T)."""
-        return min(self.dt, T - t)
+        return min(cast(float, self.dt), T - t)     # (start() has set it)
 
-    def failed(self, stepper, h, error):
+    def failed(self, stepper: Stepper, h: float, error: NewtonDivergence) -> None:
         """Halve the step; raise ``error`` beyond ``stepper.max_cuts`` halvings."""
         self.cuts += 1
         if self.cuts > stepper.max_cuts:
             raise error
         self.dt = h / 2
 
-    def judge(self, stepper, h, report, saved):
+    def judge(self, stepper: Stepper, h: float, report: StepReport,
+              saved: dict[str, Any] | None) -> bool:
         """Accept or reject the step by its estimate; propose the next step."""
         errs = [(e, w.error_order) for w, e in
                 ((w, w.step_error(stepper.defect_filter(w) if self.filtered else None))
@@ -224,16 +233,17 @@ class ErrorControl(StepController):
         memory = self.err_prev
         pi = (self.rule == "pi" and not bad and not after_cut and memory is not None
               and memory[1] == p_eff)
-        factor = step_factor(r, p_eff, memory[0] if pi else None)
+        factor = step_factor(r, p_eff, cast(list, memory)[0] if pi else None)  # pi: a memory
         if self.rule == "pi" and after_cut and not bad:
             factor = min(factor, 1.0)
         at_min = h <= self.dt_min * (1 + 1e-9)
         forced = bad and err == err and at_min
+        # (saved is the entry state: this controller rejects, so the loop saves it)
         if bad and err != err and at_min:
-            stepper.restore(saved)
+            stepper.restore(cast("dict[str, Any]", saved))
             raise NewtonDivergence(f"error control: NaN estimate at t = {stepper.t:g} s")
         if bad and not forced:
-            stepper.restore(saved)
+            stepper.restore(cast("dict[str, Any]", saved))
             self.rejected += 1
             self.dt = max(h * factor, self.dt_min)
             return False
@@ -247,5 +257,5 @@ class ErrorControl(StepController):
         return True
 
 
-def _aligned(t, h):
+def _aligned(t: float, h: float) -> bool:
     return abs(t / h - round(t / h)) < 1e-9

@@ -60,10 +60,16 @@ rank and a JSON file of the scalars; a restore
 needs the same mesh partition (the same number of ranks).  Units: s, mm.
 """
 
+from __future__ import annotations
+
 import math
+import os
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 from mpi4py import MPI
 
 from . import interrupt
@@ -73,6 +79,19 @@ from .error_filter import filtered_defect
 from .forms import wear as wf
 from .problem import NewtonDivergence, Problem, _unique
 from .step_control import FixedStep, StepController
+
+if TYPE_CHECKING:
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from .hold import Hold
+    from .problem import ProblemComponent
+    from .protocols import ComponentBase
+    from .reports import NewtonReport
+
+    #: an evolving interface: a tribofx.interfaces.Wear or SteadyWear, a transient Film,
+    #: or the user's own; duck-typed (what the stepper asks: the module docstring)
+    EvolvingInterface: TypeAlias = Any
 
 __all__ = ["MeshInversion", "ReciprocatingCycle",
            "StepReport", "Stepper", "nominal_steps"]
@@ -130,10 +149,18 @@ class Stepper:
             interfaces' ``begin_step`` (their histories hold t_n); part of the state.
     """
 
-    def __init__(self, components, wear, cycle=None, parameters=(), max_cuts=6,
-                 checkpoint=None, picard_tol=1e-8, max_picard=20, name="wear", verbose=False,
-                 problem_kw=None, problem_class=Problem, schedule=()):
-        self.wears = list(wear) if isinstance(wear, (list, tuple)) else [wear]
+    def __init__(self, components: Iterable[ComponentBase],
+                 wear: EvolvingInterface | Sequence[EvolvingInterface],
+                 cycle: ReciprocatingCycle | None = None,
+                 parameters: Iterable[fem.Constant] = (), max_cuts: int = 6,
+                 checkpoint: str | os.PathLike[str] | None = None, picard_tol: float = 1e-8,
+                 max_picard: int = 20, name: str = "wear", verbose: bool = False,
+                 problem_kw: Mapping[str, Any] | None = None,
+                 problem_class: type[Problem] = Problem,
+                 schedule: Iterable[tuple[fem.Constant, Callable[[float], float]]] = ()
+                 ) -> None:
+        self.wears: list[EvolvingInterface] = (list(wear) if isinstance(wear, (list, tuple))
+                                               else [wear])
         wear = self.wears[0]
         if any((w.scheme, w.averaged) != (wear.scheme, wear.averaged) for w in self.wears):
             raise ValueError("the evolving interfaces of one stepper need the same scheme "
@@ -142,7 +169,9 @@ class Stepper:
             raise ValueError("fast-time cycles need a wear interface with averaged=True")
         if wear.averaged and cycle is None:
             raise ValueError("an averaged wear rate needs a fast-time cycle")
-        self.components, self.wear, self.cycle = list(components), wear, cycle
+        # (ComponentBase; the Component protocol is the contract, as in Problem)
+        self.components, self.wear, self.cycle = (
+            cast("list[ProblemComponent]", list(components)), wear, cycle)
         self.schedule = list(schedule)
         self.parameters = list(parameters) + [c for c, _ in self.schedule]
         self.max_cuts, self.verbose = int(max_cuts), verbose
@@ -152,26 +181,28 @@ class Stepper:
         every = _unique([u for c in self.components for u in c.unknowns()])
         deformation = [u for u in every if not any(u is s for s in shape)]
         self.monolithic = wear.scheme.implicit and not wear.averaged
+        self.shape: Problem | None       # the shape step's problem (None: monolithic)
         if self.monolithic:
             self.problem = problem_class(self.components, deformation + shape, name=name, **kw)
             self.shape = None
         else:
             self.problem = problem_class(self.components, deformation, name=name, **kw)
             self.shape = problem_class(self.components, shape, name=f"{name}_shape", **kw)
-        self.hold = None      # a tribofx.hold.Hold: the deformation solved with a response held
+        # a tribofx.hold.Hold: the deformation solved with a response held
+        self.hold: Hold | None = None
         self.comm = wear.body.mesh.comm
         self.checkpoint = None if checkpoint is None else Checkpoint(checkpoint, self.comm)
         self.t, self.steps = 0.0, 0
         #: the step controller of the last (or next) run: its state is the stepper's too
         self.controller: StepController = FixedStep()
-        self.history = {}     # the case's JSON-able records, kept in the checkpoint
-        self.last_increment = None
-        self.last_increments = None
+        self.history: dict[str, Any] = {}   # the case's JSON-able records, in the checkpoint
+        self.last_increment: npt.NDArray[np.float64] | None = None
+        self.last_increments: list[npt.NDArray[np.float64]] | None = None
 
     # -- set-up ------------------------------------------------------------------
     def shape_unknown_fraction(self) -> float:
         """Fraction of all unknowns that belong to the shape step (w and ζ)."""
-        def n(f):
+        def n(f: fem.Function) -> int:
             im = f.function_space.dofmap.index_map
             return im.size_global * f.function_space.dofmap.index_map_bs
         shape = sum(n(f) for w in self.wears for f in w.shape_unknowns())
@@ -179,7 +210,7 @@ class Stepper:
         return shape / total
 
     # -- state -------------------------------------------------------------------
-    def _fields(self):
+    def _fields(self) -> list[fem.Function | fem.Constant]:
         return self.problem.state_fields() + self.parameters
 
     def field_names(self) -> list:
@@ -198,26 +229,27 @@ class Stepper:
             raise ValueError("state does not match the stepper's fields")
         for f, a in zip(fields, state["fields"]):
             if hasattr(f, "x") and f.x.array.shape != np.shape(a):
-                raise ValueError(f"state of {f.name!r} has shape {np.shape(a)}")
+                raise ValueError(f"state of {cast('fem.Function', f).name!r} has shape "
+                                 f"{np.shape(a)}")
         assign_fields(fields, state["fields"])
         self.t, self.steps = state["t"], state["steps"]
         self.controller.restore(state)
         self.problem.refresh()
 
-    def load_checkpoint(self, directory=None) -> None:
+    def load_checkpoint(self, directory: str | os.PathLike[str] | None = None) -> None:
         """Restore the state of the checkpoint in ``directory`` (default: this stepper's)."""
         ck = self.checkpoint if directory is None else Checkpoint(directory, self.comm)
-        state = ck.read()
+        state = cast(Checkpoint, ck).read()   # (a stepper without one: give a directory)
         self.restore(state)
         self.history = state["history"]
 
     # -- one slow step -------------------------------------------------------------
-    def _check_mesh(self):
+    def _check_mesh(self) -> None:
         m = min(w.min_volume_factor() for w in self.wears)
         if not m > 0:
             raise MeshInversion(f"shape update inverts the mesh (min det(I + Grad w) = {m:.3e})")
 
-    def _deform(self):
+    def _deform(self) -> list[NewtonReport]:
         """Solve the deformation problem (plainly or with the hold's response held); reports."""
         if self.hold is not None:
             return self.hold.solve().reports
@@ -234,7 +266,8 @@ class Stepper:
         for w in self.wears:
             w.begin_step(dt)
         for c, f in self.schedule:
-            c.value = f(self.t + dt)
+            # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+            c.value = f(self.t + dt)  # type: ignore[assignment]
         if self.hold is not None:
             self.hold.begin(dt)
         try:
@@ -244,6 +277,7 @@ class Stepper:
                 out.reports += self._deform()
                 self._check_mesh()
             else:
+                assert self.shape is not None       # a staggered scheme has a shape problem
                 out.reports.append(self.shape.solve(verbose=self.verbose))
                 self._check_mesh()
                 # warm start: the deformed configuration x = X̂ + u is kept (gaps and
@@ -272,7 +306,8 @@ class Stepper:
 
     def restart(self) -> int:
         """Erase the contact memory, start the cycle and run in (no wear); Newton iterations."""
-        P, cyc = self.problem, self.cycle
+        # (with a fast-time cycle, as every method of this section)
+        P, cyc = self.problem, cast(ReciprocatingCycle, self.cycle)
         cyc.start()
         P.commit()
         its = P.solve_by_homotopy(verbose=self.verbose).iterations
@@ -283,13 +318,13 @@ class Stepper:
             P.commit()
         return its
 
-    def run_cycle(self):
+    def run_cycle(self) -> tuple[list[npt.NDArray[np.float64]], int]:
         """One loading cycle at the current shape; returns (ΔW nodal (mm) per interface, its).
 
         ΔW = Σ_j K T_T·Δs_j (eq. 22) over the cycle's sub-steps (not the run-in),
         one array per evolving interface (:attr:`wears` order).
         """
-        P, cyc = self.problem, self.cycle
+        P, cyc = self.problem, cast(ReciprocatingCycle, self.cycle)
         its = self.restart()
         cyc.begin_work()
         dW = [np.zeros_like(w.rate_bar.x.array) for w in self.wears]
@@ -302,21 +337,24 @@ class Stepper:
             P.commit()
         return dW, its
 
-    def _shape_step(self, rates, w0, out):
+    def _shape_step(self, rates: Sequence[npt.NDArray[np.float64]],
+                    w0: Sequence[npt.NDArray[np.float64]],
+                    out: StepReport) -> list[npt.NDArray[np.float64]]:
         """Shape step (28) from w0 with the nodal rates (mm/s), one per interface."""
         for w, r, a in zip(self.wears, rates, w0):
             w.body.w.x.array[:] = a
             w.rate_bar.x.array[:] = r
+        assert self.shape is not None       # fast-time cycles: a staggered scheme
         out.reports.append(self.shape.solve(verbose=self.verbose))
         self._check_mesh()
         return [w.body.w.x.array - a for w, a in zip(self.wears, w0)]
 
-    def _max(self, arrays):
+    def _max(self, arrays: Iterable[npt.NDArray[np.float64]]) -> float:
         return self.comm.allreduce(max((float(np.max(np.abs(a), initial=0.0)) for a in arrays),
                                        default=0.0), op=MPI.MAX)
 
-    def _cycle_step(self, dt, out):
-        theta, tau = self.wear.scheme.theta, self.cycle.period
+    def _cycle_step(self, dt: float, out: StepReport) -> None:
+        theta, tau = self.wear.scheme.theta, cast(ReciprocatingCycle, self.cycle).period
         dW, its = self.run_cycle()
         rate_n = [wf.cycle_average_rate(d, tau) for d in dW]  # eq. 23
         for w, r in zip(self.wears, rate_n):
@@ -350,8 +388,9 @@ class Stepper:
         self.last_increment = dW[0]
 
     # -- slow time -------------------------------------------------------------------
-    def run(self, T: float, controller: StepController | float | None = None, on_step=None,
-            progress=None) -> None:
+    def run(self, T: float, controller: StepController | float | None = None,
+            on_step: Callable[[Stepper, StepReport], object] | None = None,
+            progress: tqdm | None = None) -> None:
         """Advance from the current time to ``T`` (s), the steps chosen by ``controller``.
 
         ``controller``: a :class:`tribofx.step_control.StepController` (e.g.
@@ -375,7 +414,7 @@ class Stepper:
             self.controller = controller
         ctl = self.controller
         ctl.start(self, T)
-        bar = (T, ctl.nominal)
+        bar = (T, cast(float, ctl.nominal))     # (a step: start() has checked it)
         self._progress(progress, bar)   # resumed from a checkpoint: the bar goes on
         interrupt.arm()
         while self.t < T * (1 - 1e-12):
@@ -395,7 +434,9 @@ class Stepper:
             self._progress(progress, bar)
             interrupt.check(self.comm, self.t)
 
-    def defect_filter(self, wear):
+    def defect_filter(
+            self, wear: EvolvingInterface
+    ) -> Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]]:
         """Return the filter of ``wear``'s error estimate through the step's implicit operator.
 
         A callable taking the nodal defect to :func:`tribofx.error_filter.filtered_defect`
@@ -409,7 +450,7 @@ class Stepper:
                              "(the response held in the filter's solve)")
         return lambda d: filtered_defect(self.problem, wear, d, border, self.wears)
 
-    def _progress(self, progress, bar):
+    def _progress(self, progress: tqdm | None, bar: tuple[float, float]) -> None:
         """Move the bar to the nominal steps (``bar`` = (T, Δt)) that t has completed.
 
         By time, so that cut steps and the steps of error control count as the
@@ -423,7 +464,7 @@ class Stepper:
             progress.update(n - progress.n)
 
 
-def nominal_steps(T, dt):
+def nominal_steps(T: float, dt: float) -> int:
     """Return the number of steps of ``dt`` to ``T`` without cuts (the last may be shorter)."""
     return math.ceil(T / dt - 1e-9)
 

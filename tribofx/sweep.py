@@ -20,10 +20,25 @@ lives here:
 The case keeps only its physics: what a point measures, where it goes next.
 """
 
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from types import TracebackType
+from typing import TYPE_CHECKING, Any, Literal, cast
+
 from . import interrupt
 from .output import VTXSeries
 from .problem import NewtonDivergence
 from .restart import sweep_stem
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    from dolfinx import fem
+    from mpi4py import MPI
+    from tqdm import tqdm
+
+    from .output import RunRecord
+    from .restart import SweepJournal
 
 __all__ = ["SweepVariant"]
 
@@ -49,8 +64,12 @@ class SweepVariant:
             (False: the case records them itself).
     """
 
-    def __init__(self, journal, key, run, state, record, fields, prefix="", records=("steps",),
-                 comm=None, progress=None, progress_key="steps", newton=True):
+    def __init__(self, journal: SweepJournal, key: str, run: object,
+                 state: Sequence[fem.Function | fem.Constant], record: RunRecord,
+                 fields: Mapping[str, list[fem.Function]], prefix: str = "",
+                 records: Iterable[str] | Mapping[str, Any] = ("steps",),
+                 comm: MPI.Comm | None = None, progress: tqdm | None = None,
+                 progress_key: str = "steps", newton: bool = True) -> None:
         self.journal, self.key, self.run, self.state = journal, key, run, state
         self.record, self.newton = record, newton
         defaults = dict(records) if isinstance(records, dict) else {k: [] for k in records}
@@ -61,33 +80,36 @@ class SweepVariant:
         self.points, self.its = self.records["points"], self.records["its"]
         if progress is not None and self.records.get(progress_key):
             progress.update(len(self.records[progress_key]))
-        self.series = VTXSeries(comm, getattr(record, "outdir", None),
+        # (every caller gives comm: VTXSeries needs one)
+        self.series = VTXSeries(cast("MPI.Comm", comm), getattr(record, "outdir", None),
                                 {sweep_stem(f"{prefix}{k}_series", len(self.points)): f
                                  for k, f in fields.items()})
         record.data.setdefault("series_points", {})[key] = self.points
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> list[Any]:
         """Return the record list ``name``."""
         return self.records[name]
 
-    def write(self, point):
+    def write(self, point: float | Sequence[float]) -> None:
         """Append the point's coordinates (a number or a list) and write the fields there."""
         self.points.append(point)
         self.series.write(len(self.points) - 1)
 
-    def save(self, position, arrays=()):
+    def save(self, position: Mapping[str, Any],
+             arrays: Iterable[npt.ArrayLike] = ()) -> None:
         """Checkpoint the state, the records and the case's ``position`` (a dict)."""
         self.journal.save(self.key, self.state, self.records, position, arrays=list(arrays))
 
-    def resume(self):
+    def resume(self) -> list[npt.NDArray[Any]]:
         """Copy the saved state back (a resumed variant); returns the saved extra arrays."""
         return self.journal.restore(self.key, self.state)
 
-    def __enter__(self):
+    def __enter__(self) -> SweepVariant:
         interrupt.arm()   # gmsh (a mesh built for the variant) resets the SIGTERM handler
         return self
 
-    def __exit__(self, kind, err, tb):
+    def __exit__(self, kind: type[BaseException] | None, err: BaseException | None,
+                 tb: TracebackType | None) -> Literal[False]:
         self.series.close()
         if self.newton:
             self.record.data["newton_iterations"].extend(self.its)
