@@ -187,11 +187,9 @@ class MasterSide:
         during the iterations (:func:`tribofx.pattern.facet_rings`), so those
         couplings are preallocated.
         """
-        # NOTE: _ring_seg is the facets array, not a (segments, facets) pairing, so
-        # same_pairing compares its first row with ``seg`` and is always False: the
-        # rings are rebuilt on every call (correct, but the cache never hits)
-        if not facets.same_pairing(self._ring_seg, (seg, None)):  # type: ignore[arg-type]
-            self._ring, self._ring_seg = facet_rings(seg), seg
+        # the rings depend on the segments only: rebuilt when they change
+        if self._ring_seg is None or not np.array_equal(self._ring_seg, seg):
+            self._ring, self._ring_seg = facet_rings(seg), seg.copy()
         assert self._ring is not None       # set with _ring_seg
         ring = self._ring[facet]
         valid = ring >= 0
