@@ -64,8 +64,7 @@ def owned_arrays(problem: Problem, functions: Sequence[fem.Function | npt.NDArra
     for ui, f in zip(problem.u, functions or problem.u):
         V = ui.function_space
         if _replicated(problem, ui):
-            # a replicated unknown's entry must be a Function here (an array has no .x)
-            n = len(cast("fem.Function", f).x.array) if problem.snes.comm.rank == 0 else 0
+            n = len(ui.x.array) if problem.snes.comm.rank == 0 else 0
         else:
             n = V.dofmap.index_map.size_local * V.dofmap.index_map_bs
         out.append(np.asarray(f.x.array[:n] if hasattr(f, "x") else f[:n]))
