@@ -71,7 +71,10 @@ factorisation breaks down after a poor line-search step).
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
+from __future__ import annotations
+
 import dataclasses
+from typing import TYPE_CHECKING, Any, Literal, Self, TypeAlias, cast, overload
 
 import numpy as np
 import ufl
@@ -90,10 +93,33 @@ from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .surface import Surface
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+    from typing_extensions import TypeIs
+
+    from ..body import Body
+    from ..forms.ehl import LubricationKinematics
+    from ..forms.wear import WearLoad
+    from ..laws import Law
+    from ..protocols import Counterpart
+    from ..reports import NewtonReport
+    from ..roughness import Roughness
+    from .reynolds_film import Profile
+
+    #: a velocity field: a callable of a UFL position (a shape of :mod:`tribofx.motions`)
+    Shape: TypeAlias = Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr]
+    #: (shape, U): the velocity U·shape(X), U a Constant (mm/s)
+    Motion: TypeAlias = tuple[Shape, fem.Constant]
+
 __all__ = ["Film"]
 
 
-def _outward_cell_normals(body, sub, emap, G):
+def _outward_cell_normals(body: Body, sub: dmesh.Mesh, emap: dmesh.EntityMap,
+                          G: fem.FunctionSpace) -> fem.Function:
     """DG0 field on the submesh: outward unit normal of each (flat) cell of Γ_l."""
     msh = body.mesh
     tdim = msh.topology.dim
@@ -121,7 +147,7 @@ def _outward_cell_normals(body, sub, emap, G):
     return N
 
 
-def _is_motion(spec):
+def _is_motion(spec: object) -> TypeIs[Motion]:
     """Whether a velocity ``spec`` is (shape, U): a motion of :mod:`tribofx.motions` and a speed."""
     return isinstance(spec, tuple) and len(spec) == 2 and callable(spec[0])
 
@@ -176,11 +202,33 @@ class Film(ReynoldsFilm):
     CAVITATION = ("penalty", "jfo")
     averaged = False      # the slow-time protocol: a transient film is not cycle-averaged
 
-    def __init__(self, body, boundary, counterpart, mu, V_counter=None, model="finite",
-                 shear=True, supg=True, cavitation="penalty", eps=None, p_c=1.0, alpha=None,
-                 film_scale=1e-2, speed_scale=1.0, quadrature_degree=4, row_scaling=True,
-                 name="film", rtol=1e-10, require_open=False, density=None, quadrature="gauss",
-                 motion=None, roughness=None):
+    body: Body
+    counterpart: Counterpart
+    g: fem.Function | None
+    T_b: ufl.core.expr.Expr | None
+    alpha: fem.Constant | None
+    V_counter: fem.Constant | Motion | None
+    traction: ufl.core.expr.Expr
+    asperity: ufl.core.expr.Expr | None
+    w_solid: ufl.core.expr.Expr | float
+    history: FilmHistory | None
+    _mirrors: list[tuple[fem.Constant, fem.Constant]]   # (source, submesh copy)
+    _post: dict[str, Any] | None
+    _pa_nodal: tuple[fem.Function, fem.Function, fem.Expression] | None
+    _content_form: fem.Form | None
+    _conductance: fem.Expression | None
+    _dry: tuple[PrescribedPressure, Problem] | None
+
+    def __init__(self, body: Body, boundary: str,
+                 counterpart: Callable[[fem.FunctionSpace], Counterpart], mu: float | Law,
+                 V_counter: npt.ArrayLike | fem.Constant | Motion | None = None,
+                 model: str = "finite", shear: bool = True, supg: bool = True,
+                 cavitation: str = "penalty", eps: float | None = None, p_c: float = 1.0,
+                 alpha: float | None = None, film_scale: float = 1e-2, speed_scale: float = 1.0,
+                 quadrature_degree: int = 4, row_scaling: bool = True, name: str = "film",
+                 rtol: float = 1e-10, require_open: bool = False,
+                 density: float | Law | None = None, quadrature: str = "gauss",
+                 motion: Motion | None = None, roughness: Roughness | None = None) -> None:
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
         if cavitation not in self.CAVITATION:
@@ -263,11 +311,12 @@ class Film(ReynoldsFilm):
                                           or _is_motion(V_counter)):
             V_counter = fem.Constant(sub, np.asarray(V_counter, dtype=float))
         self.V_counter = V_counter
-        V_counter = self._velocity(V_counter)
+        counter_velocity = self._velocity(V_counter)
 
-        self.kin_bulk = self._kinematics(X, body.u, ufl.grad(body.u), N_b, V_body, V_counter)
+        self.kin_bulk = self._kinematics(X, body.u, ufl.grad(body.u), N_b, V_body,
+                                         counter_velocity)
         self.kin = self._kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N, V_body,
-                                    V_counter)
+                                    counter_velocity)
         self._F, self._N_b = ufl.Identity(gdim) + ufl.grad(body.u), N_b
         self._tractions()
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
@@ -284,7 +333,8 @@ class Film(ReynoldsFilm):
         self._dry = None
         self._init_rows()
 
-    def _velocity(self, spec, constant=None):
+    def _velocity(self, spec: fem.Constant | Motion | None,
+                  constant: fem.Constant | None = None) -> Shape | None:
         """Return a velocity field (callable of a UFL position) from ``spec``, or None.
 
         ``spec``: None, a Constant (uniform) or (shape, U): U·shape(X) with a shape
@@ -300,20 +350,23 @@ class Film(ReynoldsFilm):
         c = self._mirror(c)
         return lambda X: c
 
-    def _kinematics(self, X, disp, grad_disp, N, V_body, V_counter):
+    def _kinematics(self, X: ufl.core.expr.Expr, disp: ufl.core.expr.Expr,
+                    grad_disp: ufl.core.expr.Expr, N: ufl.core.expr.Expr, V_body: Shape | None,
+                    V_counter: Shape | None) -> LubricationKinematics:
         """Lubrication surface S = P(γ_l) (or S_α) at X: on the bulk side or on the submesh.
 
         ``V_body`` (the layer's reference velocity) and ``V_counter`` (the
         countersurface's, at the projection y) are callables of a position, or None.
         """
-        def surface(x):
+        def surface(x: ufl.core.expr.Expr) -> tuple[ufl.core.expr.Expr, ufl.core.expr.Expr,
+                                                     ufl.core.expr.Expr, ufl.core.expr.Expr]:
             return ef.countersurface_projection(self.counterpart.geometry, x)
 
         V = V_body(X) if V_body is not None else ufl.zero(self.body.gdim)
         return ef.lubrication_kinematics(X, disp, grad_disp, N, None, None, V, self.model,
                                          surface, self.alpha, V_counter)
 
-    def _tractions(self):
+    def _tractions(self) -> None:
         """Fluid traction (46) on the body from ``kin_bulk``, and its Couette part alone."""
         args = (self.kin_bulk, self._F, self._N_b, self.T_b, self.mu_p)
         grad_p = self.g if self.shear else ufl.zero(self.body.gdim)
@@ -325,35 +378,38 @@ class Film(ReynoldsFilm):
         self.asperity = None
         if self._rough is not None and self._rough[2] is not None:
             r = self.roughness
+            assert r is not None                    # bound together with _rough
             self.asperity = mixed.asperity_traction(self._rough[2](self.kin_bulk.h),
                                                     self.kin_bulk, self._F, self._N_b,
                                                     r.mu_b, r.delta_v)
             self.traction = self.traction + self.asperity
 
-    def shear_factors(self, h):
+    def shear_factors(self, h: ufl.core.expr.Expr
+                      ) -> tuple[ufl.core.expr.Expr, ufl.core.expr.Expr] | None:
         """Return the rough film's (c, d) in place of μ/h and h/2 (both walls), or None."""
         if self._rough is None or self._rough[3] is None:
             return None
         r = self.roughness
+        assert r is not None                        # bound together with _rough
         return mixed.rough_shear_factors(h, self.mu_p, r.sigma, *self._rough[3], r.share)
 
-    def _mirror(self, constant):
+    def _mirror(self, constant: fem.Constant) -> fem.Constant:
         copy = fem.Constant(self.sub, np.array(constant.value, dtype=float))
         self._mirrors.append((constant, copy))
         return copy
 
-    def _sync(self):
+    def _sync(self) -> None:
         for src, dst in self._mirrors:
             dst.value = src.value
 
     # -- component protocol --------------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return u_s, p (g, λ) and the counterpart's unknowns."""
         out = [self.u_s, self.p] + ([self.g] if self.g is not None else []) \
             + ([self.lam] if self.lam is not None else [])
         return out + list(self.counterpart.unknowns())
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Film virtual work on u; trace, Reynolds, gradient and complementarity rows."""
         body = self.body
         out = [(body.u, ft.film_virtual_work(self.traction, body.v, self.ds, self.w_solid)),
@@ -364,21 +420,21 @@ class Film(ReynoldsFilm):
         if self.g is not None:
             out.append((self.g, self._c_g * ef.tangential_gradient_constraint(
                 self.g, self.p, ufl.TestFunction(self.G), None, self.dx, self.grad_gamma)))
-        if C is not None:
-            out.append((self.lam, self._c_p * C))
+        if C is not None:     # the JFO complementarity: λ exists
+            out.append((cast("fem.Function", self.lam), self._c_p * C))
         return out
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return the submesh ↔ bulk entity map."""
         return [self.emap]
 
     # -- wear driver (tribofx.protocols.WearDriver) ----------------------------------------
     @property
-    def surface(self):
+    def surface(self) -> Surface:
         """Γ_l as a :class:`~tribofx.interfaces.surface.Surface` (a Wear's home)."""
         return self._surface
 
-    def wear_load(self, slip=None):
+    def wear_load(self, slip: ufl.core.expr.Expr | None = None) -> WearLoad:
         """Return the film's pressure p⁺ j and sliding speed as the load of Archard wear.
 
         :func:`tribofx.forms.film_traction.film_wear_load`; with a rough surface's
@@ -397,7 +453,7 @@ class Film(ReynoldsFilm):
                                             self._F, self._N_b)
         return ft.film_wear_load(self.p, self.kin_bulk, self._F, self._N_b, self.model)
 
-    def positions(self):
+    def positions(self) -> npt.NDArray[np.float64]:
         """Nodal positions of Γ_l at which the counterpart is projected (P1 dof order, mm).
 
         Current x = X + u_s, or the reference X for ``model="linear"``.
@@ -407,12 +463,12 @@ class Film(ReynoldsFilm):
         self._u1.interpolate(self.u_s)
         return self._X1 + self._u1.x.array.reshape(-1, self.body.gdim)
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Copy the velocities; let the counterpart project the nodes of Γ_l (kernel data)."""
         self._sync()
         self.counterpart.update(self.positions())
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Per-block tolerances in physical units over lumped reference measures of Γ_l."""
         if self._tol:
             return self._tol_out
@@ -428,7 +484,7 @@ class Film(ReynoldsFilm):
         self.set_scales()
         return out
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Unknowns and the counterpart's state.
 
         The scales p_c and ε are not part of the state: they follow the
@@ -438,17 +494,17 @@ class Film(ReynoldsFilm):
                 + self.viscosity.state_fields() + self.density.state_fields()
                 + self.history_fields())
 
-    def commit(self):
+    def commit(self) -> None:
         """Accept the converged step (the counterpart's history moves on)."""
         self.counterpart.commit()
 
     # -- time: a transient film (tribofx.forms.squeeze) ---------------------------------------
     @property
-    def scheme(self):
+    def scheme(self) -> Scheme | None:
         """The implicit scheme of a transient film's rates, None for the steady film."""
         return None if self.history is None else self.history.scheme
 
-    def transient(self, scheme=BDF2, lumped=False):
+    def transient(self, scheme: Scheme | str = BDF2, lumped: bool = False) -> Self:
         """Make the film transient, integrated by ``scheme``; returns self.
 
         ``scheme``: :data:`~tribofx.scheme.IMPLICIT` (backward Euler, ``"euler"``)
@@ -511,20 +567,20 @@ class Film(ReynoldsFilm):
         self._cell_size = (self._sum(one) / cells) ** (1 / sub.topology.dim)
         return self
 
-    def history_fields(self):
+    def history_fields(self) -> list[fem.Function | fem.Constant]:
         """Return the history's fields of a transient film (none when steady)."""
         return [] if self.history is None else self.history.fields()
 
     # -- slow-time protocol (tribofx.stepper.Stepper) ------------------------------------
-    def shape_unknowns(self):
+    def shape_unknowns(self) -> list[fem.Function]:
         """No shape unknowns: the film's unknowns are solved with the body's."""
         return []
 
-    def min_volume_factor(self):
+    def min_volume_factor(self) -> float:
         """No shape change: +inf (the Stepper's mesh check passes)."""
         return np.inf
 
-    def begin_step(self, dt):
+    def begin_step(self, dt: float) -> None:
         """Start a step of Δt (s): the history moves on (:meth:`FilmHistory.advance`).
 
         The stopping tolerance of the Reynolds rows follows the step: the speed
@@ -540,7 +596,7 @@ class Film(ReynoldsFilm):
         self._round_off = self.row_round_off()
         self.set_scales()
 
-    def row_round_off(self):
+    def row_round_off(self) -> float:
         """Round-off floor of the Reynolds rows at the current state (mm²/s; mm³/s revolved).
 
         A row sums Poiseuille fluxes K (p_i − p_j) with K = w h³/(12 μ h_e) of its
@@ -555,17 +611,17 @@ class Film(ReynoldsFilm):
         if self._conductance is None:
             kin, mu = self._flux_kinematics()
             self._conductance = fem.Expression(
-                self.w_film * kin.h**3 * abs(self.p) / (12 * mu * ufl.CellDiameter(self.sub)),
+                self.w_film * kin.h**3 * abs(self.p) / (12 * mu * ufl.CellDiameter(self.sub)),  # type: ignore[arg-type]  # ufl: Expr.__abs__ set at run time
                 self.Q.element.interpolation_points)
         Kp = fem.Function(self.Q)
         Kp.interpolate(self._conductance)
         local = float(np.max(np.abs(Kp.x.array), initial=0.0))
         return 4 * np.finfo(float).eps * self.sub.comm.allreduce(local, op=MPI.MAX)
 
-    def end_step(self):
+    def end_step(self) -> None:
         """Nothing: the outputs of the step keep its rates (the next step resets them)."""
 
-    def _content(self):
+    def _content(self) -> ufl.core.expr.Expr:
         """UFL content ρ θ h J_S w per unit reference measure (h, J_S: any ``kin`` of the film).
 
         A rough film with average flow stores the expected gap h_T(h) (Patir & Cheng:
@@ -573,10 +629,11 @@ class Film(ReynoldsFilm):
         """
         kin, rough = self.kin, self._rough
         if rough is not None and rough[0] is not None:
+            assert self.roughness is not None       # bound together with _rough
             kin = dataclasses.replace(kin, h=mixed.expected_gap(kin.h, self.roughness.sigma))
         return sq.film_content(kin, self.lam, self.rho_p, self.w_film)
 
-    def content(self):
+    def content(self) -> float:
         """Fluid in the film's modelled part, ∫ ρ θ h ds_S (all ranks; form compiled once).
 
         mm² per unit length in the plane, mm³ in 3D and revolved.  A lumped film
@@ -591,7 +648,7 @@ class Film(ReynoldsFilm):
 
     # -- starting states ---------------------------------------------------------------
 
-    def place_countersurface(self, h0, at):
+    def place_countersurface(self, h0: float, at: npt.ArrayLike) -> None:
         """Translate a rigid countersurface along its normal so that h = ``h0`` (mm) at ``at``.
 
         ``at`` is a reference point; the node of Γ_l nearest to it is used.  The
@@ -615,7 +672,9 @@ class Film(ReynoldsFilm):
         self.counterpart.offset.value[:] += (h_c - h0) * nu_c
         self.refresh()
 
-    def start_from_pressure(self, pressure, h0, at, verbose=False):
+    def start_from_pressure(self,
+                            pressure: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]],
+                            h0: float, at: npt.ArrayLike, verbose: bool = False) -> NewtonReport:
         """Set an initial state: the body under a prescribed film pressure, film ``h0`` at ``at``.
 
         ``pressure`` is a callable of the reference coordinates (3, n) → p (MPa),
@@ -639,7 +698,7 @@ class Film(ReynoldsFilm):
     # -- outputs -------------------------------------------------------------------------
 
 
-    def _post_forms(self):
+    def _post_forms(self) -> dict[str, Any]:
         if self._post is None:
             em = [self.emap]
             gdim = self.body.gdim
@@ -660,17 +719,17 @@ class Film(ReynoldsFilm):
             }
         return self._post
 
-    def _nodal(self, key):
-        f = fem.Function(self.V1)
+    def _nodal(self, key: str) -> npt.NDArray[np.float64]:
+        f: fem.Function = fem.Function(self.V1)
         f.interpolate(self._post_forms()[key])
         return f.x.array
 
-    def _vector_integral(self, key):
+    def _vector_integral(self, key: str) -> npt.NDArray[np.float64]:
         """Refresh the kernel data; the components of the post-processing form ``key``."""
         self.refresh()
         return np.array([self._sum(f) for f in self._post_forms()[key]])
 
-    def force(self):
+    def force(self) -> npt.NDArray[np.float64]:
         """Force of the film on the modelled part of the body.
 
         N/mm per unit thickness in plane strain; N in 3D (a quarter model: a
@@ -678,7 +737,7 @@ class Film(ReynoldsFilm):
         """
         return self._vector_integral("force")
 
-    def counter_force(self):
+    def counter_force(self) -> npt.NDArray[np.float64]:
         """Force of the film on the countersurface (units and parts as :meth:`force`).
 
         ∫_S [−p ν + (μ/h) v_rel − (h/2) grad_S p] ds_S over the modelled part
@@ -691,24 +750,24 @@ class Film(ReynoldsFilm):
         """
         return self._vector_integral("counter")
 
-    def asperity_force(self):
+    def asperity_force(self) -> npt.NDArray[np.float64]:
         """Force of the asperity contact on the body (N; N/mm): pressure and boundary friction."""
         if self.asperity is None:
             return np.zeros(self.body.gdim)
         return self._vector_integral("asperity")
 
-    def couette_force(self):
+    def couette_force(self) -> npt.NDArray[np.float64]:
         """Couette drag alone (N; N/mm): ∫ −j(μ/h)(v_layer − v_counter) dS (any ``shear``)."""
         return self._vector_integral("couette")
 
-    def min_film(self):
+    def min_film(self) -> float:
         """Smallest nodal film thickness on Γ_l (mm, all ranks)."""
         self.refresh()
         n = self.Q.dofmap.index_map.size_local
         return self.sub.comm.allreduce(float(self._film_thickness()[:n].min(initial=np.inf)),
                                        op=MPI.MIN)
 
-    def admissible(self):
+    def admissible(self) -> bool:
         """Line-search test: True, or with ``require_open`` an open film and fluid at every node.
 
         Open: h > 0, or on rough surfaces h > −4σ (the nominal surfaces may
@@ -717,7 +776,13 @@ class Film(ReynoldsFilm):
         floor = 0.0 if self.roughness is None else -4 * self.roughness.sigma
         return not self.require_open or (self.has_fluid() and self.min_film() > floor)
 
-    def profile(self, everywhere=False):
+    @overload
+    def profile(self, everywhere: Literal[True]) -> Profile: ...
+
+    @overload
+    def profile(self, everywhere: bool = False) -> Profile | None: ...
+
+    def profile(self, everywhere: bool = False) -> Profile | None:
         """Nodal X, x (current), y (projection), h, p (λ, p_a) of Γ_l, sorted by X₀.
 
         On rank 0 (None elsewhere), or on every rank (``everywhere``).  x and y
@@ -737,9 +802,13 @@ class Film(ReynoldsFilm):
             d["p_a"] = self._asperity_pressure(d["h"], n)
         return self._gather(d, "X", everywhere)
 
-    def _asperity_pressure(self, h, n):
+    def _asperity_pressure(self, h: npt.NDArray[np.float64], n: int) -> npt.NDArray[np.float64]:
         """Nodal asperity pressure p_a(h) (MPa) of the roughness's law at the nodal gaps."""
+        hf: fem.Function
+        out: fem.Function
         if self._pa_nodal is None:
+            # called with an asperity contact only (profile): the law p_a is bound
+            assert self._rough is not None and self._rough[2] is not None
             hf, out = fem.Function(self.Q), fem.Function(self.Q)
             expr = fem.Expression(self._rough[2](hf), self.Q.element.interpolation_points)
             self._pa_nodal = (hf, out, expr)

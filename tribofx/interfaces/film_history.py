@@ -18,12 +18,19 @@ solve gives the initial state.  Every field here is part of the film's state
 (:meth:`fields`): a checkpoint or a restored trial step takes them along.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import basix.ufl
 import numpy as np
 from dolfinx import fem
 
 from ..forms import wear as wf
 from ..scheme import Scheme
+
+if TYPE_CHECKING:
+    from dolfinx import mesh as dmesh
 
 __all__ = ["FilmHistory"]
 
@@ -42,8 +49,10 @@ class FilmHistory:
         name: the film's name (the names of the fields).
     """
 
-    def __init__(self, scheme, content_space, trace_space, body_space, offset, bulk_mesh,
-                 sub_mesh, name):
+    def __init__(self, scheme: Scheme | str, content_space: fem.FunctionSpace,
+                 trace_space: fem.FunctionSpace, body_space: fem.FunctionSpace,
+                 offset: fem.Constant | None, bulk_mesh: dmesh.Mesh, sub_mesh: dmesh.Mesh,
+                 name: str) -> None:
         self.scheme = Scheme.of(scheme)
         pair = ("n", "nm1")
         self.content = [fem.Function(content_space, name=f"{name}_content_{k}") for k in pair]
@@ -55,12 +64,13 @@ class FilmHistory:
         self.weights = [fem.Constant(bulk_mesh, 0.0) for _ in range(3)]   # 1/Δt, c₀, c₁
         self.dt_prev = fem.Constant(bulk_mesh, 0.0)
 
-    def fields(self):
+    def fields(self) -> list[fem.Function | fem.Constant]:
         """Return the histories, the weights and Δt_prev: the part of the film's state it holds."""
         return (self.content + self.trace + self.displacement + list(self.weights)
                 + [self.dt_prev] + self.offset_history)
 
-    def advance(self, dt, trace, displacement, content):
+    def advance(self, dt: float, trace: fem.Function, displacement: fem.Function,
+                content: fem.Expression) -> None:
         """Move the histories on (t_{n−1} ← t_n ← the converged state) and weight a step Δt.
 
         ``trace`` and ``displacement``: the converged u_s and u; ``content``: the
@@ -82,11 +92,11 @@ class FilmHistory:
         c0, c1 = (1.0, 0.0) if not self.scheme.bdf2 or prev <= 0 \
             else wf.bdf2_coefficients(dt / prev)
         for c, v in zip(self.weights, (1.0 / dt, c0, c1)):
-            c.value = v
-        self.dt_prev.value = float(dt)
+            c.value = v  # type: ignore[assignment]  # dolfinx types it NDArray
+        self.dt_prev.value = float(dt)  # type: ignore[assignment]  # (a float works)
 
 
-def content_space(sub, degree, lumped):
+def content_space(sub: dmesh.Mesh, degree: int, lumped: bool) -> fem.FunctionSpace:
     """Space of a transient film's content: Gauss points of ``degree``, or DG1 when lumped."""
     if lumped:
         return fem.functionspace(sub, ("DG", 1))

@@ -20,6 +20,10 @@ error of rtol·h_ref at a node is a flux imbalance of that size, and the
 rounding of the content's rate grows like 1/Δt as a step is cut.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, TypeAlias
+
 import numpy as np
 import ufl
 from dolfinx import fem, la
@@ -31,6 +35,26 @@ from ..forms import jfo, mixed
 from ..laws import density_law, is_constant
 from ..problem import BlockTolerance
 from ..protocols import ComponentBase
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping, Sequence
+
+    import numpy.typing as npt
+    import ufl.core.expr
+
+    from ..body import Body
+    from ..forms.ehl import LubricationKinematics
+    from ..laws import BoundLaw, Law
+    from ..roughness import Roughness
+
+    #: where a condition holds: reference coordinates (3, n) → bool (n,), as the
+    #: marker of ``fem.locate_dofs_geometrical``
+    Where: TypeAlias = Callable[[npt.NDArray[np.float64]], npt.NDArray[np.bool_]]
+    #: a rough film's bound laws (φ_x, Φ_s, p_a, shear) (:meth:`tribofx.roughness.Roughness.bind`)
+    RoughLaws: TypeAlias = tuple[BoundLaw | None, BoundLaw | None, BoundLaw | None,
+                                 tuple[BoundLaw | None, ...] | None]
+    #: nodal profile arrays by name (:meth:`ReynoldsFilm._gather`)
+    Profile: TypeAlias = dict[str, npt.NDArray[Any]]
 
 __all__ = ["ReynoldsFilm"]
 
@@ -47,26 +71,72 @@ class ReynoldsFilm(ComponentBase):
     :meth:`_init_rows`.
     """
 
-    body = None              # the lubricated body (None: a film between rigid surfaces)
-    roughness = None         # a rough film's Roughness, and its laws bound to the film
-    _rough = None
-    kin_reynolds = None      # a transient film's kinematics relative to S(t)
-    film_rate = None         # a transient film's rate of the fluid content
-    lumped = False           # a transient JFO film's nodal content rate (forms.jfo)
-    vertex_couette = None    # its vertex-rule share of the cavitated Couette flux
-    _inflow = None           # (where, c_in) of the weak inflow end (add_inflow)
-    _rate_speed = 0.0        # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
-    _round_off = 0.0         # the Reynolds rows' round-off floor (a transient film's step)
-    _flux_forms = None       # {inlet: compiled rows and Couette flux of consistent_fluxes}
+    # the lubricated body (None: a film between rigid surfaces)
+    body: Body | None = None
+    # a rough film's Roughness, and its laws bound to the film
+    roughness: Roughness | None = None
+    _rough: RoughLaws | None = None
+    # a transient film's kinematics relative to S(t)
+    kin_reynolds: LubricationKinematics | None = None
+    # a transient film's rate of the fluid content
+    film_rate: ufl.core.expr.Expr | None = None
+    # a transient JFO film's nodal content rate (forms.jfo)
+    lumped: bool = False
+    # its vertex-rule share of the cavitated Couette flux
+    vertex_couette: fem.Constant | None = None
+    # (where, c_in) of the weak inflow end (add_inflow)
+    _inflow: tuple[Where, fem.Constant] | None = None
+    _rate_speed: float = 0.0   # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
+    _round_off: float = 0.0    # the Reynolds rows' round-off floor (a transient film's step)
+    # {inlet: compiled rows (end dofs, form) and Couette flux of consistent_fluxes}
+    _flux_forms: dict[Where, tuple[list[tuple[npt.NDArray[np.int32], fem.Form]],
+                                   fem.Expression | None]] | None = None
 
-    def _init_rows(self):
+    # set by the subclass before _init_rows (see the class docstring)
+    sub: dmesh.Mesh
+    name: str
+    cavitation: str
+    Q: fem.FunctionSpace
+    Ql: fem.FunctionSpace
+    p: fem.Function
+    lam: fem.Function | None
+    kin: LubricationKinematics
+    grad_gamma: Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr]
+    T: ufl.core.expr.Expr | None
+    dx: ufl.Measure
+    nodal_dx: ufl.Measure
+    mu_p: ufl.core.expr.Expr
+    p_c: fem.Constant
+    eps: fem.Constant | None
+    _c_p: fem.Constant | float
+    _q_ref: fem.Constant
+    w_film: ufl.core.expr.Expr | float
+    _supg: bool
+    _jumps: bool
+    rtol: float
+    h_ref: float
+    U_ref: float
+    length: float
+    # set here
+    density: BoundLaw
+    rho_p: ufl.core.expr.Expr
+    _bcs: list[fem.DirichletBC]
+    _bc_on: list[fem.Function]
+    _inlet: Where | None
+    _void_in: float
+    _tol: dict[str, BlockTolerance]
+    _tol_out: dict[fem.Function, BlockTolerance]
+    _h_expr: fem.Expression | None
+    _bfacets: npt.NDArray[np.int32] | None
+
+    def _init_rows(self) -> None:
         self._bcs, self._inlet, self._tol, self._h_expr = [], None, {}, None
         self._bc_on = []      # the unknown each of _bcs prescribes
         self._bfacets = None
         self.set_scales()
 
     # -- boundary conditions of the film ---------------------------------------------
-    def boundary_facets(self):
+    def boundary_facets(self) -> npt.NDArray[np.int32]:
         """Facets of the submesh on ∂Γ_l (vertices of a curve, edges of a surface), local.
 
         A facet on ∂Γ_l has one adjacent cell of Γ_l in the whole mesh; the cells
@@ -95,12 +165,12 @@ class ReynoldsFilm(ComponentBase):
             self._bfacets = np.unique(entities[np.isclose(count.x.array[dofs], 1.0)])
         return self._bfacets
 
-    def _boundary_dofs(self, V, where):
+    def _boundary_dofs(self, V: fem.FunctionSpace, where: Where | None) -> npt.NDArray[np.int32]:
         if where is not None:
             return fem.locate_dofs_geometrical(V, where)
         return fem.locate_dofs_topological(V, self.sub.topology.dim - 1, self.boundary_facets())
 
-    def add_pressure_bc(self, where=None, value=0.0):
+    def add_pressure_bc(self, where: Where | None = None, value: float = 0.0) -> fem.Constant:
         """Prescribe p = ``value`` (MPa) where the film opens to a reservoir; returns the Constant.
 
         ``where``: callable of the reference coordinates (3, n) → bool, as for
@@ -113,7 +183,8 @@ class ReynoldsFilm(ComponentBase):
         self._bc_on.append(self.p)
         return c
 
-    def add_inlet(self, where, void=0.0, pressure=0.0):
+    def add_inlet(self, where: Where, void: float = 0.0,
+                  pressure: float = 0.0) -> fem.Constant | None:
         """JFO inlet: λ = ``void`` and, flooded (``void`` = 0), p = ``pressure`` at ``where``.
 
         The rest of ∂Γ_l is a natural outlet (no Poiseuille flux; p = 0 there by
@@ -128,7 +199,7 @@ class ReynoldsFilm(ComponentBase):
         self._inlet, self._void_in = where, float(void)
         return self.add_pressure_bc(where, pressure) if void == 0 else None
 
-    def add_inflow(self, where, content=0.0):
+    def add_inflow(self, where: Where, content: float = 0.0) -> fem.Constant:
         """Open end(s) ``where`` of a JFO film on a curve, supplied with the content c_in (mm).
 
         Where the Couette flux enters, c_in replaces the end node's own content
@@ -143,7 +214,7 @@ class ReynoldsFilm(ComponentBase):
         self._inflow = (where, fem.Constant(self.sub, float(content)))
         return self._inflow[1]
 
-    def add_reservoir(self, where, pressure):
+    def add_reservoir(self, where: Where, pressure: float) -> fem.Constant:
         """JFO outlet into a reservoir: the end is flooded, p = ``pressure`` and λ = 0.
 
         λ needs its condition there: the p row replaces the transport row, and a
@@ -152,14 +223,14 @@ class ReynoldsFilm(ComponentBase):
         self._void_bc(where, 0.0)
         return self.add_pressure_bc(where, pressure)
 
-    def _void_bc(self, where, void):
+    def _void_bc(self, where: Where, void: float) -> None:
         if self.lam is None:
             raise ValueError("an inlet or reservoir condition on λ needs cavitation='jfo'")
         self._bcs.append(fem.dirichletbc(fem.Constant(self.sub, float(void)),
                                          self._boundary_dofs(self.Ql, where), self.Ql))
         self._bc_on.append(self.lam)
 
-    def has_fluid(self):
+    def has_fluid(self) -> bool:
         """Whether every node holds fluid, λ < 1 (always without JFO; collective).
 
         At λ ≥ 1 the clamped transport row of a cavitated node has no derivative,
@@ -170,7 +241,8 @@ class ReynoldsFilm(ComponentBase):
         lam_max = float(self.lam.x.array.max(initial=0.0))
         return self.sub.comm.allreduce(lam_max, op=MPI.MAX) < 1.0
 
-    def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
+    def set_scales(self, p_c: float | None = None, eps: float | None = None,
+                   film_scale: float | None = None, speed_scale: float | None = None) -> None:
         """Change the SUPG/complementarity pressure scale, the penalty and the tolerance scales.
 
         ``p_c`` (MPa) and ``eps`` (MPa·s/mm) change the discrete problem (SUPG
@@ -179,9 +251,9 @@ class ReynoldsFilm(ComponentBase):
         construction).
         """
         if p_c is not None:
-            self.p_c.value = float(p_c)
+            self.p_c.value = float(p_c)  # type: ignore[assignment]  # dolfinx types it NDArray
         if eps is not None and self.eps is not None:
-            self.eps.value = float(eps)
+            self.eps.value = float(eps)  # type: ignore[assignment]  # (a float works)
         if film_scale is not None:
             self.h_ref = float(film_scale)
         if speed_scale is not None:
@@ -194,13 +266,13 @@ class ReynoldsFilm(ComponentBase):
             if key in self._tol:
                 self._tol[key].atol = a
 
-    def scale_values(self):
+    def scale_values(self) -> dict[str, float | None]:
         """Return the current scales as keyword arguments of :meth:`set_scales`."""
         return {"p_c": float(self.p_c.value),
                 "eps": None if self.eps is None else float(self.eps.value),
                 "film_scale": self.h_ref, "speed_scale": self.U_ref}
 
-    def _bind_density(self, density, mesh):
+    def _bind_density(self, density: float | Law | None, mesh: dmesh.Mesh) -> None:
         """Bind the density law ρ(p)/ρ₀ (``rho_p``); a variable one is not done with JFO."""
         law = density_law(density)
         if self.cavitation == "jfo" and not is_constant(law):
@@ -209,7 +281,8 @@ class ReynoldsFilm(ComponentBase):
         self.density = law.bind(mesh)
         self.rho_p = self.density(self.p)
 
-    def _reynolds(self, dp, open_end=True):
+    def _reynolds(self, dp: ufl.core.expr.Expr,
+                  open_end: bool = True) -> tuple[ufl.Form, ufl.Form | None]:
         """Reynolds (or JFO transport) residual tested by ``dp``, and the JFO constraint.
 
         ``open_end=False`` leaves out the terms of :meth:`add_inflow` (the fluxes
@@ -219,7 +292,7 @@ class ReynoldsFilm(ComponentBase):
         kin, mu = self._flux_kinematics()
         rate = self.film_rate
         if self.lam is None:
-            def weighted(measure):
+            def weighted(measure: ufl.Measure) -> ufl.Measure | ef.WeightedMeasure:
                 return measure if self.w_film == 1 else ef.WeightedMeasure(self.w_film, measure)
 
             return ef.reynolds_on_surface(self.p, dp, kin, mu, weighted(self.dx),
@@ -237,7 +310,7 @@ class ReynoldsFilm(ComponentBase):
                                  weight=self.w_film, rate=rate, lumped=self.lumped,
                                  inflow=inflow, vertex=self.vertex_couette)
 
-    def _flux_kinematics(self):
+    def _flux_kinematics(self) -> tuple[LubricationKinematics, ufl.core.expr.Expr]:
         """Kinematics and viscosity of the fluxes in the rows: (kin, μ).
 
         A transient film (:meth:`tribofx.interfaces.Film.transient`)
@@ -247,22 +320,23 @@ class ReynoldsFilm(ComponentBase):
         kin, mu = self.kin_reynolds or self.kin, self.mu_p
         rough = self._rough
         if rough is not None and rough[0] is not None:
+            assert self.roughness is not None       # bound together with _rough
             kin, mu = mixed.average_flow(kin, mu, self.roughness.sigma, rough[0], rough[1],
                                          self.roughness.share)
         return kin, mu
 
-    def bcs(self):
+    def bcs(self) -> list[fem.DirichletBC]:
         """Pressure (and inlet void fraction) Dirichlet conditions."""
         return list(self._bcs)
 
-    def bcs_by_unknown(self):
+    def bcs_by_unknown(self) -> dict[fem.Function, list[fem.DirichletBC]]:
         """Dirichlet conditions sorted by unknown: p's and λ's (each space has its own)."""
         out = {self.p: [bc for bc, on in zip(self._bcs, self._bc_on) if on is self.p]}
         if self.lam is not None:
             out[self.lam] = [bc for bc, on in zip(self._bcs, self._bc_on) if on is self.lam]
         return out
 
-    def _flux_width(self):
+    def _flux_width(self) -> float:
         """Width (mm) across which the flux scale U·h_ref passes.
 
         1 on a curve (fluxes per unit length), the diameter of a surface Γ_l,
@@ -273,7 +347,7 @@ class ReynoldsFilm(ComponentBase):
             return 2 * np.pi * self.sub.comm.allreduce(float(r), op=MPI.MAX)
         return 1.0 if self.sub.topology.dim == 1 else self.length
 
-    def _pressure_tolerances(self):
+    def _pressure_tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Tolerances of the Reynolds rows (a nodal flux) and complementarity rows (-).
 
         The Reynolds rows are nodal volume fluxes (mm²/s on a curve, mm³/s on a
@@ -301,16 +375,16 @@ class ReynoldsFilm(ComponentBase):
             out[self.lam] = self._tol["lam"]
         return out
 
-    def _film_thickness(self):
+    def _film_thickness(self) -> npt.NDArray[np.float64]:
         """Nodal film thickness h (mm) at the P1 pressure nodes (local, with ghosts)."""
         if self._h_expr is None:
             self._h_expr = fem.Expression(self.kin.h, self.Q.element.interpolation_points)
-        h = fem.Function(self.Q)
+        h: fem.Function = fem.Function(self.Q)
         h.interpolate(self._h_expr)
         return h.x.array
 
     # -- JFO -----------------------------------------------------------------------------
-    def _ds_ends(self):
+    def _ds_ends(self) -> tuple[ufl.Measure, ufl.Measure]:
         """Measures of the end points of Γ_l and of the weak inflow's ends among them.
 
         The ends are the submesh's true boundary, tagged explicitly (in parallel
@@ -330,13 +404,13 @@ class ReynoldsFilm(ComponentBase):
         ds = ufl.Measure("ds", sub, subdomain_data=tags, metadata=md)
         return ds((1, 2)), ds(2)
 
-    def _at_dofs(self, values, dofs):
+    def _at_dofs(self, values: npt.NDArray[np.float64], dofs: npt.NDArray[np.int32]) -> float:
         """Value of a nodal array at the first of ``dofs`` owned by some rank (all ranks)."""
         own = dofs[dofs < self.Q.dofmap.index_map.size_local]
         val = float(values[own[0]]) if len(own) else None
         return next(v for v in self.sub.comm.allgather(val) if v is not None)
 
-    def jfo_initial_guess(self, downstream=(1.0, 0.0)):
+    def jfo_initial_guess(self, downstream: Sequence[float] = (1.0, 0.0)) -> None:
         """Void fraction of a film that keeps its flux across the cavitated zones.
 
         Downstream (along ``downstream``) of the minimum film h_m the film ruptures,
@@ -366,7 +440,7 @@ class ReynoldsFilm(ComponentBase):
         self.lam.x.array[:] = np.where(self.p.x.array > 0, 0.0, lam)
         self.lam.x.scatter_forward()
 
-    def consistent_fluxes(self, inlet=None):
+    def consistent_fluxes(self, inlet: Where | None = None) -> tuple[float, float]:
         """Volume fluxes (mm²/s, mm³/s revolved) into and out of the film from the residual.
 
         φ are the hat functions of the end nodes (``inlet``: where the flow enters,
@@ -403,24 +477,26 @@ class ReynoldsFilm(ComponentBase):
                 self.Q.element.interpolation_points)
             self._flux_forms[inlet] = (rows, couette)
         rows, couette = self._flux_forms[inlet]
-        wf = fem.Function(self.Q)
+        wf: fem.Function = fem.Function(self.Q)
         if couette is not None:
             wf.interpolate(couette)
         (d_in, R_in), (d_out, R_out) = [(d, self._sum(form)) for d, form in rows]
         return (self._at_dofs(wf.x.array, d_in) + R_in,
                 self._at_dofs(wf.x.array, d_out) - R_out)
 
-    def _gather(self, data, key, everywhere):
+    def _gather(self, data: Mapping[str, npt.ArrayLike], key: str,
+                everywhere: bool) -> Profile | None:
         """Concatenate the ranks' nodal ``data`` on rank 0 (or everywhere), sorted by ``key``."""
         comm = self.sub.comm
         allp = comm.gather({k: np.asarray(v).copy() for k, v in data.items()}, root=0)
-        out = None
+        out: Profile | None = None
         if comm.rank == 0:
+            assert allp is not None                 # the root's gather is the list
             out = {k: np.concatenate([a[k] for a in allp]) for k in data}
             x = out[key] if out[key].ndim == 1 else out[key][:, 0]
             order = np.argsort(x, kind="stable")
             out = {k: v[order] for k, v in out.items()}
         return comm.bcast(out, root=0) if everywhere else out
 
-    def _sum(self, form):
+    def _sum(self, form: fem.Form) -> float:
         return self.sub.comm.allreduce(fem.assemble_scalar(form), op=MPI.SUM)

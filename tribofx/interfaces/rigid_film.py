@@ -1,5 +1,9 @@
 """A film between rigid surfaces: the Reynolds equation in the plane (chapter §6.6)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Literal, cast, overload
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -8,6 +12,17 @@ from mpi4py import MPI
 from ..forms import ehl as ef
 from ..laws import viscosity_law
 from .reynolds_film import ReynoldsFilm
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+
+    from ..laws import Law
+    from ..problem import BlockTolerance
+    from .reynolds_film import Profile
 
 __all__ = ["RigidFilm"]
 
@@ -43,9 +58,13 @@ class RigidFilm(ReynoldsFilm):
 
     CAVITATION = ("none", "penalty", "jfo")
 
-    def __init__(self, mesh, gap, vbar, mu, degree=1, cavitation="none", supg=False, eps=None,
-                 p_c=1.0, film_scale=1e-2, speed_scale=1.0, quadrature_degree=None,
-                 name="film", rtol=1e-10, density=None):
+    def __init__(self, mesh: dmesh.Mesh,
+                 gap: Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr],
+                 vbar: npt.ArrayLike, mu: float | Law, degree: int = 1, cavitation: str = "none",
+                 supg: bool = False, eps: float | None = None, p_c: float = 1.0,
+                 film_scale: float = 1e-2, speed_scale: float = 1.0,
+                 quadrature_degree: int | None = None, name: str = "film", rtol: float = 1e-10,
+                 density: float | Law | None = None) -> None:
         if cavitation not in self.CAVITATION:
             raise ValueError(f"unknown cavitation model {cavitation!r}")
         if cavitation == "jfo" and degree != 1:
@@ -73,7 +92,8 @@ class RigidFilm(ReynoldsFilm):
         self.p_c = fem.Constant(mesh, float(p_c))
         self.eps = None
         if cavitation == "penalty":
-            self.eps = fem.Constant(mesh, float(eps))
+            # the penalty needs eps (eps=None: float() raises TypeError, as before)
+            self.eps = fem.Constant(mesh, float(cast("float", eps)))
         qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
         self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})
         self.nodal_dx = (ufl.Measure("dx", mesh, metadata={"quadrature_rule": "vertex",
@@ -94,42 +114,49 @@ class RigidFilm(ReynoldsFilm):
         self._init_rows()
 
     # -- component protocol --------------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return p (and λ)."""
         return [self.p] + ([self.lam] if self.lam is not None else [])
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Reynolds (or JFO transport) rows on p, complementarity rows on λ."""
         R_p, C = self._reynolds(ufl.TestFunction(self.Q))
-        return [(self.p, R_p)] + ([(self.lam, C)] if C is not None else [])
+        # C is the JFO complementarity: λ exists
+        return [(self.p, R_p)] + ([(cast("fem.Function", self.lam), C)] if C is not None else [])
 
-    def entity_maps(self):
+    def entity_maps(self) -> list[dmesh.EntityMap]:
         """Return no entity maps: the film lives on its own mesh."""
         return []
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Nothing computed outside UFL."""
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Reynolds rows (mm/s) and complementarity rows (-) over lumped measures."""
         if not self._tol:
             self._tol_out = self._pressure_tolerances()
             self.set_scales()
         return self._tol_out
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Return p (and λ) and the viscosity law's parameters."""
         return self.unknowns() + self.viscosity.state_fields() + self.density.state_fields()
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing to accept."""
 
     # -- outputs -------------------------------------------------------------------------
-    def integral(self, expr, dx=None):
+    def integral(self, expr: ufl.core.expr.Expr, dx: ufl.Measure | None = None) -> float:
         """Global integral of the UFL expression ``expr`` over the film (default ``dx``)."""
         return self._sum(fem.form(expr * (dx or self.dx)))
 
-    def profile(self, everywhere=False):
+    @overload
+    def profile(self, everywhere: Literal[True]) -> Profile: ...
+
+    @overload
+    def profile(self, everywhere: bool = False) -> Profile | None: ...
+
+    def profile(self, everywhere: bool = False) -> Profile | None:
         """Nodal x, p, h (and λ) sorted by x on rank 0 (None elsewhere) or ``everywhere``."""
         n = self.Q.dofmap.index_map.size_local
         d = {"x": self.Q.tabulate_dof_coordinates()[:n, 0], "p": self.p.x.array[:n],
@@ -138,7 +165,7 @@ class RigidFilm(ReynoldsFilm):
             d["lam"] = self.lam.x.array[:n]
         return self._gather(d, "x", everywhere)
 
-    def set_from_profile(self, prof):
+    def set_from_profile(self, prof: Mapping[str, npt.NDArray[np.float64]]) -> None:
         """Set p (and λ) by interpolation of a (coarser) nodal profile (dict, all ranks)."""
         for fun, key in ((self.p, "p"), (self.lam, "lam")):
             if fun is not None:

@@ -32,6 +32,10 @@ Constants a continuation may drive).  Plane strain, P1 displacements, affine
 meshes.  Units: mm, N, s, MPa; forces per unit thickness (N/mm).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Self, cast
+
 import numpy as np
 import ufl
 from dolfinx import fem
@@ -44,24 +48,40 @@ from ..two_body import NUM_LOCAL_FILM, film_node_residuals
 from .film import Film
 from .master_side import KernelAssembly, MasterSide, cached_state
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
+    import ufl.core.expr
+
+    from ..body import Body
+    from ..forms.ehl import LubricationKinematics
+    from ..laws import Law
+    from ..motions import Rolling, Sliding
+    from ..problem import Problem
+    from ..protocols import Counterpart
+    from ..scheme import Scheme
+    from .film import Shape
+    from .master_side import KernelCache, RowsCols
+
 __all__ = ["TwoBodyFilm"]
 
 
 class _NoCounterpart:
     """The film's counterpart slot: the master enters through the kernel, not a geometry."""
 
-    def update(self, x_nodes):
+    def update(self, x_nodes: npt.NDArray[np.float64]) -> None:
         """Nothing to project here: the kernel runs inside the assembly."""
 
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return no unknowns."""
         return []
 
-    def state_fields(self):
+    def state_fields(self) -> list[fem.Function | fem.Constant]:
         """Return no state."""
         return []
 
-    def commit(self):
+    def commit(self) -> None:
         """Nothing to accept."""
 
 
@@ -85,8 +105,17 @@ class TwoBodyFilm(KernelAssembly, Film):
     #: relative hysteresis of the master-segment choice (as for TwoBodyContact)
     STICKY = 0.05
 
-    def __init__(self, slave, boundary, master, master_boundary, mu, motion1=None, U1=0.0,
-                 motion2=None, U2=0.0, **kwargs):
+    master: Body
+    gap: fem.Function          # the nodal gap h (None only until Film.__init__ builds the rows)
+    v_master: fem.Function     # the master's surface velocity w at the projection
+    t_nodal: fem.Function      # the nodal fluid traction t
+    _master_hist: list[fem.Function]   # a transient film's master displacements at t_n, t_{n−1}
+    _cache: KernelCache | None
+
+    def __init__(self, slave: Body, boundary: str, master: Body, master_boundary: str,
+                 mu: float | Law, motion1: Rolling | Sliding | None = None, U1: float = 0.0,
+                 motion2: Rolling | Sliding | None = None, U2: float = 0.0,
+                 **kwargs: Any) -> None:
         for b in (slave, master):
             if b.kind != "plane_strain" or b.V.ufl_element().embedded_superdegree != 1:
                 raise ValueError("TwoBodyFilm is implemented for plane-strain P1 bodies")
@@ -96,8 +125,9 @@ class TwoBodyFilm(KernelAssembly, Film):
         self.master, self._motion1, self._motion2 = master, motion1, motion2
         self.U1 = fem.Constant(slave.mesh, float(U1))
         self.U2 = fem.Constant(slave.mesh, float(U2))
-        self.gap = None
-        super().__init__(slave, boundary, lambda V1: _NoCounterpart(), mu,
+        self.gap = cast("fem.Function", None)     # built by _kinematics, in Film.__init__
+        # the master enters through the kernel (_kinematics asks no counterpart's geometry)
+        super().__init__(slave, boundary, lambda V1: cast("Counterpart", _NoCounterpart()), mu,
                          motion=None if motion1 is None else (motion1, self.U1), **kwargs)
         self.side = MasterSide(master, master_boundary)
         sf, sub = self._surface, self.sub
@@ -114,7 +144,9 @@ class TwoBodyFilm(KernelAssembly, Film):
         self._cache = None
         self.set_nodal_data()
 
-    def _kinematics(self, X, disp, grad_disp, N, V_body, V_counter):
+    def _kinematics(self, X: ufl.core.expr.Expr, disp: ufl.core.expr.Expr,
+                    grad_disp: ufl.core.expr.Expr, N: ufl.core.expr.Expr, V_body: Shape | None,
+                    V_counter: Shape | None) -> LubricationKinematics:
         """S = γ_l with the film's nodal gap and master velocity (bulk side or submesh)."""
         if self.gap is None:
             gdim = self.body.gdim
@@ -129,7 +161,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         return tbf.layer_surface_kinematics(X, disp, grad_disp, N, self.gap, V, self.v_master)
 
     # -- time: the master's nodes move too ------------------------------------------------
-    def transient(self, scheme=BDF2, lumped=False):
+    def transient(self, scheme: Scheme | str = BDF2, lumped: bool = False) -> Self:
         """Make the film transient (:meth:`Film.transient`); the master's history is kept too.
 
         The master's surface velocity at the projection gains its nodes' rates,
@@ -141,12 +173,12 @@ class TwoBodyFilm(KernelAssembly, Film):
                              for k in ("n", "nm1")]
         return self
 
-    def history_fields(self):
+    def history_fields(self) -> list[fem.Function | fem.Constant]:
         """Return the film's histories and the master's displacements at t_n, t_{n−1}."""
         return super().history_fields() + (self._master_hist if self.history is not None
                                            else [])
 
-    def begin_step(self, dt):
+    def begin_step(self, dt: float) -> None:
         """Start a step (:meth:`Film.begin_step`) and move the master's history on."""
         super().begin_step(dt)
         m_n, m_nm1 = self._master_hist
@@ -154,19 +186,22 @@ class TwoBodyFilm(KernelAssembly, Film):
         m_n.x.array[:] = self.master.u.x.array
         self._cache = None
 
-    def _master_rates(self, keys):
+    def _master_rates(self, keys: npt.NDArray[np.int64]
+                      ) -> tuple[float, npt.NDArray[np.float64]]:
         """Per gathered master node: k₀ (1/s) and z (mm/s) of ẋ = k₀ x + z (0, 0 when steady)."""
         d = self.body.gdim
         if self.history is None:
             return 0.0, np.zeros((len(keys), d))
         inv_dt, c0, c1 = (float(c.value) for c in self.history.weights)
-        u_n, u_nm1 = (self.side.gather(lambda nd, f=f: f.x.array.reshape(-1, d)[nd])[1]
+        # (the cast: mypy infers no lambda with a default argument against a context)
+        u_n, u_nm1 = (self.side.gather(cast("Callable[[npt.NDArray[np.int64]], npt.NDArray[Any]]",
+                                            lambda nd, f=f: f.x.array.reshape(-1, d)[nd]))[1]
                       for f in self._master_hist)
         k0 = inv_dt * c0
         return k0, -k0 * (self.side.reference(keys) + u_n) + inv_dt * c1 * (u_n - u_nm1)
 
     # -- kernel ----------------------------------------------------------------------------
-    def _state_key(self):
+    def _state_key(self) -> list[npt.NDArray[Any]]:
         fields = (self.body.u, self.master.u, self.gap, self.v_master, self.t_nodal)
         ref = list(self._facet_ref) if self._facet_ref is not None else []
         hist = []
@@ -175,7 +210,7 @@ class TwoBodyFilm(KernelAssembly, Film):
                 np.array([float(c.value) for c in self.history.weights])]
         return [f.x.array for f in fields] + [np.array([float(self.U2.value)])] + ref + hist
 
-    def _kernel(self):
+    def _kernel(self) -> dict[str, Any]:
         """Kernel data of the owned nodes of Γ_l at the current state (cached per state).
 
         Returns a dict: ``q`` (n, 11), ``data`` (n, 7), ``r``, ``J``, the pairing
@@ -212,7 +247,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         self._cache = ([a.copy() for a in key], k)
         return k
 
-    def set_nodal_data(self):
+    def set_nodal_data(self) -> None:
         """Set h and w to their kernel values at the current state (a start or a restart)."""
         k = self._kernel()
         d = self.body.gdim
@@ -222,7 +257,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         for f in (self.gap, self.v_master):
             f.x.scatter_forward()
 
-    def _rows(self, problem, k):
+    def _rows(self, problem: Problem, k: dict[str, Any]) -> RowsCols:
         """Global rows and columns (n, 11) of the local unknowns of ``k`` in ``problem``."""
         if id(problem) in k["rows"]:
             return k["rows"][id(problem)]
@@ -245,11 +280,11 @@ class TwoBodyFilm(KernelAssembly, Film):
         return rows, cols
 
     # -- component protocol -------------------------------------------------------------------
-    def unknowns(self):
+    def unknowns(self) -> list[fem.Function]:
         """Return the film's unknowns and its nodal gap, master velocity and traction."""
         return super().unknowns() + [self.gap, self.v_master, self.t_nodal]
 
-    def contributions(self):
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Film rows without the solid's (the kernel carries t to both bodies), nodal rows."""
         out = [c for c in super().contributions() if c[0] is not self.body.u]
         tests = [ufl.TestFunction(f.function_space) for f in (self.gap, self.v_master,
@@ -260,16 +295,16 @@ class TwoBodyFilm(KernelAssembly, Film):
             (self.t_nodal, tbf.traction_collocation(self.t_nodal, self.traction, tests[2],
                                                    self._surface.dsc))]
 
-    def refresh(self):
+    def refresh(self) -> None:
         """Copy the velocities to the submesh (the kernel runs inside the assembly)."""
         self._sync()
 
-    def positions(self):
+    def positions(self) -> npt.NDArray[np.float64]:
         """Nodal current positions of Γ_l (P1 dof order, mm)."""
         self._u1.interpolate(self.u_s)
         return self._X1 + self._u1.x.array.reshape(-1, self.body.gdim)
 
-    def tolerances(self):
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
         """Return the film's tolerances and those of the gap, velocity and traction rows."""
         if "h" not in self._tol:
             out = dict(super().tolerances())
@@ -286,7 +321,8 @@ class TwoBodyFilm(KernelAssembly, Film):
             self.set_scales()
         return self._tol_out
 
-    def set_scales(self, p_c=None, eps=None, film_scale=None, speed_scale=None):
+    def set_scales(self, p_c: float | None = None, eps: float | None = None,
+                   film_scale: float | None = None, speed_scale: float | None = None) -> None:
         """As :meth:`Film.set_scales`; also the nodal rows' tolerances."""
         super().set_scales(p_c, eps, film_scale, speed_scale)
         atol = {"h": self.rtol * self.h_ref, "w": self.rtol * self.U_ref,
@@ -295,13 +331,13 @@ class TwoBodyFilm(KernelAssembly, Film):
             if key in self._tol:
                 self._tol[key].atol = a
 
-    def commit(self):
+    def commit(self) -> None:
         """Accept the converged step: the pairing of the converged state is the reference."""
         k = self._kernel()
         self._facet_committed = self._facet_ref = (k["seg"].copy(), k["facet"].copy())
 
     # -- outputs ---------------------------------------------------------------------------
-    def forces(self):
+    def forces(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """Film force on the slave and on the master (N/mm), all ranks: equal and opposite."""
         r = self._kernel()["r"]
         comm = self.body.mesh.comm
@@ -309,6 +345,6 @@ class TwoBodyFilm(KernelAssembly, Film):
         on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
         return on_slave, on_master
 
-    def force(self):
+    def force(self) -> npt.NDArray[np.float64]:
         """Film force on the slave (N/mm per unit thickness), the nodal tractions' sum."""
         return self.forces()[0]
