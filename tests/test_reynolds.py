@@ -106,6 +106,17 @@ def test_slider_bad_input():
 # ----------------------------------------------------------------------------- cylinder
 
 
+def test_penalty_rigid_film_needs_its_penalty():
+    """A rigid film with penalty cavitation and no ε is refused where it is built, in one line."""
+    from dolfinx import mesh
+
+    from tribofx.interfaces import RigidFilm
+
+    msh = mesh.create_interval(MPI.COMM_WORLD, 8, [0.0, 1.0])
+    with pytest.raises(ValueError, match="needs the penalty parameter eps"):
+        RigidFilm(msh, lambda x: 0.01 + 0.0 * x, 1.0, 1e-8, cavitation="penalty")
+
+
 def test_cylinder_references_against_closed_form():
     # Independent check of the NumPy-quadrature references: with x = ℓ tan φ,
     # ℓ = √(2Rh0), ∫dx/h² = (ℓ/h0²)∫cos²φ dφ and ∫dx/h³ = (ℓ/h0³)∫cos⁴φ dφ in closed form.

@@ -69,6 +69,8 @@ class RigidFilm(ReynoldsFilm):
             raise ValueError(f"unknown cavitation model {cavitation!r}")
         if cavitation == "jfo" and degree != 1:
             raise ValueError("cavitation='jfo' needs P1 pressure (nodal complementarity)")
+        if cavitation == "penalty" and eps is None:
+            raise ValueError("cavitation='penalty' needs the penalty parameter eps (MPa·s/mm)")
         self.sub, self.name, self.rtol, self.cavitation = mesh, name, float(rtol), cavitation
         gdim = mesh.geometry.dim
         self.Q = fem.functionspace(mesh, ("Lagrange", degree))
@@ -91,9 +93,8 @@ class RigidFilm(ReynoldsFilm):
         self._bind_density(density, mesh)
         self.p_c = fem.Constant(mesh, float(p_c))
         self.eps = None
-        if cavitation == "penalty":
-            # the penalty needs eps (eps=None: float() raises TypeError, as before)
-            self.eps = fem.Constant(mesh, float(cast("float", eps)))
+        if eps is not None and cavitation == "penalty":
+            self.eps = fem.Constant(mesh, float(eps))
         qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
         self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})
         self.nodal_dx = (ufl.Measure("dx", mesh, metadata={"quadrature_rule": "vertex",
