@@ -11,6 +11,10 @@ subject (``film_setup``, ``slow_time``, ``rough_contact``, ``curved_bodies``,
 ``user_pin``); no case imports another.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from . import (
     contact_ironing,
     contact_patch,
@@ -31,6 +35,9 @@ from . import (
     wear_reciprocating,
 )
 
+if TYPE_CHECKING:
+    from types import ModuleType
+
 __all__ = ["CASES", "get_case"]
 
 CASES = {c.name: c for c in (hertz, reynolds_slider, reynolds_cylinder, ehl_cylinder_layer,
@@ -40,7 +47,7 @@ CASES = {c.name: c for c in (hertz, reynolds_slider, reynolds_cylinder, ehl_cyli
                              wear_lubricated)}
 
 
-def get_case(name):
+def get_case(name: str) -> ModuleType:
     """Return the case module called ``name`` or raise :class:`tribofx.params.InputError`."""
     from ..params import InputError
 

@@ -35,7 +35,10 @@ the solved die (its support reaction, from the die's own rows, against the
 contact force).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from dolfinx import fem
@@ -52,11 +55,21 @@ from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 
+if TYPE_CHECKING:
+    from collections.abc import Callable, Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from tqdm import tqdm
+
+    from ..body import Material
+    from ..output import RunRecord
+
 __all__ = ["Model", "Params", "build", "check_slide", "doc", "name", "plot", "progress_total",
            "report", "resumable", "run", "validate", "vtx_fields"]
 
 
-def _slab(comm, L, H, nx, ny, material):
+def _slab(comm: MPI.Comm, L: float, H: float, nx: int, ny: int, material: Material) -> Body:
     msh, tags = block_mesh(comm, (0.0, 0.0), (L, H), nx, ny)
     return Body(msh, tags, NAMES, "plane_strain", material, name="slab")
 
@@ -101,7 +114,7 @@ def validate(v: Params) -> None:
         check_slide(v, v.R)
 
 
-def check_slide(v, b):
+def check_slide(v: Params, b: float) -> None:
     """Reject a slide that takes the axis of a die of half-width ``b`` off the slab."""
     if 0.5 * b + 1 + v.slide > v.L:
         if v.mesh_file:
@@ -128,7 +141,7 @@ class Model:
     h_die: float
 
 
-def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
     The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
@@ -136,7 +149,9 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """
     h = v.L / v.n
     if v.mesh_file:
-        dmsh, dtags, names = read_user_mesh(v.mesh_file, comm, 2, ("arc", "top"))
+        # (without ``cells``: the mesh, its facet tags and their names)
+        dmsh, dtags, names = cast("tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]",
+                                  read_user_mesh(v.mesh_file, comm, 2, ("arc", "top")))
         b, h_die = _user_die(dmsh, dtags, names, v)
     else:
         b, h_die, names = v.R, h, {"arc": ARC, "top": TOP}
@@ -160,16 +175,17 @@ def progress_total(v: Params) -> int:
     return v.press_steps + v.slide_steps
 
 
-def run(v: Params, record, progress=None, verbose=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> Model:
     """Press, then slide; the die's reaction force at every converged step."""
     run = build(v)
     contact, problem, motion = run.contact, run.problem, run.motion
     record.data["num_dofs"] = problem.num_dofs
     record.result("die_half_width", run.b, "mm")
     record.result("die_element_size", run.h_die, "mm")
-    history = []
+    history: list[list[float]] = []
 
-    def reaction():
+    def reaction() -> npt.NDArray[np.float64]:
         on_die = contact.forces(problem)[1]
         history.append([float(motion.value[0]), float(motion.value[1]),
                         float(on_die[0]), float(on_die[1])])
@@ -185,8 +201,10 @@ def run(v: Params, record, progress=None, verbose=False):
         # stick or slip for its first tangent
         for index, target, steps in ((1, -v.depth, v.press_steps),
                                      (0, v.slide, v.slide_steps)):
+            # (march only records the response of each step: here the force vector)
             phase = Continuation(problem, ConstantParameter(motion, index),
-                                 response=reaction, verbose=verbose,
+                                 response=cast("Callable[[], float]", reaction),
+                                 verbose=verbose,
                                  record=record.data["newton_iterations"])
             phase.remember()
             phase.march(target, steps)
@@ -204,7 +222,7 @@ def run(v: Params, record, progress=None, verbose=False):
     return run
 
 
-def report(history, v, record):
+def report(history: Sequence[Sequence[float]], v: Params, record: RunRecord) -> None:
     """Force history, friction ratio and smoothness of the sliding phase."""
     hist = np.array(history).reshape(-1, 4)
     record.result("die_position", hist[:, :2].tolist(), "mm")
@@ -223,12 +241,12 @@ def report(history, v, record):
                           "press_steps": v.press_steps}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacements of slab and die."""
     return {"slab": [run.slab.u], "die": [run.die.u]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Reaction force history of the die (``reaction.png``)."""
     from ..plots import pyplot
 
@@ -247,7 +265,8 @@ def plot(profile, outdir):
     plt.close(fig)
 
 
-def _user_die(msh, ft, names, v):
+def _user_die(msh: dmesh.Mesh, ft: dmesh.MeshTags, names: Mapping[str, int],
+              v: Params) -> tuple[float, float]:
     """Place a user's die as the case places its own; return (half-width b, h_die).
 
     The x extent is centred on x_c = b/2 + 1 and the lowest ``arc`` node put
@@ -261,7 +280,7 @@ def _user_die(msh, ft, names, v):
     """
     comm, x = msh.comm, msh.geometry.x
 
-    def extent(a):
+    def extent(a: npt.NDArray[np.float64]) -> tuple[float, float]:
         return (comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN),
                 comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX))
 
@@ -269,7 +288,7 @@ def _user_die(msh, ft, names, v):
     b = 0.5 * (hi - lo)
     check_slide(v, b)
 
-    def nodes(name):
+    def nodes(name: str) -> npt.NDArray[np.int32]:
         return np.unique(dmesh.entities_to_geometry(msh, 1, ft.find(names[name]),
                                                     False).ravel())
 

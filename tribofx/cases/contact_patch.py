@@ -19,7 +19,10 @@ test to solver tolerance; a coarser slave (master nodes between slave nodes
 receive no force) or non-nested meshes do not.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import ufl
@@ -32,11 +35,22 @@ from ..interfaces import TwoBodyContact
 from ..params import CaseParams, InputError, param
 from ..problem import Problem
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from pathlib import Path
+
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..body import Material
+    from ..output import RunRecord
+
 __all__ = ["Model", "Params", "build", "doc", "name", "patch_block", "plot", "progress_total",
            "resumable", "run", "validate", "vtx_fields"]
 
 
-def patch_block(comm, y0, y1, n, name, material):
+def patch_block(comm: MPI.Comm, y0: float, y1: float, n: int, name: str,
+                material: Material) -> Body:
     """Block [0, 1] × [y0, y1] with n × max(2, n/2) cells, boundaries bottom, top, left."""
     msh = mesh.create_rectangle(comm, [[0.0, y0], [1.0, y1]], [n, max(2, n // 2)],
                                 diagonal=mesh.DiagonalType.left)
@@ -92,7 +106,7 @@ class Model:
     problem: Problem
 
 
-def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Slave and master blocks, contact and problem."""
     mu, lmbda = lame_parameters(v.E, v.nu)
     mat = ("neo-hookean", {"mu": mu, "lmbda": lmbda})
@@ -114,7 +128,8 @@ def progress_total(v: Params) -> int:
     return 1
 
 
-def run(v: Params, record, progress=None, verbose=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> Model:
     """Solve once; record the mean and the largest relative deviation of the traction."""
     run = build(v)
     contact, problem = run.contact, run.problem
@@ -131,18 +146,19 @@ def run(v: Params, record, progress=None, verbose=False):
     record.result("nodes_in_contact", comm.allreduce(int(np.sum(d["active"])), op=MPI.SUM))
     prof = contact.gather_profile(problem)
     if comm.rank == 0:
+        assert prof is not None     # gathered on rank 0
         record.profile = {"x": prof["X"][:, 0], "p": -prof["T_n"], "p_ref": v.pressure}
     if progress is not None:
         progress.update(1)
     return run
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacements of both blocks."""
     return {"slave": [run.slave.u], "master": [run.master.u]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Nominal contact pressure along the interface (``pressure.png``)."""
     from ..plots import pyplot
 

@@ -30,8 +30,11 @@ within 5 % of 1/R*.  ``mesh`` then refines only a body that is built; ρ_N =
 min(E1, E2)/h with h the smaller contact element size of the two bodies.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from dolfinx import fem
@@ -46,6 +49,15 @@ from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
+
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+    from ..references import HertzContact
 
 __all__ = ["Model", "Params", "build", "doc", "name", "plot", "progress_total", "reference",
            "report", "resumable", "run", "validate", "vtx_fields"]
@@ -90,7 +102,7 @@ class Params(CaseParams):
         "origin; tip curvature 1/R2 (0 for R2 = 0) within 5 % of 1/R*")
 
 
-def reference(v):
+def reference(v: Params) -> HertzContact:
     """Hertz line contact of the two bodies (a flat for R2 = 0)."""
     R2 = math.inf if v.R2 == 0 else v.R2
     return hertz(v.load, v.R1, v.E1, v.nu1, R2, v.E2, v.nu2, line=True)
@@ -120,7 +132,7 @@ class Model:
     push: fem.Constant
 
 
-def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Upper body, lower body, contact and problem (unloaded).
 
     A body given by ``mesh_file`` (upper) or ``mesh_file2`` (lower) is read
@@ -129,7 +141,8 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """
     h = reference(v)
     h_fine = h.a / (6 * 2 ** v.mesh)
-    bodies, sizes = [], []
+    bodies: list[Body] = []
+    sizes: list[float] = []
     for k, (R, E, nu) in enumerate(((v.R1, v.E1, v.nu1),
                                     (v.R2, v.E2, v.nu2))):
         path = (v.mesh_file, v.mesh_file2)[k]
@@ -164,7 +177,8 @@ def progress_total(v: Params) -> int:
     return v.steps
 
 
-def run(v: Params, record, progress=None, verbose=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> Model:
     """Press the bodies to ``load`` in ``steps``; record a, p_max and Hertz."""
     run = build(v)
     contact, problem = run.contact, run.problem
@@ -188,7 +202,7 @@ def run(v: Params, record, progress=None, verbose=False):
     return run
 
 
-def report(run, v, record, h):
+def report(run: Model, v: Params, record: RunRecord, h: HertzContact) -> None:
     """Contact half-width (sum of active lumped current lengths) and peak pressure."""
     contact, problem = run.contact, run.problem
     d = contact.nodal_data(problem)
@@ -213,16 +227,17 @@ def report(run, v, record, h):
                   * upper.tolerances()[upper.u].atol, "N/mm")
     prof = contact.gather_profile(problem)
     if comm.rank == 0:
+        assert prof is not None     # gathered on rank 0
         record.profile = {"r": prof["x"][:, 0], "p": prof["p"], "a": h.a, "p0": h.p0,
                           "dim": 2}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacements of both bodies (one file per mesh)."""
     return {"upper": [run.upper.u], "lower": [run.lower.u]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Pressure profile against Hertz (``pressure.png``)."""
     from ..plots import plot_hertz_pressure
 

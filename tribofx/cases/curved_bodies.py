@@ -6,7 +6,10 @@ is checked against the Hertz reference's within :data:`CURVATURE_TOL`.
 """
 
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -14,6 +17,9 @@ from mpi4py import MPI
 
 from ..meshes.user import boundary_facet_size, read_user_mesh
 from ..params import InputError
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 # hertz_reference is re-exported from tribofx.references
 
@@ -26,15 +32,18 @@ __all__ = ["CURVATURE_TOL", "read_hertz_body"]
 CURVATURE_TOL = 0.05
 
 
-def _gmin(comm, a):
+def _gmin(comm: MPI.Comm, a: npt.NDArray[np.float64]) -> float:
     return comm.allreduce(float(np.min(a, initial=np.inf)), op=MPI.MIN)
 
 
-def _gmax(comm, a):
+def _gmax(comm: MPI.Comm, a: npt.NDArray[np.float64]) -> float:
     return comm.allreduce(float(np.max(a, initial=-np.inf)), op=MPI.MAX)
 
 
-def read_hertz_body(path, comm, dim, a, radius, tol, name="R", below=False):
+def read_hertz_body(
+    path: str, comm: MPI.Comm, dim: int, a: float, radius: float, tol: float, name: str = "R",
+    below: bool = False,
+) -> tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int], float, float]:
     """Read a user's symmetry-reduced Hertz body, place it and check its curvature.
 
     The mesh (:func:`tribofx.meshes.user.read_user_mesh`, groups contact, loaded,
@@ -63,11 +72,13 @@ def read_hertz_body(path, comm, dim, a, radius, tol, name="R", below=False):
     (inf for κ ≤ 0).
     """
     required = ("contact", "loaded", "symmetry_x") + (("symmetry_y",) if dim == 3 else ())
-    msh, ft, names = read_user_mesh(path, comm, dim, required)
+    # (without ``cells``: the mesh, its facet tags and their names)
+    msh, ft, names = cast("tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]",
+                          read_user_mesh(path, comm, dim, required))
     fdim, v = dim - 1, dim - 1
     x = msh.geometry.x
 
-    def nodes(group):
+    def nodes(group: str) -> npt.NDArray[np.int32]:
         return np.unique(dmesh.entities_to_geometry(msh, fdim, ft.find(names[group]),
                                                     False).ravel())
 

@@ -25,9 +25,11 @@ then ignored; the augmentation ρ_N = E/h takes h from the user's contact
 facets near the first-contact point (see :func:`tribofx.cases.curved_bodies.read_hertz_body`).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from mpi4py import MPI
@@ -45,6 +47,16 @@ from ..references import hertz_reference
 # hertz_reference is re-exported from tribofx.references
 from .curved_bodies import CURVATURE_TOL, read_hertz_body
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from pathlib import Path
+
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..obstacles import AnalyticObstacle, MeshedObstacle
+    from ..output import RunRecord
+
 __all__ = ["AXISYMMETRIC", "Model", "Params", "build", "dimension", "doc", "geometric_dim",
            "hertz_dim", "hertz_reference", "mesh_sizes", "model_fraction", "name", "plot",
            "progress_total", "resumable", "run", "validate", "vtx_fields"]
@@ -54,20 +66,20 @@ __all__ = ["AXISYMMETRIC", "Model", "Params", "build", "dimension", "doc", "geom
 AXISYMMETRIC = "axisymmetric"
 
 
-def dimension(text):
+def dimension(text: str) -> int | str:
     """Parse ``dim``: 2, 3 or "axisymmetric" (ValueError otherwise)."""
     text = str(text).strip()
     return AXISYMMETRIC if text == AXISYMMETRIC else int(text)
 
 
-def geometric_dim(dim):
+def geometric_dim(dim: int | str) -> int:
     """Dimension of the mesh: 2 for the cylinder and the meridian section, else 3."""
-    return 2 if dim == AXISYMMETRIC else dim
+    return 2 if dim == AXISYMMETRIC else cast("int", dim)
 
 
-def hertz_dim(dim):
+def hertz_dim(dim: int | str) -> int:
     """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
-    return 3 if dim == AXISYMMETRIC else dim
+    return 3 if dim == AXISYMMETRIC else cast("int", dim)
 
 
 name = "hertz"
@@ -122,6 +134,7 @@ class Params(CaseParams):
 
 def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
+    assert v.load is not None   # its default filled by Params.__post_init__
     a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, v.R, v.load)
     if a > 0.5 * v.R:
         raise InputError(f"load too large for a Hertz comparison: a/R = {a / v.R:.2f} > 0.5")
@@ -129,8 +142,9 @@ def validate(v: Params) -> None:
         raise InputError(f"load too small to resolve: a/R = {a / v.R:.1e} < 1e-4")
 
 
-def mesh_sizes(v):
+def mesh_sizes(v: Params) -> tuple[float, float, float]:
     """Element sizes (fine, coarse) and radius of the refined zone, all in mm."""
+    assert v.load is not None   # its default filled by Params.__post_init__
     a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, v.R, v.load)
     plane = geometric_dim(v.dim) == 2       # a 2D mesh: cylinder or meridian section
     per_a = (6 if plane else 2) * 2 ** v.mesh
@@ -145,7 +159,7 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Body, contact interface and :class:`Problem` of the case (not yet loaded).
 
     ``mesh_file``: the user's body
@@ -154,6 +168,7 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     """
     R, dim = v.R, geometric_dim(v.dim)
     h_fine, h_coarse, r_fine = mesh_sizes(v)
+    assert v.load is not None   # its default filled by Params.__post_init__
     if v.mesh_file:
         a, _ = hertz_reference(hertz_dim(v.dim), v.E, v.nu, R, v.load)
         msh, ft, names, h_fine, _ = read_hertz_body(v.mesh_file, comm, dim, a, R,
@@ -182,19 +197,19 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     return Model(body, contact, Problem([body, contact], name="hertz"))
 
 
-def vtx_fields(model):
+def vtx_fields(model: Model) -> dict[str, list[fem.Function]]:
     """Fields written for ParaView: displacement (bulk) and nominal pressure (Γ_c)."""
     return {"displacement": [model.body.u], "contact": [model.contact.lam_n]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Pressure profile against Hertz (``pressure.png``)."""
     from ..plots import plot_hertz_pressure
 
     plot_hertz_pressure(profile, outdir / "pressure.png")
 
 
-def model_fraction(dim):
+def model_fraction(dim: int | str) -> float:
     """Fraction of the full body whose force the model gives (symmetry).
 
     A half cylinder, a quarter sphere; the meridian section's forces are those
@@ -208,7 +223,8 @@ def progress_total(v: Params) -> int:
     return v.steps
 
 
-def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Load the body to ``load`` and record contact size and peak pressure.
 
     The plane's position δ is driven by :meth:`Continuation.reach` so that the
@@ -217,13 +233,15 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     test).
     """
     R, dim = v.R, hertz_dim(v.dim)
+    assert v.load is not None   # its default filled by Params.__post_init__
     model = build(v, comm)
     contact, problem = model.contact, model.problem
     frac = model_fraction(v.dim)
     record.data["num_dofs"] = problem.num_dofs
     a_h, p_h = hertz_reference(dim, v.E, v.nu, R, v.load)
     axis = geometric_dim(v.dim) - 1
-    control = Continuation(problem, ConstantParameter(contact.counterpart.offset, axis),
+    plane = cast("AnalyticObstacle | MeshedObstacle", contact.counterpart)  # a rigid plane
+    control = Continuation(problem, ConstantParameter(plane.offset, axis),
                            response=lambda: contact.force()[axis], verbose=verbose,
                            record=record.data["newton_iterations"])
     targets = [frac * v.load * (k + 1) / v.steps for k in range(v.steps)]
@@ -241,7 +259,8 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     return model
 
 
-def _report(contact, v, record, frac, a_h, p_h):
+def _report(contact: Contact, v: Params, record: RunRecord, frac: float, a_h: float,
+            p_h: float) -> None:
     dim, gdim = v.dim, geometric_dim(v.dim)
     area, pmax = contact.measures()
     # half-width; the radius of a quarter disc's area; that of the revolved disc's
@@ -257,7 +276,8 @@ def _report(contact, v, record, frac, a_h, p_h):
     record.result("p_max_rel_error", pmax / p_h - 1)
     record.result("contact_element_size", v.E / contact.rho_n, "mm (h of rho_N = E/h)")
     if hertz_dim(dim) == 3:   # a sphere: the plane's travel from first contact
-        delta = abs(float(contact.counterpart.offset.value[gdim - 1]))
+        plane = cast("AnalyticObstacle | MeshedObstacle", contact.counterpart)
+        delta = abs(float(plane.offset.value[gdim - 1]))
         record.result("approach", delta, "mm")
         record.result("hertz_approach", a_h**2 / v.R, "mm (half-space)")
     record.result("normal_load_full_body", float(force[gdim - 1] / frac),
@@ -274,6 +294,7 @@ def _report(contact, v, record, frac, a_h, p_h):
     record.result("pressure_profile_rel_l2_error", math.sqrt(num / den))
     prof = contact.gather_profile()
     if comm.rank == 0:
+        assert prof is not None     # gathered on rank 0
         r = (prof["x"][:, 0] if gdim == 2
              else np.linalg.norm(prof["x"][:, :2], axis=1))
         record.profile = {"r": r, "p": prof["p"], "a": a_h, "p0": p_h, "dim": dim}

@@ -21,9 +21,11 @@ written whatever happens, a failed or interrupted run carrying its model at the
 last accepted step (:meth:`SlowTimeRecords.closing`).
 """
 
+from __future__ import annotations
+
 import contextlib
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..output import VTXSeries
 from ..params import CaseParams, InputError, param
@@ -31,6 +33,17 @@ from ..reports import RunStop
 from ..restart import open_history, series_stem
 from ..scheme import Scheme
 from ..step_control import ERROR_MEASURES, STEP_RULES, ErrorControl, FixedStep
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable, Iterator, Mapping
+
+    from dolfinx import fem
+
+    from ..interfaces import Wear
+    from ..output import RunRecord
+    from ..step_control import StepController
+    from ..stepper import Stepper, StepReport
+    from ..studies.wear_stability import SubRecord
 
 __all__ = ["SCHEMES", "FilteredSchemeParams", "SchemeParams", "SlowTimeRecords", "check_scheme",
            "scheme_param", "step_controller", "wear_fields"]
@@ -81,7 +94,7 @@ class FilteredSchemeParams(SchemeParams):
         "wear damps within the step is not charged)")
 
 
-def step_controller(v, dt):
+def step_controller(v: SchemeParams, dt: float) -> StepController:
     """Return the step controller of a run: the fixed step ``dt`` (s), or error control.
 
     Error control (``tol`` > 0) starts at ``dt``.
@@ -92,7 +105,7 @@ def step_controller(v, dt):
                         filtered=v.error_filter)
 
 
-def check_scheme(v):
+def check_scheme(v: SchemeParams) -> None:
     """One-line error for tol > 0 without bdf2, or a filter or PI controller without tol."""
     if v.tol > 0 and not Scheme.of(v.scheme).bdf2:
         raise InputError("tol > 0 (error control) needs scheme=bdf2")
@@ -102,7 +115,7 @@ def check_scheme(v):
         raise InputError("controller chooses the steps of the error control: set tol > 0")
 
 
-def wear_fields(wear):
+def wear_fields(wear: Wear) -> dict[str, list[fem.Function]]:
     """VTX fields of a worn body: displacement and shape change (bulk), contact multiplier."""
     return {"displacement": [wear.body.u, wear.body.w], "contact": [wear.contact.lam_n]}
 
@@ -119,34 +132,39 @@ class SlowTimeRecords:
         resume: continue from the stepper's checkpoint.
     """
 
-    def __init__(self, stepper, v, record, keys, fields, resume=False):
+    def __init__(self, stepper: Stepper, v: CaseParams, record: RunRecord | SubRecord,
+                 keys: Iterable[str], fields: Mapping[str, list[fem.Function]],
+                 resume: bool = False) -> None:
         self.stepper, self.record = stepper, record
         record.data["num_dofs"] = stepper.problem.num_dofs
         if stepper.shape is not None:
             record.data["num_dofs_shape"] = stepper.shape.num_dofs
         self.history = open_history(stepper, v, resume)
-        self.hist = self.history.setdefault("hist", {k: [] for k in keys})
+        self.hist: dict[str, list[Any]] = self.history.setdefault("hist", {k: [] for k in keys})
         record.data["newton_iterations"] = self.history.setdefault("newton_iterations", [])
         self.series = VTXSeries(stepper.comm, getattr(record, "outdir", None),
                                 {series_stem(f"{k}_series", stepper, resume): f
                                  for k, f in fields.items()})
 
-    def log(self, iterations, values):
+    def log(self, iterations: int,
+            values: dict[str, Any] | Iterable[tuple[str, Any]]) -> None:
         """Append the step's measures ``values`` (pairs or a dict) and its Newton iterations."""
         for key, val in (values.items() if isinstance(values, dict) else values):
             self.hist[key].append(val)
         self.record.data["newton_iterations"].append(iterations)
 
-    def written(self, on_step=None):
+    def written(self, on_step: Callable[[Stepper, StepReport], object] | None = None
+                ) -> Callable[[Stepper, StepReport], None]:
         """Return the ``on_step`` of :meth:`Stepper.run`: the case's, then the series entry."""
-        def step(stepper, report):
+        def step(stepper: Stepper, report: StepReport) -> None:
             if on_step is not None:
                 on_step(stepper, report)
             self.series.write(stepper.t)
         return step
 
     @contextlib.contextmanager
-    def closing(self, report=None, model=None):
+    def closing(self, report: Callable[[], object] | None = None,
+                model: object = None) -> Iterator[None]:
         """Around the run: the series from the current time, closed and ``report()`` at the end.
 
         A :class:`~tribofx.reports.RunStop` leaving the block carries ``model``

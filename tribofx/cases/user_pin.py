@@ -6,16 +6,27 @@ approach of its tip (the rise of the tip at |x| = W/4 plus the compression qH/E)
 so that the middle half of the tip starts in contact.  Units: mm, MPa.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
 from ..meshes.user import boundary_facet_size
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+
+    from ..interfaces import Contact
+    from ..interfaces.two_body_wear import WearSurface
+
 __all__ = ["place_user_pin", "user_pin_approach"]
 
 
-def place_user_pin(msh, ft, names):
+def place_user_pin(msh: dmesh.Mesh, ft: dmesh.MeshTags,
+                   names: Mapping[str, int]) -> tuple[float, float]:
     """Move a user's pin so that its lowest tip point is at y = 0; (width, tip element size).
 
     The width is the x extent of the mesh, the element size the mean length of
@@ -32,7 +43,7 @@ def place_user_pin(msh, ft, names):
     return hi - lo, boundary_facet_size(msh, ft, names["contact"])
 
 
-def user_pin_approach(contact, q, E):
+def user_pin_approach(contact: Contact | WearSurface, q: float, E: float) -> float:
     """Return the initial approach of a user's pin: tip height at |x| = W/4 plus qH/E.
 
     ``q``: the traction on the pin's top (MPa), ``E``: its Young's modulus (MPa).

@@ -57,10 +57,12 @@ mm³/s), ``dt``; ``final_profile``: worn contact boundary along the symmetry
 line y = 0 ([x, z] points, mm).
 """
 
+from __future__ import annotations
+
 import math
 import time
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -79,6 +81,20 @@ from ..references import composite_modulus, hertz, rigid_cap_depth, rigid_cap_ra
 from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import FilteredSchemeParams, check_scheme
+
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Mapping
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
+    from ..stepper import StepReport
+    from ..studies.wear_stability import SubRecord
 
 __all__ = ["MODEL_FRACTION", "Model", "Params", "build", "contact_plane", "doc",
            "late_time_exponent", "measures", "mesh_sizes", "name", "plot", "progress_total",
@@ -150,7 +166,7 @@ def validate(v: Params) -> None:
         raise InputError(f"scar radius at T ({aT:.3g} mm) beyond 0.6 R: reduce k, V or T")
 
 
-def mesh_sizes(v):
+def mesh_sizes(v: Params) -> tuple[float, float, float]:
     """(h_fine, h_coarse, r_fine) in mm; see the module docstring."""
     aH = hertz(v.F, v.R, v.E, v.nu).a
     aT = max(float(rigid_cap_radius(v.k, v.F, v.R, v.V * v.T)), 2 * aH)
@@ -168,7 +184,8 @@ class Model(NamedTuple):
     h_fine: float
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
     """Body, contact, wear, stepper and force control of the case (not yet loaded).
 
     Returns the :class:`tribofx.stepper.Stepper`; its ``control`` positions the
@@ -176,7 +193,9 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     """
     h_fine, h_coarse, r_fine = mesh_sizes(v)
     if v.mesh_file:
-        msh, ft, names = read_user_mesh(v.mesh_file, comm, 3, tuple(NAMES))
+        # (without ``cells``: the mesh, its facet tags and their names)
+        msh, ft, names = cast("tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]",
+                              read_user_mesh(v.mesh_file, comm, 3, tuple(NAMES)))
         h_fine = _user_ball(msh, ft, names, v)
     else:
         msh, ft = quarter_ball(v.R, h_fine, h_coarse, r_fine, comm)
@@ -198,17 +217,17 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     # restored by a cut step and by a resume
     stepper = Stepper([body, contact, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_ball")
-    offset = contact.counterpart.offset
+    offset = cast("AnalyticObstacle", contact.counterpart).offset   # the rigid flat's
     Es = composite_modulus(v.E, v.nu)
     a_H = hertz(v.F, v.R, v.E, v.nu).a
 
-    def predictor(dt):
+    def predictor(dt: float) -> float:
         # rigid cap: h² ∝ s, so sliding V Δt more adds rigid_cap_depth(V Δt)² to h²
         h = wear.max_depth()
         dh2 = float(rigid_cap_depth(v.k, v.F, v.R, v.V * dt)) ** 2
         return float(offset.value[2]) + math.sqrt(h * h + dh2) - h
 
-    def stiffness(dt):
+    def stiffness(dt: float) -> float:
         # flat punch of radius a: compliance πa/(2E*) per unit pressure, in series
         # (implicit step) with the wear compliance k V Δt
         a = max(math.sqrt(contact.measures()[0] / (MODEL_FRACTION * math.pi)), a_H)
@@ -225,7 +244,8 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     return Model(stepper, h_fine)
 
 
-def _user_ball(msh, ft, names, v):
+def _user_ball(msh: dmesh.Mesh, ft: dmesh.MeshTags, names: Mapping[str, int],
+               v: Params) -> float:
     """Move a user's ball so that its lowest contact point is the origin; its h there.
 
     The symmetry group must lie on y = 0 (one-line error otherwise).  The
@@ -259,7 +279,7 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.T, v.dt)
 
 
-def measures(stepper, v):
+def measures(stepper: Stepper, v: Params) -> dict[str, float]:
     """Contact radius, flat-scar radius, pressure ratio, max depth, full-ball worn volume."""
     wear = stepper.wear
     comm = wear.body.mesh.comm
@@ -278,7 +298,7 @@ def measures(stepper, v):
             "wear_rate_integral": wear.wear_rate_integral() / MODEL_FRACTION}
 
 
-def symmetry_line(stepper, v):
+def symmetry_line(stepper: Stepper, v: Params) -> dict[str, npt.NDArray[np.float64]] | None:
     """Worn and deformed contact boundary along y = 0 near the contact, on rank 0 (else None).
 
     Returns a dict of arrays sorted by X̂_x: X_worn, x (deformed), p (pressure).
@@ -292,7 +312,7 @@ def symmetry_line(stepper, v):
     return {"X_worn": d["X_worn"][sel], "x": d["x"][sel], "p": d["p"][sel]}
 
 
-def contact_plane(stepper):
+def contact_plane(stepper: Stepper) -> npt.NDArray[np.float64] | None:
     """(x, y, p) of all contact-surface nodes within the active zone, on rank 0 (else None)."""
     d = stepper.wear.gather_shape()
     if d is None:
@@ -301,8 +321,11 @@ def contact_plane(stepper):
     return np.column_stack([d["x"][a, 0], d["x"][a, 1], d["p"][a]])
 
 
-def run(v: Params, record, progress=None, verbose=False, on_step=None, comm=MPI.COMM_WORLD,
-        t_stop=None, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord | SubRecord, progress: tqdm | None = None,
+        verbose: bool = False,
+        on_step: Callable[[Stepper, StepReport], object] | None = None,
+        comm: MPI.Comm = MPI.COMM_WORLD, t_stop: float | None = None,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Stepper:
     """Integrate the wear of the ball from t = 0 to T; record per-step histories.
 
     ``on_step(stepper, report)``, if given, is called after every accepted step;
@@ -312,9 +335,10 @@ def run(v: Params, record, progress=None, verbose=False, on_step=None, comm=MPI.
     """
     t_wall = time.perf_counter()
     stepper, h_fine = build(v, comm=comm, checkpoint=checkpoint)
+    assert stepper.hold is not None     # the force hold of build()
     stepper.verbose = stepper.hold.search.verbose = verbose
     record.result("shape_unknown_fraction", stepper.shape_unknown_fraction(), "-")
-    record.stepper = stepper
+    cast("Any", record).stepper = stepper   # (for the caller: tests read the stepper there)
     comm = stepper.comm
     record.result("h_contact_zone", h_fine, "mm")
     keys = ("time", "dt", "approach", "wear_volume", "max_wear_depth", "contact_radius",
@@ -332,16 +356,18 @@ def run(v: Params, record, progress=None, verbose=False, on_step=None, comm=MPI.
     record.data["newton_residuals_all"] = residuals_all
     offset = stepper.wear.contact.counterpart.offset
 
-    def log(t, its, dt, error=None, rejected=0):
+    def log(t: float, its: int, dt: float, error: float | None = None,
+            rejected: int = 0) -> None:
         m = measures(stepper, v)
         sr.log(its, (("time", t), ("dt", dt), ("newton_iterations", its),
                      ("approach", float(offset.value[2])), *m.items(),
                      ("error_estimate", error), ("rejected", rejected)))
         line = symmetry_line(stepper, v)
         if comm.rank == 0:
+            assert line is not None     # gathered on rank 0
             state["profiles"].append((t, line["X_worn"][:, [0, 2]].tolist()))
 
-    def step_done(st, rep):
+    def step_done(st: Stepper, rep: StepReport) -> None:
         log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
         residuals.append([float(x) for x in rep.reports[-1].residuals])
         residuals_all.append([[float(x) for x in r.residuals] for r in rep.reports])
@@ -362,7 +388,8 @@ def run(v: Params, record, progress=None, verbose=False, on_step=None, comm=MPI.
     return stepper
 
 
-def late_time_exponent(time_s, radius, V, t_min):
+def late_time_exponent(time_s: npt.ArrayLike, radius: npt.ArrayLike, V: float,
+                       t_min: float) -> float:
     """Least-squares slope of log a against log s = V t over the steps with t ≥ t_min."""
     t = np.asarray(time_s, dtype=float)
     a = np.asarray(radius, dtype=float)
@@ -372,7 +399,8 @@ def late_time_exponent(time_s, radius, V, t_min):
     return float(np.polyfit(np.log(V * t[sel]), np.log(a[sel]), 1)[0])
 
 
-def _report(stepper, v, record, hist, state, wall):
+def _report(stepper: Stepper, v: Params, record: RunRecord | SubRecord,
+            hist: Mapping[str, list[Any]], state: Mapping[str, Any], wall: float) -> None:
     units = {"time": "s", "dt": "s", "approach": "mm (flat position)",
              "wear_volume": "mm^3 (full ball)",
              "max_wear_depth": "mm", "contact_radius": "mm", "scar_radius": "mm",
@@ -382,6 +410,7 @@ def _report(stepper, v, record, hist, state, wall):
     for key, vals in hist.items():
         record.result(key, vals, units[key])
     record.result("rejected_steps", int(sum(hist["rejected"])), "-")
+    assert stepper.hold is not None     # the force hold of build()
     record.result("force_fallbacks", stepper.hold.fallbacks, "-")
     record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
     record.result("steps", len(hist["time"]) - 1, "-")
@@ -408,12 +437,12 @@ def _report(stepper, v, record, hist, state, wall):
                           "F": v.F, "V": v.V}
 
 
-def vtx_fields(stepper):
+def vtx_fields(stepper: Stepper) -> dict[str, list[fem.Function]]:
     """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
     return slow_time.wear_fields(stepper.wear)
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """``pressure.png``, ``profiles.png`` and ``scar.png`` (:func:`tribofx.plots.wear`)."""
     from ..plots.wear import plot_wear_ball
 

@@ -24,10 +24,12 @@ along x.  Runs under mpiexec (the cross-section unknowns are owned by rank 0).
 Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
 import math
 import time
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeAlias, overload
 
 import numpy as np
 import ufl
@@ -47,12 +49,39 @@ from ..stepper import Stepper, nominal_steps
 from . import slow_time
 from .slow_time import SchemeParams, check_scheme
 
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    import ufl.core.expr
+    from dolfinx import mesh as dmesh
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+    from ..reports import NewtonReport
+    from ..stepper import StepReport
+
+    #: the case's meshes (:func:`groove_mesh`): block, its facet tags, cross-section, its
+    #: facet tags, and the area of the block's bottom (mm²)
+    GrooveMesh: TypeAlias = tuple[dmesh.Mesh, dmesh.MeshTags, dmesh.Mesh, dmesh.MeshTags, float]
+
 __all__ = ["Model", "Params", "build", "doc", "groove_mesh", "initial_contact", "name", "plot",
            "progress_total", "resolved", "resumable", "run", "surface_data", "validate",
            "vtx_fields"]
 
 
-def surface_data(contact, root=None):
+@overload
+def surface_data(contact: Contact, root: None = None) -> dict[str, npt.NDArray[Any]]: ...
+
+
+@overload
+def surface_data(contact: Contact, root: int) -> dict[str, npt.NDArray[Any]] | None: ...
+
+
+def surface_data(contact: Contact, root: int | None = None
+                 ) -> dict[str, npt.NDArray[Any]] | None:
     """Top-surface nodes: initial (x, y), nominal pressure p = −λ, active (λ < 0).
 
     Owned nodes (``root=None``) or all nodes gathered on rank ``root`` (None elsewhere).
@@ -70,7 +99,8 @@ REGIMES = {"small": {"E": 2.0e5, "k": 1.0e-7, "grade_depth": 0.01},
            "finite": {"E": 10.0, "k": 1.0e-4, "grade_depth": 0.3}}
 
 
-def groove_mesh(comm, a, h, lz=1.35, nc=(4, 5, 6)):
+def groove_mesh(comm: MPI.Comm, a: float, h: float, lz: float = 1.35,
+                nc: Sequence[int] = (4, 5, 6)) -> GrooveMesh:
     """Block (on ``comm``) and cross-section (replicated) of the case, sizes in units of a."""
     gx, gy, gz = hs.grids(27 * a, 27 * a, 27 * a, h, 1.8 * a, 5.4 * a, lz * a, nc, hx=h / 2)
     msh, ft = hs.halfspace_block(comm, gx, gy, gz)
@@ -130,7 +160,7 @@ class Params(SchemeParams):
     max_cuts: int = param(6, "-", "step halvings allowed per step", lower=0, upper=20, closed=True)
 
 
-def resolved(v):
+def resolved(v: Params) -> Params:
     """Parameters with the regime defaults filled in."""
     return v.replace(**{key: val for key, val in REGIMES[v.regime].items()
                         if getattr(v, key) is None})
@@ -139,6 +169,7 @@ def resolved(v):
 def validate(v: Params) -> None:
     """Check cross-parameter consistency."""
     v = resolved(v)
+    assert v.k is not None and v.E is not None   # the regime's defaults, filled
     if v.dt > v.T:
         raise InputError(f"dt = {v.dt} s exceeds T = {v.T} s")
     check_scheme(v)
@@ -165,7 +196,9 @@ class Model(NamedTuple):
     hertz: dict
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, h: float | None = None,
+          mesh: GrooveMesh | None = None,
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
     """Body, contact, steady wear and stepper, the :class:`Model` of the case.
 
     ``h``, ``mesh``: contact element size (mm) and ``groove_mesh`` output (default:
@@ -178,7 +211,8 @@ def build(v: Params, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None) ->
     msh, ft, sec, sft, area = groove_mesh(comm, a, h) if mesh is None else mesh
     mu, lmbda = hf.lame_parameters(v.E, v.nu)
     w3 = fem.Function(fem.functionspace(msh, ("Lagrange", 1, (3,))), name="shape_change_3d")
-    fg = 1.0  # graded layer: a factor of the depth of the worn point below the surface
+    # graded layer: a factor of the depth of the worn point below the surface
+    fg: float | ufl.core.expr.Expr = 1.0
     if v.graded:
         depth = gf.material_depth(ufl.SpatialCoordinate(msh), w3)
         fg = gf.graded_factor(depth, v.grade_alpha, v.grade_depth)
@@ -201,7 +235,8 @@ def build(v: Params, comm=MPI.COMM_WORLD, h=None, mesh=None, checkpoint=None) ->
     return Model(stepper, {"a": a, "p0": p0, "delta": delta, "h": h})
 
 
-def initial_contact(stepper, info, verbose=False):
+def initial_contact(stepper: Stepper, info: Mapping[str, float],
+                    verbose: bool = False) -> NewtonReport:
     """Unworn contact: the block starts lifted by the Hertz approach δ = a²/R.
 
     (The compression of the block by F/(2A)·H/E is negligible.)  Solved by the
@@ -218,20 +253,21 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.T, v.dt)
 
 
-def vtx_fields(stepper):
+def vtx_fields(stepper: Stepper) -> dict[str, list[fem.Function]]:
     """Displacement and 3D shape change (block), contact multiplier."""
     body = stepper.wear.body
     return {"displacement": [body.u, body.w], "contact": [stepper.wear.contact.lam_n]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Groove profiles, pressure maps at t = 0 and final, pressure across the groove."""
     from ..plots.groove import plot_groove
 
     plot_groove(profile, outdir)
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Stepper:
     """Integrate the groove from t = 0 to T; record per-step histories.
 
     ``checkpoint``: directory of the per-step checkpoint (state and histories);
@@ -263,7 +299,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     prof = h.setdefault("prof", {"times": [], "profiles": [], "maps": []})
     residuals = record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
-    def log(t, its, dt, error=None, rejected=0):
+    def log(t: float, its: int, dt: float, error: float | None = None,
+            rejected: int = 0) -> None:
         d = surface_data(contact)
         X = d["X"][d["active"]]
         ext = [comm.allreduce(float(np.max(c, initial=0.0)), op=MPI.MAX)
@@ -278,7 +315,7 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
             prof["profiles"].append(lp["worn"].tolist())
             prof["maps"].append(np.column_stack([g["X"], g["p"]]).tolist())
 
-    def on_step(st, rep):
+    def on_step(st: Stepper, rep: StepReport) -> None:
         log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
         residuals.append([float(x) for x in rep.reports[0].residuals])
 
@@ -291,7 +328,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     return stepper
 
 
-def _report(stepper, v, record, hist, prof, wall):
+def _report(stepper: Stepper, v: Params, record: RunRecord, hist: Mapping[str, list[Any]],
+            prof: Mapping[str, list[Any]], wall: float) -> None:
     units = {"time": "s", "wear_volume": "mm^3/mm (full groove cross-section area)",
              "max_wear_depth": "mm", "contact_radius": "mm (half-width across the groove)",
              "contact_half_length": "mm (along the sliding direction)",

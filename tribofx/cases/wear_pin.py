@@ -53,10 +53,12 @@ reported).  Writes ``error_vs_dt.png``,
 ``profiles.png`` and the ``study_*`` results in summary.json.
 """
 
+from __future__ import annotations
+
 import math
 import sys
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 import ufl
@@ -79,6 +81,18 @@ from ..studies.wear_dt_study import run_dt_study
 from . import slow_time
 from .slow_time import SCHEMES, SchemeParams, check_scheme
 from .user_pin import place_user_pin, user_pin_approach
+
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Mapping
+    from pathlib import Path
+
+    from dolfinx import mesh as dmesh
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+    from ..stepper import StepReport
+    from ..studies.wear_stability import SubRecord
 
 __all__ = ["Model", "Params", "build", "doc", "load_up", "n_elements", "name", "plot",
            "progress_total", "resumable", "run", "slow_step", "study_lists", "study_schemes",
@@ -212,14 +226,14 @@ def validate(v: Params) -> None:
             raise InputError("study_ref_dt must be below the study time steps")
 
 
-def slow_step(v):
+def slow_step(v: Params) -> float:
     """Slow time step Δt (s): ``dt``, or cycles_per_step · 2 stroke / V in cyclic mode."""
     if v.mode == "cyclic" and v.cycles_per_step > 0:
         return v.cycles_per_step * 2 * v.stroke / v.V
     return v.dt
 
 
-def n_elements(v):
+def n_elements(v: Params) -> int:
     """Elements per side of the structured mesh."""
     return 10 * 2 ** v.mesh
 
@@ -234,7 +248,9 @@ class Model(NamedTuple):
     load: fem.Constant
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, n: int | None = None,
+          setup: Callable[[Body, Contact], object] | None = None,
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
     """Body, contact, wear and slow-time stepper of the case; returns ``(stepper, load)``.
 
     ``load`` is the factor (Constant) of the top traction.  ``setup(body,
@@ -246,7 +262,9 @@ def build(v: Params, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None) -
     W, E, mu = v.W, v.E, v.friction
     cyclic = v.mode == "cyclic"
     if v.mesh_file:
-        msh, ft, names = read_user_mesh(v.mesh_file, comm, 2, tuple(NAMES))
+        # (without ``cells``: the mesh, its facet tags and their names)
+        msh, ft, names = cast("tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]",
+                              read_user_mesh(v.mesh_file, comm, 2, tuple(NAMES)))
         W, h = place_user_pin(msh, ft, names)
     else:
         msh, ft = pin_body(W, v.H, v.R_tip if v.R_tip > 0 else math.inf, n, comm)
@@ -277,7 +295,7 @@ def build(v: Params, comm=MPI.COMM_WORLD, n=None, setup=None, checkpoint=None) -
     return Model(stepper, load)
 
 
-def load_up(stepper, load, v, verbose=False):
+def load_up(stepper: Stepper, load: fem.Constant, v: Params, verbose: bool = False) -> int:
     """Unworn contact under the full traction (load factor 0 → 1 by Continuation).
 
     Newton starts from the rigid translation δ₀ = a²/(2R) + qH/E of the pin (a
@@ -291,20 +309,21 @@ def load_up(stepper, load, v, verbose=False):
     if v.mesh_file:   # a user's tip: its middle half starts in contact
         delta0 = user_pin_approach(stepper.wear.contact, v.q, v.E)
     stepper.wear.body.u.x.array.reshape(-1, 2)[:, 1] = -delta0
-    load.value = 0.0
+    # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+    load.value = 0.0  # type: ignore[assignment]
     control = Continuation(stepper.problem, ConstantParameter(load), verbose=verbose)
     control.march(1.0, steps=1, predictor=False)
-    return int(sum(control.record))
+    return int(sum(cast("list[int]", control.record)))   # (a Problem's: int per step)
 
 
-def study_lists(v):
+def study_lists(v: Params) -> tuple[list[float], list[int]]:
     """``(dts, mesh levels)`` of ``study=dt`` parsed from the comma-separated strings."""
     dts = number_list(v.study_dts, "study_dts", allow_empty=True)
     levels = number_list(v.study_meshes, "study_meshes", int, True) or [v.mesh]
     return dts, levels
 
 
-def study_schemes(v):
+def study_schemes(v: Params) -> list[str]:
     """Schemes of ``study=dt`` (one-line error if unknown or none)."""
     schemes = [x.strip() for x in v.study_schemes.split(",") if x.strip()]
     if not schemes or any(x not in SCHEMES for x in schemes):
@@ -321,12 +340,12 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.T, slow_step(v))
 
 
-def vtx_fields(stepper):
+def vtx_fields(stepper: Stepper) -> dict[str, list[fem.Function]]:
     """Fields for ParaView: displacement and shape change (bulk), contact multiplier."""
     return slow_time.wear_fields(stepper.wear)
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """Plot ``profiles.png``, ``wear.png`` (``study=dt``: ``error_vs_dt.png``, profiles)."""
     from ..plots.wear import plot_dt_study, plot_wear_pin
 
@@ -335,8 +354,11 @@ def plot(profile, outdir):
     return plot_wear_pin(profile, outdir)
 
 
-def run(v: Params, record, progress=None, verbose=False, n=None, setup=None, checkpoint=None,
-        resume=False):
+def run(v: Params, record: RunRecord | SubRecord, progress: tqdm | None = None,
+        verbose: bool = False, n: int | None = None,
+        setup: Callable[[Body, Contact], object] | None = None,
+        checkpoint: str | os.PathLike[str] | None = None,
+        resume: bool = False) -> Stepper | None:
     """Integrate the wear of the pin from t = 0 to T; record per-step histories.
 
     ``checkpoint``: directory of the per-step checkpoint (state and the
@@ -361,7 +383,8 @@ def run(v: Params, record, progress=None, verbose=False, n=None, setup=None, che
     if stepper.cycle is None:
         record.data["newton_residuals"] = h.setdefault("newton_residuals", [])
 
-    def log(t, its, dt, error=None, rejected=0):
+    def log(t: float, its: int, dt: float, error: float | None = None,
+            rejected: int = 0) -> None:
         area, _ = contact.measures()
         sr.log(its, (("time", t), ("dt", dt), ("wear_volume", wear.worn_volume()),
                      ("max_wear_depth", wear.max_depth()), ("contact_radius", area / 2),
@@ -373,7 +396,7 @@ def run(v: Params, record, progress=None, verbose=False, n=None, setup=None, che
             profiles.append(s["X_worn"].tolist())
             ptimes.append(t)
 
-    def on_step(st, rep):
+    def on_step(st: Stepper, rep: StepReport) -> None:
         log(st.t, rep.iterations, rep.dt, rep.error, rep.rejected)
         if st.cycle is None:
             record.data["newton_residuals"].append(
@@ -388,7 +411,9 @@ def run(v: Params, record, progress=None, verbose=False, n=None, setup=None, che
     return stepper
 
 
-def _report(stepper, v, record, hist, profiles, ptimes):
+def _report(stepper: Stepper, v: Params, record: RunRecord | SubRecord,
+            hist: Mapping[str, list[Any]], profiles: list[list[list[float]]],
+            ptimes: list[float]) -> None:
     units = {"time": "s", "wear_volume": "mm^3/mm", "max_wear_depth": "mm",
              "contact_radius": "mm (half-width)", "newton_iterations": "-",
              "wear_rate_integral": "mm^3/(mm*s)", "dt": "s",

@@ -56,8 +56,11 @@ without ``mesh_file``).
 Results per slow step and outputs: :mod:`tribofx.cases.wear_reciprocating`.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
 import ufl
@@ -80,12 +83,29 @@ from . import slow_time
 from .slow_time import SchemeParams, check_scheme, scheme_param
 from .user_pin import place_user_pin, user_pin_approach
 
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import mesh as dmesh
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+
+    #: a body's owned cells on rank 0 (:func:`cell_coordinates`): X̂, w and u at their
+    #: vertices, each (n, 3, 2)
+    Cells: TypeAlias = tuple[npt.NDArray[np.float64], ...]
+    #: a :func:`snapshot`: [pin, block] cells at −A, at the centre and at +A (None off rank 0)
+    Shot: TypeAlias = list[list[Cells | None]]
+
 __all__ = ["Model", "Params", "build", "cell_coordinates", "check_stroke", "doc", "load_up", "name",
            "period", "plot", "progress_total", "resumable", "run", "snapshot", "validate",
            "vtx_fields"]
 
 
-def cell_coordinates(body):
+def cell_coordinates(body: Body) -> Cells | None:
     """Owned cells of ``body`` as (n, 3, 2) arrays of X̂, w and u at their vertices, on rank 0.
 
     For pictures of the initial (X̂), worn (X̂ + w) and deformed (X̂ + w + u)
@@ -97,28 +117,32 @@ def cell_coordinates(body):
     dofs = body.V.dofmap.list[:n, :3]
     X = msh.geometry.x[geo, :2]
     u = body.u.x.array.reshape(-1, 2)[dofs]
+    assert body.w is not None   # a worn body (shape=True)
     w = body.w.x.array.reshape(-1, 2)[dofs]
     parts = msh.comm.gather((X, w, u), root=0)
     if msh.comm.rank != 0:
         return None
+    assert parts is not None    # gathered on rank 0
     return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
 
 
-def _jsonable(shot):
+def _jsonable(shot: Shot | None) -> list[list[list[Any]]] | None:
     """Return a :meth:`snapshot` as nested lists (None off rank 0)."""
     if shot is None or any(body is None for part in shot for body in part):
         return None
-    return [[[np.asarray(a).tolist() for a in body] for body in part] for part in shot]
+    # (no body is None here)
+    return [[[np.asarray(a).tolist() for a in cast("Cells", body)] for body in part]
+            for part in shot]
 
 
-def _arrays(shot):
+def _arrays(shot: Sequence[Sequence[Sequence[Any]]] | None) -> Shot | None:
     """Return the arrays of a :func:`_jsonable` snapshot."""
     if shot is None:
         return None
     return [[tuple(np.asarray(a) for a in body) for body in part] for part in shot]
 
 
-def _centre_on_axis(msh):
+def _centre_on_axis(msh: dmesh.Mesh) -> None:
     """Translate a user's pin along x so that its x extent is centred on x = 0.
 
     The case's own pin is symmetric about x = 0, the centre of the block and of
@@ -208,7 +232,7 @@ def validate(v: Params) -> None:
                          f"{period(v) * v.cycles} s")
 
 
-def check_stroke(v, W):
+def check_stroke(v: Params, W: float) -> None:
     """Reject a block too short for a pin of width ``W`` (mm) and the stroke 2A.
 
     The pin must stay on the block with 0.5 mm to spare at either end of the
@@ -221,7 +245,7 @@ def check_stroke(v, W):
                          f"{W + 2 * v.A + 1.0:.6g} mm{where}")
 
 
-def period(v):
+def period(v: Params) -> float:
     """Δτ of one cycle, 4A/V (s)."""
     return 4 * v.A / v.V
 
@@ -251,7 +275,8 @@ class Model:
     h: float
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
     """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
 
     The dict also holds the pin's geometry as used: ``W`` (width), ``H``
@@ -259,7 +284,9 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
     """
     if v.mesh_file:
-        msh, ft, names = read_user_mesh(v.mesh_file, comm, 2, tuple(PIN_NAMES))
+        # (without ``cells``: the mesh, its facet tags and their names)
+        msh, ft, names = cast("tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int]]",
+                              read_user_mesh(v.mesh_file, comm, 2, tuple(PIN_NAMES)))
         W, h = place_user_pin(msh, ft, names)
         check_stroke(v, W)
         _centre_on_axis(msh)
@@ -300,7 +327,7 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     wear_block = Wear(contact.wear_surface("master"), k=v.K_block * mu_f,
                       scheme=v.scheme, averaged=True, name="wear_block")
 
-    def drive(position):
+    def drive(position: float) -> None:
         """Move the block's bottom to ``position``; the block translated as predictor."""
         block.u.x.array.reshape(-1, 2)[:, 0] += position - float(motion.value[0])
         motion.value[0] = position
@@ -320,7 +347,7 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.cycles * period(v), v.dt)
 
 
-def load_up(run, v, verbose=False):
+def load_up(run: Model, v: Params, verbose: bool = False) -> int:
     """Press the pin onto the block under F (load factor 0 → 1); Newton iterations.
 
     Newton starts from the pin translated down by the Hertz approach a²/(2R)
@@ -336,14 +363,15 @@ def load_up(run, v, verbose=False):
                       v.nu, line=True).a, v.W / 2)
         delta0 = a * a / (2 * v.R_tip) + v.F * v.H / (v.W * v.E_pin)
     run.pin.u.x.array.reshape(-1, 2)[:, 1] = -delta0
-    run.load.value = 0.0
+    # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+    run.load.value = 0.0  # type: ignore[assignment]
     control = Continuation(run.stepper.problem, ConstantParameter(run.load),
                            verbose=verbose)
     control.march(1.0, steps=2, predictor=False)
-    return int(sum(control.record))
+    return int(sum(cast("list[int]", control.record)))   # (a Problem's: int per step)
 
 
-def snapshot(run):
+def snapshot(run: Model) -> Shot:
     """Cells of both bodies (X̂, w, u) at −A, at the centre and at +A of a cycle (rank 0).
 
     Runs the start of a cycle at the current shapes: memory erased, the
@@ -352,7 +380,7 @@ def snapshot(run):
     """
     st, cyc = run.stepper, run.cycle
     P = st.problem
-    shots = []
+    shots: Shot = []
     cyc.start()
     P.commit()
     P.solve_by_homotopy()
@@ -372,7 +400,8 @@ def snapshot(run):
     return shots
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Model:
     """Load, then integrate the wear of both bodies over ``cycles``; per-step histories.
 
     ``checkpoint``: directory of the per-step checkpoint (state and histories);
@@ -403,7 +432,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     energy = [hist["dissipated_energy"][-1] if resume else 0.0]
     w_ref = contact.surface.nodal(ufl.TestFunction(contact.Q) * contact.dsc)
 
-    def log(t, dt, its, picard=0, error=None, rejected=0):
+    def log(t: float, dt: float, its: int, picard: int = 0, error: float | None = None,
+            rejected: int = 0) -> None:
         comm = contact.slave.mesh.comm
         if st.last_increments is not None:   # dissipation of the step's (last) cycle
             d_pin = st.last_increments[0]
@@ -427,9 +457,9 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     if not resume:
         log(0.0, 0.0, load_up(run, v, verbose))
         h["initial_shot"] = _jsonable(snapshot(run))
-    shots = {"initial": _arrays(h["initial_shot"])}
+    shots: dict[str, Shot | None] = {"initial": _arrays(h["initial_shot"])}
 
-    def report():
+    def report() -> None:
         _report(run, record, hist, shots)
         if record.profile is not None:
             half = 0.5 * v.L + v.A + 0.1
@@ -443,7 +473,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     return run
 
 
-def _report(run, record, hist, shots):
+def _report(run: Model, record: RunRecord, hist: Mapping[str, list[Any]],
+            shots: Mapping[str, Shot | None]) -> None:
     units = {"time": "s", "cycles_done": "-", "worn_area_pin": "mm^2/mm",
              "worn_area_block": "mm^2/mm", "dissipated_energy": "N*mm/mm",
              "cycle_dissipation": "N*mm/mm", "drive_work": "N*mm/mm",
@@ -456,7 +487,7 @@ def _report(run, record, hist, shots):
         record.result(key, vals, units[key])
     record.result("accepted_steps", len(hist["time"]) - 1, "-")
     record.result("rejected_steps", int(sum(hist["rejected"])), "-")
-    prof = {}
+    prof: dict[str, dict[str, npt.NDArray[Any]]] = {}
     for key, wear in (("wear_pin", run.wear_pin), ("wear_block", run.wear_block)):
         d = wear.gather_shape()
         if d is not None:
@@ -469,12 +500,13 @@ def _report(run, record, hist, shots):
         record.profile = {**hist, **prof, "shots": shots}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacement and shape change of both bodies (one file per mesh)."""
+    assert run.pin.w is not None and run.block.w is not None   # worn bodies (shape=True)
     return {"pin": [run.pin.u, run.pin.w], "block": [run.block.u, run.block.w]}
 
 
-def plot(profile, outdir):
+def plot(profile: Mapping[str, Any], outdir: Path) -> None:
     """``fig5.png`` (configurations, both bodies) and ``wear.png`` (histories, profiles)."""
     from ..plots.two_body import plot_reciprocating
 
