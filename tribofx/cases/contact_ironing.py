@@ -144,7 +144,7 @@ class Model:
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Slab (slave), die (master), contact, problem and the die's prescribed motion.
 
-    The dict also holds the die's half-width ``b`` (R, or from ``mesh_file``)
+    The :class:`Model` also holds the die's half-width ``b`` (R, or from ``mesh_file``)
     and its arc element size ``h_die``.
     """
     h = v.L / v.n

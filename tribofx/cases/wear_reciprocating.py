@@ -277,9 +277,9 @@ class Model:
 
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
           checkpoint: str | os.PathLike[str] | None = None) -> Model:
-    """Pin, block, contact, both wear interfaces, the cycle and the stepper (a dict).
+    """Pin, block, contact, both wear interfaces, the cycle and the stepper: a :class:`Model`.
 
-    The dict also holds the pin's geometry as used: ``W`` (width), ``H``
+    The model also holds the pin's geometry as used: ``W`` (width), ``H``
     (height above the lowest tip point), ``top_length`` (ℓ of the traction
     F/ℓ) and ``h`` (tip element size); from the mesh with ``mesh_file``.
     """
