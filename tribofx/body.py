@@ -76,7 +76,8 @@ class Body(ComponentBase):
     Args:
         mesh: the mesh (affine geometry for contact interfaces).
         facet_tags: facet meshtags; ``names`` maps boundary names to their values.
-        names: {boundary name: facet tag value}.
+        names: {boundary name: facet tag value}, or a tuple of tag values for a
+            boundary made of several tagged parts (the O-ring's housing).
         kind: "3d", "plane_strain" or "axisymmetric".
         material: (law, params) of :mod:`tribofx.forms.hyperelastic`, or
             {cell tag value: (law, params)} for a body of several materials
@@ -115,7 +116,8 @@ class Body(ComponentBase):
     _loads: list[ufl.Form]
     _multiplier_fixes: list[tuple[npt.NDArray[np.int32], int | None]]
 
-    def __init__(self, mesh: dmesh.Mesh, facet_tags: dmesh.MeshTags, names: Mapping[str, int],
+    def __init__(self, mesh: dmesh.Mesh, facet_tags: dmesh.MeshTags,
+                 names: Mapping[str, int | tuple[int, ...]],
                  kind: str, material: Material | dict[int, Material],
                  cell_tags: dmesh.MeshTags | None = None, degree: int = 1,
                  quadrature_degree: int | None = None,
@@ -188,8 +190,8 @@ class Body(ComponentBase):
             self._beta = fem.Constant(mesh, float(alpha)) * h_K**2 / self.stiffness
 
     # -- tags ------------------------------------------------------------------
-    def tag(self, name: str) -> int:
-        """Facet tag value of the boundary ``name`` (one-line error if unknown)."""
+    def tag(self, name: str) -> int | tuple[int, ...]:
+        """Facet tag value (or values) of the boundary ``name`` (one-line error if unknown)."""
         if name not in self.names:
             raise InputError(f"{self.name}: no boundary named {name!r}; "
                              f"known: {', '.join(self.names)}")
@@ -197,7 +199,9 @@ class Body(ComponentBase):
 
     def facets(self, name: str) -> npt.NDArray[np.int32]:
         """Local facet indices of the boundary ``name`` (error if empty on all ranks)."""
-        facets = self.facet_tags.find(self.tag(name))
+        tag = self.tag(name)
+        facets = (np.unique(np.concatenate([self.facet_tags.find(t) for t in tag]))
+                  if isinstance(tag, tuple) else self.facet_tags.find(tag))
         if self.mesh.comm.allreduce(len(facets), op=MPI.SUM) == 0:
             raise InputError(f"{self.name}: boundary {name!r} has no facets")
         return facets

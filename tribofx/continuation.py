@@ -110,6 +110,8 @@ class Continuation:
         problem: the problem (``solve(verbose)``, ``state()``, ``restore()``, ``commit()``).
         parameter: ``get()``/``set(value)`` of the driven scalar.
         response: callable → float, the measured response (for :meth:`reach`).
+        on_accept: called after every converged step, once its response is measured
+            (a record, a checkpoint of the step).
         verbose: print Newton histories.
         rtol: relative tolerance of :meth:`reach` on the response.
         max_trials: secant trials of one :meth:`reach`, or cuts of one :meth:`march` step.
@@ -128,8 +130,10 @@ class Continuation:
                  rtol: float = 1e-6, max_trials: int = 25,
                  record: list[Iterations] | None = None,
                  admissible: Callable[[], bool] | None = None,
-                 max_step: float | None = None) -> None:
+                 max_step: float | None = None,
+                 on_accept: Callable[[], None] | None = None) -> None:
         self.problem, self.parameter, self.response = problem, parameter, response
+        self.on_accept = on_accept
         self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials
         self.admissible, self.max_step = admissible, max_step
         self.min_bound = 1e-4   # step-limited secant: give up below min_bound·max_step
@@ -197,6 +201,8 @@ class Continuation:
         self.done = self.parameter.get()
         self.record.append(iterations)   # before the response: it may checkpoint the record
         r = self.response() if self.response is not None else None
+        if self.on_accept is not None:
+            self.on_accept()
         self.history.append((self.done, r))
         unknowns = getattr(self.problem, "u", [])
         self._states = (self._states + [(self.done, [f.x.array.copy() for f in unknowns])])[-2:]
@@ -281,7 +287,7 @@ class Continuation:
                     raise
                 continue
             step = min(abs(step) * 2, abs(step0)) * np.sign(step0)
-            self.increments = (step0, step)   # before _accept: its response may checkpoint
+            self.increments = (step0, step)   # before accept: on_accept may checkpoint
             out.append(self.accept(its))
         return out
 

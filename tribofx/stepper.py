@@ -157,7 +157,8 @@ class Stepper:
                  max_picard: int = 20, name: str = "wear", verbose: bool = False,
                  problem_kw: Mapping[str, Any] | None = None,
                  problem_class: type[Problem] = Problem,
-                 schedule: Iterable[tuple[fem.Constant, Callable[[float], float]]] = ()
+                 schedule: Iterable[tuple[fem.Constant,
+                                          Callable[[float], float | npt.ArrayLike]]] = ()
                  ) -> None:
         self.wears: list[EvolvingInterface] = (list(wear) if isinstance(wear, (list, tuple))
                                                else [wear])

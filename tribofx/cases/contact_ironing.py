@@ -56,7 +56,7 @@ from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 
 if TYPE_CHECKING:
-    from collections.abc import Callable, Mapping, Sequence
+    from collections.abc import Mapping, Sequence
     from pathlib import Path
 
     import numpy.typing as npt
@@ -185,13 +185,12 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None,
     record.result("die_element_size", run.h_die, "mm")
     history: list[list[float]] = []
 
-    def reaction() -> npt.NDArray[np.float64]:
+    def reaction() -> None:
         on_die = contact.forces(problem)[1]
         history.append([float(motion.value[0]), float(motion.value[1]),
                         float(on_die[0]), float(on_die[1])])
         if progress is not None:
             progress.update(1)
-        return on_die
 
     try:
         # secant predictor from the second step of each phase (its start state
@@ -201,10 +200,8 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None,
         # stick or slip for its first tangent
         for index, target, steps in ((1, -v.depth, v.press_steps),
                                      (0, v.slide, v.slide_steps)):
-            # (march only records the response of each step: here the force vector)
             phase = Continuation(problem, ConstantParameter(motion, index),
-                                 response=cast("Callable[[], float]", reaction),
-                                 verbose=verbose,
+                                 verbose=verbose, on_accept=reaction,
                                  record=record.data["newton_iterations"])
             phase.remember()
             phase.march(target, steps)

@@ -60,9 +60,11 @@ around the smallest nodal h (:func:`tribofx.positions.paraboloid_vertex`).
 and on the plane: :mod:`tribofx.cases.ehl_ball`.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -85,6 +87,20 @@ from ..sweep import SweepVariant
 from . import film_setup
 from .film_setup import FluidParams, at_points, density, film_boundary, speed_list, viscosity
 
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..continuation import Iterations
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
+    from ..references import HertzContact
+
 __all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS", "VARIANTS",
            "Z", "Model", "Params", "build", "check_curvature", "checked_outlet_width", "doc",
            "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
@@ -102,14 +118,14 @@ MAX_EDGE_RATIO = 2.0
 LEVELS = ((1, 0), (2, 1), (2, 2), (3, 2))
 
 
-def outlet_width(v):
+def outlet_width(v: Params) -> float:
     """Width ℓ = a (h_c R / a²)^{2/3} (mm) of the outlet constriction at ``v``'s W and U."""
     a = hertz(v.W, v.R, v.E, v.nu).a
     h_c = hamrock_dowson(v.W, v.mu, v.U, v.R, composite_modulus(v.E, v.nu))[0]
     return a * (h_c * v.R / a**2) ** (2 / 3)
 
 
-def checked_outlet_width(v):
+def checked_outlet_width(v: Params) -> float:
     """Return :func:`outlet_width`, or raise InputError (one line) if it is not finite."""
     try:
         ell = outlet_width(v)
@@ -121,12 +137,12 @@ def checked_outlet_width(v):
     return ell
 
 
-def edge_size(v, mesh, edge_refine):
+def edge_size(v: Params, mesh: int, edge_refine: int) -> float:
     """Element size (mm) along the contact edge: a/(4·2^mesh)/2^edge_refine."""
     return hertz(v.W, v.R, v.E, v.nu).a / (4 * 2**mesh) / 2**edge_refine
 
 
-def mesh_levels(v):
+def mesh_levels(v: Params) -> tuple[int, int, bool]:
     """``(mesh, edge_refine, resolved)`` of the run.
 
     Both set by the user: those (``resolved`` says whether they meet the rule).
@@ -162,20 +178,21 @@ MAX_SPEED_RATIO = 2.0
 USER_GROUPS = ("lubricated", "midplane", "symmetry")   # the groups of a user's ball
 
 
-def _group_nodes(msh, ft, tag):
+def _group_nodes(msh: dmesh.Mesh, ft: dmesh.MeshTags, tag: int) -> npt.NDArray[np.int32]:
     """Return the local geometry nodes of the facets tagged ``tag``."""
     msh.topology.create_connectivity(2, 3)
     return np.unique(dmesh.entities_to_geometry(msh, 2, ft.find(tag), False).ravel())
 
 
-def place_user_ball(msh, ft, names, v, a):
+def place_user_ball(msh: dmesh.Mesh, ft: dmesh.MeshTags, names: Mapping[str, int], v: Params,
+                    a: float) -> None:
     """Move a user's ball: symmetry plane to y = 0, cap centred at x = 0, lowest at z = 0.
 
     Raises InputError if the symmetry group is not a plane y = const (to 10⁻⁹ R).
     """
     comm, x = msh.comm, msh.geometry.x
 
-    def extent(nodes, k):
+    def extent(nodes: npt.NDArray[np.int32], k: int) -> tuple[float, float]:
         return (comm.allreduce(float(np.min(x[nodes, k], initial=np.inf)), op=MPI.MIN),
                 comm.allreduce(float(np.max(x[nodes, k], initial=-np.inf)), op=MPI.MAX))
 
@@ -190,7 +207,8 @@ def place_user_ball(msh, ft, names, v, a):
     check_curvature(msh, cap, v, a)
 
 
-def check_curvature(msh, cap, v, a):
+def check_curvature(msh: dmesh.Mesh, cap: npt.NDArray[np.int32], v: Params, a: float
+                    ) -> None:
     """Raise InputError unless the cap's curvature at the contact is 1/R within 5 %.
 
     Least squares z = c + k ρ²/2 over the cap's nodes within ρ = √(x² + y²) ≤ a
@@ -219,7 +237,7 @@ def check_curvature(msh, cap, v, a):
                          f"{v.R} mm must match it within 5 %")
 
 
-def user_rim(film, v, a):
+def user_rim(film: Film, v: Params, a: float) -> npt.NDArray[np.float64]:
     """Return the nodes (k, 3) of the rim of a user's cap: ∂Γ_l less the edges on y = 0.
 
     Raises InputError if there is none, or if the cap does not reach 1.5 a(W)
@@ -327,12 +345,12 @@ UNITS = {"W": "N", "h_central": "mm", "h_min": "mm", "p_max": "MPa",
 FILM_OSCILLATION_TOL = 0.05
 
 
-def e_star(v):
+def e_star(v: Params) -> float:
     """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
     return composite_modulus(v.E, v.nu)
 
 
-def hertz_contact(v, W=None):
+def hertz_contact(v: Params, W: float | None = None) -> HertzContact:
     """Hertz contact of the ball on the rigid plane at W (default ``v.W``, N)."""
     return hertz(v.W if W is None else W, v.R, v.E, v.nu)
 
@@ -362,7 +380,8 @@ def validate(v: Params) -> None:
     speed_list(v)
 
 
-def scales(v, W=None, U=None):
+def scales(v: Params, W: float | None = None, U: float | None = None
+           ) -> tuple[float, float, float, float]:
     """Hertz a (mm), p0 (MPa), Hamrock–Dowson h_c (mm) and penalty ε (MPa·s/mm)."""
     W, U = (v.W if W is None else W), (v.U if U is None else U)
     h = hertz_contact(v, W)
@@ -370,7 +389,7 @@ def scales(v, W=None, U=None):
     return h.a, h.p0, h_c, v.penalty * 12 * v.mu * h.a**2 / h_c**3
 
 
-def set_scales(film, v, W, U):
+def set_scales(film: Film, v: Params, W: float, U: float) -> None:
     """SUPG pressure scale p0, penalty ε and tolerance scales at load W and speed U."""
     _, p0, h_c, eps = scales(v, W, U)
     film.set_scales(p_c=p0, eps=eps, film_scale=h_c, speed_scale=U)
@@ -384,7 +403,7 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, name="ehl_ball") -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") -> Model:
     """Ball, film and problem, unloaded (``mesh_file``: the user's ball, module docstring).
 
     ``name``: the problem's name, options prefix ``tribofx_<name>_`` (a variant
@@ -429,7 +448,8 @@ def progress_total(v: Params) -> int:
     return v.steps * (len(VARIANTS) if v.compare == "all" else 1)
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Model:
     """Load sweep (and speed sweep) of each variant; results prefixed by the variant.
 
     ``checkpoint``: directory of the sweep's checkpoint, written after every
@@ -458,10 +478,12 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     for name, label, over in variants:
         run = sweep(v.replace(**over), name, label, record, journal, progress, verbose)
         first = first or run
+    assert first is not None   # every run has a variant
     return first
 
 
-def sweep(vv, name, label, record, journal, progress=None, verbose=False):
+def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJournal,
+          progress: tqdm | None = None, verbose: bool = False) -> Model:
     """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
 
     After every converged load and speed step the variant's state, records
@@ -476,7 +498,8 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     record.data["num_dofs"] = problem.num_dofs
     # (the plane's offset is state); the series' "time" is the point's index, its
     # (W, U) in series_points
-    sv = SweepVariant(journal, key, run, problem.state_fields() + [film.V_counter],
+    sv = SweepVariant(journal, key, run,
+                      problem.state_fields() + [cast("fem.Constant", film.V_counter)],
                       record, vtx_fields(run), f"{name}_" if name else "",
                       ("steps", "speed"), run.ball.mesh.comm, progress)
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
@@ -486,14 +509,15 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     record.profile["variants"][key] = var
     at = {"leg": 0 if pos is None else pos["leg"]}
 
-    def write():
+    def write() -> None:
         sv.write([load(run), speed_parameter(run).get()])
 
-    def save(position, arrays=None):
+    def save(position: Mapping[str, Any], arrays: Sequence[npt.ArrayLike] | None = None
+             ) -> None:
         sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
                 arrays=[] if arrays is None else arrays)
 
-    def on_step(W, its):
+    def on_step(W: float, its: Sequence[Iterations]) -> None:
         its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
         if steps:   # the film map is kept for the last load only (checkpoint size)
             steps[-1].pop("profile", None)
@@ -502,7 +526,7 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
         if progress is not None:
             progress.update(1)
 
-    def on_speed(march=None):
+    def on_speed(march: Continuation | None = None) -> None:
         m = measures(run, vv)
         m.pop("profile")
         speed.append(dict(m, U=speed_parameter(run).get()))
@@ -523,15 +547,19 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
                 if speed_list(vv):
                     on_speed()
             elif large_load(vv):
+                assert pos is not None   # a resumed leg (at["leg"] > 0)
                 inner = follow_control(run, vv, vv.W, vv.W, verbose)
                 inner.set_secant_state(pos["inner"])
             else:
+                assert pos is not None   # a resumed leg (at["leg"] > 0)
                 inner = position_control(run, vv, verbose)
                 inner.set_secant_state(pos["inner"])
             for j, U in enumerate(speed_list(vv)):
                 if j + 1 < at["leg"]:
                     continue
-                increments = pos["increments"] if j + 1 == at["leg"] else None
+                # (the leg a resumed run stopped in: pos is its position)
+                increments = (cast("dict[str, Any]", pos)["increments"] if j + 1 == at["leg"]
+                              else None)
                 at["leg"] = j + 1
                 speed_march(run, vv, inner, vv.W, U,
                                 restart=not large_load(vv), record=its_all,
@@ -546,13 +574,13 @@ def sweep(vv, name, label, record, journal, progress=None, verbose=False):
     return run
 
 
-def film_oscillation(h_axis, p_axis):
+def film_oscillation(h_axis: npt.ArrayLike, p_axis: npt.ArrayLike) -> float:
     """Zig-zag of h on the centre line where p > p_max/2 (see the module docstring)."""
     p_axis = np.asarray(p_axis)
     return oscillation_indicator(np.asarray(h_axis), p_axis, 0.5 * p_axis.max(initial=0))
 
 
-def measures(run, v):
+def measures(run: Model, v: Params) -> dict[str, Any]:
     """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
     film = run.film
     prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
@@ -575,10 +603,11 @@ def measures(run, v):
             "friction_coefficient": abs(float(f[0])) * per_load,
             "couette_friction_coefficient": abs(float(fc[0])) * per_load,
             "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
-            "clearance": -float(film.counterpart.offset.value[Z])}
+            "clearance": -float(cast("AnalyticObstacle", film.counterpart).offset.value[Z])}
 
 
-def _report(steps, speed, v, record, prefix):
+def _report(steps: list[dict[str, Any]], speed: list[dict[str, Any]], v: Params,
+            record: RunRecord, prefix: str) -> None:
     keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
             "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
             "film_oscillation")
@@ -609,13 +638,13 @@ def _report(steps, speed, v, record, prefix):
             record.result(f"{prefix}speed_{k}", [m[k] for m in speed], UNITS[k])
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacement (bulk) and film pressure (cap submesh)."""
     ball, film = run.ball, run.film
     return {"displacement": [ball.u], "pressure": [film.p]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """film_map.png, centerline.png and (with speeds) friction_vs_speed.png."""
     from ..plots import plot_ball_film, plot_friction_vs_speed
 
@@ -636,12 +665,15 @@ def plot(profile, outdir):
         plot_friction_vs_speed(curves, outdir / "friction_vs_speed.png")
 
 
-def speed_parameter(run, on_set=None):
+def speed_parameter(run: Model, on_set: Callable[[float], object] | None = None
+                    ) -> ConstantParameter:
     """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
-    return ConstantParameter(run.film.V_counter, 0, on_set=on_set, scale=2.0)
+    # (the plane's velocity, a Constant: build)
+    return ConstantParameter(cast("fem.Constant", run.film.V_counter), 0, on_set=on_set,
+                             scale=2.0)
 
 
-def hertz_start(run, v, W, U):
+def hertz_start(run: Model, v: Params, W: float, U: float) -> None:
     """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
     h = hertz_contact(v, W)
     run.film.start_from_pressure(
@@ -649,30 +681,37 @@ def hertz_start(run, v, W, U):
         scales(v, W, U)[2], np.zeros(3))
 
 
-def load(run):
+def load(run: Model) -> float:
     """Load W (N) carried by the film on the whole ball: twice the half model's F_z."""
     return 2.0 * float(run.film.force()[Z])
 
 
-def position_control(run, v, verbose=False, on_set=None, record=None):
+def position_control(run: Model, v: Params, verbose: bool = False,
+                     on_set: Callable[[float], object] | None = None,
+                     record: list[Iterations] | None = None) -> Continuation:
     """Secant on the load W(z_p) in the plane position z_p (steps ≤ 0.1 δ_Hertz).
 
     A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
     """
     film, problem = run.film, run.problem
-    return Continuation(problem, ConstantParameter(film.counterpart.offset, Z, on_set),
+    plane = cast("AnalyticObstacle", film.counterpart)   # the rigid plane
+    return Continuation(problem, ConstantParameter(plane.offset, Z, on_set),
                         response=lambda: load(run), rtol=1e-4, max_trials=40,
                         verbose=verbose, max_step=0.1 * hertz_contact(v).delta,
                         admissible=lambda: film.min_film() > 0 and load(run) > 0,
                         record=record)
 
 
-def hertz_slope(v):
+def hertz_slope(v: Params) -> Callable[[float], float]:
     """dW/dz_p = 1.5 W/δ(W) (N/mm) of a Hertz contact, as a function of W."""
     return lambda W: 1.5 * W / hertz_contact(v, W).delta
 
 
-def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
+def load_sweep(run: Model, v: Params,
+               on_step: Callable[[float, Sequence[Iterations]], object] | None = None,
+               verbose: bool = False, start: Mapping[str, Any] | None = None,
+               on_accept: Callable[[dict[str, Any], list[Any] | None], object] | None = None
+               ) -> Continuation:
     """Reach W/steps, …, W at the speed U; returns the position controller.
 
     ``on_step(W, iterations)`` after each load (the Newton trials of the
@@ -685,7 +724,7 @@ def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
     film, problem = run.film, run.problem
     W1 = v.W / v.steps
     inner = position_control(run, v, verbose)
-    offset = film.counterpart.offset.value
+    offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
     # each trial sequence starts at the current position: the converged first
     # state, then the Hertz state predicted for each further load
     held = Hold(inner, W1, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
@@ -710,7 +749,11 @@ def load_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
     return inner
 
 
-def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=None):
+def thick_film_sweep(run: Model, v: Params,
+                     on_step: Callable[[float, Sequence[Iterations]], object] | None = None,
+                     verbose: bool = False, start: Mapping[str, Any] | None = None,
+                     on_accept: Callable[[dict[str, Any], list[Any] | None], object] | None = None
+                     ) -> Continuation:
     """Large loads: displacement control on a thick film at U_s, then continue down to U.
 
     (i) At U_s = ``start_speed``·U the Hertz state at W_0 = min(W/steps, W/4)
@@ -725,6 +768,7 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
     film, problem = run.film, run.problem
     U, speed = v.U, speed_parameter(run)
     if start is None:
+        its: list[Iterations]
         its, k0 = [], 0
         W0 = min(v.W / v.steps, 0.25 * v.W)
         for f in (1.0, 0.3, 3.0, 0.1, 10.0):
@@ -772,7 +816,8 @@ def thick_film_sweep(run, v, on_step=None, verbose=False, start=None, on_accept=
     return inner
 
 
-def follow_control(run, v, Wk, W_start, verbose=False, record=None):
+def follow_control(run: Model, v: Params, Wk: float, W_start: float, verbose: bool = False,
+                   record: list[Iterations] | None = None) -> Continuation:
     """Position control towards the load Wk whose scales follow the load reached.
 
     Every trial position sets the scales of the load reached last (≤ Wk;
@@ -780,16 +825,19 @@ def follow_control(run, v, Wk, W_start, verbose=False, record=None):
     """
     film, speed = run.film, speed_parameter(run)
 
-    def follow(z):
-        W_ref = min(inner.history[-1][1], Wk) if inner.history else W_start
+    def follow(z: float) -> None:
+        # (the search's responses are loads: floats)
+        W_ref = min(cast(float, inner.history[-1][1]), Wk) if inner.history else W_start
         set_scales(film, v, W_ref, speed.get())
 
     inner = position_control(run, v, verbose, on_set=follow, record=record)
     return inner
 
 
-def speed_march(run, v, inner, W, U, restart=False, record=None, on_speed=None,
-                increments=None):
+def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
+                restart: bool = False, record: list[Iterations] | None = None,
+                on_speed: Callable[[Continuation], None] | None = None,
+                increments: Sequence[float] | None = None) -> None:
     """Continue the converged state at load W in the entrainment speed to U (geometric).
 
     Each speed step re-finds the plane position for W (``inner``), starting
@@ -799,29 +847,30 @@ def speed_march(run, v, inner, W, U, restart=False, record=None, on_speed=None,
     converged step; ``increments``: those of an interrupted march (resumed).
     """
     film = run.film
-    offset = film.counterpart.offset.value
+    offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
     speed = speed_parameter(run, on_set=lambda Uv: set_scales(film, v, W, Uv))
     last = {"U": speed.get()}
 
-    def shifted():
+    def shifted() -> float:
         h_c = measures(run, v)["h_central"]
         return float(offset[Z]) - h_c * ((speed.get() / last["U"]) ** 0.64 - 1)
 
-    def response():
+    def accepted() -> None:
         last["U"] = speed.get()
-        return on_speed(march) if on_speed is not None else None
+        if on_speed is not None:
+            on_speed(march)
 
     held = Hold(inner, W, slope=hertz_slope(v),
                         guess=(lambda: float(offset[Z])) if restart else shifted,
                         predict=(lambda Wt: hertz_start(run, v, Wt, speed.get()))
                         if restart else None)
-    march = Continuation(held, speed, response=response, record=record)
+    march = Continuation(held, speed, record=record, on_accept=accepted)
     # speed ratios of at most MAX_SPEED_RATIO per step (a failed step is cut further)
     steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
     march.march(U, steps=steps, predictor=False, geometric=True, min_fraction=2.0**-6,
                 increments=increments)
 
 
-def large_load(v):
+def large_load(v: Params) -> bool:
     """Return True when the Hertz radius a(W) exceeds R/3 (W > 11.9 N, default ball)."""
     return hertz_contact(v).a > v.R / 3

@@ -30,9 +30,11 @@ and per converged load and speed (``[variant_]displacement_series.bp``, its (W, 
 in ``series_points``).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -61,6 +63,20 @@ from .film_setup import (
     viscosity,
 )
 
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..body import Material
+    from ..continuation import Iterations
+    from ..obstacles import AnalyticObstacle, MeshedObstacle
+    from ..output import RunRecord
+
 __all__ = ["COMPARE", "COMPARE_PLOT", "UNITS", "USER_CELLS", "USER_GROUPS", "Model", "Params",
            "arc_half_angle", "build", "check_film_length", "check_user_ends", "cylinder_arc", "doc",
            "load_control", "measures", "name", "place_user_layer", "plot", "progress_total",
@@ -76,7 +92,9 @@ USER_GROUPS = ("lubricated", "bottom")
 USER_CELLS = ("layer", "coating")
 
 
-def read_user_layer(v, comm, material):
+def read_user_layer(v: Params, comm: MPI.Comm, material: Callable[[float], Material]
+                    ) -> tuple[dmesh.Mesh, dmesh.MeshTags | None, dmesh.MeshTags, dict[str, int],
+                               Material | dict[int, Material], float]:
     """Read and place the layer of ``v.mesh_file``; its materials from ``material(E)``.
 
     Returns ``(msh, ct, ft, names, materials, x_l)``: ``ct`` the cell tags (None
@@ -95,7 +113,7 @@ def read_user_layer(v, comm, material):
     return msh, ct, ft, names, materials, x_l
 
 
-def place_user_layer(msh, ft, tag):
+def place_user_layer(msh: dmesh.Mesh, ft: dmesh.MeshTags, tag: int) -> float:
     """Move a user's layer: Γ_l (facets ``tag``) highest at y = 0, x extent centred at 0.
 
     Returns x_l, half the x extent of Γ_l (mm).
@@ -112,7 +130,7 @@ def place_user_layer(msh, ft, tag):
     return 0.5 * (hi - lo)
 
 
-def check_user_ends(film, v):
+def check_user_ends(film: Film, v: Params) -> None:
     """Raise InputError unless the user's Γ_l is one open curve ending at X = ±x_l.
 
     The pressure conditions (p = 0 at both ends, the JFO inlet at X = −x_l)
@@ -129,7 +147,8 @@ def check_user_ends(film, v):
 NAMES = {"lubricated": LUBRICATED, "bottom": BOTTOM}
 
 
-def cylinder_arc(R, n, alpha):
+def cylinder_arc(R: float, n: int, alpha: float
+                 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int32], str]:
     """Lower arc θ ∈ [−π/2 − α, −π/2 + α] of the circle of radius R about 0 (mm).
 
     ``n`` interval3 facets (v0, v1, midpoint), counter-clockwise so that the facet
@@ -259,13 +278,14 @@ def validate(v: Params) -> None:
         raise InputError("compare=alpha is a study of the finite-deformation model")
 
 
-def check_film_length(x_l, R):
+def check_film_length(x_l: float, R: float) -> None:
     """Raise InputError unless the film zone |X| ≤ x_l lies below the cylinder (x_l ≤ 0.8 R)."""
     if x_l > 0.8 * R:
         raise InputError(f"x_l = {x_l:.6g} mm must be < 0.8 R (film beyond the cylinder)")
 
 
-def scales(v, W=None, U=None):
+def scales(v: Params, W: float | None = None, U: float | None = None
+           ) -> tuple[float, float, float]:
     """Rigid film h_r (mm), pressure scale (MPa) and penalty ε (MPa·s/mm) at W and U."""
     W, U = (v.W if W is None else W), (v.U if U is None else U)
     h_r = rigid_clearance(W, v.mu, U, v.R)
@@ -273,7 +293,7 @@ def scales(v, W=None, U=None):
     return h_r, 6 * v.mu * U * ell / h_r**2, v.penalty * 12 * v.mu * ell**2 / h_r**3
 
 
-def arc_half_angle(v):
+def arc_half_angle(v: Params) -> float:
     """Half angle (rad) of the meshed arc: covers the film zone |x| ≤ x_l with 25 % margin."""
     return math.asin(min(0.95, 1.25 * v.x_l / v.R))
 
@@ -286,7 +306,8 @@ class Model(NamedTuple):
     problem: Problem
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder") -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, intermediate: bool = False,
+          name: str = "ehl_cylinder") -> Model:
     """Body, film and problem (unloaded; the cylinder at the rigid clearance of W/steps).
 
     ``name``: the problem's name (options prefix ``tribofx_<name>_``; a variant of
@@ -299,7 +320,7 @@ def build(v: Params, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder
     H = v.H
     law = "linear" if v.model == "linear" else "neo-hookean"
 
-    def mat(E):
+    def mat(E: float) -> Material:
         mu, lm = lame_parameters(E, v.nu)
         return (law, {"mu": mu, "lmbda": lm})
 
@@ -336,12 +357,13 @@ def build(v: Params, comm=MPI.COMM_WORLD, intermediate=False, name="ehl_cylinder
     else:
         film.add_pressure_bc()
     problem = Problem([layer, film], name=name, max_it=25)
-    film.counterpart.offset.value[1] = h_r
+    cast("AnalyticObstacle | MeshedObstacle", film.counterpart).offset.value[1] = h_r
     film.jfo_initial_guess()
     return Model(layer, film, problem)
 
 
-def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
+def sweep(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+          prefix: str = "", journal: SweepJournal | None = None) -> Model:
     """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
 
     ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
@@ -353,6 +375,7 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     name = prefix[:-1] or v.model
     run = build(v, name=options_name("ehl_cylinder", prefix[:-1]))
     layer, film, problem = run.layer, run.film, run.problem
+    assert layer.velocity is not None   # built with the sliding velocity (build)
     journal = journal or SweepJournal(None, layer.mesh.comm, v)
     record.data["num_dofs"] = problem.num_dofs
     var = SweepVariant(journal, name, run, problem.state_fields() + [layer.velocity],
@@ -361,15 +384,16 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
     pos = var.position
 
-    def write(m):
+    def write(m: Mapping[str, Any]) -> None:
+        assert layer.velocity is not None   # built with the sliding velocity (build)
         var.write([m["W"], float(layer.velocity.value[0])])
 
-    def save(leg, march):
+    def save(leg: int, march: Continuation) -> None:
         var.save({"leg": leg, "increments": march.increments,
                   "W": loads.done if leg == 0 else v.W, "inner": inner.secant_state(),
                   "scales": film.scale_values()})
 
-    def on_step():
+    def on_step() -> None:
         m = measures(run, v)
         profiles.append(dict(m.pop("profile"), W=m["W"]))
         steps.append(m)
@@ -377,9 +401,10 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
         if progress is not None:
             progress.update(1)
 
-    def on_speed():
+    def on_speed() -> None:
         m = measures(run, v)
         m.pop("profile")
+        assert layer.velocity is not None   # built with the sliding velocity (build)
         m["U"] = float(layer.velocity.value[0])
         speed.append(m)
         write(m)
@@ -412,7 +437,8 @@ def sweep(v, record, progress=None, verbose=False, prefix="", journal=None):
     return run
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Model:
     """Load sweep W/steps … W (per variant of ``compare``); records the film measures.
 
     ``checkpoint``: directory of the sweep's checkpoint (written after every
@@ -431,10 +457,11 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
         if MPI.COMM_WORLD.rank == 0:
             record.profile["variants"][name]["label"] = label
             record.profile["compare"] = v.compare
+    assert first is not None   # every compare has variants
     return first
 
 
-def measures(run, v):
+def measures(run: Model, v: Params) -> dict[str, Any]:
     """Film measures on all ranks: h_min, h_central, p_max, W, friction, clearance."""
     film = run.film
     prof, f = film.profile(everywhere=True), film.force()
@@ -444,10 +471,12 @@ def measures(run, v):
             "profile": {"x": xx, "p": prof["p"], "h": prof["h"]}, "W": -float(f[1]),
             "tangential_force": float(f[0]),
             "friction_coefficient": abs(f[0] / f[1]) if f[1] < 0 else math.nan,
-            "clearance": float(film.counterpart.offset.value[1])}
+            "clearance": float(cast("AnalyticObstacle | MeshedObstacle",
+                                    film.counterpart).offset.value[1])}
 
 
-def _report(steps, speed, profiles, v, record, prefix):
+def _report(steps: list[dict[str, Any]], speed: list[dict[str, Any]],
+            profiles: list[dict[str, Any]], v: Params, record: RunRecord, prefix: str) -> None:
     keys = ("W", "h_min", "h_central", "p_max", "friction_coefficient", "clearance")
     if steps:
         for k in keys[1:5]:
@@ -473,13 +502,13 @@ def progress_total(v: Params) -> int:
     return v.steps * (1 if v.compare == "none" else len(COMPARE[v.compare]))
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacement (bulk) and film pressure (Γ_l submesh)."""
     layer, film = run.layer, run.film
     return {"displacement": [layer.u], "pressure": [film.p]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``profiles.png`` (or the ``compare`` plot) and ``friction_vs_speed.png``."""
     from ..plots import plot_film_profiles, plot_friction_vs_speed
 
@@ -497,7 +526,10 @@ def plot(profile, outdir):
         plot_friction_vs_speed({None: var["speed"]}, outdir / "friction_vs_speed.png")
 
 
-def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=None):
+def load_control(run: Model, v: Params, on_step: Callable[[], object] | None = None,
+                 verbose: bool = False, record: list[Iterations] | None = None,
+                 on_accept: Callable[[], object] | None = None
+                 ) -> tuple[Continuation, Continuation]:
     """Load control by the cylinder position: (outer load march, inner position search).
 
     The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
@@ -508,12 +540,13 @@ def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=Non
     iterations of the trials of each load.
     """
     film, problem = run.film, run.problem
-    inner = Continuation(problem, ConstantParameter(film.counterpart.offset, 1),
+    cylinder = cast("AnalyticObstacle | MeshedObstacle", film.counterpart)   # rigid
+    inner = Continuation(problem, ConstantParameter(cylinder.offset, 1),
                          response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
                          verbose=verbose)
     held = Hold(inner, 0.0, transform=lambda W: 1 / W, slope=slope(run, v))
 
-    def response():
+    def response() -> float:
         if on_step is not None:
             on_step()
         if on_accept is not None:
@@ -523,22 +556,27 @@ def load_control(run, v, on_step=None, verbose=False, record=None, on_accept=Non
     return Continuation(held, held, response=response, record=record), inner
 
 
-def slope(run, v):
+def slope(run: Model, v: Params) -> Callable[[float], float]:
     """d(1/W)/ds = 1/(2.45 μUR) of the rigid film at the current speed (1/(N·mm⁻¹·mm))."""
+    assert run.layer.velocity is not None   # built with the sliding velocity (build)
     U = run.layer.velocity.value
     return lambda W: 1 / rigid_clearance(1.0, v.mu, U[0], v.R)
 
 
-def set_speed(run, v, U):
+def set_speed(run: Model, v: Params, U: float) -> None:
     """Sliding speed U (mm/s) with the penalty, SUPG and tolerance scales that follow it."""
     layer, film = run.layer, run.film
+    assert layer.velocity is not None   # built with the sliding velocity (build)
     layer.velocity.value[0] = U
     h_r, p_s, eps = scales(v, U=U)
     film.set_scales(p_c=p_s, eps=eps, film_scale=h_r, speed_scale=U)
 
 
-def speed_sweep(run, v, inner, W, speeds, on_speed=None, record=None, start=0,
-                increments=None, on_accept=None):
+def speed_sweep(run: Model, v: Params, inner: Continuation, W: float, speeds: Sequence[float],
+                on_speed: Callable[[], object] | None = None,
+                record: list[Iterations] | None = None, start: int = 0,
+                increments: Sequence[float] | None = None,
+                on_accept: Callable[[int, Continuation], object] | None = None) -> None:
     """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
 
     Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
@@ -549,11 +587,13 @@ def speed_sweep(run, v, inner, W, speeds, on_speed=None, record=None, start=0,
     ``speeds[start]`` (a resumed run).
     """
     layer = run.layer
+    assert layer.velocity is not None   # built with the sliding velocity (build)
     held = Hold(inner, W, transform=lambda W: 1 / W,
                         slope=slope(run, v))
     at = {"j": start}
+    sweep: Continuation   # (the march below: ``accepted`` hands it to on_accept)
 
-    def response():
+    def accepted() -> None:
         if on_speed is not None:
             on_speed()
         if on_accept is not None:
@@ -561,7 +601,7 @@ def speed_sweep(run, v, inner, W, speeds, on_speed=None, record=None, start=0,
 
     sweep = Continuation(held, ConstantParameter(
         layer.velocity, 0, on_set=lambda U: set_speed(run, v, U)),
-        response=response, record=record)
+        record=record, on_accept=accepted)
     for j in range(start, len(speeds)):
         at["j"] = j
         sweep.march(speeds[j], predictor=False, geometric=True,

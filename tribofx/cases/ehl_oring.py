@@ -100,10 +100,12 @@ force of p_s).  Plots ``profiles.png`` (Fig. 17, out vs in), ``mesh_study.png``
 one time index per sealed pressure, its p_s in ``series_points``).
 """
 
+from __future__ import annotations
+
 import math
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import ufl
@@ -140,6 +142,26 @@ from .film_setup import (
 )
 from .slow_time import SlowTimeRecords
 
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Callable, Mapping, Sequence
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import mesh as dmesh
+    from tqdm import tqdm
+
+    from ..continuation import Iterations
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
+    from ..roughness import Roughness
+
+    class CycleStepper(Stepper):
+        """The :class:`~tribofx.stepper.Stepper` of :func:`cycle_stepper`: its seal and layer."""
+
+        seal: ORingSeal
+        layer: AirLayer
+
 __all__ = ["NAMES", "UNITS", "USER_GROUPS", "AirLayer", "ORingSeal", "Params", "air_end",
            "axial_balance", "build", "cycle_stepper", "doc", "geometry", "integral", "mesh_study",
            "name", "plot", "progress_total", "reforming", "resumable", "rod_speed", "run",
@@ -158,7 +180,8 @@ NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING
 USER_GROUPS = ("lubricated", "sealed", "housing")   # the groups of a user's section
 
 
-def geometry(v, extent=None):
+def geometry(v: Params, extent: tuple[float, float] | None = None
+             ) -> tuple[tuple[float, float], float, float, float, float]:
     """Centre, radius, rod radius, final groove bottom and air-side wall (mm).
 
     ``extent``: the half extents (r, z) of a user's section (None: the built
@@ -171,7 +194,9 @@ def geometry(v, extent=None):
     return center, a, r_rod, r_rod + 2 * a * (1 - v.squeeze), b - 0.005
 
 
-def _user_section(v, comm):
+def _user_section(v: Params, comm: MPI.Comm
+                  ) -> tuple[dmesh.Mesh, dmesh.MeshTags, dict[str, int | tuple[int, int]],
+                             tuple[float, float]]:
     """Read a user's section, move it into place (see the module docstring).
 
     Returns ``(mesh, facet_tags, names, (a, b))``, a and b the half extents in r
@@ -205,7 +230,8 @@ class ORingSeal:
     end supplied with the content ``supply``).
     """
 
-    def __init__(self, v, U, mesh, comm, name="ehl_oring", roughness=None, transient=None):
+    def __init__(self, v: Params, U: float, mesh: int, comm: MPI.Comm, name: str = "ehl_oring",
+                 roughness: Roughness | None = None, transient: str | None = None) -> None:
         self.user = bool(v.mesh_file)
         if self.user:
             msh, ft, names, extent = _user_section(v, comm)
@@ -263,7 +289,8 @@ class ORingSeal:
         elif U > 0 or transient is not None:
             # JFO outstroke (a reciprocating film's both strokes): flooded inlet at p_s
             # on the sealed side, an outlet (p = 0 where cavitated) on the air side
-            self.p_end = film.add_inlet(sealed, pressure=p0)
+            # (a flooded inlet: its pressure's Constant, never None)
+            self.p_end = cast("fem.Constant", film.add_inlet(sealed, pressure=p0))
         else:
             # JFO instroke: flooded inlet from the air side, outlet into the sealed fluid
             film.add_inlet(air)
@@ -275,11 +302,11 @@ class ORingSeal:
         # stall_window: over-long mount steps stall far from the solution; cut them early
         self.problem = Problem(self.components, name=name, max_it=40, max_backtracks=10,
                                line_search="admissible", stall_window=10)
-        self.iterations = []
-        self._post = None
+        self.iterations: list[Iterations] = []
+        self._post: dict[str, Any] | None = None
 
     @staticmethod
-    def _check_ends(film, z_lo, z_hi, tol, path):
+    def _check_ends(film: Film, z_lo: float, z_hi: float, tol: float, path: str) -> None:
         """Raise InputError unless Γ_l is one open curve ending at its z extremes, alone there.
 
         The end conditions p = p_s at z_lo and p = 0 at z_hi are located by the
@@ -298,21 +325,23 @@ class ORingSeal:
                              f"there (has {len(ends)} end point(s))")
 
     # -- parameters and continuation ---------------------------------------------------
-    def set_pressure(self, p_s):
+    def set_pressure(self, p_s: float) -> None:
         """Sealed pressure p_s (MPa) on the sealed arc and at the sealed end of the film."""
-        self.p_s.value = float(p_s)
-        self.p_end.value = float(p_s)
+        # (DOLFINx types Constant.value's setter NDArray; it takes a float)
+        self.p_s.value = float(p_s)  # type: ignore[assignment]
+        self.p_end.value = float(p_s)  # type: ignore[assignment]
 
     @property
-    def U(self):
+    def U(self) -> float:
         """Rod speed (mm/s)."""
-        return float(self.film.V_counter.value[1])
+        return float(cast("fem.Constant", self.film.V_counter).value[1])   # the rod's
 
-    def _march(self, parameter, target, steps, geometric=False):
+    def _march(self, parameter: ConstantParameter, target: float, steps: int,
+               geometric: bool = False) -> None:
         Continuation(self.problem, parameter, record=self.iterations).march(
             target, steps, predictor=False, geometric=geometric)
 
-    def mount(self, steps):
+    def mount(self, steps: int) -> None:
         """Squeeze the ring: the groove bottom is moved to r_g in ``steps``.
 
         The trace and then the Reynolds equation are first solved alone on the
@@ -323,21 +352,23 @@ class ORingSeal:
         for sub in ([film.u_s], [film.p] + ([film.lam] if film.lam is not None else [])):
             Problem(self.components, unknowns=sub, name="oring_start").solve_by_homotopy()
         self.iterations.append(self.problem.solve_by_homotopy().iterations)
-        self._march(ConstantParameter(self.bottom.counterpart.offset, 0),
+        bottom = cast("AnalyticObstacle", self.bottom.counterpart)   # the rigid plane's
+        self._march(ConstantParameter(bottom.offset, 0),
                     self.r_g - self.r_g0, steps)
 
-    def ramp(self, p_s, steps):
+    def ramp(self, p_s: float, steps: int) -> None:
         """Raise the sealed pressure to ``p_s`` (MPa) in ``steps``."""
         self._march(ConstantParameter(self.p_s, None, on_set=self.set_pressure), p_s, steps)
 
-    def speed(self, U, steps):
+    def speed(self, U: float, steps: int) -> None:
         """Move the rod speed geometrically to ``U`` (mm/s, same sign) in ``steps``."""
         s = math.copysign(1.0, U)
-        self._march(ConstantParameter(self.film.V_counter, 1, scale=s), abs(U), steps,
+        rod = cast("fem.Constant", self.film.V_counter)   # the rod's velocity
+        self._march(ConstantParameter(rod, 1, scale=s), abs(U), steps,
                     geometric=True)
 
     # -- results -----------------------------------------------------------------------
-    def _forms(self):
+    def _forms(self) -> dict[str, Any]:
         if self._post is None:
             body, film = self.body, self.film
             t = ax.follower_pressure_traction(self.p_s, body.u, ufl.FacetNormal(body.mesh))
@@ -354,7 +385,7 @@ class ORingSeal:
                 "z": fem.Expression(xs[1], pts)}
         return self._post
 
-    def forces(self):
+    def forces(self) -> dict[str, npt.NDArray[np.float64]]:
         """Return the r, z forces (N, whole circumference) on the ring: film, p_s, bottom, wall."""
         comm = self.body.mesh.comm
         sealed = np.array([comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
@@ -362,7 +393,7 @@ class ORingSeal:
         return {"film": self.film.force(), "sealed": sealed, "bottom": self.bottom.force(),
                 "wall": self.wall.force()}
 
-    def profile(self):
+    def profile(self) -> dict[str, npt.NDArray[np.float64]] | None:
         """Film data on rank 0 (None elsewhere), sorted by the current axial position.
 
         Nodal: z (current axial position = position on the rod, mm), h (mm), p (MPa)
@@ -388,7 +419,7 @@ class ORingSeal:
             out["lam"] = pr["lam"][o]
         return out
 
-    def sealed_arc_radii(self):
+    def sealed_arc_radii(self) -> list[float]:
         """Return the current radii r (mm) of the end points φ = −135°, −45° of the sealed arc.
 
         The built section only (a user's section need not have nodes there).
@@ -406,11 +437,12 @@ class ORingSeal:
             out.append(next(r for r in self.body.mesh.comm.allgather(val) if r is not None))
         return out
 
-    def measures(self):
+    def measures(self) -> dict[str, float]:
         """Film measures on all ranks (see ``UNITS``)."""
         prof = self.profile()
         res = None
         if self.body.mesh.comm.rank == 0:
+            assert prof is not None   # rank 0 holds the gathered profile
             z, h, p = prof["z"], prof["h"], prof["p"]
             k, i = int(np.argmax(p)), int(np.argmin(h))
             ps = float(self.p_s.value)
@@ -434,7 +466,8 @@ class ORingSeal:
         return res
 
 
-def build(v: "Params", U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw):
+def build(v: Params, U: float, mesh: int | None = None, comm: MPI.Comm = MPI.COMM_WORLD,
+          name: str = "ehl_oring", **kw: Any) -> ORingSeal:
     """:class:`ORingSeal` of the values ``v`` at speed U (mm/s) and mesh density ``mesh``.
 
     ``name``: the problem's name, options prefix ``tribofx_<name>_``; ``kw``: the
@@ -443,7 +476,9 @@ def build(v: "Params", U, mesh=None, comm=MPI.COMM_WORLD, name="ehl_oring", **kw
     return ORingSeal(v, U, v.mesh if mesh is None else mesh, comm, name, **kw)
 
 
-def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
+def solve_to(seal: ORingSeal, v: Params, U: float, p_s_targets: Sequence[float],
+             on_state: Callable[[float], object] | None = None, done: int = 0
+             ) -> list[Iterations]:
     """Mount, raise p_s, go to speed U, then the other p_s; on_state(p_s) after each target.
 
     ``done``: the number of targets already reached by the state of ``seal``
@@ -462,14 +497,14 @@ def solve_to(seal, v, U, p_s_targets, on_state=None, done=0):
     return list(seal.iterations)
 
 
-def axial_balance(seal):
+def axial_balance(seal: ORingSeal) -> float:
     """Sum of the axial forces on the ring relative to the axial force of p_s (−)."""
     f = seal.forces()
     total = sum(val[1] for val in f.values())
     return abs(total) / abs(f["sealed"][1])
 
 
-def rod_speed(U, period):
+def rod_speed(U: float, period: float) -> Callable[[float], npt.NDArray[np.float64]]:
     """Return t ↦ (0, U cos(2πt/T)) (mm/s), the rod's velocity in (r, z)."""
     return lambda t: np.array([0.0, U * math.cos(2 * math.pi * t / period)])
 
@@ -481,12 +516,12 @@ class AirLayer:
     the stepper's history, so a checkpoint carries it.
     """
 
-    def __init__(self, history, period):
+    def __init__(self, history: dict[str, list[float]], period: float) -> None:
         self.h, self.period = history, float(period)
         self.h.setdefault("t", [])
         self.h.setdefault("c", [])
 
-    def record(self, t, c, U):
+    def record(self, t: float, c: float, U: float) -> None:
         """Keep the content c (mm) at the air end at time t (s) while U > 0 (outstroke).
 
         A time not after the last one kept is skipped (a step cut and tried again
@@ -496,7 +531,7 @@ class AirLayer:
             self.h["t"].append(float(t))
             self.h["c"].append(float(c))
 
-    def supply(self, t):
+    def supply(self, t: float) -> float:
         """Content brought back at time t (mm): the air end's at the mirror time 2t_r − t."""
         if not self.h["t"]:
             return 0.0       # nothing carried out yet (the supply only acts in an instroke)
@@ -505,7 +540,7 @@ class AirLayer:
         return float(np.interp(2 * t_rev - t, self.h["t"], self.h["c"]))
 
 
-def reforming(U, T, t):
+def reforming(U: float, T: float, t: float) -> float:
     """Return ω of the vertex-rule Couette flux at t: 1 in the instroke, 0 in the outstroke.
 
     In the instroke the starved film from the air end reforms in front of the
@@ -515,21 +550,23 @@ def reforming(U, T, t):
     return 1.0 if rod_speed(U, T)(t)[1] < 0 else 0.0
 
 
-def air_end(seal):
+def air_end(seal: ORingSeal) -> tuple[float, float, float]:
     """(θh, h, 2π r) at the air end of the film (the highest z of Γ_l), every rank."""
     prof = seal.film.profile(everywhere=True)
     k = int(np.argmax(prof["X"][:, 1]))
     return (1 - prof["lam"][k]) * prof["h"][k], prof["h"][k], 2 * math.pi * prof["x"][k, 0]
 
 
-def transient_seal(v, U):
+def transient_seal(v: Params, U: float) -> ORingSeal:
     """Build the seal of ``v`` at rod speed U (mm/s), its film transient (``scheme``), unsolved."""
     E_star = 3 * (v.mu1 + v.mu2) / 0.75      # ν = 1/2, the rod rigid
     rough = rough_pair(v.sigma, E_star, v.mu_b) if v.sigma > 0 else None
     return build(v, U, roughness=rough, transient=v.scheme, name="ehl_oring_cycle")
 
 
-def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
+def cycle_stepper(v: Params, checkpoint: str | os.PathLike[str] | None = None,
+                  verbose: bool = False, start: bool = True, seal: ORingSeal | None = None
+                  ) -> CycleStepper:
     """Build the seal of ``v`` at U, transient, solve its steady outstroke; return the Stepper.
 
     ``start``: mount and pressurise to the first p_s at U (False: a state to be
@@ -549,23 +586,28 @@ def cycle_stepper(v, checkpoint=None, verbose=False, start=True, seal=None):
     film = seal.film
     layer = AirLayer({}, T)
 
-    def supply(t):
+    def supply(t: float) -> float:
         """Keep the layer of the state at t_n; return the supply brought back at t (s)."""
         layer.record(stepper.t, air_end(seal)[0], rod_speed(U, T)(stepper.t)[1])
         return layer.supply(t)
 
-    stepper = Stepper(seal.components, film, parameters=[seal.p_s, seal.p_end],
-                      checkpoint=checkpoint, name="ehl_oring_cycle", verbose=verbose,
-                      problem_kw={"max_it": 40, "max_backtracks": 10,
-                                  "line_search": "admissible", "stall_window": 10},
-                      schedule=[(film.V_counter, rod_speed(U, T)),
-                                (seal.supply, supply),
-                                (film.vertex_couette, lambda t: reforming(U, T, t))])
+    assert film.vertex_couette is not None   # a lumped JFO film on a curve has ω
+    # (a CycleStepper once it holds its seal and layer, the next line)
+    stepper = cast("CycleStepper", Stepper(
+        seal.components, film, parameters=[seal.p_s, seal.p_end],
+        checkpoint=checkpoint, name="ehl_oring_cycle", verbose=verbose,
+        problem_kw={"max_it": 40, "max_backtracks": 10,
+                    "line_search": "admissible", "stall_window": 10},
+        schedule=[(cast("fem.Constant", film.V_counter), rod_speed(U, T)),
+                  (seal.supply, supply),
+                  (film.vertex_couette, lambda t: reforming(U, T, t))]))
     stepper.seal, stepper.layer = seal, layer
     return stepper
 
 
-def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run_cycle(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+              checkpoint: str | os.PathLike[str] | None = None, resume: bool = False
+              ) -> CycleStepper:
     """Mount, pressurise to the first p_s at U, then step the cycles; returns the stepper."""
     T = v.period
     stepper = cycle_stepper(v, checkpoint, verbose, start=not resume)
@@ -575,8 +617,8 @@ def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=F
     sr = SlowTimeRecords(stepper, v, record, keys, vtx_fields(seal), resume)
     stepper.layer.h = stepper.history.setdefault("air_layer", stepper.layer.h)  # on resume
 
-    def log(st, its):
-        u = float(film.V_counter.value[1])
+    def log(st: Stepper, its: int) -> None:
+        u = float(cast("fem.Constant", film.V_counter).value[1])   # the rod's speed
         m = seal.measures()
         q_sealed, q_air = film.consistent_fluxes()
         sr.log(its, {"time": st.t, "rod_speed": u, "h_min": m["h_min"],
@@ -592,7 +634,8 @@ def run_cycle(v, record, progress=None, verbose=False, checkpoint=None, resume=F
     return stepper
 
 
-def integral(t, q, scheme):
+def integral(t: npt.NDArray[np.float64], q: Sequence[float] | npt.NDArray[np.float64],
+             scheme: str) -> npt.NDArray[np.float64]:
     """Q(t_n) = ∫₀^t_n q dt by the film's own scheme over the recorded steps ``t`` (s).
 
     c₀(Q_{n+1} − Q_n) + c₁(Q_n − Q_{n−1}) = Δt_{n+1} q(t_{n+1}), the weights of
@@ -611,7 +654,8 @@ def integral(t, q, scheme):
     return Q
 
 
-def _report(hist, record, T, seal, scheme):
+def _report(hist: dict[str, list[Any]], record: RunRecord, T: float, seal: ORingSeal,
+            scheme: str) -> None:
     """Per-step series, the leakage, intake and content change of each completed cycle, the film."""
     units = {"time": "s", "rod_speed": "mm/s", "h_min": "mm", "friction_force": "N",
              "flux_air": "mm^3/s", "flux_sealed": "mm^3/s", "content": "mm^3",
@@ -622,7 +666,7 @@ def _report(hist, record, T, seal, scheme):
     Q = {"leakage": integral(t, hist["flux_air"], scheme),
          "intake": integral(t, hist["flux_sealed"], scheme),
          "content_change": np.asarray(hist["content"])}
-    per = {key: [] for key in Q}
+    per: dict[str, list[float]] = {key: [] for key in Q}
     for k in range(int(t[-1] / T + 1e-9) if len(t) else 0):
         sel = np.flatnonzero((t >= k * T - 1e-12) & (t <= (k + 1) * T + 1e-12))
         for key, q in Q.items():
@@ -763,7 +807,9 @@ def progress_total(v: Params) -> int:
     return len(number_list(v.p_s, "p_s")) * (1 if v.stroke == "single" else 2)
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False
+        ) -> ORingSeal | CycleStepper:
     """Mount, pressurise and solve each stroke; optionally the mesh study.
 
     ``checkpoint``: directory of the sweep's checkpoint, written after every
@@ -788,7 +834,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
         prob = build(v, math.copysign(max(abs(Us), 1000.0), Us),
                      name=options_name("ehl_oring", f"{tag}stroke"))
         record.data["num_dofs"] = prob.problem.num_dofs
-        state = prob.problem.state_fields() + [prob.p_s, prob.p_end, prob.film.V_counter]
+        state = prob.problem.state_fields() + [prob.p_s, prob.p_end,
+                                               cast("fem.Constant", prob.film.V_counter)]
         # u and p at each sealed pressure of the stroke (ParaView time series; the
         # "time" is the index of the state, its p_s in series_points)
         sv = SweepVariant(journal, tag, prob, state, record, vtx_fields(prob),
@@ -805,7 +852,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
         for p_s, m in zip(points, measures):
             _record(record, tag, p_s, m)
 
-        def on_state(p_s, prob=prob, tag=tag, rec=rec, sv=sv, t0=t0):
+        def on_state(p_s: float, prob: ORingSeal = prob, tag: str = tag,
+                     rec: dict[str, Any] = rec, sv: SweepVariant = sv, t0: float = t0) -> None:
             sv.write(p_s)
             m = prob.measures()
             m["axial_balance"] = axial_balance(prob)
@@ -831,17 +879,20 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     record.result("p_s", p_targets, "MPa")
     if comm.rank == 0:
         record.profile = profiles
+    assert prob is not None   # one or two strokes, each builds its seal
     return prob
 
 
-def _record(record, tag, p_s, m):
+def _record(record: RunRecord, tag: str, p_s: float, m: Mapping[str, float]) -> None:
     """Record the results of one sealed pressure of a stroke (``<tag>_ps<p_s>_…``)."""
     for k, unit in UNITS.items():
         record.result(f"{tag}_ps{p_s:g}_{k}", m[k], unit)
 
 
-def mesh_study(v, record):
+def mesh_study(v: Params, record: RunRecord) -> list[dict[str, Any]]:
     """Outstroke at the first p_s on the densities ``levels``; returns the profiles."""
+    rows: list[dict[str, Any]]
+    out: list[dict[str, Any]]
     rows, out = [], []
     U = abs(v.U)
     for n in [int(k) for k in number_list(v.mesh_levels, "mesh_levels")]:
@@ -849,6 +900,7 @@ def mesh_study(v, record):
         seal = build(v, max(U, 1000.0), mesh=n, name=options_name("ehl_oring", f"density{n}"))
         its = solve_to(seal, v, U, number_list(v.p_s, "p_s")[:1])
         m = seal.measures()
+        row: dict[str, Any]
         row = {"mesh": n, "num_dofs": seal.problem.num_dofs, "h_at_p_max": m["h_at_p_max"],
                "h_mean": m["h_mean"],
                "h_min": m["h_min"], "p_max": m["p_max"], "oscillation": m["oscillation"],
@@ -863,13 +915,13 @@ def mesh_study(v, record):
     return out
 
 
-def vtx_fields(seal):
+def vtx_fields(seal: ORingSeal | CycleStepper) -> dict[str, list[fem.Function]]:
     """Displacement (bulk) and film pressure (Γ_l submesh) of the seal (or its cycle's)."""
-    seal = getattr(seal, "seal", seal)
+    seal = cast("ORingSeal", getattr(seal, "seal", seal))   # a cycle's stepper holds it
     return {"displacement": [seal.body.u], "pressure": [seal.film.p]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``profiles.png`` (Fig. 17) and ``mesh_study.png`` (Figs. 18–19), or ``cycle.png``."""
     if "cycle" in profile:
         plot_oring_cycle(profile["cycle"], outdir)

@@ -33,9 +33,11 @@ lifted at V — at its bottom, and the film is the two-body one
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from dolfinx import fem
@@ -52,6 +54,16 @@ from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
 from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
+
+if TYPE_CHECKING:
+    import os
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from tqdm import tqdm
+
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
 
 __all__ = ["Model", "Params", "build", "doc", "extent", "fraction", "length", "measures", "name",
            "plot", "progress_total", "resumable", "run", "speed_scale", "validate", "vtx_fields"]
@@ -144,12 +156,12 @@ def validate(v: Params) -> None:
     density(v, v.cavitation)
 
 
-def fraction(v):
+def fraction(v: Params) -> float:
     """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
     return 0.5 if v.dim == 2 else 0.25
 
 
-def length(v):
+def length(v: Params) -> float:
     """ℓ = max(√(2R h_start), Hertz half-width at F) (mm): the film's width."""
     ell = math.sqrt(2 * v.R * v.h_start)
     if v.control == "load" and v.F > 0:
@@ -157,7 +169,7 @@ def length(v):
     return ell
 
 
-def extent(v):
+def extent(v: Params) -> float:
     """End L of the film (mm): min(10ℓ, R/2); the body is lubricated within L of its axis.
 
     Beyond it the gap exceeds ~50 h_start: the film carries ≲ (ℓ/L)³ (2D) or
@@ -168,7 +180,7 @@ def extent(v):
     return min(10 * length(v), 0.5 * v.R)
 
 
-def speed_scale(v):
+def speed_scale(v: Params) -> float:
     """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
     if v.control == "speed":
         return abs(v.V)
@@ -186,7 +198,8 @@ class Model(NamedTuple):
     plane: fem.Constant
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None, steady=False) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
+          checkpoint: str | os.PathLike[str] | None = None, steady: bool = False) -> Model:
     """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
 
     ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
@@ -242,7 +255,7 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None, steady=False) -> Mode
         film = TwoBodyFilm(body, "lubricated", block, "lubricated", viscosity(v), **kw)
         bodies.append(block)
 
-    def rim(X):
+    def rim(X: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
         return np.sum(X[:dim - 1] ** 2, axis=0) > (L * (1 - 1e-6)) ** 2
 
     if v.cavitation == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
@@ -251,7 +264,7 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None, steady=False) -> Mode
         film.add_pressure_bc(rim)
     if math.isinf(v.E2):
         film.place_countersurface(h0, np.zeros(3))
-        lift = film.counterpart.offset
+        lift = cast("AnalyticObstacle", film.counterpart).offset   # the rigid plane's
     if not steady:
         film.transient(v.scheme, lumped=v.lumped)
     offset = lift
@@ -268,20 +281,20 @@ def progress_total(v: Params) -> int:
     return nominal_steps(v.T, v.dt)
 
 
-def vtx_fields(model):
+def vtx_fields(model: Model) -> dict[str, list[fem.Function]]:
     """Displacement of the body; film pressure (on Γ_l)."""
     film = model.stepper.wear
     return {"displacement": [film.body.u], "pressure": [film.p]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``squeeze.png``: film and force against time; ``squeeze_profiles.png``."""
     from ..plots.film import plot_squeeze
 
     plot_squeeze(profile, outdir)
 
 
-def measures(model, v, y0):
+def measures(model: Model, v: Params, y0: float) -> dict[str, float]:
     """One step's measures: film at the centre and its minimum, force, plane position."""
     dim, film = v.dim, model.stepper.wear
     prof = film.profile(everywhere=True)
@@ -294,7 +307,8 @@ def measures(model, v, y0):
             "content": film.content() / fraction(v)}
 
 
-def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        checkpoint: str | os.PathLike[str] | None = None, resume: bool = False) -> Model:
     """Step the squeeze from t = 0 (or the checkpoint) to T; per-step records."""
     model = build(v, checkpoint=checkpoint)
     stepper = model.stepper
@@ -307,7 +321,7 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     y0 = sr.history.setdefault("y0", float(model.plane.value[dim - 1]))
     R, mu, L = v.R, v.mu, extent(v)
 
-    def log(t, its):
+    def log(t: float, its: int) -> None:
         m = measures(model, v, y0)
         h_rigid = v.h_start - m["approach"]     # the rigid body's gap at the plane
         m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v.V
@@ -324,7 +338,8 @@ def run(v: Params, record, progress=None, verbose=False, checkpoint=None, resume
     return model
 
 
-def _report(film, record, hist):
+def _report(film: Film | TwoBodyFilm, record: RunRecord, hist: dict[str, list[Any]]
+            ) -> None:
     units = {"time": "s", "h_center": "mm", "h_min": "mm", "force": "N (N/mm in 2D)",
              "approach": "mm", "p_center": "MPa", "newton_iterations": "-",
              "content": "mm² per unit length (2D), mm³ (3D): the fluid in the film",

@@ -28,8 +28,11 @@ film's force on each body (``friction_force_upper``/``_lower``, x, N/mm;
 both displacements.  Units: mm, N, s, MPa (viscosity MPa·s).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from dolfinx import fem
@@ -46,6 +49,15 @@ from ..obstacles import rigid_cylinder, rigid_plane
 from ..params import CaseParams, InputError, param
 from ..problem import NewtonDivergence, Problem
 from ..references import hertz, rigid_clearance
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
+    from ..references import HertzContact
 
 __all__ = ["Model", "Params", "build", "doc", "measures", "name", "plot", "progress_total",
            "reference", "report", "resumable", "run", "scales", "validate", "vtx_fields"]
@@ -102,12 +114,12 @@ class Params(CaseParams):
     supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds rows")
 
 
-def reference(v):
+def reference(v: Params) -> HertzContact:
     """Hertz line contact of the pair (the dry limit)."""
     return hertz(v.W, v.R1, v.E1, v.nu1, v.R2, v.E2, v.nu2, line=True)
 
 
-def scales(v, W=None):
+def scales(v: Params, W: float | None = None) -> tuple[float, float, float, float]:
     """Rigid film h_r (mm), pressure scale p_c (MPa), penalty ε (MPa·s/mm), x_l (mm)."""
     ref = reference(v)
     u_m = 0.5 * (v.U1 + v.U2)
@@ -149,14 +161,14 @@ class Model:
     the load along +y).
     """
 
-    bodies: dict
+    bodies: dict[int, Body]
     film: Film | TwoBodyFilm
     problem: Problem
     lift: fem.Constant
     sign: float
 
 
-def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Bodies, film and problem with the upper body h_r(W/steps) above the lower one.
 
     Returns a dict: ``bodies``, ``film``, ``problem``, ``lift`` (the Constant
@@ -169,7 +181,7 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
     R1, R2, U = v.R1, v.R2, (v.U1, v.U2)
     shapes = (Rolling((0, R1 + h_r), R1),
               Sliding((1, 0)) if math.isinf(R2) else Rolling((0, -R2), -R2))
-    bodies = {}
+    bodies: dict[int, Body] = {}
     for k, (E, nu) in enumerate(((v.E1, v.nu1), (v.E2, v.nu2))):
         if math.isinf(E):
             continue
@@ -184,6 +196,7 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
         bodies[k] = Body(msh, ft, ROLLER_NAMES, "plane_strain",
                          ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                          name=("upper", "lower")[k])
+    kw: dict[str, Any]   # the film's keyword arguments
     kw = dict(shear=v.shear, supg=v.supg, eps=eps if v.penalty > 0 else None,
               p_c=p_c, film_scale=h_r, speed_scale=max(abs(U[0]), abs(U[1])))
     if 0 in bodies and 1 in bodies:
@@ -206,7 +219,9 @@ def build(v: Params, comm=MPI.COMM_WORLD) -> Model:
         other = (shapes[1 - k], fem.Constant(body.mesh, float(U[1 - k])))
         film = Film(body, "lubricated", counter, v.mu, motion=mine, V_counter=other,
                     **kw)
-        lift, sign = film.counterpart.offset, (1.0 if k == 0 else -1.0)
+        # (a rigid roller or plane: its offset moves it)
+        lift, sign = (cast("AnalyticObstacle", film.counterpart).offset,
+                      (1.0 if k == 0 else -1.0))
     film.add_pressure_bc()
     problem = Problem([*bodies.values(), film], name="ehl_two_cylinders", max_it=25)
     return Model(bodies, film, problem, lift, sign)
@@ -217,7 +232,8 @@ def progress_total(v: Params) -> int:
     return v.steps
 
 
-def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """March the load to W (the approach found per load by a secant on 1/W)."""
     run = build(v, comm)
     film, problem, sign = run.film, run.problem, run.sign
@@ -230,9 +246,9 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
                          max_trials=30, verbose=verbose)
     slope = -1.0 / (4.9 * v.mu * u_m * ref.R_star)    # Martin: d(1/W)/dδ, h = h₀ − δ
     held = Hold(inner, 0.0, transform=lambda W: 1.0 / W, slope=slope)
-    steps = []
+    steps: list[dict[str, Any]] = []
 
-    def on_load():
+    def on_load() -> None:
         steps.append(measures(run, v))
         if progress is not None:
             progress.update(1)
@@ -248,7 +264,7 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD):
     return run
 
 
-def measures(run, v):
+def measures(run: Model, v: Params) -> dict[str, Any]:
     """Return the film at the current load: h at x = 0, h_min, p_max, forces, profile."""
     film = run.film
     prof = film.profile(everywhere=True)
@@ -267,7 +283,8 @@ def measures(run, v):
     return m
 
 
-def report(run, v, record, steps, ref):
+def report(run: Model, v: Params, record: RunRecord, steps: list[dict[str, Any]],
+           ref: HertzContact) -> None:
     """Results at the last converged load; profiles for the plot."""
     if not steps:
         return
@@ -287,12 +304,12 @@ def report(run, v, record, steps, ref):
                                     for s in steps]}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacements of the elastic bodies (one file per mesh)."""
     return {b.name: [b.u] for b in run.bodies.values()}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``profiles.png``: p(x) and h(x) per load step."""
     from ..plots.film import plot_film_profiles
 

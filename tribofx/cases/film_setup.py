@@ -5,8 +5,10 @@ the ``speeds`` parameter of a speed continuation, the fluid's laws from the
 parameters, and the 1D film of a prescribed gap (:func:`rigid_film`).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
 import numpy as np
 from dolfinx import mesh as dmesh
@@ -15,6 +17,34 @@ from ..interfaces import RigidFilm
 from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import CaseParams, InputError, number_list, param
 from ..problem import Problem
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import numpy.typing as npt
+    from mpi4py import MPI
+
+    from ..interfaces.reynolds_film import ReynoldsFilm
+    from ..laws import Law
+    from .ehl_oring import Params as ORingParams
+
+    class _Viscous(Protocol):
+        """Values with a viscosity law (:class:`FluidParams`) and its μ₀ ``mu`` (MPa·s)."""
+
+        @property
+        def viscosity(self) -> str: ...
+        @property
+        def mu(self) -> float: ...
+        @property
+        def alpha_p(self) -> float: ...
+        @property
+        def z(self) -> float: ...
+
+    class _Speeds(Protocol):
+        """Values with the comma-separated ``speeds`` (mm/s) of a speed continuation."""
+
+        @property
+        def speeds(self) -> str: ...
 
 __all__ = ["FilmModel", "FluidParams", "arc_halvings", "at_points", "cavitation_model", "density",
            "film_boundary", "formulation_param", "quadrature_param", "rigid_film", "speed_list",
@@ -70,7 +100,7 @@ class FluidParams(CaseParams):
         "Reynolds; not with jfo)", choices=DENSITY_LAWS)
 
 
-def viscosity(v):
+def viscosity(v: _Viscous) -> Law:
     """Return the viscosity law of the values ``v`` (``mu`` is its μ₀, MPa·s)."""
     if v.viscosity != "constant" and not v.alpha_p > 0 and not v.z > 0:
         raise InputError(f"viscosity={v.viscosity} needs alpha_p > 0 (or z > 0 for "
@@ -78,7 +108,7 @@ def viscosity(v):
     return named_viscosity(v.viscosity, v.mu, v.alpha_p, v.z or None)
 
 
-def speed_list(v):
+def speed_list(v: _Speeds) -> list[float]:
     """Return the positive speeds (mm/s) of the comma-separated parameter ``speeds``."""
     speeds = number_list(v.speeds, "speeds", allow_empty=True)
     if any(not U > 0 for U in speeds):
@@ -86,7 +116,9 @@ def speed_list(v):
     return speeds
 
 
-def film_boundary(film, keep=None):
+def film_boundary(film: ReynoldsFilm,
+                  keep: Callable[[npt.NDArray[np.float64]], npt.ArrayLike] | None = None
+                  ) -> npt.NDArray[np.float64]:
     """Return the reference coordinates (n, 3) of the vertices of ∂Γ_l, on every rank.
 
     ∂Γ_l are the facets of the film submesh with one adjacent cell of Γ_l
@@ -108,7 +140,8 @@ def film_boundary(film, keep=None):
     return np.unique(pts, axis=0)
 
 
-def at_points(points, tol):
+def at_points(points: npt.NDArray[np.float64], tol: float
+              ) -> Callable[[npt.NDArray[np.float64]], npt.NDArray[np.bool_]]:
     """Locator (for ``add_pressure_bc``, ``fem.locate_dofs_geometrical``) of ``points``.
 
     Returns ``where(X)``, X of shape (3, n): True at the columns within ``tol``
@@ -116,7 +149,7 @@ def at_points(points, tol):
     """
     points = np.asarray(points, dtype=float).reshape(-1, 3)
 
-    def where(X):
+    def where(X: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
         if not len(points):
             return np.zeros(X.shape[1], dtype=bool)
         d = np.linalg.norm(X.T[:, None, :] - points[None, :, :], axis=2)
@@ -125,7 +158,7 @@ def at_points(points, tol):
     return where
 
 
-def cavitation_model(v):
+def cavitation_model(v: ORingParams) -> str:
     """Return the film's cavitation model of the values ``v``.
 
     ``v.cavitation``, or for ``auto`` JFO with the mixed solid and the penalty
@@ -137,7 +170,7 @@ def cavitation_model(v):
     return "jfo" if v.formulation == "mixed" else "penalty"
 
 
-def arc_halvings(v):
+def arc_halvings(v: ORingParams) -> int:
     """Return the halvings k of the seal's film-arc elements (0.1/(n·2^k) mm) of the values ``v``.
 
     ``v.arc_refine``, or by default 1 for the transient cycle (``stroke=cycle``
@@ -152,7 +185,7 @@ def arc_halvings(v):
     return 1 if v.stroke == "cycle" and not v.mesh_file else 0
 
 
-def density(v, cavitation=None):
+def density(v: FluidParams, cavitation: str | None = None) -> Law:
     """Return the density law ρ(p)/ρ₀ of the values ``v`` (refused with ``cavitation`` jfo)."""
     if v.density != "incompressible" and cavitation == "jfo":
         raise InputError("density=dowson-higginson is implemented with penalty or no "
@@ -167,8 +200,11 @@ class FilmModel(NamedTuple):
     problem: Problem
 
 
-def rigid_film(comm, x0, x1, n, degree, gap, vbar, mu, cavitation="none", supg=False,
-               p_c=1.0, eps=None, h_ref=1e-2, lam_in=0.0, density=None, supply=False):
+def rigid_film(comm: MPI.Comm, x0: float, x1: float, n: int, degree: int,
+               gap: Callable[[Any], Any], vbar: float, mu: float | Law,
+               cavitation: str = "none", supg: bool = False, p_c: float = 1.0,
+               eps: float | None = None, h_ref: float = 1e-2, lam_in: float = 0.0,
+               density: Law | None = None, supply: bool = False) -> FilmModel:
     """Return the film of a 1D gap on [x0, x1] (flow entering at x0) and its :class:`Problem`.
 
     Penalty or no cavitation: p = 0 at both ends.  JFO: inlet at x0 with void

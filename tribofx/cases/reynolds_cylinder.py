@@ -16,8 +16,11 @@ Swift–Stieber solutions of :func:`tribofx.references.cylinder_references`.
 Units: mm, N, s, MPa (viscosity MPa·s; loads per unit width/length N/mm).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import ufl
@@ -29,12 +32,25 @@ from ..problem import NewtonDivergence
 from ..references import cylinder_references
 from .film_setup import FluidParams, density, rigid_film, viscosity
 
+if TYPE_CHECKING:
+    from collections.abc import Mapping
+    from pathlib import Path
+
+    import numpy.typing as npt
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..interfaces import RigidFilm
+    from ..output import RunRecord
+    from .film_setup import FilmModel
+
 # cylinder_references is re-exported from tribofx.references
 __all__ = ["Params", "build", "cylinder_references", "doc", "mesh_levels", "name", "plot",
            "progress_total", "resumable", "run", "scales", "validate", "vtx_fields"]
 
 
-def _peak_and_rupture(prof, crossing):
+def _peak_and_rupture(prof: Mapping[str, npt.NDArray[np.float64]], crossing: bool
+                      ) -> tuple[float, float, float]:
     """Peak (nodal p_max, sub-element x_p_max) and rupture point downstream of the peak.
 
     ``crossing``: linear zero crossing of p (no cavitation model).  Otherwise a
@@ -67,7 +83,7 @@ def _peak_and_rupture(prof, crossing):
     return pm, xm, float(-icpt / slope)
 
 
-def _reformation(prof):
+def _reformation(prof: Mapping[str, npt.NDArray[np.float64]]) -> float | None:
     """JFO: first node from the inlet where the film is full (λ = 0); None without λ."""
     if "lam" not in prof:
         return None
@@ -112,7 +128,7 @@ class Params(FluidParams):
         lower=0.0)
 
 
-def scales(v):
+def scales(v: Params) -> tuple[float, float, float]:
     """Contact length ℓ = √(2Rh0) (mm), pressure scale 12μu_mℓ/h0² (MPa), ε (MPa·s/mm)."""
     ell = math.sqrt(2 * v.R * v.h0)
     p_s = 12 * v.mu * v.um * ell / v.h0 ** 2
@@ -145,7 +161,7 @@ def validate(v: Params) -> None:
                              f"cavitation boundary (Swift–Stieber x_r = {xr:.4g} mm)")
 
 
-def mesh_levels(n, coarsest=50):
+def mesh_levels(n: int, coarsest: int = 50) -> list[int]:
     """Element counts of the nested iteration: n/2^k, ..., n/2, n with n/2^k ≥ coarsest.
 
     Each level starts from the solution of the previous one, so that the
@@ -159,7 +175,7 @@ def mesh_levels(n, coarsest=50):
     return out
 
 
-def build(v: Params, comm=MPI.COMM_WORLD):
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> FilmModel:
     """Return the film of the cylinder gap and its problem (not solved; JFO guess set)."""
     R, h0 = v.R, v.h0
     _, p_s, eps = scales(v)
@@ -175,7 +191,8 @@ def progress_total(v: Params) -> int:
     return 1
 
 
-def run(v: Params, record, progress=None, verbose=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> FilmModel:
     """Solve and record load, peak, rupture point and fluxes against the references."""
     levels = mesh_levels(v.mesh)
     its, prev, run = [], None, None
@@ -197,10 +214,11 @@ def run(v: Params, record, progress=None, verbose=False):
     if progress is not None:
         progress.update(1)
     _report(film, v, record)
+    assert run is not None   # mesh_levels gives at least one level
     return run
 
 
-def _report(film, v, record):
+def _report(film: RigidFilm, v: Params, record: RunRecord) -> None:
     cav = v.cavitation
     ell, p_s, eps = scales(v)
     refs = cylinder_references(v.R, v.h0, v.um, v.mu, v.x_in, v.x_out,
@@ -209,8 +227,9 @@ def _report(film, v, record):
     load = film.integral(ufl.max_value(p, 0) if cav == "none" else p)
     q_in, q_out = film.consistent_fluxes(inlet=lambda y: np.isclose(y[0], v.x_in))
     prof = film.profile()
-    peak = None
+    peak: tuple[float | None, ...] | None = None
     if comm.rank == 0:
+        assert prof is not None   # rank 0 holds the gathered profile
         peak = _peak_and_rupture(prof, crossing=(cav == "none"))
         peak = (*peak, _reformation(prof))
         record.profile = dict(prof, cavitation=cav, refs={
@@ -248,13 +267,13 @@ def _report(film, v, record):
                                               op=MPI.MIN), "MPa")
 
 
-def vtx_fields(run):
+def vtx_fields(run: FilmModel) -> dict[str, list[fem.Function]]:
     """Pressure, film thickness (and void fraction for JFO) on the interval mesh."""
     film = run.film
     return {"reynolds": [film.p, film.h_fun] + ([film.lam] if film.lam is not None else [])}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """Pressure vs half-Sommerfeld / Swift–Stieber, film thickness, void fraction."""
     from ..plots import plot_reynolds_cylinder
 

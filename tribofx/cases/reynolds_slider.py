@@ -14,8 +14,11 @@ peak of :func:`tribofx.references.slider_reference` (Reynolds 1886, Cameron).
 Units: mm, N, s, MPa (viscosity MPa·s; loads per unit width/length N/mm).
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import ufl
@@ -30,6 +33,15 @@ from ..references import (
     slider_reference,
 )
 from .film_setup import FluidParams, density, rigid_film, viscosity
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+    from .film_setup import FilmModel
 
 # slider_reference is re-exported from tribofx.references
 __all__ = ["Params", "build", "doc", "name", "plot", "progress_total", "resumable", "run",
@@ -68,7 +80,7 @@ def validate(v: Params) -> None:
                              f"pressure −ln(1 − αp)/α needs < 1 (0.95 here); lower alpha_p")
 
 
-def build(v: Params, comm=MPI.COMM_WORLD):
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> FilmModel:
     """Return the film of the slider and its problem (not solved)."""
     K, L, h0 = v.K, v.L, v.h0
     return rigid_film(comm, 0.0, L, v.mesh, v.degree,
@@ -81,7 +93,8 @@ def progress_total(v: Params) -> int:
     return 1
 
 
-def run(v: Params, record, progress=None, verbose=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> FilmModel:
     """Solve, then record load, peak pressure and the L2 error against the analytic p."""
     run = film, problem = build(v)
     record.data["num_dofs"] = problem.num_dofs
@@ -112,6 +125,7 @@ def run(v: Params, record, progress=None, verbose=False):
     prof = film.profile()
     peak = None
     if film.sub.comm.rank == 0:
+        assert prof is not None   # rank 0 holds the gathered profile
         i = int(np.argmax(np.abs(prof["p"])))
         peak = (float(prof["p"][i]), parabolic_vertex(prof["x"], np.abs(prof["p"])))
         record.profile = {"x": prof["x"], "p": prof["p"], "h": prof["h"], "K": K, "L": L,
@@ -124,7 +138,7 @@ def run(v: Params, record, progress=None, verbose=False):
     record.result("x_p_max", xm, "mm")
     record.result("analytic_x_p_max", ref["x_p_max"], "mm")
 
-    def rel(a, b):
+    def rel(a: float, b: float) -> float | None:
         return a / b - 1 if b != 0 else None
 
     record.result("load_rel_error", rel(load, ref["load"]))
@@ -134,12 +148,12 @@ def run(v: Params, record, progress=None, verbose=False):
     return run
 
 
-def vtx_fields(run):
+def vtx_fields(run: FilmModel) -> dict[str, list[fem.Function]]:
     """Pressure and film thickness on the interval mesh."""
     return {"reynolds": [run.film.p, run.film.h_fun]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """Pressure against the analytic solution and film thickness (``pressure.png``)."""
     from ..plots import plot_slider
 

@@ -9,10 +9,11 @@ held at W by the plane's approach while the speed is marched down
 mm, N, s, MPa.
 """
 
+from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from dolfinx import fem
@@ -32,6 +33,14 @@ from ..references import composite_modulus, hamrock_dowson, hertz, rigid_clearan
 from ..references_mixed import flat_punch_separation
 from ..roughness import rough_pair
 
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from ..continuation import Iterations
+    from ..obstacles import AnalyticObstacle
+    from ..references import HertzContact
+    from ..roughness import Roughness
+
 __all__ = ["CAP_RADII", "Model", "RoughContactParams", "build", "check", "first_film",
            "hertz_contact", "load", "load_and_slow", "measures", "rough_ball", "rough_cylinder",
            "roughness", "set_speed"]
@@ -41,12 +50,14 @@ __all__ = ["CAP_RADII", "Model", "RoughContactParams", "build", "check", "first_
 CAP_RADII = 3.0
 
 
-def hertz_contact(v, geometry, W=None):
+def hertz_contact(v: RoughContactParams, geometry: str, W: float | None = None
+                  ) -> HertzContact:
     """Hertz contact at W (default ``v.W``): line (N/mm, cylinder) or point (N, whole ball)."""
     return hertz(v.W if W is None else W, v.R, v.E, v.nu, line=geometry == "cylinder")
 
 
-def first_film(v, geometry, U, W=None):
+def first_film(v: RoughContactParams, geometry: str, U: float, W: float | None = None
+               ) -> float:
     """Return the film (mm) at load W (default W/steps) and sliding speed U, before σ's floor.
 
     Cylinder: Martin's rigid film; ball: Hamrock–Dowson's central film at the
@@ -58,7 +69,8 @@ def first_film(v, geometry, U, W=None):
     return hamrock_dowson(W, v.mu, U / 2, v.R, composite_modulus(v.E, v.nu))[0]
 
 
-def _scales(v, geometry, U0):
+def _scales(v: RoughContactParams, geometry: str, U0: float
+            ) -> tuple[float, float, HertzContact]:
     """Film scale h_r (≥ σ), flux floor U_floor = σ³p₀/(12μ a h_r), Hertz contact at W."""
     ref = hertz_contact(v, geometry)
     h_r = max(first_film(v, geometry, U0), v.sigma)
@@ -87,7 +99,8 @@ class Model:
     problem: Problem | None
 
 
-def rough_cylinder(v, U0, roughness, comm, shape=False):
+def rough_cylinder(v: RoughContactParams, U0: float, roughness: Roughness | None,
+                   comm: MPI.Comm, shape: bool = False) -> Model:
     """Build the plane-strain cylinder (``shape``: a shape field; its film face alone wears)."""
     R = v.R
     h_r, U_floor, ref = _scales(v, "cylinder", U0)
@@ -106,11 +119,12 @@ def rough_cylinder(v, U0, roughness, comm, shape=False):
                 roughness=roughness, eps=1e-4 * 24 * v.mu * R / h_r**2, p_c=ref.p0,
                 film_scale=h_r, speed_scale=max(U0, U_floor), rtol=1e-8)
     film.add_pressure_bc()
-    film.counterpart.offset.value[1] = -h_r
+    cast("AnalyticObstacle", film.counterpart).offset.value[1] = -h_r   # the rigid plane's
     return Model(body, film, speed, ref, U_floor, axis=1, copies=1.0, problem=None)
 
 
-def rough_ball(v, U0, roughness, comm):
+def rough_ball(v: RoughContactParams, U0: float, roughness: Roughness | None,
+               comm: MPI.Comm) -> Model:
     """Build the quarter ball, started under the Hertz pressure of W/steps."""
     R = v.R
     h_r, U_floor, ref = _scales(v, "ball", U0)
@@ -141,7 +155,7 @@ def rough_ball(v, U0, roughness, comm):
         film.start_from_pressure(lambda x: start.pressure(np.hypot(x[0], x[1])), h_r,
                                  np.zeros(3))
     else:
-        film.counterpart.offset.value[2] = -h_r
+        cast("AnalyticObstacle", film.counterpart).offset.value[2] = -h_r   # the plane's
     return Model(body, film, speed, ref, U_floor, axis=2, copies=2.0, problem=None)
 
 
@@ -165,7 +179,7 @@ class RoughContactParams(CaseParams):
     steps: int = param(3, "-", "load steps at the first speed", lower=1, upper=50, closed=True)
 
 
-def check(v, geometry, speeds):
+def check(v: RoughContactParams, geometry: str, speeds: Sequence[float]) -> None:
     """Bad input (the body ``geometry`` at the decreasing ``speeds``, mm/s): a one-line error."""
     a = hertz_contact(v, geometry).a
     if not 0 < first_film(v, geometry, speeds[0], v.W) < 0.05 * v.R:
@@ -175,13 +189,14 @@ def check(v, geometry, speeds):
         raise InputError(f"load too large: the film (4a = {4 * a:.3g} mm) exceeds R/2")
 
 
-def roughness(v):
+def roughness(v: RoughContactParams) -> Roughness:
     """Return the plane's roughness: Patir–Cheng flow, Greenwood–Tripp asperities, μ_b."""
     return rough_pair(v.sigma, v.E / (1 - v.nu ** 2), v.mu_b,
                       v.eta_beta_sigma, v.sigma_beta)
 
 
-def build(v, geometry, U0, comm=MPI.COMM_WORLD, rough=True, shape=False):
+def build(v: RoughContactParams, geometry: str, U0: float, comm: MPI.Comm = MPI.COMM_WORLD,
+          rough: bool = True, shape: bool = False) -> Model:
     """Body (``geometry`` cylinder or ball), rough film and problem at the speed U0 (mm/s).
 
     ``rough=False``: the same film on smooth surfaces (the chapter's).
@@ -200,7 +215,9 @@ def build(v, geometry, U0, comm=MPI.COMM_WORLD, rough=True, shape=False):
     return run
 
 
-def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
+def load_and_slow(run: Model, v: RoughContactParams, speeds: Sequence[float],
+                  verbose: bool = False,
+                  on_speed: Callable[[float, int], object] | None = None) -> None:
     """Reach W at ``speeds[0]`` by the plane's approach, then march down through ``speeds``.
 
     ``on_speed(U, newton_iterations)`` once each speed is reached.  The approach
@@ -210,15 +227,17 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
     square root.
     """
     film, problem = run.film, run.problem
-    h_r = -float(film.counterpart.offset.value[run.axis])
-    inner = Continuation(problem, ConstantParameter(film.counterpart.offset, run.axis),
+    assert problem is not None   # built with the model, or the stepper's (set by the caller)
+    plane = cast("AnalyticObstacle", film.counterpart)   # the rigid plane
+    h_r = -float(plane.offset.value[run.axis])
+    inner = Continuation(problem, ConstantParameter(plane.offset, run.axis),
                          response=lambda: math.log(max(load(run), 1e-300)),
                          rtol=1e-7, max_trials=30, verbose=verbose)
     # first-update slope d log W/dδ ≈ 1/h at the current thinnest film (the rigid
     # film's 1/h; steeper once the asperities carry: at least 1/σ)
     held = Hold(inner, 0.0, transform=math.log, slope=lambda W: 1.0 / max(
         film.min_film(), v.sigma) if inner.history else 1.0 / max(h_r, v.sigma))
-    its = []
+    its: list[Iterations] = []
     held.march(v.W, v.steps, record=its)
     U_done = speeds[0]
     for U in speeds:
@@ -238,22 +257,23 @@ def load_and_slow(run, v, speeds, verbose=False, on_speed=None):
             else:
                 raise NewtonDivergence(f"speed {U_done * ratio:.4g} mm/s not reached")
         if on_speed is not None:
-            on_speed(U, sum(sum(t) if isinstance(t, list) else t for t in its))
+            on_speed(U, sum(sum(cast("list[int]", t)) if isinstance(t, list) else t
+                            for t in its))
         its.clear()
 
 
-def set_speed(run, U):
+def set_speed(run: Model, U: float) -> None:
     """Sliding speed U (mm/s); the flux scale U h_r of the tolerances follows it."""
     run.speed.value[0] = U
     run.film.set_scales(speed_scale=max(U, run.U_floor))
 
 
-def load(run):
+def load(run: Model) -> float:
     """Load carried by the whole body (N/mm or N): film and asperities."""
     return run.copies * float(run.film.force()[run.axis])
 
 
-def measures(run, v):
+def measures(run: Model, v: RoughContactParams) -> dict[str, float]:
     """Return friction coefficient, film and asperity loads, λ = h_c/σ, h, p maxima."""
     film = run.film
     n, F, Fa = run.axis, film.force(), film.asperity_force()

@@ -27,13 +27,25 @@ body over W: fluid shear plus μ_b times the asperity load),
 ``newton_iterations``; ``stribeck.png``.  Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from mpi4py import MPI
 
 from ..params import InputError, number_list, param
 from ..problem import NewtonDivergence
 from .rough_contact import RoughContactParams, build, check, load_and_slow, measures
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..output import RunRecord
+    from .rough_contact import Model
 
 __all__ = ["Params", "doc", "name", "plot", "progress_total", "report", "resumable", "run",
            "validate", "vtx_fields"]
@@ -54,7 +66,7 @@ class Params(RoughContactParams):
                         "sliding speeds, decreasing (comma-separated)")
 
 
-def speeds(v):
+def speeds(v: Params) -> list[float]:
     """Return the speeds (mm/s), decreasing (one-line error otherwise)."""
     U = number_list(v.speeds, "speeds")
     if any(u <= 0 for u in U) or any(b >= a for a, b in zip(U, U[1:])):
@@ -72,16 +84,18 @@ def progress_total(v: Params) -> int:
     return len(speeds(v))
 
 
-def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, rough=True):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        comm: MPI.Comm = MPI.COMM_WORLD, rough: bool = True) -> Model:
     """Reach W at the first speed, then march the speed down; record per speed.
 
     ``rough=False``: the smooth film (the chapter's) at the same speeds.
     """
     run = build(v, v.geometry, speeds(v)[0], comm, rough)
+    assert run.problem is not None   # build (shape=False) builds it
     record.data["num_dofs"] = run.problem.num_dofs
-    rows = []
+    rows: list[dict[str, Any]] = []
 
-    def on_speed(U, iterations):
+    def on_speed(U: float, iterations: int) -> None:
         rows.append(dict(measures(run, v), U=U, newton_iterations=iterations))
         if progress is not None:
             progress.update(1)
@@ -96,7 +110,8 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD, ro
     return run
 
 
-def report(rows, record, geometry="cylinder"):
+def report(rows: list[dict[str, Any]], record: RunRecord, geometry: str = "cylinder"
+           ) -> None:
     """Per-speed lists and the curve for the plot."""
     units = {"U": "mm/s", "friction_coefficient": "-", "film_load_fraction": "-",
              "lambda_ratio": "-", "h_central": "mm", "h_min": "mm", "W": "N/mm | N",
@@ -108,12 +123,12 @@ def report(rows, record, geometry="cylinder"):
         record.profile = {"rows": rows, "geometry": geometry}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacement of the cylinder."""
     return {"displacement": [run.body.u]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``stribeck.png``: friction coefficient and film load fraction against speed."""
     from ..plots.film import plot_stribeck
 

@@ -27,8 +27,11 @@ Results per step: ``time``, ``wear_volume`` (worn area per unit length, mm²),
 (h, p, p_a).  Units: mm, N, s, MPa.
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, cast
 
 from mpi4py import MPI
 
@@ -38,6 +41,16 @@ from ..interfaces import Wear
 from ..params import InputError, param
 from ..stepper import Stepper, nominal_steps
 from . import rough_contact, slow_time
+
+if TYPE_CHECKING:
+    import os
+    from pathlib import Path
+
+    from dolfinx import fem
+    from tqdm import tqdm
+
+    from ..obstacles import AnalyticObstacle
+    from ..output import RunRecord
 
 __all__ = ["Model", "Params", "build", "doc", "name", "plot", "progress_total", "report",
            "resumable", "run", "validate", "vtx_fields"]
@@ -92,7 +105,8 @@ class Model(rough_contact.Model):
     track: list
 
 
-def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
+def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
     """Cylinder with a shape field, rough film, wear, stepper and the load control.
 
     Returns the :class:`Model`; ``problem`` is the stepper's monolithic Problem.
@@ -103,11 +117,11 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
     stepper = Stepper([run.body, film, wear], wear, max_cuts=v.max_cuts,
                       checkpoint=checkpoint, name="wear_lubricated",
                       problem_kw={"max_it": 30})
-    offset = film.counterpart.offset
+    offset = cast("AnalyticObstacle", film.counterpart).offset   # the rigid plane's
     # (t, plane position) of the accepted steps (appended by ``run``)
     track: list[tuple[float, float]] = []
 
-    def predictor(dt):
+    def predictor(dt: float) -> float:
         # the plane follows the worn surface: its last rate (none before two steps;
         # the mean worn depth k F_a V Δt/(2a) overshoots the plane's rise about 2×
         # as the film takes load back, and a trial 0.3σ off may not converge)
@@ -125,11 +139,13 @@ def build(v: Params, comm=MPI.COMM_WORLD, checkpoint=None) -> Model:
                  track=track)
 
 
-def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
-        checkpoint=None, resume=False):
+def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: bool = False,
+        comm: MPI.Comm = MPI.COMM_WORLD, checkpoint: str | os.PathLike[str] | None = None,
+        resume: bool = False) -> Model:
     """Reach W and V, then integrate the wear from t = 0 (or the checkpoint) to T."""
     run = build(v, comm, checkpoint)
     stepper, wear, film = run.stepper, run.wear, run.film
+    assert stepper.hold is not None   # build holds the load
     stepper.verbose = stepper.hold.search.verbose = verbose
     keys = ("time", "dt", "wear_volume", "max_wear_depth", "asperity_load",
             "film_load_fraction", "friction_coefficient", "h_central", "h_min",
@@ -137,7 +153,8 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
     sr = slow_time.SlowTimeRecords(stepper, v, record, keys, vtx_fields(run), resume)
     state = sr.history.setdefault("state", {"profiles": [], "times": []})
 
-    def log(t, its, dt, error=None, rejected=0):
+    def log(t: float, its: int, dt: float, error: float | None = None,
+            rejected: int = 0) -> None:
         m = rough_contact.measures(run, v)
         sr.log(its, {"time": t, "dt": dt, "wear_volume": wear.worn_volume(),
                      "max_wear_depth": wear.max_depth(),
@@ -146,7 +163,8 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
                      "wear_rate_integral": wear.wear_rate_integral(),
                      "newton_iterations": its, "error_estimate": error,
                      "rejected": rejected})
-        run.track.append((t, float(film.counterpart.offset.value[1])))
+        plane = cast("AnalyticObstacle", film.counterpart)   # the rigid plane
+        run.track.append((t, float(plane.offset.value[1])))
         d = wear.gather_shape()
         if d is not None:
             state["profiles"].append(d["X_worn"].tolist())
@@ -166,7 +184,8 @@ def run(v: Params, record, progress=None, verbose=False, comm=MPI.COMM_WORLD,
     return run
 
 
-def report(run, v, record, hist, state):
+def report(run: Model, v: Params, record: RunRecord, hist: dict[str, list[Any]],
+           state: dict[str, list[Any]]) -> None:
     """Per-step lists, the final film (h, p, p_a) and the worn profiles."""
     units = {"time": "s", "dt": "s", "wear_volume": "mm^2/mm", "max_wear_depth": "mm",
              "asperity_load": "N/mm", "film_load_fraction": "-",
@@ -188,12 +207,13 @@ def report(run, v, record, hist, state):
         record.profile = {**hist, **state, "film": film}
 
 
-def vtx_fields(run):
+def vtx_fields(run: Model) -> dict[str, list[fem.Function]]:
     """Displacement and shape change of the cylinder."""
+    assert run.body.w is not None   # built with a shape field (build)
     return {"displacement": [run.body.u, run.body.w]}
 
 
-def plot(profile, outdir):
+def plot(profile: dict[str, Any], outdir: Path) -> None:
     """``running_in.png``: worn profiles, loads and friction against time."""
     from ..plots.film import plot_running_in
 
