@@ -63,7 +63,7 @@ from tribofx.meshes.ball import LUBRICATED, MIDPLANE, SYMMETRY, cap_height, quar
 from tribofx.body import Body
 from tribofx.cases import ehl_ball
 from tribofx.continuation import ConstantParameter, Continuation
-from tribofx.interfaces import Film
+from tribofx.interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.params import resolve
@@ -97,9 +97,10 @@ ball = Body(msh, facets, {"cap": LUBRICATED, "mid": MIDPLANE, "sym": SYMMETRY}, 
 ball.add_dirichlet("mid", np.zeros(3))                    # the mid-plane is held ...
 ball.add_dirichlet("sym", 0.0, component=1)               # ... symmetry y = 0
 plane = rigid_plane(np.zeros(3), np.eye(3)[2])            # ... and the plane z = z_p moves
-film = Film(ball, "cap", plane, mu, V_counter=(2 * U, 0.0, 0.0), p_c=hz.p0,
-            eps=1e-4 * 12 * mu * hz.a**2 / h_c**3,         # penalty 1e-4 of 12μa²/h_c³
-            film_scale=h_c, speed_scale=U, quadrature_degree=2)
+film = Film(ball, "cap", plane, Fluid(mu),
+            scales=FilmScales(pressure=hz.p0, film=h_c, speed=U),
+            cavitation=Penalty(1e-4 * 12 * mu * hz.a**2 / h_c**3),  # 1e-4 of 12μa²/h_c³
+            quadrature=Quadrature(degree=2), V_counter=(2 * U, 0.0, 0.0))
 film.add_pressure_bc(lambda X: np.abs(X[2] - cap_height(R, theta)) < 1e-6 * R)
 problem = Problem([ball, film], name="ball")
 

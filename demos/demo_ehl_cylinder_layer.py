@@ -62,7 +62,7 @@ from tribofx.meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_laye
 from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
 from tribofx.hold import Hold
-from tribofx.interfaces import Film
+from tribofx.interfaces import JFO, Film, FilmScales, Fluid, Penalty
 from tribofx.obstacles import rigid_cylinder
 from tribofx.output import write_summary
 from tribofx.plots import plot_film_profiles
@@ -100,9 +100,11 @@ def lubricated_layer(W_first, E=10.0, E_c=100.0, model="finite", cavitation="pen
     # scales of the rigid film at the first load: h_r = 2.45 μUR/W, ℓ = √(2Rh_r)
     h_r = rigid_clearance(W_first, mu, U, R)
     ell = math.sqrt(2 * R * h_r)
-    film = Film(layer, "lubricated", rigid_cylinder(np.array([0.0, R]), R), mu, model=model,
-                shear=shear, cavitation=cavitation, eps=1e-6 * 12 * mu * ell**2 / h_r**3,
-                p_c=6 * mu * U * ell / h_r**2, film_scale=h_r, speed_scale=U)
+    film = Film(layer, "lubricated", rigid_cylinder(np.array([0.0, R]), R), Fluid(mu),
+                scales=FilmScales(pressure=6 * mu * U * ell / h_r**2, film=h_r, speed=U),
+                cavitation=JFO() if cavitation == "jfo"
+                else Penalty(1e-6 * 12 * mu * ell**2 / h_r**3),
+                model=model, shear=shear)
     if cavitation == "jfo":
         film.add_inlet(lambda X: np.isclose(X[0], -x_l))   # flooded inlet, natural outlet
     else:

@@ -72,7 +72,7 @@ from tribofx.meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 
 from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
-from tribofx.interfaces import Contact, Film
+from tribofx.interfaces import JFO, Contact, Film, FilmScales, Fluid
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary, write_vtx
 from tribofx.positions import oscillation_indicator
@@ -119,9 +119,9 @@ bottom = Contact(ring, "housing", rigid_plane([r_start, 0.0], [-1.0, 0.0]), E / 
 wall = Contact(ring, "housing", rigid_plane([0.0, a - 0.005], [0.0, -1.0]), E / a, name="wall")
 
 h_ref = inverse_film(mu, U, 20.0)                         # film scale: Blok's inverse theory
-film = Film(ring, "rod", rigid_plane([r_rod, 0.0], [1.0, 0.0]), mu, V_counter=[0.0, U],
-            cavitation="jfo", p_c=1.0, film_scale=h_ref, speed_scale=U, rtol=1e-8,
-            require_open=True)
+film = Film(ring, "rod", rigid_plane([r_rod, 0.0], [1.0, 0.0]), Fluid(mu),
+            scales=FilmScales(pressure=1.0, film=h_ref, speed=U), cavitation=JFO(),
+            V_counter=[0.0, U], rtol=1e-8, require_open=True)
 zs = film.sub.geometry.x[:, 1]
 z_lo = comm.allreduce(float(zs.min(initial=np.inf)), op=MPI.MIN)
 z_hi = comm.allreduce(float(zs.max(initial=-np.inf)), op=MPI.MAX)

@@ -57,7 +57,7 @@ from tribofx.meshes.roller import ROLLER_NAMES, roller
 
 from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
-from tribofx.interfaces import Film, TwoBodyFilm
+from tribofx.interfaces import Film, FilmScales, Fluid, Penalty, TwoBodyFilm
 from tribofx.motions import Rolling, Sliding
 from tribofx.obstacles import rigid_plane
 from tribofx.output import write_summary
@@ -107,10 +107,10 @@ upper.add_dirichlet("loaded", np.zeros(2))                    # the upper flat f
 lift = lower.add_dirichlet("loaded", np.zeros(2))             # the lower one lifted by δ
 p_c = ref.p0
 eps = 1e-4 * 12 * mu * 2 * ref.R_star / h0**2                 # penalty ≪ the film's scale
-film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", mu,
+film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", Fluid(mu),
                    motion1=Rolling((0, R + h0), R), U1=U,     # counter-clockwise
                    motion2=Rolling((0, -R), -R), U2=U,        # clockwise
-                   eps=eps, p_c=p_c, film_scale=h0, speed_scale=U)
+                   cavitation=Penalty(eps), scales=FilmScales(pressure=p_c, film=h0, speed=U))
 film.add_pressure_bc()                                        # p = 0 at both ends
 problem = Problem([upper, lower, film], name="two_rollers", max_it=25)
 two = press(problem, lift, film)
@@ -126,10 +126,10 @@ m3, f3 = roller(ref.R_star, x_l, h_fine, ref.R_star / 4, x_l, comm)
 m3.geometry.x[:, 1] += h0
 single = body(m3, f3, E / 2, "single")                        # (1 − ν²)/E* = 2(1 − ν²)/E
 single.add_dirichlet("loaded", np.zeros(2))
-film1 = Film(single, "lubricated", rigid_plane([0, 0], [0, 1]), mu,
+film1 = Film(single, "lubricated", rigid_plane([0, 0], [0, 1]), Fluid(mu),
              motion=(Rolling((0, ref.R_star + h0), ref.R_star), fem.Constant(m3, U)),
              V_counter=(Sliding((1, 0)), fem.Constant(m3, U)),
-             eps=eps, p_c=p_c, film_scale=h0, speed_scale=U)
+             cavitation=Penalty(eps), scales=FilmScales(pressure=p_c, film=h0, speed=U))
 film1.add_pressure_bc()
 one = press(Problem([single, film1], name="one_roller", max_it=25),
             film1.counterpart.offset, film1)

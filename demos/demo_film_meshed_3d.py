@@ -37,7 +37,7 @@ from tribofx.meshes.obstacles import plane_surface_mesh
 
 from tribofx.body import Body
 from tribofx.continuation import ConstantParameter, Continuation
-from tribofx.interfaces import Film
+from tribofx.interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
 from tribofx.obstacles import rigid_plane, rigid_surface_mesh
 from tribofx.output import write_summary
 from tribofx.problem import Problem
@@ -67,9 +67,10 @@ def film_problem(countersurface, name):
                 ("neo-hookean", lame), name=name)
     ball.add_dirichlet("mid", np.zeros(3))
     ball.add_dirichlet("sym", 0.0, component=1)
-    film = Film(ball, "cap", countersurface, mu, V_counter=(2 * U, 0, 0), p_c=hz.p0,
-                eps=1e-4 * 12 * mu * hz.a**2 / h_c**3, film_scale=h_c, speed_scale=U,
-                quadrature_degree=2, name=f"{name}_film")
+    film = Film(ball, "cap", countersurface, Fluid(mu),
+                scales=FilmScales(pressure=hz.p0, film=h_c, speed=U),
+                cavitation=Penalty(1e-4 * 12 * mu * hz.a**2 / h_c**3),
+                quadrature=Quadrature(degree=2), V_counter=(2 * U, 0, 0), name=f"{name}_film")
     film.add_pressure_bc(lambda X: np.abs(X[2] - cap_height(R, theta)) < 1e-6 * R)
     # start: the dry ball under the Hertz pressure, film h_c below the contact point
     film.start_from_pressure(lambda x: hz.p0 * np.sqrt(np.maximum(

@@ -52,7 +52,8 @@ import ufl
 from dolfinx import mesh
 from mpi4py import MPI
 
-from tribofx.interfaces import RigidFilm
+from tribofx.interfaces import FilmScales, Fluid, RigidFilm
+from tribofx.interfaces.film_options import named_cavitation
 from tribofx.output import write_summary
 from tribofx.problem import Problem
 from tribofx.references import cylinder_references
@@ -73,9 +74,9 @@ def solve(cavitation, void=0.0):
     prev = None
     for n in [n_final // 2**k for k in range(int(math.log2(n_final // 50)), -1, -1)]:
         film = RigidFilm(mesh.create_interval(comm, n, [x_in, x_out]),
-                         lambda x: h0 + x**2 / (2 * R), um, mu, cavitation=cavitation,
-                         supg=True, p_c=p_c, eps=1e-6 * 12 * mu * ell**2 / h0**3,
-                         film_scale=h0, speed_scale=um)
+                         lambda x: h0 + x**2 / (2 * R), um, Fluid(mu),
+                         cavitation=named_cavitation(cavitation, 1e-6 * 12 * mu * ell**2 / h0**3),
+                         supg=True, scales=FilmScales(pressure=p_c, film=h0, speed=um))
         if cavitation == "jfo":
             film.add_inlet(lambda y: np.isclose(y[0], x_in), void=void)
             film.jfo_initial_guess()

@@ -49,7 +49,7 @@ import ufl
 from dolfinx import mesh
 from mpi4py import MPI
 
-from tribofx.interfaces import RigidFilm
+from tribofx.interfaces import FilmScales, Fluid, RigidFilm
 from tribofx.output import write_summary
 from tribofx.plots import plot_slider
 from tribofx.problem import Problem
@@ -66,8 +66,8 @@ K, L, h0, U, mu = 1.0, 10.0, 0.01, 1000.0, 1e-7
 def solve(n, degree, K=K):
     """The slider on n elements of degree ``degree``: (film, Newton report)."""
     film = RigidFilm(mesh.create_interval(comm, n, [0.0, L]),
-                     lambda x: h0 * (1 + K - K * x / L), 0.5 * U, mu, degree=degree,
-                     film_scale=h0, speed_scale=0.5 * U)
+                     lambda x: h0 * (1 + K - K * x / L), 0.5 * U, Fluid(mu), degree=degree,
+                     scales=FilmScales(film=h0, speed=0.5 * U))
     film.add_pressure_bc()                     # p = 0 at x = 0 and x = L
     report = Problem([film], name="slider").solve()
     return film, report

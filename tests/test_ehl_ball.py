@@ -156,7 +156,7 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     from tribofx.meshes.obstacles import cap_surface_mesh, plane_surface_mesh
 
     from tribofx.body import Body
-    from tribofx.interfaces import Film
+    from tribofx.interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
     from tribofx.obstacles import rigid_surface_mesh
     from tribofx.problem import Problem
 
@@ -173,11 +173,12 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     p0 = Case.scales(v)[1]
     mu = (named_viscosity("barus", v.mu, alpha=0.7 / p0) if surface == "plane-barus"
           else v.mu)
-    meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter),
-                  mu, V_counter=film.V_counter.value.copy(), p_c=float(film.p_c.value),
-                  eps=float(film.eps.value), film_scale=film.h_ref, speed_scale=film.U_ref,
-                  quadrature_degree=2, name="meshed",
-                  quadrature="vertex" if surface == "curved" else "gauss")
+    meshed = Film(twin, "lubricated", rigid_surface_mesh(*counter), Fluid(mu),
+                  scales=FilmScales(pressure=float(film.p_c.value), film=film.h_ref,
+                                    speed=film.U_ref),
+                  cavitation=Penalty(float(film.eps.value)),
+                  quadrature=Quadrature("vertex" if surface == "curved" else "gauss", 2),
+                  V_counter=film.V_counter.value.copy(), name="meshed")
     rim = lambda X: np.abs(X[2] - cap_height(R, math.radians(v.theta_l))) < 1e-6 * R  # noqa
     meshed.add_pressure_bc(rim)
     twin_problem = Problem([twin, meshed], name="meshed_taylor")

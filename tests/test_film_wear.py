@@ -13,7 +13,7 @@ from dolfinx import mesh
 from mpi4py import MPI
 
 from tribofx.body import Body
-from tribofx.interfaces import Contact, Film, Wear
+from tribofx.interfaces import Contact, Film, FilmScales, Fluid, Penalty, Quadrature, Wear
 from tribofx.obstacles import rigid_cylinder
 from tribofx.problem import Problem
 from tribofx.roughness import Roughness, greenwood_tripp
@@ -52,9 +52,9 @@ def _block(with_contact, rough=False):
     # asperity pressure and boundary friction all active, the wear driven by p_a
     roughness = Roughness(SIGMA, asperity=greenwood_tripp(2.0, SIGMA), mu_b=0.2) \
         if rough else None
-    film = Film(body, "bottom", rigid_cylinder(CENTRE, 2.0), 1e-8, V_counter=(U, 0.0),
-                eps=1e-6, p_c=P0, film_scale=0.01, speed_scale=U, quadrature_degree=2,
-                roughness=roughness)
+    film = Film(body, "bottom", rigid_cylinder(CENTRE, 2.0), Fluid(1e-8),
+                scales=FilmScales(pressure=P0, film=0.01, speed=U), cavitation=Penalty(1e-6),
+                quadrature=Quadrature(degree=2), roughness=roughness, V_counter=(U, 0.0))
     film.add_pressure_bc(lambda X: np.isclose(X[0], 0) | np.isclose(X[0], 1))
     drivers = [film]
     if with_contact:

@@ -18,7 +18,7 @@ from tribofx.meshes.hertz import NAMES, hertz_body
 from tribofx.body import Body
 from tribofx.cases import rough_contact
 from tribofx.cases import stribeck as stribeck_case
-from tribofx.interfaces import Film
+from tribofx.interfaces import Film, FilmScales, Fluid
 from tribofx.obstacles import rigid_plane
 from tribofx.output import RunRecord
 from tribofx.params import resolve
@@ -279,9 +279,9 @@ def test_rough_flat_punch_separation(kind):
     body.add_dirichlet(axis, 0.0, component=0)
     body.add_traction("loaded", fem.Constant(msh, np.array([0.0, P])))   # up, to the plane
     h0 = flat_punch_separation(P, sigma, KE)
-    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), 1e-7,
-                roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None),
-                film_scale=sigma, speed_scale=1.0, p_c=P)
+    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), Fluid(1e-7),
+                scales=FilmScales(pressure=P, film=sigma, speed=1.0),
+                roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None))
     film.add_pressure_bc((lambda X: X[0] > B * (1 - 1e-9)) if axi else None)
     Problem([body, film], name="punch").solve()
     prof = film.profile(everywhere=True)

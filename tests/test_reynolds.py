@@ -106,15 +106,20 @@ def test_slider_bad_input():
 # ----------------------------------------------------------------------------- cylinder
 
 
-def test_penalty_rigid_film_needs_its_penalty():
-    """A rigid film with penalty cavitation and no ε is refused where it is built, in one line."""
+def test_film_options_are_refused_where_they_are_built():
+    """A penalty without a positive ε, a cavitation model given by name and a bare
+    viscosity in place of a Fluid are each refused in one line where they are built."""
     from dolfinx import mesh
 
-    from tribofx.interfaces import RigidFilm
+    from tribofx.interfaces import Fluid, Penalty, RigidFilm
 
+    with pytest.raises(ValueError, match="must be > 0"):
+        Penalty(0.0)
     msh = mesh.create_interval(MPI.COMM_WORLD, 8, [0.0, 1.0])
-    with pytest.raises(ValueError, match="needs the penalty parameter eps"):
-        RigidFilm(msh, lambda x: 0.01 + 0.0 * x, 1.0, 1e-8, cavitation="penalty")
+    with pytest.raises(TypeError, match="Penalty"):
+        RigidFilm(msh, lambda x: 0.01 + 0.0 * x, 1.0, Fluid(1e-8), cavitation="penalty")
+    with pytest.raises(TypeError, match="Fluid"):
+        RigidFilm(msh, lambda x: 0.01 + 0.0 * x, 1.0, 1e-8)
 
 
 def test_cylinder_references_against_closed_form():

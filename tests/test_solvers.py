@@ -373,8 +373,9 @@ def test_mumps_workspace_grows_after_an_out_of_workspace_factorisation():
     failed one); :func:`grow_workspace` doubles ICNTL(14) and resets the PC
     before each new solve.  How many doublings MUMPS needs depends on its
     pivoting (its version, the BLAS): the test asks for doublings from 20 %
-    until the factorisation succeeds, within the 8 the loop allows.  Reference: the solution's residual |Ax − b| against the
-    solve's accuracy (LU with threshold pivoting, backward error ~1e-14 |A||x|).
+    until the factorisation succeeds, within the 8 the loop allows.  Reference:
+    the solution's residual |Ax − b| against the solve's accuracy (LU with
+    threshold pivoting, backward error ~1e-14 |A||x|).
     """
     from tribofx.solvers import WORKSPACE_ERRORS, grow_workspace
 

@@ -349,7 +349,7 @@ def test_rough_parallel_squeeze_rates_the_expected_gap():
     from tribofx.meshes.hertz import NAMES, hertz_body
 
     from tribofx.body import Body
-    from tribofx.interfaces import Film
+    from tribofx.interfaces import Film, FilmScales, Fluid
     from tribofx.obstacles import rigid_plane
     from tribofx.roughness import Roughness
     from tribofx.stepper import Stepper
@@ -362,8 +362,8 @@ def test_rough_parallel_squeeze_rates_the_expected_gap():
     body = Body(msh, ft, names, "plane_strain", ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                 name="block")
     body.add_dirichlet("loaded", np.zeros(2))
-    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), MU,
-                roughness=Roughness(sigma), film_scale=sigma, speed_scale=V, p_c=1.0)
+    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), Fluid(MU),
+                scales=FilmScales(pressure=1.0, film=sigma, speed=V), roughness=Roughness(sigma))
     film.add_pressure_bc(lambda X: X[0] > B * (1 - 1e-9))
     film.transient("euler")
     off = film.counterpart.offset

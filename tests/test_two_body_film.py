@@ -12,7 +12,7 @@ from tribofx.forms.hyperelastic import lame_parameters
 from tribofx.meshes.roller import ROLLER_NAMES, roller
 
 from tribofx.body import Body
-from tribofx.interfaces import Film, TwoBodyFilm
+from tribofx.interfaces import Film, FilmScales, Fluid, Quadrature, TwoBodyFilm
 from tribofx.motions import Rolling, Sliding
 from tribofx.obstacles import rigid_plane
 from tribofx.problem import Problem
@@ -42,10 +42,10 @@ def roller_on_block(comm=MPI.COMM_WORLD, E2=10.0, U1=1000.0, U2=1000.0, h_fine=0
     m1.geometry.x[:, 1] += H0
     upper = _body(m1, f1, 10.0, "upper")
     upper.add_dirichlet("loaded", np.zeros(2))
-    kw = dict(film_scale=H0, speed_scale=U1, p_c=0.1, **film_kw)
+    kw = dict(scales=FilmScales(pressure=0.1, film=H0, speed=U1), **film_kw)
     if rigid:
-        film = Film(upper, "lubricated", rigid_plane([0, 0], [0, 1]), MU, alpha=1,
-                    V_counter=[U2, 0.0], quadrature="vertex",
+        film = Film(upper, "lubricated", rigid_plane([0, 0], [0, 1]), Fluid(MU), alpha=1,
+                    V_counter=[U2, 0.0], quadrature=Quadrature("vertex"),
                     motion=(Rolling((0, R + H0), R), _constant(upper, U1)), **kw)
         bodies, push = [upper], film.counterpart.offset
     else:
@@ -53,8 +53,8 @@ def roller_on_block(comm=MPI.COMM_WORLD, E2=10.0, U1=1000.0, U2=1000.0, h_fine=0
         lower = _body(m2, f2, E2, "lower")
         push = lower.add_dirichlet("loaded", np.zeros(2))
         if rigid is None:
-            kw["quadrature"] = "vertex"
-        film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", MU,
+            kw["quadrature"] = Quadrature("vertex")
+        film = TwoBodyFilm(upper, "lubricated", lower, "lubricated", Fluid(MU),
                            motion1=Rolling((0, R + H0), R), U1=U1, motion2=Sliding((1, 0)),
                            U2=U2, **kw)
         bodies = [upper, lower]

@@ -15,7 +15,7 @@ from tribofx.meshes.hertz import NAMES, hertz_body
 
 from tribofx.body import Body
 from tribofx.cases import wear_lubricated
-from tribofx.interfaces import Film, Wear
+from tribofx.interfaces import Film, FilmScales, Fluid, Wear
 from tribofx.obstacles import rigid_plane
 from tribofx.output import RunRecord
 from tribofx.params import resolve
@@ -53,10 +53,10 @@ def test_rough_flat_punch_wears_by_archard():
     h0 = flat_punch_separation(P, sigma, KE)
     # the film "switched off" (μ = 1e-15 MPa·s: its shear μV/h ≈ 3e-10 P; at 1e-12 it
     # shears the block enough to tilt the face, p_a varying by 3e-7)
-    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), 1e-15,
-                V_counter=(V, 0.0),
+    film = Film(body, "lubricated", rigid_plane([0.0, h0], [0.0, -1.0]), Fluid(1e-15),
+                scales=FilmScales(pressure=P, film=sigma, speed=V),
                 roughness=Roughness(sigma, asperity=greenwood_tripp(KE, sigma), flow=None),
-                film_scale=sigma, speed_scale=V, p_c=P)
+                V_counter=(V, 0.0))
     film.add_pressure_bc()
     wear = Wear(film, k, speed=V)
     stepper = Stepper([body, film, wear], wear, name="punch_wear")

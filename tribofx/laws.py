@@ -10,7 +10,7 @@ fields wherever the law appears.  A researcher's own law is any function
 
     from tribofx.laws import Law
     mu = Law(lambda p, mu0, a, b: mu0 * (1 + a * p + b * p**2), mu0=1e-9, a=0.01, b=1e-4)
-    film = RigidFilm(mesh, gap, vbar, mu)
+    film = RigidFilm(mesh, gap, vbar, Fluid(mu))
 
 A number is the constant law (the chapter's isoviscous fluid).
 """

@@ -74,7 +74,7 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film
+from ..interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
@@ -429,11 +429,12 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
     ball.add_dirichlet("symmetry", 0.0, component=1)
     _, p0, h_c, eps = scales(v, v.W / v.steps)
     V_plane = np.array([2 * v.U, 0.0, 0.0])
-    film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]), viscosity(v),
-                density=density(v), quadrature=v.quadrature,
-                V_counter=V_plane, model=v.model, shear=v.shear, supg=v.supg,
-                eps=eps if v.penalty > 0 else None, p_c=p0, film_scale=h_c,
-                speed_scale=v.U, quadrature_degree=2)
+    film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]),
+                Fluid(viscosity(v), density(v)),
+                scales=FilmScales(pressure=p0, film=h_c, speed=v.U),
+                cavitation=Penalty(eps) if v.penalty > 0 else None,
+                quadrature=Quadrature(v.quadrature, degree=2),
+                V_counter=V_plane, model=v.model, shear=v.shear, supg=v.supg)
     if v.mesh_file:
         film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v.R))
     else:

@@ -44,7 +44,8 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film
+from ..interfaces import Film, FilmScales, Fluid
+from ..interfaces.film_options import named_cavitation
 from ..meshes.layer import BOTTOM, COATING, LAYER, LUBRICATED, coated_layer
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_cylinder, rigid_surface_mesh
@@ -344,12 +345,11 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, intermediate: bool = False
     else:
         cylinder = rigid_cylinder(np.array([0.0, v.R]), v.R)
     h_r, p_s, eps = scales(v, v.W / v.steps)
-    film = Film(layer, "lubricated", cylinder, viscosity(v), density=density(v, v.cavitation),
-                model=v.model, shear=v.shear,
-                supg=v.supg, cavitation=v.cavitation,
-                eps=eps if v.penalty > 0 else None, p_c=p_s,
-                alpha=v.alpha if (v.alpha > 0 or intermediate) else None,
-                film_scale=h_r, speed_scale=v.U)
+    film = Film(layer, "lubricated", cylinder, Fluid(viscosity(v), density(v, v.cavitation)),
+                scales=FilmScales(pressure=p_s, film=h_r, speed=v.U),
+                cavitation=named_cavitation(v.cavitation, eps if v.penalty > 0 else None),
+                model=v.model, shear=v.shear, supg=v.supg,
+                alpha=v.alpha if (v.alpha > 0 or intermediate) else None)
     if v.mesh_file:
         check_user_ends(film, v)
     if v.cavitation == "jfo":

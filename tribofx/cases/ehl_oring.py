@@ -116,7 +116,8 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms import ehl_axisym as ax
 from ..forms.wear import bdf2_coefficients
-from ..interfaces import Contact, Film
+from ..interfaces import Contact, Film, FilmScales, Fluid
+from ..interfaces.film_options import named_cavitation
 from ..meshes.oring import HOUSING, LUBRICATED, SEALED, oring_section
 from ..meshes.user import read_user_mesh
 from ..obstacles import rigid_plane
@@ -260,13 +261,13 @@ class ORingSeal:
         # film scales: h_ref of Blok's inverse theory at W_REF, ε relative to 12μℓ²/h_ref³
         h_ref, ell = inverse_film(v.mu, U, W_REF), 0.25 * a
         self.cavitation = cav = cavitation_model(v)
+        eps = v.eps * 12 * v.mu * ell**2 / h_ref**3
         self.film = film = Film(body, "lubricated", rigid_plane([r_rod, 0.0], [1.0, 0.0]),
-                                viscosity(v), density=density(v, cavitation_model(v)),
-                                V_counter=[0.0, U],
-                                supg=v.supg, cavitation=cav, roughness=roughness,
-                                eps=(v.eps * 12 * v.mu * ell**2 / h_ref**3
-                                     if cav == "penalty" else None),
-                                p_c=max(p0, 1.0), film_scale=h_ref, speed_scale=abs(U),
+                                Fluid(viscosity(v), density(v, cav)),
+                                scales=FilmScales(pressure=max(p0, 1.0), film=h_ref,
+                                                  speed=abs(U)),
+                                cavitation=named_cavitation(cav, eps),
+                                roughness=roughness, V_counter=[0.0, U], supg=v.supg,
                                 rtol=1e-8, require_open=True)
         # film rtol 1e-8: the Reynolds rows of the thick-film flanks (h up to 10³ times
         # the film of the contact) have a round-off floor of ≈ 4e-8 mm/s (measured),

@@ -45,7 +45,8 @@ from mpi4py import MPI
 
 from ..body import Body
 from ..forms.hyperelastic import lame_parameters
-from ..interfaces import Film, TwoBodyFilm
+from ..interfaces import Film, FilmScales, Fluid, TwoBodyFilm
+from ..interfaces.film_options import named_cavitation
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, param
@@ -238,12 +239,12 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
     # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
     h_L = h0 + R - math.sqrt(R * R - L * L)
     floor = 100 * np.finfo(float).eps * p_c * h_L**3 / (12 * v.mu * h_coarse)
-    kw = dict(density=density(v, v.cavitation), supg=v.supg, p_c=p_c, film_scale=h0,
-              speed_scale=Vs * ell / h0, rtol=max(1e-10, floor / (Vs * ell)),
-              cavitation="penalty" if v.cavitation == "none" else "jfo")
+    fluid = Fluid(viscosity(v), density(v, v.cavitation))
+    kw = dict(supg=v.supg, scales=FilmScales(pressure=p_c, film=h0, speed=Vs * ell / h0),
+              rtol=max(1e-10, floor / (Vs * ell)), cavitation=named_cavitation(v.cavitation))
     bodies = [body]
     if math.isinf(v.E2):
-        film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), viscosity(v), **kw)
+        film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), fluid, **kw)
     else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
         mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
         mu_b, lm_b = lame_parameters(v.E2, v.nu2)
@@ -252,7 +253,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
         block.add_dirichlet("symmetry_x", 0.0, component=0)
         lift = block.add_dirichlet("loaded", np.zeros(dim))
         msh.geometry.x[:, 1] += h0        # the body's lowest point h0 above the block
-        film = TwoBodyFilm(body, "lubricated", block, "lubricated", viscosity(v), **kw)
+        film = TwoBodyFilm(body, "lubricated", block, "lubricated", fluid, **kw)
         bodies.append(block)
 
     def rim(X: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:

@@ -42,7 +42,7 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film, TwoBodyFilm
+from ..interfaces import Film, FilmScales, Fluid, Penalty, TwoBodyFilm
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..motions import Rolling, Sliding
 from ..obstacles import rigid_cylinder, rigid_plane
@@ -197,14 +197,15 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
                          ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                          name=("upper", "lower")[k])
     kw: dict[str, Any]   # the film's keyword arguments
-    kw = dict(shear=v.shear, supg=v.supg, eps=eps if v.penalty > 0 else None,
-              p_c=p_c, film_scale=h_r, speed_scale=max(abs(U[0]), abs(U[1])))
+    kw = dict(shear=v.shear, supg=v.supg, cavitation=Penalty(eps) if v.penalty > 0 else None,
+              scales=FilmScales(pressure=p_c, film=h_r, speed=max(abs(U[0]), abs(U[1]))))
     if 0 in bodies and 1 in bodies:
         upper, lower = bodies[0], bodies[1]
         upper.add_dirichlet("loaded", np.zeros(2))
         lift = lower.add_dirichlet("loaded", np.zeros(2))
-        film: Film | TwoBodyFilm = TwoBodyFilm(upper, "lubricated", lower, "lubricated", v.mu,
-                           motion1=shapes[0], U1=U[0], motion2=shapes[1], U2=U[1], **kw)
+        film: Film | TwoBodyFilm = TwoBodyFilm(
+            upper, "lubricated", lower, "lubricated", Fluid(v.mu),
+            motion1=shapes[0], U1=U[0], motion2=shapes[1], U2=U[1], **kw)
         sign = 1.0
     else:   # one rigid body: the film on the other, against a rigid roller or plane
         k = 0 if 0 in bodies else 1
@@ -217,7 +218,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
             counter = rigid_cylinder([0, R1 + h_r], R1)
         mine = (shapes[k], fem.Constant(body.mesh, float(U[k])))
         other = (shapes[1 - k], fem.Constant(body.mesh, float(U[1 - k])))
-        film = Film(body, "lubricated", counter, v.mu, motion=mine, V_counter=other,
+        film = Film(body, "lubricated", counter, Fluid(v.mu), motion=mine, V_counter=other,
                     **kw)
         # (a rigid roller or plane: its offset moves it)
         lift, sign = (cast("AnalyticObstacle", film.counterpart).offset,

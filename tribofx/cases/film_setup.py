@@ -13,7 +13,8 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 import numpy as np
 from dolfinx import mesh as dmesh
 
-from ..interfaces import RigidFilm
+from ..interfaces import FilmScales, Fluid, RigidFilm
+from ..interfaces.film_options import named_cavitation
 from ..laws import DENSITY_LAWS, VISCOSITY_LAWS, named_density, named_viscosity
 from ..params import CaseParams, InputError, number_list, param
 from ..problem import Problem
@@ -216,8 +217,9 @@ def rigid_film(comm: MPI.Comm, x0: float, x1: float, n: int, degree: int,
     instead of the Dirichlet conditions on λ and p.  Returns a :class:`FilmModel`.
     """
     msh = dmesh.create_interval(comm, n, [x0, x1])
-    film = RigidFilm(msh, gap, vbar, mu, degree=degree, cavitation=cavitation, supg=supg,
-                     eps=eps, p_c=p_c, film_scale=h_ref, speed_scale=vbar, density=density)
+    film = RigidFilm(msh, gap, vbar, Fluid(mu, density), degree=degree,
+                     cavitation=named_cavitation(cavitation, eps), supg=supg,
+                     scales=FilmScales(pressure=p_c, film=h_ref, speed=vbar))
     if cavitation == "jfo":
         at_inlet = lambda y: np.isclose(y[0], x0)   # noqa: E731
         if supply:

@@ -23,7 +23,7 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film
+from ..interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.roller import ROLLER_NAMES, roller
 from ..obstacles import rigid_plane
@@ -115,9 +115,10 @@ def rough_cylinder(v: RoughContactParams, U0: float, roughness: Roughness | None
         body.add_shape_dirichlet("loaded", i)
         body.add_shape_dirichlet("free", i, except_on="lubricated")
     speed = fem.Constant(msh, np.array([U0, 0.0]))
-    film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), v.mu, V_counter=speed,
-                roughness=roughness, eps=1e-4 * 24 * v.mu * R / h_r**2, p_c=ref.p0,
-                film_scale=h_r, speed_scale=max(U0, U_floor), rtol=1e-8)
+    film = Film(body, "lubricated", rigid_plane([0, 0], [0, 1]), Fluid(v.mu),
+                scales=FilmScales(pressure=ref.p0, film=h_r, speed=max(U0, U_floor)),
+                cavitation=Penalty(1e-4 * 24 * v.mu * R / h_r**2), roughness=roughness,
+                V_counter=speed, rtol=1e-8)
     film.add_pressure_bc()
     cast("AnalyticObstacle", film.counterpart).offset.value[1] = -h_r   # the rigid plane's
     return Model(body, film, speed, ref, U_floor, axis=1, copies=1.0, problem=None)
@@ -138,10 +139,10 @@ def rough_ball(v: RoughContactParams, U0: float, roughness: Roughness | None,
     body.add_dirichlet("midplane", np.zeros(3))
     body.add_dirichlet("symmetry", 0.0, component=1)
     speed = fem.Constant(msh, np.array([U0, 0.0, 0.0]))
-    film = Film(body, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[2]), v.mu,
-                V_counter=speed, roughness=roughness,
-                eps=1e-4 * 12 * v.mu * a**2 / h_r**3, p_c=ref.p0, film_scale=h_r,
-                speed_scale=max(U0, U_floor), rtol=1e-8, quadrature_degree=2)
+    film = Film(body, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[2]), Fluid(v.mu),
+                scales=FilmScales(pressure=ref.p0, film=h_r, speed=max(U0, U_floor)),
+                cavitation=Penalty(1e-4 * 12 * v.mu * a**2 / h_r**3), roughness=roughness,
+                quadrature=Quadrature(degree=2), V_counter=speed, rtol=1e-8)
     z_cap = cap_height(R, theta)
     film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * R)
     # the start where the film is the thicker (h_r above the asperities' separation h_a

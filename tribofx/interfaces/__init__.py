@@ -7,6 +7,7 @@ and its outputs; it follows the component protocol of :mod:`tribofx.problem`.
 
 from .contact import Contact
 from .film import Film
+from .film_options import JFO, FilmScales, Fluid, Penalty, Quadrature
 from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .rigid_film import RigidFilm
@@ -14,5 +15,5 @@ from .two_body_contact import TwoBodyContact
 from .two_body_film import TwoBodyFilm
 from .wear import Wear
 
-__all__ = ["Contact", "Film", "PrescribedPressure", "ReynoldsFilm", "RigidFilm", "TwoBodyContact",
-           "TwoBodyFilm", "Wear"]
+__all__ = ["JFO", "Contact", "Film", "FilmScales", "Fluid", "Penalty", "PrescribedPressure",
+           "Quadrature", "ReynoldsFilm", "RigidFilm", "TwoBodyContact", "TwoBodyFilm", "Wear"]

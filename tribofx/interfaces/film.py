@@ -89,6 +89,7 @@ from ..laws import viscosity_law
 from ..problem import BlockTolerance, Problem
 from ..scheme import BDF2, Scheme
 from .film_history import FilmHistory, content_space
+from .film_options import JFO, Cavitation, FilmScales, Fluid, Penalty, Quadrature
 from .prescribed_pressure import PrescribedPressure
 from .reynolds_film import ReynoldsFilm
 from .surface import Surface
@@ -104,7 +105,6 @@ if TYPE_CHECKING:
     from ..body import Body
     from ..forms.ehl import LubricationKinematics
     from ..forms.wear import WearLoad
-    from ..laws import Law
     from ..protocols import Counterpart
     from ..reports import NewtonReport
     from ..roughness import Roughness
@@ -160,43 +160,40 @@ class Film(ReynoldsFilm):
         boundary: name of the lubricated boundary Γ_l.
         counterpart: factory ``counterpart(V_sub)`` (e.g. :func:`tribofx.obstacles.rigid_plane`),
             called with the P1 vector space of the submesh of Γ_l.
-        mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
-            (:mod:`tribofx.forms.fluid`): the same expression in the Reynolds rows,
-            the fluid traction and the friction post-processing.
-        density: None (incompressible) or a density :class:`tribofx.laws.Law`
-            ρ(p)/ρ₀ (the compressible Reynolds equation; penalty cavitation).
+        fluid: the lubricant, a :class:`~tribofx.interfaces.film_options.Fluid`: its
+            viscosity μ(p) is the same expression in the Reynolds rows, the fluid
+            traction and the friction post-processing; a variable density ρ(p)/ρ₀ gives
+            the compressible Reynolds equation (penalty or no cavitation).
+        scales: the pressure, film and speed scales
+            (:class:`~tribofx.interfaces.film_options.FilmScales`) of the stopping
+            test, the row scales, SUPG and the JFO complementarity.
+        cavitation: None (no cavitation model), a
+            :class:`~tribofx.interfaces.film_options.Penalty` (ε⁻¹ min(p, 0)) or
+            :class:`~tribofx.interfaces.film_options.JFO` (void fraction λ; a curve Γ_l).
+        quadrature: the :class:`~tribofx.interfaces.film_options.Quadrature` of the
+            integrals over Γ_l.  A meshed countersurface's data are exact at the
+            nodes of Γ_l, P1 between them: the Gauss rule's tangent is off by O(h κ)
+            on curved facets, the vertex rule's exact.
+        roughness: None (smooth surfaces) or a :class:`tribofx.roughness.Roughness`:
+            mixed lubrication, the average-flow Reynolds rows and the asperity
+            pressure and boundary friction in the traction (plane strain and 3D).
         V_counter: velocity of the countersurface (mm/s): a vector, a ``fem.Constant``
             (e.g. driven by a continuation), (shape, U) (U·shape(y) at the projection
             y, a shape of :mod:`tribofx.motions` and U a Constant: a rolling cylinder)
             or None (at rest).
+        motion: None (the layer moves with ``body.velocity``) or (shape, U): the
+            layer's reference velocity U·shape(X) (:mod:`tribofx.motions`, U a Constant,
+            mm/s), e.g. a rolling cylinder.
         model: "finite" or "linear" (geometrically linear EHL).
+        alpha: None (S = P(γ_l)) or α ∈ [0, 1] of the intermediate surface S_α (plane strain).
         shear: Couette and Poiseuille shear tractions on the body (and the unknown g).
         supg: SUPG stabilisation of the Reynolds equation.
-        cavitation: "penalty" (ε⁻¹ min(p, 0)) or "jfo" (void fraction λ, plane strain).
-        eps: penalty parameter ε (MPa·s/mm); None: no cavitation term.
-        p_c: pressure scale of SUPG and of the JFO complementarity (MPa).
-        alpha: None (S = P(γ_l)) or α ∈ [0, 1] of the intermediate surface S_α (plane strain).
-        film_scale: film thickness scale h_ref (mm) of the tolerances and row scales.
-        speed_scale: speed scale U (mm/s) of the Reynolds tolerance and of the JFO flux scale.
-        quadrature_degree: quadrature degree of the (Gauss) integrals over Γ_l.
-        quadrature: "gauss" (degree ``quadrature_degree``) or "vertex" (the vertex
-            rule, second order for P1 displacements).  A meshed countersurface's
-            data are exact at the nodes of Γ_l, P1 between them: the Gauss rule's
-            tangent is off by O(h κ) on curved facets, the vertex rule's exact.  Not
-            the default: a node projecting onto a kinked countersurface vertex gets
-            ∂P/∂x = 0 (a degenerate S, NaN rows), which aligned meshes hit (docs/contact.md).
         row_scaling: physical row scales of the film rows (see the module docstring).
         name: name of the interface (unknown names, reports).
         rtol: relative size of the stopping tolerances (see the module docstring).
         require_open: line-search trials must keep the film open, h > 0 at every
             node of Γ_l (:meth:`admissible`; with ``Problem(line_search="admissible")``
             the only test of a trial step).
-        motion: None (the layer moves with ``body.velocity``) or (shape, U): the
-            layer's reference velocity U·shape(X) (:mod:`tribofx.motions`, U a Constant,
-            mm/s), e.g. a rolling cylinder.
-        roughness: None (smooth surfaces) or a :class:`tribofx.roughness.Roughness`:
-            mixed lubrication, the average-flow Reynolds rows and the asperity
-            pressure and boundary friction in the traction (plane strain and 3D).
     """
 
     CAVITATION = ("penalty", "jfo")
@@ -220,27 +217,33 @@ class Film(ReynoldsFilm):
     _dry: tuple[PrescribedPressure, Problem] | None
 
     def __init__(self, body: Body, boundary: str,
-                 counterpart: Callable[[fem.FunctionSpace], Counterpart], mu: float | Law,
+                 counterpart: Callable[[fem.FunctionSpace], Counterpart], fluid: Fluid, *,
+                 scales: FilmScales = FilmScales(), cavitation: Cavitation | None = None,
+                 quadrature: Quadrature = Quadrature(), roughness: Roughness | None = None,
                  V_counter: npt.ArrayLike | fem.Constant | Motion | None = None,
-                 model: str = "finite", shear: bool = True, supg: bool = True,
-                 cavitation: str = "penalty", eps: float | None = None, p_c: float = 1.0,
-                 alpha: float | None = None, film_scale: float = 1e-2, speed_scale: float = 1.0,
-                 quadrature_degree: int = 4, row_scaling: bool = True, name: str = "film",
-                 rtol: float = 1e-10, require_open: bool = False,
-                 density: float | Law | None = None, quadrature: str = "gauss",
-                 motion: Motion | None = None, roughness: Roughness | None = None) -> None:
+                 motion: Motion | None = None, model: str = "finite",
+                 alpha: float | None = None, shear: bool = True, supg: bool = True,
+                 row_scaling: bool = True, name: str = "film", rtol: float = 1e-10,
+                 require_open: bool = False) -> None:
         if model not in ef.MODELS:
             raise ValueError(f"unknown model {model!r}; expected one of {ef.MODELS}")
-        if cavitation not in self.CAVITATION:
-            raise ValueError(f"unknown cavitation model {cavitation!r}")
+        if not isinstance(fluid, Fluid):
+            raise TypeError(f"fluid: a Fluid(viscosity, density), not {fluid!r}")
+        if cavitation is not None and not isinstance(cavitation, (Penalty, JFO)):
+            raise TypeError(f"cavitation: None, Penalty(eps) or JFO(), not {cavitation!r}")
         gdim = body.gdim
-        if (cavitation == "jfo" or alpha is not None) and gdim != 2:
-            raise ValueError("cavitation='jfo' and alpha are implemented for a curve Γ_l "
+        if (isinstance(cavitation, JFO) or alpha is not None) and gdim != 2:
+            raise ValueError("JFO cavitation and alpha are implemented for a curve Γ_l "
                              "(gdim = 2)")
+        mu, density = fluid.viscosity, fluid.density
+        eps = cavitation.eps if isinstance(cavitation, Penalty) else None
+        # "penalty" stands for no cavitation model too (its ε term then left out)
+        cavitation_name = "jfo" if isinstance(cavitation, JFO) else "penalty"
         self.body, self.name, self.rtol = body, name, float(rtol)
         self.boundary = boundary
         self.require_open = bool(require_open)
-        self.model, self.shear, self.cavitation, self._supg = model, shear, cavitation, supg
+        self.model, self.shear, self._supg = model, shear, supg
+        self.cavitation = cavitation_name
         self._viscosity_law = viscosity_law(mu)
         self.mu = self._viscosity_law.reference_value     # μ₀: the tolerances' scale
         msh = body.mesh
@@ -256,7 +259,7 @@ class Film(ReynoldsFilm):
         self.p = fem.Function(self.Q, name=f"{name}_pressure")
         self.g = fem.Function(self.G, name=f"{name}_pressure_gradient") if shear else None
         self.lam = None
-        if cavitation == "jfo":
+        if cavitation_name == "jfo":
             self.Ql = fem.functionspace(sub, ("Lagrange", 1))
             self.lam = fem.Function(self.Ql, name=f"{name}_void_fraction")
         self._u1 = fem.Function(self.V1)
@@ -264,25 +267,22 @@ class Film(ReynoldsFilm):
         self.counterpart = counterpart(self.V1)
 
         # scales and physical constants
-        self.h_ref, self.U_ref = float(film_scale), float(speed_scale)
+        self.h_ref, self.U_ref = float(scales.film), float(scales.speed)
         self.viscosity = self._viscosity_law.bind(sub)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, sub)
         self.roughness = roughness
         self._rough = roughness.bind(sub) if roughness is not None else None
-        self.p_c = fem.Constant(sub, float(p_c))
+        self.p_c = fem.Constant(sub, float(scales.pressure))
         self.eps = None if eps is None else fem.Constant(sub, float(eps))
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
-        scales = ((self.mu / self.h_ref, body.stiffness / self.h_ref, self.h_ref)
-                  if row_scaling else (1.0, 1.0, 1.0))
-        self._c_p, self.trace_scale, self._c_g = (fem.Constant(sub, c) for c in scales)
+        rows = ((self.mu / self.h_ref, body.stiffness / self.h_ref, self.h_ref)
+                if row_scaling else (1.0, 1.0, 1.0))
+        self._c_p, self.trace_scale, self._c_g = (fem.Constant(sub, c) for c in rows)
         self._q_ref = fem.Constant(sub, 0.5 * self.U_ref * self.h_ref)
 
         # measures and reference geometry
-        if quadrature not in ("gauss", "vertex"):
-            raise ValueError(f"quadrature {quadrature!r}: gauss or vertex")
-        qd = ({"quadrature_rule": "vertex", "quadrature_degree": 1} if quadrature == "vertex"
-              else {"quadrature_degree": quadrature_degree})
+        qd = quadrature.metadata()
         self.ds = ufl.Measure("ds", msh, subdomain_data=body.facet_tags,
                               subdomain_id=body.tag(boundary), metadata=qd)
         self.dx = ufl.Measure("dx", sub, metadata=qd)
@@ -325,7 +325,7 @@ class Film(ReynoldsFilm):
             if model == "finite":
                 self.w_solid = body.weight * (1 + body.u[0] / X[0])
             self.w_film = 2 * ufl.pi * self.kin.y[0]
-        self._jumps = cavitation == "jfo"
+        self._jumps = cavitation_name == "jfo"
         self._post = None          # the compiled forms of the outputs
         self._pa_nodal = None      # the nodal asperity pressure's Expression (rough films)
         self.history = None        # a transient film's FilmHistory (transient())

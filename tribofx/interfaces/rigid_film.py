@@ -11,6 +11,7 @@ from mpi4py import MPI
 
 from ..forms import ehl as ef
 from ..laws import viscosity_law
+from .film_options import JFO, Cavitation, FilmScales, Fluid, Penalty
 from .reynolds_film import ReynoldsFilm
 
 if TYPE_CHECKING:
@@ -20,7 +21,6 @@ if TYPE_CHECKING:
     import ufl.core.expr
     from dolfinx import mesh as dmesh
 
-    from ..laws import Law
     from ..problem import BlockTolerance
     from .reynolds_film import Profile
 
@@ -43,40 +43,43 @@ class RigidFilm(ReynoldsFilm):
         mesh: the mesh of the film (e.g. ``dolfinx.mesh.create_interval``), mm.
         gap: callable x (UFL spatial coordinate) → h (UFL, mm).
         vbar: mean velocity v̄ (mm/s): a number (1D) or a vector.
-        mu: viscosity (MPa·s), or a viscosity :class:`tribofx.laws.Law` μ(p)
-            (:mod:`tribofx.forms.fluid`).
-        density: None (incompressible) or a density :class:`tribofx.laws.Law`
-            ρ(p)/ρ₀ (the compressible Reynolds equation; penalty or no cavitation).
+        fluid: the lubricant, a :class:`~tribofx.interfaces.film_options.Fluid`: its
+            viscosity μ(p) and density ρ(p)/ρ₀ (a variable density: the
+            compressible Reynolds equation; penalty or no cavitation).
         degree: Lagrange degree of p (JFO and the nodal penalty: 1).
-        cavitation: "none", "penalty" or "jfo".
-        supg, eps, p_c: as for :class:`Film`.
-        film_scale, speed_scale: h_ref (mm), U (mm/s) of the tolerances; their
-            product is the flux scale of the JFO complementarity rows.
-        quadrature_degree: default 4·degree + 6 (h is not polynomial in general).
+        cavitation: None, :class:`~tribofx.interfaces.film_options.Penalty` or
+            :class:`~tribofx.interfaces.film_options.JFO`, as for :class:`Film`.
+        supg: as for :class:`Film`.
+        scales: as for :class:`Film`; film × speed is the flux scale of the JFO
+            complementarity rows.
+        quadrature_degree: Gauss degree of the integrals, default 4·degree + 6
+            (h is not polynomial in general).
         rtol: relative size of the stopping tolerances.
     """
 
-    CAVITATION = ("none", "penalty", "jfo")
-
     def __init__(self, mesh: dmesh.Mesh,
                  gap: Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr],
-                 vbar: npt.ArrayLike, mu: float | Law, degree: int = 1, cavitation: str = "none",
-                 supg: bool = False, eps: float | None = None, p_c: float = 1.0,
-                 film_scale: float = 1e-2, speed_scale: float = 1.0,
-                 quadrature_degree: int | None = None, name: str = "film", rtol: float = 1e-10,
-                 density: float | Law | None = None) -> None:
-        if cavitation not in self.CAVITATION:
-            raise ValueError(f"unknown cavitation model {cavitation!r}")
-        if cavitation == "jfo" and degree != 1:
-            raise ValueError("cavitation='jfo' needs P1 pressure (nodal complementarity)")
-        if cavitation == "penalty" and eps is None:
-            raise ValueError("cavitation='penalty' needs the penalty parameter eps (MPa·s/mm)")
-        self.sub, self.name, self.rtol, self.cavitation = mesh, name, float(rtol), cavitation
+                 vbar: npt.ArrayLike, fluid: Fluid, degree: int = 1,
+                 cavitation: Cavitation | None = None, supg: bool = False,
+                 scales: FilmScales = FilmScales(), quadrature_degree: int | None = None,
+                 name: str = "film", rtol: float = 1e-10) -> None:
+        if not isinstance(fluid, Fluid):
+            raise TypeError(f"fluid: a Fluid(viscosity, density), not {fluid!r}")
+        if cavitation is not None and not isinstance(cavitation, (Penalty, JFO)):
+            raise TypeError(f"cavitation: None, Penalty(eps) or JFO(), not {cavitation!r}")
+        if isinstance(cavitation, JFO) and degree != 1:
+            raise ValueError("JFO cavitation needs P1 pressure (nodal complementarity)")
+        mu, density = fluid.viscosity, fluid.density
+        eps = cavitation.eps if isinstance(cavitation, Penalty) else None
+        p_c, film_scale, speed_scale = scales.pressure, scales.film, scales.speed
+        cavitation_name = "none" if cavitation is None else cavitation.name
+        self.sub, self.name, self.rtol = mesh, name, float(rtol)
+        self.cavitation = cavitation_name
         gdim = mesh.geometry.dim
         self.Q = fem.functionspace(mesh, ("Lagrange", degree))
         self.p = fem.Function(self.Q, name="pressure")
         self.lam = None
-        if cavitation == "jfo":
+        if cavitation_name == "jfo":
             # λ on its own (identical) space so that Dirichlet conditions find their block
             self.Ql = fem.functionspace(mesh, ("Lagrange", 1))
             self.lam = fem.Function(self.Ql, name="void_fraction")
@@ -93,7 +96,7 @@ class RigidFilm(ReynoldsFilm):
         self._bind_density(density, mesh)
         self.p_c = fem.Constant(mesh, float(p_c))
         self.eps = None
-        if eps is not None and cavitation == "penalty":
+        if eps is not None:
             self.eps = fem.Constant(mesh, float(eps))
         qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
         self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})

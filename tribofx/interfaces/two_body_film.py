@@ -56,12 +56,12 @@ if TYPE_CHECKING:
 
     from ..body import Body
     from ..forms.ehl import LubricationKinematics
-    from ..laws import Law
     from ..motions import Rolling, Sliding
     from ..problem import Problem
     from ..protocols import Counterpart
     from ..scheme import Scheme
     from .film import Shape
+    from .film_options import Fluid
     from .master_side import KernelCache, RowsCols
 
 __all__ = ["TwoBodyFilm"]
@@ -92,14 +92,15 @@ class TwoBodyFilm(KernelAssembly, Film):
         slave, master: plane-strain P1 :class:`tribofx.body.Body` (affine meshes).
         boundary, master_boundary: boundary names; the master's must extend beyond
             the projections of Γ_l.
-        mu: viscosity (MPa·s) or a viscosity law (as for :class:`Film`).
+        fluid: the lubricant, a :class:`~tribofx.interfaces.film_options.Fluid` (as for
+            :class:`Film`).
         motion1, motion2: None (at rest) or the shape of the reference velocity of
             the slave's and the master's material (:class:`tribofx.motions.Rolling`,
             :class:`~tribofx.motions.Sliding`).
         U1, U2: their speeds (mm/s); ``self.U1``/``self.U2`` are the Constants.
-        **kwargs: the :class:`Film` options (shear, supg, cavitation, eps, p_c,
-            film_scale, speed_scale, quadrature, row_scaling, name, rtol,
-            require_open, density); model is "finite", S = γ_l.
+        **kwargs: the :class:`Film` options (scales, cavitation, quadrature,
+            shear, supg, row_scaling, name, rtol, require_open); model is
+            "finite", S = γ_l.
     """
 
     #: relative hysteresis of the master-segment choice (as for TwoBodyContact)
@@ -113,7 +114,7 @@ class TwoBodyFilm(KernelAssembly, Film):
     _cache: KernelCache | None
 
     def __init__(self, slave: Body, boundary: str, master: Body, master_boundary: str,
-                 mu: float | Law, motion1: Rolling | Sliding | None = None, U1: float = 0.0,
+                 fluid: Fluid, motion1: Rolling | Sliding | None = None, U1: float = 0.0,
                  motion2: Rolling | Sliding | None = None, U2: float = 0.0,
                  **kwargs: Any) -> None:
         for b in (slave, master):
@@ -127,7 +128,7 @@ class TwoBodyFilm(KernelAssembly, Film):
         self.U2 = fem.Constant(slave.mesh, float(U2))
         self.gap = cast("fem.Function", None)     # built by _kinematics, in Film.__init__
         # the master enters through the kernel (_kinematics asks no counterpart's geometry)
-        super().__init__(slave, boundary, lambda V1: cast("Counterpart", _NoCounterpart()), mu,
+        super().__init__(slave, boundary, lambda V1: cast("Counterpart", _NoCounterpart()), fluid,
                          motion=None if motion1 is None else (motion1, self.U1), **kwargs)
         self.side = MasterSide(master, master_boundary)
         sf, sub = self._surface, self.sub
