@@ -35,7 +35,7 @@ U0 = 400.0
 
 def values(**over):
     """The case's values at density 2 on the unrefined film arc (25 µm: a cycle's default
-    is refined once, ``film_setup.arc_halvings``), with ``over``."""
+    is refined once, ``ehl_oring.arc_halvings``), with ``over``."""
     return resolve(Case.Params, {"mesh": "2", "arc_refine": "0",
                                  **{k: str(x) for k, x in over.items()}})
 

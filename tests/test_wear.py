@@ -726,7 +726,7 @@ def test_pressure_dependent_wear_coefficient():
 # -- second-order slow time (BDF2) -------------------------------------------------------
 
 def _pin_run(scheme, dt, tol=0.0, T=400.0, n=6, per="unit_step", controller="i"):
-    from tribofx.studies.wear_stability import SubRecord
+    from tribofx.output import SubRecord
 
     v = resolve(wear_pin.Params, {"scheme": scheme, "dt": str(dt), "T": str(T), "E": "40",
                                      "R_tip": "20", "tol": str(tol), "tol_per": per,
@@ -773,7 +773,7 @@ def _cyclic_pin_profile(scheme, dt):
                                      "R_tip": "20", "mode": "cyclic", "friction": "0.3",
                                      "stroke": "1.0", "fast_steps": "8"})
     wear_pin.validate(v)
-    from tribofx.studies.wear_stability import SubRecord
+    from tribofx.output import SubRecord
 
     return wear_pin.run(v, SubRecord(), n=6).wear.gather_shape(root_only=False)["X_worn"]
 

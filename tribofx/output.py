@@ -19,7 +19,8 @@ if TYPE_CHECKING:
     from dolfinx.io import VTXWriter
     from mpi4py import MPI
 
-__all__ = ["RunRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary", "write_vtx"]
+__all__ = ["RunRecord", "SubRecord", "VTXSeries", "bp4_steps", "jsonable", "write_summary",
+           "write_vtx"]
 
 
 def jsonable(obj: object) -> Any:
@@ -94,6 +95,20 @@ class RunRecord:
         self.data["wall_time_s"] = time.perf_counter() - self.t0
         write_summary(self.comm, self.outdir / "summary.json", self.data)
         return self.data
+
+
+class SubRecord:
+    """Minimal stand-in for :class:`RunRecord` for the runs of a study."""
+
+    profile: Any   # what the run keeps for its plot, as on a RunRecord
+
+    def __init__(self) -> None:
+        self.data: dict[str, Any] = {"newton_iterations": [], "results": {}}
+        self.profile = None
+
+    def result(self, key: str, value: object, unit: str = "-") -> None:
+        """Record ``key`` = ``value`` (unit) as :meth:`RunRecord.result` does."""
+        self.data["results"][key] = {"value": value, "unit": unit}
 
 
 def write_summary(comm: MPI.Comm, path: str | Path, data: Mapping[str, Any]) -> None:

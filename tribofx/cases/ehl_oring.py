@@ -134,8 +134,6 @@ from ..stepper import Stepper, nominal_steps
 from ..sweep import SweepVariant
 from .film_setup import (
     FluidParams,
-    arc_halvings,
-    cavitation_model,
     density,
     film_boundary,
     formulation_param,
@@ -179,6 +177,33 @@ NAMES = {"lubricated": LUBRICATED, "sealed": SEALED, "housing": (SEALED, HOUSING
 
 
 USER_GROUPS = ("lubricated", "sealed", "housing")   # the groups of a user's section
+
+
+def cavitation_model(v: Params) -> str:
+    """Return the film's cavitation model of the values ``v``.
+
+    ``v.cavitation``, or for ``auto`` JFO with the mixed solid and the penalty
+    with the displacement one (measured on the O-ring: on the zig-zag surface of
+    the locked P1 solid the semismooth JFO iteration cycles, density 2 at 1000 mm/s).
+    """
+    if v.cavitation != "auto":
+        return v.cavitation
+    return "jfo" if v.formulation == "mixed" else "penalty"
+
+
+def arc_halvings(v: Params) -> int:
+    """Return the halvings k of the seal's film-arc elements (0.1/(n·2^k) mm) of the values ``v``.
+
+    ``v.arc_refine``, or by default 1 for the transient cycle (``stroke=cycle``
+    on the built section) and 0 otherwise: at 25 µm (density 4, k = 0) the
+    instroke's air-side reformation front sits on one node where p = λ = 0
+    (degenerate complementarity), and the semismooth Newton iteration of the first
+    instroke can cycle there (measured: the rough seal stops at t ≈ 42 ms); at
+    12.5 µm both schemes run whole cycles (tests/test_oring_cycle.py).
+    """
+    if v.arc_refine is not None:
+        return v.arc_refine
+    return 1 if v.stroke == "cycle" and not v.mesh_file else 0
 
 
 def geometry(v: Params, extent: tuple[float, float] | None = None

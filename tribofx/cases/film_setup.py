@@ -27,7 +27,6 @@ if TYPE_CHECKING:
 
     from ..interfaces.reynolds_film import ReynoldsFilm
     from ..laws import Law
-    from .ehl_oring import Params as ORingParams
 
     class _Viscous(Protocol):
         """Values with a viscosity law (:class:`FluidParams`) and its μ₀ ``mu`` (MPa·s)."""
@@ -47,7 +46,7 @@ if TYPE_CHECKING:
         @property
         def speeds(self) -> str: ...
 
-__all__ = ["FilmModel", "FluidParams", "arc_halvings", "at_points", "cavitation_model", "density",
+__all__ = ["FilmModel", "FluidParams", "at_points", "density",
            "film_boundary", "formulation_param", "quadrature_param", "rigid_film", "speed_list",
            "viscosity"]
 
@@ -157,33 +156,6 @@ def at_points(points: npt.NDArray[np.float64], tol: float
         return d.min(axis=1) < tol
 
     return where
-
-
-def cavitation_model(v: ORingParams) -> str:
-    """Return the film's cavitation model of the values ``v``.
-
-    ``v.cavitation``, or for ``auto`` JFO with the mixed solid and the penalty
-    with the displacement one (measured on the O-ring: on the zig-zag surface of
-    the locked P1 solid the semismooth JFO iteration cycles, density 2 at 1000 mm/s).
-    """
-    if v.cavitation != "auto":
-        return v.cavitation
-    return "jfo" if v.formulation == "mixed" else "penalty"
-
-
-def arc_halvings(v: ORingParams) -> int:
-    """Return the halvings k of the seal's film-arc elements (0.1/(n·2^k) mm) of the values ``v``.
-
-    ``v.arc_refine``, or by default 1 for the transient cycle (``stroke=cycle``
-    on the built section) and 0 otherwise: at 25 µm (density 4, k = 0) the
-    instroke's air-side reformation front sits on one node where p = λ = 0
-    (degenerate complementarity), and the semismooth Newton iteration of the first
-    instroke can cycle there (measured: the rough seal stops at t ≈ 42 ms); at
-    12.5 µm both schemes run whole cycles (tests/test_oring_cycle.py).
-    """
-    if v.arc_refine is not None:
-        return v.arc_refine
-    return 1 if v.stroke == "cycle" and not v.mesh_file else 0
 
 
 def density(v: FluidParams, cavitation: str | None = None) -> Law:

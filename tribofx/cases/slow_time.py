@@ -40,10 +40,9 @@ if TYPE_CHECKING:
     from dolfinx import fem
 
     from ..interfaces import Wear
-    from ..output import RunRecord
+    from ..output import RunRecord, SubRecord
     from ..step_control import StepController
     from ..stepper import Stepper, StepReport
-    from ..studies.wear_stability import SubRecord
 
 __all__ = ["SCHEMES", "FilteredSchemeParams", "SchemeParams", "SlowTimeRecords", "check_scheme",
            "scheme_param", "step_controller", "wear_fields"]

@@ -92,9 +92,8 @@ if TYPE_CHECKING:
     from tqdm import tqdm
 
     from ..obstacles import AnalyticObstacle
-    from ..output import RunRecord
+    from ..output import RunRecord, SubRecord
     from ..stepper import StepReport
-    from ..studies.wear_stability import SubRecord
 
 __all__ = ["MODEL_FRACTION", "Model", "Params", "build", "contact_plane", "doc",
            "late_time_exponent", "measures", "mesh_sizes", "name", "plot", "progress_total",

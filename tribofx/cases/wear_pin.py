@@ -90,9 +90,8 @@ if TYPE_CHECKING:
     from dolfinx import mesh as dmesh
     from tqdm import tqdm
 
-    from ..output import RunRecord
+    from ..output import RunRecord, SubRecord
     from ..stepper import StepReport
-    from ..studies.wear_stability import SubRecord
 
 __all__ = ["Model", "Params", "build", "doc", "load_up", "n_elements", "name", "plot",
            "progress_total", "resumable", "run", "slow_step", "study_lists", "study_schemes",

@@ -16,10 +16,10 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from mpi4py import MPI
 
+from ..output import SubRecord
 from ..problem import NewtonDivergence
 from .wear_stability import (
     OSCILLATION_TOL,
-    SubRecord,
     checkerboard_amplitude,
     oscillation_ratio,
     pin_critical_step,

@@ -14,13 +14,14 @@ the chapter gives only the scaling Δt_cr ∼ h/E.  Units: s, mm.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from mpi4py import MPI
 
 from ..cases import wear_ball_flat
 from ..cases.wear_ball_flat import MODEL_FRACTION
+from ..output import SubRecord
 from ..stability import bisect_critical_step, growth_probe
 
 if TYPE_CHECKING:
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
     from ..cases import wear_pin
     from ..interfaces import Contact, Wear
 
-__all__ = ["OSCILLATION_TOL", "SubRecord", "ball_critical_step", "checkerboard_amplitude",
+__all__ = ["OSCILLATION_TOL", "ball_critical_step", "checkerboard_amplitude",
            "oscillation_ratio", "pin_critical_step", "pressure_nonuniformity",
            "seed_checkerboard"]
 
@@ -159,17 +160,3 @@ def ball_critical_step(v: wear_ball_flat.Params, t0: float, lo: float, hi: float
     growth = growth_probe(stepper, start, steps,
                           lambda: pressure_nonuniformity(stepper.wear.contact), probe, settle=1)
     return bisect_critical_step(growth, lo, hi, iters, tol=growth_tol, probe=probe), probe
-
-
-class SubRecord:
-    """Minimal stand-in for :class:`tribofx.output.RunRecord` for the runs of a study."""
-
-    profile: Any   # what the run keeps for its plot, as on a RunRecord
-
-    def __init__(self) -> None:
-        self.data: dict[str, Any] = {"newton_iterations": [], "results": {}}
-        self.profile = None
-
-    def result(self, key: str, value: object, unit: str = "-") -> None:
-        """Record ``key`` = ``value`` (unit) as :meth:`RunRecord.result` does."""
-        self.data["results"][key] = {"value": value, "unit": unit}
