@@ -1,13 +1,16 @@
 """Write the generated parts of ``docs/cases/<case>.md`` from the cases themselves.
 
-Each case page has two generated blocks:
+Each case page has two generated blocks, and its figures' stamps:
 
 * ``<!-- params:begin -->`` … ``<!-- params:end -->``: the case's parameters (name,
   default, unit, description) from its declaration, as ``tribofx list`` prints them;
 * ``<!-- results:begin -->`` … ``<!-- results:end -->``: the scalar results of the
   page's command (the first ``tribofx run`` line of its "Run it" block), run into
   ``results/docs/<case>/`` and read back from that run's ``summary.json``, stamped
-  with the commit, the machine, the number of ranks and the wall time.
+  with the commit, the machine, the number of ranks and the wall time;
+* after each figure's caption, ``<!-- figure -->`` and the commit and date the
+  figure file was last committed at (from git): a study's figure keeps the
+  numbers of the run that drew it, and the stamp says which code that was.
 
 So the numbers on a page are those of a run of the code as committed, never typed
 in.  Usage::
@@ -38,6 +41,36 @@ def replace_block(text, name, body):
     if not pattern.search(text):
         raise SystemExit(f"no {name} block in the page")
     return pattern.sub(lambda _: BLOCK.format(name, body), text)
+
+
+FIGURE = re.compile(r"!\[[^\]]*\]\(\.\./figures/([^)]+)\)")
+STAMP = re.compile(r" *<!-- figure -->.*$")
+
+
+def figure_stamp(name):
+    """'figure: commit `abc1234`, 2026-12-01' of the last commit of ``docs/figures/name``."""
+    out = subprocess.run(["git", "log", "-1", "--format=%h %cs", "--", f"docs/figures/{name}"],
+                         cwd=ROOT, capture_output=True, text=True).stdout.split()
+    return f"<!-- figure --> *(figure: commit `{out[0]}`, {out[1]})*" if out else ""
+
+
+def stamp_figures(text):
+    """Return ``text`` with each figure's caption (the paragraph after it) stamped."""
+    lines = text.split("\n")
+    for i, line in enumerate(lines):
+        m = FIGURE.match(line.strip())
+        if not m:
+            continue
+        j = i + 1
+        while j < len(lines) and not lines[j].strip():
+            j += 1
+        if j < len(lines) and lines[j].startswith("**"):      # the caption paragraph
+            while j + 1 < len(lines) and lines[j + 1].strip():
+                j += 1
+            stamp = figure_stamp(m.group(1))
+            if stamp:
+                lines[j] = STAMP.sub("", lines[j]) + " " + stamp
+    return "\n".join(lines)
 
 
 def params_table(case):
@@ -121,6 +154,7 @@ def main(argv=None):
     for name in names:
         page = PAGES / f"{name}.md"
         text = replace_block(page.read_text(), "params", params_table(CASES[name]))
+        text = stamp_figures(text)
         if not a.params_only:
             args = page_command(text)
             out = Path(a.out) / name
