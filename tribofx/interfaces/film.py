@@ -172,8 +172,9 @@ class Film(ReynoldsFilm):
             :class:`~tribofx.interfaces.film_options.JFO` (void fraction λ; a curve Γ_l).
         quadrature: the :class:`~tribofx.interfaces.film_options.Quadrature` of the
             integrals over Γ_l.  A meshed countersurface's data are exact at the
-            nodes of Γ_l, P1 between them: the Gauss rule's tangent is off by O(h κ)
-            on curved facets, the vertex rule's exact.
+            nodes of Γ_l, P1 between them: on curved facets the Gauss rule's tangent
+            misses their interpolation error (it vanishes with the mesh), the vertex
+            rule's is exact.
         roughness: None (smooth surfaces) or a :class:`tribofx.roughness.Roughness`:
             mixed lubrication, the average-flow Reynolds rows and the asperity
             pressure and boundary friction in the traction (plane strain and 3D).
