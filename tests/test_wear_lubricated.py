@@ -60,6 +60,8 @@ def test_rough_flat_punch_wears_by_archard():
     film.add_pressure_bc()
     wear = Wear(film, k, speed=V)
     stepper = Stepper([body, film, wear], wear, name="punch_wear")
+    with pytest.raises(ValueError, match="writes no checkpoint"):   # (one line, no crash)
+        stepper.load_checkpoint()
     stepper.problem.solve()           # the unworn punch (dt = 0: no wear)
     for _ in range(3):
         stepper.step(dt)

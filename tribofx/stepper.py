@@ -240,7 +240,10 @@ class Stepper:
     def load_checkpoint(self, directory: str | os.PathLike[str] | None = None) -> None:
         """Restore the state of the checkpoint in ``directory`` (default: this stepper's)."""
         ck = self.checkpoint if directory is None else Checkpoint(directory, self.comm)
-        state = cast(Checkpoint, ck).read()   # (a stepper without one: give a directory)
+        if ck is None:
+            raise ValueError("load_checkpoint: this stepper writes no checkpoint; give the "
+                             "directory (load_checkpoint(path)) or build it with checkpoint=")
+        state = ck.read()
         self.restore(state)
         self.history = state["history"]
 
