@@ -154,7 +154,7 @@ def validate(v: Params) -> None:
 
 @dataclass
 class Model:
-    """What :func:`build` assembles: the bodies by name, the film, the problem.
+    """What :func:`build` assembles: the bodies (0 upper, 1 lower), the film, the problem.
 
     ``lift``: what moves the lower body (a Dirichlet value, or the countersurface's
     offset of a one-body film); ``sign`` (+1: the film's force on the upper body is
@@ -171,8 +171,8 @@ class Model:
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
     """Bodies, film and problem with the upper body h_r(W/steps) above the lower one.
 
-    Returns a dict: ``bodies``, ``film``, ``problem``, ``lift`` (the Constant
-    that moves the lower body, or a rigid lower countersurface, up by δ),
+    Returns the :class:`Model`: ``bodies``, ``film``, ``problem``, ``lift`` (the
+    Constant that moves the lower body, or a rigid lower countersurface, up by δ),
     ``sign`` (+1: the film's force on the upper body is the load along +y).
     """
     ref = reference(v)
