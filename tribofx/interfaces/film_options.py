@@ -15,8 +15,8 @@ instead of two dozen loose arguments::
   density ρ(p)/ρ₀ (None: incompressible);
 * :class:`Penalty` or :class:`JFO` — the cavitation model (None: none, p may
   fall below the cavity pressure); the penalty ε⁻¹ min(p, 0) of the Reynolds rows
-  (chapter §7, eq. 52's penalty form) or the mass-conserving JFO void fraction λ
-  (eq. 57);
+  (the penalty method the chapter's O-ring uses, Wu 1986) or the mass-conserving
+  JFO model of §6.5 (void fraction λ, complementarity (52), weak form (57));
 * :class:`Quadrature` — the rule of the integrals over Γ_l: Gauss of a degree,
   or the vertex rule (second order for P1 fields, exact for nodal data);
 * :class:`FilmScales` — the pressure, film and speed scales of the stopping test
