@@ -17,7 +17,7 @@ Unknowns on the facet submesh of Γ_l (all on the initial mesh):
 * p — film pressure, P1;
 * g — tangential pressure gradient Grad_Γ p, vector DG0 (with the shear
   tractions only; :func:`tribofx.forms.ehl.tangential_gradient_constraint`);
-* λ — void fraction of the JFO model (``cavitation="jfo"``), P1.
+* λ — void fraction of the JFO model (``cavitation=JFO()``), P1.
 
 Residual rows, all from :mod:`tribofx.forms.ehl` (pure UFL):
 
