@@ -238,8 +238,7 @@ class Film(ReynoldsFilm):
                              "(gdim = 2)")
         mu, density = fluid.viscosity, fluid.density
         eps = cavitation.eps if isinstance(cavitation, Penalty) else None
-        # "penalty" stands for no cavitation model too (its ε term then left out)
-        cavitation_name = "jfo" if isinstance(cavitation, JFO) else "penalty"
+        cavitation_name = "none" if cavitation is None else cavitation.name
         self.body, self.name, self.rtol = body, name, float(rtol)
         self.boundary = boundary
         self.require_open = bool(require_open)
