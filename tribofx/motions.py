@@ -10,6 +10,7 @@ forms) and on NumPy points (n, 2) (the two-body film kernel's master data).
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from typing import TYPE_CHECKING, overload
 
 import numpy as np
@@ -19,10 +20,37 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     import ufl.core.expr
 
-__all__ = ["Rolling", "Sliding"]
+__all__ = ["Motion", "Rolling", "Sliding"]
 
 
-class Rolling:
+class Motion(ABC):
+    """A shape V̂ of the reference velocity: on NumPy points (n, 2) or a UFL vector.
+
+    A motion writes :meth:`on_points` and :meth:`on_ufl`; calling it picks the one
+    for its argument.
+    """
+
+    @overload
+    def __call__(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+
+    @overload
+    def __call__(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr: ...
+
+    def __call__(self, X: npt.NDArray[np.float64] | ufl.core.expr.Expr
+                 ) -> npt.NDArray[np.float64] | ufl.core.expr.Expr:
+        """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
+        return self.on_points(X) if isinstance(X, np.ndarray) else self.on_ufl(X)
+
+    @abstractmethod
+    def on_points(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Return V̂ at the points X (n, 2)."""
+
+    @abstractmethod
+    def on_ufl(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
+        """Return V̂ at the UFL position X."""
+
+
+class Rolling(Motion):
     """Rigid rotation about ``center`` with surface speed U at ``radius``: V̂ = e_z × (X − C)/R.
 
     Counter-clockwise for U > 0: the lowest point of a cylinder moves along +x.
@@ -31,37 +59,28 @@ class Rolling:
     def __init__(self, center: npt.ArrayLike, radius: float) -> None:
         self.center, self.radius = np.asarray(center, float)[:2], float(radius)
 
-    @overload
-    def __call__(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
-
-    @overload
-    def __call__(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr: ...
-
-    def __call__(self, X: npt.NDArray[np.float64] | ufl.core.expr.Expr
-                 ) -> npt.NDArray[np.float64] | ufl.core.expr.Expr:
-        """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
+    def on_points(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Return V̂ at the points X (n, 2)."""
         c, R = self.center, self.radius
-        if isinstance(X, np.ndarray):
-            return np.c_[-(X[:, 1] - c[1]), X[:, 0] - c[0]] / R
+        return np.c_[-(X[:, 1] - c[1]), X[:, 0] - c[0]] / R
+
+    def on_ufl(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
+        """Return V̂ at the UFL position X."""
+        c, R = self.center, self.radius
         return ufl.as_vector([-(X[1] - c[1]) / R, (X[0] - c[0]) / R])
 
 
-class Sliding:
+class Sliding(Motion):
     """Uniform translation along ``direction`` (a unit vector): V̂ = direction."""
 
     def __init__(self, direction: npt.ArrayLike) -> None:
         d = np.asarray(direction, float)
         self.direction = d / np.linalg.norm(d)
 
-    @overload
-    def __call__(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+    def on_points(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Return V̂ at the points X (n, 2)."""
+        return np.tile(self.direction[:X.shape[1]], (len(X), 1))
 
-    @overload
-    def __call__(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr: ...
-
-    def __call__(self, X: npt.NDArray[np.float64] | ufl.core.expr.Expr
-                 ) -> npt.NDArray[np.float64] | ufl.core.expr.Expr:
-        """Return V̂ at X: a UFL vector, or (n, 2) for NumPy points (n, 2)."""
-        if isinstance(X, np.ndarray):
-            return np.tile(self.direction[:X.shape[1]], (len(X), 1))
+    def on_ufl(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
+        """Return V̂ at the UFL position X."""
         return ufl.as_vector([float(c) for c in self.direction[:len(X)]])
