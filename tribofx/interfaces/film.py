@@ -113,7 +113,7 @@ if TYPE_CHECKING:
     #: a velocity field: a callable of a UFL position (a shape of :mod:`tribofx.motions`)
     Shape: TypeAlias = Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr]
     #: (shape, U): the velocity U·shape(X), U a Constant (mm/s)
-    Motion: TypeAlias = tuple[Shape, fem.Constant]
+    ShapeAndSpeed: TypeAlias = tuple[Shape, fem.Constant]
 
 __all__ = ["Film"]
 
@@ -147,7 +147,7 @@ def _outward_cell_normals(body: Body, sub: dmesh.Mesh, emap: dmesh.EntityMap,
     return N
 
 
-def _is_motion(spec: object) -> TypeIs[Motion]:
+def _is_motion(spec: object) -> TypeIs[ShapeAndSpeed]:
     """Whether a velocity ``spec`` is (shape, U): a motion of :mod:`tribofx.motions` and a speed."""
     return isinstance(spec, tuple) and len(spec) == 2 and callable(spec[0])
 
@@ -205,7 +205,7 @@ class Film(ReynoldsFilm):
     g: fem.Function | None
     T_b: ufl.core.expr.Expr | None
     alpha: fem.Constant | None
-    V_counter: fem.Constant | Motion | None
+    V_counter: fem.Constant | ShapeAndSpeed | None
     traction: ufl.core.expr.Expr
     asperity: ufl.core.expr.Expr | None
     w_solid: ufl.core.expr.Expr | float
@@ -221,8 +221,8 @@ class Film(ReynoldsFilm):
                  counterpart: Callable[[fem.FunctionSpace], Counterpart], fluid: Fluid, *,
                  scales: FilmScales = FilmScales(), cavitation: Cavitation | None = None,
                  quadrature: Quadrature = Quadrature(), roughness: Roughness | None = None,
-                 V_counter: npt.ArrayLike | fem.Constant | Motion | None = None,
-                 motion: Motion | None = None, model: str = "finite",
+                 V_counter: npt.ArrayLike | fem.Constant | ShapeAndSpeed | None = None,
+                 motion: ShapeAndSpeed | None = None, model: str = "finite",
                  alpha: float | None = None, shear: bool = True, supg: bool = True,
                  row_scaling: bool = True, name: str = "film", rtol: float = 1e-10,
                  require_open: bool = False) -> None:
@@ -333,7 +333,7 @@ class Film(ReynoldsFilm):
         self._dry = None
         self._init_rows()
 
-    def _velocity(self, spec: fem.Constant | Motion | None,
+    def _velocity(self, spec: fem.Constant | ShapeAndSpeed | None,
                   constant: fem.Constant | None = None) -> Shape | None:
         """Return a velocity field (callable of a UFL position) from ``spec``, or None.
 
