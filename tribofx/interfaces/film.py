@@ -197,7 +197,6 @@ class Film(ReynoldsFilm):
             the only test of a trial step).
     """
 
-    CAVITATION = ("penalty", "jfo")
     averaged = False      # the slow-time protocol: a transient film is not cycle-averaged
 
     body: Body
