@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from mpi4py import MPI
 
-from . import interrupt, solvers
+from . import interrupt, solvers, studies
 from .cases import get_case
 from .output import RunRecord, write_vtx
 from .params import CaseParams, InputError, declared, param, resolve
@@ -87,9 +87,13 @@ def run_case(name: str, overrides: Mapping[str, str] | None = None, out: str | P
     options = resolve(RunOptions, {k: overrides.pop(k) for k in common & set(overrides)})
     values = resolve(case.Params, overrides)
     case.validate(values)
+    study = studies.study_of(name, values)
+    driver = case if study is None else study
+    if resume and study is not None:
+        raise InputError(f"a study of {name!r} cannot be resumed (no per-step checkpoint)")
     out = Path(out)
     kwargs: dict[str, Any] = {}
-    if resumable(name):
+    if resumable(name) and study is None:
         kwargs = {"checkpoint": out / "checkpoint", "resume": resume}
         if resume and not (out / "checkpoint" / "state.json").is_file():
             raise InputError(f"nothing to resume: no checkpoint in {out / 'checkpoint'}")
@@ -98,14 +102,15 @@ def run_case(name: str, overrides: Mapping[str, str] | None = None, out: str | P
                        out, comm)
     record.profile = None
     record.data["petsc_options"] = dict(petsc_options or {})
-    bar = _progress_bar(case.progress_total(values), name) if progress and comm.rank == 0 else None
+    show = progress and comm.rank == 0
+    bar = _progress_bar(driver.progress_total(values), name) if show else None
     status = "ok"
     prob = None
     try:
         watch = interrupt.watch() if kwargs else contextlib.nullcontext()
         with solvers.run_settings(options.solver, petsc_options) as linear, watch:
             try:
-                prob = case.run(values, record, progress=bar, verbose=verbose, **kwargs)
+                prob = driver.run(values, record, progress=bar, verbose=verbose, **kwargs)
             finally:
                 record.data["linear_solver"] = dict(linear.used)
                 fallbacks = linear.failed_krylov()

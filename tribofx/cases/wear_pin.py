@@ -56,7 +56,6 @@ reported).  Writes ``error_vs_dt.png``,
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
@@ -77,7 +76,6 @@ from ..obstacles import rigid_plane
 from ..params import InputError, number_list, param
 from ..references import hertz
 from ..stepper import ReciprocatingCycle, Stepper, nominal_steps
-from ..studies.wear_dt_study import run_dt_study
 from . import slow_time
 from .slow_time import SCHEMES, SchemeParams, check_scheme
 from .user_pin import place_user_pin, user_pin_approach
@@ -332,10 +330,7 @@ def study_schemes(v: Params) -> list[str]:
 
 
 def progress_total(v: Params) -> int:
-    """Return the steps the progress bar counts: slow steps to T, or a Δt study's runs."""
-    if v.study == "dt":
-        dts, levels = study_lists(v)
-        return len(study_schemes(v)) * len(dts) * len(levels)
+    """Return the steps the progress bar counts: slow steps to T."""
     return nominal_steps(v.T, slow_step(v))
 
 
@@ -364,10 +359,8 @@ def run(v: Params, record: RunRecord | SubRecord, progress: tqdm | None = None,
     histories so far); ``resume``: continue from it instead of t = 0.
     """
     if v.study == "dt":
-        dts, levels = study_lists(v)
-        ns = [10 * 2**m for m in levels] if n is None else [n]
-        return run_dt_study(sys.modules[__name__], v, record, ns, dts, progress=progress,
-                            verbose=verbose)
+        raise InputError("study=dt is a study of this case: tribofx.studies.wear_dt_study.run "
+                         "runs it (as `tribofx run wear-pin --set study=dt` does)")
     stepper, load = build(v, n=n, setup=setup, checkpoint=checkpoint)
     stepper.verbose = verbose
     wear, contact = stepper.wear, stepper.wear.contact

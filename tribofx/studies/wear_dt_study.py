@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from mpi4py import MPI
 
+from ..cases import wear_pin
 from ..output import SubRecord
 from ..problem import NewtonDivergence
 from .wear_stability import (
@@ -31,11 +32,10 @@ if TYPE_CHECKING:
 
     from tqdm import tqdm
 
-    from ..cases import wear_pin
     from ..output import RunRecord
     from ..stepper import Stepper
 
-__all__ = ["run_dt_study"]
+__all__ = ["progress_total", "run", "run_dt_study"]
 
 
 def _study_run(case: ModuleType, v: wear_pin.Params, n: int, scheme: str, dt: float,
@@ -174,3 +174,21 @@ def run_dt_study(case: ModuleType, v: wear_pin.Params, record: RunRecord | SubRe
     if prob_ref is not None and prob_ref.comm.rank == 0:
         record.profile = plots
     return prob_ref
+
+
+def progress_total(v: wear_pin.Params) -> int:
+    """Return the steps the progress bar counts: one per run of the study (scheme × Δt × mesh)."""
+    dts, levels = wear_pin.study_lists(v)
+    return len(wear_pin.study_schemes(v)) * len(dts) * len(levels)
+
+
+def run(v: wear_pin.Params, record: RunRecord | SubRecord, progress: tqdm | None = None,
+        verbose: bool = False) -> Stepper | None:
+    """``tribofx run wear-pin --set study=dt``: the study on the meshes and steps ``v`` lists.
+
+    The meshes are n × n with n = 10·2^level for each level of ``study_meshes``
+    (default: ``mesh``); see :func:`run_dt_study`.
+    """
+    dts, levels = wear_pin.study_lists(v)
+    return run_dt_study(wear_pin, v, record, [10 * 2**m for m in levels], dts,
+                        progress=progress, verbose=verbose)
