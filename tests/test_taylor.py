@@ -124,30 +124,33 @@ def _box_problem(shape, friction, slip, gdim=2, kind=None):
     return body, contact, Problem([body, contact], name="taylor_contact")
 
 
-@pytest.mark.mpi
+# on 2 ranks (``pytest.mark.mpi``): each projection path once — the analytic plane,
+# cylinder and sphere, the meshed countersurfaces through the C++ kernel in 2D and 3D —
+# with Lagrangian and Eulerian friction and the friction law; the other combinations
+# repeat arithmetic that does not depend on the partition, and run serially
 @pytest.mark.parametrize("shape,friction,slip,gdim", [
     ("plane", 0.0, "lagrangian", 2),
     ("plane", 0.4, "lagrangian", 2),
-    ("plane", 0.4, "eulerian", 2),
+    pytest.param("plane", 0.4, "eulerian", 2, marks=pytest.mark.mpi),
     ("cylinder", 0.4, "lagrangian", 2),
     ("cylinder", 0.4, "eulerian", 2),
-    ("sphere", 0.4, "lagrangian", 3),
+    pytest.param("sphere", 0.4, "lagrangian", 3, marks=pytest.mark.mpi),
     ("cylinder", 0.3, "eulerian", 3),
     # countersurfaces given as meshes, through the C++ kernel's derivatives:
     # curved (quadratic) and flat facets, with and without friction
     ("meshed-quadratic", 0.0, "lagrangian", 2),
     ("meshed-quadratic", 0.4, "lagrangian", 2),
-    ("meshed-quadratic", 0.4, "eulerian", 2),
+    pytest.param("meshed-quadratic", 0.4, "eulerian", 2, marks=pytest.mark.mpi),
     ("meshed-affine", 0.4, "lagrangian", 2),
     ("meshed-affine", 0.4, "eulerian", 2),
     # 3D: a sphere cap of curved (quadrilateral9) and flat (quadrilateral) facets
     ("meshed-quadratic", 0.0, "lagrangian", 3),
     ("meshed-quadratic", 0.4, "lagrangian", 3),
-    ("meshed-quadratic", 0.4, "eulerian", 3),
-    ("meshed-affine", 0.4, "lagrangian", 3),
+    pytest.param("meshed-quadratic", 0.4, "eulerian", 3, marks=pytest.mark.mpi),
+    pytest.param("meshed-affine", 0.4, "lagrangian", 3, marks=pytest.mark.mpi),
     # a friction law μ(p) (pressure-dependent, forms.contact) instead of Coulomb's μ
     ("cylinder", "law", "lagrangian", 2),
-    ("sphere", "law", "eulerian", 3),
+    pytest.param("sphere", "law", "eulerian", 3, marks=pytest.mark.mpi),
 ])
 def test_contact_jacobian(shape, friction, slip, gdim, kind=None):
     if friction == "law":

@@ -307,8 +307,8 @@ def _uniaxial_stretch(E, nu, q):
     return s
 
 
-@pytest.mark.mpi
-@pytest.mark.parametrize("scheme", ["explicit", "implicit"])
+# on 2 ranks: the monolithic (implicit) step; the explicit one runs serially
+@pytest.mark.parametrize("scheme", ["explicit", pytest.param("implicit", marks=pytest.mark.mpi)])
 def test_nominal_and_spatial_archard_laws(tmp_path, scheme):
     # flat pin: homogeneous uniaxial strain with J = det F = s (analytic, above),
     # uniform pressure q.  Nominal law (14): depth = k q V t.  Spatial law (15),
@@ -391,8 +391,8 @@ def _run_built(tmp_path, n, setup, **over):
     return stepper, res
 
 
-@pytest.mark.mpi
-@pytest.mark.parametrize("scheme", ["explicit", "implicit"])
+# on 2 ranks: the staggered (explicit) step; the implicit one runs serially
+@pytest.mark.parametrize("scheme", [pytest.param("explicit", marks=pytest.mark.mpi), "implicit"])
 def test_frictional_dissipation_wear_flat_punch(tmp_path, scheme):
     # Ẇ = (k/μ) T_T·v_T with Coulomb sliding ‖T_T‖ = μ p, T_T ∥ v_T (Eulerian steady
     # slip, v_T = −V e_x): K μ p V = k p V, so the worn depth equals the frictionless
@@ -579,8 +579,9 @@ def _exact_per_block(problem, seed=7):
         assert exact_tangent(orders, rem, floor), (name, orders, rem, floor)
 
 
-@pytest.mark.mpi
-@pytest.mark.parametrize("scheme", ["implicit", "explicit"])
+# on 2 ranks: the monolithic tangent, which holds every coupling block (the explicit
+# shape step's tangent is its (w, ζ) block, checked serially)
+@pytest.mark.parametrize("scheme", [pytest.param("implicit", marks=pytest.mark.mpi), "explicit"])
 @pytest.mark.parametrize("friction,law,k_grad", [(0.0, "nominal", 0.0),
                                                  (0.0, "spatial", 10.0),
                                                  (MU, "nominal", 0.0),
@@ -647,8 +648,9 @@ def test_cycle_averaged_wear_tangent_taylor():
 
 # -- checkpoint and restart of the slow-time stepper ----------------------------------
 
-@pytest.mark.mpi
-@pytest.mark.parametrize("scheme", ["implicit", "explicit", "cyclic"])
+# on 2 ranks: the monolithic and the cyclic step (the explicit one runs serially)
+@pytest.mark.parametrize("scheme", [pytest.param("implicit", marks=pytest.mark.mpi), "explicit",
+                                    pytest.param("cyclic", marks=pytest.mark.mpi)])
 def test_restart_from_checkpoint_reproduces_the_next_step(tmp_path, scheme):
     # a checkpoint is written after every accepted step; a fresh stepper restored
     # from the checkpoint of step 1 must take step 2 exactly as the original run
