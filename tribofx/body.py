@@ -1,6 +1,6 @@
 """A hyperelastic body: mesh and named tags, kinematic kind, material, u, BCs and loads.
 
-Everything lives on the initial mesh (DESIGN.md, "Working on the initial mesh").
+Everything lives on the initial mesh: fields are functions of the reference coordinates X.
 A body contributes the internal virtual work of eq. (7) to the row of its
 displacement u,
 
