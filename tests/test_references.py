@@ -24,6 +24,7 @@ from tribofx.references import (
     hertz,
     hertz_reference,
     inverse_film,
+    line_contact_film,
     rigid_cap_depth,
     rigid_cap_radius,
     rigid_clearance,
@@ -243,6 +244,26 @@ def test_martin_rigid_cylinder_load():
     R, mu, U, W = 10.0, 1e-7, 2000.0, 0.5          # U: sliding speed, u_m = U/2
     h0 = rigid_clearance(W, mu, U, R)
     assert W == pytest.approx(c * mu * (U / 2) * R / h0, rel=2e-3)
+
+
+def test_line_contact_film_rigid_limit_is_martin():
+    """The half-space line-contact solver without elasticity is Martin's rigid film.
+
+    :func:`line_contact_film` (``elastic=False``) against the load of the Reynolds
+    equation with the Swift–Stieber exit by Gauss quadrature (the test above):
+    h₀ = c μ u_m R/w.  Tolerance: the solver's own grid error (the difference to
+    its half grid) plus the cut of the inlet at x_in, which lowers the load by
+    12/(c ξ²), ξ = x_in/√(2Rh₀) (see the next test).
+    """
+    fr = _cyl_rupture(-math.pi / 2)
+    c = _cyl_load(-math.pi / 2, fr, 1 / math.cos(fr) ** 2)
+    w, mu, um, R, E_star = 0.5, 1e-7, 100.0, 10.0, 120.0
+    r = line_contact_film(w, mu, um, R, E_star, x_in=-40.0, x_out=5.0, n=1600, elastic=False)
+    h0 = c * mu * um * R / w
+    xi = 40.0 * r["a"] / math.sqrt(2 * R * h0)
+    tol = r["err_h_min"] / r["h_min"] + 12 / (c * xi**2)
+    print(f"h0 {r['h_min']:.6e} Martin {h0:.6e}: {r['h_min'] / h0 - 1:+.2e}, tol {tol:.1e}")
+    assert abs(r["h_min"] / h0 - 1) <= tol
 
 
 def test_cylinder_references_against_independent_quadrature():

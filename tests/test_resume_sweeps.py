@@ -141,3 +141,27 @@ def test_stopped_sweep_resumes_to_the_same_result(tmp_path, case, ranks, sig):
                 path.stem.rsplit("_", 1)[1]), path.name
         written[_variant(path.name, points)] += steps
     assert written == {k: len(p) for k, p in points.items()}
+
+
+def test_a_journal_of_the_earlier_format_is_refused_in_one_line():
+    """A sweep checkpoint written before the legs journalled themselves (its position a
+    leg number and the case's own keys) is refused where the variant is built, in one
+    line that says what to do."""
+    from types import SimpleNamespace
+
+    from mpi4py import MPI
+
+    from tribofx.params import InputError
+    from tribofx.sweep import SweepVariant
+
+    class EarlierJournal:   # what SweepJournal reads back from such a checkpoint
+        def records(self, key, **empty):
+            return dict(empty)
+
+        def position(self, key):
+            return {"leg": 0, "k": 2, "inner": {"done": 0.1, "history": []}, "scales": {}}
+
+    with pytest.raises(InputError, match="run again without --resume") as err:
+        SweepVariant(EarlierJournal(), "finite", None, [], SimpleNamespace(data={}), {},
+                     comm=MPI.COMM_SELF)
+    assert "\n" not in str(err.value)

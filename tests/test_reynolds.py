@@ -525,3 +525,39 @@ def test_open_end_flooded_supply_leaks_back(tmp_path):
     assert abs(sup["load_rel_error"] - dir_["load_rel_error"]) < 1e-4
     assert sup["flux_out"] == pytest.approx(dir_["flux_out"], rel=1e-4)
     assert sup["flux_in"] == pytest.approx(sup["flux_out"], rel=1e-9)   # mass: the leak counted
+
+
+def test_rigid_film_without_scales_derives_the_wedge_scales():
+    """``RigidFilm(scales=None)`` derives its scales from the gap (``FilmScales.hydrodynamic``):
+    for the cylinder's gap h₀ + x²/(2R) the least gap is h₀ and the nodes where the gap
+    is below 2h₀ span |x| ≤ √(2Rh₀) (to one element, Δx), so the pressure scale is the
+    wedge's 6μu_m√(2Rh₀)/h₀².  With them the penalty film (no SUPG: the scales then
+    change when Newton stops, not the solution) reaches the film of hand-set scales
+    (p_c = 1 MPa, h_ref = 10 µm) to the stopping tolerance (rtol 1e-10 of either's
+    scales: 1e-8 of p_max)."""
+    from dolfinx import mesh as dmesh
+
+    from tribofx.cases.film_setup import rigid_film
+    from tribofx.interfaces import FilmScales, Fluid, Penalty, RigidFilm
+    from tribofx.problem import Problem
+
+    R, h0, um, mu, n = 10.0, 1e-3, 1000.0, 1e-7, 400
+    x0, x1 = -1.5, 1.0
+    gap = lambda x: h0 + x**2 / (2 * R)   # noqa: E731
+    given = rigid_film(MPI.COMM_WORLD, x0, x1, n, 1, gap, um, mu, cavitation="penalty",
+                       eps=1e-6, p_c=1.0, h_ref=1e-2)
+    given.problem.solve()
+    film = RigidFilm(dmesh.create_interval(MPI.COMM_WORLD, n, [x0, x1]), gap, um, Fluid(mu),
+                     cavitation=Penalty(1e-6))
+    film.add_pressure_bc()
+    ell, dx = math.sqrt(2 * R * h0), (x1 - x0) / n
+    s = film.scale_values()
+    assert s["film_scale"] == pytest.approx(h0, rel=1e-12)
+    assert s["speed_scale"] == um
+    expect = FilmScales.hydrodynamic(mu, um, h0, ell).pressure
+    assert abs(s["p_c"] / expect - 1) <= dx / ell
+    Problem([film], name="reynolds_derived", max_it=50, max_backtracks=8).solve()
+    p_max = MPI.COMM_WORLD.allreduce(float(np.max(given.film.p.x.array)), op=MPI.MAX)
+    diff = MPI.COMM_WORLD.allreduce(float(np.max(np.abs(film.p.x.array
+                                                        - given.film.p.x.array))), op=MPI.MAX)
+    assert diff <= 1e-8 * p_max, diff / p_max

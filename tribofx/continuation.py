@@ -131,7 +131,7 @@ class Continuation:
                  record: list[Iterations] | None = None,
                  admissible: Callable[[], bool] | None = None,
                  max_step: float | None = None,
-                 on_accept: Callable[[], None] | None = None) -> None:
+                 on_accept: Callable[[], object] | None = None) -> None:
         self.problem, self.parameter, self.response = problem, parameter, response
         self.on_accept = on_accept
         self.verbose, self.rtol, self.max_trials = verbose, rtol, max_trials

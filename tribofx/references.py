@@ -19,7 +19,9 @@ Contents:
   (cylinder near a plane: half-Sommerfeld and Swift–Stieber, by quadrature),
   :func:`rigid_clearance` (Martin 1916);
 * soft EHL: :func:`hamrock_dowson` (isoviscous-elastic point contact, Hamrock and
-  Dowson 1978), :func:`inverse_film` (inverse hydrodynamic theory, Blok 1963);
+  Dowson 1978), :func:`inverse_film` (inverse hydrodynamic theory, Blok 1963),
+  :func:`line_contact_film` (the isoviscous-elastic line contact on a half-space,
+  Herrebrugh's problem, solved numerically in :mod:`tribofx.references_line_ehl`);
 * squeeze films (Reynolds 1886): :func:`squeeze_resistance`, :func:`squeeze_closed_form`,
   :func:`squeeze_film_under_load` (in :mod:`tribofx.references_squeeze`);
 * Archard wear of a rigid ball: :func:`rigid_cap_depth`, :func:`rigid_cap_radius`
@@ -38,6 +40,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar, overload
 
 import numpy as np
 
+from .references_line_ehl import line_contact_film
 from .references_squeeze import (
     squeeze_closed_form,
     squeeze_film_under_load,
@@ -63,6 +66,7 @@ __all__ = [
     "hertz",
     "hertz_reference",
     "inverse_film",
+    "line_contact_film",
     "rigid_cap_depth",
     "rigid_cap_radius",
     "rigid_clearance",

@@ -487,11 +487,11 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
           progress: tqdm | None = None, verbose: bool = False) -> Model:
     """Run the loads, then the speeds of ``speeds``, of one variant; returns its run.
 
-    After every converged load and speed step the variant's state, records
-    and position are written to ``journal`` (position: ``leg`` 0 the loads,
-    1 + j the march to the j-th speed; the secant state of the position
-    search; the march increments; the film scales); a resumed variant
-    restores them and continues on the same sequence of steps.
+    The variant (:class:`tribofx.sweep.SweepVariant`) journals its legs — the
+    loads, then the march to each speed — after every converged load and speed
+    step (the state, the records, the position search's secant state, the march's
+    increments, the film's scales); a resumed variant continues on the same
+    sequence of steps.
     """
     key = name or vv.model
     run = build(vv, name=options_name("ehl_ball", name))
@@ -504,19 +504,12 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
                       record, vtx_fields(run), f"{name}_" if name else "",
                       ("steps", "speed"), run.ball.mesh.comm, progress)
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
-    pos = sv.position
     record.data["variant_newton_iterations"][key] = its_all
     var = {"label": label, "shear": vv.shear}
     record.profile["variants"][key] = var
-    at = {"leg": 0 if pos is None else pos["leg"]}
 
     def write() -> None:
         sv.write([load(run), speed_parameter(run).get()])
-
-    def save(position: Mapping[str, Any], arrays: Sequence[npt.ArrayLike] | None = None
-             ) -> None:
-        sv.save(dict(position, leg=at["leg"], scales=film.scale_values()),
-                arrays=[] if arrays is None else arrays)
 
     def on_step(W: float, its: Sequence[Iterations]) -> None:
         its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
@@ -527,44 +520,23 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
         if progress is not None:
             progress.update(1)
 
-    def on_speed(march: Continuation | None = None) -> None:
+    def on_speed() -> None:
         m = measures(run, vv)
         m.pop("profile")
         speed.append(dict(m, U=speed_parameter(run).get()))
         write()
-        if march is not None:
-            save({"increments": march.increments, "inner": inner.secant_state()})
 
-    start = None
-    if pos is not None:
-        carrier = sv.resume()
-        film.set_scales(**pos["scales"])
-        problem.refresh()
-        start = dict(pos, carrier=carrier)
+    # the variant journals its legs (the loads, then each speed) with the film's scales
+    sv.keep("scales", film.scale_values, lambda kept: film.set_scales(**kept))
     with sv:
         try:
-            if at["leg"] == 0:
-                inner = load_sweep(run, vv, on_step, verbose, start, on_accept=save)
-                if speed_list(vv):
-                    on_speed()
-            elif large_load(vv):
-                assert pos is not None   # a resumed leg (at["leg"] > 0)
-                inner = follow_control(run, vv, vv.W, vv.W, verbose)
-                inner.set_secant_state(pos["inner"])
-            else:
-                assert pos is not None   # a resumed leg (at["leg"] > 0)
-                inner = position_control(run, vv, verbose)
-                inner.set_secant_state(pos["inner"])
+            first_speed = not sv.finished("loads")
+            inner = load_sweep(run, vv, on_step, verbose, journal=sv)
+            if speed_list(vv) and first_speed:
+                on_speed()
             for j, U in enumerate(speed_list(vv)):
-                if j + 1 < at["leg"]:
-                    continue
-                # (the leg a resumed run stopped in: pos is its position)
-                increments = (cast("dict[str, Any]", pos)["increments"] if j + 1 == at["leg"]
-                              else None)
-                at["leg"] = j + 1
-                speed_march(run, vv, inner, vv.W, U,
-                                restart=not large_load(vv), record=its_all,
-                                on_speed=on_speed, increments=increments)
+                speed_march(run, vv, inner, vv.W, U, restart=not large_load(vv),
+                            record=its_all, on_speed=on_speed, journal=(sv, f"speed{j}"))
         finally:
             if steps:
                 var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
@@ -710,18 +682,15 @@ def hertz_slope(v: Params) -> Callable[[float], float]:
 
 def load_sweep(run: Model, v: Params,
                on_step: Callable[[float, Sequence[Iterations]], object] | None = None,
-               verbose: bool = False, start: Mapping[str, Any] | None = None,
-               on_accept: Callable[[dict[str, Any], list[Any] | None], object] | None = None
-               ) -> Continuation:
+               verbose: bool = False, journal: SweepVariant | None = None) -> Continuation:
     """Reach W/steps, …, W at the speed U; returns the position controller.
 
-    ``on_step(W, iterations)`` after each load (the Newton trials of the
-    load), then ``on_accept(position, carrier)``: the JSON ``position`` a
-    resumed sweep starts from (``start=``, with the state of that load
-    restored) and the arrays of the state the next load starts from (or None).
+    ``on_step(W, iterations)`` after each load (the Newton trials of the load).
+    ``journal``: the sweep's variant, which journals the loads as its leg
+    ``loads`` (and puts a resumed run back where it stopped).
     """
     if large_load(v):
-        return thick_film_sweep(run, v, on_step, verbose, start, on_accept)
+        return thick_film_sweep(run, v, on_step, verbose, journal)
     film, problem = run.film, run.problem
     W1 = v.W / v.steps
     inner = position_control(run, v, verbose)
@@ -729,31 +698,32 @@ def load_sweep(run: Model, v: Params,
     # each trial sequence starts at the current position: the converged first
     # state, then the Hertz state predicted for each further load
     held = Hold(inner, W1, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
-    if start is None:
-        hertz_start(run, v, W1, v.U)
-        its0 = problem.solve_by_homotopy(verbose=verbose).iterations
-        if not film.min_film() > 0:
-            raise NewtonDivergence(
-                f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
-                "under-resolved by the mesh): raise mesh or use fewer load steps")
-    else:
-        inner.set_secant_state(start["inner"])
-    for k in range(0 if start is None else start["k"], v.steps):
-        if k > 0:
+    if journal is not None:
+        journal.track(inner=inner)
+        if journal.resumed:
+            journal.resume()
+            problem.refresh()
+    its0: Iterations = 0
+    for k in range(v.steps) if journal is None else journal.loop("loads", v.steps):
+        if k == 0:
+            hertz_start(run, v, W1, v.U)
+            its0 = problem.solve_by_homotopy(verbose=verbose).iterations
+            if not film.min_film() > 0:
+                raise NewtonDivergence(
+                    f"the first load W = {W1:g} N converged to a film with h <= 0 (contact "
+                    "under-resolved by the mesh): raise mesh or use fewer load steps")
+        else:
             held.predict = lambda W: hertz_start(run, v, W, v.U)
         held.target = v.W * (k + 1) / v.steps
         its = held.solve(verbose).iterations
         if on_step is not None:
             on_step(held.target, [its0, *its] if k == 0 else its)
-        if on_accept is not None:
-            on_accept({"k": k + 1, "inner": inner.secant_state()}, None)
     return inner
 
 
 def thick_film_sweep(run: Model, v: Params,
                      on_step: Callable[[float, Sequence[Iterations]], object] | None = None,
-                     verbose: bool = False, start: Mapping[str, Any] | None = None,
-                     on_accept: Callable[[dict[str, Any], list[Any] | None], object] | None = None
+                     verbose: bool = False, journal: SweepVariant | None = None
                      ) -> Continuation:
     """Large loads: displacement control on a thick film at U_s, then continue down to U.
 
@@ -763,14 +733,24 @@ def thick_film_sweep(run: Model, v: Params,
     load (:meth:`Continuation.advance`, scales following the load reached);
     (iii) from that state U is marched down to U at fixed load
     (:meth:`speed_march`) and the load recorded; (iv) the next load continues
-    from the state at U_s (the ``carrier`` of ``on_accept``).  ``start``:
-    as for :meth:`load_sweep`, with the carrier state restored.
+    from the state at U_s.  ``journal``: as for :func:`load_sweep`; its position
+    keeps U_s, the load reached last and (as arrays) the state at U_s.
     """
     film, problem = run.film, run.problem
     U, speed = v.U, speed_parameter(run)
-    if start is None:
-        its: list[Iterations]
-        its, k0 = [], 0
+    at: dict[str, float] = {}     # the thick film's speed U_s and the load reached last
+    carrier: list[Any] = []       # the state at U_s the next load starts from
+    its: list[Iterations] = []
+    # the search of the last load, which the speed legs use (a resumed run's)
+    inner = follow_control(run, v, v.W, v.W, verbose)
+    resumed = journal is not None and journal.resumed
+    if journal is not None:
+        journal.track(inner=inner)
+        journal.keep("thick_film", lambda: dict(at), at.update)
+        if resumed:
+            carrier[:] = journal.resume()
+            problem.refresh()
+    if not resumed:
         W0 = min(v.W / v.steps, 0.25 * v.W)
         for f in (1.0, 0.3, 3.0, 0.1, 10.0):
             Us = max(U, f * v.start_speed * U)
@@ -786,30 +766,28 @@ def thick_film_sweep(run: Model, v: Params,
         else:
             raise NewtonDivergence(f"the start load W = {W0:g} N did not converge: change "
                                    "start_speed or mesh")
-        W_start = load(run)
-    else:
-        its, k0, Us, W_start = [], start["k"], start["Us"], start["W_start"]
-        if k0 < v.steps:      # the next load starts from the thick-film state
-            problem.restore(start["carrier"])
+        at.update(Us=Us, W_start=load(run))
+    first = True
+    for k in range(v.steps) if journal is None else journal.loop(
+            "loads", v.steps, arrays=lambda: carrier):
+        Us = at["Us"]
+        if resumed and first:       # the next load starts from the thick-film state
+            problem.restore(carrier)
             speed.set(Us)
-            set_scales(film, v, W_start, Us)
-        else:                    # all loads done: the last load's controller
-            inner = follow_control(run, v, W_start, W_start, verbose, its)
-            inner.set_secant_state(start["inner"])
-    for k in range(k0, v.steps):
+            set_scales(film, v, at["W_start"], Us)
+        first = False
         Wk = v.W * (k + 1) / v.steps
-        inner = follow_control(run, v, Wk, W_start, verbose, its)
+        inner = follow_control(run, v, Wk, at["W_start"], verbose, its)
+        if journal is not None:
+            journal.track(inner=inner)
         inner.advance(Wk, 0.05 * hertz_contact(v).delta)
         set_scales(film, v, Wk, Us)
-        carrier = problem.state()
+        carrier[:] = problem.state()
         if Us != U:  # (``inner`` records the Newton trials of each speed step)
             speed_march(run, v, inner, Wk, U)
         if on_step is not None:
             on_step(Wk, its)
-        if on_accept is not None:
-            on_accept({"k": k + 1, "Us": Us, "W_start": Wk,
-                       "inner": inner.secant_state()}, carrier)
-        its, W_start = [], Wk
+        its, at["W_start"] = [], Wk
         if k + 1 < v.steps and Us != U:
             problem.restore(carrier)
             speed.set(Us)
@@ -837,15 +815,16 @@ def follow_control(run: Model, v: Params, Wk: float, W_start: float, verbose: bo
 
 def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
                 restart: bool = False, record: list[Iterations] | None = None,
-                on_speed: Callable[[Continuation], None] | None = None,
-                increments: Sequence[float] | None = None) -> None:
+                on_speed: Callable[[], object] | None = None,
+                journal: tuple[SweepVariant, str] | None = None) -> None:
     """Continue the converged state at load W in the entrainment speed to U (geometric).
 
     Each speed step re-finds the plane position for W (``inner``), starting
     from the Hertz state at the new speed (``restart``) or from the plane
     shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
-    A failed step is cut (six times at most).  ``on_speed(march)`` after every
-    converged step; ``increments``: those of an interrupted march (resumed).
+    A failed step is cut (six times at most).  ``on_speed()`` after every
+    converged step; ``journal``: (the sweep's variant, the leg's name) to journal
+    the march as a leg of the sweep.
     """
     film = run.film
     offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
@@ -859,7 +838,7 @@ def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
     def accepted() -> None:
         last["U"] = speed.get()
         if on_speed is not None:
-            on_speed(march)
+            on_speed()
 
     held = Hold(inner, W, slope=hertz_slope(v),
                         guess=(lambda: float(offset[Z])) if restart else shifted,
@@ -868,8 +847,12 @@ def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
     march = Continuation(held, speed, record=record, on_accept=accepted)
     # speed ratios of at most MAX_SPEED_RATIO per step (a failed step is cut further)
     steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
-    march.march(U, steps=steps, predictor=False, geometric=True, min_fraction=2.0**-6,
-                increments=increments)
+    kw: dict[str, Any] = dict(steps=steps, predictor=False, geometric=True,
+                              min_fraction=2.0**-6)
+    if journal is None:
+        march.march(U, **kw)
+    else:
+        journal[0].march(journal[1], march, U, **kw)
 
 
 def large_load(v: Params) -> bool:

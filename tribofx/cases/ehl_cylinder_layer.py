@@ -366,11 +366,10 @@ def sweep(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: b
           prefix: str = "", journal: SweepJournal | None = None) -> Model:
     """Load sweep (and speed continuation) of one variant; results prefixed ``prefix``.
 
-    ``journal``: a :class:`tribofx.restart.SweepJournal`; the state, the
-    records and the position (leg 0: the loads, leg 1 + j: the march to the
-    j-th speed; its increments; the inner position search) are written after
-    every converged load and speed (:class:`tribofx.sweep.SweepVariant`), and a
-    resumed variant continues there.
+    ``journal``: a :class:`tribofx.restart.SweepJournal`; the variant
+    (:class:`tribofx.sweep.SweepVariant`) journals its legs — the load march, then
+    the march to each speed — after every converged load and speed, and a resumed
+    variant continues where it stopped.
     """
     name = prefix[:-1] or v.model
     run = build(v, name=options_name("ehl_cylinder", prefix[:-1]))
@@ -382,16 +381,10 @@ def sweep(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: b
                        record, vtx_fields(run), prefix, ("steps", "speed", "profiles"),
                        layer.mesh.comm, progress)
     steps, speed, profiles, its = (var[k] for k in ("steps", "speed", "profiles", "its"))
-    pos = var.position
 
     def write(m: Mapping[str, Any]) -> None:
         assert layer.velocity is not None   # built with the sliding velocity (build)
         var.write([m["W"], float(layer.velocity.value[0])])
-
-    def save(leg: int, march: Continuation) -> None:
-        var.save({"leg": leg, "increments": march.increments,
-                  "W": loads.done if leg == 0 else v.W, "inner": inner.secant_state(),
-                  "scales": film.scale_values()})
 
     def on_step() -> None:
         m = measures(run, v)
@@ -411,27 +404,22 @@ def sweep(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: b
 
     if prefix:
         record.data.setdefault("variant_newton_iterations", {})[name] = its
-    loads, inner = load_control(run, v, on_step, verbose, its,
-                                     on_accept=lambda: save(0, loads))
-    leg = 0 if pos is None else pos["leg"]
-    if pos is not None:
+    loads, inner = load_control(run, v, on_step, verbose, its)
+    # the variant journals its legs (the loads, then each speed): the inner position
+    # search's secant state and the film's scales are part of its position
+    var.track(inner=inner)
+    var.keep("scales", film.scale_values, lambda kept: film.set_scales(**kept))
+    if var.resumed:
         var.resume()
-        film.set_scales(**pos["scales"])
         problem.refresh()
-        loads.resume_from(pos["W"])
-        inner.set_secant_state(pos["inner"])
-    increments = None if pos is None else pos["increments"]
     with var:
         try:
-            if leg == 0:
-                loads.march(v.W, v.steps, predictor=False, increments=increments)
-                increments = None
+            first_speed = not var.finished("loads")
+            var.march("loads", loads, v.W, steps=v.steps, predictor=False)
             if speed_list(v):
-                if leg == 0:
+                if first_speed:
                     speed.append(dict(steps[-1], U=v.U))
-                speed_sweep(run, v, inner, v.W, speed_list(v), on_speed, its,
-                                start=max(leg - 1, 0), increments=increments,
-                                on_accept=lambda j, march: save(1 + j, march))
+                speed_sweep(run, v, inner, v.W, speed_list(v), on_speed, its, journal=var)
         finally:
             _report(steps, speed, profiles, v, record, prefix)
     return run
@@ -527,17 +515,15 @@ def plot(profile: dict[str, Any], outdir: Path) -> None:
 
 
 def load_control(run: Model, v: Params, on_step: Callable[[], object] | None = None,
-                 verbose: bool = False, record: list[Iterations] | None = None,
-                 on_accept: Callable[[], object] | None = None
+                 verbose: bool = False, record: list[Iterations] | None = None
                  ) -> tuple[Continuation, Continuation]:
     """Load control by the cylinder position: (outer load march, inner position search).
 
     The inner secant on 1/W (linear in s for a rigid film, s = 2.45 μUR/W, the
     first update) finds the position s at which the film carries the held
-    load; the outer march steps
-    the load with step cutting.  ``on_step()`` runs at every converged load,
-    then ``on_accept()`` (a checkpoint); ``record`` receives the Newton
-    iterations of the trials of each load.
+    load; the outer march steps the load with step cutting.  ``on_step()`` runs
+    at every converged load; ``record`` receives the Newton iterations of the
+    trials of each load.
     """
     film, problem = run.film, run.problem
     cylinder = cast("AnalyticObstacle | MeshedObstacle", film.counterpart)   # rigid
@@ -545,15 +531,8 @@ def load_control(run: Model, v: Params, on_step: Callable[[], object] | None = N
                          response=lambda: -1 / film.force()[1], rtol=1e-6, max_trials=30,
                          verbose=verbose)
     held = Hold(inner, 0.0, transform=lambda W: 1 / W, slope=slope(run, v))
-
-    def response() -> float:
-        if on_step is not None:
-            on_step()
-        if on_accept is not None:
-            on_accept()
-        return held.target
-
-    return Continuation(held, held, response=response, record=record), inner
+    return Continuation(held, held, response=lambda: held.target, record=record,
+                        on_accept=on_step), inner
 
 
 def slope(run: Model, v: Params) -> Callable[[float], float]:
@@ -574,35 +553,24 @@ def set_speed(run: Model, v: Params, U: float) -> None:
 
 def speed_sweep(run: Model, v: Params, inner: Continuation, W: float, speeds: Sequence[float],
                 on_speed: Callable[[], object] | None = None,
-                record: list[Iterations] | None = None, start: int = 0,
-                increments: Sequence[float] | None = None,
-                on_accept: Callable[[int, Continuation], object] | None = None) -> None:
+                record: list[Iterations] | None = None,
+                journal: SweepVariant | None = None) -> None:
     """Continuation in the sliding speed at the load W (N/mm) reached last by ``inner``.
 
-    Each speed of ``speeds[start:]`` (mm/s) is reached by a geometric march (a
-    failed step is cut in log U) with the load held by the cylinder position;
-    penalty, SUPG and tolerance scales follow U.  ``on_speed()`` runs after
-    every converged speed step, then ``on_accept(j, march)`` (j: the index of
-    the speed marched to).  ``increments``: those of an interrupted march to
-    ``speeds[start]`` (a resumed run).
+    Each speed of ``speeds`` (mm/s) is reached by a geometric march (a failed step
+    is cut in log U) with the load held by the cylinder position; penalty, SUPG
+    and tolerance scales follow U.  ``on_speed()`` runs after every converged
+    speed step.  ``journal``: the sweep's variant, which journals each speed as a
+    leg ``speed<j>`` (a resumed run continues there).
     """
     layer = run.layer
     assert layer.velocity is not None   # built with the sliding velocity (build)
-    held = Hold(inner, W, transform=lambda W: 1 / W,
-                        slope=slope(run, v))
-    at = {"j": start}
-    sweep: Continuation   # (the march below: ``accepted`` hands it to on_accept)
-
-    def accepted() -> None:
-        if on_speed is not None:
-            on_speed()
-        if on_accept is not None:
-            on_accept(at["j"], sweep)
-
+    held = Hold(inner, W, transform=lambda W: 1 / W, slope=slope(run, v))
     sweep = Continuation(held, ConstantParameter(
         layer.velocity, 0, on_set=lambda U: set_speed(run, v, U)),
-        record=record, on_accept=accepted)
-    for j in range(start, len(speeds)):
-        at["j"] = j
-        sweep.march(speeds[j], predictor=False, geometric=True,
-                    increments=increments if j == start else None)
+        record=record, on_accept=on_speed)
+    for j, U in enumerate(speeds):
+        if journal is None:
+            sweep.march(U, predictor=False, geometric=True)
+        else:
+            journal.march(f"speed{j}", sweep, U, predictor=False, geometric=True)

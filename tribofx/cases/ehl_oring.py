@@ -503,18 +503,20 @@ def build(v: Params, U: float, mesh: int | None = None, comm: MPI.Comm = MPI.COM
 
 
 def solve_to(seal: ORingSeal, v: Params, U: float, p_s_targets: Sequence[float],
-             on_state: Callable[[float], object] | None = None, done: int = 0
-             ) -> list[Iterations]:
+             on_state: Callable[[float], object] | None = None,
+             journal: SweepVariant | None = None) -> list[Iterations]:
     """Mount, raise p_s, go to speed U, then the other p_s; on_state(p_s) after each target.
 
-    ``done``: the number of targets already reached by the state of ``seal``
-    (restored from a checkpoint; the mount and those targets are skipped, the
-    next ramp starts from that state as in an uninterrupted run).  Returns the
+    ``journal``: the stroke's variant of a sweep, which journals the targets as its
+    leg ``p_s`` (a resumed run skips the mount and the targets reached, and the next
+    ramp starts from the restored state as in an uninterrupted run).  Returns the
     Newton iterations per continuation step.
     """
-    if done == 0:
-        seal.mount(v.mount_steps)
-    for k, p_s in enumerate(p_s_targets[done:], start=done):
+    n = len(p_s_targets)
+    for k in range(n) if journal is None else journal.loop("p_s", n):
+        if k == 0:
+            seal.mount(v.mount_steps)
+        p_s = p_s_targets[k]
         seal.ramp(p_s, v.ramp_steps)
         if k == 0 and seal.U != U:
             seal.speed(U, v.speed_steps)
@@ -869,9 +871,8 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: boo
                           comm, progress, progress_key="points", newton=False)
         rec = sv.records
         points, states, measures = rec["points"], rec["states"], rec["measures"]
-        done = len(points)
         t0 = t_start - rec["wall_time"]
-        if done:
+        if sv.resumed:
             sv.resume()
             prob.problem.refresh()
             prob.iterations.extend(rec["its"])
@@ -893,10 +894,9 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: boo
                 progress.update(1)
             rec["its"][:] = list(prob.iterations)
             rec["wall_time"] = time.perf_counter() - t0
-            sv.save({"reached": len(rec["points"])})
 
         with sv:
-            its = solve_to(prob, v, Us, p_targets, on_state, done=done)
+            its = solve_to(prob, v, Us, p_targets, on_state, journal=sv)
         record.data["newton_iterations"].append({tag: its})
         record.result(f"{tag}_wall_time", time.perf_counter() - t0, "s")
         profiles["strokes"][tag] = states

@@ -166,7 +166,9 @@ class Film(ReynoldsFilm):
             the compressible Reynolds equation (penalty or no cavitation).
         scales: the pressure, film and speed scales
             (:class:`~tribofx.interfaces.film_options.FilmScales`) of the stopping
-            test, the row scales, SUPG and the JFO complementarity.
+            test, the row scales, SUPG and the JFO complementarity; None derives them
+            from the problem (:meth:`FilmScales.soft_ehl` of the fluid's viscosity, the
+            surfaces' speed, the size of Γ_l and the body's modulus).
         cavitation: None (no cavitation model), a
             :class:`~tribofx.interfaces.film_options.Penalty` (ε⁻¹ min(p, 0)) or
             :class:`~tribofx.interfaces.film_options.JFO` (void fraction λ; a curve Γ_l).
@@ -218,7 +220,7 @@ class Film(ReynoldsFilm):
 
     def __init__(self, body: Body, boundary: str,
                  counterpart: Callable[[fem.FunctionSpace], Counterpart], fluid: Fluid, *,
-                 scales: FilmScales = FilmScales(), cavitation: Cavitation | None = None,
+                 scales: FilmScales | None = None, cavitation: Cavitation | None = None,
                  quadrature: Quadrature = Quadrature(), roughness: Roughness | None = None,
                  V_counter: npt.ArrayLike | fem.Constant | ShapeAndSpeed | None = None,
                  motion: ShapeAndSpeed | None = None, model: str = "finite",
@@ -265,20 +267,14 @@ class Film(ReynoldsFilm):
         self._X1 = self.V1.tabulate_dof_coordinates()[:, :gdim]
         self.counterpart = counterpart(self.V1)
 
-        # scales and physical constants
-        self.h_ref, self.U_ref = float(scales.film), float(scales.speed)
+        # physical constants
         self.viscosity = self._viscosity_law.bind(sub)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, sub)
         self.roughness = roughness
         self._rough = roughness.bind(sub) if roughness is not None else None
-        self.p_c = fem.Constant(sub, float(scales.pressure))
         self.eps = None if eps is None else fem.Constant(sub, float(eps))
         self.alpha = None if alpha is None else fem.Constant(sub, float(alpha))
-        rows = ((self.mu / self.h_ref, body.stiffness / self.h_ref, self.h_ref)
-                if row_scaling else (1.0, 1.0, 1.0))
-        self._c_p, self.trace_scale, self._c_g = (fem.Constant(sub, c) for c in rows)
-        self._q_ref = fem.Constant(sub, 0.5 * self.U_ref * self.h_ref)
 
         # measures and reference geometry
         qd = quadrature.metadata()
@@ -316,6 +312,16 @@ class Film(ReynoldsFilm):
                                          counter_velocity)
         self.kin = self._kinematics(Xs, self.u_s, self.grad_gamma(self.u_s), self.N, V_body,
                                     counter_velocity)
+
+        # scales: the stopping test's, the rows', SUPG's and the complementarity's
+        if scales is None:
+            scales = self._derived_scales(V_body, counter_velocity)
+        self.h_ref, self.U_ref = float(scales.film), float(scales.speed)
+        self.p_c = fem.Constant(sub, float(scales.pressure))
+        rows = ((self.mu / self.h_ref, body.stiffness / self.h_ref, self.h_ref)
+                if row_scaling else (1.0, 1.0, 1.0))
+        self._c_p, self.trace_scale, self._c_g = (fem.Constant(sub, c) for c in rows)
+        self._q_ref = fem.Constant(sub, 0.5 * self.U_ref * self.h_ref)
         self._F, self._N_b = ufl.Identity(gdim) + ufl.grad(body.u), N_b
         self._tractions()
         # reference measure factors: the body's (2πR) and, axisymmetric, the hoop stretch
@@ -331,6 +337,26 @@ class Film(ReynoldsFilm):
         self._content_form = self._conductance = None
         self._dry = None
         self._init_rows()
+
+    def _derived_scales(self, V_body: Shape | None, V_counter: Shape | None) -> FilmScales:
+        """Return the scales of a film given none: :meth:`FilmScales.soft_ehl` of its problem.
+
+        U: the largest mean speed |v_layer + v_counter|/2 of the surfaces over Γ_l at
+        the start (the motions' velocities at the film's nodes); ℓ: the radius of
+        Γ_l; E' = 4G, the plane-strain modulus of a nearly incompressible solid of
+        the body's shear modulus G (``Body.stiffness``); μ₀ the fluid's viscosity at
+        p = 0.
+        """
+        gdim = self.body.gdim
+        Xs = ufl.SpatialCoordinate(self.sub)
+        zero = ufl.zero(gdim)
+        v = (V_body(Xs) if V_body is not None else zero) \
+            + (V_counter(Xs) if V_counter is not None else zero)
+        speed = fem.Function(self.Q)
+        speed.interpolate(fem.Expression(0.5 * ufl.sqrt(ufl.dot(v, v)),
+                                         self.Q.element.interpolation_points))
+        U = self.sub.comm.allreduce(float(np.max(speed.x.array, initial=0.0)), op=MPI.MAX)
+        return FilmScales.soft_ehl(self.mu, U, 0.5 * self.length, 4 * self.body.stiffness)
 
     def _velocity(self, spec: fem.Constant | ShapeAndSpeed | None,
                   constant: fem.Constant | None = None) -> Shape | None:

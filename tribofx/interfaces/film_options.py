@@ -22,7 +22,8 @@ instead of two dozen loose arguments::
 * :class:`FilmScales` — the pressure, film and speed scales of the stopping test
   and of the row scales (they do not change the solution, only when Newton
   stops), and the pressure scale of SUPG's Péclet number and the JFO
-  complementarity.
+  complementarity.  A film given none derives them from its problem
+  (:meth:`FilmScales.soft_ehl`, :meth:`FilmScales.hydrodynamic`).
 
 Units: mm, N, s, MPa.
 """
@@ -122,6 +123,31 @@ class FilmScales:
     pressure: float = 1.0
     film: float = 1e-2
     speed: float = 1.0
+
+    @classmethod
+    def soft_ehl(cls, viscosity: float, speed: float, length: float, modulus: float
+                 ) -> FilmScales:
+        """Return the elastic–viscous scales of a film on a soft solid (``Film``'s default).
+
+        The viscous pressure μUℓ/h² that a film of thickness h builds over the length
+        ℓ deflects a solid of plane-strain modulus E' by about pℓ/E'; where the
+        deflection is as large as the film, h³ = μUℓ²/E' and p = E'h/ℓ.  ``viscosity``
+        μ₀ (MPa·s), ``speed`` U (mm/s), ``length`` ℓ (mm), ``modulus`` E' (MPa).  A
+        film that does not move (U = 0, a squeeze film) has no such scale: h = 1e-3 ℓ.
+        """
+        h = (viscosity * speed * length**2 / modulus) ** (1 / 3) if speed > 0 else 1e-3 * length
+        return cls(pressure=modulus * h / length, film=h, speed=speed)
+
+    @classmethod
+    def hydrodynamic(cls, viscosity: float, speed: float, film: float, length: float
+                     ) -> FilmScales:
+        """Return the scales of a film of a given gap (``RigidFilm``'s default).
+
+        ``film`` the least gap h (mm), ``length`` the inlet length ℓ over which the
+        gap doubles (mm; √(2Rh) for a cylinder): the pressure 6μUℓ/h² of the wedge.
+        """
+        return cls(pressure=max(6 * viscosity * speed * length / film**2, 1e-12), film=film,
+                   speed=speed)
 
     def __post_init__(self) -> None:
         for key in ("pressure", "film"):

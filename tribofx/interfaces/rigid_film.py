@@ -51,7 +51,8 @@ class RigidFilm(ReynoldsFilm):
             :class:`~tribofx.interfaces.film_options.JFO`, as for :class:`Film`.
         supg: as for :class:`Film`.
         scales: as for :class:`Film`; film × speed is the flux scale of the JFO
-            complementarity rows.
+            complementarity rows; None derives them from the gap
+            (:meth:`FilmScales.hydrodynamic`).
         quadrature_degree: Gauss degree of the integrals, default 4·degree + 6
             (h is not polynomial in general).
         rtol: relative size of the stopping tolerances.
@@ -61,7 +62,7 @@ class RigidFilm(ReynoldsFilm):
                  gap: Callable[[ufl.core.expr.Expr], ufl.core.expr.Expr],
                  vbar: npt.ArrayLike, fluid: Fluid, degree: int = 1,
                  cavitation: Cavitation | None = None, supg: bool = False,
-                 scales: FilmScales = FilmScales(), quadrature_degree: int | None = None,
+                 scales: FilmScales | None = None, quadrature_degree: int | None = None,
                  name: str = "film", rtol: float = 1e-10) -> None:
         if not isinstance(fluid, Fluid):
             raise TypeError(f"fluid: a Fluid(viscosity, density), not {fluid!r}")
@@ -71,7 +72,6 @@ class RigidFilm(ReynoldsFilm):
             raise ValueError("JFO cavitation needs P1 pressure (nodal complementarity)")
         mu, density = fluid.viscosity, fluid.density
         eps = cavitation.eps if isinstance(cavitation, Penalty) else None
-        p_c, film_scale, speed_scale = scales.pressure, scales.film, scales.speed
         cavitation_name = "none" if cavitation is None else cavitation.name
         self.sub, self.name, self.rtol = mesh, name, float(rtol)
         self.cavitation = cavitation_name
@@ -94,19 +94,6 @@ class RigidFilm(ReynoldsFilm):
         self.viscosity = law.bind(mesh)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, mesh)
-        self.p_c = fem.Constant(mesh, float(p_c))
-        self.eps = None
-        if eps is not None:
-            self.eps = fem.Constant(mesh, float(eps))
-        qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
-        self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})
-        self.nodal_dx = (ufl.Measure("dx", mesh, metadata={"quadrature_rule": "vertex",
-                                                           "quadrature_degree": 1})
-                         if degree == 1 else self.dx)
-        self.h_ref, self.U_ref = float(film_scale), float(speed_scale)
-        self._c_p = 1
-        self._q_ref = fem.Constant(mesh, self.h_ref * self.U_ref)
-        self.w_film = 1
         lo = mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf)
         hi = mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf)
         mesh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
@@ -115,7 +102,42 @@ class RigidFilm(ReynoldsFilm):
         self.h_fun = fem.Function(self.Q, name="film_thickness")
         self.h_fun.interpolate(fem.Expression(self.h, self.Q.element.interpolation_points,
                                               comm=mesh.comm))
+        if scales is None:
+            scales = self._derived_scales()
+        self.p_c = fem.Constant(mesh, float(scales.pressure))
+        self.eps = None
+        if eps is not None:
+            self.eps = fem.Constant(mesh, float(eps))
+        qd = 4 * degree + 6 if quadrature_degree is None else quadrature_degree
+        self.dx = ufl.Measure("dx", mesh, metadata={"quadrature_degree": qd})
+        self.nodal_dx = (ufl.Measure("dx", mesh, metadata={"quadrature_rule": "vertex",
+                                                           "quadrature_degree": 1})
+                         if degree == 1 else self.dx)
+        self.h_ref, self.U_ref = float(scales.film), float(scales.speed)
+        self._c_p = 1
+        self._q_ref = fem.Constant(mesh, self.h_ref * self.U_ref)
+        self.w_film = 1
         self._init_rows()
+
+    def _derived_scales(self) -> FilmScales:
+        """Return the scales of a film given none: :meth:`FilmScales.hydrodynamic` of its gap.
+
+        h: the least positive gap at the nodes; ℓ: the half extent of the nodes where
+        the gap is below 2h (√(2Rh) for a cylinder); U: |v̄|.
+        """
+        comm, gdim = self.sub.comm, self.sub.geometry.dim
+        h = self.h_fun.x.array[: self.Q.dofmap.index_map.size_local]
+        x = self.Q.tabulate_dof_coordinates()[: len(h), :gdim]
+        h_min = comm.allreduce(float(np.min(h[h > 0], initial=np.inf)), op=MPI.MIN)
+        if not np.isfinite(h_min):
+            raise ValueError("RigidFilm: the gap is nowhere positive: give scales=FilmScales(...)")
+        near = x[h <= 2 * h_min]
+        lo, hi = near.min(axis=0, initial=np.inf), near.max(axis=0, initial=-np.inf)
+        comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
+        comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
+        ell = max(0.5 * float(np.max(hi - lo)), 1e-12 * self.length)
+        U = float(np.linalg.norm(self.vbar_c.value))
+        return FilmScales.hydrodynamic(self.mu, U, h_min, ell)
 
     # -- component protocol --------------------------------------------------------------
     def unknowns(self) -> list[fem.Function]:

@@ -46,6 +46,7 @@ from ..problem import BlockTolerance
 from ..scheme import BDF2
 from ..two_body import NUM_LOCAL_FILM, film_node_residuals
 from .film import Film
+from .film_options import FilmScales
 from .master_side import KernelAssembly, MasterSide, cached_state
 
 if TYPE_CHECKING:
@@ -144,6 +145,16 @@ class TwoBodyFilm(KernelAssembly, Film):
         self._facet_ref = self._facet_committed = None
         self._cache = None
         self.set_nodal_data()
+
+    def _derived_scales(self, V_body: Shape | None, V_counter: Shape | None) -> FilmScales:
+        """Return the scales of :meth:`Film._derived_scales` for two moving bodies.
+
+        The mean speed (|U1| + |U2|)/2 of the two surfaces and the composite modulus
+        2/(1/E'₁ + 1/E'₂) of the two bodies.
+        """
+        U = 0.5 * (abs(float(self.U1.value)) + abs(float(self.U2.value)))
+        E1, E2 = 4 * self.body.stiffness, 4 * self.master.stiffness
+        return FilmScales.soft_ehl(self.mu, U, 0.5 * self.length, 2 / (1 / E1 + 1 / E2))
 
     def _kinematics(self, X: ufl.core.expr.Expr, disp: ufl.core.expr.Expr,
                     grad_disp: ufl.core.expr.Expr, N: ufl.core.expr.Expr, V_body: Shape | None,
