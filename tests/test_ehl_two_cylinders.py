@@ -87,7 +87,8 @@ def test_soft_film_matches_the_half_space_line_contact(tmp_path):
     isoviscous-elastic line contact on a linear-elastic half-space in NumPy (its
     own influence coefficients, finite volumes, semismooth Newton; Martin's rigid
     film in its limit, ``tests/test_references.py``), on the same film |x| ≤ 3.5a
-    with p = 0 at the ends (the inlet's distance sets how flooded the film is).  The case: R = 10 mm, E = 1000 MPa, ν = 0.45, W = 0.5
+    with p = 0 at the ends (the inlet's distance sets how flooded the film is).
+    The case: R = 10 mm, E = 1000 MPa, ν = 0.45, W = 0.5
     N/mm, pure rolling at u_m = 10 mm/s, no shear tractions (the reference has
     none): λ = 12μu_mR²/(a³p₀) = 0.71, the soft regime (the film is 1.8 times
     Martin's rigid one).  What separates them: the finite-element mesh, estimated
