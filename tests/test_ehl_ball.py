@@ -206,9 +206,8 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
         print(surface, "meshed", name, orders, rem, floor)
     inexact = {n for n, (o, r, f) in blocks.items() if not exact_tangent(o, r, f)}
     # per block, every column exact, but on the curved mesh (vertex rule) the trace's may
-    # show a first-order remainder of a relative 5e-9 (found when this test went per
-    # block, serially; at the round-off floor, so whether it shows depends on the
-    # direction): an open defect (issue 50)
+    # show a first-order remainder of a relative 5e-9 (at the round-off floor, so
+    # whether it shows depends on the direction): an open defect
     assert inexact <= ({meshed.u_s.name} if surface == "curved" else set()), blocks
 
 
@@ -608,7 +607,7 @@ def test_mesh_chosen_from_load_and_speed():
 @pytest.mark.mpi
 @pytest.mark.slow
 def test_chapter_point_without_zig_zag_on_29k_unknowns():
-    """Issue 30's goal at the chapter's 40 N / 0.078 N/m: ``film_oscillation`` ≤ 0.02 at ≤ 64k.
+    """At the chapter's 40 N / 0.078 N/m: ``film_oscillation`` ≤ 0.02 at ≤ 64k unknowns.
 
     The mixed (u, p) solid (no locking) and the vertex rule of the film
     (``quadrature=vertex``: h at the nodes, where the P1 surface lies on the

@@ -1,4 +1,4 @@
-"""Wear on any interface (issue 29): a Film, a Contact, or both, drive the shape law (28).
+"""Wear on any interface: a Film, a Contact, or both, drive the shape law (28).
 
 A plane-strain block [0, 1] × [0, 0.5] mm with a shape field; its bottom face is
 lubricated against a rigid cylinder (radius 2 mm, clearance 10 µm under the
@@ -82,7 +82,7 @@ def test_film_driven_wear_tangent_taylor(with_contact, rough):
     contact): every block's columns exact (Taylor order 2 or round-off,
     :func:`tribofx.testing.exact_tangent`), the film load's dependence on u (j, the
     layer velocity) and p (p⁺) included.  ``rough``: the lubricated wear step of mixed
-    lubrication (issue 32) — average flow, asperity traction and the wear by p_a(h),
+    lubrication — average flow, asperity traction and the wear by p_a(h),
     whose h depends on u and w."""
     body, film, drivers, wear = _block(with_contact, rough)
     problem = Problem([body, *drivers, wear], name="film_wear_taylor")

@@ -1,4 +1,4 @@
-"""Mixed lubrication (issue 32): average flow, asperity contact, their limits and tangent.
+"""Mixed lubrication: average flow, asperity contact, their limits and tangent.
 
 References: the Greenwood–Tripp integral by quadrature (tribofx.references_mixed),
 the inverse of the asperity law for a flat punch, the smooth film of the chapter.
@@ -198,9 +198,9 @@ def test_boundary_regime_levels_at_the_boundary_friction(U):
     the regularisation of the friction's direction, 1 − δ_v²/2 with ε_v = δ_v U,
     δ_v = 1e-3 (5e-7), and the tilt of the contact's normal under the friction's
     shear, (μ_b p₀/E*)² ≈ 1e-5: together ≤ 5e-5, asserted within 1e-4.  The film's
-    share itself stays below 1 % (the boundary regime).  With the direction
-    regularised over a constant 1e-3 mm/s (before issue 50) the coefficient was
-    0.012 at 1e-4 mm/s and 1e-5 at 1e-7 mm/s: the boundary plateau collapsed.
+    share itself stays below 1 % (the boundary regime).  (A direction regularised
+    over a constant slip speed, 1e-3 mm/s, would give 0.012 at 1e-4 mm/s and 1e-5
+    at 1e-7 mm/s: the boundary plateau would collapse.)
     The load march reaches W there directly (the first secant slope 1/σ; the
     film's flux tolerance floored at the Poiseuille flux of a σ-thick gap).
     """

@@ -1,4 +1,4 @@
-"""The O-ring over a reciprocating stroke (``ehl-oring stroke=cycle``, issue 31).
+"""The O-ring over a reciprocating stroke (``ehl-oring stroke=cycle``).
 
 The long-period limit against the chapter's steady outstroke (an independent solve
 of the steady rows) and against the steady instroke, the coupled tangent mid-step
@@ -134,10 +134,10 @@ def _interior_row_bound(film):
 
 
 # on 2 ranks: BDF2, which starts with a backward-Euler step after the mount (the
-# coupled start of issue 50, item 0); the Euler run repeats it serially
+# coupled start after the mount); the Euler run repeats it serially
 @pytest.mark.parametrize("scheme", ["euler", pytest.param("bdf2", marks=pytest.mark.mpi)])
 def test_film_content_changes_by_the_net_flux_of_each_step(scheme):
-    """Mass conservation of the transient JFO seal (issue 31): over each step the oil in
+    """Mass conservation of the transient JFO seal: over each step the oil in
     the film changes by the flux in at the sealed end minus the flux out at the air
     end, the scheme's difference of the contents against the fluxes at t_{n+1}:
     (C_{n+1} − C_n)/Δt (backward Euler), (3C_{n+1} − 4C_n + C_{n−1})/(2Δt) (BDF2
@@ -145,9 +145,9 @@ def test_film_content_changes_by_the_net_flux_of_each_step(scheme):
     (``consistent_fluxes``), the contents from the histories; the two sides differ by
     the sum of the interior rows, zero at convergence: asserted within its
     Cauchy–Schwarz bound √N ‖R_int‖ of the converged state (the solver's tolerance;
-    measured differences 3e-9 of fluxes near 14 mm³/s).  Before this test the fluxes
-    of a revolved film missed the weight 2πr_S of the Couette flux and a transient
-    film the surface's motion.  Smooth rod, density 2, the outstroke's first steps
+    measured differences 3e-9 of fluxes near 14 mm³/s); it fails if a revolved film's
+    fluxes miss the weight 2πr_S of the Couette flux or a transient film the surface's
+    motion.  Smooth rod, density 2, the outstroke's first steps
     (U from 400 to 323 mm/s: the oil in the film grows by 1 % per 10 ms)."""
     v = values(stroke="cycle", scheme=scheme)
     st = cycle_stepper(v)

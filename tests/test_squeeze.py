@@ -1,4 +1,4 @@
-"""Transient films (issue 31): the squeeze term against Reynolds' squeeze film, orders, tangent.
+"""Transient films: the squeeze term against Reynolds' squeeze film, orders, tangent.
 
 References (independent of the FE code): :mod:`tribofx.references_squeeze`, the
 rigid cylinder/sphere approaching a plane with the exact gap, by quadrature and

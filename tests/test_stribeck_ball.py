@@ -1,4 +1,4 @@
-"""The Stribeck ball (issue 32, ``stribeck geometry=ball``): the mixed film in 3D.
+"""The Stribeck ball (``stribeck geometry=ball``): the mixed film in 3D.
 
 The same Film and Roughness as the cylinder's (tests/test_mixed_lubrication.py),
 on the quarter ball of ``ehl-ball``: its full-film end is the smooth film, its

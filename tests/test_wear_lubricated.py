@@ -1,4 +1,4 @@
-"""Wear under mixed lubrication (issue 32): the asperities wear the body, the film does not.
+"""Wear under mixed lubrication: the asperities wear the body, the film does not.
 
 References: Archard's law for a flat punch under a uniform pressure (the
 chapter's dry pin, §4.4: depth k P V t), the worn-volume identity of the shape

@@ -1,4 +1,4 @@
-"""Squeeze film of a soft cylinder or sphere approaching a plane (transient soft-EHL, issue 31).
+"""Squeeze film of a soft cylinder or sphere approaching a plane (transient soft-EHL).
 
 ``ehl-squeeze`` — a hyperelastic cylinder (``dim=2``, plane strain, half model
 x ≥ 0) or sphere (``dim=3``, quarter model x, y ≥ 0) of radius R, its lowest

@@ -1,4 +1,4 @@
-"""Soft-EHL line contact of two elastic cylinders, rolling and sliding (issue 31, plane strain).
+"""Soft-EHL line contact of two elastic cylinders, rolling and sliding (plane strain).
 
 ``ehl-two-cylinders`` — two hyperelastic (neo-Hookean) cylinders of radii R1
 (above, centre (0, R1 + h₀)) and R2 (below, centre (0, −R2)), their surfaces

@@ -1,4 +1,4 @@
-"""The Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane (issue 32).
+"""The Stribeck curve of a soft cylinder or ball sliding on a rough rigid plane.
 
 ``stribeck`` — a neo-Hookean cylinder (``geometry=cylinder``: radius R, plane
 strain, both sides of the contact modelled, W in N/mm) or ball (``geometry=ball``:

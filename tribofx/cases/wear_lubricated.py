@@ -1,4 +1,4 @@
-"""Running-in of a soft cylinder under mixed lubrication: the asperities wear it (issue 32).
+"""Running-in of a soft cylinder under mixed lubrication: the asperities wear it.
 
 ``wear-lubricated`` — the cylinder of ``stribeck`` (neo-Hookean, plane strain,
 radius R, held at its flat face) under the load W (N/mm) on the rough rigid
