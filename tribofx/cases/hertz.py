@@ -118,13 +118,10 @@ class Params(CaseParams):
     steps: int = param(2, "-", "load increments", lower=1, upper=1000, closed=True)
     mesh_file: str = param(
         "", "-",
-        "your own body: a gmsh .msh of dimension dim, the symmetry-reduced cylinder "
-        "(x >= 0 half) or sphere (x, y >= 0 quarter) of radius R (Hertz uses R, E, nu, "
-        "load), physical groups contact, loaded (flat top face, clamped), symmetry_x "
-        "(x = 0) and, dim=3, symmetry_y (y = 0); moved so that the symmetry planes are "
-        "x = 0 (y = 0) and its lowest contact point is at the origin on the plane "
-        "y = 0 (dim=3: z = 0); tip curvature 1/R within 5 %; replaces mesh "
-        "(rho_N = E/h, h its contact facet size within 1.5 a of the first-contact point)")
+        "your own body: a gmsh .msh of dimension dim, the x >= 0 half cylinder or "
+        "x, y >= 0 quarter sphere of radius R with physical groups contact, loaded, "
+        "symmetry_x (and symmetry_y in 3D), moved onto the plane; replaces mesh "
+        "(see the case's description)")
 
     def __post_init__(self) -> None:
         if self.load is None:   # the default: 0.2 N/mm (dim=2), 0.5 N (dim=3, axisymmetric)
