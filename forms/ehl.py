@@ -86,6 +86,7 @@ from typing import TYPE_CHECKING
 import ufl
 
 from . import reynolds as rf
+from .reynolds import WeightedMeasure
 
 if TYPE_CHECKING:
     from ufl.core.expr import Expr
@@ -108,24 +109,6 @@ __all__ = [
 ]
 
 MODELS = ("finite", "linear")
-
-
-class WeightedMeasure:
-    """A measure times a weight, ``expr * WeightedMeasure(w, dx) == (expr * w) * dx``.
-
-    Lets the Reynolds forms of :mod:`forms.reynolds` (which take a measure) run on
-    S pulled back to Γ_l, with the weight w = ds_S/dS.
-    """
-
-    def __init__(self, weight: Expr | float, measure: ufl.Measure | WeightedMeasure) -> None:
-        self.weight, self.measure = weight, measure
-
-    def __rmul__(self, integrand: Expr) -> ufl.Form:
-        return (integrand * self.weight) * self.measure
-
-    def __call__(self, *args: object, **kwargs: object) -> WeightedMeasure:
-        """Return the weighted measure with new subdomain data/metadata."""
-        return WeightedMeasure(self.weight, self.measure(*args, **kwargs))
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import ufl
 
 from . import reynolds as rf
-from .ehl import WeightedMeasure
+from .reynolds import WeightedMeasure
 
 if TYPE_CHECKING:
     from ufl.core.expr import Expr

@@ -65,9 +65,9 @@ import ufl
 if TYPE_CHECKING:
     from ufl.core.expr import Expr
 
-    from .ehl import WeightedMeasure
 
 __all__ = [
+    "WeightedMeasure",
     "cavitation_penalty",
     "jfo_complementarity",
     "jfo_diffusivity",
@@ -80,6 +80,24 @@ __all__ = [
     "supg_stabilisation",
     "supg_tau",
 ]
+
+
+class WeightedMeasure:
+    """A measure times a weight, ``expr * WeightedMeasure(w, dx) == (expr * w) * dx``.
+
+    Lets the Reynolds forms of this module (which take a measure) run on S pulled
+    back to Γ_l (:mod:`forms.ehl`), with the weight w = ds_S/dS.
+    """
+
+    def __init__(self, weight: Expr | float, measure: ufl.Measure | WeightedMeasure) -> None:
+        self.weight, self.measure = weight, measure
+
+    def __rmul__(self, integrand: Expr) -> ufl.Form:
+        return (integrand * self.weight) * self.measure
+
+    def __call__(self, *args: object, **kwargs: object) -> WeightedMeasure:
+        """Return the weighted measure with new subdomain data/metadata."""
+        return WeightedMeasure(self.weight, self.measure(*args, **kwargs))
 
 
 def poiseuille_conductance(h: Expr, mu: Expr | float) -> Expr:
