@@ -1,8 +1,12 @@
-"""A user's symmetry-reduced body for the Hertz cases (``mesh_file``): read, placed, checked.
+"""Curved bodies of the Hertz-type cases: their ``dim``, and a user's body (``mesh_file``).
 
-:func:`read_hertz_body` serves ``hertz`` and ``two-cylinders``: the body is moved
-onto its symmetry planes and its first-contact point, and its curvature there
-is checked against the Hertz reference's within :data:`CURVATURE_TOL`.
+* ``dim``: 2 (a plane-strain cylinder), 3 (a sphere, quarter model) or
+  ``axisymmetric`` (a sphere by its meridian section): :func:`dimension` parses
+  it, :func:`geometric_dim` gives the mesh's dimension and :func:`hertz_dim` the
+  Hertz reference's (``hertz``, ``ehl-squeeze``).
+* :func:`read_hertz_body` serves ``hertz`` and ``two-cylinders``: the body is moved
+  onto its symmetry planes and its first-contact point, and its curvature there
+  is checked against the Hertz reference's within :data:`CURVATURE_TOL`.
 """
 
 
@@ -23,7 +27,28 @@ if TYPE_CHECKING:
 
 # hertz_reference is re-exported from tribofx.references
 
-__all__ = ["CURVATURE_TOL", "read_hertz_body"]
+__all__ = ["AXISYMMETRIC", "CURVATURE_TOL", "dimension", "geometric_dim", "hertz_dim",
+           "read_hertz_body"]
+
+
+#: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
+AXISYMMETRIC = "axisymmetric"
+
+
+def dimension(text: str) -> int | str:
+    """Parse ``dim``: 2, 3 or "axisymmetric" (ValueError otherwise)."""
+    text = str(text).strip()
+    return AXISYMMETRIC if text == AXISYMMETRIC else int(text)
+
+
+def geometric_dim(dim: int | str) -> int:
+    """Dimension of the mesh: 2 for the cylinder and the meridian section, else 3."""
+    return 2 if dim == AXISYMMETRIC else cast("int", dim)
+
+
+def hertz_dim(dim: int | str) -> int:
+    """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
+    return 3 if dim == AXISYMMETRIC else cast("int", dim)
 
 
 #: relative tolerance on the curvature of a user's body at its first-contact point

@@ -1,8 +1,9 @@
 """Squeeze film of a soft cylinder or sphere approaching a plane (transient soft-EHL).
 
 ``ehl-squeeze`` — a hyperelastic cylinder (``dim=2``, plane strain, half model
-x ≥ 0) or sphere (``dim=3``, quarter model x, y ≥ 0) of radius R, its lowest
-point h_start above a rigid plane, squeezes the flooded film between them:
+x ≥ 0) or sphere (``dim=3``, quarter model x, y ≥ 0; ``dim=axisymmetric``, its
+meridian section x = r ≥ 0 with the axis x = 0) of radius R, its lowest point
+h_start above a rigid plane, squeezes the flooded film between them:
 
 * ``control=speed``: the plane rises at V (mm/s) towards the body, whose top
   face is held (u = 0);
@@ -53,6 +54,7 @@ from ..params import InputError, param
 from ..references import hertz, squeeze_film_under_load, squeeze_resistance
 from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
+from .curved_bodies import AXISYMMETRIC, dimension, geometric_dim, hertz_dim
 from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
 
@@ -73,19 +75,19 @@ __all__ = ["Model", "Params", "build", "doc", "extent", "fraction", "length", "m
 name = "ehl-squeeze"
 #: writes a checkpoint every step: `--resume` continues an interrupted run
 resumable = True
-doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D) approaching a rigid "
-       "plane, at a speed or under a load; rigid-limit references")
+doc = ("transient squeeze film of a soft cylinder (2D) or sphere (3D, or axisymmetric) "
+       "approaching a rigid plane, at a speed or under a load; rigid-limit references")
 
 
 @dataclass(frozen=True)
 class Params(FluidParams):
     """The parameters of ``ehl-squeeze`` (``--set KEY=VALUE``)."""
 
-    dim: int = param(
+    dim: int | str = param(
         2, "-",
-        "2: cylinder (plane strain, half model), 3: sphere "
-        "(quarter model)",
-        choices=(2, 3))
+        "2: cylinder (plane strain, half model), 3: sphere (quarter model), "
+        "axisymmetric: sphere (meridian section x >= 0, the axis x = 0)",
+        choices=(2, 3, AXISYMMETRIC), parse=dimension)
     control: str = param(
         "speed", "-",
         "speed: the plane approaches at V; load: the "
@@ -149,7 +151,7 @@ def validate(v: Params) -> None:
     if v.lumped and v.cavitation != "jfo":
         raise InputError("lumped=true is for cavitation=jfo")
     if v.cavitation == "jfo" and v.dim != 2:
-        raise InputError("cavitation=jfo is built for dim=2 (a film on a curve)")
+        raise InputError("cavitation=jfo is built for dim=2 (a film on a plane curve)")
     if v.control == "speed" and not v.V * v.T < 0.9 * v.h_start:
         raise InputError(f"V·T = {v.V * v.T:.3g} mm would close the rigid gap "
                          f"h_start = {v.h_start} mm; shorten T")
@@ -158,8 +160,8 @@ def validate(v: Params) -> None:
 
 
 def fraction(v: Params) -> float:
-    """Modelled part of the body: 1/2 (cylinder, half) or 1/4 (sphere, quarter)."""
-    return 0.5 if v.dim == 2 else 0.25
+    """Modelled part of the body: 1/2 (cylinder, half), 1/4 (sphere, quarter), 1 (revolved)."""
+    return {2: 0.5, 3: 0.25, AXISYMMETRIC: 1.0}[v.dim]
 
 
 def length(v: Params) -> float:
@@ -185,8 +187,7 @@ def speed_scale(v: Params) -> float:
     """Approach speed (mm/s): V, or under load the rigid squeeze's F/K(h_start)."""
     if v.control == "speed":
         return abs(v.V)
-    return v.F / squeeze_resistance(v.dim, v.R, v.mu, v.h_start,
-                                       extent(v))
+    return v.F / squeeze_resistance(hertz_dim(v.dim), v.R, v.mu, v.h_start, extent(v))
 
 
 class Model(NamedTuple):
@@ -205,7 +206,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
 
     ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
     """
-    dim, R, h0 = v.dim, v.R, v.h_start
+    dim, sphere, R, h0 = geometric_dim(v.dim), hertz_dim(v.dim), v.R, v.h_start
     ell, L = length(v), extent(v)
     h_fine, h_coarse = ell / (8 * 2 ** v.mesh), R / (8 * 2 ** v.mesh)
     msh, ft = hertz_body(dim, R, h_fine, h_coarse, 2 * ell, comm, cap=L)
@@ -214,14 +215,15 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
     if dim == 2:
         names.pop("symmetry_y")
     mu_s, lm = lame_parameters(v.E1, v.nu1)
-    kind = "plane_strain" if dim == 2 else "3d"
+    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v.dim]
     Vs = speed_scale(v)
-    K0 = squeeze_resistance(dim, R, v.mu, h0, L)
+    K0 = squeeze_resistance(sphere, R, v.mu, h0, L)
     # momentum rows relative to the film's force, far below the body's stiffness
     # G·L^(d−1); not below the round-off of a node's internal force, ~ε G h^(d−1) on
     # the coarse elements h (×100), so a stiff body (the rigid limit) converges
     f_s = fraction(v) * K0 * Vs
-    rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * h_coarse ** (dim - 1) / f_s)
+    node = h_coarse ** (dim - 1) * (2 * math.pi * R if v.dim == AXISYMMETRIC else 1.0)
+    rtol = max(1e-10, 100 * np.finfo(float).eps * mu_s * node / f_s)
     body = Body(msh, ft, names, kind, ("neo-hookean", {"mu": mu_s, "lmbda": lm}),
                 name="body", force_scale=f_s, rtol=rtol)
     body.add_dirichlet("symmetry_x", 0.0, component=0)
@@ -231,10 +233,10 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
     if v.control == "speed":
         body.add_dirichlet("loaded", np.zeros(dim))
     else:   # the model's part of F, uniform over the top face (its discrete area)
-        one = fem.form(fem.Constant(msh, 1.0) * body.ds(body.tag("loaded")))
+        one = fem.form(fem.Constant(msh, 1.0) * body.weight * body.ds(body.tag("loaded")))
         area = msh.comm.allreduce(fem.assemble_scalar(one), op=MPI.SUM)
         body.add_traction("loaded", fem.Constant(msh, -fraction(v) * v.F / area * up))
-    p_c = K0 * Vs / (ell if dim == 2 else ell * ell)
+    p_c = K0 * Vs / (ell if sphere == 2 else ell * ell)
     # Reynolds rows: flux scale U·h_ref = V ℓ (the squeeze flux), not below the
     # round-off ε p_c h_L³/(12μ h) of a row at the rim, where the gap h_L is largest
     h_L = h0 + R - math.sqrt(R * R - L * L)
@@ -297,7 +299,7 @@ def plot(profile: dict[str, Any], outdir: Path) -> None:
 
 def measures(model: Model, v: Params, y0: float) -> dict[str, float]:
     """One step's measures: film at the centre and its minimum, force, plane position."""
-    dim, film = v.dim, model.stepper.wear
+    dim, film = geometric_dim(v.dim), model.stepper.wear
     prof = film.profile(everywhere=True)
     r = np.linalg.norm(prof["X"][:, :dim - 1], axis=1)
     h_c = float(prof["h"][np.argmin(r)])
@@ -314,7 +316,7 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: boo
     model = build(v, checkpoint=checkpoint)
     stepper = model.stepper
     stepper.verbose = verbose
-    film, dim = stepper.wear, v.dim
+    film, dim, sphere = stepper.wear, geometric_dim(v.dim), hertz_dim(v.dim)
     keys = ("time", "h_center", "h_min", "force", "approach", "p_center", "content",
             "newton_iterations", "force_rigid", "h_center_rigid")
     sr = SlowTimeRecords(stepper, v, record, keys, {"displacement": [film.body.u]},
@@ -325,10 +327,10 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: boo
     def log(t: float, its: int) -> None:
         m = measures(model, v, y0)
         h_rigid = v.h_start - m["approach"]     # the rigid body's gap at the plane
-        m["force_rigid"] = (squeeze_resistance(dim, R, mu, h_rigid, L) * v.V
+        m["force_rigid"] = (squeeze_resistance(sphere, R, mu, h_rigid, L) * v.V
                             if v.control == "speed" else v.F)
         m["h_center_rigid"] = (h_rigid if v.control == "speed" else float(
-            squeeze_film_under_load(dim, R, mu, v.F, v.h_start, [t], L)[0]))
+            squeeze_film_under_load(sphere, R, mu, v.F, v.h_start, [t], L)[0]))
         sr.log(its, dict(time=t, newton_iterations=its, **m))
 
     if not resume:

@@ -45,7 +45,14 @@ from ..problem import NewtonDivergence, Problem
 from ..references import hertz_reference
 
 # hertz_reference is re-exported from tribofx.references
-from .curved_bodies import CURVATURE_TOL, read_hertz_body
+from .curved_bodies import (
+    AXISYMMETRIC,
+    CURVATURE_TOL,
+    dimension,
+    geometric_dim,
+    hertz_dim,
+    read_hertz_body,
+)
 
 if TYPE_CHECKING:
     from collections.abc import Mapping
@@ -60,26 +67,6 @@ if TYPE_CHECKING:
 __all__ = ["AXISYMMETRIC", "Model", "Params", "build", "dimension", "doc", "geometric_dim",
            "hertz_dim", "hertz_reference", "mesh_sizes", "model_fraction", "name", "plot",
            "progress_total", "resumable", "run", "validate", "vtx_fields"]
-
-
-#: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
-AXISYMMETRIC = "axisymmetric"
-
-
-def dimension(text: str) -> int | str:
-    """Parse ``dim``: 2, 3 or "axisymmetric" (ValueError otherwise)."""
-    text = str(text).strip()
-    return AXISYMMETRIC if text == AXISYMMETRIC else int(text)
-
-
-def geometric_dim(dim: int | str) -> int:
-    """Dimension of the mesh: 2 for the cylinder and the meridian section, else 3."""
-    return 2 if dim == AXISYMMETRIC else cast("int", dim)
-
-
-def hertz_dim(dim: int | str) -> int:
-    """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
-    return 3 if dim == AXISYMMETRIC else cast("int", dim)
 
 
 name = "hertz"
