@@ -58,6 +58,17 @@ def test_unworn_contact_is_hertzian(short_implicit):
     assert res["contact_radius"][0] == pytest.approx(aH, abs=0.5 * aH / 2)
 
 
+def test_rigid_cap_radius_is_flagged_outside_its_range(short_implicit):
+    """The rigid-cap law needs a scar well beyond the Hertz contact (a ≥ 2 a_H, the case's
+    rule): the short run's cap radius at T = 200 s is 2.2 a_H, so no warning; the same
+    ball ten times softer would have a_H 10^(1/3) times larger and be flagged."""
+    v, res, rec = short_implicit
+    a_H = hertz_radius(v.F, v.R, v.E, v.nu)
+    a_T = res["rigid_cap_radius"][-1]
+    assert (a_T < 2 * a_H) == any("rigid_cap_radius" in w for w in rec.data.get("warnings", []))
+    assert a_T < 2 * hertz_radius(v.F, v.R, v.E / 10, v.nu)
+
+
 def test_worn_volume_equals_integrated_rate_and_archard(short_implicit):
     v, res, _ = short_implicit
     t = np.asarray(res["time"])

@@ -110,6 +110,10 @@ class SubRecord:
         """Record ``key`` = ``value`` (unit) as :meth:`RunRecord.result` does."""
         self.data["results"][key] = {"value": value, "unit": unit}
 
+    def warn(self, message: str) -> None:
+        """Record a warning as :meth:`RunRecord.warn` does."""
+        self.data.setdefault("warnings", []).append(message)
+
 
 def write_summary(comm: MPI.Comm, path: str | Path, data: Mapping[str, Any]) -> None:
     """Write the dict ``data`` as JSON to ``path`` on rank 0 (NumPy values converted)."""

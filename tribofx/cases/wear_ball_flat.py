@@ -414,8 +414,13 @@ def _report(stepper: Stepper, v: Params, record: RunRecord | SubRecord,
     record.result("wall_time", stepper.comm.allreduce(wall, op=MPI.MAX), "s")
     record.result("steps", len(hist["time"]) - 1, "-")
     s = v.V * np.asarray(hist["time"])
-    record.result("rigid_cap_radius", rigid_cap_radius(v.k, v.F, v.R, s).tolist(),
-                  "mm")
+    a_cap = rigid_cap_radius(v.k, v.F, v.R, s)
+    record.result("rigid_cap_radius", a_cap.tolist(), "mm")
+    a_H = hertz(v.F, v.R, v.E, v.nu).a
+    if a_cap[-1] < 2 * a_H:   # the law's range: a scar well beyond the Hertz contact
+        record.warn(f"rigid_cap_radius ({a_cap[-1]:.3g} mm at T) is outside the rigid-cap "
+                    f"law's range: it needs a scar well beyond the Hertz radius "
+                    f"a_H = {a_H:.3g} mm (here the ball is too soft or T too short)")
     record.result("archard_volume", (v.k * v.F * s).tolist(), "mm^3 (k F V t)")
     for key in ("contact_radius", "scar_radius"):
         record.result(f"{key}_exponent_late",
