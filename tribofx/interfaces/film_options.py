@@ -145,9 +145,11 @@ class FilmScales:
 
         ``film`` the least gap h (mm), ``length`` the inlet length ℓ over which the
         gap doubles (mm; √(2Rh) for a cylinder): the pressure 6μUℓ/h² of the wedge.
+        Surfaces at rest (U = 0) build no wedge pressure: the class default p_c = 1 MPa
+        then stands (a squeeze film is better given its own scales).
         """
-        return cls(pressure=max(6 * viscosity * speed * length / film**2, 1e-12), film=film,
-                   speed=speed)
+        wedge = 6 * viscosity * speed * length / film**2
+        return cls(pressure=wedge if wedge > 0 else cls.pressure, film=film, speed=speed)
 
     def __post_init__(self) -> None:
         for key in ("pressure", "film"):
