@@ -70,7 +70,7 @@ def run(dim):
     t_tr = per_iteration(st.problem)
     # the same mesh, body and film with the chapter's steady rows (the body held at its
     # top, since a steady film cannot carry a load alone), the same unknowns
-    steady = Case.build(v.replace(control="speed"), steady=True).stepper.problem
+    steady = Case.steady_problem(v.replace(control="speed"))
     t_st = per_iteration(steady)
     return {"dim": dim, "unknowns": st.problem.num_dofs, "unknowns_steady": steady.num_dofs,
             "begin_step_s": t_begin, "iteration_transient_s": t_tr,

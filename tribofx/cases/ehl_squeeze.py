@@ -51,6 +51,7 @@ from ..interfaces.film_options import named_cavitation
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, param
+from ..problem import Problem
 from ..references import hertz, squeeze_film_under_load, squeeze_resistance
 from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
@@ -69,7 +70,8 @@ if TYPE_CHECKING:
     from ..output import RunRecord
 
 __all__ = ["Model", "Params", "build", "doc", "extent", "fraction", "length", "measures", "name",
-           "plot", "progress_total", "resumable", "run", "speed_scale", "validate", "vtx_fields"]
+           "plot", "progress_total", "resumable", "run", "speed_scale", "steady_problem",
+           "validate", "vtx_fields"]
 
 
 name = "ehl-squeeze"
@@ -201,11 +203,31 @@ class Model(NamedTuple):
 
 
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
-          checkpoint: str | os.PathLike[str] | None = None, steady: bool = False) -> Model:
-    """Body, transient film and stepper at t = 0 (the plane at h_start below the body).
+          checkpoint: str | os.PathLike[str] | None = None) -> Model:
+    """Body, transient film and stepper at t = 0 (the plane at h_start below the body)."""
+    bodies, film, lift = _parts(v, comm)
+    film.transient(v.scheme, lumped=v.lumped)
+    dim, up = geometric_dim(v.dim), np.eye(geometric_dim(v.dim))[geometric_dim(v.dim) - 1]
+    y0 = float(lift.value[dim - 1])
+    schedule = []
+    if v.control == "speed":
+        schedule = [(lift, lambda t: y0 * up + v.V * t * up)]
+    return Model(Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
+                         name="ehl_squeeze"), lift)
 
-    ``steady``: the film keeps the chapter's steady rows (benchmarks' comparison).
+
+def steady_problem(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Problem:
+    """Return the same bodies and film with the chapter's steady rows, as one Problem.
+
+    The benchmarks' comparison of a transient step with a steady solve
+    (``benchmarks/bench_squeeze.py``).
     """
+    bodies, film, _ = _parts(v, comm)
+    return Problem([*bodies, film], name="ehl_squeeze_steady")
+
+
+def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, fem.Constant]:
+    """Return the body (and block), the steady film and the Constant that positions the plane."""
     dim, sphere, R, h0 = geometric_dim(v.dim), hertz_dim(v.dim), v.R, v.h_start
     ell, L = length(v), extent(v)
     h_fine, h_coarse = ell / (8 * 2 ** v.mesh), R / (8 * 2 ** v.mesh)
@@ -268,15 +290,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
     if math.isinf(v.E2):
         film.place_countersurface(h0, np.zeros(3))
         lift = cast("AnalyticObstacle", film.counterpart).offset   # the rigid plane's
-    if not steady:
-        film.transient(v.scheme, lumped=v.lumped)
-    offset = lift
-    y0 = float(offset.value[dim - 1])
-    schedule = []
-    if v.control == "speed":
-        schedule = [(offset, lambda t: y0 * up + v.V * t * up)]
-    return Model(Stepper([*bodies, film], film, checkpoint=checkpoint, schedule=schedule,
-                         name="ehl_squeeze"), lift)
+    return bodies, film, lift
 
 
 def progress_total(v: Params) -> int:
