@@ -62,22 +62,22 @@ def _solve(lam: float, X: npt.NDArray[np.float64], D: npt.NDArray[np.float64],
     s = d**2 / (Hm0[:-1] ** 3 + Hm0[1:] ** 3)
 
     def residual(P: npt.NDArray[np.float64], H0: float
-                 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64],
-                            npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+                 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """Return the film at the cell faces and the Reynolds rows at the interior nodes."""
         H = H0 + geom + Dm @ P
         Hm = 0.5 * (H[1:] + H[:-1])
         q = Hm**3 * np.diff(P) / d - lam * Hm          # flux at the cell faces
-        r = np.diff(q) / d                               # Reynolds rows, interior nodes
-        return H, Hm, q, r
+        return Hm, np.diff(q) / d
 
-    def rows(P: npt.NDArray[np.float64], H0: float) -> npt.NDArray[np.float64]:
-        r = residual(P, H0)[3]
+    def rows(P: npt.NDArray[np.float64], r: npt.NDArray[np.float64]
+             ) -> npt.NDArray[np.float64]:
+        """Return the complementarity rows min(P, −s r) and the load row."""
         Pi = P[inner]
         return np.append(np.minimum(Pi, -s * r), d * Pi.sum() - 0.5 * math.pi)
 
     def system(P: npt.NDArray[np.float64], H0: float
                ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-        H, Hm, q, r = residual(P, H0)
+        Hm, r = residual(P, H0)
         m = n - 2
         # ∂r/∂P (at fixed H): the tridiagonal flux differences
         A = Hm**3 / d**2
@@ -91,15 +91,12 @@ def _solve(lam: float, X: npt.NDArray[np.float64], D: npt.NDArray[np.float64],
         c0, c1, c2 = -dq[:-1] / d, (dq[1:] - dq[:-1]) / d, dq[1:] / d   # tridiagonal
         drdP = JP + c0[:, None] * Dm[:-2] + c1[:, None] * Dm[1:-1] + c2[:, None] * Dm[2:]
         drdH0 = c0 + c1 + c2
-        Pi = P[inner]
-        film = Pi > -s * r                               # min(P, −s r): the film rows
-        G = np.where(film, -s * r, Pi)
+        film = P[inner] > -s * r                         # min(P, −s r): the film rows
         J = np.zeros((m + 1, m + 1))
         J[:m, :m] = np.where(film[:, None], -s[:, None] * drdP[:, inner], np.eye(m))
         J[:m, m] = np.where(film, -s * drdH0, 0.0)
         J[m, :m] = d                                     # ∫ P dX (P = 0 at the ends)
-        G = np.append(G, d * Pi.sum() - 0.5 * math.pi)
-        return G, J
+        return rows(P, r), J
 
     for _ in range(max_it):
         G, J = system(P, H0)
@@ -112,7 +109,7 @@ def _solve(lam: float, X: npt.NDArray[np.float64], D: npt.NDArray[np.float64],
             Pt = P.copy()
             Pt[inner] += t * step[:-1]
             Ht0 = H0 + t * step[-1]
-            if np.linalg.norm(rows(Pt, Ht0)) < (1 - 1e-4 * t) * norm:
+            if np.linalg.norm(rows(Pt, residual(Pt, Ht0)[1])) < (1 - 1e-4 * t) * norm:
                 P, H0 = Pt, Ht0
                 break
             t *= 0.5
