@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from .output import RunRecord
     from .restart import SweepJournal
 
-__all__ = ["SweepVariant"]
+__all__ = ["SweepVariant", "journalled_march", "journalled_points"]
 
 
 class SweepVariant:
@@ -221,3 +221,18 @@ class SweepVariant:
         if isinstance(err, (NewtonDivergence, interrupt.Interrupted)):
             err.model = self.run    # restored to its last converged point
         return False
+
+
+def journalled_points(journal: SweepVariant | None, leg: str, count: int,
+                      arrays: Callable[[], Iterable[npt.ArrayLike]] | None = None
+                      ) -> Iterable[int]:
+    """Return the points 0 … count − 1 of a leg (:meth:`SweepVariant.loop`, or plain)."""
+    return range(count) if journal is None else journal.loop(leg, count, arrays)
+
+
+def journalled_march(journal: SweepVariant | None, leg: str, continuation: Continuation,
+                     target: float, **kw: Any) -> list[float | None]:
+    """March a leg: :meth:`SweepVariant.march`, or ``continuation.march`` without a journal."""
+    if journal is None:
+        return continuation.march(target, **kw)
+    return journal.march(leg, continuation, target, **kw)

@@ -83,7 +83,7 @@ from ..positions import oscillation_indicator, paraboloid_vertex
 from ..problem import NewtonDivergence, Problem, options_name
 from ..references import composite_modulus, hamrock_dowson, hertz
 from ..restart import SweepJournal
-from ..sweep import SweepVariant
+from ..sweep import SweepVariant, journalled_march, journalled_points
 from . import film_setup
 from .film_setup import FluidParams, at_points, density, film_boundary, speed_list, viscosity
 
@@ -536,7 +536,7 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
                 on_speed()
             for j, U in enumerate(speed_list(vv)):
                 speed_march(run, vv, inner, vv.W, U, restart=not large_load(vv),
-                            record=its_all, on_speed=on_speed, journal=(sv, f"speed{j}"))
+                            record=its_all, on_speed=on_speed, journal=sv, leg=f"speed{j}")
         finally:
             if steps:
                 var.update({k: np.asarray(x) for k, x in steps[-1]["profile"].items()})
@@ -704,7 +704,7 @@ def load_sweep(run: Model, v: Params,
             journal.resume()
             problem.refresh()
     its0: Iterations = 0
-    for k in range(v.steps) if journal is None else journal.loop("loads", v.steps):
+    for k in journalled_points(journal, "loads", v.steps):
         if k == 0:
             hertz_start(run, v, W1, v.U)
             its0 = problem.solve_by_homotopy(verbose=verbose).iterations
@@ -768,8 +768,7 @@ def thick_film_sweep(run: Model, v: Params,
                                    "start_speed or mesh")
         at.update(Us=Us, W_start=load(run))
     first = True
-    for k in range(v.steps) if journal is None else journal.loop(
-            "loads", v.steps, arrays=lambda: carrier):
+    for k in journalled_points(journal, "loads", v.steps, arrays=lambda: carrier):
         Us = at["Us"]
         if resumed and first:       # the next load starts from the thick-film state
             problem.restore(carrier)
@@ -816,15 +815,15 @@ def follow_control(run: Model, v: Params, Wk: float, W_start: float, verbose: bo
 def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
                 restart: bool = False, record: list[Iterations] | None = None,
                 on_speed: Callable[[], object] | None = None,
-                journal: tuple[SweepVariant, str] | None = None) -> None:
+                journal: SweepVariant | None = None, leg: str = "speed") -> None:
     """Continue the converged state at load W in the entrainment speed to U (geometric).
 
     Each speed step re-finds the plane position for W (``inner``), starting
     from the Hertz state at the new speed (``restart``) or from the plane
     shifted by the Hamrock–Dowson change of the film, h_c((U_new/U_old)^0.64 − 1).
     A failed step is cut (six times at most).  ``on_speed()`` after every
-    converged step; ``journal``: (the sweep's variant, the leg's name) to journal
-    the march as a leg of the sweep.
+    converged step; ``journal``: the sweep's variant, which journals the march as
+    its leg ``leg``.
     """
     film = run.film
     offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
@@ -849,10 +848,7 @@ def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
     steps = max(1, int(np.ceil(abs(np.log(U / speed.get())) / np.log(MAX_SPEED_RATIO))))
     kw: dict[str, Any] = dict(steps=steps, predictor=False, geometric=True,
                               min_fraction=2.0**-6)
-    if journal is None:
-        march.march(U, **kw)
-    else:
-        journal[0].march(journal[1], march, U, **kw)
+    journalled_march(journal, leg, march, U, **kw)
 
 
 def large_load(v: Params) -> bool:

@@ -54,7 +54,7 @@ from ..positions import parabolic_vertex
 from ..problem import Problem, options_name
 from ..references import rigid_clearance
 from ..restart import SweepJournal
-from ..sweep import SweepVariant
+from ..sweep import SweepVariant, journalled_march
 from .film_setup import (
     FluidParams,
     density,
@@ -570,7 +570,4 @@ def speed_sweep(run: Model, v: Params, inner: Continuation, W: float, speeds: Se
         layer.velocity, 0, on_set=lambda U: set_speed(run, v, U)),
         record=record, on_accept=on_speed)
     for j, U in enumerate(speeds):
-        if journal is None:
-            sweep.march(U, predictor=False, geometric=True)
-        else:
-            journal.march(f"speed{j}", sweep, U, predictor=False, geometric=True)
+        journalled_march(journal, f"speed{j}", sweep, U, predictor=False, geometric=True)

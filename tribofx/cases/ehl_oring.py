@@ -131,7 +131,7 @@ from ..roughness import rough_pair
 from ..scheme import Scheme
 from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
-from ..sweep import SweepVariant
+from ..sweep import SweepVariant, journalled_points
 from .film_setup import (
     FluidParams,
     density,
@@ -512,8 +512,7 @@ def solve_to(seal: ORingSeal, v: Params, U: float, p_s_targets: Sequence[float],
     ramp starts from the restored state as in an uninterrupted run).  Returns the
     Newton iterations per continuation step.
     """
-    n = len(p_s_targets)
-    for k in range(n) if journal is None else journal.loop("p_s", n):
+    for k in journalled_points(journal, "p_s", len(p_s_targets)):
         if k == 0:
             seal.mount(v.mount_steps)
         p_s = p_s_targets[k]
