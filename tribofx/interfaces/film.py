@@ -91,7 +91,7 @@ from ..scheme import BDF2, Scheme
 from .film_history import FilmHistory, content_space
 from .film_options import JFO, Cavitation, FilmScales, Fluid, Penalty, Quadrature
 from .prescribed_pressure import PrescribedPressure
-from .reynolds_film import ReynoldsFilm
+from .reynolds_film import ReynoldsFilm, global_extent
 from .surface import Surface
 
 if TYPE_CHECKING:
@@ -291,10 +291,7 @@ class Film(ReynoldsFilm):
             self.T = ufl.as_vector([self.N[1], -self.N[0]])
             self.T_b = ufl.as_vector([N_b[1], -N_b[0]])
         X, Xs = ufl.SpatialCoordinate(msh), ufl.SpatialCoordinate(sub)
-        lo = self.sub.geometry.x[:, :gdim].min(axis=0, initial=np.inf)
-        hi = self.sub.geometry.x[:, :gdim].max(axis=0, initial=-np.inf)
-        msh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
-        msh.comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
+        lo, hi = global_extent(self.sub.geometry.x[:, :gdim], msh.comm)
         self.length = float(np.linalg.norm(hi - lo))   # diameter of Γ_l (mm)
 
         # kinematics of S on the bulk side (tractions) and on the submesh (Reynolds).

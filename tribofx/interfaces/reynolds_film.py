@@ -56,7 +56,16 @@ if TYPE_CHECKING:
     #: nodal profile arrays by name (:meth:`ReynoldsFilm._gather`)
     Profile: TypeAlias = dict[str, npt.NDArray[Any]]
 
-__all__ = ["ReynoldsFilm"]
+__all__ = ["ReynoldsFilm", "global_extent"]
+
+
+def global_extent(points: npt.NDArray[np.float64], comm: MPI.Comm
+                  ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Return the corners (lo, hi) of the bounding box of every rank's ``points`` (n × d)."""
+    lo, hi = points.min(axis=0, initial=np.inf), points.max(axis=0, initial=-np.inf)
+    comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
+    comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
+    return lo, hi
 
 
 class ReynoldsFilm(ComponentBase):

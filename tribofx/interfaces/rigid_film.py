@@ -12,7 +12,7 @@ from mpi4py import MPI
 from ..forms import ehl as ef
 from ..laws import viscosity_law
 from .film_options import JFO, Cavitation, FilmScales, Fluid, Penalty
-from .reynolds_film import ReynoldsFilm
+from .reynolds_film import ReynoldsFilm, global_extent
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
@@ -94,10 +94,7 @@ class RigidFilm(ReynoldsFilm):
         self.viscosity = law.bind(mesh)
         self.mu_p = self.viscosity(self.p)      # μ(p): the one viscosity of every form
         self._bind_density(density, mesh)
-        lo = mesh.geometry.x[:, :gdim].min(axis=0, initial=np.inf)
-        hi = mesh.geometry.x[:, :gdim].max(axis=0, initial=-np.inf)
-        mesh.comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
-        mesh.comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
+        lo, hi = global_extent(mesh.geometry.x[:, :gdim], mesh.comm)
         self.length = float(np.linalg.norm(hi - lo))
         self.h_fun = fem.Function(self.Q, name="film_thickness")
         self.h_fun.interpolate(fem.Expression(self.h, self.Q.element.interpolation_points,
@@ -131,10 +128,7 @@ class RigidFilm(ReynoldsFilm):
         h_min = comm.allreduce(float(np.min(h[h > 0], initial=np.inf)), op=MPI.MIN)
         if not np.isfinite(h_min):
             raise ValueError("RigidFilm: the gap is nowhere positive: give scales=FilmScales(...)")
-        near = x[h <= 2 * h_min]
-        lo, hi = near.min(axis=0, initial=np.inf), near.max(axis=0, initial=-np.inf)
-        comm.Allreduce(MPI.IN_PLACE, lo, op=MPI.MIN)
-        comm.Allreduce(MPI.IN_PLACE, hi, op=MPI.MAX)
+        lo, hi = global_extent(x[h <= 2 * h_min], comm)
         ell = max(0.5 * float(np.max(hi - lo)), 1e-12 * self.length)
         U = float(np.linalg.norm(self.vbar_c.value))
         return FilmScales.hydrodynamic(self.mu, U, h_min, ell)
