@@ -27,8 +27,8 @@ if TYPE_CHECKING:
 
 # hertz_reference is re-exported from tribofx.references
 
-__all__ = ["AXISYMMETRIC", "CURVATURE_TOL", "dimension", "geometric_dim", "hertz_dim",
-           "read_hertz_body"]
+__all__ = ["AXISYMMETRIC", "CURVATURE_TOL", "body_kind", "dimension", "geometric_dim",
+           "hertz_dim", "read_hertz_body"]
 
 
 #: the ``dim`` of a sphere modelled by its meridian section (an axisymmetric body)
@@ -49,6 +49,11 @@ def geometric_dim(dim: int | str) -> int:
 def hertz_dim(dim: int | str) -> int:
     """Dimension of the Hertz reference: 2 (line contact, the cylinder) or 3 (a sphere)."""
     return 3 if dim == AXISYMMETRIC else cast("int", dim)
+
+
+def body_kind(dim: int | str) -> str:
+    """Return the :class:`tribofx.body.Body` kind of ``dim``: plane strain, 3D or axisymmetric."""
+    return {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[dim]
 
 
 #: relative tolerance on the curvature of a user's body at its first-contact point

@@ -55,7 +55,7 @@ from ..problem import Problem
 from ..references import hertz, squeeze_film_under_load, squeeze_resistance
 from ..step_control import FixedStep
 from ..stepper import Stepper, nominal_steps
-from .curved_bodies import AXISYMMETRIC, dimension, geometric_dim, hertz_dim
+from .curved_bodies import AXISYMMETRIC, body_kind, dimension, geometric_dim, hertz_dim
 from .film_setup import FluidParams, density, viscosity
 from .slow_time import SlowTimeRecords
 
@@ -207,7 +207,8 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD,
     """Body, transient film and stepper at t = 0 (the plane at h_start below the body)."""
     bodies, film, lift = _parts(v, comm)
     film.transient(v.scheme, lumped=v.lumped)
-    dim, up = geometric_dim(v.dim), np.eye(geometric_dim(v.dim))[geometric_dim(v.dim) - 1]
+    dim = geometric_dim(v.dim)
+    up = np.eye(dim)[dim - 1]
     y0 = float(lift.value[dim - 1])
     schedule = []
     if v.control == "speed":
@@ -237,7 +238,7 @@ def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, f
     if dim == 2:
         names.pop("symmetry_y")
     mu_s, lm = lame_parameters(v.E1, v.nu1)
-    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v.dim]
+    kind = body_kind(v.dim)
     Vs = speed_scale(v)
     K0 = squeeze_resistance(sphere, R, v.mu, h0, L)
     # momentum rows relative to the film's force, far below the body's stiffness

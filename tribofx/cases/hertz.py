@@ -48,6 +48,7 @@ from ..references import hertz_reference
 from .curved_bodies import (
     AXISYMMETRIC,
     CURVATURE_TOL,
+    body_kind,
     dimension,
     geometric_dim,
     hertz_dim,
@@ -169,7 +170,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD) -> Model:
         plane = rigid_surface_mesh(*plane_surface_mesh(dim, (-0.2 * R, 1.2 * R),
                                                        4 * h_fine))
     mu, lmbda = lame_parameters(v.E, v.nu)
-    kind = {2: "plane_strain", 3: "3d", AXISYMMETRIC: "axisymmetric"}[v.dim]
+    kind = body_kind(v.dim)
     body = Body(msh, ft, names, kind,
                 (v.material, {"mu": mu, "lmbda": lmbda}))
     body.add_dirichlet("loaded", np.zeros(dim))
