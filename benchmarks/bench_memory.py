@@ -27,7 +27,7 @@ about 5 min serially and 4 min on 2 ranks and peaks near 6 GB per process;
 mesh 1 (50,010 unknowns) takes under a minute; the ball at mesh 4 (141,590
 unknowns) takes about 5 min serially and 3 min on 2 ranks, at mesh 5 (970,804
 unknowns) 47 min serially (peak 4.0 GB) and 25 min on 2 ranks.  Results in
-``docs/architecture.md`` ("Memory per rank").
+``docs/solvers.md`` ("Memory per rank").
 """
 
 import argparse

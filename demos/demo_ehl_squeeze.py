@@ -16,7 +16,7 @@
 # $$ \int_{\Gamma_l} \frac{d}{dt}\big(\rho\theta h J_S\big)\,\delta p\, dS
 #    - \int_S \big(q - \rho\theta h\,\dot y_t\big)\cdot\nabla_S\delta p\, ds = 0, $$
 #
-#   (``forms/squeeze.py``; the derivation is in ``docs/architecture.md``);
+#   (``forms/squeeze.py``; the derivation is in ``docs/films.md``);
 # * integrate it in time with the core's ``Stepper`` (the film is its evolving
 #   interface: BDF2, started by one backward-Euler step);
 # * hold a body by the film alone: the cylinder's top carries a dead load and

@@ -37,7 +37,7 @@ after SNES is set up (fieldsplit index sets, near-nullspaces).
   GMRES iterations per Newton step).
 
 Memory per rank on 2 ranks against one (both paths, measured by phase):
-``docs/architecture.md``, "Memory per rank".
+``docs/solvers.md``, "Memory per rank".
 
 A run chooses its strategy and extra PETSc options with :func:`run_settings`
 (``tribofx run CASE --set solver=iterative --petsc-option KEY=VALUE``).  A key
@@ -211,7 +211,7 @@ class DirectSolver:
         package: factorisation package (``mumps``).
         blr: MUMPS block low-rank factorisation with dropping tolerance ``blr``
             (None: full-rank), the contribution blocks compressed too
-            (ICNTL(37) = 1: less memory, ``docs/architecture.md``).  A
+            (ICNTL(37) = 1: less memory, ``docs/solvers.md``).  A
             compressed LU is inexact: Newton then converges linearly at a rate
             ~``blr`` · cond; 1e-10 keeps it quadratic to the stopping
             tolerances here.
@@ -300,8 +300,8 @@ class LaggedSolver(DirectSolver):
     iterations (an active-set change, a large shape update), a failed solve or
     factorisation, or on a new matrix; otherwise the factor is kept across Newton
     iterations and steps.  A numeric LU costs ~N² on a 3D mesh and its two
-    triangular solves ~N^(4/3), so the trade grows with N (measurements, and a
-    cost-based rule that was tried and not kept: ``docs/architecture.md``).
+    triangular solves ~N^(4/3), so the trade grows with N (measurements:
+    ``docs/solvers.md``).
 
     The factor is a MUMPS block low-rank (BLR) LU with dropping tolerance ``blr``
     (default 1e-5): as a preconditioner it need not be exact, and the compressed
@@ -310,7 +310,7 @@ class LaggedSolver(DirectSolver):
     (the §5.3 groove at 230k: by 17 % serially, 26 % on 2 ranks) at no cost in
     time.  Measured on 2 ranks (the §5.3 groove, initial contact and one
     implicit step, 14 Newton iterations each): 50k unknowns 51 s against 60–63 s
-    full-rank; to T at 230k: ``docs/architecture.md``.
+    full-rank; to T at 230k: ``docs/solvers.md``.
 
     Args:
         blr: BLR dropping tolerance of the factor (None: full-rank LU).
@@ -455,7 +455,7 @@ class IterativeSolver:
         # for a reuse that never comes (the hierarchy is rebuilt at every set-up);
         # with it the ball at 142k on 2 ranks peaks 8-12 % lower, in the same time
         # within this machine's noise
-        # (docs/architecture.md, "Memory per rank")
+        # (docs/solvers.md, "Memory per rank")
         opts = PETSc.Options()
         if not opts.hasName(PRODUCT_CLEAR):
             opts[PRODUCT_CLEAR] = None  # type: ignore[index]  # petsc4py stub: no __setitem__

@@ -7,7 +7,7 @@ the other body (the master) in place of a rigid countersurface:
 
 * the lubrication surface is the slave's current boundary, S = γ_l
   (:func:`tribofx.forms.two_body_film.layer_surface_kinematics`; the derivation
-  and why this surface are in ``docs/architecture.md``, "A film between two
+  and why this surface are in ``docs/films.md``, "A film between two
   deformable bodies");
 * each node of Γ_l is projected onto the master's *current* boundary
   (:class:`tribofx.interfaces.master_side.MasterSide`: gathered on every rank, the
