@@ -84,7 +84,14 @@ class Body(ComponentBase):
             (then ``cell_tags`` is required).
         cell_tags: cell meshtags (for several materials).
         degree: Lagrange degree of u.
-        quadrature_degree: volume quadrature degree (None: automatic).
+        quadrature_degree: volume quadrature degree.  None: 2·degree where the
+            integrand varies over a cell (degree ≥ 2, or an axisymmetric body, whose
+            integrand carries r and u_r/r), the degree of the P-k mass and stiffness
+            on affine cells (the rational terms of the stored energy are integrated
+            to an error of a higher order than the discretisation's, Ciarlet's
+            2k − 2 rule); otherwise UFL's estimate (a P1 body in plane strain or 3D
+            has a cellwise constant integrand: one point is exact).  UFL's estimate
+            for the neo-Hookean P2 integrand is 17, for an axisymmetric P1 one 33.
         shape: carry the ALE shape field w (finite wear): True — w is an unknown
             with its auxiliary elasticity rows; "image" — w is the image of a
             reduced field owned by another component (e.g. a cross-section
@@ -150,6 +157,8 @@ class Body(ComponentBase):
         self.V = fem.functionspace(mesh, ("Lagrange", degree, (gdim,)))
         self.u = fem.Function(self.V, name=f"{name}_displacement" if name != "body"
                               else "displacement")
+        if quadrature_degree is None and (degree > 1 or kind == "axisymmetric"):
+            quadrature_degree = 2 * degree
         qd = {} if quadrature_degree is None else {"quadrature_degree": quadrature_degree}
         self.dx = ufl.Measure("dx", mesh, subdomain_data=cell_tags, metadata=qd)
         self.ds = ufl.Measure("ds", mesh, subdomain_data=facet_tags)
