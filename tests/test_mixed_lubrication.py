@@ -39,14 +39,28 @@ def _eval(fn, x):
 
 
 def test_fit_of_the_greenwood_tripp_integral():
-    """The F_{5/2} fit against the integral: within the deviations the forms document.
+    """The asperity law is Arcoumanis et al.'s fit of F_{5/2}, and errs as that fit does.
 
-    −11 % at H = 0, −3.5 % at 1, −9 % at 2 (quadrature exact to 1e-8); the fit
-    vanishes at H = 4 with its first six derivatives (Newton's tangent stays smooth).
+    * The UFL law against the published formula 4.4086e-5 (4 − H)^6.804, 0 for H ≥ 4,
+      evaluated apart in NumPy (H from 0 to 5, σ = 0.7 µm, KE = 3 MPa): equal to
+      round-off, 1e-12 (one power and two products in double precision).
+    * The fit's own error against the integral F_{5/2} (``greenwood_tripp_f52``, adaptive
+      quadrature exact to 1e-8): the law deviates from the integral by exactly the
+      deviation of the published formula, to the quadrature's 1e-8 (−11 % at H = 0,
+      −3.5 % at 1, −9 % at 2: the fit's modelling error, which the forms document).
     """
-    for H, dev in ((0.0, 0.11), (1.0, 0.036), (2.0, 0.093)):
+    A, Hc, n = mixed.GT_FIT
+    assert (A, Hc, n) == (4.4086e-5, 4.0, 6.804)     # Arcoumanis et al. (1997), as cited
+    sigma, KE = 0.7e-3, 3.0
+    for H in (0.0, 0.5, 1.0, 2.0, 3.0, 3.9, 4.0, 5.0):
+        law = _eval(lambda h: mixed.greenwood_tripp_pressure(h, sigma, KE), H * sigma)
+        formula = KE * 4.4086e-5 * max(4.0 - H, 0.0) ** 6.804
+        assert law == pytest.approx(formula, rel=1e-12, abs=1e-300), H
+    for H in (0.0, 1.0, 2.0):
         fit = _eval(lambda c: mixed.greenwood_tripp_pressure(c, 1.0, 1.0), H)
-        assert abs(fit / greenwood_tripp_f52(H) - 1) < dev
+        published = 4.4086e-5 * (4.0 - H) ** 6.804 / greenwood_tripp_f52(H) - 1
+        print(f"H = {H}: fit / F_5/2 - 1 = {fit / greenwood_tripp_f52(H) - 1:+.4f}")
+        assert abs(fit / greenwood_tripp_f52(H) - 1 - published) < 1e-8, H
     # the quadrature itself: F_{5/2}(0) = 2^{3/4} Γ(7/4)/√(2π)
     assert greenwood_tripp_f52(0.0) == pytest.approx(2**0.75 * math.gamma(1.75)
                                                      / math.sqrt(2 * math.pi), rel=1e-8)
