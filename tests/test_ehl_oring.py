@@ -289,12 +289,25 @@ def test_parallel_matches_serial():
 def test_inverse_hydrodynamic_relations(formulation, cavitation):
     """Inverse theory of lubrication (Blok 1963) on the computed film, density 4.
 
-    For the steady Reynolds equation with constant flux q = ½U h − h³p'/(12μ),
-    at the inlet point of maximum pressure gradient w (p'' = 0, h' ≠ 0):
-    h* = 3q/U and w = 2μU/h*², hence the film of the pressure plateau
-    h_c = 2q/U = sqrt(8μU/(9w)).  w is the largest nodal difference quotient of p
-    on the inlet side; 10 % covers the P1 difference quotient and the mild
-    oscillations of density 4 (measured: 3 %).
+    For the steady Reynolds equation with constant flux q = ½U h − h³p'/(12μ), p' as a
+    function of h peaks at h* = 3q/U with w = max p' = 2μU/h*², hence the film of the
+    pressure plateau (p' = 0) h_c = 2q/U = sqrt(8μU/(9w)) and h* = 1.5 h_c.  On the
+    discrete film: w is the largest difference quotient of p on the inlet side (element
+    j), q the median cell flux of the loaded zone.  Tolerances, from the data of the
+    run:
+
+    * the flux is constant only to its spread s (the cells' (max − min)/median: the
+      displacement solid's zig-zag, 19 %; the mixed solid's, 0.3 %);
+    * the element j samples p'(h) near its maximum, where p'/w = 1 − 3ε² + O(ε³) with
+      ε = (h − h*)/h*; the true maximum lies within one element of j's midpoint, so
+      ε ≤ ε_j = |h_{j+1} − h_j|/h*, w is low by at most 3ε_j² and h_c high by 1.5ε_j²;
+    * h at j's midpoint is within |h_{j+1} − h_j| = ε_j h* of h*;
+    * p' = 0 lies within the two elements beside the node k of the largest p, where
+      h = 2q/U to the spread; h_k differs from it by at most the larger of its two
+      nodal differences.
+
+    (The displacement solid's zig-zag makes its bounds wide, 25–66 %; the mixed solid's
+    are 0.9–20 %.)
     """
     v = values(mesh=4, formulation=formulation, cavitation=cavitation)
     seal = build(v, v.U)
@@ -306,10 +319,17 @@ def test_inverse_hydrodynamic_relations(formulation, cavitation):
     gp = np.diff(p) / np.diff(z)
     inlet = 0.5 * (z[1:] + z[:-1]) < z[np.argmax(p)]      # outstroke: sealed side
     j = int(np.argmax(np.where(inlet, gp, -np.inf)))
+    k = int(np.argmax(p))
     h_c = inverse_film(v.mu, v.U, gp[j])
-    assert abs(m["h_mean"] - h_c) < 0.1 * h_c, (m["h_mean"], h_c)
-    assert abs(2 * m["flux"] / v.U - h_c) < 0.1 * h_c, (m["flux"], h_c)
-    assert abs(0.5 * (h[j] + h[j + 1]) - 1.5 * h_c) < 0.1 * 1.5 * h_c
+    h_q = 2 * m["flux"] / v.U                  # the plateau film from the flux
+    s = m["flux_spread"]
+    eps = abs(h[j + 1] - h[j]) / (1.5 * h_c)
+    dh_k = max(abs(h[k + 1] - h[k]), abs(h[k] - h[k - 1])) / h_q
+    print(f"{formulation}/{cavitation}: h_c {h_c:.4e} (w), {h_q:.4e} (q); eps {eps:.3f}, "
+          f"spread {s:.4f}")
+    assert abs(h_q / h_c - 1) <= 1.5 * eps**2 + s, (h_q, h_c, eps, s)
+    assert abs(0.5 * (h[j] + h[j + 1]) / (1.5 * h_c) - 1) <= eps + 1.5 * eps**2 + s
+    assert abs(h[k] / h_q - 1) <= dh_k + s, (h[k], h_q, dh_k, s)
 
 
 @pytest.mark.slow
