@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     Orders = tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
 
 __all__ = ["block_taylor_orders", "block_vector", "border_taylor_orders", "exact_tangent",
-           "form_taylor_orders",
+           "form_taylor_orders", "newton_is_quadratic",
            "owned_arrays", "penalty_film_directions", "residual_floor", "smooth_direction",
            "taylor_orders"]
 
@@ -225,6 +225,27 @@ def exact_tangent(orders: Sequence[float] | npt.NDArray[np.float64],
         return True
     first_order = np.all(np.abs(orders - 1.0) < 0.2)
     return bool(np.max(remainders) < floor and not first_order)
+
+
+def newton_is_quadratic(residuals: Sequence[float], floor: float,
+                        factor: float = 10.0) -> bool:
+    """Whether a Newton residual history converges quadratically down to its round-off.
+
+    The residuals below ``factor`` × ``floor`` (:func:`residual_floor`, the residual's
+    own evaluation error) are dropped: they say nothing about the order.  Of the rest,
+    every observed order log(r_{k+1}/r_k)/log(r_k/r_{k−1}) must exceed 1.5, the middle
+    between a linearly convergent iteration (an inexact tangent: order 1, r_{k+1}/r_k
+    constant) and a quadratic one (order 2): each step is nearer the quadratic rate
+    than the linear one in the logarithm of its contraction.  At least one order
+    must remain (three residuals above the floor).
+    """
+    r = np.asarray(residuals, dtype=float)
+    r = r[r > factor * floor]
+    if len(r) < 3:
+        return False
+    lr = np.log(r)
+    orders = (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
+    return bool(np.all(orders > 1.5))
 
 
 def form_taylor_orders(R: ufl.Form, u: fem.Function, du: fem.Function, eps0: float = 1e-3,
