@@ -21,10 +21,10 @@ unchanged; its stationarity in (u, p) is the mixed residual
 (:func:`mixed_virtual_work`) and its second derivative the (symmetric) tangent.
 With equal-order P1 u and p the β term (Brezzi–Pitkäranta, O(h_K²) and so
 without effect on the rates of P1 displacements) makes the pair inf–sup stable:
-linear triangles and tetrahedra no longer lock when K/G is large (the O-ring's
-κ = 1000 G), which is what makes the contact and film pressures on their
-boundaries zig-zag node to node (a locked P1 surface cannot take the smooth
-shape the film or the contact asks of it).
+linear triangles and tetrahedra do not lock when K/G is large (the O-ring's
+κ = 1000 G).  Locking is what makes the contact and film pressures on the
+boundaries of a P1 displacement solid zig-zag node to node (a locked P1 surface
+cannot take the smooth shape the film or the contact asks of it).
 """
 
 from __future__ import annotations

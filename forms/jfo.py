@@ -78,15 +78,15 @@ def jfo_on_surface(
     Gauss-point product of θ and h, whose cross term −ΔθΔh/6 per element drains
     the cavitated node in front of a reformation (a starved inlet filling: the
     node is asked to dry, λ > 1); in the full film both rules are second order.
-    At a rupture the vertex rule moved the O-ring's h_min at its outlet by 21 % at
+    At a rupture the vertex rule moves the O-ring's h_min at its outlet by 21 % at
     density 2: set ω = 1 only where films reform (the seal's instroke, whose
     outlet is flooded), 0 where they rupture.  In the full film the share is
     ω(1 − s), s the full-film fraction of :func:`~forms.reynolds.jfo_film_fraction`
     with δ = ``VERTEX_DELTA``: across a front where p and λ both vanish over
     several nodes (a film that empties at ambient pressure) s with its default δ
-    = 1e-6 jumps between the rules, and Newton cycled (the seal's instroke near
-    its reversal, measured); with ω alone (the full film on the vertex rule too)
-    the line search stalled in the first instroke.
+    = 1e-6 jumps between the rules and Newton cycles (the seal's instroke near
+    its reversal, measured); the share ω alone (the full film on the vertex rule
+    too) stalls the line search in the first instroke.
 
     ``inflow`` (ds_in, c_in): the open ends of :func:`jfo_inflow` (supply c_in, p = 0
     weakly) at the end points of ``ds_in``.

@@ -12,7 +12,7 @@ rate in the shape-multiplier rows, ‖b‖ = 2.9·10⁻⁵ mm, so rtol 10⁻¹�
 ‖r‖ ≤ 2.9·10⁻¹⁵, while MUMPS's LU of the same system leaves 1.4·10⁻¹² in the
 displacement rows (row sums 1.6·10⁷ N/mm, ‖x‖ = 0.016 mm: ε‖A‖‖x‖ ≈ 5·10⁻¹¹).
 GMRES's recurrence residual goes below what its true residual can reach; it
-stagnated (996 iterations) or broke down at its restart, depending on the CPU's
+stagnates (996 iterations) or breaks down at its restart, depending on the CPU's
 round-off.  The preconditioner is not the cause: asked for rtol 10⁻⁹ the same
 solve takes 64 iterations.
 

@@ -25,7 +25,7 @@ def weak_callback[**P, R](method: Callable[P, R]) -> Callable[P, R]:
     bound method of the object that owns the SNES would make a cycle that is
     never collected, and every mesh, form and PETSc object of the problem —
     with the MPI communicators they duplicate — would leak (MPICH has 2048
-    context ids per process; the test suite ran out of them).
+    context ids per process, which a test-suite run without weak callbacks exhausts).
     """
     ref = weakref.WeakMethod(method)
 

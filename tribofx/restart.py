@@ -51,7 +51,7 @@ __all__ = ["SweepJournal", "check_parameters", "open_history", "series_stem", "s
 
 #: parameters that select how the problem is solved, not which problem
 SOLVER_PARAMETERS = ("solver", "force_control")
-# parameters added after checkpoints were written, with the value the older runs used
+# parameters a checkpoint may not record: missing, they count as these values (the defaults)
 ADDED_PARAMETERS = {"tol_per": "unit_step", "error_filter": False, "controller": "i"}
 
 

@@ -92,7 +92,7 @@ class StepController(ABC):
         return {"dt": self.dt, "cuts": self.cuts, "err_prev": self.err_prev}
 
     def restore(self, state: dict[str, Any]) -> None:
-        """Restore a :meth:`state` (``err_prev`` absent in checkpoints before the PI rule)."""
+        """Restore a :meth:`state` (one without ``err_prev``: no PI memory)."""
         self.dt, self.cuts = state["dt"], state["cuts"]
         self.err_prev = state.get("err_prev")
 

@@ -170,7 +170,7 @@ Z = 2  # the plane's normal direction, index of its offset
 
 
 #: largest speed ratio of one step of a speed march (a larger one starts the held-load
-#: secant far from the new film: at 40 N the step 30U → U failed and was cut, 40 trials
+#: secant far from the new film: at 40 N the step 30U → U fails and is cut, at 40 trials
 #: each time; steps of ratio 2 converge in 2–3 position trials each)
 MAX_SPEED_RATIO = 2.0
 
@@ -584,12 +584,12 @@ def _report(steps: list[dict[str, Any]], speed: list[dict[str, Any]], v: Params,
     keys = ("h_central", "h_min", "x_h_min", "y_h_min", "p_max", "friction_coefficient",
             "couette_friction_coefficient", "plane_friction_coefficient", "clearance",
             "film_oscillation")
-    for m in steps:  # a journal written before film_oscillation was measured
+    for m in steps:  # a journal without film_oscillation: from its centre-line profile
         if "film_oscillation" not in m:
             m["film_oscillation"] = (film_oscillation(m["profile"]["h_axis"],
                                                           m["profile"]["p_axis"])
                                      if "profile" in m else math.nan)
-    for m in steps + speed:   # ... or before the force on the plane was
+    for m in steps + speed:   # ... or without the force on the plane: NaN
         m.setdefault("plane_friction_coefficient", math.nan)
     if steps:
         for k in keys:

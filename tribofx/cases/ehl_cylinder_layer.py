@@ -238,7 +238,6 @@ class Params(FluidParams):
 
 
 #: variants of ``compare``: (summary key prefix, plot label, parameter overrides)
-#: variants of ``compare``: (name, label, the parameters it changes)
 COMPARE: dict[str, tuple[tuple[str, str, dict[str, Any]], ...]] = {
     "linear": (("finite", "finite deformation", {"model": "finite"}),
                ("linear", "geometrically linear", {"model": "linear"})),

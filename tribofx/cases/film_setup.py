@@ -65,8 +65,8 @@ def formulation_param(default: str) -> Any:
 def quadrature_param() -> Any:
     """Return the ``quadrature`` field of a film case: the rule of the film's integrals.
 
-    Offered by ``ehl-ball`` (verified there); the plane-strain layer and the O-ring
-    did not converge with the vertex rule (not investigated yet).
+    Offered by ``ehl-ball`` only (verified there): with the vertex rule Newton does
+    not converge on the plane-strain layer and the O-ring, which keep the Gauss rule.
 
     ``vertex`` evaluates h, its conductance h³ and every film term at the nodes of
     Γ_l, where the P1 surface is exact: a Gauss point inside a facet sees the

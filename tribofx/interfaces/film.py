@@ -625,7 +625,7 @@ class Film(ReynoldsFilm):
         elements: p known to an ulp or so (≈ eps |p|, whatever the iteration)
         leaves ≈ 2 eps K |p| to 4 eps K |p| per row.  Where the film is thick this
         exceeds rtol·U·h_ref: the seal's flank opens to h = 0.84 mm in the
-        instroke (K ≈ 3.6e9 mm³/(MPa·s) at p_s = 1 MPa), whose rows stopped at
+        instroke (K ≈ 3.6e9 mm³/(MPa·s) at p_s = 1 MPa), whose rows stall at
         6.5e-7 mm³/s against a tolerance of 6.5e-7 (measured).  Returns
         4 eps max K |p| over the nodes (every rank), added to the p tolerance of
         the step (:meth:`begin_step`).

@@ -13,8 +13,8 @@ Residual contributions (all built by :mod:`tribofx.forms`):
   Nanson vector of the worn boundary at the step's end (:func:`tribofx.forms.ale.nanson_vector`):
   normal to the current worn boundary, so that the tangential positions of its nodes (the
   ALE's freedom) are a function of the worn shape alone, not of the step history (along
-  the swept vector below they drift by O(Δt) from step to step: BDF2's nodal error was
-  first order under cycles, its shape error second order);
+  the swept vector below they drift by O(Δt) from step to step, which makes BDF2's nodal
+  error first order under cycles while its shape error stays second order);
 * the row of the multiplier ζ (P1 on the contact submesh, vertex quadrature):
   the discrete shape evolution law (28),
 
