@@ -122,6 +122,7 @@ class Body(ComponentBase):
     _w_bcs: list[fem.DirichletBC]
     _loads: list[ufl.Form]
     _multiplier_fixes: list[tuple[npt.NDArray[np.int32], int | None]]
+    _laws: dict[int | None, tuple[str, dict[str, Any]]]
 
     def __init__(self, mesh: dmesh.Mesh, facet_tags: dmesh.MeshTags,
                  names: Mapping[str, int | tuple[int, ...]],
@@ -152,6 +153,12 @@ class Body(ComponentBase):
         self.materials = material if isinstance(material, dict) else {None: material}
         if None not in self.materials and cell_tags is None:
             raise ValueError("several materials need cell_tags")
+        # the forms take the numbers as Constants: a body of other moduli reuses the
+        # compiled kernels (UFL would bake each value into a new kernel)
+        self._laws = {tag: (law, {k: fem.Constant(mesh, float(x))
+                                  if isinstance(x, (int, float)) else x
+                                  for k, x in params.items()})
+                      for tag, (law, params) in self.materials.items()}
         gdim = mesh.geometry.dim
         self.gdim = gdim
         self.V = fem.functionspace(mesh, ("Lagrange", degree, (gdim,)))
@@ -321,7 +328,7 @@ class Body(ComponentBase):
         if self.p is not None:
             return self._mixed()[0]
         R = 0
-        for tag, (law, params) in self.materials.items():
+        for tag, (law, params) in self._laws.items():
             dx = self.dx if tag is None else self.dx(tag)
             if self.w is not None:
                 R += ale.internal_virtual_work_worn(self.u, self.w, self.v, self.kind, law,
@@ -334,7 +341,7 @@ class Body(ComponentBase):
         """(R_u, R_p) of the mixed formulation summed over the materials."""
         R_u = R_p = 0
         q = ufl.TestFunction(self.Q)
-        for tag, (law, params) in self.materials.items():
+        for tag, (law, params) in self._laws.items():
             dx = self.dx if tag is None else self.dx(tag)
             ru, rp = hf.mixed_virtual_work(self.u, self.p, self.v, q, self.kind, law, params,
                                            dx, self._beta)
@@ -344,7 +351,7 @@ class Body(ComponentBase):
     def strain_energy(self) -> float:
         """Return the stored energy ∫ ψ(F) dV of the current state (N·mm; N·mm/mm in 2D)."""
         E = 0
-        for tag, (law, params) in self.materials.items():
+        for tag, (law, params) in self._laws.items():
             dx = self.dx if tag is None else self.dx(tag)
             if self.w is not None:
                 E += ale.stored_energy_worn(self.u, self.w, self.kind, law, params, dx)
@@ -370,7 +377,7 @@ class Body(ComponentBase):
         if self.p is not None:
             out.append((self.p, self._mixed()[1]))
         if self.shape_is_unknown:
-            mu_a, lmbda_a = self._aux
+            mu_a, lmbda_a = (fem.Constant(self.mesh, c) for c in self._aux)
             assert self.w is not None   # a shape unknown is a Function
             out.append((self.w, ale.aux_elasticity(self.w, ufl.TestFunction(self.Vw), mu_a,
                                                    lmbda_a, self.dx)))

@@ -94,12 +94,15 @@ class AnalyticObstacle(_RigidMotion):
         self.point = np.asarray(point, dtype=float)
         self._init_motion(mesh, gdim)
         self._normal = None if normal is None else ufl.as_vector(list(map(float, normal)))
-        self._radius = radius
+        # point and radius as Constants: another size or position reuses the compiled
+        # kernels of every form and expression that sees the obstacle
+        self._point = fem.Constant(mesh, self.point)
+        self._radius = None if radius is None else fem.Constant(mesh, float(radius))
         self._axis = None if axis is None else ufl.as_vector(list(map(float, axis)))
 
     def geometry(self, x: ufl.core.expr.Expr) -> ContactGeometry:
         """Closest-point geometry of the (translated) obstacle at the UFL position ``x``."""
-        c = ufl.as_vector(list(map(float, self.point))) + self.offset
+        c = self._point + self.offset
         if self.shape == "plane":
             return cf.plane_countersurface(x, c, self._normal)
         if self.shape == "cylinder":

@@ -104,8 +104,10 @@ class Contact(ComponentBase):
         self.geometry: ContactGeometry = self.counterpart.geometry(body.position())
         self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
         self.friction_law = law.bind(msh)       # μ(p), p = −T_N: Coulomb's μ by default
-        self.rho_n = rho_n
-        self.rho_t = rho_t if rho_t is not None else rho_n
+        self.rho_n = float(rho_n)
+        self.rho_t = float(rho_t if rho_t is not None else rho_n)
+        # in the forms as Constants: a case run at another ρ reuses the compiled kernels
+        self._rho = (fem.Constant(body.mesh, self.rho_n), fem.Constant(body.mesh, self.rho_t))
         self.lam_t = self.slip = None
         if friction > 0:
             self.lam_t = fem.Function(self.Vs, name="friction_traction_nominal")
@@ -131,7 +133,7 @@ class Contact(ComponentBase):
     @property
     def law(self) -> dict[str, Any]:
         """Keyword arguments of :func:`tribofx.forms.contact.contact_tractions`."""
-        return dict(rho_n=self.rho_n, lam_t=self.lam_t, rho_t=self.rho_t, slip=self.slip,
+        return dict(rho_n=self._rho[0], lam_t=self.lam_t, rho_t=self._rho[1], slip=self.slip,
                     mu=self.friction_law)
 
     def tractions(self) -> tuple[ufl.core.expr.Expr, ufl.core.expr.Expr | None]:
@@ -164,7 +166,7 @@ class Contact(ComponentBase):
         mu_t = ufl.TestFunction(self.Vs) if self.lam_t is not None else None
         R_u, R_n, R_t = cf.augmented_lagrangian_contact(
             self.body.u, self.body.v, self.geometry, self.lam_n, ufl.TestFunction(self.Q),
-            self.rho_n, self.dsc, self.lam_t, mu_t, self.rho_t, self.slip, self.friction_law,
+            self._rho[0], self.dsc, self.lam_t, mu_t, self._rho[1], self.slip, self.friction_law,
             weight=self.surface.weight)
         out: list[tuple[fem.Function, ufl.Form]] = [(self.body.u, R_u), (self.lam_n, R_n)]
         if R_t is not None:

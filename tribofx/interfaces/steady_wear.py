@@ -259,7 +259,7 @@ class SteadyWear(ComponentBase):
     def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Auxiliary elasticity with the ζ term on w₂'s row; eq. (28) without its rate on ζ's."""
         dw, eta = ufl.TestFunction(self.V2), ufl.TestFunction(self.Q2)
-        mu_a, lmbda_a = self._aux
+        mu_a, lmbda_a = (fem.Constant(self.w2.function_space.mesh, c) for c in self._aux)
         R_w = (ale.aux_elasticity(self.w2, dw, mu_a, lmbda_a, self.dx2)
                + ale.shape_multiplier_work(self.zeta, dw, self.a_end, self.dsl))
         R_z = wf.shape_update_residual(self.w2, self.w2n, self.a, 0.0, 0.0, eta, self.dsl,

@@ -240,11 +240,13 @@ class TwoBodyContact(KernelAssembly, TwoBodyOutputs):
 
     def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
         """Return the linear part −∫(1/ρ) λ·δλ dS of the constraint rows (rest: kernel)."""
+        # ρ as Constants: a run at another ρ reuses the compiled kernels
+        rho_n, rho_t = (fem.Constant(self.slave.mesh, r) for r in (self.rho_n, self.rho_t))
         out = [(self.lam_n, cf.multiplier_regularisation(
-            self.lam_n, ufl.TestFunction(self.Q), self.rho_n, self.dsc))]
+            self.lam_n, ufl.TestFunction(self.Q), rho_n, self.dsc))]
         if self.lam_t is not None:
             out.append((self.lam_t, cf.multiplier_regularisation(
-                self.lam_t, ufl.TestFunction(self.Vs), self.rho_t, self.dsc)))
+                self.lam_t, ufl.TestFunction(self.Vs), rho_t, self.dsc)))
         return out
 
     def bcs(self) -> list[fem.DirichletBC]:
