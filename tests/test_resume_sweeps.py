@@ -35,12 +35,12 @@ from tribofx.output import bp4_steps
 # after point n or n + 1 (the stop check follows each write, the file is seen first);
 # tolerance)
 LAYER = ["run", "ehl-cylinder-layer", "--set", "mesh=0", "--set", "W=0.5", "--set", "steps=3",
-         "--set", "speeds=2000,4000", "--quiet"]
+         "--quiet"]
 CASES = {
-    # a load march (3 loads to 0.5 N/mm), then two speeds: the stop falls in the load leg ...
-    "ehl-cylinder-layer": (LAYER, 1, 1e-6),
-    # ... or after the last load or the first speed (the speed legs resumed)
-    "ehl-cylinder-layer-speeds": (LAYER, 3, 1e-6),
+    # a load march (3 loads to 0.5 N/mm), then a speed: the stop falls in the load leg ...
+    "ehl-cylinder-layer": (LAYER + ["--set", "speeds=2000"], 1, 1e-6),
+    # ... or, with two speeds, after the last load or the first speed (the speed legs resumed)
+    "ehl-cylinder-layer-speeds": (LAYER + ["--set", "speeds=2000,4000"], 3, 1e-6),
     # three loads from Hertz states, then two speed marches: stops after the last load
     # or the first speed
     "ehl-ball": (["run", "ehl-ball", "--set", "W=3", "--set", "steps=3", "--set", "mesh=0",
