@@ -34,6 +34,8 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from petsc4py import PETSc
 
+from .reports import convergence_orders
+
 if TYPE_CHECKING:
     import numpy.typing as npt
     import ufl
@@ -240,12 +242,8 @@ def newton_is_quadratic(residuals: Sequence[float], floor: float,
     must remain (three residuals above the floor).
     """
     r = np.asarray(residuals, dtype=float)
-    r = r[r > factor * floor]
-    if len(r) < 3:
-        return False
-    lr = np.log(r)
-    orders = (lr[2:] - lr[1:-1]) / (lr[1:-1] - lr[:-2])
-    return bool(np.all(orders > 1.5))
+    orders = convergence_orders(r[r > factor * floor], floor=0.0)
+    return bool(orders.size and np.all(orders > 1.5))
 
 
 def form_taylor_orders(R: ufl.Form, u: fem.Function, du: fem.Function, eps0: float = 1e-3,
