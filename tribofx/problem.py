@@ -45,7 +45,6 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
-from ufl.algorithms import expand_derivatives
 
 from . import pattern, solvers
 from .checkpoint import assign_fields, field_arrays
@@ -109,9 +108,16 @@ def _block_layout(u: Sequence[fem.Function]) -> tuple[tuple[int, ...], tuple[int
     return owned, tuple(int(owned[-1] + x) for x in np.cumsum([0, *ghost]))
 
 
-def _nonzero_or_none(a: ufl.Form) -> ufl.Form | None:
-    a = expand_derivatives(a)
-    return None if a.empty() else a
+def _block(F: ufl.Form, u: fem.Function) -> ufl.Form | None:
+    """Return the Jacobian block dF/du, or None where F does not contain u.
+
+    Left unexpanded: DOLFINx expands the derivative when it compiles the form (on a
+    JIT cache miss); expanding it here as well cost a second traversal of every
+    block of the (large) residual forms at each Problem's creation.
+    """
+    if u not in F.coefficients():
+        return None
+    return ufl.derivative(F, u, ufl.TrialFunction(u.function_space))
 
 
 def _unique[T](items: Iterable[T]) -> list[T]:
@@ -219,8 +225,7 @@ class Problem(NewtonControl):
 
     def _create_snes(self) -> None:
         """SNES of the blocked UFL system (public NonlinearProblem), residual wrapped."""
-        J = [[_nonzero_or_none(ufl.derivative(Fi, uj, ufl.TrialFunction(uj.function_space)))
-              for uj in self.u] for Fi in self.residual_forms]
+        J = [[_block(Fi, uj) for uj in self.u] for Fi in self.residual_forms]
         # (DOLFINx's annotation omits the None of a zero block, which it takes)
         nlp = fem_petsc.NonlinearProblem(
             self.residual_forms, self.u, J=J, bcs=self.bcs, kind="mpi",  # type: ignore[arg-type]

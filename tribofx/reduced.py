@@ -44,7 +44,7 @@ from mpi4py import MPI
 from petsc4py import PETSc
 
 from .lifetimes import weak_callback
-from .problem import Problem, _nonzero_or_none
+from .problem import Problem, _block
 
 if TYPE_CHECKING:
     class LinearMap(Protocol):
@@ -139,12 +139,12 @@ class ReducedProblem(Problem):
     def _add_jacobian(self, key: tuple[str, int], j: int, F: ufl.Form, uj: fem.Function,
                       by_image: dict[int, Reduction], kw: dict[str, Any]) -> None:
         """Jacobian block of form F in unknown j: direct, and through uj's image."""
-        direct = _nonzero_or_none(ufl.derivative(F, uj, ufl.TrialFunction(uj.function_space)))
+        direct = _block(F, uj)
         red = by_image.get(id(uj))
         via = None
         if red is not None:
             img = red.image
-            via = _nonzero_or_none(ufl.derivative(F, img, ufl.TrialFunction(img.function_space)))
+            via = _block(F, img)
         if direct is not None:
             self._J[key, j, "direct"] = fem.form(direct, **kw)
         if via is not None:
