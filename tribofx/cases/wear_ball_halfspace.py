@@ -82,17 +82,15 @@ def surface_data(contact: Contact, root: int) -> dict[str, npt.NDArray[Any]] | N
 
 def surface_data(contact: Contact, root: int | None = None
                  ) -> dict[str, npt.NDArray[Any]] | None:
-    """Top-surface nodes: initial (x, y), nominal pressure p = −λ, active (p > rtol·G).
+    """Top-surface nodes: initial (x, y), nominal pressure p = −λ, active (in contact).
 
-    A node is in contact where its pressure exceeds the traction the contact rows are
-    solved to, rtol·G (:meth:`Contact.tolerances`): λ of an open node is zero only to
-    round-off (values of 1e-60 MPa and less, of either sign).
+    ``active`` is the contact's own (:meth:`Contact.nodal_data`: the augmented traction
+    T_N < 0), not the sign of λ, which at an open node is zero only to round-off.
     Owned nodes (``root=None``) or all nodes gathered on rank ``root`` (None elsewhere).
     """
     n = contact.Q.dofmap.index_map.size_local
-    p = np.maximum(-contact.lam_n.x.array[:n], 0.0)
-    d = {"X": contact.X_sub[:n, :2], "p": p,
-         "active": p > contact.rtol * contact.body.stiffness}
+    d = {"X": contact.X_sub[:n, :2], "p": np.maximum(-contact.lam_n.x.array[:n], 0.0),
+         "active": contact.nodal_data()["active"]}
     if root is None:
         return d
     parts = contact.body.mesh.comm.gather(d, root=root)
