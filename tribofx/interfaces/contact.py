@@ -104,10 +104,9 @@ class Contact(ComponentBase):
         self.geometry: ContactGeometry = self.counterpart.geometry(body.position())
         self.friction, self.slip_kind, self.dtau = float(friction), slip, float(dtau)
         self.friction_law = law.bind(msh)       # μ(p), p = −T_N: Coulomb's μ by default
-        self.rho_n = float(rho_n)
-        self.rho_t = float(rho_t if rho_t is not None else rho_n)
-        # in the forms as Constants: a case run at another ρ reuses the compiled kernels
-        self._rho = (fem.Constant(body.mesh, self.rho_n), fem.Constant(body.mesh, self.rho_t))
+        # ρ_N, ρ_T as Constants: a case run at another ρ reuses the compiled kernels
+        self._rho = (fem.Constant(body.mesh, float(rho_n)),
+                     fem.Constant(body.mesh, float(rho_t if rho_t is not None else rho_n)))
         self.lam_t = self.slip = None
         if friction > 0:
             self.lam_t = fem.Function(self.Vs, name="friction_traction_nominal")
@@ -130,6 +129,16 @@ class Contact(ComponentBase):
         self.commit()
 
     # -- laws ------------------------------------------------------------------
+    @property
+    def rho_n(self) -> float:
+        """Normal augmentation parameter ρ_N (MPa/mm)."""
+        return float(self._rho[0].value)
+
+    @property
+    def rho_t(self) -> float:
+        """Tangential augmentation parameter ρ_T."""
+        return float(self._rho[1].value)
+
     @property
     def law(self) -> dict[str, Any]:
         """Keyword arguments of :func:`tribofx.forms.contact.contact_tractions`."""
@@ -219,7 +228,7 @@ class Contact(ComponentBase):
         traction error by rtol·G (G the body's shear modulus); it is kept above
         the round-off of the positions, 100 ε L.
         """
-        atol = max(self.rtol * self.body.stiffness / float(self.rho_n),
+        atol = max(self.rtol * self.body.stiffness / self.rho_n,
                    100 * np.finfo(float).eps * self.body.length)
         ones = ufl.as_vector([1.0] * self.body.gdim)
         out = {self.lam_n: BlockTolerance(atol, "mm", ufl.TestFunction(self.Q) * self.dsc)}
