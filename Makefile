@@ -27,12 +27,13 @@ test: setup
 	$(PY) -m pytest -q -m mpiexec $(PYTEST_ARGS)
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
-# the same three passes with the slow tests included (the 2-rank pass runs the slow tests
-# marked mpi too, e.g. the rough films' serial-against-parallel comparisons)
+# the tests marked slow (the full versions of checks the default run makes in a cheap
+# form), in the same three passes; CI runs it after `make test`.  A few long tests sit
+# in a few files, so the serial pass hands out tests, not files, to the two workers
 test-slow: setup
-	$(PY) -m pytest -q $(XDIST) -m "not mpiexec" --runslow $(PYTEST_ARGS)
-	$(PY) -m pytest -q -m mpiexec --runslow $(PYTEST_ARGS)
-	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider --runslow $(PYTEST_ARGS)
+	$(PY) -m pytest -q -n 2 --dist load -m "slow and not mpiexec" --runslow --durations=15 $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m "slow and mpiexec" --runslow $(PYTEST_ARGS)
+	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m "slow and mpi" -p no:cacheprovider --runslow $(PYTEST_ARGS)
 
 lint: setup
 	$(VENV)/bin/ruff check .

@@ -199,7 +199,8 @@ def arc_halvings(v: Params) -> int:
     instroke's air-side reformation front sits on one node where p = λ = 0
     (degenerate complementarity), and the semismooth Newton iteration of the first
     instroke can cycle there (measured: the rough seal stops at t ≈ 42 ms); at
-    12.5 µm both schemes run whole cycles (tests/test_oring_cycle.py).
+    12.5 µm both schemes run whole cycles (BDF2: tests/test_oring_cycle.py; backward
+    Euler: demos/demo_oring_cycle.py without ``--quick``).
     """
     if v.arc_refine is not None:
         return v.arc_refine
