@@ -32,7 +32,8 @@ test: setup
 # in a few files, so the serial pass hands out tests, not files, to the two workers
 test-slow: setup
 	$(PY) -m pytest -q -n 2 --dist load -m "slow and not mpiexec" --runslow --durations=15 $(PYTEST_ARGS)
-	$(PY) -m pytest -q -m "slow and mpiexec" --runslow $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m "slow and mpiexec" --runslow $(PYTEST_ARGS); \
+	  status=$$?; [ $$status -eq 0 ] || [ $$status -eq 5 ]   # 5: none selected (none today)
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m "slow and mpi" -p no:cacheprovider --runslow $(PYTEST_ARGS)
 
 lint: setup
