@@ -67,7 +67,7 @@ def test_film_matches_hamrock_dowson(light_load):
           f"extrapolated h_c = {h_ext:.5g} mm ({100 * d_x:+.1f} %)")
     # equilibrium of the solved state (not the load controller's own stopping test): the
     # reaction of the held mid-plane, from the bulk stresses, balances the film force
-    reaction, bound = _mid_plane_reaction(run, v), _equilibrium_bound(run, m["W"])
+    reaction, bound = _mid_plane_reaction(run), _equilibrium_bound(run, m["W"])
     print(f"mid-plane reaction {reaction!r} N, film force {m['W']!r} N, bound {bound:.2e}")
     assert abs(reaction + m["W"]) <= bound
     # refinement thickens the central film (under-resolved inlet on coarse meshes)
@@ -420,7 +420,7 @@ def _equilibrium_bound(run, W):
     return 2 * math.sqrt(n_z) * b.norm() + 1e-12 * abs(W)
 
 
-def _mid_plane_reaction(run, v):
+def _mid_plane_reaction(run):
     """Vertical reaction (N, whole ball) of the held mid-plane: the solid's own rows at its dofs
     (:meth:`tribofx.body.Body.reaction`, the half model's times 2)."""
     return 2.0 * run.ball.reaction("midplane", Case.Z)
@@ -442,7 +442,7 @@ def test_large_load_40N():
             run, out = _solve(v)
             m = out[-1]
             m["a_p"] = _pressure_radius(run)
-            m["reaction"] = _mid_plane_reaction(run, v)
+            m["reaction"] = _mid_plane_reaction(run)
             m["bound"] = _equilibrium_bound(run, m["W"])
             res[W, model] = m
             print(W, model, {k: m[k] for k in ("W", "reaction", "h_central", "h_min", "p_max",
@@ -474,7 +474,6 @@ def test_large_load_40N():
         assert rel(40.0, key) > rel(4.0, key)
     # chapter: 10–15 % at 40 N; here h_min by more than 5 %
     assert rel(40.0, "h_min") > 0.05
-
 
 
 def test_edge_refine_halves_the_cap_elements_along_the_contact_edge():
@@ -598,7 +597,7 @@ def test_chapter_point_40N_muU_0078():
         run, out = _solve(v)
     m = out[-1]
     a_h = hertz(40.0, v.R, v.E, v.nu).a
-    m["a_p"], m["reaction"] = _pressure_radius(run), _mid_plane_reaction(run, v)
+    m["a_p"], m["reaction"] = _pressure_radius(run), _mid_plane_reaction(run)
     print({k: m[k] for k in ("W", "reaction", "h_central", "h_min", "x_h_min", "y_h_min",
                              "p_max", "a_p", "friction_coefficient", "film_oscillation")})
     bound = _equilibrium_bound(run, m["W"])
