@@ -19,8 +19,8 @@ they run as fast.  Neither level reassociates floating-point operations (no
 kernels compute the same numbers bit for bit.  Measured on the tests of the
 O-ring and the ball (2 cores, 31 tests): from an empty JIT cache 195.6 s at
 ``-O2``, 182.9 s at ``-O1``; with the kernels cached 91.3 s and 88.2 s.  The
-whole test command from an empty cache: 1007 s and 848 s (one run each; runs of
-the same code on this kind of machine vary by up to ~15 %).
+whole test command from an empty cache: 1007 s at ``-O2`` (one run), 848 and 900 s at
+``-O1`` (two runs; runs of the same code on this kind of machine vary by up to ~15 %).
 
 FFCx hashes ``cffi_extra_compile_args`` into the name of the cached module, so
 quiet compiles and those with warnings (``-v``) have separate entries in the
