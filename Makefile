@@ -28,8 +28,9 @@ test: setup
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
 # the tests marked slow (the full versions of checks the default run makes in a cheap
-# form), in the same three passes; CI runs it after `make test`.  A few long tests sit
-# in a few files, so the serial pass hands out tests, not files, to the two workers
+# form), in the same three passes (about 27 min on 2 cores; .ci/run does not run it yet).
+# A few long tests sit in a few files, so the serial pass hands out tests, not files,
+# to the two workers
 test-slow: setup
 	$(PY) -m pytest -q -n 2 --dist load -m "slow and not mpiexec" --runslow --durations=15 $(PYTEST_ARGS)
 	$(PY) -m pytest -q -m "slow and mpiexec" --runslow $(PYTEST_ARGS); \

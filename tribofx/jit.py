@@ -37,7 +37,7 @@ import dolfinx.jit
 __all__ = ["OPTIMISATION", "QUIET_ARGS", "compiler_warnings"]
 
 QUIET_ARGS: list[str] = ["-w"]
-"""C compiler arguments appended to DOLFINx's defaults to silence its warnings."""
+"""C compiler arguments appended to the JIT's arguments to silence its warnings."""
 
 OPTIMISATION: str = "-O1"
 """gcc's optimisation level for the JIT, in place of DOLFINx's ``-O2`` (see above)."""
