@@ -85,6 +85,25 @@ def test_reach_gives_up_when_the_last_success_itself_fails():
     assert toy.d == 0.0 and toy.x == 0.0   # entry state and parameter restored
 
 
+@pytest.mark.parametrize("offset", [0.0, 1e-14])
+def test_reach_gives_up_when_the_converged_parameter_itself_fails(offset):
+    """A solve that fails at the converged parameter (another parameter, e.g. a speed,
+    has moved) is final: the plain secant halves its trial towards that parameter,
+    so from a trial on it (or within round-off of it, ``offset`` relative, the
+    first trial of a held response that barely moves) every retry is the same
+    solve.  It gives up after that one trial, not after ``max_trials``, with the
+    entry state and parameter restored."""
+    toy = Toy()
+    c = Continuation(toy, toy, response=lambda: toy.x, max_trials=30)
+    c.reach(2.0, guess=0.9)
+    d, x, solves = toy.d, toy.x, toy.solves
+    toy.d_fail = -1.0                     # now every solve fails, at d as anywhere
+    with pytest.raises(NewtonDivergence, match="fails at the converged parameter"):
+        c.reach(2.0, guess=d * (1 + offset))
+    assert toy.solves == solves + 1
+    assert (toy.d, toy.x) == (d, x)
+
+
 def test_march_cuts_failed_steps_and_reaches_the_target():
     """Natural-parameter march to d = 1 in one step with solves failing beyond d = 0.3.
 

@@ -15,7 +15,8 @@ Two strategies:
 * :meth:`Continuation.reach` — find the parameter at which the response equals
   a target by a secant iteration (power law through the origin for the first
   update); a failed trial restores the state and moves the parameter halfway
-  back to the last converged value.
+  back to the last converged value (and gives up once the trial is that value
+  to round-off: the solve there is the one that failed).
 
 Each converged step is committed (histories such as the Lagrangian slip move on).
 """
@@ -29,6 +30,10 @@ import numpy as np
 import numpy.typing as npt
 
 from .problem import NewtonDivergence
+
+#: relative distance below which a trial of :meth:`Continuation.reach` is the converged
+#: parameter itself (about 4500 ulp): a failure there is final
+ROUNDOFF = 1e-12
 
 if TYPE_CHECKING:
     from dolfinx import fem
@@ -344,7 +349,9 @@ class Continuation:
         last successful trial (or the entry state) and the bound on the step is
         halved; each success lets it grow by 1.5, up to ``max_step``.  Without it
         a failed trial restores the entry state and moves the parameter halfway
-        back to the last converged value.
+        back to the last converged value; a failed trial within :data:`ROUNDOFF`
+        of that value gives up at once (halving towards it would repeat the same
+        solve from the same state up to ``max_trials`` times).
         """
         saved = self.problem.state()
         iterations = []
@@ -366,6 +373,11 @@ class Continuation:
             except NewtonDivergence:
                 if bound is None:
                     self.problem.restore(saved)
+                    if abs(d1 - self.done) <= ROUNDOFF * max(abs(d1), abs(self.done)):
+                        # the trial is the converged parameter to round-off: halving
+                        # towards it repeats the same solve from the same state
+                        self._give_up(saved, f"response {target:g} not reached: the solve "
+                                      f"fails at the converged parameter {self.done:g}")
                     d1 = 0.5 * (self.done + d1)
                 else:
                     self.problem.restore(base[0])
