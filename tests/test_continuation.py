@@ -118,3 +118,23 @@ def test_march_cuts_failed_steps_and_reaches_the_target():
     assert toy.d == 1.0 and abs(toy.x - 2.0) <= 1e-15
     assert all(b - a <= 0.3 + 1e-15 for a, b in zip([0.0] + [h[0] for h in c.history],
                                                      [h[0] for h in c.history]))
+
+
+@pytest.mark.parametrize("regrow, failures", [(1, 9), (3, 5)])
+def test_march_regrows_a_cut_increment_after_regrow_steps(regrow, failures):
+    """A march to d = 2 in one increment where every increment above 0.3 fails.
+
+    The increment is cut 2 → 1 → 0.5 → 0.25 (3 failures); it then doubles back
+    to 0.5 (which fails) after ``regrow`` steps converged at 0.25.  Counted by
+    hand: with 1, each 0.25 step from 0.25 to 1.5 is followed by a failed 0.5
+    (3 + 6 failures; from 1.75 the last increment is 0.25); with 3, the 0.5 is
+    retried from 0.75 and from 1.5 only (3 + 2 failures).  The accepted path is the same: steps of
+    0.25 ending exactly at 2."""
+    toy = Toy(d_fail=0.3)
+    commit = toy.commit
+    toy.commit = lambda: (commit(), setattr(toy, "d_fail", toy.d + 0.3))
+    c = Continuation(toy, toy, response=lambda: toy.x)
+    c.regrow = regrow
+    c.march(2.0, steps=1, predictor=False)
+    assert [h[0] for h in c.history] == [0.25 * k for k in range(1, 9)]
+    assert toy.solves - len(c.history) == failures
