@@ -140,7 +140,7 @@ def test_full_film_end_is_the_smooth_film():
 def test_stribeck_curve_has_its_three_regimes():
     """Full film, mixed, boundary over five decades of speed (the defaults, 11 speeds).
 
-    Slow (about 4 min, ``--runslow``): the default suite checks the three regimes at three
+    Slow (about 75 s, ``--runslow``): the default suite checks the three regimes at three
     speeds (``demos/demo_mixed_lubrication.py``) and the mixed regime against JGP.
 
     Full film (λ > 3): the film carries W, the friction is the fluid's and falls
@@ -235,7 +235,7 @@ def test_creeping_rough_cylinder_approaches_hertz():
     σ = 1e-3 and 1e-4 mm (σR/a² = 0.02, 0.002) the deviation from Hertz falls, and
     at σ = 1e-4 it lies within the finite-strain error of Hertz, p₀/E* = 3.6 %.
     Measured 0.7288 and 0.7216 mm against a_H = 0.7125 (+2.3 %, +1.3 %; 3e-4: 0.7236).
-    Slow (about 3 min, ``--runslow``).
+    Slow (about 2 min, ``--runslow``).
     """
     dev = []
     for sigma in (1e-3, 1e-4):
