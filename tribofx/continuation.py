@@ -120,7 +120,8 @@ class Continuation:
             (a record, a checkpoint of the step).
         verbose: print Newton histories.
         rtol: relative tolerance of :meth:`reach` on the response.
-        max_trials: secant trials of one :meth:`reach`, or cuts of one :meth:`march` step.
+        max_trials: secant trials of one :meth:`reach` (a :meth:`march` step is cut
+            down to its ``min_fraction`` instead).
         record: list receiving the Newton iteration counts of each converged step.
         admissible: callable → bool; a converged solve whose state it rejects (e.g. a
             film with h ≤ 0) is treated as a failed one (restored, step cut).
@@ -129,6 +130,11 @@ class Continuation:
             (NewtonDivergence) once the bound on the step falls below
             ``min_bound``·``max_step`` (1e-4): every trial near the last successful
             state fails, so more trials only repeat it.
+
+    Attributes:
+        regrow: steps a cut increment of :meth:`march` converges at before it
+            doubles back (3).
+        increments: the march in progress (see :meth:`march`).
     """
 
     def __init__(self, problem: Solvable, parameter: Parameter,
