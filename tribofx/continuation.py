@@ -392,12 +392,12 @@ class Continuation:
                 iterations.append(self._solve_at(d1))
             except NewtonDivergence:
                 if bound is None:
-                    self.problem.restore(saved)
                     if abs(d1 - self.done) <= ROUNDOFF * max(abs(d1), abs(self.done)):
                         # the trial is the converged parameter to round-off: halving
                         # towards it repeats the same solve from the same state
                         self._give_up(saved, f"response {target:g} not reached: the solve "
                                       f"fails at the converged parameter {self.done:g}")
+                    self.problem.restore(saved)
                     d1 = 0.5 * (self.done + d1)
                 else:
                     self.problem.restore(base[0])
