@@ -28,7 +28,7 @@ test: setup
 	$(MPIEXEC) -n 2 $(PY) -m pytest -q -m mpi -p no:cacheprovider $(PYTEST_ARGS)
 
 # the tests marked slow (the full versions of checks the default run makes in a cheap
-# form), in the same three passes (about 24 min on 2 cores; .ci/run does not run it yet).
+# form), in the same three passes (about 24 min on 2 cores; .ci/run runs it after `make test`).
 # A few long tests sit in a few files, so the serial pass hands out tests, not files,
 # to the two workers
 test-slow: setup
