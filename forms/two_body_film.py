@@ -48,7 +48,8 @@ from .ehl import LubricationKinematics
 if TYPE_CHECKING:
     from ufl.core.expr import Expr
 
-__all__ = ["layer_surface_kinematics", "nodal_equality", "traction_collocation"]
+__all__ = ["layer_surface_kinematics", "nodal_equality", "ring_traction_collocation",
+           "traction_collocation"]
 
 
 def layer_surface_kinematics(
@@ -99,3 +100,20 @@ def traction_collocation(t: Expr, traction: Expr, dt: Expr, ds_vertex: ufl.Measu
     the bulk mesh; at a node T is the length-weighted mean of its facets' values.
     """
     return ufl.dot(t - traction, dt) * ds_vertex
+
+
+def ring_traction_collocation(t: Expr, traction: Expr, dt: Expr, omega: Expr, u_r: Expr,
+                              ds_vertex: ufl.Measure) -> ufl.Form:
+    """Residual ∫ (ω t − (ω + 2π u_r) T)·δt dS (vertex rule): t, the ring traction (axisymmetric).
+
+    ``omega``: the P1 field ω with ω_k ∫ φ_k dS = W_k = ∫ φ_k 2πR dS (the exact
+    lumped area, positive on the axis, :class:`tribofx.interfaces.surface.Surface`);
+    ``u_r`` the radial displacement.  At node k, W_k t_k = ℓ_k (ω_k + 2π u_r,k) T_k
+    (ℓ_k = ∫ φ_k dS): the lumped ring force of T (46) on the current radius
+    r = R + u_r, the lumped ∫ φ_k 2πr T dS to O(h²) and exact on the axis, where
+    2πr vanishes at the node but its lumped area does not.  The kernel puts −W_k t_k
+    on the slave and W_k N_m(ξ̄_k) t_k on the master at the projection.  (One rule for
+    both terms: FFCx 0.10 cannot compile a facet form mixing the vertex rule with a
+    Gauss rule when submesh coefficients enter.)
+    """
+    return ufl.dot(omega * (t - traction) - 2 * ufl.pi * u_r * traction, dt) * ds_vertex

@@ -26,10 +26,12 @@ traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
 ``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
-each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (``dim=2``):
-the plane is the top of an elastic block [0, 2L] × [−2L, 0] (ν2), held — or
+each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (``dim=2``
+or ``dim=axisymmetric``): the plane is the top of an elastic block [0, 2L] ×
+[−2L, 0] (ν2; axisymmetric: a disc of radius and thickness 2L), held — or
 lifted at V — at its bottom, and the film is the two-body one
-(:class:`~tribofx.interfaces.TwoBodyFilm`, S = the body's surface).
+(:class:`~tribofx.interfaces.TwoBodyFilm`, S = the body's surface): a soft
+cylinder or ball landing on a soft block or disc.
 
 Units: mm, N, s, MPa (viscosity MPa·s).
 """
@@ -118,7 +120,7 @@ class Params(FluidParams):
     E2: float = param(
         math.inf, "MPa",
         "Young's modulus of the plane body (inf: rigid; "
-        "finite: an elastic block, the two-body film, dim=2)",
+        "finite: an elastic block (dim=2) or disc (dim=axisymmetric), the two-body film)",
         lower=0.0, infinite=True)
     nu2: float = param(0.3, "-", "Poisson's ratio of the plane body", lower=-1.0, upper=0.5)
     mu: float = param(1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
@@ -140,8 +142,9 @@ class Params(FluidParams):
 
 def validate(v: Params) -> None:
     """Bad input: a one-line error."""
-    if math.isfinite(v.E2) and v.dim != 2:
-        raise InputError("E2 finite (the two-body film) is built for dim=2 (plane strain)")
+    if math.isfinite(v.E2) and v.dim == 3:
+        raise InputError("E2 finite (the two-body film) is built for dim=2 and "
+                         "dim=axisymmetric, not yet for dim=3")
     if not v.h_start < 0.1 * v.R:
         raise InputError(f"h_start = {v.h_start} mm must be below R/10 (a thin film)")
     if v.dt > v.T:
@@ -270,7 +273,8 @@ def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, f
     bodies = [body]
     if math.isinf(v.E2):
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), fluid, **kw)
-    else:      # a block [0, 2L] × [−2L, 0] under the body, held (and lifted) at its bottom
+    else:      # a block [0, 2L] × [−2L, 0] under the body (axisymmetric: a disc), held
+        # (and lifted) at its bottom
         mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
         mu_b, lm_b = lame_parameters(v.E2, v.nu2)
         block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),

@@ -1,4 +1,4 @@
-"""A lubricating film between two deformable bodies (plane strain): §6–7 for two soft solids.
+"""A lubricating film between two deformable bodies (plane strain, axisymmetric): §6–7.
 
 The chapter restricts soft-EHL to one rigid body and calls two deformable bodies
 "a challenging task for future work".  :class:`TwoBodyFilm` is the
@@ -28,8 +28,16 @@ traction rows, inserted like the two-body contact's (:mod:`tribofx.pattern`).
 
 The bodies' materials move through their meshes (Eulerian rolling or sliding):
 ``motion1``/``motion2`` (:mod:`tribofx.motions`) with speeds ``U1``/``U2`` (mm/s,
-Constants a continuation may drive).  Plane strain, P1 displacements, affine
-meshes.  Units: mm, N, s, MPa; forces per unit thickness (N/mm).
+Constants a continuation may drive).  Plane strain or axisymmetric, P1
+displacements, affine meshes.  Axisymmetric: both bodies are meridian sections
+(r, z), the search and the kernel the plane ones in that plane; the Reynolds
+rows carry the film's 2πr (as :class:`Film`'s), and the nodal unknown t is the
+ring traction: W_k t_k, with W_k = ∫ φ_k 2πR dS the exact lumped area, is the
+lumped ring force ∫ φ_k 2πr T dS on the current radius
+(:meth:`TwoBodyFilm._collocation`), which the kernel puts on the slave and, at
+the projections, on the master.
+Units: mm, N, s, MPa; forces per unit thickness (N/mm), of the revolved bodies
+(N) when axisymmetric.
 """
 
 from __future__ import annotations
@@ -90,7 +98,8 @@ class TwoBodyFilm(KernelAssembly, Film):
     """Soft-EHL film on ``boundary`` of ``slave`` against ``master_boundary`` of ``master``.
 
     Args:
-        slave, master: plane-strain P1 :class:`tribofx.body.Body` (affine meshes).
+        slave, master: plane-strain or axisymmetric P1 :class:`tribofx.body.Body`
+            (affine meshes, both of one kind).
         boundary, master_boundary: boundary names; the master's must extend beyond
             the projections of Γ_l.
         fluid: the lubricant, a :class:`~tribofx.interfaces.film_options.Fluid` (as for
@@ -119,8 +128,13 @@ class TwoBodyFilm(KernelAssembly, Film):
                  motion2: Rolling | Sliding | None = None, U2: float = 0.0,
                  **kwargs: Any) -> None:
         for b in (slave, master):
-            if b.kind != "plane_strain" or b.V.ufl_element().embedded_superdegree != 1:
-                raise ValueError("TwoBodyFilm is implemented for plane-strain P1 bodies")
+            if (b.kind not in ("plane_strain", "axisymmetric")
+                    or b.V.ufl_element().embedded_superdegree != 1):
+                raise ValueError("TwoBodyFilm is implemented for plane-strain and "
+                                 "axisymmetric P1 bodies")
+        if slave.kind != master.kind:
+            raise ValueError(f"TwoBodyFilm: a {slave.kind} slave needs a {slave.kind} master, "
+                             f"not a {master.kind} one")
         for key in ("V_counter", "model", "alpha", "motion"):
             if key in kwargs:
                 raise ValueError(f"TwoBodyFilm has no option {key!r} (S = γ_l, finite model)")
@@ -139,12 +153,19 @@ class TwoBodyFilm(KernelAssembly, Film):
         order = np.argsort(sf.sub_dofs[own])
         self._q, self._bulk = sf.sub_dofs[own][order], sf.bulk_dofs[own][order]
         self._Xk = sf.X_sub[self._q]
-        self._w = sf.nodal(ufl.TestFunction(sf.Q) * sf.dsc)[self._q]
+        # the nodes' lumped reference measures (axisymmetric: areas ∫ φ_k 2πR dS, ω of Surface)
+        lumped = ufl.TestFunction(sf.Q) * (sf.weight if self.axisymmetric else 1) * sf.dsc
+        self._w = sf.nodal(lumped)[self._q]
         self._w_c = sf.nodal(fem.form(ufl.TestFunction(self.gap.function_space)
                                       * self.nodal_dx))[self._q]
         self._facet_ref = self._facet_committed = None
         self._cache = None
         self.set_nodal_data()
+
+    @property
+    def axisymmetric(self) -> bool:
+        """Whether the bodies are axisymmetric (meridian plane (r, z); forces are ring totals)."""
+        return self.body.kind == "axisymmetric"
 
     def _derived_scales(self, V_body: Shape | None, V_counter: Shape | None) -> FilmScales:
         """Return the scales of :meth:`Film._derived_scales` for two moving bodies.
@@ -304,8 +325,22 @@ class TwoBodyFilm(KernelAssembly, Film):
         return out + [
             (self.gap, tbf.nodal_equality(self.gap, tests[0], self.trace_scale, self.nodal_dx)),
             (self.v_master, tbf.nodal_equality(self.v_master, tests[1], self._c_w, self.nodal_dx)),
-            (self.t_nodal, tbf.traction_collocation(self.t_nodal, self.traction, tests[2],
-                                                   self._surface.dsc))]
+            (self.t_nodal, self._collocation(tests[2]))]
+
+    def _collocation(self, dt: ufl.Argument) -> ufl.Form:
+        """Return the rows that make t the nodal traction (plane strain) or ring traction.
+
+        Plane strain: t_k is the traction (46) at node k (the vertex rule);
+        axisymmetric: W_k t_k (W_k = ∫ φ_k 2πR dS, the exact lumped area) is the
+        lumped ring force of the traction on the current radius r = R + u_r
+        (:func:`tribofx.forms.two_body_film.ring_traction_collocation`), the node on
+        the axis included.
+        """
+        sf = self._surface
+        if not self.axisymmetric:
+            return tbf.traction_collocation(self.t_nodal, self.traction, dt, sf.dsc)
+        return tbf.ring_traction_collocation(self.t_nodal, self.traction, dt, sf.weight,
+                                             self.body.u[0], sf.dsc)
 
     def refresh(self) -> None:
         """Copy the velocities to the submesh (the kernel runs inside the assembly)."""
@@ -327,6 +362,8 @@ class TwoBodyFilm(KernelAssembly, Film):
                                       ("t", self.t_nodal, "MPa", 1.0)):
                 v = ufl.TestFunction(fun.function_space)
                 v = v if key == "h" else ufl.dot(v, ones)
+                if key == "t" and self.axisymmetric:     # rows of ring forces: ω-weighted
+                    v = self._surface.weight * v
                 self._tol[key] = BlockTolerance(0.0, unit, c * v * self.nodal_dx)
                 out[fun] = self._tol[key]
             self._tol_out = out
@@ -350,7 +387,10 @@ class TwoBodyFilm(KernelAssembly, Film):
 
     # -- outputs ---------------------------------------------------------------------------
     def forces(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-        """Film force on the slave and on the master (N/mm), all ranks: equal and opposite."""
+        """Film force on the slave and on the master, all ranks: equal and opposite.
+
+        N/mm per unit thickness (plane strain); N of the revolved bodies (axisymmetric).
+        """
         r = self._kernel()["r"]
         comm = self.body.mesh.comm
         on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
@@ -358,5 +398,5 @@ class TwoBodyFilm(KernelAssembly, Film):
         return on_slave, on_master
 
     def force(self) -> npt.NDArray[np.float64]:
-        """Film force on the slave (N/mm per unit thickness), the nodal tractions' sum."""
+        """Film force on the slave (N/mm; axisymmetric: N), the nodal tractions' sum."""
         return self.forces()[0]
