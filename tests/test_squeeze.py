@@ -171,18 +171,21 @@ def test_two_body_squeeze_tangent_is_exact():
 
 
 @pytest.mark.mpi
-def test_axisymmetric_two_body_squeeze_tangent_is_exact():
-    """As above for a soft ball landing on a soft disc by their meridians (axisymmetric):
-    the ring traction's rows (its lumped force from the current radius 2πr) and the
-    film's 2πr weight enter every block; serially and on 2 ranks."""
-    _taylor_mid_step(values(dim="axisymmetric", control="load", F=0.5, E1=10, nu1=0.45,
+@pytest.mark.parametrize("dim", ["axisymmetric", 3])
+def test_ball_on_disc_squeeze_tangent_is_exact(dim):
+    """As above for a soft ball landing on a soft disc: by their meridians
+    (axisymmetric: the ring traction's rows, its lumped force from the current
+    radius 2πr, and the film's 2πr weight) and in 3D (the quarter ball on the quarter
+    block: the kernel's master triangles); every block, serially and on 2 ranks."""
+    _taylor_mid_step(values(dim=dim, control="load", F=0.5, E1=10, nu1=0.45,
                             E2=10, nu2=0.45, T=1e-3, dt=2.5e-4))
 
 
-@pytest.mark.parametrize("dim", [2, "axisymmetric"])
+@pytest.mark.parametrize("dim", [2, "axisymmetric", 3])
 def test_stiff_block_squeezes_like_the_rigid_plane(dim):
-    """E2 = 1e5 MPa under the stiff cylinder (or ball, by its meridian on a disc): the
-    squeeze force of the rigid plane, per step.
+    """E2 = 1e5 MPa under the stiff cylinder (or ball, by its meridian on a disc, or the
+    quarter ball on a quarter block in 3D, two steps): the squeeze force of the rigid
+    plane, per step.
 
     The two-body film lives on the body's surface (S = γ_l), the rigid one on
     the plane (S = P(γ_l)); their metrics (arc length, the gap's and the walls'
@@ -196,12 +199,15 @@ def test_stiff_block_squeezes_like_the_rigid_plane(dim):
     """
     forces = []
     for E2 in (math.inf, 1e5):
-        v = values(dim=dim, E1=1e5, E2=E2, T=2e-3, dt=5e-4, scheme="euler")
+        v = values(dim=dim, E1=1e5, E2=E2, T=2e-3 if dim != 3 else 1e-3, dt=5e-4,
+                   scheme="euler")
         _, out = run(v)
         forces.append(np.array([m["force"] for _, m, _ in out]))
     ell = math.sqrt(2 * R * v.h_start)
     S = (Case.extent(v) / ell) ** 2
     mean = 1.0 if dim == 2 else (math.log(1 + S) - S / (1 + S)) / (S / (1 + S))
+    print(f"dim {dim}: two-body / rigid − 1 = {forces[1] / forces[0] - 1}, "
+          f"bound {2 * mean * (ell / R) ** 2:.4f}")
     assert np.all(np.abs(forces[1] / forces[0] - 1) < 2 * mean * (ell / R) ** 2), forces
 
 
@@ -235,16 +241,19 @@ def test_soft_cylinder_traps_a_dimple():
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("over", [{}, {"dim": "axisymmetric", "E2": 10, "nu2": 0.45}],
-                         ids=["cylinder", "ball-on-disc"])
+@pytest.mark.parametrize("over", [{}, {"dim": "axisymmetric", "E2": 10, "nu2": 0.45},
+                                  {"dim": 3, "E2": 10, "nu2": 0.45, "T": 1e-3}],
+                         ids=["cylinder", "ball-on-disc", "ball-on-block-3d"])
 def test_parallel_matches_serial(over):
     """The soft squeeze's film at the centre, its minimum and the pressure: 2 ranks = 1
-    (the soft cylinder on the rigid plane; a soft ball on a soft disc, by their meridians)."""
+    (the soft cylinder on the rigid plane; a soft ball on a soft disc, by their meridians;
+    the quarter ball on a quarter block in 3D)."""
     from mpi4py import MPI
 
     if MPI.COMM_WORLD.size < 2:
         pytest.skip("compares COMM_WORLD with COMM_SELF: run under mpiexec -n 2")
-    v = values(control="load", F=0.5, E1=10, nu1=0.45, T=2e-3, dt=1e-3, **over)
+    v = values(**{"control": "load", "F": 0.5, "E1": 10, "nu1": 0.45, "T": 2e-3, "dt": 1e-3,
+                  **over})
     out = []
     for comm in (MPI.COMM_SELF, MPI.COMM_WORLD):
         model = Case.build(v, comm=comm)

@@ -76,18 +76,28 @@ def _loaded(delta=0.01, **kw):
     return bodies, film, problem, rep
 
 
-def test_kernel_matches_its_numpy_twin():
+@pytest.mark.parametrize("dim", [2, 3])
+def test_kernel_matches_its_numpy_twin(dim):
     """C++ residuals and dual-number tangents = the NumPy twin's (complex step) to round-off.
 
     Both evaluate the same few products of O(1) numbers: agreement to 1e-12 of the
-    largest entry (a few ε_mach per operation, ≤ 20 operations).
+    largest entry (a few ε_mach per operation, ≤ 20 operations; in 3D the metric's
+    2 × 2 inverse adds a few more).  3D: the master triangle in place of the segment.
     """
     rng = np.random.default_rng(3)
     n = 50
-    q = rng.normal(size=(n, 11))
-    q[:, 2:4] += [-1.0, 0.0]
-    q[:, 4:6] += [1.0, 0.0]             # segments of length ≈ 2
-    data = rng.normal(size=(n, 7))
+    if dim == 2:
+        q = rng.normal(size=(n, 11))
+        q[:, 2:4] += [-1.0, 0.0]
+        q[:, 4:6] += [1.0, 0.0]             # segments of length ≈ 2
+        data = rng.normal(size=(n, 7))
+    else:
+        q = 0.3 * rng.normal(size=(n, 19))
+        q[:, 3:6] += [-1.0, -1.0, 0.0]      # triangles of sides ≈ 2
+        q[:, 6:9] += [1.0, -1.0, 0.0]
+        q[:, 9:12] += [0.0, 1.0, 0.0]
+        q[:, 12:19] = rng.normal(size=(n, 7))
+        data = rng.normal(size=(n, 16))
     w, w_c = rng.random(n) + 0.1, rng.random(n) + 0.1
     r, J = film_node_residuals(q, data, w, w_c, 3.0, 0.5)
     r_ref, J_ref = film_node_residuals_ref(q, data, w, w_c, 3.0, 0.5)

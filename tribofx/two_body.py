@@ -44,7 +44,16 @@ The work is done by :mod:`tribofx._cpp` (``cpp_kernels/src/two_body.hpp``);
   0–5 carry the traction t to the slave (−w t) and to the master at the
   projection (w(1 − ξ)t, wξt), row 6 is −c_h w_c g, rows 7–8 −c_w w_c v_m (the
   master's surface velocity at the projection), rows 9–10 zero; the equations
-  are in the header of ``cpp_kernels/src/two_body_film.hpp``.
+  are in the header of ``cpp_kernels/src/two_body_film.hpp``.  In 3D (q with 19
+  columns) the packing is
+
+      q = [x (3), x₁, x₂, x₃ (9), h, w (3), t (3)]
+
+  with ``data`` (n, 16) = [c₁ (2), c₂ (2), c₃ (2), k₀, z₁ (3), z₂ (3), z₃ (3)]
+  (c_k: the master's reference velocity at node k in the reference facet's basis
+  T_a = X_{a+1} − X₁): rows 0–11 carry t (−w t on the slave, w N_k(ξ) t on the
+  triangle's nodes), row 12 −c_h w_c g, rows 13–15 −c_w w_c v_m, rows 16–18 zero;
+  r (n, 19), J (n, 19, 19) (``film_node_residual_3d`` in the same header).
 """
 
 from __future__ import annotations
@@ -59,7 +68,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 __all__ = ["NUM_LOCAL", "NUM_LOCAL_FILM", "MasterSurface", "MasterSurface3", "film_node_residuals",
-           "node_residuals", "num_local"]
+           "node_residuals", "num_data_film", "num_local", "num_local_film"]
 
 #: Local unknowns per slave node (2D).
 NUM_LOCAL = 13
@@ -69,6 +78,16 @@ NUM_LOCAL_FILM = 11
 
 MasterSurface = _cpp.MasterSurface
 MasterSurface3 = _cpp.MasterSurface3
+
+
+def num_local_film(gdim: int) -> int:
+    """Local unknowns per film node: x, the master facet's d nodes, h, w (d), t (d)."""
+    return gdim + gdim * gdim + 1 + 2 * gdim
+
+
+def num_data_film(gdim: int) -> int:
+    """Return the data per film node: the tangential speeds c (d × (d − 1)), k₀, z (d × d)."""
+    return gdim * (gdim - 1) + 1 + gdim * gdim
 
 
 def num_local(gdim: int) -> int:
@@ -113,16 +132,24 @@ def film_node_residuals(q: npt.ArrayLike, data: npt.ArrayLike, w: npt.ArrayLike,
     """Residuals (n, 11) and tangents (n, 11, 11) of n film nodes (see the module docstring).
 
     Args:
-        q: (n, 11) local unknowns [x, x₁, x₂, h, w, t] (mm, mm/s, MPa).
+        q: (n, 11) local unknowns [x, x₁, x₂, h, w, t] (mm, mm/s, MPa); 3D: (n, 19)
+            [x, x₁, x₂, x₃, h, w, t].
         data: (n, 7) [c₁, c₂, k₀, z₁, z₂]: the master's reference tangential velocity
             per reference length at x₁, x₂ (1/s), and the master nodes' velocities
-            ẋ_k = k₀ x_k + z_k (k₀ in 1/s, z_k in mm/s; 0 for a steady film).
-        w: (n,) lumped reference weights of the traction rows (mm).
-        w_c: (n,) lumped reference weights of the gap and velocity rows (mm).
+            ẋ_k = k₀ x_k + z_k (k₀ in 1/s, z_k in mm/s; 0 for a steady film); 3D:
+            (n, 16) [c₁, c₂, c₃ (2 each, in the reference facet's basis), k₀, z₁,
+            z₂, z₃ (3 each)].
+        w: (n,) lumped reference weights of the traction rows (mm; mm² in 3D and
+            axisymmetric).
+        w_c: (n,) lumped reference weights of the gap and velocity rows (mm; mm² in 3D).
         c_h: row scale of the gap rows (MPa/mm).
         c_w: row scale of the velocity rows (MPa·s/mm).
     """
-    q = np.ascontiguousarray(q, dtype=np.float64).reshape(-1, NUM_LOCAL_FILM)
-    data = np.ascontiguousarray(data, dtype=np.float64).reshape(-1, 7)
+    q = np.ascontiguousarray(q, dtype=np.float64)
+    three = q.ndim == 2 and q.shape[1] == num_local_film(3)
+    d = 3 if three else 2
+    q = q.reshape(-1, num_local_film(d))
+    data = np.ascontiguousarray(data, dtype=np.float64).reshape(-1, num_data_film(d))
     vec = [np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (w, w_c)]
-    return _cpp.two_body_film_nodes(q, data, *vec, float(c_h), float(c_w))
+    kernel = _cpp.two_body_film_nodes_3d if three else _cpp.two_body_film_nodes
+    return kernel(q, data, *vec, float(c_h), float(c_w))

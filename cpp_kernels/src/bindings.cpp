@@ -276,24 +276,35 @@ two_body_nodes(const CArray2<double>& q, const CArrayN& xi_old, const CArray1& w
                            {n, static_cast<std::size_t>(N), static_cast<std::size_t>(N)})};
 }
 
-/// Nodal residuals (n, 11) and tangents (n, 11, 11) of the 2D two-body film.
+/// Nodal residuals (n, N) and tangents (n, N, N) of the two-body film: 2D (N = 11,
+/// data (., 7)) or 3D (N = 19, data (., 16)).
+template <int dim>
 std::tuple<nb::ndarray<nb::numpy, double>, nb::ndarray<nb::numpy, double>>
 two_body_film_nodes(const CArray2<double>& q, const CArray2<double>& data, const CArray1& w,
                     const CArray1& w_c, double c_h, double c_w)
 {
-  constexpr int N = tb::num_local_film, M = tb::num_data_film;
+  constexpr int N = dim == 2 ? tb::num_local_film : tb::num_local_film_3d;
+  constexpr int M = dim == 2 ? tb::num_data_film : tb::num_data_film_3d;
   const std::size_t n = q.shape(0);
   if (q.shape(1) != N or data.shape(1) != M)
-    throw std::invalid_argument("q must have shape (., 11) and data (., 7)");
+    throw std::invalid_argument(dim == 2 ? "q must have shape (., 11) and data (., 7)"
+                                         : "q must have shape (., 19) and data (., 16)");
   if (data.shape(0) != n or w.shape(0) != n or w_c.shape(0) != n)
     throw std::invalid_argument("data, w and w_c need one row per row of q");
   std::vector<double> r(n * N), J(n * N * N);
   {
     nb::gil_scoped_release release;
     for (std::size_t i = 0; i < n; ++i)
-      tb::film_node_residual(q.data() + i * N, data.data() + i * M, w.data()[i],
-                             w_c.data()[i], c_h, c_w, r.data() + i * N,
-                             J.data() + i * N * N);
+    {
+      if constexpr (dim == 2)
+        tb::film_node_residual(q.data() + i * N, data.data() + i * M, w.data()[i],
+                               w_c.data()[i], c_h, c_w, r.data() + i * N,
+                               J.data() + i * N * N);
+      else
+        tb::film_node_residual_3d(q.data() + i * N, data.data() + i * M, w.data()[i],
+                                  w_c.data()[i], c_h, c_w, r.data() + i * N,
+                                  J.data() + i * N * N);
+    }
   }
   return {to_numpy<double>(std::move(r), {n, static_cast<std::size_t>(N)}),
           to_numpy<double>(std::move(J),
@@ -378,9 +389,13 @@ NB_MODULE(_cpp, m)
         "eulerian"_a = false,
         "Nodal 3D two-body contact residuals (n, 25) and tangents (n, 25, 25) (see "
         "tribofx.two_body.node_residuals).");
-  m.def("two_body_film_nodes", &two_body_film_nodes, "q"_a.noconvert(), "data"_a.noconvert(),
-        "w"_a.noconvert(), "w_c"_a.noconvert(), "c_h"_a, "c_w"_a,
+  m.def("two_body_film_nodes", &two_body_film_nodes<2>, "q"_a.noconvert(),
+        "data"_a.noconvert(), "w"_a.noconvert(), "w_c"_a.noconvert(), "c_h"_a, "c_w"_a,
         "Nodal two-body film residuals (n, 11) and tangents (n, 11, 11) (see "
+        "tribofx.two_body.film_node_residuals).");
+  m.def("two_body_film_nodes_3d", &two_body_film_nodes<3>, "q"_a.noconvert(),
+        "data"_a.noconvert(), "w"_a.noconvert(), "w_c"_a.noconvert(), "c_h"_a, "c_w"_a,
+        "Nodal 3D two-body film residuals (n, 19) and tangents (n, 19, 19) (see "
         "tribofx.two_body.film_node_residuals).");
   m.def("add_matrix_blocks", &add_matrix_blocks<std::int32_t>, "fn"_a, "mat"_a,
         "rows"_a.noconvert(), "cols"_a.noconvert(), "values"_a.noconvert());

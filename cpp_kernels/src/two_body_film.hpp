@@ -1,7 +1,8 @@
 // Copyright (C) 2026 tribofx contributors
 // SPDX-License-Identifier: MIT
 //
-// Film between two deformable bodies in 2D: the nodal coupling of a slave node
+// Film between two deformable bodies in 2D (and 3D, film_node_residual_3d: the
+// master triangle in place of the segment): the nodal coupling of a slave node
 // of the lubricated boundary to the current master polyline, with its exact
 // tangent with respect to the slave, the master and the film's nodal unknowns.
 //
@@ -81,6 +82,78 @@ inline void film_node_residual(const double* q, const double* data, double w, do
                                 -c_w * w_c * vm1,
                                 D(0.0),
                                 D(0.0)};
+  for (int i = 0; i < N; ++i)
+  {
+    r[i] = res[i].v;
+    for (int k = 0; k < N; ++k)
+      J[i * N + k] = res[i].d[k];
+  }
+}
+
+/// Number of local unknowns per slave node of the two-body film in 3D.
+inline constexpr int num_local_film_3d = 19;
+
+/// Number of data per slave node in 3D: c (3 nodes x 2), k0, z1, z2, z3 (3 each).
+inline constexpr int num_data_film_3d = 16;
+
+/// The 3D film node: residual r (19) and tangent J (19 x 19, row-major) over
+/// q = [x (3), x1, x2, x3 (9), h, w (3), t (3)], data = [c_1 (2), c_2 (2), c_3 (2),
+/// k0, z1 (3), z2 (3), z3 (3)].  On the master triangle (x1, x2, x3),
+/// t_1 = x2 - x1, t_2 = x3 - x1, the metric m = [t_a.t_b], n = t_1 x t_2 / |t_1 x t_2|
+/// (the master's outward normal, as in two_body_3d.hpp),
+///
+///   xi = m^{-1} [(x - x1).t_1, (x - x1).t_2],  N = (1 - xi^1 - xi^2, xi^1, xi^2),
+///   g  = (x - x1).n,
+///   v_m = (sum_k N_k c_k^a) t_a + sum_k N_k (k0 x_k + z_k)
+///
+/// (c_k^a: the master's reference velocity at node k in the reference facet's
+/// basis T_a, its material moving along its own surface; k0, z_k the backward
+/// difference of its nodes).  Rows: x -w t; x_k w N_k t; h -c_h w_c g;
+/// w -c_w w_c v_m; t 0 — the 2D node's, with the triangle in place of the segment.
+inline void film_node_residual_3d(const double* q, const double* data, double w, double w_c,
+                                  double c_h, double c_w, double* r, double* J)
+{
+  constexpr int N = num_local_film_3d;
+  using D = Dual<N>;
+  std::array<D, N> v;
+  for (int k = 0; k < N; ++k)
+    v[k] = D::variable(q[k], k);
+  auto at = [&](int k) { return std::array<D, 3>{v[k], v[k + 1], v[k + 2]}; };
+  const auto x = at(0), a = at(3), b = at(6), c = at(9), tr = at(16);
+  std::array<D, 3> t1, t2, d;
+  for (int i = 0; i < 3; ++i)
+  {
+    t1[i] = b[i] - a[i];
+    t2[i] = c[i] - a[i];
+    d[i] = x[i] - a[i];
+  }
+  auto dot = [](const std::array<D, 3>& p, const std::array<D, 3>& q_)
+  { return p[0] * q_[0] + p[1] * q_[1] + p[2] * q_[2]; };
+  const D m11 = dot(t1, t1), m12 = dot(t1, t2), m22 = dot(t2, t2);
+  const D det = m11 * m22 - m12 * m12;
+  const D b1 = dot(d, t1), b2 = dot(d, t2);
+  const D xi1 = (m22 * b1 - m12 * b2) / det, xi2 = (m11 * b2 - m12 * b1) / det;
+  const std::array<D, 3> cr = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2],
+                               t1[0] * t2[1] - t1[1] * t2[0]};
+  const D len = sqrt(dot(cr, cr));
+  const D g = dot(d, cr) / len;
+  const D N1 = 1.0 - xi1 - xi2;
+  const D s1 = N1 * data[0] + xi1 * data[2] + xi2 * data[4];
+  const D s2 = N1 * data[1] + xi1 * data[3] + xi2 * data[5];
+  const double k0 = data[6];
+  std::array<D, N> res;
+  for (int i = 0; i < 3; ++i)
+  {
+    res[i] = -w * tr[i];
+    res[3 + i] = w * N1 * tr[i];
+    res[6 + i] = w * xi1 * tr[i];
+    res[9 + i] = w * xi2 * tr[i];
+    const D vm = s1 * t1[i] + s2 * t2[i] + N1 * (k0 * a[i] + data[7 + i])
+                 + xi1 * (k0 * b[i] + data[10 + i]) + xi2 * (k0 * c[i] + data[13 + i]);
+    res[13 + i] = -c_w * w_c * vm;
+    res[16 + i] = D(0.0);
+  }
+  res[12] = -c_h * w_c * g;
   for (int i = 0; i < N; ++i)
   {
     r[i] = res[i].v;

@@ -26,9 +26,9 @@ traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
 ``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
-each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite (``dim=2``
-or ``dim=axisymmetric``): the plane is the top of an elastic block [0, 2L] ×
-[−2L, 0] (ν2; axisymmetric: a disc of radius and thickness 2L), held — or
+each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite: the plane
+is the top of an elastic block [0, 2L] × [−2L, 0] (ν2; axisymmetric: a disc of
+radius and thickness 2L; 3D: the quarter block [0, 2L]² × [−2L, 0]), held — or
 lifted at V — at its bottom, and the film is the two-body one
 (:class:`~tribofx.interfaces.TwoBodyFilm`, S = the body's surface): a soft
 cylinder or ball landing on a soft block or disc.
@@ -50,6 +50,7 @@ from ..body import Body
 from ..forms.hyperelastic import lame_parameters
 from ..interfaces import Film, FilmScales, Fluid, TwoBodyFilm
 from ..interfaces.film_options import named_cavitation
+from ..meshes.block3d import BOTTOM, SIDES, SYMMETRY_X, SYMMETRY_Y, TOP, contact_block
 from ..meshes.hertz import FREE, NAMES, hertz_body
 from ..obstacles import rigid_plane
 from ..params import InputError, param
@@ -120,7 +121,7 @@ class Params(FluidParams):
     E2: float = param(
         math.inf, "MPa",
         "Young's modulus of the plane body (inf: rigid; "
-        "finite: an elastic block (dim=2) or disc (dim=axisymmetric), the two-body film)",
+        "finite: an elastic block (dim=2, 3) or disc (dim=axisymmetric), the two-body film)",
         lower=0.0, infinite=True)
     nu2: float = param(0.3, "-", "Poisson's ratio of the plane body", lower=-1.0, upper=0.5)
     mu: float = param(1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
@@ -142,9 +143,6 @@ class Params(FluidParams):
 
 def validate(v: Params) -> None:
     """Bad input: a one-line error."""
-    if math.isfinite(v.E2) and v.dim == 3:
-        raise InputError("E2 finite (the two-body film) is built for dim=2 and "
-                         "dim=axisymmetric, not yet for dim=3")
     if not v.h_start < 0.1 * v.R:
         raise InputError(f"h_start = {v.h_start} mm must be below R/10 (a thin film)")
     if v.dt > v.T:
@@ -273,15 +271,23 @@ def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, f
     bodies = [body]
     if math.isinf(v.E2):
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), fluid, **kw)
-    else:      # a block [0, 2L] × [−2L, 0] under the body (axisymmetric: a disc), held
-        # (and lifted) at its bottom
-        mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
+    else:      # a block [0, 2L] × [−2L, 0] under the body (axisymmetric: a disc; 3D: the
+        # quarter [0, 2L]² × [−2L, 0]), held (and lifted) at its bottom
+        if dim == 3:
+            mb, fb = contact_block(2 * L, 2 * L, h_fine, h_coarse, 2 * ell, comm)
+            block_names = {"lubricated": TOP, "loaded": BOTTOM, "symmetry_x": SYMMETRY_X,
+                           "symmetry_y": SYMMETRY_Y, "free": SIDES}
+        else:
+            mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
+            block_names = names
         mu_b, lm_b = lame_parameters(v.E2, v.nu2)
-        block = Body(mb, fb, names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
+        block = Body(mb, fb, block_names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),
                      name="block", force_scale=f_s, rtol=rtol)
         block.add_dirichlet("symmetry_x", 0.0, component=0)
+        if dim == 3:
+            block.add_dirichlet("symmetry_y", 0.0, component=1)
         lift = block.add_dirichlet("loaded", np.zeros(dim))
-        msh.geometry.x[:, 1] += h0        # the body's lowest point h0 above the block
+        msh.geometry.x[:, dim - 1] += h0     # the body's lowest point h0 above the block
         film = TwoBodyFilm(body, "lubricated", block, "lubricated", fluid, **kw)
         bodies.append(block)
 

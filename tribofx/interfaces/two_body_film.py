@@ -28,8 +28,9 @@ traction rows, inserted like the two-body contact's (:mod:`tribofx.pattern`).
 
 The bodies' materials move through their meshes (Eulerian rolling or sliding):
 ``motion1``/``motion2`` (:mod:`tribofx.motions`) with speeds ``U1``/``U2`` (mm/s,
-Constants a continuation may drive).  Plane strain or axisymmetric, P1
-displacements, affine meshes.  Axisymmetric: both bodies are meridian sections
+Constants a continuation may drive).  Plane strain, axisymmetric or 3D, P1
+displacements, affine meshes; in 3D the master's facets are triangles (the
+kernel's ``film_node_residual_3d``).  Axisymmetric: both bodies are meridian sections
 (r, z), the search and the kernel the plane ones in that plane; the Reynolds
 rows carry the film's 2πr (as :class:`Film`'s), and the nodal unknown t is the
 ring traction: W_k t_k, with W_k = ∫ φ_k 2πR dS the exact lumped area, is the
@@ -52,7 +53,7 @@ from mpi4py import MPI
 from ..forms import two_body_film as tbf
 from ..problem import BlockTolerance
 from ..scheme import BDF2
-from ..two_body import NUM_LOCAL_FILM, film_node_residuals
+from ..two_body import film_node_residuals, num_data_film, num_local_film
 from .film import Film
 from .film_options import FilmScales
 from .master_side import KernelAssembly, MasterSide, cached_state
@@ -98,7 +99,7 @@ class TwoBodyFilm(KernelAssembly, Film):
     """Soft-EHL film on ``boundary`` of ``slave`` against ``master_boundary`` of ``master``.
 
     Args:
-        slave, master: plane-strain or axisymmetric P1 :class:`tribofx.body.Body`
+        slave, master: plane-strain, axisymmetric or 3D P1 :class:`tribofx.body.Body`
             (affine meshes, both of one kind).
         boundary, master_boundary: boundary names; the master's must extend beyond
             the projections of Γ_l.
@@ -128,10 +129,10 @@ class TwoBodyFilm(KernelAssembly, Film):
                  motion2: Rolling | Sliding | None = None, U2: float = 0.0,
                  **kwargs: Any) -> None:
         for b in (slave, master):
-            if (b.kind not in ("plane_strain", "axisymmetric")
+            if (b.kind not in ("plane_strain", "axisymmetric", "3d")
                     or b.V.ufl_element().embedded_superdegree != 1):
-                raise ValueError("TwoBodyFilm is implemented for plane-strain and "
-                                 "axisymmetric P1 bodies")
+                raise ValueError("TwoBodyFilm is implemented for plane-strain, axisymmetric "
+                                 "and 3D P1 bodies")
         if slave.kind != master.kind:
             raise ValueError(f"TwoBodyFilm: a {slave.kind} slave needs a {slave.kind} master, "
                              f"not a {master.kind} one")
@@ -246,7 +247,8 @@ class TwoBodyFilm(KernelAssembly, Film):
     def _kernel(self) -> dict[str, Any]:
         """Kernel data of the owned nodes of Γ_l at the current state (cached per state).
 
-        Returns a dict: ``q`` (n, 11), ``data`` (n, 7), ``r``, ``J``, the pairing
+        Returns a dict: ``q`` (n, 11), ``data`` (n, 7) (3D: (n, 19), (n, 16)), ``r``,
+        ``J``, the pairing
         (``xm``, ``keys``, ``seg``, ``facet``, ``xi``) and ``rows`` (per problem).
         """
         key = self._state_key()
@@ -257,22 +259,22 @@ class TwoBodyFilm(KernelAssembly, Film):
         xs = self._Xk + self.body.u.x.array.reshape(-1, d)[self._bulk]
         xm, keys, seg, proj = self.side.project(xs, self._facet_ref, self.STICKY)
         f = proj["facet"]
-        q = np.zeros((len(self._q), NUM_LOCAL_FILM))
-        q[:, 0:2], q[:, 2:4], q[:, 4:6] = xs, xm[seg[f, 0]], xm[seg[f, 1]]
-        q[:, 6] = self.gap.x.array[self._q]
-        q[:, 7:9] = self.v_master.x.array.reshape(-1, d)[self._q]
-        q[:, 9:11] = self.t_nodal.x.array.reshape(-1, d)[self._q]
-        data = np.zeros((len(self._q), 7))
+        h_at = d + d * d                  # [x, the facet's d nodes, h, w, t]
+        q = np.zeros((len(self._q), num_local_film(d)))
+        q[:, 0:d] = xs
+        for j in range(d):
+            q[:, d + d * j:2 * d + d * j] = xm[seg[f, j]]
+        q[:, h_at] = self.gap.x.array[self._q]
+        q[:, h_at + 1:h_at + 1 + d] = self.v_master.x.array.reshape(-1, d)[self._q]
+        q[:, h_at + 1 + d:] = self.t_nodal.x.array.reshape(-1, d)[self._q]
+        data = np.zeros((len(self._q), num_data_film(d)))
+        nc = d * (d - 1)                  # [c (d nodes × (d − 1)), k₀, z (d nodes × d)]
         if self._motion2 is not None:
-            Xr = self.side.reference(keys)
-            A, B = Xr[seg[f, 0]], Xr[seg[f, 1]]
-            T = B - A
-            T2 = np.sum(T * T, axis=1)
-            U2 = float(self.U2.value)
-            data[:, 0] = U2 * np.sum(self._motion2(A) * T, axis=1) / T2
-            data[:, 1] = U2 * np.sum(self._motion2(B) * T, axis=1) / T2
+            data[:, :nc] = self._tangential_speeds(self.side.reference(keys)[seg[f]])
         k0, z = self._master_rates(keys)
-        data[:, 2], data[:, 3:5], data[:, 5:7] = k0, z[seg[f, 0]], z[seg[f, 1]]
+        data[:, nc] = k0
+        for j in range(d):
+            data[:, nc + 1 + d * j:nc + 1 + d * (j + 1)] = z[seg[f, j]]
         r, J = film_node_residuals(q, data, self._w, self._w_c, float(self.trace_scale.value),
                                    float(self._c_w.value))
         k = {"q": q, "data": data, "r": r, "J": J, "xm": xm, "keys": keys, "seg": seg,
@@ -280,34 +282,59 @@ class TwoBodyFilm(KernelAssembly, Film):
         self._cache = ([a.copy() for a in key], k)
         return k
 
+    def _tangential_speeds(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Return the master's motion at the facet nodes X (n, d, d) in the facet's basis.
+
+        2D: c_k = U₂ V(X_k)·T/|T|² (T = X₂ − X₁); 3D: c_k^a = U₂ M⁻¹[V(X_k)·T_b]
+        (T_b = X_{b+1} − X₁, M = [T_a·T_b]); (n, d (d − 1)), node by node.
+        """
+        assert self._motion2 is not None
+        U2, d = float(self.U2.value), self.body.gdim
+        if d == 2:
+            A, B = X[:, 0], X[:, 1]
+            T = B - A
+            T2 = np.sum(T * T, axis=1)
+            return np.stack([U2 * np.sum(self._motion2(A) * T, axis=1) / T2,
+                             U2 * np.sum(self._motion2(B) * T, axis=1) / T2], axis=1)
+        T = np.stack([X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]], axis=1)     # (n, 2, 3)
+        M = np.einsum("nai,nbi->nab", T, T)
+        out = [np.linalg.solve(M, U2 * np.einsum("nbi,ni->nb", T, self._motion2(X[:, j]))
+                               [..., None])[..., 0] for j in range(3)]
+        return np.concatenate(out, axis=1)
+
     def set_nodal_data(self) -> None:
         """Set h and w to their kernel values at the current state (a start or a restart)."""
         k = self._kernel()
         d = self.body.gdim
-        self.gap.x.array[self._q] = -k["r"][:, 6] / (float(self.trace_scale.value) * self._w_c)
+        h_at = d + d * d
+        self.gap.x.array[self._q] = -k["r"][:, h_at] / (float(self.trace_scale.value)
+                                                         * self._w_c)
         w = self.v_master.x.array.reshape(-1, d)
-        w[self._q] = -k["r"][:, 7:9] / (float(self._c_w.value) * self._w_c[:, None])
+        w[self._q] = -k["r"][:, h_at + 1:h_at + 1 + d] / (float(self._c_w.value)
+                                                           * self._w_c[:, None])
         for f in (self.gap, self.v_master):
             f.x.scatter_forward()
 
     def _rows(self, problem: Problem, k: dict[str, Any]) -> RowsCols:
-        """Global rows and columns (n, 11) of the local unknowns of ``k`` in ``problem``."""
+        """Global rows and columns (n, 11; 3D (n, 19)) of the local unknowns of ``k``."""
         if id(problem) in k["rows"]:
             return k["rows"][id(problem)]
         d = self.body.gdim
         rm, cm = self.side.rows(problem)
         seg, f = k["seg"], k["facet"]
-        rows = np.full((len(self._q), NUM_LOCAL_FILM), -1, dtype=np.int64)
+        h_at = d + d * d
+        rows = np.full((len(self._q), num_local_film(d)), -1, dtype=np.int64)
         cols = np.full_like(rows, -1)
         comp = np.arange(d)
         slots = ((0, self.body.u, d * self._bulk[:, None] + comp),
-                 (6, self.gap, self._q[:, None]),
-                 (7, self.v_master, d * self._q[:, None] + comp),
-                 (9, self.t_nodal, d * self._q[:, None] + comp))
+                 (h_at, self.gap, self._q[:, None]),
+                 (h_at + 1, self.v_master, d * self._q[:, None] + comp),
+                 (h_at + 1 + d, self.t_nodal, d * self._q[:, None] + comp))
         for j, fun, idx in slots:
             gr, gc = problem.global_rows(fun)
             rows[:, j:j + idx.shape[1]], cols[:, j:j + idx.shape[1]] = gr[idx], gc[idx]
-        for k_, j in ((0, 2), (1, 4)):
+        for k_ in range(d):               # the master facet's d nodes
+            j = d + d * k_
             rows[:, j:j + d], cols[:, j:j + d] = rm[seg[f, k_]], cm[seg[f, k_]]
         k["rows"][id(problem)] = (rows, cols)
         return rows, cols
@@ -392,9 +419,10 @@ class TwoBodyFilm(KernelAssembly, Film):
         N/mm per unit thickness (plane strain); N of the revolved bodies (axisymmetric).
         """
         r = self._kernel()["r"]
-        comm = self.body.mesh.comm
-        on_slave = -comm.allreduce(r[:, 0:2].sum(axis=0), op=MPI.SUM)
-        on_master = -comm.allreduce((r[:, 2:4] + r[:, 4:6]).sum(axis=0), op=MPI.SUM)
+        comm, d = self.body.mesh.comm, self.body.gdim
+        on_slave = -comm.allreduce(r[:, 0:d].sum(axis=0), op=MPI.SUM)
+        on_master = -comm.allreduce(sum(r[:, d + d * j:2 * d + d * j] for j in range(d))
+                                    .sum(axis=0), op=MPI.SUM)
         return on_slave, on_master
 
     def force(self) -> npt.NDArray[np.float64]:
