@@ -75,7 +75,7 @@ Case.validate(v)
 # -- coupled load sweep
 t0 = time.perf_counter()
 run = Case.build(v, comm)
-ball, film, prob = run
+ball, film, prob = run.ball, run.film, run.problem
 t_build = time.perf_counter() - t0
 steps = []
 

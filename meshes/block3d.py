@@ -14,6 +14,9 @@ converges slowly with the block's size, the pressure and the contact radius fast
 * ``quarter=False``: the full block [−L, L] × [−L, L] × [−H, 0] (the origin
   embedded in the top face); ``symmetry_x``, ``symmetry_y`` are then empty and
   the four lateral faces are ``sides``.
+* ``half=True`` (with ``quarter=False``): the half [−L, L] × [0, L] × [−H, 0]
+  of a block symmetric about y = 0 (``symmetry_y``; two boxes x ≤ 0, x ≥ 0 sharing
+  a face, so that the origin is a vertex), e.g. under a ball sliding along x.
 
 Facet tags (:data:`NAMES`, for :class:`tribofx.body.Body`): 1 ``top`` (z = 0),
 2 ``bottom`` (z = −H, e.g. held), 3 ``symmetry_x`` (x = 0), 4 ``symmetry_y``
@@ -43,16 +46,23 @@ NAMES = {"top": TOP, "bottom": BOTTOM, "symmetry_x": SYMMETRY_X, "symmetry_y": S
 
 
 def _build(
-    L: float, H: float, h_fine: float, h_coarse: float, r_fine: float, quarter: bool
+    L: float, H: float, h_fine: float, h_coarse: float, r_fine: float, quarter: bool,
+    half: bool = False,
 ) -> None:
     occ = gmsh.model.occ
     x0 = 0.0 if quarter else -L
-    occ.addBox(x0, x0, -H, L - x0, L - x0, H)
-    origin = None if quarter else occ.addPoint(0.0, 0.0, 0.0)
+    if half:     # two boxes x ≤ 0, x ≥ 0 sharing a face: the origin is a vertex
+        occ.fragment([(3, occ.addBox(-L, 0.0, -H, L, L, H))],
+                     [(3, occ.addBox(0.0, 0.0, -H, L, L, H))])
+    else:
+        occ.addBox(x0, x0, -H, L - x0, L - x0, H)
+    origin = None if quarter or half else occ.addPoint(0.0, 0.0, 0.0)
     occ.synchronize()
     tol = 1e-8 * L
     tags: dict[int, list[int]] = {k: [] for k in NAMES.values()}
     for dim, tag in gmsh.model.getEntities(2):
+        if len(gmsh.model.getAdjacencies(dim, tag)[0]) > 1:
+            continue             # the face the two halves share
         x, y, z = occ.getCenterOfMass(dim, tag)
         if abs(z) < tol:
             tags[TOP].append(tag)
@@ -60,7 +70,7 @@ def _build(
             tags[BOTTOM].append(tag)
         elif quarter and abs(x) < tol:
             tags[SYMMETRY_X].append(tag)
-        elif quarter and abs(y) < tol:
+        elif (quarter or half) and abs(y) < tol:
             tags[SYMMETRY_Y].append(tag)
         else:
             tags[SIDES].append(tag)
@@ -79,7 +89,7 @@ def _build(
 
 def contact_block(
     L: float, H: float, h_fine: float, h_coarse: float, r_fine: float,
-    comm: MPI.Comm = MPI.COMM_WORLD, quarter: bool = True,
+    comm: MPI.Comm = MPI.COMM_WORLD, quarter: bool = True, half: bool = False,
 ) -> tuple[Mesh, MeshTags]:
     """Build the block and return ``(mesh, facet_tags)`` (see the module docstring).
 
@@ -91,10 +101,13 @@ def contact_block(
         r_fine: radius of the refined patch (mm); choose it above the contact radius.
         comm: MPI communicator; the model is built on rank 0 and distributed.
         quarter: the quarter model with two symmetry planes (default) or the full block.
+        half: with ``quarter=False``, the half model y ≥ 0 (one symmetry plane).
     """
     if not (0 < h_fine <= h_coarse and 0 < r_fine < L and H > 0):
         raise ValueError("contact_block needs 0 < h_fine <= h_coarse, 0 < r_fine < L, H > 0")
+    if quarter and half:
+        raise ValueError("contact_block: half=True is the half model; give quarter=False")
     data = distributed_model("contact_block", lambda: _build(L, H, h_fine, h_coarse, r_fine,
-                                                             quarter), comm, 3)
+                                                             quarter, half), comm, 3)
     assert data.facet_tags is not None      # the model tags its boundary
     return data.mesh, data.facet_tags

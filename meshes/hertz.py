@@ -68,14 +68,15 @@ def _boundary(dim: int, tag: int) -> bool:
 
 def _build_2d(
     R: float, h_fine: float, h_coarse: float, r_fine: float, below: bool = False,
-    block: float | None = None, cap: float | None = None,
+    block: float | None = None, cap: float | None = None, depth: float | None = None,
 ) -> None:
     occ = gmsh.model.occ
     s = -1.0 if below else 1.0
     y_load = s * R
-    if block is not None:   # a flat block [0, block] × [−block, 0] below the contact point
-        occ.addRectangle(0, -block, 0, block, block)
-        y_load, R = -block, block
+    if block is not None:   # a flat block [0, block] × [−depth, 0] below the contact point
+        depth = block if depth is None else depth
+        occ.addRectangle(0, -depth, 0, block, depth)
+        y_load, R = -depth, block
     else:
         disc = occ.addDisk(0, s * R, 0, R, R)
         box = occ.addRectangle(0, min(0.0, s * R), 0, R, R)
@@ -151,7 +152,7 @@ def _build_3d(
 def hertz_body(
     dim: int, R: float, h_fine: float, h_coarse: float, r_fine: float,
     comm: MPI.Comm = MPI.COMM_WORLD, below: bool = False, block: float | None = None,
-    cap: float | None = None,
+    cap: float | None = None, depth: float | None = None,
 ) -> tuple[Mesh, MeshTags]:
     """Build the symmetry-reduced Hertz body and return ``(mesh, facet_tags)``.
 
@@ -164,8 +165,9 @@ def hertz_body(
         comm: MPI communicator; the model is built on rank 0 and distributed.
         below: 2D only: the cylinder under the contact point (centre (0, −R),
             loaded face y = −R), the counterpart of a two-cylinder contact.
-        block: 2D only: instead a flat block [0, block] × [−block, 0] (contact
-            face y = 0, loaded face y = −block, the right side free).
+        block: 2D only: instead a flat block [0, block] × [−depth, 0] (contact
+            face y = 0, loaded face y = −depth, the right side free).
+        depth: the block's depth (default ``block``: a square).
         cap: None, or the radius L < R of the contact cap (tag CONTACT; the rest of
             the curved surface FREE), e.g. the end of a lubricated film.
     """
@@ -173,7 +175,7 @@ def hertz_body(
         raise ValueError(f"dim must be 2 or 3, got {dim}")
     def build() -> None:
         if dim == 2:
-            _build_2d(R, h_fine, h_coarse, r_fine, below, block, cap)
+            _build_2d(R, h_fine, h_coarse, r_fine, below, block, cap, depth)
         else:
             _build_3d(R, h_fine, h_coarse, r_fine, cap)
 

@@ -83,9 +83,78 @@ def test_film_matches_hamrock_dowson(light_load):
     assert m["x_h_min"] > 0 and m["h_min"] < m["h_central"]
 
 
+def test_stiff_disc_reproduces_the_rigid_plane(light_load):
+    """A disc of E2 = 1e4 MPa (10⁴ E) under the ball: the rigid plane's film (W = 2 N, mesh 1).
+
+    The two-body film (:class:`tribofx.interfaces.TwoBodyFilm` in 3D) lives on the
+    ball's surface (S = γ_l), the rigid one on the plane (S = P(γ_l)); their metrics
+    differ by O((a/R)²), the film's slope over the contact (3.4 % here); the disc
+    yields p a/E2 ~ 1e-5 of a against a film of 1e-2 a.  The two-body gap is P1
+    between the nodes, where the rigid plane's is exact at the quadrature points: the
+    ball's chord sag h_e²/(8R) (h_e = a/8, 0.8 µm) against the film.  Bounds: h_c, p_max
+    and the friction coefficient within (a/R)²; h_min, at the outlet constriction,
+    within (a/R)² + h_e²/(8R h_min) (7.8 %).
+    """
+    v, _, rigid = light_load
+    vd = v.replace(E2=1e4)
+    run, out = _solve(vd)
+    m = out[-1]
+    a = Case.hertz_contact(vd).a
+    metric = (a / vd.R) ** 2
+    sag = (Case.ball_fine_size(vd)) ** 2 / (8 * vd.R)
+    rel = {k: m[k] / rigid[k] - 1 for k in ("h_central", "h_min", "p_max",
+                                             "friction_coefficient")}
+    print("stiff disc / rigid plane − 1:", rel, "bounds", metric, metric + sag / rigid["h_min"])
+    for k in ("h_central", "p_max", "friction_coefficient"):
+        assert abs(rel[k]) < metric, k
+    assert abs(rel["h_min"]) < metric + sag / rigid["h_min"]
+
+
+def test_soft_disc_in_pure_rolling_matches_hamrock_dowson_of_the_pair():
+    """A disc as soft as the ball (E2 = E, ν2 = ν; PDMS on PDMS), both rolling (SRR = 0).
+
+    Pure rolling is Hamrock–Dowson's own condition: the film against their formulas
+    with the composite modulus E* of the pair, in the same bands as the ball on the
+    rigid plane (:func:`test_film_matches_hamrock_dowson`: their fit's ±10–20 %, the
+    finite strain, ν = 0.45, the penalty cavitation): 20 % on h_c, 25 % on h_min;
+    the film thicker than Hamrock–Dowson's for the ball on the rigid plane (the pair
+    is twice as compliant: h_c ∝ E*^-0.44).  Two identical bodies in pure rolling
+    carry no Couette friction: their surfaces stretch alike (Dundurs' β = 0), so the
+    Couette traction μ(v₁ − v₂)/h is left only at O((a/R)²) of the sliding one, which
+    is at least μ 2U (πa²/2)/(h_c W/2) (the half contact under the central film; the
+    film is thinner at the outlet).  Equilibrium from the fields: the ball's held
+    mid-plane and the disc's held support each balance the film force (the bodies'
+    own rows; bound as :func:`_equilibrium_bound`, the residual norm of the coupled
+    system).
+    """
+    v = values(W=2.0, steps=1, mesh=1, E2=1.19, nu2=0.45, SRR=0.0)
+    run, out = _solve(v)
+    m = out[-1]
+    hc, hm = hamrock_dowson(v.W, v.mu, v.U, v.R, Case.e_star(v))
+    d_c, d_m = m["h_central"] / hc - 1, m["h_min"] / hm - 1
+    a = Case.hertz_contact(v).a
+    sliding = v.mu * 2 * v.U * (math.pi * a**2 / 2) / (m["h_central"] * m["W"] / 2)
+    print(f"soft disc, rolling: h_c = {m['h_central']:.5g} mm (HD {hc:.5g}, {100 * d_c:+.1f} %), "
+          f"h_min = {m['h_min']:.5g} mm (HD {hm:.5g}, {100 * d_m:+.1f} %); Couette friction "
+          f"{m['couette_friction_coefficient']:.3g} (sliding ≥ {sliding:.3g}, (a/R)² "
+          f"{(a / v.R) ** 2:.3g})")
+    assert abs(d_c) < 0.20
+    assert abs(d_m) < 0.25
+    assert m["h_central"] > hamrock_dowson(v.W, v.mu, v.U, v.R,
+                                           Case.e_star(v.replace(E2=math.inf)))[0]
+    assert m["couette_friction_coefficient"] < (a / v.R) ** 2 * sliding
+    b, _ = run.problem.assemble()
+    for body, name in ((run.ball, "midplane"), (run.disc, "support")):
+        n_z = body.V.dofmap.index_map.size_global
+        bound = 2 * math.sqrt(n_z) * b.norm() + 1e-12 * m["W"]
+        reaction = 2.0 * body.reaction(name, Case.Z)
+        print(f"{body.name}: reaction {reaction:.6g} N, film force {m['W']:.6g} N")
+        assert abs(abs(reaction) - m["W"]) <= bound
+
+
 def test_newton_quadratic(light_load):
     """Coupled Newton at a nearby plane position (0.5 % of the approach) converges quadratically."""
-    v, (_, film, problem), _ = light_load
+    v, (_, film, problem, *_), _ = light_load
     saved = problem.state()
     film.counterpart.offset.value[2] *= 1.005  # the plane 0.5 % of the approach higher
     report = problem.solve()
@@ -109,7 +178,7 @@ def test_coupled_tangent_taylor(light_load):
     perturbed) so that the penalty kink min(p, 0) is not crossed; perturbations
     (1e-3 of the scales × ε ≤ 1e-2) keep h > 0.
     """
-    v, (ball, film, problem), _ = light_load
+    v, (ball, film, problem, *_), _ = light_load
     saved = problem.state()
     p0 = Case.scales(v)[1]
     # positive pressure except on the rim (p = 0 there: the state satisfies its
@@ -161,7 +230,7 @@ def test_meshed_plane_tangent_taylor(light_load, surface):
     from tribofx.obstacles import rigid_surface_mesh
     from tribofx.problem import Problem
 
-    v, (ball, film, problem), _ = light_load
+    v, (ball, film, problem, *_), _ = light_load
     twin = Body(ball.mesh, ball.facet_tags, ball.names, "3d", ball.materials[None],
                 name="twin")
     twin.add_dirichlet("midplane", np.zeros(3))
@@ -236,7 +305,7 @@ def test_tangential_pressure_gradient_converges_to_the_exact_one(light_load):
     """
     from tribofx.forms.ehl import tangential_gradient_constraint
 
-    v, (_, film, _), _ = light_load
+    v, (_, film, *_), _ = light_load
     R = v.R
     Xc = np.array([0.0, 0.0, R])
     c = np.array([0.3, -0.7, 0.2])
@@ -414,7 +483,7 @@ def _equilibrium_bound(run, W):
     coupled Newton system at the solved state, n_z the number of z rows), plus
     assembly round-off (1e-12 W).
     """
-    ball, _, problem = run
+    ball, problem = run.ball, run.problem
     b, _ = problem.assemble()
     n_z = ball.V.dofmap.index_map.size_global
     return 2 * math.sqrt(n_z) * b.norm() + 1e-12 * abs(W)

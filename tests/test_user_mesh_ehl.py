@@ -490,7 +490,8 @@ def test_user_ball_is_placed_with_its_rim_condition(tmp_path):
 
     mesh = _ball(tmp_path / "ball.msh", h_fine=1.0, h_coarse=4.0)
     v = _values(Case, **BALL_FAST, mesh_file=mesh)
-    ball, film, _ = Case.build(v)
+    model = Case.build(v)
+    ball, film = model.ball, model.film
     x = ball.mesh.geometry.x
     assert np.allclose(x.min(axis=0), [-BALL_R, 0, 0], atol=1e-12)
     (bc,) = film._bcs
@@ -524,8 +525,8 @@ def test_built_ball_as_user_mesh_gives_the_built_problem(tmp_path):
                               a / 4, v.h_coarse, 1.6 * a)
     res = []
     for vv in (v, _values(Case, **BALL_FAST, mesh_file=mesh)):
-        ball, film, problem = Case.build(vv)
-        res.append(_residual_at_smooth_state(problem, ball, film))
+        model = Case.build(vv)
+        res.append(_residual_at_smooth_state(model.problem, model.ball, model.film))
     _same_residual(*res)
 
 

@@ -5,7 +5,7 @@ A body at rest in an Eulerian frame whose material moves through its mesh
 its reference points; its current surface velocity is F V.  Here
 V(X) = U V̂(X) with the speed U (mm/s, the continuation parameter) kept apart
 from the shape V̂ (dimensionless), which evaluates on a UFL vector (the film's
-forms) and on NumPy points (n, 2) (the two-body film kernel's master data).
+forms) and on NumPy points (n, 2) or (n, 3) (the two-body film kernel's master data).
 """
 
 from __future__ import annotations
@@ -54,19 +54,29 @@ class Rolling(Motion):
     """Rigid rotation about ``center`` with surface speed U at ``radius``: V̂ = e_z × (X − C)/R.
 
     Counter-clockwise for U > 0: the lowest point of a cylinder moves along +x.
+    In 3D, ``axis`` (a vector, normalised) is the axis of rotation: V̂ = a × (X − C)/R
+    (a ball about C = (0, 0, R) with a = −e_y: its lowest point moves along +x).
     """
 
-    def __init__(self, center: npt.ArrayLike, radius: float) -> None:
-        self.center, self.radius = np.asarray(center, float)[:2], float(radius)
+    def __init__(self, center: npt.ArrayLike, radius: float,
+                 axis: npt.ArrayLike | None = None) -> None:
+        self.radius = float(radius)
+        self.axis = None if axis is None else np.asarray(axis, float) / np.linalg.norm(axis)
+        self.center = np.asarray(center, float)[:2 if axis is None else 3]
 
     def on_points(self, X: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-        """Return V̂ at the points X (n, 2)."""
+        """Return V̂ at the points X (n, 2; n, 3 with an axis)."""
         c, R = self.center, self.radius
+        if self.axis is not None:
+            return np.cross(self.axis, X - c) / R
         return np.c_[-(X[:, 1] - c[1]), X[:, 0] - c[0]] / R
 
     def on_ufl(self, X: ufl.core.expr.Expr) -> ufl.core.expr.Expr:
         """Return V̂ at the UFL position X."""
         c, R = self.center, self.radius
+        if self.axis is not None:
+            a = ufl.as_vector([float(x) for x in self.axis])
+            return ufl.cross(a, X - ufl.as_vector([float(x) for x in c])) / R
         return ufl.as_vector([-(X[1] - c[1]) / R, (X[0] - c[0]) / R])
 
 

@@ -37,6 +37,13 @@ with a warning.  A point no built mesh resolves is refused at validation:
 
     tribofx run ehl-ball --set W=40 --set U=7800 --set theta_l=60 --set compare=all
 
+A soft disc (``E2`` finite, ``nu2``, ``H2``): the plane becomes the top of an
+elastic half block [−L₂, L₂] × [0, L₂] × [−H₂, 0] (L₂ = 1.25 R sin θ_l, H₂ default
+4 a(W)) held at its bottom, whose support Constant the load search moves in
+place of the plane's offset (``Model.position``); its material slides at 2U (the
+ball at rest), the film is :class:`~tribofx.interfaces.TwoBodyFilm` in 3D, the
+dry start puts the Hertz pressure on both surfaces, and E* is the pair's.
+
 Your own ball (``mesh_file``, a gmsh quarter ball with the groups ``lubricated``,
 ``midplane``, ``symmetry``): :mod:`tribofx.cases.ehl_ball`.
 
@@ -67,6 +74,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
+from dolfinx import fem
 from dolfinx import mesh as dmesh
 from mpi4py import MPI
 
@@ -74,9 +82,11 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film, FilmScales, Fluid, Penalty, Quadrature
+from ..interfaces import Film, FilmScales, Fluid, Penalty, Quadrature, TwoBodyFilm
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
+from ..meshes.block3d import BOTTOM, SIDES, SYMMETRY_Y, TOP, contact_block
 from ..meshes.user import read_user_mesh
+from ..motions import Rolling, Sliding
 from ..obstacles import rigid_plane
 from ..params import InputError, param
 from ..positions import oscillation_indicator, paraboloid_vertex
@@ -93,7 +103,6 @@ if TYPE_CHECKING:
     from pathlib import Path
 
     import numpy.typing as npt
-    from dolfinx import fem
     from tqdm import tqdm
 
     from ..continuation import Iterations
@@ -101,13 +110,15 @@ if TYPE_CHECKING:
     from ..output import RunRecord
     from ..references import HertzContact
 
-__all__ = ["FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS", "USER_GROUPS", "VARIANTS",
-           "Z", "Model", "Params", "build", "check_curvature", "checked_outlet_width", "doc",
-           "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
+__all__ = ["DISC_NAMES", "FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UNITS",
+           "USER_GROUPS", "VARIANTS", "Z", "EntrainmentSpeed", "Model", "Params",
+           "ball_fine_size", "build", "check_curvature", "checked_outlet_width", "disc_size",
+           "doc", "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
            "hertz_slope", "hertz_start", "large_load", "load", "load_sweep", "measures",
            "mesh_levels", "name", "outlet_width", "place_user_ball", "plot", "position_control",
-           "progress_total", "resumable", "run", "scales", "set_scales", "speed_march",
-           "speed_parameter", "sweep", "thick_film_sweep", "user_rim", "validate", "vtx_fields"]
+           "progress_total", "resumable", "run", "scales", "set_scales", "speed_constants",
+           "speed_march", "speed_parameter", "surface_speeds", "sweep", "thick_film_sweep",
+           "user_rim", "validate", "vtx_fields"]
 
 
 #: largest element size along the contact edge, in units of the outlet width ℓ
@@ -167,6 +178,14 @@ def mesh_levels(v: Params) -> tuple[int, int, bool]:
 
 
 Z = 2  # the plane's normal direction, index of its offset
+
+#: the soft disc's boundaries (:func:`tribofx.meshes.block3d.contact_block`, half model)
+DISC_NAMES = {"lubricated": TOP, "support": BOTTOM, "symmetry": SYMMETRY_Y, "free": SIDES}
+
+
+def ball_fine_size(v: Params) -> float:
+    """Element size near the contact (mm): a/(4·2^mesh), a the Hertz radius at W."""
+    return hertz_contact(v).a / (4 * 2 ** mesh_levels(v)[0])
 
 
 #: largest speed ratio of one step of a speed march (a larger one starts the held-load
@@ -275,6 +294,24 @@ class Params(FluidParams):
     R: float = param(12.7, "mm", "ball radius", lower=0.0)
     E: float = param(1.19, "MPa", "Young's modulus of the ball", lower=0.0)
     nu: float = param(0.45, "-", "Poisson's ratio of the ball", lower=-1.0, upper=0.5)
+    E2: float = param(
+        math.inf, "MPa",
+        "Young's modulus of the disc under the ball (inf: the rigid plane; finite: an "
+        "elastic half block sliding at 2U, the two-body film)",
+        lower=0.0, infinite=True)
+    nu2: float = param(0.45, "-", "Poisson's ratio of the disc (E2 finite)", lower=-1.0,
+                       upper=0.5)
+    SRR: float = param(
+        2.0, "-",
+        "slide-to-roll ratio 2(U2 − U1)/(U1 + U2) of the ball's (U1) and the countersurface's "
+        "(U2) surface speeds, U = (U1 + U2)/2: 2 the ball at rest and the countersurface "
+        "sliding at 2U (the chapter's), 0 pure rolling (the ball rolls about its centre)",
+        lower=-2.0, upper=2.0, closed=True)
+    H2: float | None = param(
+        None, "mm",
+        "thickness of the disc (E2 finite; default 4 a(W), a the Hertz radius of the pair; "
+        "its half-width 1.25 R sin theta_l covers the cap)",
+        lower=0.0)
     theta_l: float = param(
         40.0, "deg",
         "polar angle of the lubricated cap",
@@ -346,13 +383,19 @@ FILM_OSCILLATION_TOL = 0.05
 
 
 def e_star(v: Params) -> float:
-    """Plane-strain modulus E* = E/(1 − ν²) of the ball against the rigid plane (MPa)."""
-    return composite_modulus(v.E, v.nu)
+    """Contact modulus E* (MPa): E/(1 − ν²) on the rigid plane, composite on the disc."""
+    return composite_modulus(v.E, v.nu, v.E2, v.nu2)
 
 
 def hertz_contact(v: Params, W: float | None = None) -> HertzContact:
-    """Hertz contact of the ball on the rigid plane at W (default ``v.W``, N)."""
-    return hertz(v.W if W is None else W, v.R, v.E, v.nu)
+    """Hertz contact of the ball on the rigid plane (or the disc) at W (default ``v.W``, N)."""
+    return hertz(v.W if W is None else W, v.R, v.E, v.nu, E2=v.E2, nu2=v.nu2)
+
+
+def disc_size(v: Params) -> tuple[float, float]:
+    """Half-width and thickness (mm) of the disc (E2 finite): 1.25 R sin θ_l and ``H2``."""
+    H = 4 * hertz_contact(v).a if v.H2 is None else v.H2
+    return 1.25 * v.R * math.sin(math.radians(v.theta_l)), H
 
 
 def validate(v: Params) -> None:
@@ -367,6 +410,9 @@ def validate(v: Params) -> None:
                          f"(Hertz a at W = {v.W} N): increase theta_l")
     if not v.U > 0 or not v.mu > 0:
         raise InputError("U and mu must be positive (entrainment)")
+    if math.isfinite(v.E2) and (v.model == "linear" or v.compare == "all"):
+        raise InputError("the soft disc (E2 finite) has the finite-deformation film only: "
+                         "model=finite, compare=none")
     checked_outlet_width(v)
     auto = v.mesh is None or v.edge_refine is None
     if auto and not v.mesh_file and not mesh_levels(v)[2]:
@@ -396,11 +442,21 @@ def set_scales(film: Film, v: Params, W: float, U: float) -> None:
 
 
 class Model(NamedTuple):
-    """What :func:`build` assembles: the quarter ball, its film on the plane, the problem."""
+    """What :func:`build` assembles: the half ball, its film on the plane (or disc), the problem.
+
+    ``position``: the Constant whose z component (:data:`Z`) places the countersurface
+    (the rigid plane's offset, or the disc's support); ``disc``: the soft disc (E2
+    finite) or None; ``ball_speed``: the Constant of the ball's surface speed U1 (a
+    rolling ball, ``SRR`` ≠ 2; None: the ball at rest); ``srr``: the slide-to-roll ratio.
+    """
 
     ball: Body
-    film: Film
+    film: Film | TwoBodyFilm
     problem: Problem
+    position: fem.Constant
+    disc: Body | None = None
+    ball_speed: fem.Constant | None = None
+    srr: float = 2.0
 
 
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") -> Model:
@@ -416,7 +472,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
         place_user_ball(msh, ft, names, v, a)
     else:
         level, refine, _ = mesh_levels(v)
-        h_fine = a / (4 * 2**level)
+        h_fine = ball_fine_size(v)
         ring = (0.95 * a, h_fine / 2**refine, 0.1 * a) if refine else None
         msh, ct, ft = quarter_ball(v.R, th, h_fine, max(v.h_coarse, h_fine),
                                    1.6 * a, comm, ring=ring)
@@ -428,20 +484,46 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
     ball.add_dirichlet("midplane", np.zeros(3))
     ball.add_dirichlet("symmetry", 0.0, component=1)
     _, p0, h_c, eps = scales(v, v.W / v.steps)
-    V_plane = np.array([2 * v.U, 0.0, 0.0])
-    film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]),
-                Fluid(viscosity(v), density(v)),
-                scales=FilmScales(pressure=p0, film=h_c, speed=v.U),
-                cavitation=Penalty(eps) if v.penalty > 0 else None,
-                quadrature=Quadrature(v.quadrature, degree=2),
-                V_counter=V_plane, model=v.model, shear=v.shear, supg=v.supg)
+    kw: dict[str, Any] = dict(scales=FilmScales(pressure=p0, film=h_c, speed=v.U),
+                              cavitation=Penalty(eps) if v.penalty > 0 else None,
+                              quadrature=Quadrature(v.quadrature, degree=2), shear=v.shear,
+                              supg=v.supg)
+    disc = ball_speed = None
+    film: Film | TwoBodyFilm
+    U1, U2 = surface_speeds(v)
+    # a rolling ball (SRR ≠ 2) turns about its centre: its lowest point moves along +x
+    rolling = None if v.SRR == 2 else Rolling((0.0, 0.0, v.R), v.R, axis=(0.0, -1.0, 0.0))
+    if math.isinf(v.E2):
+        V_plane = np.array([2 * v.U if v.SRR == 2 else U2, 0.0, 0.0])
+        if rolling is not None:
+            ball_speed = fem.Constant(ball.mesh, U1)
+            kw["motion"] = (rolling, ball_speed)
+        film = Film(ball, "lubricated", rigid_plane(np.zeros(3), np.eye(3)[Z]),
+                    Fluid(viscosity(v), density(v)), V_counter=V_plane, model=v.model, **kw)
+        position = cast("AnalyticObstacle", film.counterpart).offset
+    else:      # the soft disc: a half block under the ball, held at its bottom
+        L2, H2 = disc_size(v)
+        h_fine = ball_fine_size(v)
+        mb, fb = contact_block(L2, H2, h_fine, max(v.h_coarse, h_fine), 1.6 * a, comm,
+                               quarter=False, half=True)
+        mu2, lm2 = lame_parameters(v.E2, v.nu2)
+        disc = Body(mb, fb, DISC_NAMES, "3d", ("neo-hookean", {"mu": mu2, "lmbda": lm2}),
+                    name="disc", formulation=v.formulation)
+        disc.add_dirichlet("symmetry", 0.0, component=1)
+        position = disc.add_dirichlet("support", np.zeros(3))
+        # the disc's material slides at U2 under the ball (at rest, or rolling at U1)
+        film = TwoBodyFilm(ball, "lubricated", disc, "lubricated",
+                           Fluid(viscosity(v), density(v)), motion1=rolling, U1=U1,
+                           motion2=Sliding((1.0, 0.0, 0.0)), U2=U2, **kw)
+        ball_speed = film.U1 if rolling is not None else None
     if v.mesh_file:
         film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v.R))
     else:
         z_cap = cap_height(v.R, th)
         film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R)
-    problem = Problem([ball, film], name=name, max_it=25)
-    return Model(ball, film, problem)
+    bodies = [ball] if disc is None else [ball, disc]
+    problem = Problem([*bodies, film], name=name, max_it=25)
+    return Model(ball, film, problem, position, disc, ball_speed, v.SRR)
 
 
 def progress_total(v: Params) -> int:
@@ -500,7 +582,7 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
     # (the plane's offset is state); the series' "time" is the point's index, its
     # (W, U) in series_points
     sv = SweepVariant(journal, key, run,
-                      problem.state_fields() + [cast("fem.Constant", film.V_counter)],
+                      [*problem.state_fields(), *speed_constants(run)],
                       record, vtx_fields(run), f"{name}_" if name else "",
                       ("steps", "speed"), run.ball.mesh.comm, progress)
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
@@ -557,7 +639,8 @@ def measures(run: Model, v: Params) -> dict[str, Any]:
     """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
     film = run.film
     prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
-    f_plane = film.counter_force()
+    f_plane = film.counter_force() if isinstance(film, Film) and run.disc is None \
+        else cast("TwoBodyFilm", film).forces()[1]
     xy = (prof["x"] if v.model == "finite" else prof["X"])[:, :2]
     on = np.abs(prof["X"][:, 1]) < 1e-9 * v.R          # the symmetry line y = 0
     order = np.argsort(xy[on, 0])
@@ -576,7 +659,7 @@ def measures(run: Model, v: Params) -> dict[str, Any]:
             "friction_coefficient": abs(float(f[0])) * per_load,
             "couette_friction_coefficient": abs(float(fc[0])) * per_load,
             "plane_friction_coefficient": abs(float(f_plane[0])) * per_load,
-            "clearance": -float(cast("AnalyticObstacle", film.counterpart).offset.value[Z])}
+            "clearance": -float(run.position.value[Z])}
 
 
 def _report(steps: list[dict[str, Any]], speed: list[dict[str, Any]], v: Params,
@@ -639,19 +722,70 @@ def plot(profile: dict[str, Any], outdir: Path) -> None:
 
 
 def speed_parameter(run: Model, on_set: Callable[[float], object] | None = None
-                    ) -> ConstantParameter:
-    """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U)."""
-    # (the plane's velocity, a Constant: build)
-    return ConstantParameter(cast("fem.Constant", run.film.V_counter), 0, on_set=on_set,
-                             scale=2.0)
+                    ) -> ConstantParameter | EntrainmentSpeed:
+    """Entrainment speed U (mm/s) as a continuation parameter (the plane slides at 2U).
+
+    With a slide-to-roll ratio the countersurface moves at (1 + SRR/2)U and the ball's
+    surface at (1 − SRR/2)U (:class:`EntrainmentSpeed`, both Constants).
+    """
+    srr = run.srr
+    counter, *ball = speed_constants(run)
+    # (the plane's velocity, a vector Constant, or the disc's U2)
+    parts = [ConstantParameter(counter, 0 if run.disc is None else None, scale=1 + srr / 2)]
+    if not ball:
+        parts[0].on_set = on_set
+        return parts[0]
+    parts.append(ConstantParameter(ball[0], None, scale=1 - srr / 2))
+    return EntrainmentSpeed(parts, on_set)
+
+
+class EntrainmentSpeed:
+    """A continuation parameter U that sets several speeds, each ``scale``·U.
+
+    ``parts``: :class:`~tribofx.continuation.ConstantParameter` s (the
+    countersurface's and the ball's speeds); ``get`` reads the first with a non-zero
+    scale; ``on_set(U)`` runs once after each change.
+    """
+
+    def __init__(self, parts: list[ConstantParameter],
+                 on_set: Callable[[float], object] | None = None) -> None:
+        self.parts, self.on_set = parts, on_set
+
+    def get(self) -> float:
+        """Return U (mm/s)."""
+        return next(p for p in self.parts if p.scale != 0).get()
+
+    def set(self, value: float) -> None:
+        """Set every speed to its multiple of ``value`` (then ``on_set``)."""
+        for p in self.parts:
+            p.set(value)
+        if self.on_set is not None:
+            self.on_set(float(value))
+
+
+def surface_speeds(v: Params) -> tuple[float, float]:
+    """Return the ball's and the countersurface's surface speeds U1, U2 (mm/s)."""
+    return (1 - v.SRR / 2) * v.U, (1 + v.SRR / 2) * v.U
+
+
+def speed_constants(run: Model) -> list[fem.Constant]:
+    """Return the Constants of the speeds: the countersurface's, then the ball's (if it rolls)."""
+    counter = (cast("TwoBodyFilm", run.film).U2 if run.disc is not None
+               else cast("fem.Constant", run.film.V_counter))
+    return [counter] + ([run.ball_speed] if run.ball_speed is not None else [])
 
 
 def hertz_start(run: Model, v: Params, W: float, U: float) -> None:
     """Dry ball under the Hertz pressure at W, the plane at the film h_c(W, U) (all ranks)."""
     h = hertz_contact(v, W)
-    run.film.start_from_pressure(
-        lambda x: h.pressure(np.hypot(x[0], x[1])),
-        scales(v, W, U)[2], np.zeros(3))
+    def pressure(x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        return h.pressure(np.hypot(x[0], x[1]))
+
+    h_c = scales(v, W, U)[2]
+    if isinstance(run.film, TwoBodyFilm):   # the disc is moved with its support
+        run.film.start_from_pressure(pressure, h_c, np.zeros(3), support=run.position)
+    else:
+        run.film.start_from_pressure(pressure, h_c, np.zeros(3))
 
 
 def load(run: Model) -> float:
@@ -667,8 +801,7 @@ def position_control(run: Model, v: Params, verbose: bool = False,
     A converged film with min h ≤ 0 or W ≤ 0 (an unphysical branch) is rejected.
     """
     film, problem = run.film, run.problem
-    plane = cast("AnalyticObstacle", film.counterpart)   # the rigid plane
-    return Continuation(problem, ConstantParameter(plane.offset, Z, on_set),
+    return Continuation(problem, ConstantParameter(run.position, Z, on_set),
                         response=lambda: load(run), rtol=1e-4, max_trials=40,
                         verbose=verbose, max_step=0.1 * hertz_contact(v).delta,
                         admissible=lambda: film.min_film() > 0 and load(run) > 0,
@@ -694,7 +827,7 @@ def load_sweep(run: Model, v: Params,
     film, problem = run.film, run.problem
     W1 = v.W / v.steps
     inner = position_control(run, v, verbose)
-    offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
+    offset = run.position.value   # the plane's (the disc's support)
     # each trial sequence starts at the current position: the converged first
     # state, then the Hertz state predicted for each further load
     held = Hold(inner, W1, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
@@ -826,7 +959,7 @@ def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
     its leg ``leg``.
     """
     film = run.film
-    offset = cast("AnalyticObstacle", film.counterpart).offset.value   # the plane's
+    offset = run.position.value   # the plane's (the disc's support)
     speed = speed_parameter(run, on_set=lambda Uv: set_scales(film, v, W, Uv))
     last = {"U": speed.get()}
 

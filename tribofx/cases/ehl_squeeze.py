@@ -27,8 +27,9 @@ traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 ``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
 each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite: the plane
-is the top of an elastic block [0, 2L] × [−2L, 0] (ν2; axisymmetric: a disc of
-radius and thickness 2L; 3D: the quarter block [0, 2L]² × [−2L, 0]), held — or
+is the top of an elastic block [0, 2L] × [−H2, 0] (ν2, H2 default 2L;
+axisymmetric: a disc of radius 2L; 3D: the quarter block [0, 2L]² × [−H2, 0]),
+a layer bonded to a rigid base where H2 is small, held — or
 lifted at V — at its bottom, and the film is the two-body one
 (:class:`~tribofx.interfaces.TwoBodyFilm`, S = the body's surface): a soft
 cylinder or ball landing on a soft block or disc.
@@ -124,6 +125,11 @@ class Params(FluidParams):
         "finite: an elastic block (dim=2, 3) or disc (dim=axisymmetric), the two-body film)",
         lower=0.0, infinite=True)
     nu2: float = param(0.3, "-", "Poisson's ratio of the plane body", lower=-1.0, upper=0.5)
+    H2: float | None = param(
+        None, "mm",
+        "thickness of the elastic block or disc (E2 finite; default 2L, L the film's end): "
+        "a layer bonded to a rigid base at its bottom",
+        lower=0.0)
     mu: float = param(1e-7, "MPa·s", "viscosity μ₀ (1e-7 MPa·s = 0.1 Pa·s)", lower=0.0)
     h_start: float = param(0.01, "mm", "initial film at the centre", lower=0.0)
     T: float = param(2e-3, "s", "end time", lower=0.0)
@@ -145,6 +151,8 @@ def validate(v: Params) -> None:
     """Bad input: a one-line error."""
     if not v.h_start < 0.1 * v.R:
         raise InputError(f"h_start = {v.h_start} mm must be below R/10 (a thin film)")
+    if v.H2 is not None and math.isinf(v.E2):
+        raise InputError("H2 is the thickness of the elastic block: give E2 too")
     if v.dt > v.T:
         raise InputError(f"dt = {v.dt} s exceeds T = {v.T} s")
     if v.control == "speed" and v.V <= 0 and not (v.V < 0 and v.cavitation
@@ -271,14 +279,16 @@ def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, f
     bodies = [body]
     if math.isinf(v.E2):
         film = Film(body, "lubricated", rigid_plane(np.zeros(dim), up), fluid, **kw)
-    else:      # a block [0, 2L] × [−2L, 0] under the body (axisymmetric: a disc; 3D: the
-        # quarter [0, 2L]² × [−2L, 0]), held (and lifted) at its bottom
+    else:      # a block [0, 2L] × [−H2, 0] under the body (axisymmetric: a disc; 3D: the
+        # quarter [0, 2L]² × [−H2, 0]), held (and lifted) at its bottom
+        H2 = 2 * L if v.H2 is None else v.H2
         if dim == 3:
-            mb, fb = contact_block(2 * L, 2 * L, h_fine, h_coarse, 2 * ell, comm)
+            mb, fb = contact_block(2 * L, H2, h_fine, h_coarse, 2 * ell, comm)
             block_names = {"lubricated": TOP, "loaded": BOTTOM, "symmetry_x": SYMMETRY_X,
                            "symmetry_y": SYMMETRY_Y, "free": SIDES}
         else:
-            mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L)
+            mb, fb = hertz_body(2, 2 * L, h_fine, h_coarse, 2 * ell, comm, block=2 * L,
+                                depth=None if v.H2 is None else H2)
             block_names = names
         mu_b, lm_b = lame_parameters(v.E2, v.nu2)
         block = Body(mb, fb, block_names, kind, ("neo-hookean", {"mu": mu_b, "lmbda": lm_b}),

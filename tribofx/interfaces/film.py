@@ -705,6 +705,13 @@ class Film(ReynoldsFilm):
         first pressure iterate and a rigid countersurface is placed so that the
         film is ``h0`` (mm) at the node nearest to ``at``.  Returns the Newton report.
         """
+        report = self._dry_start(pressure, verbose)
+        self.place_countersurface(h0, at)
+        return report
+
+    def _dry_start(self, pressure: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]],
+                   verbose: bool = False) -> NewtonReport:
+        """Solve the body under ``pressure`` on Γ_l (no film); p set to it, g to 0."""
         if self._dry is None:
             dry = PrescribedPressure(self)
             self._dry = (dry, Problem([self.body, dry], name=f"{self.name}_dry"))
@@ -714,7 +721,6 @@ class Film(ReynoldsFilm):
         self.p.x.array[:] = dry.p.x.array
         if self.g is not None:
             self.g.x.array[:] = 0.0
-        self.place_countersurface(h0, at)
         return report
 
     # -- outputs -------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""A dry start for a film: the lubricated boundary under a prescribed pressure."""
+"""A dry start for a film: a lubricated boundary under a prescribed pressure."""
 
 from __future__ import annotations
 
@@ -9,15 +9,18 @@ from dolfinx import fem
 
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
+from ..forms import hyperelastic as hf
+from ..forms import kinematics as kin
 from ..protocols import ComponentBase
 
 if TYPE_CHECKING:
     from dolfinx import mesh as dmesh
 
+    from ..body import Body
     from ..problem import BlockTolerance
     from .film import Film
 
-__all__ = ["PrescribedPressure"]
+__all__ = ["BoundaryPressure", "PrescribedPressure"]
 
 
 class PrescribedPressure(ComponentBase):
@@ -76,3 +79,39 @@ class PrescribedPressure(ComponentBase):
 
     def commit(self) -> None:
         """Nothing to accept."""
+
+
+class BoundaryPressure(ComponentBase):
+    """A boundary of a body under a prescribed follower pressure (no film, no unknowns).
+
+    Component of a dry problem ``Problem([body, BoundaryPressure(body, name)])``:
+    ``p`` (P1 on the body, MPa; set it, e.g. ``p.interpolate(f)``) loads the
+    boundary ``name`` as T = −p J F⁻ᵀ N (Nanson; :meth:`tribofx.body.Body.add_follower_pressure`
+    for a permanent one).  The master's side of a two-body dry start
+    (:meth:`tribofx.interfaces.TwoBodyFilm.start_from_pressure`).
+    """
+
+    def __init__(self, body: Body, boundary: str) -> None:
+        self.body = body
+        self.p = fem.Function(fem.functionspace(body.mesh, ("Lagrange", 1)),
+                              name=f"{body.name}_{boundary}_prescribed_pressure")
+        F = kin.deformation_gradient(body.u, body.kind)
+        t = -self.p * kin.nanson_normal(F, ufl.FacetNormal(body.mesh), body.kind)
+        t = ufl.as_vector([t[i] for i in range(body.gdim)])
+        self._work = hf.external_virtual_work(t, body.v, body.kind, body.ds(body.tag(boundary)))
+
+    def unknowns(self) -> list[fem.Function]:
+        """Return none (the body's u carries the load)."""
+        return []
+
+    def contributions(self) -> list[tuple[fem.Function, ufl.Form]]:
+        """Return minus the pressure's virtual work on the body's u."""
+        return [(self.body.u, -self._work)]
+
+    def tolerances(self) -> dict[fem.Function, BlockTolerance]:
+        """Return none."""
+        return {}
+
+    def state_fields(self) -> list[fem.Function]:
+        """Return the prescribed pressure."""
+        return [self.p]

@@ -51,12 +51,13 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from ..forms import two_body_film as tbf
-from ..problem import BlockTolerance
+from ..problem import BlockTolerance, Problem
 from ..scheme import BDF2
 from ..two_body import film_node_residuals, num_data_film, num_local_film
 from .film import Film
 from .film_options import FilmScales
 from .master_side import KernelAssembly, MasterSide, cached_state
+from .prescribed_pressure import BoundaryPressure
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -67,8 +68,8 @@ if TYPE_CHECKING:
     from ..body import Body
     from ..forms.ehl import LubricationKinematics
     from ..motions import Rolling, Sliding
-    from ..problem import Problem
     from ..protocols import Counterpart
+    from ..reports import NewtonReport
     from ..scheme import Scheme
     from .film import Shape
     from .film_options import Fluid
@@ -147,6 +148,8 @@ class TwoBodyFilm(KernelAssembly, Film):
         super().__init__(slave, boundary, lambda V1: cast("Counterpart", _NoCounterpart()), fluid,
                          motion=None if motion1 is None else (motion1, self.U1), **kwargs)
         self.side = MasterSide(master, master_boundary)
+        self._master_boundary = master_boundary
+        self._master_dry: tuple[BoundaryPressure, Problem] | None = None
         sf, sub = self._surface, self.sub
         self._c_w = fem.Constant(sub, self.mu / self.h_ref if kwargs.get("row_scaling", True)
                                  else 1.0)
@@ -411,6 +414,64 @@ class TwoBodyFilm(KernelAssembly, Film):
         """Accept the converged step: the pairing of the converged state is the reference."""
         k = self._kernel()
         self._facet_committed = self._facet_ref = (k["seg"].copy(), k["facet"].copy())
+
+    # -- a dry start -------------------------------------------------------------------------
+    def start_from_pressure(self,
+                            pressure: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]],
+                            h0: float, at: npt.ArrayLike, verbose: bool = False,
+                            support: fem.Constant | None = None) -> NewtonReport:
+        """Set an initial state: both bodies under a prescribed pressure, film ``h0`` at ``at``.
+
+        The slave as :meth:`Film.start_from_pressure` (Γ_l under ``pressure``, p set
+        to it); the master's lubricated boundary under the same ``pressure`` of its
+        reference coordinates, a follower load in its own dry problem
+        (:class:`~tribofx.interfaces.prescribed_pressure.BoundaryPressure`; e.g. the
+        Hertz pressure about the contact point acts on both surfaces); then the
+        master is translated (:meth:`place_master`, with ``support``) so that the gap
+        is ``h0`` (mm) at the slave node nearest ``at``.  Returns the slave's report.
+        """
+        report = self._dry_start(pressure, verbose)
+        if self._master_dry is None:
+            load = BoundaryPressure(self.master, self._master_boundary)
+            self._master_dry = (load, Problem([self.master, load],
+                                              name=f"{self.name}_master_dry"))
+        load, problem = self._master_dry
+        load.p.interpolate(pressure)
+        problem.solve(verbose=verbose)
+        self.place_master(h0, at, support)
+        return report
+
+    def place_master(self, h0: float, at: npt.ArrayLike,
+                     support: fem.Constant | None = None) -> None:
+        """Translate the master so that the gap is ``h0`` (mm) at the slave node nearest ``at``.
+
+        The master's displacement moves by Δn, n its outward normal at that node's
+        projection and Δ = h − h0 (a rigid translation: equilibrium is kept);
+        ``support``: the Constant of the Dirichlet condition that holds the master
+        (:meth:`tribofx.body.Body.add_dirichlet`), moved with it.  The nodal gap and
+        velocity are then set to the kernel's values.
+        """
+        self._cache = None
+        self.set_nodal_data()
+        k, d = self._kernel(), self.body.gdim
+        d2 = np.sum((self._Xk - np.asarray(at, float)[:d]) ** 2, axis=1)
+        loc: tuple[float, Any] = (np.inf, None)
+        if len(d2):
+            i = int(np.argmin(d2))
+            X = k["xm"][k["seg"][k["facet"][i]]]                     # the facet's nodes
+            if d == 2:
+                tau = X[1] - X[0]
+                n = np.array([tau[1], -tau[0]])
+            else:
+                n = np.cross(X[1] - X[0], X[2] - X[0])
+            loc = (float(d2[i]), (float(self.gap.x.array[self._q[i]]), n / np.linalg.norm(n)))
+        _, (h, n) = min(self.body.mesh.comm.allgather(loc), key=lambda t: t[0])
+        shift = (h - h0) * n
+        self.master.u.x.array.reshape(-1, d)[:] += shift
+        if support is not None:
+            support.value[:] += shift
+        self._cache = None
+        self.set_nodal_data()
 
     # -- outputs ---------------------------------------------------------------------------
     def forces(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
