@@ -1,4 +1,4 @@
-"""A lubricating film between two deformable bodies (plane strain, axisymmetric): §6–7.
+"""A lubricating film between two deformable bodies (plane strain, axisymmetric, 3D): §6–7.
 
 The chapter restricts soft-EHL to one rigid body and calls two deformable bodies
 "a challenging task for future work".  :class:`TwoBodyFilm` is the
