@@ -45,6 +45,18 @@ namespace tribofx::two_body
 /// Number of local unknowns per slave node of the two-body film (2D).
 inline constexpr int num_local_film = 11;
 
+/// Write the values (r, N) and the derivatives (J, N x N, row-major) of a node's residual.
+template <int N>
+inline void write_residual(const std::array<Dual<N>, N>& res, double* r, double* J)
+{
+  for (int i = 0; i < N; ++i)
+  {
+    r[i] = res[i].v;
+    for (int k = 0; k < N; ++k)
+      J[i * N + k] = res[i].d[k];
+  }
+}
+
 /// Number of data per slave node: c1, c2, k0, z1 (2), z2 (2).
 inline constexpr int num_data_film = 7;
 
@@ -82,12 +94,7 @@ inline void film_node_residual(const double* q, const double* data, double w, do
                                 -c_w * w_c * vm1,
                                 D(0.0),
                                 D(0.0)};
-  for (int i = 0; i < N; ++i)
-  {
-    r[i] = res[i].v;
-    for (int k = 0; k < N; ++k)
-      J[i * N + k] = res[i].d[k];
-  }
+  write_residual<N>(res, r, J);
 }
 
 /// Number of local unknowns per slave node of the two-body film in 3D.
@@ -154,12 +161,7 @@ inline void film_node_residual_3d(const double* q, const double* data, double w,
     res[16 + i] = D(0.0);
   }
   res[12] = -c_h * w_c * g;
-  for (int i = 0; i < N; ++i)
-  {
-    r[i] = res[i].v;
-    for (int k = 0; k < N; ++k)
-      J[i * N + k] = res[i].d[k];
-  }
+  write_residual<N>(res, r, J);
 }
 
 } // namespace tribofx::two_body
