@@ -442,7 +442,7 @@ def set_scales(film: Film, v: Params, W: float, U: float) -> None:
 
 
 class Model(NamedTuple):
-    """What :func:`build` assembles: the half ball, its film on the plane (or disc), the problem.
+    """What :func:`build` assembles: the quarter ball, its film on the plane or disc, the problem.
 
     ``position``: the Constant whose z component (:data:`Z`) places the countersurface
     (the rigid plane's offset, or the disc's support); ``disc``: the soft disc (E2
@@ -639,8 +639,9 @@ def measures(run: Model, v: Params) -> dict[str, Any]:
     """h_central, h_min (x, y), p_max, W, friction coefficients, clearance (all ranks)."""
     film = run.film
     prof, f, fc = film.profile(everywhere=True), film.force(), film.couette_force()
-    f_plane = film.counter_force() if isinstance(film, Film) and run.disc is None \
-        else cast("TwoBodyFilm", film).forces()[1]
+    # the force on the countersurface: the plane's wall traction, or the disc's reaction
+    f_plane = (film.counter_force() if run.disc is None
+               else cast("TwoBodyFilm", film).forces()[1])
     xy = (prof["x"] if v.model == "finite" else prof["X"])[:, :2]
     on = np.abs(prof["X"][:, 1]) < 1e-9 * v.R          # the symmetry line y = 0
     order = np.argsort(xy[on, 0])
