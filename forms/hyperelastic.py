@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING
 
 import ufl
 
-from .kinematics import deformation_gradient, grad3, reference_volume_factor
+from .kinematics import deformation_gradient, grad3, nanson_normal, reference_volume_factor
 
 if TYPE_CHECKING:
     from ufl.core.expr import Expr
@@ -43,6 +43,7 @@ __all__ = [
     "body_force_work",
     "MATERIALS",
     "external_virtual_work",
+    "follower_pressure_work",
     "first_piola",
     "internal_virtual_work",
     "lame_parameters",
@@ -197,6 +198,21 @@ def external_virtual_work(
     """Virtual work ∫ T*·δφ dS of a prescribed nominal traction T* (MPa), eq. (7)."""
     w = reference_volume_factor(v.ufl_function_space().mesh, kind)
     return ufl.dot(traction, v) * w * ds
+
+
+def follower_pressure_work(
+    pressure: Expr | float, u: ufl.Coefficient, v: ufl.Coefficient | ufl.Argument, kind: str,
+    ds: ufl.Measure,
+) -> ufl.Form:
+    """Virtual work of a follower pressure p (MPa): T* = −p J F⁻ᵀ N (Nanson), eq. (7).
+
+    ``u`` the displacement (F = I + Grad u, with the hoop stretch when
+    axisymmetric), ``v`` its test function, ``ds`` the loaded boundary.
+    """
+    F = deformation_gradient(u, kind)
+    t = -pressure * nanson_normal(F, ufl.FacetNormal(u.ufl_function_space().mesh), kind)
+    t = ufl.as_vector([t[i] for i in range(v.ufl_shape[0])])
+    return external_virtual_work(t, v, kind, ds)
 
 
 def body_force_work(

@@ -279,11 +279,8 @@ class Body(ComponentBase):
 
     def add_follower_pressure(self, name: str, pressure: ufl.core.expr.Expr | float) -> None:
         """Follower pressure p (MPa) on boundary ``name``: T = −p J F⁻ᵀ N (Nanson)."""
-        F = kin.deformation_gradient(self.u, self.kind)
-        t = -pressure * kin.nanson_normal(F, ufl.FacetNormal(self.mesh), self.kind)
-        t = ufl.as_vector([t[i] for i in range(self.gdim)])
-        self._loads.append(hf.external_virtual_work(t, self.v, self.kind,
-                                                    self.ds(self.tag(name))))
+        self._loads.append(hf.follower_pressure_work(pressure, self.u, self.v, self.kind,
+                                                     self.ds(self.tag(name))))
 
     def add_shape_dirichlet(self, name: str, component: int,
                             except_on: str | None = None) -> None:

@@ -10,7 +10,6 @@ from dolfinx import fem
 from ..forms import ehl as ef
 from ..forms import film_traction as ft
 from ..forms import hyperelastic as hf
-from ..forms import kinematics as kin
 from ..protocols import ComponentBase
 
 if TYPE_CHECKING:
@@ -95,10 +94,8 @@ class BoundaryPressure(ComponentBase):
         self.body = body
         self.p = fem.Function(fem.functionspace(body.mesh, ("Lagrange", 1)),
                               name=f"{body.name}_{boundary}_prescribed_pressure")
-        F = kin.deformation_gradient(body.u, body.kind)
-        t = -self.p * kin.nanson_normal(F, ufl.FacetNormal(body.mesh), body.kind)
-        t = ufl.as_vector([t[i] for i in range(body.gdim)])
-        self._work = hf.external_virtual_work(t, body.v, body.kind, body.ds(body.tag(boundary)))
+        self._work = hf.follower_pressure_work(self.p, body.u, body.v, body.kind,
+                                               body.ds(body.tag(boundary)))
 
     def unknowns(self) -> list[fem.Function]:
         """Return none (the body's u carries the load)."""
