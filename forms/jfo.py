@@ -22,7 +22,8 @@ if TYPE_CHECKING:
 
     from .ehl import LubricationKinematics
 
-__all__ = ["VERTEX_DELTA", "couette_flux", "jfo_inflow", "jfo_on_surface"]
+__all__ = ["VERTEX_DELTA", "boundary_speed", "couette_flux", "jfo_inflow", "jfo_on_surface",
+           "leak_conductance", "streamline_length"]
 
 # δ of the full-film fraction that switches the vertex-rule share of the Couette flux
 # (p/p_c and λ): a transition over a few hundredths, where the iterates of a front at
@@ -52,7 +53,11 @@ def jfo_on_surface(
     (:func:`forms.reynolds.jfo_diffusivity`), element size h_e scaled to S.
     ``ds_ends`` (the end points of Γ_l, with the reference tangent ``T``) adds
     the jumps of the Couette flux between elements (see the code), so that the
-    discrete form is conservative node by node.
+    discrete form is conservative node by node.  On a surface (gdim = 3, ``T``
+    None) ``ds_ends`` is the boundary edges of Γ_l: the Couette part becomes
+    −∫ θ h v̄·grad_S δp dS + ∮ θ h v_n δp dL (:func:`boundary_speed`), the same
+    jumps by the divergence theorem on each triangle; the rows tested by δp = 1
+    then sum to the Couette outflow through ∂S.  The ``vertex`` share is for curves.
 
     ``weight`` w: the area factor of a surface of revolution, ds_S = w dl with
     w = 2π r_S (1 in the plane).  ``dx``, ``nodal_dx`` and ``ds_ends`` are then
@@ -105,13 +110,23 @@ def jfo_on_surface(
         F += rate * dp * (nodal_dx if lumped else dx)
     if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
         D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
-        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
+        h_S = h_e * kin.stretch if T is not None else streamline_length(
+            kin, dx.ufl_domain(), h_e * kin.stretch)
+        tau = rf.supg_tau(h_S, kin.vbar, D)
         r_supg = None if rate is None else rate / (kin.stretch * weight)
         if lumped and rate is not None:
             r_supg = rf.jfo_film_fraction(p, lam, p_c) * r_supg
         F += rf.supg_stabilisation(p, lam_c, dp, kin.h, kin.vbar, mu, tau, dS, grad=grad,
                                    div=div, rate=r_supg)
-    if ds_ends is not None:
+    if ds_ends is not None and T is None:
+        # a surface S (gdim = 3): the jumps of the Couette flux θ h v̄ across the
+        # edges, the same way as on a curve (below), but by the divergence theorem of
+        # each triangle: −Σ_E [[w·ν_E]] δp = −Σ_e ∫_e div_S(w δp) dS + ∮_∂S w·ν δp dl,
+        # so that the Couette part is −∫ w·grad_S δp dS + the outflow through ∂S
+        w = (1 - lam_c) * kin.h * kin.vbar
+        F -= div(w * dp) * dS
+        F += boundary_speed(kin, ds_ends) * (1 - lam_c) * kin.h * dp * ds_ends
+    elif ds_ends is not None:
         # v̄ = ½(I − ν⊗ν)FV is discontinuous between elements for a C⁰ displacement:
         # the element-wise divergence theorem leaves the jumps of the Couette flux
         # w_t = θ h v̄·t_S at the nodes, −Σ_F [[w_t]] δp (zero for the exact solution).
@@ -132,7 +147,6 @@ def jfo_on_surface(
         dw = vertex * (1 - s) * w_t * ufl.dot(grad_gamma(dp), T)
         F += dw * dx - dw * nodal_dx
     if inflow is not None:
-        assert T is not None    # given with inflow (jfo_inflow raises on None)
         F += jfo_inflow(kin, lam_c, p, dp, inflow[1], T, inflow[0], mu, h_e, weight)
     C = rf.jfo_complementarity(p, lam, dlam, p_c, nodal_dx, weight=weight * q_ref / h_e)
     return F, C
@@ -140,14 +154,16 @@ def jfo_on_surface(
 
 def jfo_inflow(
     kin: LubricationKinematics, lam: Expr | float, p: Expr, dp: Expr, supply: Expr | float,
-    T: Expr, ds_in: ufl.Measure, mu: Expr | float, h_e: Expr | float,
+    T: Expr | None, ds_in: ufl.Measure, mu: Expr | float, h_e: Expr | float,
     weight: Expr | float = 1, leak: float = 1e3,
 ) -> ufl.Form:
-    """Open end of a curve Γ_l (gdim = 2) to a reservoir at p = 0 with a lubricant supply, JFO.
+    """Open end of Γ_l to a reservoir at p = 0 with a lubricant supply, JFO.
 
-    The divergence form of the transport rows carries the Couette flux w θ h v_n
-    through an end (v_n = v̄·t_S (T·n), n the end's outward normal) with the
-    end node's own content θh.  Where the flow enters (v_n < 0)
+    The ends of a curve (gdim = 2, ``T`` its reference tangent) or the edges of a
+    surface (gdim = 3, ``T`` None).  The divergence form of the transport rows
+    carries the Couette flux w θ h v_n through an end (v_n of
+    :func:`boundary_speed`, outward) with the end node's own content θh.  Where
+    the flow enters (v_n < 0)
 
         ∫_ds_in w min(v_n, 0) (c_in − θ h) δp,   θ = 1 − λ,
 
@@ -164,12 +180,58 @@ def jfo_inflow(
     in a cavitated end p = 0 and the term vanishes.  One form serves both
     directions of a reciprocating film.  ``lam`` is the clamped λ, ``mu`` μ(p).
     """
-    tS = kin.A * T
-    v_n = ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS))) * ufl.dot(
-        T, ufl.FacetNormal(ds_in.ufl_domain()))
-    kappa = leak * rf.poiseuille_conductance(kin.h, mu) / (h_e * kin.stretch)
+    v_n = boundary_speed(kin, ds_in, T)
+    kappa = leak_conductance(kin, mu, h_e, leak)
     return weight * (ufl.min_value(v_n, 0) * (supply - (1 - lam) * kin.h)
                      + kappa * p) * dp * ds_in
+
+
+def streamline_length(kin: LubricationKinematics, mesh: ufl.AbstractDomain,
+                      fallback: Expr | float) -> Expr:
+    """Length (mm) on S of a triangle of Γ_l along v̄, SUPG's element size on a surface.
+
+    h_S = √2 |v̄| / (Σ_i (v̄·grad_S φ_i)²)^½ over the triangle's three hat functions
+    φ_i (grad_S φ = A⁻ᵀ Grad_Γ φ, so v̄·grad_S φ = (A⁻¹v̄)·Grad_Γ φ; the gradients of
+    the barycentric coordinates are the rows of the submesh's inverse Jacobian).  On
+    an interval of length ℓ it is ℓ, and so it is along a leg ℓ of a right triangle:
+    a slab's film meshed by the vertices of a curve's gets the curve's SUPG (the
+    triangle's diameter, √2 ℓ there, would not).  Smooth in v̄ ≠ 0 (the sum of
+    squares is invariant under the vertices' order); ``fallback`` where v̄ ≈ 0.
+    """
+    K = ufl.JacobianInverse(mesh)
+    V = ufl.inv(kin.A) * kin.vbar
+    g1, g2 = ufl.dot(V, K[0, :]), ufl.dot(V, K[1, :])
+    speed2 = ufl.dot(kin.vbar, kin.vbar)
+    tiny = 1e-300
+    return ufl.conditional(ufl.gt(speed2, tiny),
+                           ufl.sqrt(2 * speed2 / (g1**2 + g2**2 + (g1 + g2) ** 2 + tiny)),
+                           fallback)
+
+
+def leak_conductance(kin: LubricationKinematics, mu: Expr | float, h_e: Expr | float,
+                     leak: float = 1e3) -> Expr:
+    """Return κ = ``leak`` · h³/(12μ h_e J_S), the Robin conductance of an open end.
+
+    The leak of :func:`jfo_inflow` (mm/(MPa·s) per unit length of the end).
+    """
+    return leak * rf.poiseuille_conductance(kin.h, mu) / (h_e * kin.stretch)
+
+
+def boundary_speed(kin: LubricationKinematics, ds: ufl.Measure, T: Expr | None = None) -> Expr:
+    """Outward speed v_n (mm/s) of the mean velocity v̄ through ∂S, per unit length of ∂Γ_l.
+
+    The content θh times v_n is the Couette volume flux out of S through the end
+    (mm²/s at an end of a curve; mm²/s per mm of reference edge on a surface).
+    A curve (gdim = 2, ``T`` its reference tangent): v_n = v̄·t_S (T·n), n = ±1 the
+    end's outward normal.  A surface (gdim = 3, ``T`` None): by Nanson's formula for
+    the tangent map A (A N = ν), ν_∂ dl = J_S A⁻ᵀ n dL with n the outward conormal
+    of the reference edge in the plane of Γ_l, so v_n = J_S (A⁻¹ v̄)·n.
+    """
+    n = ufl.FacetNormal(ds.ufl_domain())
+    if T is not None:
+        tS = kin.A * T
+        return ufl.dot(kin.vbar, tS / ufl.sqrt(ufl.dot(tS, tS))) * ufl.dot(T, n)
+    return kin.stretch * ufl.dot(ufl.inv(kin.A) * kin.vbar, n)
 
 
 def couette_flux(kin: LubricationKinematics, lam: Expr | float, T: Expr) -> Expr:

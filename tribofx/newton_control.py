@@ -72,6 +72,9 @@ class NewtonControl:
         def set_unknowns(self, x: PETSc.Vec) -> None:
             """Copy the block vector ``x`` into the unknowns."""
 
+        def refresh(self) -> None:
+            """Run every component's ``refresh`` at the current unknowns."""
+
         def _owned(self, vec: la.Vector, ui: fem.Function) -> npt.NDArray[np.float64]: ...
 
         def _emaps(self) -> list[EntityMap] | None: ...
@@ -185,7 +188,9 @@ class NewtonControl:
         Semismooth Newton on contact and friction can cycle between active sets;
         halving the step while ‖R‖ does not decrease (Armijo, c = 1e-4) breaks
         the cycle.  Near the solution the full step is accepted, which keeps the
-        local quadratic rate.  If no trial decreases ‖R‖ the full step is taken.
+        local quadratic rate.  If no trial decreases ‖R‖ the full step is taken, or,
+        when a component does not admit it (a film without fluid at a node: its
+        Newton matrix is singular), the largest trial step every component admits.
         With ``line_search="admissible"`` a trial is accepted when every
         component's ``admissible()`` holds and R is finite; if none is, the
         smallest trial is taken.  The accepted trial's residual is cached, so SNES
@@ -203,6 +208,7 @@ class NewtonControl:
         r0, r0_all = self._merit(b0, done), self.snes.getFunctionNorm()
         xt, bt = x.duplicate(), x.duplicate()
         alpha = 1.0
+        largest_admissible = None    # the largest trial step the components admit
         for _ in range(self.max_backtracks + 1):
             if border is not None:
                 border.trial(alpha)
@@ -217,17 +223,36 @@ class NewtonControl:
                     y.scale(alpha)
                 xt.destroy()
                 return
+            if largest_admissible is None and all(c.admissible() for c in self.components):
+                largest_admissible = alpha
             alpha *= 0.5
         if self.line_search == "admissible":  # the last (smallest) trial step
             y.scale(2 * alpha)
             if border is not None:
                 border.trial(2 * alpha)
-        else:  # Armijo found no decrease: the full step
+        else:  # Armijo found no decrease: the full step, or the largest admissible one
+            if largest_admissible is None:
+                # no trial is admitted: halve on, testing only the components (no assembly)
+                for _ in range(40):
+                    if self._admits(x, y, alpha, xt):
+                        largest_admissible = alpha
+                        break
+                    alpha *= 0.5
+            step = 1.0 if largest_admissible is None else largest_admissible
+            if step != 1.0:
+                y.scale(step)
             if border is not None:
-                border.trial(1.0)
+                border.trial(step)
             self._cache = None
             bt.destroy()
         xt.destroy()
+
+    def _admits(self, x: PETSc.Vec, y: PETSc.Vec, alpha: float, xt: PETSc.Vec) -> bool:
+        """Whether every component admits the trial x − α y (the unknowns left there)."""
+        xt.waxpy(-alpha, y, x)
+        self.set_unknowns(xt)
+        self.refresh()
+        return all(c.admissible() for c in self.components)
 
     def _kept(self, b: PETSc.Vec, done: Sequence[bool]) -> bool:
         """Whether the blocks converged at the iterate (``done``) are still converged in ``b``."""

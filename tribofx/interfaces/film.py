@@ -234,9 +234,9 @@ class Film(ReynoldsFilm):
         if cavitation is not None and not isinstance(cavitation, (Penalty, JFO)):
             raise TypeError(f"cavitation: None, Penalty(eps) or JFO(), not {cavitation!r}")
         gdim = body.gdim
-        if (isinstance(cavitation, JFO) or alpha is not None) and gdim != 2:
-            raise ValueError("JFO cavitation and alpha are implemented for a curve Γ_l "
-                             "(gdim = 2)")
+        if alpha is not None and gdim != 2:
+            raise ValueError("alpha (the intermediate surface S_α) is implemented for a curve "
+                             "Γ_l (gdim = 2)")
         mu, density = fluid.viscosity, fluid.density
         eps = cavitation.eps if isinstance(cavitation, Penalty) else None
         cavitation_name = "none" if cavitation is None else cavitation.name
@@ -561,6 +561,9 @@ class Film(ReynoldsFilm):
             raise ValueError("a transient film needs quadrature='gauss'")
         if lumped and self.lam is None:
             raise ValueError("a lumped transient film is for cavitation='jfo'")
+        if self.lam is not None and self.T is None:
+            raise ValueError("a transient JFO film on a surface (gdim = 3) is not built: "
+                             "a transient 3D film takes cavitation=Penalty(eps)")
         self.lumped = bool(lumped)
         if lumped and self._jumps:   # ω of jfo_on_surface(vertex=): 0 until set (reforming films)
             self.vertex_couette = fem.Constant(self.sub, 0.0)

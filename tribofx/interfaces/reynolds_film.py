@@ -209,17 +209,24 @@ class ReynoldsFilm(ComponentBase):
         return self.add_pressure_bc(where, pressure) if void == 0 else None
 
     def add_inflow(self, where: Where, content: float = 0.0) -> fem.Constant:
-        """Open end(s) ``where`` of a JFO film on a curve, supplied with the content c_in (mm).
+        """Open ends ``where`` of a JFO film, supplied with the content c_in (mm).
 
-        Where the Couette flux enters, c_in replaces the end node's own content
-        θh in the flux; where it leaves, the end is a natural outlet; a film that
-        arrives full leaves through a Robin leak κp, p = 0 weakly
-        (:func:`tribofx.forms.jfo.jfo_inflow`).  For a film whose flow reverses
-        (a reciprocating rod).  Call before the Problem is built; returns c_in's
+        The ends of a curve, or the edges of ∂Γ_l of a surface whose midpoints
+        ``where`` selects.  Where the Couette flux enters, c_in replaces the end
+        node's own content θh in the flux (a lubricant layer of thickness t carried
+        in by a surface moving at 2v̄ is c_in = 2t: a starved inlet for c_in below
+        the gap there, a flooded one above it); where it leaves, the end is a
+        natural outlet; a film that arrives full leaves through a Robin leak κp,
+        p = 0 weakly (:func:`tribofx.forms.jfo.jfo_inflow`).  For a film whose flow
+        reverses (a reciprocating rod), or a ball's rim, whose inflow and outflow
+        parts follow from v̄.  Call before the Problem is built; returns c_in's
         Constant (mm).
         """
-        if self.lam is None or self.sub.topology.dim != 1:
-            raise ValueError("a weak inflow is for a JFO film on a curve")
+        if self.lam is None:
+            raise ValueError("a weak inflow is for a JFO film (cavitation='jfo')")
+        if self.sub.topology.dim == 2 and not self._jumps:
+            raise ValueError("a weak inflow on a plane RigidFilm is not built (it is for a "
+                             "curve, or a Film on a body's surface)")
         self._inflow = (where, fem.Constant(self.sub, float(content)))
         return self._inflow[1]
 
@@ -402,12 +409,14 @@ class ReynoldsFilm(ComponentBase):
         inflow ends tagged 2, the others 1.
         """
         sub = self.sub
+        fdim = sub.topology.dim - 1
         ends = self.boundary_facets()
         values = np.full(len(ends), 1, dtype=np.int32)
         if self._inflow is not None and len(ends):
-            X = sub.geometry.x[dmesh.entities_to_geometry(sub, 0, ends, False)][:, 0, :]
+            # the ends' points, or the midpoints of the edges of a surface
+            X = sub.geometry.x[dmesh.entities_to_geometry(sub, fdim, ends, False)].mean(axis=1)
             values[np.asarray(self._inflow[0](X.T), dtype=bool)] = 2
-        tags = dmesh.meshtags(sub, 0, ends, values)
+        tags = dmesh.meshtags(sub, fdim, ends, values)
         # a point's integral is its value: the vertex rule (no points on a point) is not needed
         md = {k: v for k, v in self.dx.metadata().items() if k != "quadrature_rule"}
         ds = ufl.Measure("ds", sub, subdomain_data=tags, metadata=md)
@@ -492,6 +501,36 @@ class ReynoldsFilm(ComponentBase):
         (d_in, R_in), (d_out, R_out) = [(d, self._sum(form)) for d, form in rows]
         return (self._at_dofs(wf.x.array, d_in) + R_in,
                 self._at_dofs(wf.x.array, d_out) - R_out)
+
+    def surface_books(self) -> dict[str, float]:
+        """Return the oil's books of a JFO film on a surface: fluxes (mm³/s) through ∂Γ_l.
+
+        With v_n the outward speed of v̄ through ∂S (:func:`tribofx.forms.jfo.boundary_speed`)
+        and θh the content: ``out`` ∫ max(v_n, 0) θh dL, the Couette outflow;
+        ``entered`` ∫ −min(v_n, 0) θh dL, the content carried in through the ends
+        that have no supply; ``supplied`` ∫ −min(v_n, 0) c_in dL through the open
+        ends of :meth:`add_inflow`; ``leak`` ∫ κ p dL, their Robin outflow.  The
+        transport rows tested by δp = 1 are supplied and entered against out and
+        leak: on a steady film without pressure conditions (every row solved)
+        ``supplied + entered = out + leak`` to the solver's tolerance.
+        """
+        if self.lam is None or self.sub.topology.dim != 2 or self.T is not None:
+            raise ValueError("surface_books: a JFO film on a surface (gdim = 3)")
+        kin = self._flux_kinematics()[0]
+        ds_ends, ds_in = self._ds_ends()
+        content = (1 - ufl.min_value(self.lam, 1.0)) * kin.h
+        v_n = jfo.boundary_speed(kin, ds_ends)
+        forms = {"out": ufl.max_value(v_n, 0) * content * ds_ends,
+                 "entered": -ufl.min_value(v_n, 0) * content * ds_ends.reconstruct(
+                     subdomain_id=1)}
+        if self._inflow is not None:
+            h_e = ufl.CellDiameter(self.sub)
+            forms["supplied"] = -ufl.min_value(v_n, 0) * self._inflow[1] * ds_in
+            forms["leak"] = jfo.leak_conductance(kin, self.mu_p, h_e) * self.p * ds_in
+        self.refresh()
+        out = {k: self._sum(fem.form(f, entity_maps=self.entity_maps() or None))
+               for k, f in forms.items()}
+        return {"supplied": 0.0, "leak": 0.0} | out
 
     def _gather(self, data: Mapping[str, npt.ArrayLike], key: str,
                 everywhere: bool) -> Profile | None:

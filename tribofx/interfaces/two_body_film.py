@@ -55,7 +55,7 @@ from ..problem import BlockTolerance, Problem
 from ..scheme import BDF2
 from ..two_body import film_node_residuals, num_data_film, num_local_film
 from .film import Film
-from .film_options import FilmScales
+from .film_options import JFO, FilmScales
 from .master_side import KernelAssembly, MasterSide, cached_state
 from .prescribed_pressure import BoundaryPressure
 
@@ -137,6 +137,9 @@ class TwoBodyFilm(KernelAssembly, Film):
         if slave.kind != master.kind:
             raise ValueError(f"TwoBodyFilm: a {slave.kind} slave needs a {slave.kind} master, "
                              f"not a {master.kind} one")
+        if slave.kind == "3d" and isinstance(kwargs.get("cavitation"), JFO):
+            raise ValueError("TwoBodyFilm in 3D takes cavitation=Penalty(eps) or None: JFO "
+                             "between two 3D bodies is not built (it is for one body's Film)")
         for key in ("V_counter", "model", "alpha", "motion"):
             if key in kwargs:
                 raise ValueError(f"TwoBodyFilm has no option {key!r} (S = γ_l, finite model)")
