@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from .ehl import LubricationKinematics
 
 __all__ = ["VERTEX_DELTA", "boundary_speed", "couette_flux", "jfo_inflow", "jfo_on_surface",
-           "leak_conductance", "streamline_length"]
+           "leak_conductance"]
 
 # δ of the full-film fraction that switches the vertex-rule share of the Couette flux
 # (p/p_c and λ): a transition over a few hundredths, where the iterates of a front at
@@ -110,9 +110,7 @@ def jfo_on_surface(
         F += rate * dp * (nodal_dx if lumped else dx)
     if supg and not isinstance(kin.vbar, ufl.constantvalue.Zero):   # v̄ ≡ 0: no SUPG term
         D = rf.jfo_diffusivity(p, lam, kin.h, mu, p_c)
-        h_S = h_e * kin.stretch if T is not None else streamline_length(
-            kin, dx.ufl_domain(), h_e * kin.stretch)
-        tau = rf.supg_tau(h_S, kin.vbar, D)
+        tau = rf.supg_tau(h_e * kin.stretch, kin.vbar, D)
         r_supg = None if rate is None else rate / (kin.stretch * weight)
         if lumped and rate is not None:
             r_supg = rf.jfo_film_fraction(p, lam, p_c) * r_supg
@@ -184,28 +182,6 @@ def jfo_inflow(
     kappa = leak_conductance(kin, mu, h_e, leak)
     return weight * (ufl.min_value(v_n, 0) * (supply - (1 - lam) * kin.h)
                      + kappa * p) * dp * ds_in
-
-
-def streamline_length(kin: LubricationKinematics, mesh: ufl.AbstractDomain,
-                      fallback: Expr | float) -> Expr:
-    """Length (mm) on S of a triangle of Γ_l along v̄, SUPG's element size on a surface.
-
-    h_S = √2 |v̄| / (Σ_i (v̄·grad_S φ_i)²)^½ over the triangle's three hat functions
-    φ_i (grad_S φ = A⁻ᵀ Grad_Γ φ, so v̄·grad_S φ = (A⁻¹v̄)·Grad_Γ φ; the gradients of
-    the barycentric coordinates are the rows of the submesh's inverse Jacobian).  On
-    an interval of length ℓ it is ℓ, and so it is along a leg ℓ of a right triangle:
-    a slab's film meshed by the vertices of a curve's gets the curve's SUPG (the
-    triangle's diameter, √2 ℓ there, would not).  Smooth in v̄ ≠ 0 (the sum of
-    squares is invariant under the vertices' order); ``fallback`` where v̄ ≈ 0.
-    """
-    K = ufl.JacobianInverse(mesh)
-    V = ufl.inv(kin.A) * kin.vbar
-    g1, g2 = ufl.dot(V, K[0, :]), ufl.dot(V, K[1, :])
-    speed2 = ufl.dot(kin.vbar, kin.vbar)
-    tiny = 1e-300
-    return ufl.conditional(ufl.gt(speed2, tiny),
-                           ufl.sqrt(2 * speed2 / (g1**2 + g2**2 + (g1 + g2) ** 2 + tiny)),
-                           fallback)
 
 
 def leak_conductance(kin: LubricationKinematics, mu: Expr | float, h_e: Expr | float,

@@ -82,7 +82,7 @@ from ..body import Body
 from ..continuation import ConstantParameter, Continuation
 from ..forms.hyperelastic import lame_parameters
 from ..hold import Hold
-from ..interfaces import Film, FilmScales, Fluid, Penalty, Quadrature, TwoBodyFilm
+from ..interfaces import JFO, Film, FilmScales, Fluid, Penalty, Quadrature, TwoBodyFilm
 from ..meshes.ball import BALL_NAMES, cap_height, quarter_ball
 from ..meshes.block3d import BOTTOM, SIDES, SYMMETRY_Y, TOP, contact_block
 from ..meshes.user import read_user_mesh
@@ -329,6 +329,17 @@ class Params(FluidParams):
         "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
         "Hamrock–Dowson h_c at W)",
         lower=0.0)
+    cavitation: str = param(
+        "penalty", "-",
+        "penalty (Swift–Stieber limit, p = 0 on the rim) or jfo (mass-conserving, void "
+        "fraction λ; the rim an open end supplied with the content `supply`)",
+        choices=("penalty", "jfo"))
+    supply: float = param(
+        math.inf, "mm",
+        "cavitation=jfo: the lubricant content c_in carried in through the rim where the "
+        "flow enters (layers t₁ + t₂ on the two surfaces; below the flooded film: a "
+        "starved contact); inf: flooded (c_in = the rim's gap)",
+        lower=0.0, infinite=True)
     mesh: int | None = param(
         None, "-",
         "element size a/(4·2^mesh) near the contact (default: "
@@ -410,6 +421,12 @@ def validate(v: Params) -> None:
                          f"(Hertz a at W = {v.W} N): increase theta_l")
     if not v.U > 0 or not v.mu > 0:
         raise InputError("U and mu must be positive (entrainment)")
+    if v.cavitation == "jfo" and (math.isfinite(v.E2) or v.mesh_file or v.model == "linear"
+                                  or v.compare == "all"):
+        raise InputError("cavitation=jfo is built for the rigid plane (E2=inf), the built "
+                         "ball and the finite model (compare=none)")
+    if math.isfinite(v.supply) and v.cavitation != "jfo":
+        raise InputError("supply (a starved inlet) needs cavitation=jfo")
     if math.isfinite(v.E2) and (v.model == "linear" or v.compare == "all"):
         raise InputError("the soft disc (E2 finite) has the finite-deformation film only: "
                          "model=finite, compare=none")
@@ -484,8 +501,10 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
     ball.add_dirichlet("midplane", np.zeros(3))
     ball.add_dirichlet("symmetry", 0.0, component=1)
     _, p0, h_c, eps = scales(v, v.W / v.steps)
+    cavitation = (JFO() if v.cavitation == "jfo" else Penalty(eps) if v.penalty > 0
+                  else None)
     kw: dict[str, Any] = dict(scales=FilmScales(pressure=p0, film=h_c, speed=v.U),
-                              cavitation=Penalty(eps) if v.penalty > 0 else None,
+                              cavitation=cavitation,
                               quadrature=Quadrature(v.quadrature, degree=2), shear=v.shear,
                               supg=v.supg)
     disc = ball_speed = None
@@ -520,7 +539,13 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
         film.add_pressure_bc(at_points(user_rim(film, v, a), 1e-8 * v.R))
     else:
         z_cap = cap_height(v.R, th)
-        film.add_pressure_bc(lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R)
+        on_rim = lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R   # noqa: E731
+        if v.cavitation == "jfo":
+            # the rim an open end: the supply enters where v̄ points in, the film
+            # leaves where it points out, a Robin leak keeps p ≈ 0 (forms.jfo.jfo_inflow)
+            film.add_inflow(on_rim, z_cap if math.isinf(v.supply) else v.supply)
+        else:
+            film.add_pressure_bc(on_rim)
     bodies = [ball] if disc is None else [ball, disc]
     problem = Problem([*bodies, film], name=name, max_it=25)
     return Model(ball, film, problem, position, disc, ball_speed, v.SRR)
@@ -787,6 +812,7 @@ def hertz_start(run: Model, v: Params, W: float, U: float) -> None:
         run.film.start_from_pressure(pressure, h_c, np.zeros(3), support=run.position)
     else:
         run.film.start_from_pressure(pressure, h_c, np.zeros(3))
+    run.film.jfo_initial_guess(downstream=(1.0, 0.0, 0.0))   # JFO: λ of the start
 
 
 def load(run: Model) -> float:

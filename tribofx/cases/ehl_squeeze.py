@@ -24,7 +24,7 @@ constant load (:func:`tribofx.references.squeeze_film_under_load`); recorded
 per step as ``force_rigid`` / ``h_center_rigid``.  A soft body under load
 traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
-``cavitation=jfo`` (2D) makes the film mass-conserving: a receding plane
+``cavitation=jfo`` (dim=2, 3) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
 each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite: the plane
 is the top of an elastic block [0, 2L] × [−H2, 0] (ν2, H2 default 2L;
@@ -106,7 +106,7 @@ class Params(FluidParams):
     cavitation: str = param(
         "none", "-",
         "none (a full film) or jfo (mass-conserving, "
-        "the void fraction transported in time; dim=2)",
+        "the void fraction transported in time; dim=2 or 3, rigid plane)",
         choices=("none", "jfo"))
     lumped: bool = param(
         False, "-",
@@ -161,8 +161,9 @@ def validate(v: Params) -> None:
                          f"cavitation=jfo; V = 0 has no squeeze")
     if v.lumped and v.cavitation != "jfo":
         raise InputError("lumped=true is for cavitation=jfo")
-    if v.cavitation == "jfo" and v.dim != 2:
-        raise InputError("cavitation=jfo is built for dim=2 (a film on a plane curve)")
+    if v.cavitation == "jfo" and (v.dim == AXISYMMETRIC or math.isfinite(v.E2)):
+        raise InputError("cavitation=jfo is built for dim=2 and dim=3 on the rigid plane "
+                         "(E2=inf)")
     if v.control == "speed" and not v.V * v.T < 0.9 * v.h_start:
         raise InputError(f"V·T = {v.V * v.T:.3g} mm would close the rigid gap "
                          f"h_start = {v.h_start} mm; shorten T")

@@ -561,11 +561,9 @@ class Film(ReynoldsFilm):
             raise ValueError("a transient film needs quadrature='gauss'")
         if lumped and self.lam is None:
             raise ValueError("a lumped transient film is for cavitation='jfo'")
-        if self.lam is not None and self.T is None:
-            raise ValueError("a transient JFO film on a surface (gdim = 3) is not built: "
-                             "a transient 3D film takes cavitation=Penalty(eps)")
         self.lumped = bool(lumped)
-        if lumped and self._jumps:   # ω of jfo_on_surface(vertex=): 0 until set (reforming films)
+        if lumped and self._jumps and self.T is not None:
+            # ω of jfo_on_surface(vertex=) on a curve: 0 until set (reforming films)
             self.vertex_couette = fem.Constant(self.sub, 0.0)
         sub, body = self.sub, self.body
         Cq = content_space(sub, md["quadrature_degree"], lumped)
