@@ -115,6 +115,47 @@ def test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books(light_load):
 
 
 @pytest.mark.slow
+def test_starved_ball_film_falls_below_the_flooded_one_and_the_supply(light_load):
+    """A starved ball (cavitation=jfo, supply c_in = 0.036 mm ≈ h_cff): its film thins.
+
+    The starvation literature's picture (Wedeven, Evans & Cameron 1971; Chevalier,
+    Lubrecht, Cann, Colin & Dalmaz, J. Tribol. 120 (1998) 126–133): the flooded film
+    h_cff while the inlet meniscus lies far upstream; once the supply runs short the
+    central film follows the available layer, below both asymptotes,
+    h_c/h_cff = r/(1 + r^γ)^{1/γ} with r = c_in/h_cff.  What mass conservation makes
+    exact here: the fluid crossing the centre line (Couette U h_c, the Poiseuille flux
+    vanishing with ∂p/∂x at the pressure peak) came in through the rim as U c_in, less
+    what flows round the contact, so h_c ≤ c_in up to that Poiseuille part (2 %
+    allowed).  At r ≈ 1 the curve gives 1/2^{1/γ}, below 0.9 for every γ < 6.6: the
+    film must fall by more than 10 % (measured 0.82).  The reference h_cff is the
+    penalty film of the fixture (JFO's flooded one is within 0.3 %, the test above).
+    The supply is marched down from the flooded rim in the case's steps
+    (:func:`tribofx.cases.ehl_ball.supply_march`, ratios ≤ 1.5).  The march is not robust
+    on every step sequence (to c_in = 4 h_cff in 8 steps it stalls at 0.45 mm): near
+    the cap's rim λ ≈ 1 − h_c/h_rim ≈ 0.99, and Newton steps to λ ≥ 1, where the
+    clamped rows are singular (an admissible line search, ``require_open``, stalls
+    there instead).
+    """
+    v_pen, _, m_pen = light_load
+    c_in = 0.036
+    v = v_pen.replace(cavitation="jfo", supply=c_in)
+    run = Case.build(v)
+    inner = Case.load_sweep(run, v)
+    Case.supply_march(run, v, inner, v.W)
+    m, film = Case.measures(run, v), run.film
+    books = film.surface_books()
+    imbalance = books["supplied"] + books["entered"] - books["out"] - books["leak"]
+    bound = film.Q.dofmap.index_map.size_global * film.tolerances()[film.p].atol
+    r, f = c_in / m_pen["h_central"], m["h_central"] / m_pen["h_central"]
+    print(f"c_in/h_cff = {r:.3f}: h_c/h_cff = {f:.4f}, h_min {m['h_min']:.5g} mm, "
+          f"W {m['W']:.6g}; books {books}, imbalance {imbalance:.3g} (bound {bound:.3g})")
+    assert abs(m["W"] / v.W - 1) <= 1e-3
+    assert f < 0.9
+    assert m["h_central"] <= 1.02 * c_in
+    assert abs(imbalance) <= bound
+
+
+@pytest.mark.slow
 def test_stiff_disc_reproduces_the_rigid_plane(light_load):
     """A disc of E2 = 1e4 MPa (10⁴ E) under the ball: the rigid plane's film (W = 2 N, mesh 1).
 

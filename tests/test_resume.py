@@ -137,7 +137,9 @@ MPIEXEC = pytest.mark.mpiexec   # starts mpiexec itself: run outside pytest-xdis
 
 
 @pytest.mark.parametrize("case,ranks,sig", [
-    ("wear-pin", 1, signal.SIGTERM),
+    # slow (9 s): wear-pin resumes in the default run on 2 ranks and, with its BDF2
+    # history, serially (below)
+    pytest.param("wear-pin", 1, signal.SIGTERM, marks=pytest.mark.slow),
     ("wear-pin-bdf2", 1, signal.SIGTERM),
     pytest.param("wear-pin", 2, signal.SIGINT, marks=MPIEXEC),
     # slow (26 s): the 3D wear under force control resumes on 2 ranks below (halfspace)

@@ -44,6 +44,15 @@ place of the plane's offset (``Model.position``); its material slides at 2U (the
 ball at rest), the film is :class:`~tribofx.interfaces.TwoBodyFilm` in 3D, the
 dry start puts the Hertz pressure on both surfaces, and E* is the pair's.
 
+``cavitation=jfo``: the mass-conserving film on the cap's triangles (void fraction λ,
+:func:`tribofx.forms.jfo.jfo_on_surface`); the rim is an open end supplied with the
+content c_in where v̄ points in (``ReynoldsFilm.add_inflow``), flooded (the rim's gap)
+for the loads; a finite ``supply`` then starves the film at W, c_in marched down in
+ratios ≤ 1.5 (:func:`supply_march`): the inlet meniscus moves in and the central
+film falls (h_c/h_cff 0.99, 0.96, 0.82 at c_in = 4, 2, 1 h_cff; W = 2 N, mesh 1).
+Not robust on every step sequence: near the rim λ ≈ 1 − h_c/h_rim ≈ 0.99, and from
+some converged states Newton steps to λ ≥ 1, where the clamped rows are singular.
+
 Your own ball (``mesh_file``, a gmsh quarter ball with the groups ``lubricated``,
 ``midplane``, ``symmetry``): :mod:`tribofx.cases.ehl_ball`.
 
@@ -192,6 +201,8 @@ def ball_fine_size(v: Params) -> float:
 #: secant far from the new film: at 40 N the step 30U → U fails and is cut, at 40 trials
 #: each time; steps of ratio 2 converge in 2–3 position trials each)
 MAX_SPEED_RATIO = 2.0
+# content ratio of a step of supply_march (c_in from the rim's gap to `supply`)
+MAX_SUPPLY_RATIO = 1.5
 
 
 USER_GROUPS = ("lubricated", "midplane", "symmetry")   # the groups of a user's ball
@@ -464,7 +475,9 @@ class Model(NamedTuple):
     ``position``: the Constant whose z component (:data:`Z`) places the countersurface
     (the rigid plane's offset, or the disc's support); ``disc``: the soft disc (E2
     finite) or None; ``ball_speed``: the Constant of the ball's surface speed U1 (a
-    rolling ball, ``SRR`` ≠ 2; None: the ball at rest); ``srr``: the slide-to-roll ratio.
+    rolling ball, ``SRR`` ≠ 2; None: the ball at rest); ``srr``: the slide-to-roll ratio;
+    ``supply``: the Constant of the JFO rim's content c_in (mm; None: penalty), built
+    flooded (the rim's gap) and marched down to ``supply`` by :func:`supply_march`.
     """
 
     ball: Body
@@ -474,6 +487,7 @@ class Model(NamedTuple):
     disc: Body | None = None
     ball_speed: fem.Constant | None = None
     srr: float = 2.0
+    supply: fem.Constant | None = None
 
 
 def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") -> Model:
@@ -507,7 +521,7 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
                               cavitation=cavitation,
                               quadrature=Quadrature(v.quadrature, degree=2), shear=v.shear,
                               supg=v.supg)
-    disc = ball_speed = None
+    disc = ball_speed = supply = None
     film: Film | TwoBodyFilm
     U1, U2 = surface_speeds(v)
     # a rolling ball (SRR ≠ 2) turns about its centre: its lowest point moves along +x
@@ -542,13 +556,14 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
         on_rim = lambda X: np.abs(X[2] - z_cap) < 1e-6 * v.R   # noqa: E731
         if v.cavitation == "jfo":
             # the rim an open end: the supply enters where v̄ points in, the film
-            # leaves where it points out, a Robin leak keeps p ≈ 0 (forms.jfo.jfo_inflow)
-            film.add_inflow(on_rim, z_cap if math.isinf(v.supply) else v.supply)
+            # leaves where it points out, a Robin leak keeps p ≈ 0 (forms.jfo.jfo_inflow);
+            # flooded (the rim's gap) until supply_march starves it
+            supply = film.add_inflow(on_rim, z_cap)
         else:
             film.add_pressure_bc(on_rim)
     bodies = [ball] if disc is None else [ball, disc]
     problem = Problem([*bodies, film], name=name, max_it=25)
-    return Model(ball, film, problem, position, disc, ball_speed, v.SRR)
+    return Model(ball, film, problem, position, disc, ball_speed, v.SRR, supply)
 
 
 def progress_total(v: Params) -> int:
@@ -607,7 +622,8 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
     # (the plane's offset is state); the series' "time" is the point's index, its
     # (W, U) in series_points
     sv = SweepVariant(journal, key, run,
-                      [*problem.state_fields(), *speed_constants(run)],
+                      [*problem.state_fields(), *speed_constants(run),
+                       *([run.supply] if run.supply is not None else [])],
                       record, vtx_fields(run), f"{name}_" if name else "",
                       ("steps", "speed"), run.ball.mesh.comm, progress)
     steps, speed, its_all = sv["steps"], sv["speed"], sv["its"]
@@ -639,6 +655,10 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
         try:
             first_speed = not sv.finished("loads")
             inner = load_sweep(run, vv, on_step, verbose, journal=sv)
+            if math.isfinite(vv.supply):     # starve the flooded film at W
+                supply_march(run, vv, inner, vv.W, record=its_all, journal=sv)
+                steps[-1] = dict(measures(run, vv), supply=vv.supply)
+                write()
             if speed_list(vv) and first_speed:
                 on_speed()
             for j, U in enumerate(speed_list(vv)):
@@ -1009,6 +1029,27 @@ def speed_march(run: Model, v: Params, inner: Continuation, W: float, U: float,
     kw: dict[str, Any] = dict(steps=steps, predictor=False, geometric=True,
                               min_fraction=2.0**-6)
     journalled_march(journal, leg, march, U, **kw)
+
+
+def supply_march(run: Model, v: Params, inner: Continuation, W: float,
+                 record: list[Iterations] | None = None,
+                 journal: SweepVariant | None = None) -> None:
+    """Starve the converged flooded film at load W: the rim's content c_in down to ``supply``.
+
+    Geometric steps of ratio ≤ :data:`MAX_SUPPLY_RATIO` (a failed step is cut, six
+    times at most), each re-finding the position that carries W (``inner``) from the
+    current one: from the flooded film the inlet meniscus moves in step by step (a
+    starved start from the flooded guess does not converge).  ``journal``: the
+    sweep's variant, which journals the march as its leg ``supply``.
+    """
+    assert run.supply is not None       # a JFO film (build)
+    offset = run.position.value
+    held = Hold(inner, W, slope=hertz_slope(v), guess=lambda: float(offset[Z]))
+    march = Continuation(held, ConstantParameter(run.supply), record=record)
+    steps = max(1, int(np.ceil(np.log(float(run.supply.value) / v.supply)
+                               / np.log(MAX_SUPPLY_RATIO))))
+    journalled_march(journal, "supply", march, v.supply, steps=steps, predictor=False,
+                     geometric=True, min_fraction=2.0**-6)
 
 
 def large_load(v: Params) -> bool:
