@@ -40,6 +40,11 @@ def test_list():
     (["run", "contact-patch", "--set", "mesh_ratio=0"], "needs at least 2"),
     (["run", "wear-ball-flat", "--set", "h_contact=0.1", "--set", "mesh_file=b.msh"],
      "h_contact sets the built mesh"),
+    (["run", "ehl-squeeze", "--set", "cavitation=jfo", "--set", "V=-1", "--set", "E2=10"],
+     "cavitation=jfo is built for dim=2 and dim=3 on the rigid plane"),
+    (["run", "ehl-ball", "--set", "cavitation=jfo", "--set", "E2=10"],
+     "cavitation=jfo is built for the rigid plane"),
+    (["run", "ehl-ball", "--set", "supply=0.01"], "supply (a starved inlet) needs"),
     (["frobnicate"], "invalid choice"),
 ])
 def test_bad_input(args, fragment):

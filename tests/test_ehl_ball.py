@@ -83,6 +83,7 @@ def test_film_matches_hamrock_dowson(light_load):
     assert m["x_h_min"] > 0 and m["h_min"] < m["h_central"]
 
 
+@pytest.mark.slow
 def test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books(light_load):
     """cavitation=jfo (the void fraction on the cap's triangles): the penalty's film, its books.
 
@@ -94,7 +95,9 @@ def test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books(light_load):
     the penalty's Swift–Stieber rupture conserves no mass and JFO's does: h_min may
     differ.  The oil's books on the cap (supplied + entered = out + leak) close to the
     sum of the converged nodal rows, N × their tolerance.  The supply at the rim of
-    more than the central film's flux: λ = 0 at the inflow rim nodes.
+    more than the central film's flux: λ = 0 at the inflow rim nodes.  Slow (30 s):
+    JFO on a surface is checked in the default run by ``tests/test_jfo_surface.py``
+    (a slab against the curve) and the receding sphere of ``tests/test_squeeze.py``.
     """
     v_pen, _, m_pen = light_load
     v = v_pen.replace(cavitation="jfo")

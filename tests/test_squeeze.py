@@ -389,7 +389,8 @@ def test_lumped_transport_tangent_is_exact(dim):
 
     The receding film of the test above, its p and λ then set to values of both signs
     away from the kinks of min(·, ·) and max(·, 0) (the converged state sits on them:
-    p = 0 at every node), the Dirichlet values kept.
+    p = 0 at every node), the Dirichlet values kept.  On a plane curve and on a
+    surface (3D).
     """
     v = values(V=-1.0, cavitation="jfo", E1=1e5, T=1e-3, dt=2.5e-4, lumped=True,
                scheme="bdf2", dim=dim)
