@@ -20,7 +20,13 @@ from tribofx.cases import ehl_ball as Case
 from tribofx.params import resolve
 from tribofx.problem import convergence_orders
 from tribofx.references import hamrock_dowson, hertz
-from tribofx.testing import block_taylor_orders, exact_tangent, newton_is_quadratic, residual_floor
+from tribofx.testing import (
+    block_taylor_orders,
+    exact_tangent,
+    newton_is_quadratic,
+    oil_books,
+    residual_floor,
+)
 
 
 def values(**overrides):
@@ -103,9 +109,7 @@ def test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books(light_load):
     v = v_pen.replace(cavitation="jfo")
     run, out = _solve(v)
     m, film = out[-1], run.film
-    books = film.surface_books()
-    imbalance = books["supplied"] + books["entered"] - books["out"] - books["leak"]
-    bound = film.Q.dofmap.index_map.size_global * film.tolerances()[film.p].atol
+    books, imbalance, bound = oil_books(film)
     print(f"h_c {m['h_central']:.6g} (penalty {m_pen['h_central']:.6g}), h_min "
           f"{m['h_min']:.6g} ({m_pen['h_min']:.6g}), W {m['W']:.6g} ({m_pen['W']:.6g}); "
           f"books {books}, imbalance {imbalance:.3g} (bound {bound:.3g})")
@@ -146,9 +150,7 @@ def test_starved_ball_film_falls_below_the_flooded_one_and_the_supply(light_load
     inner = Case.load_sweep(run, v)
     Case.supply_march(run, v, inner, v.W)
     m, film = Case.measures(run, v), run.film
-    books = film.surface_books()
-    imbalance = books["supplied"] + books["entered"] - books["out"] - books["leak"]
-    bound = film.Q.dofmap.index_map.size_global * film.tolerances()[film.p].atol
+    books, imbalance, bound = oil_books(film)
     r, f = c_in / m_pen["h_central"], m["h_central"] / m_pen["h_central"]
     print(f"c_in/h_cff = {r:.3f}: h_c/h_cff = {f:.4f}, h_min {m['h_min']:.5g} mm, "
           f"W {m['W']:.6g}; books {books}, imbalance {imbalance:.3g} (bound {bound:.3g})")

@@ -42,6 +42,7 @@ if TYPE_CHECKING:
     from dolfinx import fem
 
     from .bordered import Border
+    from .interfaces.film import Film
     from .problem import Problem
 
     #: a direction: one entry per unknown, its owned array or a ``fem.Function``
@@ -50,7 +51,7 @@ if TYPE_CHECKING:
     Orders = tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
 
 __all__ = ["block_taylor_orders", "block_vector", "border_taylor_orders", "exact_tangent",
-           "form_taylor_orders", "newton_is_quadratic",
+           "form_taylor_orders", "newton_is_quadratic", "oil_books",
            "owned_arrays", "penalty_film_directions", "residual_floor", "smooth_direction",
            "taylor_orders"]
 
@@ -343,3 +344,17 @@ def border_taylor_orders(border: Border, direction: Direction, eps0: float = 1e-
         with np.errstate(divide="ignore", invalid="ignore"):
             out[key] = (np.log2(r[:-1] / r[1:]), r / max(scale[key], 1e-300))
     return out
+
+
+def oil_books(film: Film) -> tuple[dict[str, float], float, float]:
+    """Return a JFO surface film's books, their imbalance and its bound (mm³/s).
+
+    Returns (books of :meth:`~tribofx.interfaces.reynolds_film.ReynoldsFilm.surface_books`,
+    supplied + entered − out − leak, N × atol): the transport rows tested by δp = 1
+    are the fluxes through ∂S, so the imbalance is the sum of the N converged nodal
+    rows, each below the stopping tolerance atol of a nodal flux.
+    """
+    books = film.surface_books()
+    imbalance = books["supplied"] + books["entered"] - books["out"] - books["leak"]
+    bound = film.Q.dofmap.index_map.size_global * film.tolerances()[film.p].atol
+    return books, imbalance, bound
