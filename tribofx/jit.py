@@ -94,14 +94,16 @@ PRELUDE: str = """\
 
 
 def _compile_command(args: list[str]) -> list[str]:
-    """Return the C compiler and the flags of CFFI's compiles (sysconfig's, the JIT's ``args``)."""
+    """Return the compile command of CFFI's builds (distutils' compiler, FFCx's includes, args)."""
+    import distutils.ccompiler  # setuptools' distutils, as CFFI's builds use it
+    import distutils.sysconfig
     import ffcx.codegeneration
 
-    cc = str(sysconfig.get_config_var("CC") or "cc").split()
-    flags = " ".join(str(sysconfig.get_config_var(k) or "") for k in ("CFLAGS", "CCSHARED"))
+    compiler = distutils.ccompiler.new_compiler()
+    distutils.sysconfig.customize_compiler(compiler)  # type: ignore[no-untyped-call]
     includes = [os.path.dirname(ffcx.codegeneration.__file__), os.path.join(sys.prefix, "include"),
                 sysconfig.get_paths()["include"]]
-    return [*cc, *flags.split(), *(f"-I{d}" for d in includes), "-std=c17", *args]
+    return [*compiler.compiler_so, *(f"-I{d}" for d in includes), "-std=c17", *args]
 
 
 def prelude(args: list[str]) -> Path:
