@@ -14,7 +14,7 @@ one; the cycle's checks its oil balance on 2 ranks from the same start and steps
 as the demo.  The main demo is four cases run through the runner, each of which
 its own test runs on 2 ranks through the same runner (``tribofx run`` under
 mpiexec).  Their runs on 2 ranks would repeat those tests at the cost of the
-whole demo.
+whole demo.  A demo named in ``SLOW`` runs in the slow set only.
 """
 
 import runpy
@@ -68,8 +68,13 @@ def test_the_parallel_tests_named_for_demos_exist():
             assert f"def {name}(" in (here / path).read_text(), test
 
 
+#: demos whose quick mode takes minutes: in the slow set (serially and on 2 ranks)
+SLOW = {"demo_soft_on_soft": "two 3D two-body films, each marched in speed: about 4 min"}
+
+
 @pytest.mark.mpi
-@pytest.mark.parametrize("demo", DEMOS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("demo", [pytest.param(p, marks=pytest.mark.slow) if p.stem in SLOW
+                                  else p for p in DEMOS], ids=lambda p: p.stem)
 def test_demo(demo, tmp_path, monkeypatch, capsys):
     if MPI.COMM_WORLD.size > 1 and demo.stem in PARALLEL_TESTED:
         pytest.skip(f"on 2 ranks by {PARALLEL_TESTED[demo.stem]}")
