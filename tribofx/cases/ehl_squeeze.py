@@ -26,7 +26,9 @@ traps fluid at its centre: the elastohydrodynamic dimple, h_center > h_min.
 
 ``cavitation=jfo`` (dim=2, 3) makes the film mass-conserving: a receding plane
 (V < 0) opens a cavity in which the void fraction is transported, θh constant at
-each point while p = 0 (``tests/test_squeeze.py``).  ``E2`` finite: the plane
+each point while p = 0 (``tests/test_squeeze.py``; between two bodies the
+fluid's content moves along the body's surface with the block's tangential motion
+relative to it, docs/films.md).  ``E2`` finite: the plane
 is the top of an elastic block [0, 2L] × [−H2, 0] (ν2, H2 default 2L;
 axisymmetric: a disc of radius 2L; 3D: the quarter block [0, 2L]² × [−H2, 0]),
 a layer bonded to a rigid base where H2 is small, held — or
@@ -106,7 +108,7 @@ class Params(FluidParams):
     cavitation: str = param(
         "none", "-",
         "none (a full film) or jfo (mass-conserving, "
-        "the void fraction transported in time; dim=2 or 3, rigid plane)",
+        "the void fraction transported in time; dim=2 or 3, on the plane or the block)",
         choices=("none", "jfo"))
     lumped: bool = param(
         False, "-",
@@ -161,9 +163,8 @@ def validate(v: Params) -> None:
                          f"cavitation=jfo; V = 0 has no squeeze")
     if v.lumped and v.cavitation != "jfo":
         raise InputError("lumped=true is for cavitation=jfo")
-    if v.cavitation == "jfo" and (v.dim == AXISYMMETRIC or math.isfinite(v.E2)):
-        raise InputError("cavitation=jfo is built for dim=2 and dim=3 on the rigid plane "
-                         "(E2=inf)")
+    if v.cavitation == "jfo" and v.dim == AXISYMMETRIC:
+        raise InputError("cavitation=jfo is built for dim=2 and dim=3 (not axisymmetric)")
     if v.control == "speed" and not v.V * v.T < 0.9 * v.h_start:
         raise InputError(f"V·T = {v.V * v.T:.3g} mm would close the rigid gap "
                          f"h_start = {v.h_start} mm; shorten T")
@@ -307,6 +308,8 @@ def _parts(v: Params, comm: MPI.Comm) -> tuple[list[Body], Film | TwoBodyFilm, f
 
     if v.cavitation == "jfo":     # the rim opens to a flooded reservoir: p = 0, λ = 0
         film.add_reservoir(rim, 0.0)
+        # no flux through the planes of symmetry (the axis x = 0 of the section)
+        film.add_symmetry(lambda X: np.any(np.abs(X[:dim - 1]) < 1e-9 * L, axis=0))
     else:
         film.add_pressure_bc(rim)
     if math.isinf(v.E2):

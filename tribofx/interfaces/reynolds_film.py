@@ -95,6 +95,7 @@ class ReynoldsFilm(ComponentBase):
     vertex_couette: fem.Constant | None = None
     # (where, c_in) of the weak inflow end (add_inflow)
     _inflow: tuple[Where, fem.Constant] | None = None
+    _symmetry: Where | None = None
     _rate_speed: float = 0.0   # ℓ_e/Δt of a transient film's step (mm/s; the p tolerance)
     _round_off: float = 0.0    # the Reynolds rows' round-off floor (a transient film's step)
     # {inlet: compiled rows (end dofs, form) and Couette flux of consistent_fluxes}
@@ -229,6 +230,19 @@ class ReynoldsFilm(ComponentBase):
                              "curve, or a Film on a body's surface)")
         self._inflow = (where, fem.Constant(self.sub, float(content)))
         return self._inflow[1]
+
+    def add_symmetry(self, where: Where) -> None:
+        """Mark the ends ``where`` of Γ_l on a plane of symmetry: no JFO content crosses them.
+
+        The ends of a curve, or the edges of ∂Γ_l of a surface whose midpoints
+        ``where`` selects (reference coordinates).  JFO's Couette rows carry the
+        flux θ h v_n out through the ends of Γ_l (:func:`tribofx.forms.jfo.jfo_on_surface`);
+        on a plane of symmetry it vanishes, but v_n, taken on the element's chord or
+        facet, does not where S moves across its tangent plane (two bodies that
+        approach or separate): these ends are then left out, so that the rows keep
+        the flux zero there.  Call before the Problem is built.
+        """
+        self._symmetry = where
 
     def add_reservoir(self, where: Where, pressure: float) -> fem.Constant:
         """JFO outlet into a reservoir: the end is flooded, p = ``pressure`` and λ = 0.
@@ -406,16 +420,19 @@ class ReynoldsFilm(ComponentBase):
         The ends are the submesh's true boundary, tagged explicitly (in parallel
         the untagged ``ds`` of the facet submesh also contains the vertices on
         the partition boundary); one tag set for both (one form takes one), the
-        inflow ends tagged 2, the others 1.
+        inflow ends tagged 2, the symmetry ends (:meth:`add_symmetry`) 0, the others 1.
         """
         sub = self.sub
         fdim = sub.topology.dim - 1
         ends = self.boundary_facets()
         values = np.full(len(ends), 1, dtype=np.int32)
-        if self._inflow is not None and len(ends):
+        if (self._inflow is not None or self._symmetry is not None) and len(ends):
             # the ends' points, or the midpoints of the edges of a surface
             X = sub.geometry.x[dmesh.entities_to_geometry(sub, fdim, ends, False)].mean(axis=1)
-            values[np.asarray(self._inflow[0](X.T), dtype=bool)] = 2
+            if self._inflow is not None:
+                values[np.asarray(self._inflow[0](X.T), dtype=bool)] = 2
+            if self._symmetry is not None:     # no flux: left out of ds((1, 2))
+                values[np.asarray(self._symmetry(X.T), dtype=bool)] = 0
         tags = dmesh.meshtags(sub, fdim, ends, values)
         # a point's integral is its value: the vertex rule (no points on a point) is not needed
         md = {k: v for k, v in self.dx.metadata().items() if k != "quadrature_rule"}

@@ -55,7 +55,7 @@ from ..problem import BlockTolerance, Problem
 from ..scheme import BDF2
 from ..two_body import film_node_residuals, num_data_film, num_local_film
 from .film import Film
-from .film_options import JFO, FilmScales
+from .film_options import FilmScales
 from .master_side import KernelAssembly, MasterSide, cached_state
 from .prescribed_pressure import BoundaryPressure
 
@@ -137,12 +137,6 @@ class TwoBodyFilm(KernelAssembly, Film):
         if slave.kind != master.kind:
             raise ValueError(f"TwoBodyFilm: a {slave.kind} slave needs a {slave.kind} master, "
                              f"not a {master.kind} one")
-        if isinstance(kwargs.get("cavitation"), JFO):
-            # measured: the JFO rows' pressure column is not the derivative (Taylor
-            # remainders of first order, 2D and 3D) and a receding stiff pair does not
-            # keep its fluid node by node as one body on the rigid plane does
-            raise ValueError("TwoBodyFilm takes cavitation=Penalty(eps) or None: JFO "
-                             "between two bodies is not built (it is for one body's Film)")
         for key in ("V_counter", "model", "alpha", "motion"):
             if key in kwargs:
                 raise ValueError(f"TwoBodyFilm has no option {key!r} (S = γ_l, finite model)")
