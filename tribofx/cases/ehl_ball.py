@@ -20,20 +20,26 @@ for the plane position along the paths of :mod:`tribofx.cases.ehl_ball`
 marched down).
 
 Defaults (mm, N, s, MPa; Stupkiewicz et al. 2016): R = 12.7, E = 1.19, ν = 0.45
-(E* = 1.49 ≈ 240/R², Hertz a ≈ R/2 at 40 N; ν < 0.5 against P1 locking);
-μ = 1e-8 (10 mPa·s), U = 1e4: μU = 1e-4 N/mm (0.1 N/m); W = 10 N in 3 steps;
-θ_l = 40°; element size a/(4·2^mesh) within 1.6 a.  ``mesh`` and ``edge_refine``
-default to the cheapest pair that resolves the film's outlet constriction at the
-run's W and U (:mod:`tribofx.cases.ehl_ball`: elements along the contact
-edge ≤ 2ℓ, ℓ = a (h_c R/a²)^{2/3}); the default point keeps ``mesh=1`` (≈ 11k
-unknowns).  The chapter's point W = 40 N, μU = 0.078 N/m (Figs. 25–26) gets
-``mesh=2 edge_refine=1`` (element size a/16, a/32 along the contact edge; 64k
-unknowns) and needs θ_l = 60° (a smaller cap is refused at once); the speed is
-marched down from 30U in ratios ≤ 2 (9 min on 2 ranks, MUMPS).  Coarser meshes
-converge too but to a film that zig-zags node to node in the Hertzian zone and
-dips far below the Hamrock–Dowson film on the symmetry line (``mesh=1``, a/8:
-h_central 2.3 µm against 16.8 µm at 25k unknowns); set explicitly, they run
-with a warning.  A point no built mesh resolves is refused at validation:
+(E* = 1.49 ≈ 240/R², Hertz a ≈ R/2 at 40 N); μ = 1e-8 (10 mPa·s), U = 1e4:
+μU = 1e-4 N/mm (0.1 N/m); W = 10 N in 3 steps; θ_l = 40°.  The solid is the
+mixed (u, p) one and the film's terms are taken at the nodes (``quadrature=
+vertex``): together they remove the node-to-node zig-zag of a thin film over a
+nearly incompressible ball (a locked P1 surface; the chord sag h_e²/8R inside a
+facet) at a third of the unknowns the displacement solid with Gauss points needs.
+Element size a/(4·2^mesh) within 1.6 a; ``mesh`` and ``edge_refine`` default to
+the cheapest pair of :data:`LEVELS` that resolves the film's outlet constriction
+at the run's W and U (elements along the contact edge ≤ 2ℓ, ℓ = a (h_c R/a²)^{2/3});
+the default point keeps ``mesh=1``.  The chapter's point W = 40 N, μU = 0.078 N/m
+(Figs. 25–26) gets ``mesh=1 edge_refine=2`` (a/8, a/32 along the contact edge; 29k
+unknowns) and needs θ_l = 60° (a smaller cap is refused at once); each load is
+reached on a thick film at 30U and the last one marched down in speed in ratios
+≤ 2 (110 s on 2 ranks: ``benchmarks/bench_ehl_ball_chapter_point.py``).  The
+displacement solid (``formulation=displacement``) needs ``mesh=2 edge_refine=1``
+there (64k unknowns); on ``mesh=1`` it converges to a film that zig-zags node to
+node in the Hertzian zone and dips far below the Hamrock–Dowson film (h_central
+2.3 µm against 16.8 µm).  A mesh set explicitly that does not resolve the outlet
+runs with a warning; a point no built mesh resolves is refused at validation.
+The chapter's point with the three models of Fig. 26:
 
     tribofx run ehl-ball --set W=40 --set U=7800 --set theta_l=60 --set compare=all
 
@@ -125,7 +131,8 @@ __all__ = ["DISC_NAMES", "FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UN
            "doc", "e_star", "edge_size", "film_oscillation", "follow_control", "hertz_contact",
            "hertz_slope", "hertz_start", "large_load", "load", "load_sweep", "measures",
            "mesh_levels", "name", "outlet_width", "place_user_ball", "plot", "position_control",
-           "progress_total", "resumable", "run", "scales", "set_scales", "speed_constants",
+           "progress_total", "resolves_outlet", "resumable", "run", "scales", "set_scales",
+           "speed_constants",
            "speed_march", "speed_parameter", "surface_speeds", "sweep", "thick_film_sweep",
            "user_rim", "validate", "vtx_fields"]
 
@@ -134,8 +141,13 @@ __all__ = ["DISC_NAMES", "FILM_OSCILLATION_TOL", "LEVELS", "MAX_EDGE_RATIO", "UN
 MAX_EDGE_RATIO = 2.0
 
 
-#: (mesh, edge_refine) in the order of their cost (unknowns: 12k, 64k, 120k, 230k)
-LEVELS = ((1, 0), (2, 1), (2, 2), (3, 2))
+#: (mesh, edge_refine) in the order of their cost, by solid.  The mixed solid needs
+#: the fine elements along the contact edge only (29k unknowns at 40 N for mesh=1
+#: edge_refine=2: film_oscillation 0.017); the displacement solid locks inside the
+#: Hertzian zone and zig-zags there unless the whole zone is refined (mesh=1
+#: edge_refine=2 gave h_c 2.4 µm against 16.8; mesh=2 edge_refine=1, 64k: 0.062)
+LEVELS = {"mixed": ((1, 0), (1, 1), (1, 2), (2, 2), (3, 2)),
+          "displacement": ((1, 0), (2, 1), (2, 2), (3, 2))}
 
 
 def outlet_width(v: Params) -> float:
@@ -178,7 +190,7 @@ def mesh_levels(v: Params) -> tuple[int, int, bool]:
     elif refine is not None:
         candidates = [(m, refine) for m in (1, 2, 3)]
     else:
-        candidates = list(LEVELS)
+        candidates = list(LEVELS[v.formulation])
     ell = outlet_width(v)
     for m, e in candidates:
         if edge_size(v, m, e) <= MAX_EDGE_RATIO * ell * (1 + 1e-12):
@@ -333,8 +345,8 @@ class Params(FluidParams):
         choices=("finite", "linear"))
     shear: bool = param(True, "-", "Couette and Poiseuille shear tractions on the ball")
     supg: bool = param(True, "-", "SUPG stabilisation of the Reynolds equation")
-    formulation: str = film_setup.formulation_param("displacement")
-    quadrature: str = film_setup.quadrature_param()
+    formulation: str = film_setup.formulation_param("mixed")
+    quadrature: str = film_setup.quadrature_param("vertex")
     penalty: float = param(
         1e-4, "-",
         "relative cavitation penalty ε/ε_ref, ε_ref = 12 μ a²/h_c³ (Hertz a, "
@@ -595,6 +607,12 @@ def run(v: Params, record: RunRecord, progress: tqdm | None = None, verbose: boo
                         f"{edge_size(v, level, refine):.3g} mm along the contact edge "
                         f"> {MAX_EDGE_RATIO:g} × the outlet width {outlet_width(v):.3g} mm "
                         "at this W and U: expect a zig-zag or a spurious dip of the film")
+        if level == 0 and (v.formulation, v.quadrature) == ("mixed", "vertex"):
+            # measured at the default point's speed: 2 and 3 N converge, 4 N does not
+            # (a node's film reaches h <= 0 in the Newton homotopy); either alone does
+            record.warn("mesh=0 with the mixed solid and the vertex rule: Newton may "
+                        "not converge above a few N; use mesh >= 1, or "
+                        "formulation=displacement or quadrature=gauss on this mesh")
     record.data["variant_newton_iterations"] = {}
     record.profile = {"variants": {}, "W": v.W}
     first = None
@@ -638,7 +656,7 @@ def sweep(vv: Params, name: str, label: str, record: RunRecord, journal: SweepJo
         its_all.append([i for t in its for i in (t if isinstance(t, list) else [t])])
         if steps:   # the film map is kept for the last load only (checkpoint size)
             steps[-1].pop("profile", None)
-        steps.append(measures(run, vv))
+        steps.append(dict(measures(run, vv), U=speed_parameter(run).get()))
         write()
         if progress is not None:
             progress.update(1)
@@ -732,6 +750,10 @@ def _report(steps: list[dict[str, Any]], speed: list[dict[str, Any]], v: Params,
         record.result(prefix + "W_reached", steps[-1]["W"], "N")
     for k in ("W",) + keys:
         record.result(f"{prefix}steps_{k}", [m[k] for m in steps], UNITS[k])
+    # the speed of each load (U, or the thick film's where the mesh does not resolve
+    # an intermediate load at U: thick_film_sweep); not in journals written before
+    if steps and all("U" in m for m in steps):
+        record.result(f"{prefix}steps_U", [m["U"] for m in steps], "mm/s")
     for m in speed:
         m["mu_U"] = v.mu * m["U"]
     if len(speed) > 1:
@@ -912,8 +934,13 @@ def thick_film_sweep(run: Model, v: Params,
     plane is raised by displacement control until the film carries the next
     load (:meth:`Continuation.advance`, scales following the load reached);
     (iii) from that state U is marched down to U at fixed load
-    (:meth:`speed_march`) and the load recorded; (iv) the next load continues
-    from the state at U_s.  ``journal``: as for :func:`load_sweep`; its position
+    (:meth:`speed_march`) and the load recorded — at W always, at an intermediate
+    load only where the mesh, made for W, resolves that load's outlet at U
+    (:func:`resolves_outlet`; elsewhere the load is recorded at U_s, ``steps_U``:
+    at U a Newton step from such a film fails, the 13.3 N step of the chapter's
+    point after 18 min), so that an intermediate load is never harder to reach
+    than W; (iv) the next load
+    continues from the state at U_s.  ``journal``: as for :func:`load_sweep`; its position
     keeps U_s, the load reached last and (as arrays) the state at U_s.
     """
     film, problem = run.film, run.problem
@@ -962,7 +989,8 @@ def thick_film_sweep(run: Model, v: Params,
         inner.advance(Wk, 0.05 * hertz_contact(v).delta)
         set_scales(film, v, Wk, Us)
         carrier[:] = problem.state()
-        if Us != U:  # (``inner`` records the Newton trials of each speed step)
+        # (``inner`` records the Newton trials of each speed step)
+        if Us != U and (k + 1 == v.steps or resolves_outlet(v, Wk)):
             speed_march(run, v, inner, Wk, U)
         if on_step is not None:
             on_step(Wk, its)
@@ -1050,6 +1078,29 @@ def supply_march(run: Model, v: Params, inner: Continuation, W: float,
                                / np.log(MAX_SUPPLY_RATIO))))
     journalled_march(journal, "supply", march, v.supply, steps=steps, predictor=False,
                      geometric=True, min_fraction=2.0**-6)
+
+
+def resolves_outlet(v: Params, W: float) -> bool:
+    """Whether the run's mesh resolves the outlet constriction of the load ``W`` at U.
+
+    The mesh is made for the final load ``v.W`` (:func:`build`): size h/2^edge_refine
+    within w = 0.1 a of the circle 0.95 a (a = a(v.W), h = :func:`ball_fine_size`),
+    growing linearly to h at 2w (:func:`tribofx.meshes.ball.quarter_ball`).  The
+    element size there at the contact edge 0.95 a(W) of a smaller load, against
+    :data:`MAX_EDGE_RATIO` × ℓ(W, U) (:func:`outlet_width`).  At the chapter's point
+    (40 N at 0.078 N/m, mesh=1 edge_refine=2) 13.3 N is not resolved at U (elements
+    3.1 ℓ along its edge), 26.7 N is (1.5 ℓ, at the band's flank), 40 N too (1.03 ℓ).
+    A user's mesh (``mesh_file``) is taken to resolve every load.
+    """
+    if v.mesh_file:
+        return True
+    _, refine, _ = mesh_levels(v)
+    a = hertz_contact(v).a
+    d = 0.95 * abs(hertz_contact(v, W).a - a)         # from the band's circle
+    h = ball_fine_size(v)
+    h_ring = h / 2**refine
+    size = h_ring + (h - h_ring) * min(max(d / (0.1 * a) - 1.0, 0.0), 1.0)
+    return size <= MAX_EDGE_RATIO * outlet_width(v.replace(W=W)) * (1 + 1e-12)
 
 
 def large_load(v: Params) -> bool:

@@ -62,7 +62,7 @@ def formulation_param(default: str) -> Any:
                  "locking-free, no film zig-zag for nearly incompressible solids)",
                  choices=("displacement", "mixed"))
 
-def quadrature_param() -> Any:
+def quadrature_param(default: str = "gauss") -> Any:
     """Return the ``quadrature`` field of a film case: the rule of the film's integrals.
 
     Offered by ``ehl-ball`` only (verified there): with the vertex rule Newton does
@@ -73,7 +73,7 @@ def quadrature_param() -> Any:
     chord, below the curved surface by up to h_e²/(8R), which in a thin film
     (h ≲ h_e²/R) is a node-to-node ripple of h (:class:`tribofx.interfaces.Film`).
     """
-    return param("gauss", "-",
+    return param(default, "-",
                  "rule of the film integrals: gauss, or vertex (film terms at the nodes: no "
                  "chord sag h_e²/8R of the faceted surface in a thin film; not with a kinked "
                  "meshed countersurface)", choices=("gauss", "vertex"))
