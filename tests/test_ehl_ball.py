@@ -127,6 +127,54 @@ def test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books(light_load):
     assert lam.min() >= -1e-8 and lam.max() < 1.0 and lam.max() > 0.5   # a cavity behind
 
 
+@pytest.mark.mpi
+def test_soft_disc_jfo_matches_its_penalty_inlet_and_closes_its_books():
+    """cavitation=jfo between the ball and a disc as soft (PDMS on PDMS: E2 = E, ν2 = ν),
+    W = 2 N, mesh 0, the ball at rest on the sliding disc: the two-body film
+    (:class:`tribofx.interfaces.TwoBodyFilm` in 3D) with the void fraction on the ball's
+    cap, the rim an open end flooded with its gap, the symmetry plane's edges left out
+    of the Couette flux (``ReynoldsFilm.add_symmetry``).
+
+    As for the ball on the rigid plane
+    (:func:`test_jfo_ball_matches_the_penalty_inlet_and_closes_its_books`): the central
+    film and the load are set upstream, where both models have a full film fed by a
+    flooded inlet, so they agree within 1 % (the penalty's violation of p ≥ 0, 2e-3 of
+    the film, and the rim's condition); the oil's books close to N × the rows'
+    tolerance (:func:`tribofx.testing.oil_books`); a cavity forms behind the contact.
+    Both with Gauss points (the vertex rule does not converge with JFO; ``auto`` takes
+    Gauss for JFO).
+    """
+    m = {}
+    for cav in ("penalty", "jfo"):
+        v = values(W=2.0, steps=1, mesh=0, E2=1.19, nu2=0.45, cavitation=cav,
+                   quadrature="gauss")
+        run, out = _solve(v)
+        m[cav] = out[-1]
+    film = run.film
+    books, imbalance, bound = oil_books(film)
+    print({k: (m["jfo"][k], m["penalty"][k]) for k in ("h_central", "h_min", "W")},
+          books, imbalance, bound)
+    assert abs(m["jfo"]["h_central"] / m["penalty"]["h_central"] - 1) <= 0.01
+    assert abs(m["jfo"]["W"] / m["penalty"]["W"] - 1) <= 0.01
+    assert abs(imbalance) <= bound
+    assert books["out"] > 0 and books["supplied"] > books["leak"] > 0
+    lam = film.lam.x.array
+    lam_max = MPI.COMM_WORLD.allreduce(float(lam.max(initial=0.0)), op=MPI.MAX)
+    lam_min = MPI.COMM_WORLD.allreduce(float(lam.min(initial=1.0)), op=MPI.MIN)
+    assert lam_min >= -1e-8 and 0.5 < lam_max < 1.0     # a cavity behind
+
+
+def test_jfo_takes_gauss_points_by_default_and_refuses_the_vertex_rule():
+    """``quadrature=auto`` (the default): the vertex rule with the penalty, Gauss points
+    with JFO; ``cavitation=jfo quadrature=vertex`` is refused at validation in one line."""
+    from tribofx.params import InputError
+
+    assert Case.film_rule(values()) == "vertex"
+    assert Case.film_rule(values(cavitation="jfo")) == "gauss"
+    with pytest.raises(InputError, match="cavitation=jfo takes quadrature=gauss"):
+        values(cavitation="jfo", quadrature="vertex")
+
+
 @pytest.mark.slow
 def test_starved_ball_film_falls_below_the_flooded_one_and_the_supply(light_load):
     """A starved ball (cavitation=jfo, supply c_in = 0.036 mm ≈ h_cff): its film thins.
