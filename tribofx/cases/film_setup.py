@@ -47,7 +47,7 @@ if TYPE_CHECKING:
         def speeds(self) -> str: ...
 
 __all__ = ["FilmModel", "FluidParams", "at_points", "density",
-           "film_boundary", "film_rule", "formulation_param", "quadrature_param", "rigid_film",
+           "film_boundary", "formulation_param", "quadrature_param", "rigid_film",
            "speed_list", "viscosity"]
 
 
@@ -72,27 +72,16 @@ def quadrature_param(default: str = "gauss") -> Any:
     Γ_l, where the P1 surface is exact: a Gauss point inside a facet sees the
     chord, below the curved surface by up to h_e²/(8R), which in a thin film
     (h ≲ h_e²/R) is a node-to-node ripple of h (:class:`tribofx.interfaces.Film`).
-    ``default="auto"`` offers ``auto`` too: vertex with penalty cavitation, gauss with
-    JFO (Newton on the JFO rows with the vertex rule meets a non-finite residual at
-    its first steps: the ball at 2 N, mesh 1, measured), :func:`film_rule`.
+    ``default="auto"`` offers ``auto`` too, a rule the case chooses (``ehl-ball``:
+    :func:`tribofx.cases.ehl_ball.film_rule`).
     """
     auto = default == "auto"
     return param(default, "-",
                  "rule of the film integrals: gauss, or vertex (film terms at the nodes: no "
                  "chord sag h_e²/8R of the faceted surface in a thin film; not with a kinked "
                  "meshed countersurface; not with cavitation=jfo)"
-                 + ("; auto: vertex, gauss with cavitation=jfo" if auto else ""),
+                 + ("; auto: vertex, gauss with cavitation=jfo or on mesh=0" if auto else ""),
                  choices=("auto", "gauss", "vertex") if auto else ("gauss", "vertex"))
-
-
-def film_rule(quadrature: str, cavitation: str) -> str:
-    """Return the film's rule of a case's ``quadrature`` and ``cavitation``.
-
-    ``auto`` resolved: vertex, gauss with JFO.
-    """
-    if quadrature != "auto":
-        return quadrature
-    return "gauss" if cavitation == "jfo" else "vertex"
 
 
 @dataclass(frozen=True)
