@@ -174,7 +174,10 @@ if not args.quick:
                        ("linear", {"model": "linear"})):
         for W_v, extra in ((6.0, {"steps": "3", "mesh": "1"}),
                            (40.0, {"steps": "1", "mesh": "0", "theta_l": "55", "U": "3e5"})):
-            v = resolve(ehl_ball.Params, {"W": str(W_v), **extra, **over})
+            # the displacement solid with Gauss points, as the configuration above
+            # (the case's default is the mixed solid with the vertex rule)
+            v = resolve(ehl_ball.Params, {"W": str(W_v), "formulation": "displacement",
+                                          "quadrature": "gauss", **extra, **over})
             run = ehl_ball.build(v, comm)
             steps = []
             ehl_ball.load_sweep(run, v, lambda W, its, run=run, v=v: steps.append(
