@@ -22,10 +22,11 @@ marched down).
 Defaults (mm, N, s, MPa; Stupkiewicz et al. 2016): R = 12.7, E = 1.19, ν = 0.45
 (E* = 1.49 ≈ 240/R², Hertz a ≈ R/2 at 40 N); μ = 1e-8 (10 mPa·s), U = 1e4:
 μU = 1e-4 N/mm (0.1 N/m); W = 10 N in 3 steps; θ_l = 40°.  The solid is the
-mixed (u, p) one and the film's terms are taken at the nodes (``quadrature=
-vertex``): together they remove the node-to-node zig-zag of a thin film over a
-nearly incompressible ball (a locked P1 surface; the chord sag h_e²/8R inside a
-facet) at a third of the unknowns the displacement solid with Gauss points needs.
+mixed (u, p) one and the film's terms are taken at the nodes (``quadrature=auto``:
+the vertex rule; Gauss points with JFO and on ``mesh=0``, :func:`film_rule`):
+together they remove the node-to-node zig-zag of a thin film over a nearly
+incompressible ball (a locked P1 surface; the chord sag h_e²/8R inside a facet) at
+a third of the unknowns the displacement solid with Gauss points needs.
 Element size a/(4·2^mesh) within 1.6 a; ``mesh`` and ``edge_refine`` default to
 the cheapest pair of :data:`LEVELS` that resolves the film's outlet constriction
 at the run's W and U (elements along the contact edge ≤ 2ℓ, ℓ = a (h_c R/a²)^{2/3});
@@ -944,9 +945,9 @@ def thick_film_sweep(run: Model, v: Params,
     (:func:`resolves_outlet`; elsewhere the load is recorded at U_s, ``steps_U``:
     at U a Newton step from such a film fails, the 13.3 N step of the chapter's
     point after 18 min), so that an intermediate load is never harder to reach
-    than W; (iv) the next load
-    continues from the state at U_s.  ``journal``: as for :func:`load_sweep`; its position
-    keeps U_s, the load reached last and (as arrays) the state at U_s.
+    than W; (iv) the next load continues from the state at U_s.  ``journal``: as
+    for :func:`load_sweep`; its position keeps U_s, the load reached last and (as
+    arrays) the state at U_s.
     """
     film, problem = run.film, run.problem
     U, speed = v.U, speed_parameter(run)
