@@ -573,10 +573,9 @@ def build(v: Params, comm: MPI.Comm = MPI.COMM_WORLD, name: str = "ehl_ball") ->
             # leaves where it points out, a Robin leak keeps p ≈ 0 (forms.jfo.jfo_inflow);
             # flooded (the rim's gap) until supply_march starves it
             supply = film.add_inflow(on_rim, z_cap)
-            if disc is not None:
-                # S is the ball's curved surface: the Couette flux θ h v_n on the
-                # facets' chords at y = 0 is not zero (ReynoldsFilm.add_symmetry)
-                film.add_symmetry(lambda X: np.abs(X[1]) < 1e-6 * v.R)
+            # no content crosses the symmetry plane y = 0 (on a disc S is the ball's
+            # curved surface, where θ h v_n on the facets' chords is not zero there)
+            film.add_symmetry(lambda X: np.abs(X[1]) < 1e-6 * v.R)
         else:
             film.add_pressure_bc(on_rim)
     bodies = [ball] if disc is None else [ball, disc]
